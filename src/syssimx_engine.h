@@ -1,0 +1,204 @@
+/* syssimx engine: the public C API.
+ *
+ * Python reads this very file as its cffi cdef (ABI mode): every line that starts with '#' is
+ * dropped, so the declarations below must stay plain C that cffi parses (no macros, no inline
+ * code, no variadic functions).
+ *
+ * Conventions
+ * - Calls returning int return 0 on success and -1 on failure; the failure is described by
+ *   ssx_last_error(). The ssx_fmu_* wrappers of single fmi2 calls return the fmi2Status
+ *   (0 OK, 1 Warning, 2 Discard, 3 Error, 4 Fatal, 5 Pending) or -1 when the engine itself failed.
+ * - Components, outputs, inputs and indicators are numbered from 0 in the order they are added.
+ * - All port values live in the engine as doubles; Integer and Boolean ports are converted at
+ *   the fmi2 boundary.
+ * - No global mutable state: everything hangs off an ssx_fmu or an ssx_system.
+ */
+#ifndef SYSSIMX_ENGINE_H
+#define SYSSIMX_ENGINE_H
+
+#include <stddef.h>
+
+typedef enum { SSX_REAL = 0, SSX_INTEGER = 1, SSX_BOOLEAN = 2 } ssx_value_type;
+typedef enum { SSX_GAUSS_SEIDEL = 0, SSX_JACOBI = 1 } ssx_coupling;
+typedef enum { SSX_ILLINOIS = 0, SSX_BISECTION = 1 } ssx_locator;
+
+/* ------------------------------------------------------------------------------------------
+ * One loaded FMU binary with (at most) one live instance. Owned by the Python FMUComponent,
+ * borrowed by every system it is added to.
+ * ------------------------------------------------------------------------------------------ */
+typedef struct ssx_fmu ssx_fmu;
+
+typedef struct {
+    long do_step;
+    long get_state;
+    long set_state;
+    long get_values;   /* fmi2Get* calls, any type */
+    long set_values;   /* fmi2Set* calls, any type */
+    long instantiate;
+} ssx_fmu_counters;
+
+/* dlopen(binary_path, RTLD_NOW | RTLD_LOCAL) and resolve the fmi2 functions (prefixed with
+ * model_identifier when unprefixed names are missing). On failure returns NULL and writes the
+ * reason into error. Does not instantiate. */
+ssx_fmu *ssx_fmu_load(const char *binary_path, const char *model_identifier, const char *guid,
+                      const char *resource_uri, const char *instance_name, int logging_on,
+                      char *error, size_t error_size);
+void ssx_fmu_free(ssx_fmu *fmu); /* terminates/frees a live instance, then dlclose */
+
+int ssx_fmu_instantiate(ssx_fmu *fmu); /* a live instance is freed first */
+int ssx_fmu_free_instance(ssx_fmu *fmu);
+int ssx_fmu_setup_experiment(ssx_fmu *fmu, int tolerance_defined, double tolerance,
+                             double start_time, int stop_time_defined, double stop_time);
+int ssx_fmu_enter_initialization_mode(ssx_fmu *fmu);
+int ssx_fmu_exit_initialization_mode(ssx_fmu *fmu);
+int ssx_fmu_do_step(ssx_fmu *fmu, double t, double h, int no_set_fmu_state_prior);
+int ssx_fmu_get_real(ssx_fmu *fmu, const unsigned int *vr, size_t n, double *values);
+int ssx_fmu_set_real(ssx_fmu *fmu, const unsigned int *vr, size_t n, const double *values);
+int ssx_fmu_get_integer(ssx_fmu *fmu, const unsigned int *vr, size_t n, int *values);
+int ssx_fmu_set_integer(ssx_fmu *fmu, const unsigned int *vr, size_t n, const int *values);
+int ssx_fmu_get_boolean(ssx_fmu *fmu, const unsigned int *vr, size_t n, int *values);
+int ssx_fmu_set_boolean(ssx_fmu *fmu, const unsigned int *vr, size_t n, const int *values);
+int ssx_fmu_get_state(ssx_fmu *fmu, void **state); /* *state != NULL: reuse that state */
+int ssx_fmu_set_state(ssx_fmu *fmu, void *state);
+int ssx_fmu_free_state(ssx_fmu *fmu, void **state);
+int ssx_fmu_serialized_state_size(ssx_fmu *fmu, void *state, size_t *size);
+int ssx_fmu_serialize_state(ssx_fmu *fmu, void *state, char *bytes, size_t size);
+int ssx_fmu_deserialize_state(ssx_fmu *fmu, const char *bytes, size_t size, void **state);
+int ssx_fmu_get_directional_derivative(ssx_fmu *fmu, const unsigned int *unknowns, size_t n_unknowns,
+                                       const unsigned int *knowns, size_t n_knowns,
+                                       const double *dv_known, double *dv_unknown);
+int ssx_fmu_reset(ssx_fmu *fmu);
+int ssx_fmu_terminate(ssx_fmu *fmu);
+int ssx_fmu_is_instantiated(const ssx_fmu *fmu);
+const char *ssx_fmu_last_message(const ssx_fmu *fmu); /* last message the FMU logged, "" if none */
+void ssx_fmu_get_counters(const ssx_fmu *fmu, ssx_fmu_counters *out);
+
+/* ------------------------------------------------------------------------------------------
+ * A system: components, ports, connections, indicators, event connections, the time loop and
+ * the recorded history.
+ * ------------------------------------------------------------------------------------------ */
+typedef struct ssx_system ssx_system;
+
+typedef struct {
+    int component;   /* index of the component involved, or -1 */
+    int indicator;   /* index of the indicator involved, or -1 */
+    double time;     /* simulation time of the failure */
+    int fmi_status;  /* fmi2Status of the failing call, or -1 */
+    int in_callback; /* 1 when a Python callback reported the failure (Python keeps the exception) */
+    int zeno;        /* 1 when the failure is chattering (Zeno) or too many micro steps */
+    char message[2048]; /* human-readable: what failed, where, and the FMU's last log message */
+} ssx_error;
+
+typedef struct {
+    long macro_steps;            /* accepted macro steps (grid intervals and event-split pieces) */
+    long do_step_calls;          /* doStep of any component, including localization trials */
+    long state_saves;
+    long state_restores;
+    long events;                 /* event instants handled (one per (t, micro) with events) */
+    long localization_iterations;
+    long loop_iterations;        /* Newton/fixed-point iterations of algebraic loops */
+    long loop_solves;
+} ssx_statistics;
+
+typedef struct {
+    double t;
+    int micro;          /* superdense index of the handling round */
+    int indicator;      /* which indicator fired */
+    int component;      /* the component that owns the indicator */
+    int iterations;     /* localization iterations spent on the instant (0 for cascades) */
+    int rollbacks;      /* restores spent on the instant */
+    long do_steps;      /* doStep calls spent on the instant */
+} ssx_event_record;
+
+/* Python-implemented behaviour. Every member may be NULL, which keeps the built-in behaviour of
+ * an FMU component (for a Python component, do_step and evaluate_outputs are required).
+ * Callbacks return 0 on success and -1 on failure (Python keeps the exception).
+ * Python reads inputs and writes outputs through ssx_inputs()/ssx_outputs(). */
+typedef struct {
+    void *user;
+    int (*initialize)(void *user, double t0);
+    int (*do_step)(void *user, double t, double dt);       /* outputs valid afterwards */
+    int (*evaluate_outputs)(void *user, double t);         /* zero-time: outputs from inputs */
+    int (*snapshot)(void *user, int slot);                 /* save the state into slot */
+    int (*restore)(void *user, int slot, double t);        /* the state of slot, now at time t */
+    int (*free_snapshot)(void *user, int slot);
+    int (*handle_events)(void *user, const int *indicators, int n_indicators, double t);
+    int (*record)(void *user, double t);                   /* a sample is being recorded at t */
+} ssx_hooks;
+
+ssx_system *ssx_system_new(const char *name);
+void ssx_system_free(ssx_system *sys); /* never frees the borrowed ssx_fmu objects */
+const ssx_error *ssx_last_error(const ssx_system *sys);
+
+int ssx_add_fmu_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_get_set_state);
+int ssx_add_python_component(ssx_system *sys, const char *name, int can_snapshot);
+int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks);
+int ssx_component_count(const ssx_system *sys);
+
+/* Ports. vr is the FMU value reference (ignored for Python components). start is written to
+ * the FMU input at initialization when the input is unconnected. Return the port's index. */
+int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned int vr);
+int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned int vr, double start);
+double *ssx_outputs(ssx_system *sys, int component); /* n_outputs current values */
+double *ssx_inputs(ssx_system *sys, int component);  /* n_inputs current values */
+int ssx_output_count(const ssx_system *sys, int component);
+int ssx_input_count(const ssx_system *sys, int component);
+
+/* dst_input = scale * src_output + offset, applied in C (units resolved by Python). One driver
+ * per input: a second connection to the same input fails. */
+int ssx_connect(ssx_system *sys, int src_component, int src_output, int dst_component,
+                int dst_input, double scale, double offset);
+
+/* Built-in behaviour, callable from Python overrides (the super() of the hooks). */
+int ssx_component_do_step(ssx_system *sys, int component, double t, double dt);
+int ssx_component_write_inputs(ssx_system *sys, int component);
+int ssx_component_read_outputs(ssx_system *sys, int component);
+int ssx_component_snapshot(ssx_system *sys, int component, int slot);
+int ssx_component_restore(ssx_system *sys, int component, int slot, double t);
+
+/* Event indicators. direction: -1 falling, +1 rising, 0 both. An indicator on an output is
+ * evaluated in C; a callback indicator calls Python (value written to *value). */
+int ssx_add_indicator_output(ssx_system *sys, int component, int output, int direction);
+int ssx_add_indicator_callback(ssx_system *sys, int component,
+                               int (*evaluate)(void *user, double t, double *value), void *user,
+                               int direction);
+int ssx_indicator_count(const ssx_system *sys);
+double ssx_indicator_value(const ssx_system *sys, int indicator); /* value at the current time */
+/* When the indicator fires, listener's handle_events hook receives it. */
+int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_component);
+
+/* Scheduling. order lists every component once, as n_groups consecutive groups of
+ * group_sizes[g] members; group_is_loop[g] marks an algebraic loop (solved at every
+ * communication point over the real inputs that the group's members drive). Without a call,
+ * components run in the order they were added, with no loops. */
+int ssx_set_schedule(ssx_system *sys, const int *order, const int *group_sizes,
+                     const int *group_is_loop, int n_groups);
+int ssx_set_coupling(ssx_system *sys, ssx_coupling coupling);
+int ssx_set_loop_options(ssx_system *sys, double tolerance, int max_iterations, double damping);
+/* Hybrid mode is active whenever an indicator exists. */
+int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, int max_iterations,
+                           int max_microsteps, int record_internal_steps, ssx_locator locator,
+                           double zeno_min_interval);
+
+/* initialize: the components are already initialized (fmi2 init is done by Python through the
+ * ssx_fmu_* calls); this reads outputs, applies connections (solving loops), clears and starts
+ * the history with the sample at t0 and evaluates the indicators. */
+int ssx_initialize(ssx_system *sys, double t0);
+/* run from the current time t0 to tf on the grid t0 + k*dt (the last point is exactly tf),
+ * plus event instants. Recorded samples stay readable after a failure. */
+int ssx_run(ssx_system *sys, double t0, double tf, double dt);
+double ssx_time(const ssx_system *sys);
+
+/* History: one shared time axis; per component a row-major matrix with one row per sample and
+ * one column per output. Pointers are valid until the next call that records. */
+size_t ssx_history_length(const ssx_system *sys);
+const double *ssx_history_time(const ssx_system *sys);
+const int *ssx_history_micro(const ssx_system *sys);
+const double *ssx_history_values(const ssx_system *sys, int component);
+size_t ssx_history_bytes(const ssx_system *sys); /* bytes allocated for the history */
+
+size_t ssx_event_count(const ssx_system *sys);
+int ssx_event_get(const ssx_system *sys, size_t index, ssx_event_record *out);
+void ssx_get_statistics(const ssx_system *sys, ssx_statistics *out);
+
+#endif
