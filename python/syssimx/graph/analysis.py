@@ -1,0 +1,197 @@
+"""Data-flow analysis of a system: zero-delay dependencies, algebraic loops, execution order.
+
+A connection ``src.o -> dst.i`` is *zero-delay* when ``dst`` computes one of its connected
+outputs from ``i`` without delay (direct feedthrough): the value ``dst`` passes on at a
+communication point then depends on the value ``src`` produces at that same point, so ``src``
+must be evaluated first. A cycle of zero-delay connections is an algebraic loop, which the
+engine solves at every communication point.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import networkx as nx
+
+ConnectionKey = tuple[str, str, str, str]
+"""(src_comp, src_port, dst_comp, dst_port)"""
+
+FeedthroughMap = Mapping[str, set[str]]
+"""output port -> the input ports it reads without delay"""
+
+
+@dataclass(frozen=True)
+class SystemAnalysis:
+    """The structure the engine is scheduled from.
+
+    Attributes:
+        graph: components as nodes, one edge per zero-delay dependency; the edge attribute
+            ``connections`` lists the connections behind it.
+        generations: Gauss-Seidel execution order in generations; a generation only depends on
+            earlier ones, and the members of one algebraic loop are adjacent in it.
+        loops: the algebraic loops, each a list of components (a single component when its own
+            feedthrough output feeds its own input).
+        order: every component once, the generations flattened.
+        loop_connections: the zero-delay connections inside the loops (the tear variables).
+    """
+
+    graph: nx.DiGraph
+    generations: list[list[str]]
+    loops: list[list[str]]
+    order: list[str]
+    loop_connections: list[ConnectionKey]
+
+    def schedule(self) -> tuple[list[str], list[int], list[bool]]:
+        """(order, group sizes, group is a loop), the arguments of the engine's ssx_set_schedule.
+
+        Each loop is one group; every other component is a group of its own.
+        """
+        loop_of = {name: index for index, loop in enumerate(self.loops) for name in loop}
+        sizes: list[int] = []
+        is_loop: list[bool] = []
+        emitted: set[int] = set()
+        for name in self.order:
+            index = loop_of.get(name)
+            if index is None:
+                sizes.append(1)
+                is_loop.append(False)
+            elif index not in emitted:
+                emitted.add(index)
+                sizes.append(len(self.loops[index]))
+                is_loop.append(True)
+        return list(self.order), sizes, is_loop
+
+
+def analyze(
+    components: Mapping[str, FeedthroughMap], connections: Sequence[ConnectionKey]
+) -> SystemAnalysis:
+    """Analyze a system given as feedthrough maps per component and its data connections.
+
+    Args:
+        components: component name -> {output port: input ports it depends on without delay},
+            in the order the components were added (the tie-break of the execution order).
+        connections: (src_comp, src_port, dst_comp, dst_port) for every data connection.
+
+    Raises:
+        ValueError: a connection names a component that is not in ``components``.
+    """
+    names = list(components)
+    for connection in connections:
+        for name in (connection[0], connection[2]):
+            if name not in components:
+                known = ", ".join(names) or "none"
+                raise ValueError(
+                    f"connection {_format_connection(connection)} names the unknown component "
+                    f"{name!r}; components: {known}"
+                )
+
+    graph = _zero_delay_graph(components, connections)
+    added = {name: i for i, name in enumerate(names)}
+    sccs = sorted(
+        (sorted(scc, key=added.__getitem__) for scc in nx.strongly_connected_components(graph)),
+        key=lambda members: added[members[0]],
+    )
+    loops = [scc for scc in sccs if len(scc) > 1 or graph.has_edge(scc[0], scc[0])]
+    precedence = _precedence(graph, sccs, connections)
+    generations = [
+        [name for scc_id in sorted(generation) for name in sccs[scc_id]]
+        for generation in nx.topological_generations(precedence)
+    ]
+    order = [name for generation in generations for name in generation]
+    position = {name: index for index, name in enumerate(order)}
+    loops.sort(key=lambda loop: position[loop[0]])
+
+    loop_members = {name: index for index, loop in enumerate(loops) for name in loop}
+    loop_connections = [
+        connection
+        for src, dst, data in graph.edges(data=True)
+        if src in loop_members and loop_members[src] == loop_members.get(dst)
+        for connection in data["connections"]
+    ]
+    given_order = {connection: i for i, connection in enumerate(connections)}
+    loop_connections.sort(key=given_order.__getitem__)
+    return SystemAnalysis(graph, generations, loops, order, loop_connections)
+
+
+def analyze_system(system: Any) -> SystemAnalysis:
+    """Analyze a System: its components' ``direct_feedthrough`` and its ``connections``."""
+    components = {
+        name: getattr(component, "direct_feedthrough", None) or {}
+        for name, component in system.components.items()
+    }
+    connections = [
+        (c.src_comp, c.src_port, c.dst_comp, c.dst_port) for c in system.connections
+    ]
+    return analyze(components, connections)
+
+
+def feedthrough_from_model_description(model_description: Any) -> dict[str, set[str]]:
+    """The feedthrough map of an FMU from its fmpy ModelDescription.
+
+    Each output depends on the inputs among its ModelStructure dependencies. FMI 2.0 says an
+    ``<Unknown>`` without a ``dependencies`` attribute depends on everything, so it reads all
+    inputs; an output missing from ModelStructure is treated the same way, to stay on the safe
+    side (a loop solved needlessly costs time, a loop missed gives wrong results).
+    """
+    variables = model_description.modelVariables
+    inputs = {v.name for v in variables if v.causality == "input"}
+    declared: dict[str, set[str]] = {}
+    for unknown in model_description.outputs:
+        dependencies = unknown.dependencies
+        declared[unknown.variable.name] = (
+            set(inputs)
+            if dependencies is None
+            else {v.name for v in dependencies if v.name in inputs}
+        )
+    return {
+        v.name: declared.get(v.name, set(inputs)) for v in variables if v.causality == "output"
+    }
+
+
+def _zero_delay_graph(
+    components: Mapping[str, FeedthroughMap], connections: Sequence[ConnectionKey]
+) -> nx.DiGraph:
+    connected_outputs = {(src, port) for src, port, _, _ in connections}
+    graph = nx.DiGraph()
+    graph.add_nodes_from(components)
+    for connection in connections:
+        src, _, dst, dst_port = connection
+        zero_delay = any(
+            dst_port in inputs and (dst, output) in connected_outputs
+            for output, inputs in components[dst].items()
+        )
+        if zero_delay:
+            if graph.has_edge(src, dst):
+                graph.edges[src, dst]["connections"].append(connection)
+            else:
+                graph.add_edge(src, dst, connections=[connection])
+    return graph
+
+
+def _precedence(
+    graph: nx.DiGraph, sccs: list[list[str]], connections: Sequence[ConnectionKey]
+) -> nx.DiGraph:
+    """Which strongly connected component must run before which, as a DAG over ``sccs`` indices.
+
+    Zero-delay edges are binding. A delayed connection is followed too where it closes no
+    cycle: Gauss-Seidel then hands the consumer its producer's newest value. Connections are
+    taken in the order given, so the user decides which delayed edge of a cycle gives way.
+    """
+    condensed = nx.condensation(graph, scc=[set(scc) for scc in sccs])
+    scc_of = condensed.graph["mapping"]
+    precedence = nx.DiGraph(condensed.edges)
+    precedence.add_nodes_from(range(len(sccs)))
+    for src, _, dst, _ in connections:
+        before, after = scc_of[src], scc_of[dst]
+        if before == after or precedence.has_edge(before, after):
+            continue
+        if not nx.has_path(precedence, after, before):
+            precedence.add_edge(before, after)
+    return precedence
+
+
+def _format_connection(connection: ConnectionKey) -> str:
+    src, src_port, dst, dst_port = connection
+    return f"{src}.{src_port} -> {dst}.{dst_port}"

@@ -1,0 +1,177 @@
+"""The data-flow analysis: zero-delay graph, loops, generations and the engine schedule."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from fmpy import read_model_description
+from syssimx.graph.analysis import analyze, feedthrough_from_model_description
+
+NO_FEEDTHROUGH = {"y": set()}
+FEEDTHROUGH = {"y": {"u"}}
+
+
+def test_chain_runs_in_data_flow_order_even_without_feedthrough() -> None:
+    # Added in reverse, so insertion order alone would get it wrong.
+    components = {"C": FEEDTHROUGH, "B": FEEDTHROUGH, "A": NO_FEEDTHROUGH}
+    connections = [("A", "y", "B", "u"), ("B", "y", "C", "u")]
+    analysis = analyze(components, connections)
+    assert analysis.generations == [["A"], ["B"], ["C"]]
+    assert analysis.order == ["A", "B", "C"]
+    assert analysis.loops == []
+    assert analysis.loop_connections == []
+    # Only A -> B is zero-delay: C's output reaches nobody, so nothing waits on it.
+    assert sorted(analysis.graph.edges) == [("A", "B")]
+    assert analysis.schedule() == (["A", "B", "C"], [1, 1, 1], [False, False, False])
+
+
+def test_two_component_loop_is_one_group() -> None:
+    components = {"Source": NO_FEEDTHROUGH, "Gain": FEEDTHROUGH, "Sum": {"y": {"u", "w"}}}
+    connections = [
+        ("Source", "y", "Sum", "w"),
+        ("Sum", "y", "Gain", "u"),
+        ("Gain", "y", "Sum", "u"),
+    ]
+    analysis = analyze(components, connections)
+    assert analysis.loops == [["Gain", "Sum"]]
+    assert analysis.generations == [["Source"], ["Gain", "Sum"]]
+    assert analysis.loop_connections == [("Sum", "y", "Gain", "u"), ("Gain", "y", "Sum", "u")]
+    assert analysis.schedule() == (["Source", "Gain", "Sum"], [1, 2], [False, True])
+
+
+def test_self_loop_is_a_loop_of_one() -> None:
+    components = {"Solo": FEEDTHROUGH}
+    connections = [("Solo", "y", "Solo", "u")]
+    analysis = analyze(components, connections)
+    assert analysis.loops == [["Solo"]]
+    assert analysis.loop_connections == connections
+    assert analysis.schedule() == (["Solo"], [1], [True])
+
+
+def test_loop_broken_by_an_output_without_feedthrough() -> None:
+    # Controller reads the plant without delay; the plant integrates the control: no loop,
+    # and the plant (the delayed producer) runs first so the controller sees its new output.
+    components = {"Controller": FEEDTHROUGH, "Plant": NO_FEEDTHROUGH}
+    connections = [("Controller", "y", "Plant", "u"), ("Plant", "y", "Controller", "u")]
+    analysis = analyze(components, connections)
+    assert analysis.loops == []
+    assert analysis.generations == [["Plant"], ["Controller"]]
+    assert list(analysis.graph.edges) == [("Plant", "Controller")]
+
+
+def test_feedthrough_to_an_unconnected_output_makes_no_loop() -> None:
+    # B reads u without delay only for y, which nobody reads; its state output z closes the
+    # cycle with a delay.
+    components = {"A": FEEDTHROUGH, "B": {"y": {"u"}, "z": set()}}
+    connections = [("A", "y", "B", "u"), ("B", "z", "A", "u")]
+    analysis = analyze(components, connections)
+    assert analysis.loops == []
+    assert analysis.generations == [["B"], ["A"]]
+
+
+def test_declared_feedthrough_is_taken_as_given() -> None:
+    # The same wiring is a loop or not depending only on what the components declare.
+    connections = [("P", "y", "Q", "u"), ("Q", "y", "P", "u")]
+    declared = analyze({"P": {"y": {"u"}}, "Q": {"y": {"u"}}}, connections)
+    undeclared = analyze({"P": {"y": set()}, "Q": {"y": {"u"}}}, connections)
+    assert declared.loops == [["P", "Q"]]
+    assert undeclared.loops == []
+    assert undeclared.generations == [["P"], ["Q"]]
+
+
+def test_generations_of_two_pendulums_and_a_spring() -> None:
+    pendulum = {"theta": set(), "omega": set()}
+    spring = {"tau1": {"theta1", "theta2"}, "tau2": {"theta1", "theta2"}}
+    components = {"Spring": spring, "P1": pendulum, "P2": pendulum}
+    connections = [
+        ("P1", "theta", "Spring", "theta1"),
+        ("P2", "theta", "Spring", "theta2"),
+        ("Spring", "tau1", "P1", "torque"),
+        ("Spring", "tau2", "P2", "torque"),
+    ]
+    analysis = analyze(components, connections)
+    assert analysis.generations == [["P1", "P2"], ["Spring"]]
+    assert analysis.loops == []
+
+
+def test_loops_sharing_a_component_are_one_group_and_generations_follow() -> None:
+    components = {
+        "Feed": NO_FEEDTHROUGH,
+        "A": {"y": {"u", "v"}},
+        "B": FEEDTHROUGH,
+        "C": FEEDTHROUGH,
+        "Sink": FEEDTHROUGH,
+    }
+    connections = [
+        ("Feed", "y", "C", "u"),
+        ("A", "y", "B", "u"),
+        ("B", "y", "A", "u"),
+        ("A", "y", "Sink", "u"),
+        ("Sink", "y", "A", "v"),
+    ]
+    analysis = analyze(components, connections)
+    assert analysis.loops == [["A", "B", "Sink"]]
+    assert analysis.generations == [["Feed", "A", "B", "Sink"], ["C"]]
+    assert analysis.schedule() == (["Feed", "A", "B", "Sink", "C"], [1, 3, 1], [False, True, False])
+
+
+def test_unknown_component_in_a_connection_is_named() -> None:
+    with pytest.raises(ValueError, match=r"unknown component 'Ghost'.*components: A"):
+        analyze({"A": FEEDTHROUGH}, [("Ghost", "y", "A", "u")])
+
+
+MODEL_DESCRIPTION = """<?xml version="1.0" encoding="UTF-8"?>
+<fmiModelDescription fmiVersion="2.0" modelName="Mixer" guid="{mixer}"
+    numberOfEventIndicators="0">
+  <CoSimulation modelIdentifier="Mixer"/>
+  <ModelVariables>
+    <ScalarVariable name="a" valueReference="0" causality="input" variability="continuous">
+      <Real start="0"/></ScalarVariable>
+    <ScalarVariable name="b" valueReference="1" causality="input" variability="continuous">
+      <Real start="0"/></ScalarVariable>
+    <ScalarVariable name="x" valueReference="2" causality="local" variability="continuous"
+        initial="exact"><Real start="0"/></ScalarVariable>
+    <ScalarVariable name="der(x)" valueReference="3" causality="local"
+        variability="continuous"><Real derivative="3"/></ScalarVariable>
+    <ScalarVariable name="sum" valueReference="4" causality="output" variability="continuous">
+      <Real/></ScalarVariable>
+    <ScalarVariable name="state" valueReference="5" causality="output"
+        variability="continuous"><Real/></ScalarVariable>
+    <ScalarVariable name="only_b" valueReference="6" causality="output"
+        variability="continuous"><Real/></ScalarVariable>
+    <ScalarVariable name="anything" valueReference="7" causality="output"
+        variability="continuous"><Real/></ScalarVariable>
+  </ModelVariables>
+  <ModelStructure>
+    <Outputs>
+      <Unknown index="5" dependencies="1 2"/>
+      <Unknown index="6" dependencies="3"/>
+      <Unknown index="7" dependencies="2 3"/>
+      <Unknown index="8"/>
+    </Outputs>
+    <Derivatives>
+      <Unknown index="4" dependencies="1"/>
+    </Derivatives>
+    <InitialUnknowns>
+      <Unknown index="4"/>
+      <Unknown index="5"/>
+      <Unknown index="6"/>
+      <Unknown index="7"/>
+      <Unknown index="8"/>
+    </InitialUnknowns>
+  </ModelStructure>
+</fmiModelDescription>
+"""
+
+
+def test_feedthrough_from_model_structure(tmp_path: Path) -> None:
+    xml = tmp_path / "modelDescription.xml"
+    xml.write_text(MODEL_DESCRIPTION)
+    model_description = read_model_description(str(xml), validate=False)
+    assert feedthrough_from_model_description(model_description) == {
+        "sum": {"a", "b"},
+        "state": set(),  # depends on a state only
+        "only_b": {"b"},  # the state among its dependencies is not an input
+        "anything": {"a", "b"},  # no dependencies attribute: depends on all inputs
+    }
