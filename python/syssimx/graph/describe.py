@@ -6,6 +6,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from .analysis import analyze_system
+from .ports import port_label, unit_text
 
 
 def describe_system(system: Any) -> str:
@@ -68,26 +69,12 @@ def describe_system(system: Any) -> str:
 
 
 def _ports(specs: Mapping[str, Any]) -> str:
-    if not specs:
-        return "none"
-    return ", ".join(_port(spec) for spec in specs.values())
-
-
-def _port(spec: Any) -> str:
-    kind = str(getattr(spec.type, "value", spec.type)).lower()
-    if kind == "real":
-        return f"{spec.name}{_bracket(_unit_text(spec.unit))}"
-    return f"{spec.name} ({kind})"
+    return ", ".join(port_label(spec) for spec in specs.values()) if specs else "none"
 
 
 def _unit_of(components: Mapping[str, Any], comp: str, port: str, side: str) -> str | None:
     spec = getattr(components[comp], side).get(port)
-    return _unit_text(spec.unit) if spec is not None else None
-
-
-def _unit_text(unit: Any) -> str | None:
-    text = "" if unit is None else str(unit)
-    return text or None
+    return unit_text(spec.unit) if spec is not None else None
 
 
 def _bracket(unit: str | None) -> str:
