@@ -1,0 +1,263 @@
+"""The ``syssimx`` command line: inspect an FMU, list the bundled FMUs, simulate one FMU.
+
+    syssimx info pendulum_cvode
+    syssimx fmus
+    syssimx simulate pendulum_euler --stop-time 1 --step-size 0.05 --set theta0=0.5 \\
+        --event theta:-1 --output results.csv --plot results.png
+
+An FMU argument is a path to a .fmu file or the name of a bundled FMU. Bad usage exits with
+code 2, a failure while running with code 1; both print one clear line on stderr.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any, TextIO
+
+from . import fmus
+from .graph.analysis import feedthrough_from_model_description
+
+DIRECTIONS = {"-1": -1, "falling": -1, "0": 0, "both": 0, "1": 1, "+1": 1, "rising": 1}
+CAPABILITIES = (
+    "canGetAndSetFMUstate",
+    "canSerializeFMUstate",
+    "canHandleVariableCommunicationStepSize",
+    "providesDirectionalDerivative",
+    "canInterpolateInputs",
+    "needsExecutionTool",
+)
+
+
+class CommandError(Exception):
+    """A failure the user can act on: printed as one line, exit code 1."""
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line with ``argv`` (default: sys.argv[1:]); returns the exit code."""
+    parser = _parser()
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exit_request:  # argparse has printed usage or help already
+        return int(exit_request.code or 0)
+    try:
+        args.run(args, sys.stdout)
+    except Exception as error:  # the command line shows messages, never tracebacks
+        print(f"syssimx: error: {error}", file=sys.stderr)
+        return 1
+    return 0
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="syssimx",
+        description="Hybrid co-simulation of FMI 2.0 Co-Simulation FMUs.",
+    )
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    info = commands.add_parser("info", help="describe an FMU: variables and capabilities")
+    info.add_argument("fmu", help="path to a .fmu file, or the name of a bundled FMU")
+    info.set_defaults(run=_info)
+
+    listing = commands.add_parser("fmus", help="list the FMUs bundled with syssimx")
+    listing.set_defaults(run=_list_fmus)
+
+    simulate = commands.add_parser("simulate", help="simulate one FMU as a one-component system")
+    simulate.add_argument("fmu", help="path to a .fmu file, or the name of a bundled FMU")
+    simulate.add_argument("--start-time", type=float, default=None, metavar="T0",
+                          help="start time in s (default: the FMU's default experiment, or 0)")
+    simulate.add_argument("--stop-time", type=float, default=None, metavar="TF",
+                          help="stop time in s (default: the FMU's default experiment, or 1)")
+    simulate.add_argument("--step-size", type=float, default=None, metavar="DT",
+                          help="communication step in s (default: the FMU's, or (TF-T0)/500)")
+    simulate.add_argument("--set", action="append", default=[], type=_assignment,
+                          metavar="NAME=VALUE", dest="assignments",
+                          help="set a parameter before initialization (repeatable)")
+    simulate.add_argument("--event", action="append", default=[], type=_event,
+                          metavar="VAR:DIRECTION", dest="events",
+                          help="locate zero crossings of output VAR; DIRECTION is -1|falling, "
+                               "1|rising or 0|both (repeatable)")
+    simulate.add_argument("--output", "-o", type=Path, default=None, metavar="CSV",
+                          help="write the outputs over time to this CSV file")
+    simulate.add_argument("--plot", type=Path, default=None, metavar="PNG",
+                          help="plot the real outputs to this PNG file")
+    simulate.set_defaults(run=_simulate)
+    return parser
+
+
+def _assignment(text: str) -> tuple[str, bool | int | float | str]:
+    name, equals, value = text.partition("=")
+    if not equals or not name.strip():
+        raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}")
+    return name.strip(), _literal(value.strip())
+
+
+def _literal(text: str) -> bool | int | float | str:
+    if text.lower() in ("true", "false"):
+        return text.lower() == "true"
+    for convert in (int, float):
+        try:
+            return convert(text)
+        except ValueError:
+            pass
+    return text
+
+
+def _event(text: str) -> tuple[str, int]:
+    variable, colon, direction = text.rpartition(":")
+    if not colon or not variable or direction.lower() not in DIRECTIONS:
+        raise argparse.ArgumentTypeError(
+            f"expected VAR:DIRECTION with DIRECTION one of -1, 0, 1, falling, both, rising; "
+            f"got {text!r}"
+        )
+    return variable, DIRECTIONS[direction.lower()]
+
+
+def _resolve_fmu(name_or_path: str) -> Path:
+    path = Path(name_or_path)
+    if path.is_file():
+        return path
+    if path.suffix == "" and name_or_path in fmus.available():
+        return Path(fmus.path(name_or_path))
+    bundled = ", ".join(fmus.available()) or "none"
+    raise CommandError(f"no FMU file {name_or_path!r} and no bundled FMU of that name "
+                       f"(bundled: {bundled})")
+
+
+def _read_description(path: Path) -> Any:
+    from fmpy import read_model_description
+
+    try:
+        return read_model_description(str(path), validate=False)
+    except Exception as error:  # fmpy raises many kinds for a broken archive
+        raise CommandError(f"{path} is not a readable FMU: {error}") from error
+
+
+# ---------------------------------------------------------------------------------- info
+def _info(args: argparse.Namespace, out: TextIO) -> None:
+    path = _resolve_fmu(args.fmu)
+    md = _read_description(path)
+    out.write(f"Model:            {md.modelName}\n")
+    if md.description:
+        out.write(f"Description:      {md.description}\n")
+    out.write(f"FMI version:      {md.fmiVersion}\n")
+    out.write(f"GUID:             {md.guid}\n")
+    if md.generationTool:
+        out.write(f"Generation tool:  {md.generationTool}\n")
+    out.write(f"File:             {path}\n")
+    interfaces = [name for name, part in (("Co-Simulation", md.coSimulation),
+                                          ("Model Exchange", md.modelExchange)) if part]
+    out.write(f"Interfaces:       {', '.join(interfaces) or 'none'}\n")
+    experiment = md.defaultExperiment
+    if experiment is not None:
+        fields = ("startTime", "stopTime", "stepSize", "tolerance")
+        settings = [f"{f}={getattr(experiment, f)}" for f in fields
+                    if getattr(experiment, f) is not None]
+        out.write(f"Default experiment: {', '.join(settings) or 'none'}\n")
+    if md.coSimulation is not None:
+        out.write(f"\nCo-Simulation (model identifier {md.coSimulation.modelIdentifier}):\n")
+        for capability in CAPABILITIES:
+            value = getattr(md.coSimulation, capability)
+            out.write(f"  {capability:<40} {'yes' if value else 'no'}\n")
+    rows = [
+        (v.name, v.causality or "", v.variability or "", v.type or "", _unit(v),
+         "" if v.start is None else str(v.start), v.description or "")
+        for v in md.modelVariables
+    ]
+    out.write(f"\nVariables ({len(rows)}):\n")
+    _write_table(out, ("name", "causality", "variability", "type", "unit", "start",
+                       "description"), rows)
+    feedthrough = {o: i for o, i in feedthrough_from_model_description(md).items() if i}
+    out.write("\nDirect feedthrough:" + ("" if feedthrough else " none") + "\n")
+    for output, inputs in feedthrough.items():
+        out.write(f"  {output} <- {', '.join(sorted(inputs))}\n")
+
+
+def _unit(variable: Any) -> str:
+    return variable.unit or getattr(variable.declaredType, "unit", None) or ""
+
+
+def _write_table(out: TextIO, header: Sequence[str], rows: Sequence[Sequence[str]]) -> None:
+    widths = [max(len(str(row[i])) for row in (header, *rows)) for i in range(len(header))]
+    for row in (header, *rows):
+        cells = [str(cell).ljust(width) for cell, width in zip(row, widths, strict=True)]
+        out.write(("  " + "  ".join(cells)).rstrip() + "\n")
+
+
+# ---------------------------------------------------------------------------------- fmus
+def _list_fmus(args: argparse.Namespace, out: TextIO) -> None:
+    names = fmus.available()
+    if not names:
+        raise CommandError("no bundled FMUs found (is syssimx built and installed?)")
+    width = max(len(name) for name in names)
+    for name in names:
+        out.write(f"{name.ljust(width)}  {fmus.path(name)}\n")
+
+
+# ---------------------------------------------------------------------------------- simulate
+def _simulate(args: argparse.Namespace, out: TextIO) -> None:
+    from . import FMUComponent, System
+
+    path = _resolve_fmu(args.fmu)
+    md = _read_description(path)
+    experiment = md.defaultExperiment
+    t0 = _choose(args.start_time, getattr(experiment, "startTime", None), 0.0)
+    tf = _choose(args.stop_time, getattr(experiment, "stopTime", None), t0 + 1.0)
+    dt = _choose(args.step_size, getattr(experiment, "stepSize", None), (tf - t0) / 500)
+    if not dt > 0 or not tf > t0:
+        raise CommandError(f"need stop time > start time and step size > 0; got start {t0}, "
+                           f"stop {tf}, step {dt}")
+
+    component = FMUComponent(md.modelName or path.stem, str(path))
+    if args.assignments:
+        component.set_parameters(**dict(args.assignments))
+    for variable, direction in args.events:
+        if variable not in component.output_specs:
+            raise CommandError(f"--event {variable}: not an output of {path.name}; outputs: "
+                               f"{', '.join(component.output_specs)}")
+        component.add_event_indicator(_event_name(variable), variable=variable,
+                                      direction=direction)
+    system = System(name=f"syssimx simulate {path.name}")
+    system.add_component(component)
+    system.initialize(t0)
+    result = system.run(t0, tf, dt)
+
+    t, values = result[component.name]
+    columns = {name: values[name] for name, spec in component.output_specs.items()
+               if name in values and str(getattr(spec.type, "value", spec.type)) != "event"}
+    if args.output is not None:
+        _write_csv(args.output, t, columns)
+        out.write(f"wrote {len(t)} samples of {len(columns)} outputs to {args.output}\n")
+    if args.plot is not None:
+        from .viz.plot import plot_result
+
+        signals = [f"{component.name}.{name}" for name, spec in component.output_specs.items()
+                   if name in columns and str(getattr(spec.type, "value", spec.type)) == "real"]
+        plot_result(result, signals, path=args.plot)
+        out.write(f"wrote the plot to {args.plot}\n")
+    for record in getattr(result, "events", None) or []:
+        out.write(f"event {record.component}.{record.name} at t = {record.t:.12g}\n")
+    if args.output is None:
+        for name, series in columns.items():
+            out.write(f"{name} = {series[-1]:.12g} at t = {t[-1]:.12g}\n")
+
+
+def _choose(given: float | None, default: Any, fallback: float) -> float:
+    if given is not None:
+        return float(given)
+    return float(default) if default is not None else fallback
+
+
+def _event_name(variable: str) -> str:
+    return f"{variable}_crossing"
+
+
+def _write_csv(path: Path, t: Any, columns: dict[str, Any]) -> None:
+    with path.open("w", newline="") as stream:
+        writer = csv.writer(stream)
+        writer.writerow(["time", *columns])
+        for row, time in enumerate(t):
+            writer.writerow([repr(float(time)), *(repr(float(v[row])) for v in columns.values())])
