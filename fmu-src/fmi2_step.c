@@ -1,0 +1,108 @@
+/* fmi2DoStep and the Co-Simulation status queries. */
+#include <math.h>
+
+#include "fmu_instance.h"
+#include "fmu_log.h"
+#include "fmu_solver.h"
+
+/* A master's communication point may differ from the FMU's time by rounding; beyond this
+ * relative difference the master and the FMU disagree and the step is refused. */
+#define TIME_MATCH_TOLERANCE 1e-9
+
+fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
+                      fmi2Real communicationStepSize, fmi2Boolean noSetFMUStatePriorToCurrentPoint)
+{
+    (void)noSetFMUStatePriorToCurrentPoint;
+    fmu_instance *inst = fmu_checked(c, "fmi2DoStep", PHASE_BIT(PHASE_STEP));
+    if (inst == NULL)
+        return fmi2Error;
+    double t = currentCommunicationPoint;
+    double h = communicationStepSize;
+    if (isnan(h) || h < 0.0 || !isfinite(h))
+        return fmu_error(inst, "fmi2DoStep: communication step size %g is negative or not finite",
+                         h);
+    if (!isfinite(t))
+        return fmu_error(inst, "fmi2DoStep: communication point %g is not finite", t);
+    if (fabs(t - inst->time) > TIME_MATCH_TOLERANCE * fmax(1.0, fabs(inst->time)))
+        return fmu_error(inst,
+                         "fmi2DoStep: communication point %.17g differs from the FMU's time "
+                         "%.17g",
+                         t, inst->time);
+    double t_end = t + h;
+    if (t_end <= inst->time) {
+        /* a zero step (or one that ends where the FMU already is) only refreshes outputs */
+        fmu_refresh_outputs(inst);
+        return fmi2OK;
+    }
+    if (inst->model->step_refusal != NULL) {
+        const char *reason = inst->model->step_refusal(inst->values, t_end);
+        if (reason != NULL)
+            return fmu_error(inst, "fmi2DoStep from t = %g to %g: %s", t, t_end, reason);
+    }
+    fmi2Status status = fmu_solver_step(inst, t_end);
+    fmu_refresh_outputs(inst);
+    return status;
+}
+
+fmi2Status fmi2CancelStep(fmi2Component c)
+{
+    fmu_instance *inst = fmu_checked(c, "fmi2CancelStep", PHASE_BIT(PHASE_STEP));
+    if (inst == NULL)
+        return fmi2Error;
+    return fmu_error(inst, "fmi2CancelStep: steps are never asynchronous in this FMU");
+}
+
+#define STATUS_PHASES (PHASE_BIT(PHASE_STEP) | PHASE_BIT(PHASE_TERMINATED))
+
+fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *value)
+{
+    fmu_instance *inst = fmu_checked(c, "fmi2GetStatus", STATUS_PHASES);
+    if (inst == NULL)
+        return fmi2Error;
+    if (s != fmi2DoStepStatus || value == NULL)
+        return fmu_error(inst, "fmi2GetStatus: only fmi2DoStepStatus is available");
+    *value = fmi2OK;
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real *value)
+{
+    fmu_instance *inst = fmu_checked(c, "fmi2GetRealStatus", STATUS_PHASES);
+    if (inst == NULL)
+        return fmi2Error;
+    if (s != fmi2LastSuccessfulTime || value == NULL)
+        return fmu_error(inst, "fmi2GetRealStatus: only fmi2LastSuccessfulTime is available");
+    *value = inst->time;
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Integer *value)
+{
+    (void)s;
+    (void)value;
+    fmu_instance *inst = fmu_checked(c, "fmi2GetIntegerStatus", STATUS_PHASES);
+    if (inst == NULL)
+        return fmi2Error;
+    return fmu_error(inst, "fmi2GetIntegerStatus: no integer status is defined");
+}
+
+fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boolean *value)
+{
+    fmu_instance *inst = fmu_checked(c, "fmi2GetBooleanStatus", STATUS_PHASES);
+    if (inst == NULL)
+        return fmi2Error;
+    if (s != fmi2Terminated || value == NULL)
+        return fmu_error(inst, "fmi2GetBooleanStatus: only fmi2Terminated is available");
+    *value = fmi2False; /* the FMU never asks to end the simulation */
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind s, fmi2String *value)
+{
+    (void)s;
+    (void)value;
+    fmu_instance *inst = fmu_checked(c, "fmi2GetStringStatus", STATUS_PHASES);
+    if (inst == NULL)
+        return fmi2Error;
+    return fmu_error(inst, "fmi2GetStringStatus: no string status is defined");
+}

@@ -1,0 +1,206 @@
+/* fmi2Get and fmi2Set, served from the variable table. */
+#include <math.h>
+#include <stddef.h>
+
+#include "fmu_instance.h"
+#include "fmu_log.h"
+#include "fmu_solver.h"
+
+#define ANY_PHASE                                                                            \
+    (PHASE_BIT(PHASE_INSTANTIATED) | PHASE_BIT(PHASE_INITIALIZATION) | PHASE_BIT(PHASE_STEP) | \
+     PHASE_BIT(PHASE_TERMINATED))
+#define SETTABLE_PHASES \
+    (PHASE_BIT(PHASE_INSTANTIATED) | PHASE_BIT(PHASE_INITIALIZATION) | PHASE_BIT(PHASE_STEP))
+
+static const char *const type_names[] = {"Real", "Integer", "Boolean"};
+
+/* Checks every value reference before anything is read or written. */
+static fmi2Status check_references(const fmu_instance *inst, const char *function,
+                                   const fmi2ValueReference vr[], size_t nvr, variable_type type)
+{
+    if (nvr > 0 && vr == NULL)
+        return fmu_error(inst, "%s: the value reference array is NULL", function);
+    for (size_t i = 0; i < nvr; ++i) {
+        const model_variable *var = fmu_variable(inst, vr[i]);
+        if (var == NULL)
+            return fmu_error(inst, "%s: unknown value reference %u", function, vr[i]);
+        if (var->type != type)
+            return fmu_error(inst, "%s: variable %s (value reference %u) is of type %s",
+                             function, var->name, vr[i], type_names[var->type]);
+    }
+    return fmi2OK;
+}
+
+static fmu_instance *prepare_get(fmi2Component c, const char *function,
+                                 const fmi2ValueReference vr[], size_t nvr, const void *value,
+                                 variable_type type)
+{
+    fmu_instance *inst = fmu_checked(c, function, ANY_PHASE);
+    if (inst == NULL)
+        return NULL;
+    if (check_references(inst, function, vr, nvr, type) != fmi2OK)
+        return NULL;
+    if (nvr > 0 && value == NULL) {
+        fmu_error(inst, "%s: the value array is NULL", function);
+        return NULL;
+    }
+    fmu_refresh_outputs(inst); /* outputs follow the current state and inputs */
+    return inst;
+}
+
+fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                       fmi2Real value[])
+{
+    fmu_instance *inst = prepare_get(c, "fmi2GetReal", vr, nvr, value, TYPE_REAL);
+    if (inst == NULL)
+        return fmi2Error;
+    for (size_t i = 0; i < nvr; ++i)
+        value[i] = inst->values[vr[i]];
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                          fmi2Integer value[])
+{
+    fmu_instance *inst = prepare_get(c, "fmi2GetInteger", vr, nvr, value, TYPE_INTEGER);
+    if (inst == NULL)
+        return fmi2Error;
+    for (size_t i = 0; i < nvr; ++i)
+        value[i] = (fmi2Integer)inst->values[vr[i]];
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                          fmi2Boolean value[])
+{
+    fmu_instance *inst = prepare_get(c, "fmi2GetBoolean", vr, nvr, value, TYPE_BOOLEAN);
+    if (inst == NULL)
+        return fmi2Error;
+    for (size_t i = 0; i < nvr; ++i)
+        value[i] = inst->values[vr[i]] != 0.0 ? fmi2True : fmi2False;
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                         fmi2String value[])
+{
+    (void)value;
+    fmu_instance *inst = fmu_checked(c, "fmi2GetString", ANY_PHASE);
+    if (inst == NULL)
+        return fmi2Error;
+    if (nvr == 0)
+        return fmi2OK;
+    return fmu_error(inst, "fmi2GetString: unknown value reference %u (no String variables)",
+                     vr ? vr[0] : 0u);
+}
+
+/* Whether the variable may be written now, per FMI 2.0 (causality, variability, phase). */
+static fmi2Status check_settable(const fmu_instance *inst, const char *function,
+                                 const model_variable *var)
+{
+    if (var->causality == CAUSALITY_INPUT)
+        return fmi2OK;
+    if (var->causality == CAUSALITY_PARAMETER) {
+        if (inst->phase != PHASE_STEP || var->variability == VARIABILITY_TUNABLE)
+            return fmi2OK;
+        return fmu_error(inst,
+                         "%s: %s is a fixed parameter and cannot be set in step mode "
+                         "(set it before fmi2ExitInitializationMode, or use fmi2Reset)",
+                         function, var->name);
+    }
+    return fmu_error(inst, "%s: %s is an output or local variable and cannot be set", function,
+                     var->name);
+}
+
+static fmu_instance *prepare_set(fmi2Component c, const char *function,
+                                 const fmi2ValueReference vr[], size_t nvr, const void *value,
+                                 variable_type type)
+{
+    fmu_instance *inst = fmu_checked(c, function, SETTABLE_PHASES);
+    if (inst == NULL)
+        return NULL;
+    if (check_references(inst, function, vr, nvr, type) != fmi2OK)
+        return NULL;
+    if (nvr > 0 && value == NULL) {
+        fmu_error(inst, "%s: the value array is NULL", function);
+        return NULL;
+    }
+    for (size_t i = 0; i < nvr; ++i)
+        if (check_settable(inst, function, fmu_variable(inst, vr[i])) != fmi2OK)
+            return NULL;
+    return inst;
+}
+
+/* Stores the values; a changed value in step mode restarts the integration there. */
+static void store(fmu_instance *inst, const fmi2ValueReference vr[], size_t nvr,
+                  const double *converted)
+{
+    int changed = 0;
+    for (size_t i = 0; i < nvr; ++i) {
+        changed |= inst->values[vr[i]] != converted[i];
+        inst->values[vr[i]] = converted[i];
+    }
+    if (changed && inst->phase == PHASE_STEP)
+        fmu_solver_invalidate(inst);
+}
+
+#define SET_CHUNK 64
+
+fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                       const fmi2Real value[])
+{
+    fmu_instance *inst = prepare_set(c, "fmi2SetReal", vr, nvr, value, TYPE_REAL);
+    if (inst == NULL)
+        return fmi2Error;
+    for (size_t i = 0; i < nvr; ++i)
+        if (isnan(value[i]))
+            return fmu_error(inst, "fmi2SetReal: value for %s is NaN",
+                             fmu_variable(inst, vr[i])->name);
+    store(inst, vr, nvr, value);
+    return fmi2OK;
+}
+
+fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                          const fmi2Integer value[])
+{
+    fmu_instance *inst = prepare_set(c, "fmi2SetInteger", vr, nvr, value, TYPE_INTEGER);
+    if (inst == NULL)
+        return fmi2Error;
+    for (size_t start = 0; start < nvr; start += SET_CHUNK) {
+        double converted[SET_CHUNK];
+        size_t n = nvr - start < SET_CHUNK ? nvr - start : SET_CHUNK;
+        for (size_t i = 0; i < n; ++i)
+            converted[i] = (double)value[start + i];
+        store(inst, vr + start, n, converted);
+    }
+    return fmi2OK;
+}
+
+fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                          const fmi2Boolean value[])
+{
+    fmu_instance *inst = prepare_set(c, "fmi2SetBoolean", vr, nvr, value, TYPE_BOOLEAN);
+    if (inst == NULL)
+        return fmi2Error;
+    for (size_t start = 0; start < nvr; start += SET_CHUNK) {
+        double converted[SET_CHUNK];
+        size_t n = nvr - start < SET_CHUNK ? nvr - start : SET_CHUNK;
+        for (size_t i = 0; i < n; ++i)
+            converted[i] = value[start + i] != fmi2False ? 1.0 : 0.0;
+        store(inst, vr + start, n, converted);
+    }
+    return fmi2OK;
+}
+
+fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                         const fmi2String value[])
+{
+    (void)value;
+    fmu_instance *inst = fmu_checked(c, "fmi2SetString", SETTABLE_PHASES);
+    if (inst == NULL)
+        return fmi2Error;
+    if (nvr == 0)
+        return fmi2OK;
+    return fmu_error(inst, "fmi2SetString: unknown value reference %u (no String variables)",
+                     vr ? vr[0] : 0u);
+}

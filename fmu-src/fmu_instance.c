@@ -1,0 +1,69 @@
+#include "fmu_instance.h"
+
+#include <stddef.h>
+
+#include "fmu_log.h"
+#include "fmu_solver.h"
+
+static const char *const phase_names[] = {"instantiated", "initialization mode", "step mode",
+                                          "terminated"};
+
+const char *fmu_phase_name(fmu_phase phase)
+{
+    return phase_names[phase];
+}
+
+fmu_instance *fmu_checked(fmi2Component c, const char *function, unsigned allowed)
+{
+    fmu_instance *inst = c;
+    if (inst == NULL)
+        return NULL;
+    if ((allowed & PHASE_BIT(inst->phase)) == 0) {
+        fmu_error(inst, "%s is not allowed in %s", function, fmu_phase_name(inst->phase));
+        return NULL;
+    }
+    return inst;
+}
+
+const model_variable *fmu_variable(const fmu_instance *inst, fmi2ValueReference vr)
+{
+    size_t n_model = inst->model->n_variables;
+    if (vr < n_model)
+        return &inst->model->variables[vr];
+    if (vr < inst->n_variables)
+        return &inst->solver_variables[vr - n_model];
+    return NULL;
+}
+
+double fmu_solver_parameter(const fmu_instance *inst, size_t i)
+{
+    return inst->values[inst->model->n_variables + i];
+}
+
+void fmu_apply_start_values(fmu_instance *inst)
+{
+    for (size_t vr = 0; vr < inst->n_variables; ++vr)
+        inst->values[vr] = fmu_variable(inst, (fmi2ValueReference)vr)->start;
+    inst->time = 0.0;
+    inst->tolerance_defined = 0;
+    inst->tolerance = 0.0;
+    if (inst->model->n_states > 0)
+        inst->model->initial_states(inst->values, inst->x);
+    fmu_refresh_outputs(inst);
+}
+
+void fmu_refresh_outputs(fmu_instance *inst)
+{
+    /* Before initialization is done the states follow their start parameters. */
+    if (inst->phase < PHASE_STEP && inst->model->n_states > 0)
+        inst->model->initial_states(inst->values, inst->x);
+    inst->model->outputs(inst->values, inst->time, inst->x);
+}
+
+void fmu_handle_events(fmu_instance *inst, double t, double *x)
+{
+    for (size_t i = 0; i < inst->model->n_event_indicators; ++i)
+        if (inst->fired[i])
+            fmu_log(inst, fmi2OK, LOG_EVENTS, "internal event %zu at t = %.17g", i, t);
+    inst->model->handle_events(inst->values, t, x, inst->fired);
+}

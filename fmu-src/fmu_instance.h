@@ -1,0 +1,69 @@
+/* One FMU instance: the data every part of the framework shares. */
+#ifndef SYSSIMX_FMU_INSTANCE_H
+#define SYSSIMX_FMU_INSTANCE_H
+
+#include "fmi2Functions.h"
+#include "model.h"
+
+typedef enum {
+    PHASE_INSTANTIATED,
+    PHASE_INITIALIZATION,
+    PHASE_STEP,
+    PHASE_TERMINATED
+} fmu_phase;
+
+typedef struct {
+    fmi2CallbackLogger logger;
+    fmi2ComponentEnvironment environment;
+} fmu_logging_callbacks;
+
+typedef struct fmu_instance {
+    char *name;
+    fmu_logging_callbacks callbacks;
+    int logging_on;
+    unsigned log_categories; /* bit set of enabled categories (fmu_log.h) */
+    fmu_phase phase;
+
+    const model_definition *model;
+    size_t n_variables;      /* model variables followed by the back-end's parameters */
+    const model_variable *solver_variables;
+    double *values;          /* by value reference */
+    double *x;               /* continuous states */
+    double time;
+
+    int tolerance_defined;
+    double tolerance;
+
+    /* scratch for derivatives and events, sized by the model */
+    double *dx;
+    double *z_before;
+    double *z_after;
+    int *fired;
+
+    void *solver;            /* back-end data */
+} fmu_instance;
+
+#define PHASE_BIT(phase) (1u << (phase))
+
+/* The instance behind c when the call is allowed in one of the phases in `allowed` (a set of
+ * PHASE_BIT); otherwise logs why and returns NULL. */
+fmu_instance *fmu_checked(fmi2Component c, const char *function, unsigned allowed);
+
+const char *fmu_phase_name(fmu_phase phase);
+
+/* The table row of a value reference, or NULL when the FMU has no such variable. */
+const model_variable *fmu_variable(const fmu_instance *inst, fmi2ValueReference vr);
+
+/* Every variable back to its start value, the states from the parameters, time to zero. */
+void fmu_apply_start_values(fmu_instance *inst);
+
+/* Value of the back-end parameter with index `i` in the back-end's variable table. */
+double fmu_solver_parameter(const fmu_instance *inst, size_t i);
+
+/* Recompute outputs and locals from the current state and inputs (cheap, called on every get). */
+void fmu_refresh_outputs(fmu_instance *inst);
+
+/* Apply the internal events the back-end marked in inst->fired at time t (changes x), and log them. */
+void fmu_handle_events(fmu_instance *inst, double t, double *x);
+
+#endif

@@ -1,0 +1,64 @@
+#include "fmu_log.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+const char *const fmu_log_category_names[LOG_CATEGORY_COUNT] = {
+    "logEvents", "logStatusWarning", "logStatusError", "logAll"};
+
+const char *const fmu_log_category_descriptions[LOG_CATEGORY_COUNT] = {
+    "internal events located and handled by the FMU", "calls that return fmi2Warning",
+    "calls that return fmi2Error", "every message"};
+
+static int category_enabled(const fmu_instance *inst, fmi2Status status,
+                            fmu_log_category category)
+{
+    unsigned bit = 1u << category;
+    unsigned all = 1u << LOG_ALL;
+    int enabled = (inst->log_categories & (bit | all)) != 0;
+    if (status >= fmi2Warning)
+        return enabled;
+    return inst->logging_on && enabled;
+}
+
+static void emit(const fmu_instance *inst, fmi2Status status, fmu_log_category category,
+                 const char *format, va_list args)
+{
+    if (inst == NULL || inst->callbacks.logger == NULL || !category_enabled(inst, status, category))
+        return;
+    char message[1024];
+    vsnprintf(message, sizeof message, format, args);
+    /* The master may treat the message as a printf format: keep it free of conversions. */
+    for (char *c = message; *c != '\0'; ++c)
+        if (*c == '%')
+            *c = ' ';
+    inst->callbacks.logger(inst->callbacks.environment, inst->name, status,
+                           fmu_log_category_names[category], message);
+}
+
+void fmu_log(const fmu_instance *inst, fmi2Status status, fmu_log_category category,
+             const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    emit(inst, status, category, format, args);
+    va_end(args);
+}
+
+fmi2Status fmu_error(const fmu_instance *inst, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    emit(inst, fmi2Error, LOG_STATUS_ERROR, format, args);
+    va_end(args);
+    return fmi2Error;
+}
+
+int fmu_log_category_from_name(const char *name)
+{
+    for (int i = 0; i < LOG_CATEGORY_COUNT; ++i)
+        if (name != NULL && strcmp(name, fmu_log_category_names[i]) == 0)
+            return i;
+    return -1;
+}

@@ -1,0 +1,80 @@
+/* What a model provides to the FMU framework: its variable table and its equations.
+ *
+ * A model is one C file that defines `fmu_model` (see the models/ folders). The framework serves
+ * every fmi2 function, the solver back-ends integrate the equations, and the describe tool
+ * writes modelDescription.xml, all from this one definition. */
+#ifndef SYSSIMX_FMU_MODEL_H
+#define SYSSIMX_FMU_MODEL_H
+
+#include <stddef.h>
+
+typedef enum { TYPE_REAL, TYPE_INTEGER, TYPE_BOOLEAN } variable_type;
+
+typedef enum {
+    CAUSALITY_PARAMETER,
+    CAUSALITY_INPUT,
+    CAUSALITY_OUTPUT,
+    CAUSALITY_LOCAL
+} variable_causality;
+
+typedef enum {
+    VARIABILITY_FIXED,
+    VARIABILITY_TUNABLE,
+    VARIABILITY_DISCRETE,
+    VARIABILITY_CONTINUOUS
+} variable_variability;
+
+typedef enum { INITIAL_NONE, INITIAL_EXACT, INITIAL_CALCULATED } variable_initial;
+
+/* A dependency list: value references ended by DEPENDS_END. */
+#define DEPENDS_END (-1)
+#define DEPENDS(...) ((const int[]){__VA_ARGS__, DEPENDS_END})
+#define DEPENDS_NONE ((const int[]){DEPENDS_END})
+
+/* One row of the variable table. The value reference is the row's index in the table. */
+typedef struct {
+    const char *name;
+    unsigned vr;
+    variable_type type;
+    variable_causality causality;
+    variable_variability variability;
+    variable_initial initial;
+    const char *unit;        /* NULL: dimensionless */
+    double start;            /* used when initial is exact or for inputs */
+    const char *description;
+    int derivative_of;       /* vr of the state this variable is the derivative of, or -1 */
+    /* For outputs and derivatives: the inputs and states the value depends on in step mode,
+     * and the parameters and inputs it depends on at initialization. */
+    const int *depends;
+    const int *initial_depends;
+} model_variable;
+
+/* Equations. `v` holds every variable by value reference (Integer and Boolean values as
+ * doubles); `x` is the continuous state vector. */
+typedef struct {
+    const char *name;
+    const char *description;
+    const model_variable *variables;
+    size_t n_variables;
+    size_t n_states;
+    const unsigned *state_vrs;  /* the variable that shows each state, in state order */
+    size_t n_event_indicators;  /* internal events, handled inside the FMU */
+    double default_stop_time;
+    double default_step_size;
+
+    /* states at the start time, from the parameters */
+    void (*initial_states)(const double *v, double *x);
+    void (*derivatives)(const double *v, double t, const double *x, double *dx);
+    /* outputs and locals from the state and the current inputs */
+    void (*outputs)(double *v, double t, const double *x);
+    /* indicator i fires when it falls from > 0 to <= 0 */
+    void (*event_indicators)(const double *v, double t, const double *x, double *z);
+    /* apply the events marked in fired[]; may change x and discrete variables in v */
+    void (*handle_events)(double *v, double t, double *x, const int *fired);
+    /* NULL when the model can always step; otherwise a reason to refuse a step ending at t_end */
+    const char *(*step_refusal)(const double *v, double t_end);
+} model_definition;
+
+extern const model_definition fmu_model;
+
+#endif

@@ -1,0 +1,86 @@
+/* Pendulum.mo: a rigid pendulum driven by a torque at the pivot, no events. */
+#include <math.h>
+
+#include "model.h"
+
+enum {
+    VR_THETA, VR_OMEGA, VR_ALPHA, VR_DER_THETA, VR_TORQUE,
+    VR_M, VR_L, VR_THETA0, VR_OMEGA0, VR_G, VR_INERTIA,
+    VARIABLE_COUNT
+};
+
+static const model_variable variables[VARIABLE_COUNT] = {
+    [VR_THETA] = {"theta", VR_THETA, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS,
+                  INITIAL_CALCULATED, "rad", 0, "angle from the downward vertical", -1,
+                  DEPENDS(VR_THETA), DEPENDS(VR_THETA0)},
+    [VR_OMEGA] = {"omega", VR_OMEGA, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS,
+                  INITIAL_CALCULATED, "rad/s", 0, "angular velocity", -1, DEPENDS(VR_OMEGA),
+                  DEPENDS(VR_OMEGA0)},
+    [VR_ALPHA] = {"alpha", VR_ALPHA, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS,
+                  INITIAL_CALCULATED, "rad/s2", 0, "angular acceleration der(omega)", VR_OMEGA,
+                  DEPENDS(VR_THETA, VR_TORQUE),
+                  DEPENDS(VR_TORQUE, VR_M, VR_L, VR_THETA0, VR_G, VR_INERTIA)},
+    [VR_DER_THETA] = {"der(theta)", VR_DER_THETA, TYPE_REAL, CAUSALITY_LOCAL,
+                      VARIABILITY_CONTINUOUS, INITIAL_CALCULATED, "rad/s", 0,
+                      "derivative of theta", VR_THETA, DEPENDS(VR_OMEGA), DEPENDS(VR_OMEGA0)},
+    [VR_TORQUE] = {"torque", VR_TORQUE, TYPE_REAL, CAUSALITY_INPUT, VARIABILITY_CONTINUOUS,
+                   INITIAL_NONE, "N.m", 0, "torque at the pivot", -1, NULL, NULL},
+    [VR_M] = {"m", VR_M, TYPE_REAL, CAUSALITY_PARAMETER, VARIABILITY_FIXED, INITIAL_EXACT, "kg",
+              40, "mass", -1, NULL, NULL},
+    [VR_L] = {"L", VR_L, TYPE_REAL, CAUSALITY_PARAMETER, VARIABILITY_FIXED, INITIAL_EXACT, "m",
+              0.6, "distance from the pivot to the centre of mass", -1, NULL, NULL},
+    [VR_THETA0] = {"theta0", VR_THETA0, TYPE_REAL, CAUSALITY_PARAMETER, VARIABILITY_FIXED,
+                   INITIAL_EXACT, "rad", 0, "initial angle", -1, NULL, NULL},
+    [VR_OMEGA0] = {"omega0", VR_OMEGA0, TYPE_REAL, CAUSALITY_PARAMETER, VARIABILITY_FIXED,
+                   INITIAL_EXACT, "rad/s", 0, "initial angular velocity", -1, NULL, NULL},
+    [VR_G] = {"g", VR_G, TYPE_REAL, CAUSALITY_PARAMETER, VARIABILITY_FIXED, INITIAL_EXACT,
+              "m/s2", 9.81, "gravitational acceleration", -1, NULL, NULL},
+    [VR_INERTIA] = {"inertia", VR_INERTIA, TYPE_REAL, CAUSALITY_PARAMETER, VARIABILITY_FIXED,
+                    INITIAL_EXACT, "kg.m2", 20, "moment of inertia about the pivot", -1, NULL,
+                    NULL},
+};
+
+static const unsigned state_vrs[] = {VR_THETA, VR_OMEGA};
+
+static double angular_acceleration(const double *v, double theta)
+{
+    return -(v[VR_M] * v[VR_G] * v[VR_L] / v[VR_INERTIA]) * sin(theta) +
+           v[VR_TORQUE] / v[VR_INERTIA];
+}
+
+static void initial_states(const double *v, double *x)
+{
+    x[0] = v[VR_THETA0];
+    x[1] = v[VR_OMEGA0];
+}
+
+static void derivatives(const double *v, double t, const double *x, double *dx)
+{
+    (void)t;
+    dx[0] = x[1];
+    dx[1] = angular_acceleration(v, x[0]);
+}
+
+static void outputs(double *v, double t, const double *x)
+{
+    (void)t;
+    v[VR_THETA] = x[0];
+    v[VR_OMEGA] = x[1];
+    v[VR_DER_THETA] = x[1];
+    v[VR_ALPHA] = angular_acceleration(v, x[0]);
+}
+
+const model_definition fmu_model = {
+    .name = "Pendulum",
+    .description = "Rigid pendulum with a torque input (Pendulum.mo)",
+    .variables = variables,
+    .n_variables = VARIABLE_COUNT,
+    .n_states = 2,
+    .state_vrs = state_vrs,
+    .n_event_indicators = 0,
+    .default_stop_time = 3.0,
+    .default_step_size = 1e-3,
+    .initial_states = initial_states,
+    .derivatives = derivatives,
+    .outputs = outputs,
+};
