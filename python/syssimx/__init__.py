@@ -1,0 +1,56 @@
+"""syssimx: hybrid co-simulation of FMI 2.0 Co-Simulation FMUs, run by a C engine.
+
+Build a System of FMUComponent and CoSimComponent objects, connect them, optionally add event
+indicators and event connections, then initialize and run. The SysSimX API is kept.
+"""
+
+import logging
+
+from .components import CoSimComponent, FMUComponent
+from .core import DenseTime, Port, PortSpec, PortType
+from .errors import (
+    AlgebraicLoopError,
+    ConfigurationError,
+    FMUError,
+    FMUFileError,
+    SimulationError,
+    SysSimXError,
+    ZenoError,
+)
+from .system import (
+    Connection,
+    EventConnection,
+    GaussSeidelAlgorithm,
+    HybridAlgorithm,
+    JacobiAlgorithm,
+    SimulationResult,
+    System,
+)
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "AlgebraicLoopError",
+    "CoSimComponent",
+    "ConfigurationError",
+    "Connection",
+    "DenseTime",
+    "EventConnection",
+    "FMUComponent",
+    "FMUError",
+    "FMUFileError",
+    "GaussSeidelAlgorithm",
+    "HybridAlgorithm",
+    "JacobiAlgorithm",
+    "Port",
+    "PortSpec",
+    "PortType",
+    "SimulationError",
+    "SimulationResult",
+    "SysSimXError",
+    "System",
+    "ZenoError",
+    "__version__",
+]
+
+logging.getLogger(__name__).addHandler(logging.NullHandler())

@@ -1,0 +1,275 @@
+"""CoSimComponent: the base class of every component, and of pure Python components.
+
+A component lives in an engine system (the one of the System it was added to, or a private
+one-component system when it is used on its own). The engine steps it; a pure Python component
+is stepped through callbacks into the hooks below (engine inputs -> `inputs` ports ->
+`_do_step_internal` -> `_update_output_states` -> `outputs` ports -> engine outputs).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..core.events import EventIndicator
+from ..core.port import Port, PortSpec, PortType
+from ..errors import ConfigurationError
+
+if TYPE_CHECKING:
+    from ..system.plan import EnginePlan
+    from ..system.system import System
+
+EventHandler = Callable[[Any, list[str], float], None]
+
+ENGINE_TYPES = (PortType.REAL, PortType.INT, PortType.BOOL)
+
+
+@dataclass(frozen=True)
+class Binding:
+    """Where a component lives in an engine system: the plan and its component index."""
+
+    plan: EnginePlan
+    index: int
+
+
+class CoSimComponent:
+    """Base class of co-simulation components.
+
+    A pure Python component overrides `_do_step_internal(t, dt)` and
+    `_update_output_states(t, event_names)` (and optionally `_initialize_component(t0)`,
+    `evaluate_outputs`, `snapshot_state`/`restore_state` for rollback and
+    `_handle_events_internal`). Declared `direct_feedthrough = {"y": {"u"}}` is respected.
+    """
+
+    def __init__(self, name: str, label: str | None = None, group: str | None = None) -> None:
+        self.name = name
+        self.label = label if label is not None else name
+        self.group = group
+        self.input_specs: dict[str, PortSpec] = {}
+        self.output_specs: dict[str, PortSpec] = {}
+        self.inputs: dict[str, Port] = {}
+        self.outputs: dict[str, Port] = {}
+        self.parameters: dict[str, Any] = {}
+        self.direct_feedthrough: dict[str, set[str]] = {}
+        self.event_indicators: dict[str, EventIndicator] = {}
+        self.event_handlers: dict[str, list[EventHandler]] = {}
+        # event name -> the EVENT inputs it arrives on (set by the System from its connections)
+        self._event_routes: dict[str, set[str]] = {}
+        self.t: float = 0.0
+        self._binding: Binding | None = None
+        self._private_system: System | None = None
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({self.name!r})"
+
+    # ---------------------------------------------------------------- ports
+    def _make_port(self, spec: PortSpec) -> Port:
+        return Port(spec)
+
+    def _sync_ports(self) -> None:
+        """Create a Port for every spec added since (subclasses fill the specs in __init__)."""
+        for specs, ports in ((self.input_specs, self.inputs), (self.output_specs, self.outputs)):
+            for name, spec in specs.items():
+                if name not in ports or ports[name].spec != spec:
+                    ports[name] = self._make_port(spec)
+
+    def engine_outputs(self) -> list[str]:
+        """Names of the outputs the engine carries, in engine order."""
+        return [n for n, s in self.output_specs.items() if s.type in ENGINE_TYPES]
+
+    def engine_inputs(self) -> list[str]:
+        return [n for n, s in self.input_specs.items() if s.type in ENGINE_TYPES]
+
+    def feedthrough(self) -> dict[str, set[str]]:
+        """Output -> inputs it depends on directly (the declared `direct_feedthrough`)."""
+        return {name: set(self.direct_feedthrough.get(name, ())) for name in self.engine_outputs()}
+
+    # ---------------------------------------------------------------- parameters
+    def set_parameters(self, **parameters: Any) -> None:
+        for name, value in parameters.items():
+            if name not in self.parameters:
+                raise ConfigurationError(
+                    f"component {self.name!r} has no parameter {name!r}; "
+                    f"known parameters: {sorted(self.parameters) or 'none'}")
+            self.parameters[name] = value
+
+    def get_parameters(self, *names: str) -> dict[str, Any]:
+        unknown = [n for n in names if n not in self.parameters]
+        if unknown:
+            raise ConfigurationError(f"component {self.name!r} has no parameter {unknown[0]!r}; "
+                                     f"known parameters: {sorted(self.parameters) or 'none'}")
+        return {n: self.parameters[n] for n in (names or self.parameters)}
+
+    # ---------------------------------------------------------------- inputs / outputs
+    def set_inputs(self, signals: Mapping[str, Any], t: float | None = None) -> None:
+        self._sync_ports()
+        for name, value in signals.items():
+            if name not in self.inputs:
+                raise ConfigurationError(f"component {self.name!r} has no input {name!r}; "
+                                         f"inputs: {sorted(self.inputs) or 'none'}")
+            self.inputs[name].set(value, t)
+        if self._binding is not None:
+            self._binding.plan.write_inputs(self)
+
+    def get_outputs(self) -> dict[str, Any]:
+        self._sync_ports()
+        return {name: port.get() for name, port in self.outputs.items()}
+
+    def evaluate_outputs(self, inputs: Mapping[str, Any], t: float | None = None
+                         ) -> dict[str, Any]:
+        """Zero-time evaluation used by algebraic loops: outputs for these inputs, no step."""
+        for name, value in inputs.items():
+            self.inputs[name].set(value, t)
+        return {name: port.get() for name, port in self.outputs.items()}
+
+    # ---------------------------------------------------------------- events
+    def add_event_indicator(self, name: str, func: Callable[[Any], float] | None = None,
+                            direction: int = 0, variable: str | None = None) -> None:
+        """Declare a zero crossing. `func(component) -> float` runs in Python; `variable` names
+        an output evaluated in C. Creates the EVENT output port `name`."""
+        if (func is None) == (variable is None):
+            raise ConfigurationError(f"{self.name}.{name}: give exactly one of func= or variable=")
+        if direction not in (-1, 0, 1):
+            raise ConfigurationError(f"{self.name}.{name}: direction must be -1, 0 or +1")
+        if name in self.event_indicators or (name in self.output_specs
+                                            and self.output_specs[name].type != PortType.EVENT):
+            raise ConfigurationError(f"{self.name}: the name {name!r} is already in use")
+        if variable is not None and variable not in self.engine_outputs():
+            raise ConfigurationError(f"{self.name}.{name}: variable {variable!r} is not an "
+                                     f"output; outputs: {self.engine_outputs()}")
+        self.event_indicators[name] = EventIndicator(name, direction, func, variable)
+        self.output_specs[name] = PortSpec(name, PortType.EVENT, "out")
+
+    def add_event_handler(self, event_input: str, handler: EventHandler) -> None:
+        """Run `handler(component, event_names, t)` when an event arrives on the EVENT input
+        `event_input` (through an EventConnection). Creates that input if missing."""
+        spec = self.input_specs.get(event_input)
+        if spec is not None and spec.type != PortType.EVENT:
+            raise ConfigurationError(f"{self.name}.{event_input} is a {spec.type.name} input, "
+                                     "not an EVENT input")
+        self.input_specs.setdefault(event_input, PortSpec(event_input, PortType.EVENT, "in"))
+        self.event_handlers.setdefault(event_input, []).append(handler)
+
+    def has_event_handling(self) -> bool:
+        """Whether events delivered to this component do anything."""
+        return bool(self.event_handlers) or _overrides(self, "_handle_events_internal")
+
+    def _handle_events_internal(self, event_names: list[str], t: float) -> None:
+        """Run the handlers registered with add_event_handler for the EVENT inputs the events
+        arrived on, each once; subclasses may override."""
+        inputs = dict.fromkeys(port for name in event_names
+                               for port in sorted(self._event_routes.get(name, ())))
+        for port in inputs:
+            self._set_event_input(port, True, t)
+            for handler in self.event_handlers.get(port, ()):
+                handler(self, list(event_names), t)
+            self._set_event_input(port, False, t)
+
+    def _set_event_input(self, port: str, value: bool, t: float) -> None:
+        if port in self.inputs:
+            self.inputs[port].set(value, t)
+
+    def _set_event_ports(self, t: float | None, event_names: Iterable[str] | None) -> None:
+        """EVENT outputs: True for the events that just fired, all False otherwise."""
+        names = set(event_names or ())
+        for port in self.outputs.values():
+            if port.spec.type == PortType.EVENT:
+                port.set(port.spec.name in names, t)
+
+    # ---------------------------------------------------------------- lifecycle hooks
+    def _initialize_component(self, t0: float) -> None:
+        """Set up the component's own state at t0 (a pure Python component may override)."""
+
+    def _do_step_internal(self, t: float, dt: float) -> None:
+        raise NotImplementedError(f"{type(self).__name__} must implement _do_step_internal")
+
+    def _update_output_states(self, t: float | None = None,
+                              event_names: list[str] | None = None) -> None:
+        raise NotImplementedError(f"{type(self).__name__} must implement _update_output_states")
+
+    def _record_outputs(self, t: float) -> None:
+        """Called when the engine records a sample at t. The engine stores the outputs itself;
+        a subclass may override this to keep extra data of its own."""
+
+    def snapshot_state(self) -> Any:
+        raise NotImplementedError(f"{self.name}: snapshot_state is not implemented")
+
+    def restore_state(self, snapshot: Any, t: float) -> None:
+        raise NotImplementedError(f"{self.name}: restore_state is not implemented")
+
+    def can_rollback(self) -> bool:
+        return _overrides(self, "snapshot_state") and _overrides(self, "restore_state")
+
+    def get_state(self) -> dict[str, dict[str, Any]]:
+        """Outputs and parameters as {name: {"value", "unit"}}."""
+        state = {name: {"value": port.raw(), "unit": port.spec.unit}
+                 for name, port in self.outputs.items() if port.spec.type != PortType.EVENT}
+        for name, value in self.parameters.items():
+            state.setdefault(name, {"value": value, "unit": None})
+        return state
+
+    # Called by the System (or the private system) once the engine plan exists.
+    def _start(self, t0: float) -> None:
+        self._sync_ports()
+        self.t = t0
+        self._initialize_component(t0)
+        self._update_output_states(t0)
+        self._set_event_ports(t0, None)
+        if self._binding is not None:
+            self._binding.plan.push_outputs(self)
+
+    # ---------------------------------------------------------------- standalone use
+    def _standalone(self) -> System:
+        if self._private_system is None:
+            from ..system.system import System
+
+            self._private_system = System(f"{self.name} (standalone)")
+            self._private_system.add_component(self)
+        return self._private_system
+
+    def initialize(self, t0: float = 0.0) -> None:
+        """Initialize the component on its own, in a private one-component system."""
+        self._standalone().initialize(t0)
+
+    def do_step(self, t: float, dt: float) -> None:
+        """Advance a component used on its own from t to t + dt (records a sample)."""
+        system = self._standalone()
+        system.run(t, t + dt, dt)
+
+    def get_history_arrays(self, port_names: list[str] | None = None
+                           ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+        """(time, {output: values}) recorded by the engine system the component runs in."""
+        if self._binding is None:
+            return np.empty(0), {n: np.empty(0) for n in self.engine_outputs()}
+        t, values = self._binding.plan.component_history(self)
+        if port_names is not None:
+            values = {n: values[n] for n in port_names}
+        return t, values
+
+    def get_history(self, port_names: list[str] | None = None) -> dict[str, dict[str, Any]]:
+        """{output: {"time", "values", "unit"}}."""
+        t, values = self.get_history_arrays(port_names)
+        return {n: {"time": t, "values": v, "unit": self.output_specs[n].unit}
+                for n, v in values.items()}
+
+    def reset(self) -> None:
+        """Forget the run: a later initialize starts from scratch."""
+        self.t = 0.0
+        self._private_system = None
+        self._binding = None
+
+    def free(self) -> None:
+        """Release what the component holds (nothing for a pure Python component)."""
+        self.reset()
+
+
+def _overrides(component: object, method: str) -> bool:
+    """Whether the component's class replaces the method of the syssimx class defining it."""
+    own = getattr(type(component), method)
+    for klass in type(component).__mro__:
+        if klass.__module__.startswith("syssimx.") and method in vars(klass):
+            return own is not vars(klass)[method]
+    return False

@@ -1,0 +1,259 @@
+"""FMUComponent: an FMI 2.0 Co-Simulation FMU stepped by the engine.
+
+Plain use costs no Python per step: the engine calls the FMU directly, rolls it back with
+fmi2Get/SetFMUstate for event localization and evaluates variable indicators in C. Overriding
+a hook (`_do_step_internal`, `_update_output_states`, `snapshot_state`/`restore_state`,
+`_handle_events_internal`, `_record_outputs`) routes that hook through Python.
+"""
+
+from __future__ import annotations
+
+import shutil
+import tempfile
+import weakref
+from pathlib import Path
+from typing import Any
+
+import fmpy
+import pint
+
+from ..core.port import Port, PortSpec, PortType
+from ..engine import ffi, lib
+from ..errors import ConfigurationError, FMUFileError
+from ..units import magnitude_in
+from .base import CoSimComponent
+from .fmu_instance import FMUInstance
+from .model_description import FMUInfo, Parameter, read_fmu, start_value
+
+
+class FMUComponent(CoSimComponent):
+    """An FMI 2.0 Co-Simulation FMU (linux64 binary) as a component."""
+
+    def __init__(self, name: str, fmu_path: str | Path, group: str | None = None) -> None:
+        super().__init__(name, group=group)
+        self.info: FMUInfo = read_fmu(fmu_path)
+        self.fmu_path = str(self.info.path)
+        self.input_specs.update(self.info.input_specs)
+        self.output_specs.update(self.info.output_specs)
+        self.direct_feedthrough = {k: set(v) for k, v in self.info.feedthrough.items()}
+        self.parameters = {n: p.start for n, p in self.info.parameters.items()}
+        self._input_starts = {n: _start(self.info, n) for n in self.info.input_specs}
+        self._fmu, self._unzip_dir = _load(self.info, name)
+        self.instance = FMUInstance(self._fmu, name)
+        self._finalizer = weakref.finalize(self, _release, self.instance, self._unzip_dir)
+        self._sync_ports()
+
+    @property
+    def _instance(self) -> FMUInstance:
+        """SysSimX's name of the instance proxy."""
+        return self.instance
+
+    @property
+    def can_get_set_state(self) -> bool:
+        return self.info.can_get_set_state
+
+    # ---------------------------------------------------------------- ports
+    def _make_port(self, spec: PortSpec) -> Port:
+        if spec.type == PortType.EVENT:
+            return Port(spec)
+        if spec.direction == "out":
+            return Port(spec, reader=lambda n=spec.name: self._engine_value("out", n))
+        return Port(spec, self._input_starts.get(spec.name),
+                    reader=lambda n=spec.name: self._engine_value("in", n))
+
+    def _engine_value(self, direction: str, name: str) -> float | int | bool:
+        """The engine's current value of a port (the start value before any system exists)."""
+        if self._binding is None:
+            if direction == "in":
+                return self.inputs[name]._raw
+            return 0.0
+        value = self._binding.plan.port_value(self, direction, name)
+        kind = (self.output_specs if direction == "out" else self.input_specs)[name].type
+        return int(value) if kind == PortType.INT else bool(value) if kind == PortType.BOOL \
+            else value
+
+    def value_reference(self, name: str) -> int:
+        return int(self.info.variables[name].valueReference)
+
+    def feedthrough(self) -> dict[str, set[str]]:
+        return {n: set(self.direct_feedthrough.get(n, ())) for n in self.engine_outputs()}
+
+    def set_inputs(self, signals: dict[str, Any], t: float | None = None) -> None:
+        """Set inputs; they go to the FMU at once when it is instantiated."""
+        for name, value in signals.items():
+            if name not in self.input_specs:
+                raise ConfigurationError(f"component {self.name!r} has no input {name!r}; "
+                                         f"inputs: {sorted(self.input_specs) or 'none'}")
+            self._input_starts[name] = self.input_specs[name].coerce(value)
+            self.inputs[name]._raw = self._input_starts[name]
+        if self._binding is not None:
+            self._binding.plan.write_inputs(self, signals)
+        if self.instance.alive():
+            self._write_to_fmu({n: self._input_starts[n] for n in signals})
+
+    def _write_to_fmu(self, values: dict[str, Any]) -> None:
+        by_type: dict[PortType, tuple[list[int], list[Any]]] = {}
+        for name, value in values.items():
+            variable = self.info.variables[name]
+            kind = self.input_specs[name].type if name in self.input_specs \
+                else self.info.parameters[name].type
+            refs, vals = by_type.setdefault(kind, ([], []))
+            refs.append(int(variable.valueReference))
+            vals.append(value)
+        setters = {PortType.REAL: self.instance.setReal, PortType.INT: self.instance.setInteger,
+                   PortType.BOOL: self.instance.setBoolean}
+        for kind, (refs, vals) in by_type.items():
+            setters[kind](refs, vals)
+
+    # ---------------------------------------------------------------- parameters
+    def set_parameters(self, **parameters: Any) -> None:
+        """Numbers or pint quantities (converted to the FMU's unit)."""
+        for name, value in parameters.items():
+            parameter = self.info.parameters.get(name)
+            if parameter is None:
+                raise ConfigurationError(
+                    f"component {self.name!r} has no parameter {name!r}; "
+                    f"known parameters: {sorted(self.info.parameters) or 'none'}")
+            self.parameters[name] = _coerce_parameter(self.name, parameter, value)
+
+    def _apply_parameters_starts(self) -> None:
+        """Write the parameters to the FMU. In step mode only tunable ones (FMI forbids
+        setting fixed parameters after initialization)."""
+        step_mode = self.instance.mode == "step"
+        values = {n: v for n, v in self.parameters.items()
+                  if v is not None and self.info.parameters[n].type != PortType.STRING
+                  and (self.info.parameters[n].tunable or not step_mode)}
+        self._write_to_fmu(values)
+
+    def _apply_input_starts(self) -> None:
+        """Write the inputs' current values (start values while unconnected) to the FMU."""
+        values = {n: self.inputs[n].raw() for n in self.engine_inputs()}
+        self._write_to_fmu(values)
+
+    # ---------------------------------------------------------------- life cycle
+    def _start(self, t0: float) -> None:
+        self._sync_ports()
+        self.t = t0
+        self.reinitialize(t0)
+        self._set_event_ports(t0, None)
+
+    def reinitialize(self, t: float, **start_values: Any) -> None:
+        """Fresh instance at time t with the parameters (updated with start_values) applied:
+        instantiate, setupExperiment(t), initialization mode, parameters, inputs, exit."""
+        if start_values:
+            self.set_parameters(**start_values)
+        self.instance.instantiate()
+        self.instance.setupExperiment(startTime=t)
+        self.instance.enterInitializationMode()
+        self._apply_parameters_starts()
+        self._apply_input_starts()
+        self.instance.exitInitializationMode()
+        self.t = t
+        if self._binding is not None:
+            self._binding.plan.read_outputs(self)
+
+    # ---------------------------------------------------------------- hooks (engine built-ins)
+    def _do_step_internal(self, t: float, dt: float) -> None:
+        """One doStep of the FMU from t to t + dt, inputs written first, outputs read after."""
+        if not dt > 0.0:
+            raise ValueError(f"{self.name}: doStep needs a positive step, got {dt}")
+        self._require_binding().plan.builtin_do_step(self, t, dt)
+
+    def _update_output_states(self, t: float | None = None,
+                              event_names: list[str] | None = None) -> None:
+        """Read the FMU's outputs into the engine (ports read the engine)."""
+        self._require_binding().plan.read_outputs(self)
+
+    def snapshot_state(self) -> Any:
+        return self.instance.getFMUstate()
+
+    def restore_state(self, snapshot: Any, t: float) -> None:
+        self.instance.setFMUstate(snapshot)
+        self.t = t
+        self._update_output_states(t)
+
+    def can_rollback(self) -> bool:
+        return self.can_get_set_state or super().can_rollback()
+
+    def get_state(self) -> dict[str, dict[str, Any]]:
+        """Outputs and parameters (and other non-fixed variables) read from the FMU."""
+        names = [v.name for v in self.info.description.modelVariables
+                 if v.variability != "fixed" and v.causality != "local"
+                 and v.type in ("Real", "Integer", "Enumeration", "Boolean")]
+        state = {}
+        getters = {"Real": self.instance.getReal, "Integer": self.instance.getInteger,
+                   "Enumeration": self.instance.getInteger, "Boolean": self.instance.getBoolean}
+        for name in names:
+            variable = self.info.variables[name]
+            value = getters[variable.type]([variable.valueReference])[0]
+            state[name] = {"value": value, "unit": variable.unit}
+        for name, value in self.parameters.items():
+            state.setdefault(name, {"value": value, "unit": self.info.parameters[name].unit})
+        return state
+
+    def _require_binding(self) -> Any:
+        if self._binding is None:
+            raise ConfigurationError(f"{self.name}: initialize the component (or its System) "
+                                     "first")
+        return self._binding
+
+    def reset(self) -> None:
+        if self.instance.alive():
+            self.instance.freeInstance()
+        super().reset()
+
+    def free(self) -> None:
+        """Free the instance and unload the binary (the component is unusable afterwards)."""
+        self.reset()
+        self._finalizer()
+
+
+def _start(info: FMUInfo, name: str) -> float | int | bool:
+    value = start_value(info, name)
+    kind = info.input_specs[name].type
+    if value is None:
+        return {PortType.REAL: 0.0, PortType.INT: 0}.get(kind, False)
+    return value  # type: ignore[return-value]
+
+
+def _coerce_parameter(component: str, parameter: Parameter, value: Any) -> Any:
+    where = f"{component}.{parameter.name}"
+    if parameter.type == PortType.REAL:
+        if isinstance(value, pint.Quantity):
+            try:
+                return magnitude_in(value, parameter.unit)
+            except pint.DimensionalityError as exc:
+                raise ConfigurationError(f"{where}: {value} is not convertible to "
+                                         f"{parameter.unit or 'a plain number'}") from exc
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise ConfigurationError(f"{where} is Real; got {type(value).__name__} {value!r}")
+        return float(value)
+    try:
+        spec = PortSpec(parameter.name, parameter.type, "in")
+        return spec.coerce(value)
+    except TypeError as exc:
+        raise ConfigurationError(f"{where}: {exc}") from exc
+
+
+def _load(info: FMUInfo, name: str) -> tuple[Any, Path]:
+    """Extract the archive and load its binary into the engine (no instance yet)."""
+    unzip_dir = Path(tempfile.mkdtemp(prefix="syssimx_"))
+    fmpy.extract(str(info.path), unzipdir=str(unzip_dir))
+    binary = unzip_dir / info.binary_name()
+    error = ffi.new("char[1024]")
+    handle = lib().ssx_fmu_load(str(binary).encode(), info.model_identifier.encode(),
+                                info.description.guid.encode(),
+                                (unzip_dir / "resources").as_uri().encode(), name.encode(), 0,
+                                error, 1024)
+    if handle == ffi.NULL:
+        shutil.rmtree(unzip_dir, ignore_errors=True)
+        raise FMUFileError(f"{info.path}: cannot load {info.binary_name()}: "
+                           f"{ffi.string(error).decode(errors='replace')}")
+    return handle, unzip_dir
+
+
+def _release(instance: FMUInstance, unzip_dir: Path) -> None:
+    instance.mode = "none"
+    instance.generation += 1
+    lib().ssx_fmu_free(instance.fmu)
+    shutil.rmtree(unzip_dir, ignore_errors=True)

@@ -1,0 +1,191 @@
+"""FMUInstance: FMPy's FMU2Slave method names over the engine-owned FMU instance.
+
+The engine owns the fmi2 instance (it steps it without Python); this proxy lets user code
+(the seed's FMUComponent subclass, event handlers) drive the same instance. A status above
+Warning raises FMUError with the FMU's last log message.
+"""
+
+from __future__ import annotations
+
+import weakref
+from collections.abc import Sequence
+from typing import Any
+
+from ..engine import ffi, lib, string
+from ..errors import FMUError
+
+_STATUS = {0: "OK", 1: "Warning", 2: "Discard", 3: "Error", 4: "Fatal", 5: "Pending", -1: "failed"}
+
+
+class FMUState:
+    """An FMU state taken with getFMUstate. Freed by freeFMUstate or when garbage collected;
+    a state of an instance that has since been freed or replaced was released with it."""
+
+    def __init__(self, instance: FMUInstance, handle: Any) -> None:
+        self._instance = instance
+        self.generation = instance.generation
+        self.handle = handle  # void ** holding the fmi2FMUstate
+        self._finalizer = weakref.finalize(self, _free_state, instance, self.generation, handle)
+
+    def free(self) -> None:
+        self._finalizer()
+
+
+def _free_state(instance: FMUInstance, generation: int, handle: Any) -> None:
+    if handle[0] != ffi.NULL and instance.generation == generation and instance.alive():
+        lib().ssx_fmu_free_state(instance.fmu, handle)
+
+
+class FMUInstance:
+    """Proxy with FMU2Slave's methods; `mode` is "none", "instantiated", "init" or "step"."""
+
+    def __init__(self, fmu: Any, component_name: str) -> None:
+        self.fmu = fmu
+        self.component_name = component_name
+        self.mode = "none"
+        self.generation = 0  # bumped whenever the live instance is freed or replaced
+
+    def alive(self) -> bool:
+        return self.mode != "none"
+
+    def _check(self, status: int, call: str) -> int:
+        if status > 1 or status < 0:
+            message = string(lib().ssx_fmu_last_message(self.fmu))
+            raise FMUError(f"{self.component_name}: {call} returned {_STATUS.get(status, status)}"
+                           + (f": {message}" if message else ""),
+                           component=self.component_name, status=status, fmu_message=message)
+        return status
+
+    # ------------------------------------------------------------ life cycle
+    def instantiate(self, visible: bool = False, callbacks: Any = None,
+                    loggingOn: bool = False) -> None:  # noqa: N803 (FMPy's names)
+        self.generation += 1
+        self.mode = "none"
+        self._check(lib().ssx_fmu_instantiate(self.fmu), "fmi2Instantiate")
+        self.mode = "instantiated"
+
+    def setupExperiment(self, tolerance: float | None = None, startTime: float = 0.0,  # noqa: N802,N803
+                        stopTime: float | None = None) -> None:  # noqa: N803
+        self._check(lib().ssx_fmu_setup_experiment(
+            self.fmu, tolerance is not None, tolerance or 0.0, startTime, stopTime is not None,
+            stopTime or 0.0), "fmi2SetupExperiment")
+
+    def enterInitializationMode(self) -> None:  # noqa: N802
+        self._check(lib().ssx_fmu_enter_initialization_mode(self.fmu),
+                    "fmi2EnterInitializationMode")
+        self.mode = "init"
+
+    def exitInitializationMode(self) -> None:  # noqa: N802
+        self._check(lib().ssx_fmu_exit_initialization_mode(self.fmu),
+                    "fmi2ExitInitializationMode")
+        self.mode = "step"
+
+    def doStep(self, currentCommunicationPoint: float, communicationStepSize: float,  # noqa: N802,N803
+               noSetFMUStatePriorToCurrentPoint: bool = True) -> int:  # noqa: N803
+        if not communicationStepSize > 0.0:
+            raise ValueError(f"{self.component_name}: doStep needs a positive step, "
+                             f"got {communicationStepSize}")
+        return self._check(lib().ssx_fmu_do_step(
+            self.fmu, currentCommunicationPoint, communicationStepSize,
+            int(bool(noSetFMUStatePriorToCurrentPoint))), "fmi2DoStep")
+
+    def reset(self) -> None:
+        self._check(lib().ssx_fmu_reset(self.fmu), "fmi2Reset")
+        self.generation += 1
+        self.mode = "instantiated"
+
+    def terminate(self) -> None:
+        self._check(lib().ssx_fmu_terminate(self.fmu), "fmi2Terminate")
+
+    def freeInstance(self) -> None:  # noqa: N802
+        self.generation += 1
+        self.mode = "none"
+        self._check(lib().ssx_fmu_free_instance(self.fmu), "fmi2FreeInstance")
+
+    # ------------------------------------------------------------ values
+    def _vrs(self, vr: Sequence[int]) -> tuple[Any, int]:
+        refs = list(vr)
+        return ffi.new("unsigned int[]", refs), len(refs)
+
+    def getReal(self, vr: Sequence[int]) -> list[float]:  # noqa: N802
+        refs, n = self._vrs(vr)
+        values = ffi.new("double[]", n)
+        self._check(lib().ssx_fmu_get_real(self.fmu, refs, n, values), "fmi2GetReal")
+        return list(values)
+
+    def setReal(self, vr: Sequence[int], values: Sequence[float]) -> None:  # noqa: N802
+        refs, n = self._vrs(vr)
+        self._check(lib().ssx_fmu_set_real(self.fmu, refs, n, ffi.new("double[]", list(values))),
+                    "fmi2SetReal")
+
+    def getInteger(self, vr: Sequence[int]) -> list[int]:  # noqa: N802
+        refs, n = self._vrs(vr)
+        values = ffi.new("int[]", n)
+        self._check(lib().ssx_fmu_get_integer(self.fmu, refs, n, values), "fmi2GetInteger")
+        return list(values)
+
+    def setInteger(self, vr: Sequence[int], values: Sequence[int]) -> None:  # noqa: N802
+        refs, n = self._vrs(vr)
+        self._check(lib().ssx_fmu_set_integer(self.fmu, refs, n,
+                                              ffi.new("int[]", [int(v) for v in values])),
+                    "fmi2SetInteger")
+
+    def getBoolean(self, vr: Sequence[int]) -> list[bool]:  # noqa: N802
+        refs, n = self._vrs(vr)
+        values = ffi.new("int[]", n)
+        self._check(lib().ssx_fmu_get_boolean(self.fmu, refs, n, values), "fmi2GetBoolean")
+        return [bool(v) for v in values]
+
+    def setBoolean(self, vr: Sequence[int], values: Sequence[bool]) -> None:  # noqa: N802
+        refs, n = self._vrs(vr)
+        self._check(lib().ssx_fmu_set_boolean(self.fmu, refs, n,
+                                              ffi.new("int[]", [int(bool(v)) for v in values])),
+                    "fmi2SetBoolean")
+
+    # ------------------------------------------------------------ states
+    def getFMUstate(self, state: FMUState | None = None) -> FMUState:  # noqa: N802
+        """A new state, or `state` overwritten with the current one."""
+        if state is not None and state.generation == self.generation:
+            self._check(lib().ssx_fmu_get_state(self.fmu, state.handle), "fmi2GetFMUstate")
+            return state
+        handle = ffi.new("void **")
+        self._check(lib().ssx_fmu_get_state(self.fmu, handle), "fmi2GetFMUstate")
+        return FMUState(self, handle)
+
+    def setFMUstate(self, state: FMUState) -> None:  # noqa: N802
+        if state.generation != self.generation:
+            raise FMUError(f"{self.component_name}: the FMU state belongs to an instance that "
+                           "was freed or replaced", component=self.component_name)
+        self._check(lib().ssx_fmu_set_state(self.fmu, state.handle[0]), "fmi2SetFMUstate")
+
+    def freeFMUstate(self, state: FMUState) -> None:  # noqa: N802
+        state.free()
+
+    def serializeFMUstate(self, state: FMUState) -> bytes:  # noqa: N802
+        size = ffi.new("size_t *")
+        self._check(lib().ssx_fmu_serialized_state_size(self.fmu, state.handle[0], size),
+                    "fmi2SerializedFMUstateSize")
+        buffer = ffi.new("char[]", size[0])
+        self._check(lib().ssx_fmu_serialize_state(self.fmu, state.handle[0], buffer, size[0]),
+                    "fmi2SerializeFMUstate")
+        return ffi.buffer(buffer, size[0])[:]
+
+    def deserializeFMUstate(self, serializedState: bytes,  # noqa: N802,N803
+                            state: FMUState | None = None) -> FMUState:
+        if state is not None and state.generation == self.generation:
+            self._check(lib().ssx_fmu_deserialize_state(self.fmu, serializedState,
+                                                        len(serializedState), state.handle),
+                        "fmi2DeSerializeFMUstate")
+            return state
+        handle = ffi.new("void **")
+        self._check(lib().ssx_fmu_deserialize_state(self.fmu, serializedState,
+                                                    len(serializedState), handle),
+                    "fmi2DeSerializeFMUstate")
+        return FMUState(self, handle)
+
+    # FMPy spells these both ways.
+    getFMUState = getFMUstate  # noqa: N815
+    setFMUState = setFMUstate  # noqa: N815
+    freeFMUState = freeFMUstate  # noqa: N815
+    serializeFMUState = serializeFMUstate  # noqa: N815
+    deserializeFMUState = deserializeFMUstate  # noqa: N815

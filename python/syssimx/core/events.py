@@ -1,0 +1,30 @@
+"""Event vocabulary: superdense time instants and event indicator declarations."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+
+@dataclass(frozen=True, order=True)
+class DenseTime:
+    """A superdense instant: real time t and the micro step of the handling round."""
+
+    t: float
+    micro: int = 0
+
+    def __str__(self) -> str:
+        return f"({self.t:.8f}, {self.micro})"
+
+
+@dataclass(frozen=True)
+class EventIndicator:
+    """A zero-crossing function of a component. Exactly one of `func` (a Python callable of the
+    component, evaluated through a callback) and `variable` (an output evaluated in C) is set.
+    direction: -1 falling, +1 rising, 0 both."""
+
+    name: str
+    direction: int
+    func: Callable[[Any], float] | None = None
+    variable: str | None = None

@@ -1,0 +1,40 @@
+"""The cffi binding of the C engine: the only bridge between Python and C.
+
+ABI mode: the cdef is the engine header with its preprocessor lines removed, and the shared
+library is opened on first use.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from typing import Any
+
+from cffi import FFI
+
+from . import _paths
+
+ffi = FFI()
+
+
+def _cdef_text() -> str:
+    header = _paths.engine_header().read_text()
+    return "\n".join(line for line in header.splitlines() if not line.lstrip().startswith("#"))
+
+
+ffi.cdef(_cdef_text())
+
+
+@lru_cache(maxsize=1)
+def lib() -> Any:
+    """The loaded engine library."""
+    return ffi.dlopen(str(_paths.engine_library()))
+
+
+def last_error(system: Any) -> Any:
+    """The ssx_error of `system` (a cdata pointer) describing the last failed call."""
+    return lib().ssx_last_error(system)
+
+
+def string(pointer: Any) -> str:
+    """A C string as str ("" for NULL)."""
+    return "" if pointer == ffi.NULL else ffi.string(pointer).decode("utf-8", "replace")

@@ -1,0 +1,49 @@
+"""The exceptions syssimx raises. Every one derives from SysSimXError."""
+
+from __future__ import annotations
+
+
+class SysSimXError(Exception):
+    """Base class of every syssimx error."""
+
+
+class ConfigurationError(SysSimXError, ValueError):
+    """Bad input found before anything runs: unknown names, wrong types, bad units or times."""
+
+
+class FMUFileError(ConfigurationError):
+    """The .fmu file cannot be used: missing, not a zip, no modelDescription, no binary."""
+
+
+class FMUError(SysSimXError):
+    """An fmi2 call returned Error or Fatal (or the engine could not make the call)."""
+
+    def __init__(self, message: str, *, component: str | None = None, status: int | None = None,
+                 fmu_message: str = "") -> None:
+        super().__init__(message)
+        self.component = component
+        self.status = status
+        self.fmu_message = fmu_message
+
+
+class SimulationError(SysSimXError):
+    """A run failed. Names the component, the simulation time, the fmi2 status and the FMU's
+    last log message when they are known; samples recorded before the failure stay readable."""
+
+    def __init__(self, message: str, *, component: str | None = None, time: float | None = None,
+                 status: int | None = None, fmu_message: str = "", event: str | None = None
+                 ) -> None:
+        super().__init__(message)
+        self.component = component
+        self.time = time
+        self.status = status
+        self.fmu_message = fmu_message
+        self.event = event
+
+
+class ZenoError(SimulationError):
+    """Events chatter (Zeno behaviour) or one instant needs more than max_microsteps rounds."""
+
+
+class AlgebraicLoopError(SimulationError):
+    """An algebraic loop did not converge within the loop options."""

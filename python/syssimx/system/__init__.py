@@ -1,0 +1,10 @@
+"""Systems of components: connections, algorithms, results."""
+
+from .algorithms import GaussSeidelAlgorithm, HybridAlgorithm, JacobiAlgorithm
+from .connection import Connection, EventConnection
+from .results import EventRecord, SimulationResult, Statistics, SystemHistory
+from .system import System
+
+__all__ = ["Connection", "EventConnection", "EventRecord", "GaussSeidelAlgorithm",
+           "HybridAlgorithm", "JacobiAlgorithm", "SimulationResult", "Statistics", "System",
+           "SystemHistory"]

@@ -1,0 +1,8 @@
+"""Master algorithms: how the engine couples components and handles events."""
+
+from .coupling import GaussSeidelAlgorithm, JacobiAlgorithm
+from .hybrid import HybridAlgorithm
+
+Algorithm = JacobiAlgorithm | GaussSeidelAlgorithm | HybridAlgorithm
+
+__all__ = ["Algorithm", "GaussSeidelAlgorithm", "HybridAlgorithm", "JacobiAlgorithm"]

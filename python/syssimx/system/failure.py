@@ -1,0 +1,48 @@
+"""Turning an engine failure (ssx_error plus a kept Python exception) into a SimulationError."""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+from ..engine import ffi, lib
+from ..errors import AlgebraicLoopError, SimulationError, ZenoError
+
+if TYPE_CHECKING:
+    from .plan import EnginePlan
+
+_STATUS = {0: "OK", 1: "Warning", 2: "Discard", 3: "Error", 4: "Fatal", 5: "Pending"}
+
+
+def simulation_error(plan: EnginePlan, default_component: str | None = None) -> SimulationError:
+    """The exception for the plan's last failure; clears the kept callback failure."""
+    error = lib().ssx_last_error(plan.sys)
+    message = ffi.string(error.message).decode(errors="replace")
+    names = list(plan.index)
+    component = names[error.component] if 0 <= error.component < len(names) \
+        else default_component
+    event = plan.indicators[error.indicator][1] if 0 <= error.indicator < len(
+        plan.indicators) else None
+    time = None if math.isnan(error.time) else float(error.time)
+    failure, plan.failure = plan.failure, None
+    if error.in_callback and failure is not None:
+        text = (f"{failure.component}: {failure.where} raised "
+                f"{type(failure.error).__name__}: {failure.error} at t={failure.time:.12g}")
+        exc = SimulationError(text, component=failure.component, time=failure.time,
+                              event=event)
+        exc.__cause__ = failure.error
+        return exc
+    status = int(error.fmi_status) if error.fmi_status >= 0 else None
+    kind = ZenoError if error.zeno else (
+        AlgebraicLoopError if "loop" in message.lower() and status is None else SimulationError)
+    fmu_message = ""
+    if component is not None and component in plan.components:
+        instance = getattr(plan.components[component], "instance", None)
+        if instance is not None:
+            fmu_message = ffi.string(lib().ssx_fmu_last_message(instance.fmu)).decode(
+                errors="replace")
+    text = message
+    if status is not None and _STATUS.get(status, "") not in text:
+        text += f" (status {_STATUS.get(status, status)})"
+    return kind(text, component=component, time=time, status=status, fmu_message=fmu_message,
+                event=event)

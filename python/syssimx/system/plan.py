@@ -1,0 +1,338 @@
+"""EnginePlan: a System compiled into an engine system, and the Python side of its callbacks.
+
+The plan owns the ssx_system (freed when the plan is collected, before the FMUs it borrows),
+knows each component's engine index and port order, and keeps the cffi callbacks alive.
+A Python exception raised inside a callback is kept here and re-raised by the System.
+"""
+
+from __future__ import annotations
+
+import weakref
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..components.base import Binding, CoSimComponent, _overrides
+from ..components.fmu import FMUComponent
+from ..core.port import PortType
+from ..engine import ffi, lib
+from ..errors import ConfigurationError
+
+_ENGINE_TYPE = {PortType.REAL: 0, PortType.INT: 1, PortType.BOOL: 2}
+_DIRECTIONS = {-1: -1, 0: 0, 1: 1}
+
+
+@dataclass
+class CallbackFailure:
+    """A Python exception raised in a callback from the engine."""
+
+    component: str
+    where: str
+    time: float
+    error: BaseException
+
+
+class EnginePlan:
+    """The engine system of one System; rebuilt by every System.initialize."""
+
+    def __init__(self, name: str, components: Mapping[str, CoSimComponent]) -> None:
+        keep_alive = [c._fmu for c in components.values() if isinstance(c, FMUComponent)]
+        raw = lib().ssx_system_new(name.encode())
+        if raw == ffi.NULL:
+            raise MemoryError("ssx_system_new failed")
+        # The destructor holds the FMU handles, so the system is freed before them.
+        self.sys = ffi.gc(raw, lambda p, _fmus=keep_alive: lib().ssx_system_free(p))
+        self.components = dict(components)
+        self.index = {name: i for i, name in enumerate(components)}
+        self.outputs = {n: c.engine_outputs() for n, c in components.items()}
+        self.inputs = {n: c.engine_inputs() for n, c in components.items()}
+        self.indicators: list[tuple[str, str]] = []  # engine index -> (component, event)
+        self.indicator_index: dict[tuple[str, str], int] = {}
+        self.failure: CallbackFailure | None = None
+        self._callbacks: list[Any] = []  # cffi callbacks must outlive the system
+        self._hook_structs: list[Any] = []
+        self._views: weakref.WeakSet[Any] = weakref.WeakSet()
+        for name, component in components.items():
+            self._add_component(name, component)
+
+    # ------------------------------------------------------------------ building
+    def check(self, result: int, what: str) -> int:
+        if result < 0:
+            message = ffi.string(lib().ssx_last_error(self.sys).message).decode(errors="replace")
+            raise ConfigurationError(f"{what}: {message}")
+        return result
+
+    def _add_component(self, name: str, component: CoSimComponent) -> None:
+        index = self.index[name]
+        if isinstance(component, FMUComponent):
+            self.check(lib().ssx_add_fmu_component(self.sys, name.encode(), component._fmu,
+                                                   int(component.can_get_set_state)), name)
+            vr = component.value_reference
+        else:
+            self.check(lib().ssx_add_python_component(self.sys, name.encode(),
+                                                      int(component.can_rollback())), name)
+            vr = None
+        for port in self.outputs[name]:
+            spec = component.output_specs[port]
+            self.check(lib().ssx_add_output(self.sys, index, _ENGINE_TYPE[spec.type],
+                                            vr(port) if vr else 0), f"{name}.{port}")
+        for port in self.inputs[name]:
+            spec = component.input_specs[port]
+            start = float(component.inputs[port].raw())
+            self.check(lib().ssx_add_input(self.sys, index, _ENGINE_TYPE[spec.type],
+                                           vr(port) if vr else 0, start), f"{name}.{port}")
+        component._binding = Binding(self, index)
+        hooks = _HookBuilder(self, component).build()
+        if hooks is not None:
+            self._hook_structs.append(hooks)
+            self.check(lib().ssx_set_hooks(self.sys, index, hooks), f"{name}: hooks")
+
+    def connect(self, src: str, src_port: str, dst: str, dst_port: str, scale: float,
+                offset: float) -> None:
+        self.check(lib().ssx_connect(self.sys, self.index[src], self.outputs[src].index(src_port),
+                                     self.index[dst], self.inputs[dst].index(dst_port), scale,
+                                     offset), f"connection {src}.{src_port} -> {dst}.{dst_port}")
+
+    def add_indicator(self, component: CoSimComponent, event: str) -> None:
+        indicator = component.event_indicators[event]
+        index = self.index[component.name]
+        if indicator.variable is not None:
+            output = self.outputs[component.name].index(indicator.variable)
+            number = self.check(lib().ssx_add_indicator_output(
+                self.sys, index, output, _DIRECTIONS[indicator.direction]),
+                f"{component.name}.{event}")
+        else:
+            callback = ffi.callback("int(void *, double, double *)",
+                                    self._indicator_callback(component, event))
+            self._callbacks.append(callback)
+            number = self.check(lib().ssx_add_indicator_callback(
+                self.sys, index, callback, ffi.NULL, _DIRECTIONS[indicator.direction]),
+                f"{component.name}.{event}")
+        self.indicators.append((component.name, event))
+        self.indicator_index[(component.name, event)] = number
+
+    def _indicator_callback(self, component: CoSimComponent, event: str
+                            ) -> Callable[[Any, float, Any], int]:
+        func = component.event_indicators[event].func
+        assert func is not None
+
+        def evaluate(_user: Any, t: float, value: Any) -> int:
+            try:
+                value[0] = float(func(component))
+                return 0
+            except BaseException as exc:  # kept and re-raised by System.run
+                self.fail(component, f"event indicator {event!r}", t, exc)
+                return -1
+        return evaluate
+
+    def add_event_connection(self, src: str, event: str, dst: str) -> None:
+        self.check(lib().ssx_add_event_connection(self.sys, self.indicator_index[(src, event)],
+                                                  self.index[dst]), f"{src}.{event} -> {dst}")
+
+    def fail(self, component: CoSimComponent, where: str, t: float, exc: BaseException) -> None:
+        if self.failure is None:
+            self.failure = CallbackFailure(component.name, where, t, exc)
+
+    # ------------------------------------------------------------------ port values
+    def _array(self, component: CoSimComponent, direction: str) -> Any:
+        index = self.index[component.name]
+        return (lib().ssx_outputs if direction == "out" else lib().ssx_inputs)(self.sys, index)
+
+    def port_value(self, component: CoSimComponent, direction: str, port: str) -> float:
+        names = self.outputs if direction == "out" else self.inputs
+        return float(self._array(component, direction)[names[component.name].index(port)])
+
+    def write_inputs(self, component: CoSimComponent,
+                     values: Mapping[str, Any] | None = None) -> None:
+        """Copy input values (the component's ports, or `values`) into the engine."""
+        array = self._array(component, "in")
+        for i, name in enumerate(self.inputs[component.name]):
+            if values is None:
+                array[i] = float(component.inputs[name].raw())
+            elif name in values:
+                array[i] = float(component.input_specs[name].coerce(values[name]))
+
+    def pull_inputs(self, component: CoSimComponent) -> None:
+        """Engine inputs -> the component's input ports (Python components)."""
+        array = self._array(component, "in")
+        for i, name in enumerate(self.inputs[component.name]):
+            port = component.inputs[name]
+            port._raw = _typed(port.spec.type, array[i])
+
+    def push_outputs(self, component: CoSimComponent) -> None:
+        """The component's output ports -> engine outputs (Python components)."""
+        array = self._array(component, "out")
+        for i, name in enumerate(self.outputs[component.name]):
+            array[i] = float(component.outputs[name].raw())
+
+    def read_outputs(self, component: CoSimComponent) -> None:
+        index = self.index[component.name]
+        self.raise_for(lib().ssx_component_read_outputs(self.sys, index), component)
+
+    def builtin_do_step(self, component: CoSimComponent, t: float, dt: float) -> None:
+        index = self.index[component.name]
+        self.raise_for(lib().ssx_component_do_step(self.sys, index, t, dt), component)
+
+    def raise_for(self, result: int, component: CoSimComponent) -> None:
+        if result < 0:
+            from .failure import simulation_error
+
+            raise simulation_error(self, default_component=component.name)
+
+    # ------------------------------------------------------------------ history
+    def register_view(self, view: Any) -> None:
+        """`view.detach()` is called before the engine records again (its buffers may move)."""
+        self._views.add(view)
+
+    def before_recording(self) -> None:
+        for view in list(self._views):
+            view.detach()
+        self._views = weakref.WeakSet()
+
+    def history_time(self) -> tuple[np.ndarray, np.ndarray]:
+        n = int(lib().ssx_history_length(self.sys))
+        if n == 0:
+            return np.empty(0), np.empty(0, dtype=np.int32)
+        t = np.frombuffer(ffi.buffer(lib().ssx_history_time(self.sys), 8 * n), dtype=np.float64)
+        micro = np.frombuffer(ffi.buffer(lib().ssx_history_micro(self.sys), 4 * n),
+                              dtype=np.int32)
+        return t, micro
+
+    def component_history(self, component: CoSimComponent
+                          ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+        """Zero-copy views of the engine's history (valid until the engine records again)."""
+        t, _ = self.history_time()
+        names = self.outputs[component.name]
+        if len(t) == 0 or not names:
+            return t, {n: np.empty(0) for n in names}
+        pointer = lib().ssx_history_values(self.sys, self.index[component.name])
+        matrix = np.frombuffer(ffi.buffer(pointer, 8 * len(t) * len(names)),
+                               dtype=np.float64).reshape(len(t), len(names))
+        columns = {}
+        for j, name in enumerate(names):
+            kind = component.output_specs[name].type
+            column = matrix[:, j]
+            columns[name] = (column.astype(np.int64) if kind == PortType.INT
+                             else column != 0.0 if kind == PortType.BOOL else column)
+        return t, columns
+
+
+def _typed(kind: PortType, value: float) -> float | int | bool:
+    if kind == PortType.INT:
+        return round(value)
+    if kind == PortType.BOOL:
+        return value != 0.0
+    return float(value)
+
+
+class _HookBuilder:
+    """The ssx_hooks of one component: only the hooks its Python code needs."""
+
+    def __init__(self, plan: EnginePlan, component: CoSimComponent) -> None:
+        self.plan = plan
+        self.component = component
+        self.is_fmu = isinstance(component, FMUComponent)
+        self.snapshots: dict[int, Any] = {}
+        self.where: str | None = None  # a more precise place, set while a hook runs
+
+    def _guard(self, where: str, body: Callable[..., None], time_arg: int | None
+               ) -> Callable[..., int]:
+        """A callback running `body`; an exception is kept with the time (argument `time_arg`,
+        or the engine's time) and reported as failure."""
+        plan, component = self.plan, self.component
+
+        def hook(_user: Any, *args: Any) -> int:
+            try:
+                body(*args)
+                return 0
+            except BaseException as exc:  # kept and re-raised by System.run
+                t = args[time_arg] if time_arg is not None else lib().ssx_time(plan.sys)
+                plan.fail(component, self.where or where, float(t), exc)
+                return -1
+            finally:
+                self.where = None
+        return hook
+
+    def build(self) -> Any:
+        c, plan = self.component, self.plan
+        hooks = ffi.new("ssx_hooks *")
+        needed = False
+        fmu = self.is_fmu
+
+        def add(field: str, signature: str, where: str, body: Callable[..., None],
+                time_arg: int | None = -1) -> None:
+            nonlocal needed
+            callback = ffi.callback(signature, self._guard(where, body, time_arg))
+            plan._callbacks.append(callback)
+            setattr(hooks[0], field, callback)
+            needed = True
+
+        if not fmu or _overrides(c, "_do_step_internal") or _overrides(c, "_update_output_states"):
+            add("do_step", "int(void *, double, double)", "do_step", self._do_step, 0)
+        if not fmu or _overrides(c, "evaluate_outputs"):
+            add("evaluate_outputs", "int(void *, double)", "evaluate_outputs",
+                self._evaluate_outputs)
+        if (_overrides(c, "snapshot_state") or _overrides(c, "restore_state")) \
+                and c.can_rollback():
+            add("snapshot", "int(void *, int)", "snapshot_state", self._snapshot, None)
+            add("restore", "int(void *, int, double)", "restore_state", self._restore)
+            add("free_snapshot", "int(void *, int)", "free_snapshot", self._free_snapshot, None)
+        if c.has_event_handling():
+            add("handle_events", "int(void *, int *, int, double)", "event handler",
+                self._handle_events)
+        if _overrides(c, "_record_outputs"):
+            add("record", "int(void *, double)", "_record_outputs", c._record_outputs)
+        return hooks if needed else None
+
+    def _do_step(self, t: float, dt: float) -> None:
+        c = self.component
+        if not self.is_fmu:
+            self.plan.pull_inputs(c)
+        c._do_step_internal(t, dt)
+        c.t = t + dt
+        c._update_output_states(c.t)
+        if not self.is_fmu:
+            self.plan.push_outputs(c)
+
+    def _evaluate_outputs(self, t: float) -> None:
+        c = self.component
+        self.plan.pull_inputs(c)
+        values = c.evaluate_outputs({n: c.inputs[n].get() for n in self.plan.inputs[c.name]}, t)
+        for name, value in values.items():
+            if name in c.outputs and c.outputs[name].spec.type != PortType.EVENT:
+                c.outputs[name].set(value, t)
+        if self.is_fmu:
+            self.plan.read_outputs(c)
+        else:
+            self.plan.push_outputs(c)
+
+    def _snapshot(self, slot: int) -> None:
+        c = self.component
+        self._free_snapshot(slot)
+        ports = {n: p.raw() for n, p in c.outputs.items()}
+        self.snapshots[slot] = (c.snapshot_state(), ports, c.t)
+
+    def _restore(self, slot: int, t: float) -> None:
+        c = self.component
+        snapshot, ports, _ = self.snapshots[slot]
+        if not self.is_fmu:
+            for name, value in ports.items():
+                c.outputs[name]._raw = value
+        c.restore_state(snapshot, t)
+        c.t = t
+
+    def _free_snapshot(self, slot: int) -> None:
+        entry = self.snapshots.pop(slot, None)
+        if entry is not None and hasattr(entry[0], "free"):
+            entry[0].free()
+
+    def _handle_events(self, indicators: Any, n: int, t: float) -> None:
+        c = self.component
+        names = list(dict.fromkeys(self.plan.indicators[indicators[i]][1] for i in range(n)))
+        self.where = f"event handler for {', '.join(names)}"
+        c._handle_events_internal(names, t)
+        c._update_output_states(t, names)
+        if not self.is_fmu:
+            self.plan.push_outputs(c)

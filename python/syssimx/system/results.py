@@ -1,0 +1,177 @@
+"""Results of a run: the recorded samples, the events and the run's statistics."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ..core.events import DenseTime
+from ..engine import ffi, lib
+
+if TYPE_CHECKING:
+    from .plan import EnginePlan
+
+
+@dataclass(frozen=True)
+class EventRecord:
+    """One handled event: instant (t, micro), source and the localization cost."""
+
+    t: float
+    micro: int
+    component: str
+    event: str
+    iterations: int
+    rollbacks: int
+    do_steps: int
+
+    @property
+    def time(self) -> DenseTime:
+        return DenseTime(self.t, self.micro)
+
+    @property
+    def name(self) -> str:
+        return self.event
+
+
+@dataclass(frozen=True)
+class Statistics:
+    """Counters of a run (since System.initialize)."""
+
+    macro_steps: int
+    do_step_calls: int
+    state_saves: int
+    state_restores: int
+    events: int
+    localization_iterations: int
+    loop_iterations: int
+    loop_solves: int
+    iterations_per_event: tuple[int, ...]
+
+
+def read_events(plan: EnginePlan) -> list[EventRecord]:
+    record = ffi.new("ssx_event_record *")
+    events = []
+    for i in range(int(lib().ssx_event_count(plan.sys))):
+        if lib().ssx_event_get(plan.sys, i, record) == 0:
+            component, event = plan.indicators[record.indicator]
+            events.append(EventRecord(float(record.t), int(record.micro), component, event,
+                                      int(record.iterations), int(record.rollbacks),
+                                      int(record.do_steps)))
+    return events
+
+
+def read_statistics(plan: EnginePlan, events: Sequence[EventRecord]) -> Statistics:
+    raw = ffi.new("ssx_statistics *")
+    lib().ssx_get_statistics(plan.sys, raw)
+    return Statistics(int(raw.macro_steps), int(raw.do_step_calls), int(raw.state_saves),
+                      int(raw.state_restores), int(raw.events),
+                      int(raw.localization_iterations), int(raw.loop_iterations),
+                      int(raw.loop_solves), tuple(e.iterations for e in events))
+
+
+class HistoryView:
+    """Per-component (time, {port: values}) over the engine's buffers: zero-copy until the
+    engine is about to record again, then copied once."""
+
+    def __init__(self, plan: EnginePlan) -> None:
+        self._data: dict[str, tuple[np.ndarray, dict[str, np.ndarray]]] = {}
+        self._micro: np.ndarray
+        for name, component in plan.components.items():
+            self._data[name] = plan.component_history(component)
+        self._micro = plan.history_time()[1]
+        plan.register_view(self)
+
+    def detach(self) -> None:
+        self._data = {name: (t.copy(), {p: v.copy() for p, v in values.items()})
+                      for name, (t, values) in self._data.items()}
+        self._micro = self._micro.copy()
+
+    @property
+    def micro(self) -> np.ndarray:
+        return self._micro
+
+    def __getitem__(self, component: str) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+        if component not in self._data:
+            raise KeyError(f"no component {component!r}; components: {sorted(self._data)}")
+        return self._data[component]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._data)
+
+
+class SystemHistory:
+    """Event history of a system (SysSimX's `system.history`)."""
+
+    def __init__(self, events: Sequence[EventRecord] = ()) -> None:
+        self.events = list(events)
+
+    def get_event_history(self, component: str, event: str) -> list[DenseTime]:
+        return [e.time for e in self.events if (e.component, e.event) == (component, event)]
+
+    def get_all_event_histories(self) -> dict[tuple[str, str], list[DenseTime]]:
+        histories: dict[tuple[str, str], list[DenseTime]] = {}
+        for e in self.events:
+            histories.setdefault((e.component, e.event), []).append(e.time)
+        return histories
+
+
+class SimulationResult:
+    """`result["Comp"]` -> (t, {port: ndarray}); `.events`, `.statistics`, tables and plots."""
+
+    def __init__(self, history: HistoryView, events: Sequence[EventRecord],
+                 statistics: Statistics, units: dict[str, dict[str, str | None]],
+                 t0: float, tf: float, dt: float, wall_time: float) -> None:
+        self._history = history
+        self.events = list(events)
+        self.statistics = statistics
+        self.units = units
+        self.t0, self.tf, self.dt, self.wall_time = t0, tf, dt, wall_time
+
+    @property
+    def component_names(self) -> list[str]:
+        return list(self._history)
+
+    def __getitem__(self, component: str) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+        return self._history[component]
+
+    def __contains__(self, component: object) -> bool:
+        return component in self.component_names
+
+    def __repr__(self) -> str:
+        return (f"SimulationResult(t=[{self.t0}, {self.tf}], dt={self.dt}, "
+                f"components={self.component_names}, events={len(self.events)})")
+
+    @property
+    def micro(self) -> np.ndarray:
+        """Superdense index of each sample (events record a sample before and after)."""
+        return self._history.micro
+
+    def to_dataframe(self, component: str | None = None) -> Any:
+        """Wide table: columns time, micro and "<component>.<port>" (needs pandas)."""
+        import pandas as pd
+
+        names = [component] if component is not None else self.component_names
+        t = self[names[0]][0] if names else np.empty(0)
+        columns: dict[str, np.ndarray] = {"time": t, "micro": self.micro}
+        for name in names:
+            for port, values in self[name][1].items():
+                columns[f"{name}.{port}"] = values
+        return pd.DataFrame(columns)
+
+    def to_csv(self, path: str | Path, component: str | None = None) -> Path:
+        target = Path(path)
+        self.to_dataframe(component).to_csv(target, index=False)
+        return target
+
+    def plot(self, signals: Sequence[str] | None = None, path: str | Path | None = None,
+             **options: Any) -> Any:
+        """Plot "<component>.<port>" signals (all when None); see syssimx.viz.plot."""
+        from ..viz.plot import plot_result
+
+        if signals is None:
+            signals = [f"{c}.{p}" for c in self.component_names for p in self[c][1]]
+        return plot_result(self, list(signals), path=path, **options)

@@ -1,0 +1,282 @@
+"""System: components, connections and event connections, run by the engine."""
+
+from __future__ import annotations
+
+import logging
+import math
+import timeit
+from typing import Any
+
+import pint
+
+from ..components.base import CoSimComponent
+from ..core.port import PortType
+from ..engine import ffi, lib
+from ..errors import ConfigurationError
+from ..graph.analysis import analyze
+from ..units import conversion
+from .algorithms import Algorithm, GaussSeidelAlgorithm, HybridAlgorithm, JacobiAlgorithm
+from .algorithms.hybrid import log_events
+from .connection import Connection, EventConnection
+from .failure import simulation_error
+from .plan import EnginePlan
+from .results import HistoryView, SimulationResult, SystemHistory, read_events, read_statistics
+
+logger = logging.getLogger("syssimx.system")
+
+_COMPATIBLE = {PortType.REAL: {PortType.REAL, PortType.INT, PortType.BOOL},
+               PortType.INT: {PortType.INT, PortType.BOOL}, PortType.BOOL: {PortType.BOOL}}
+
+
+class System:
+    """A co-simulated system. Build it, `initialize(t0)`, then `run(t0, tf, dt)`."""
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+        self.components: dict[str, CoSimComponent] = {}
+        self.connections: list[Connection] = []
+        self.event_connections: list[EventConnection] = []
+        self.history = SystemHistory()
+        self.t = 0.0
+        self.is_initialized = False
+        self._algorithm: Algorithm = GaussSeidelAlgorithm()
+        self._algorithm_chosen = False
+        self._plan: EnginePlan | None = None
+
+    def __repr__(self) -> str:
+        return f"System({self.name!r}, components={list(self.components)})"
+
+    # ------------------------------------------------------------------ algorithm
+    @property
+    def algorithm(self) -> Algorithm:
+        if not isinstance(self._algorithm, HybridAlgorithm) and self._has_indicators():
+            chosen = self._algorithm if self._algorithm_chosen else GaussSeidelAlgorithm()
+            assert isinstance(chosen, JacobiAlgorithm)
+            self._algorithm = HybridAlgorithm(coupling=chosen)
+            logger.debug("%s: event indicators present, using the hybrid algorithm", self.name)
+        return self._algorithm
+
+    @algorithm.setter
+    def algorithm(self, algorithm: Algorithm) -> None:
+        self.set_algorithm(algorithm)
+
+    def set_algorithm(self, algorithm: Algorithm) -> None:
+        if not isinstance(algorithm, JacobiAlgorithm | HybridAlgorithm):
+            raise ConfigurationError(f"{self.name}: unknown algorithm {algorithm!r}; use "
+                                     "JacobiAlgorithm, GaussSeidelAlgorithm or HybridAlgorithm")
+        algorithm.validate()
+        self._algorithm = algorithm
+        self._algorithm_chosen = True
+
+    def _has_indicators(self) -> bool:
+        return any(c.event_indicators for c in self.components.values())
+
+    # ------------------------------------------------------------------ building
+    def add_component(self, component: CoSimComponent) -> None:
+        if not isinstance(component, CoSimComponent):
+            raise ConfigurationError(f"{self.name}: {component!r} is not a CoSimComponent")
+        if component.name in self.components:
+            raise ConfigurationError(f"{self.name}: a component named {component.name!r} "
+                                     "already exists")
+        component._sync_ports()
+        self.components[component.name] = component
+        self.is_initialized = False
+
+    def _component(self, name: str) -> CoSimComponent:
+        if name not in self.components:
+            raise ConfigurationError(f"{self.name}: unknown component {name!r}; components: "
+                                     f"{sorted(self.components) or 'none'}")
+        return self.components[name]
+
+    def add_connection(self, connection: Connection) -> None:
+        """Check names, types and units now; one driver per input."""
+        src, dst = self._component(connection.src_comp), self._component(connection.dst_comp)
+        src._sync_ports()
+        dst._sync_ports()
+        where = "{}.{} -> {}.{}".format(*connection.key())
+        if connection.src_port not in src.output_specs:
+            raise ConfigurationError(f"{where}: {src.name!r} has no output "
+                                     f"{connection.src_port!r}; "
+                                     f"outputs: {sorted(src.output_specs)}")
+        if connection.dst_port not in dst.input_specs:
+            raise ConfigurationError(f"{where}: {dst.name!r} has no input "
+                                     f"{connection.dst_port!r}; inputs: {sorted(dst.input_specs)}")
+        src_spec = src.output_specs[connection.src_port]
+        dst_spec = dst.input_specs[connection.dst_port]
+        if PortType.EVENT in (src_spec.type, dst_spec.type):
+            raise ConfigurationError(f"{where}: EVENT ports are joined with an EventConnection")
+        if src_spec.type not in _COMPATIBLE.get(dst_spec.type, set()):
+            raise ConfigurationError(f"{where}: a {src_spec.type.name} output cannot drive a "
+                                     f"{dst_spec.type.name} input")
+        try:
+            conversion(src_spec.unit, dst_spec.unit)
+        except pint.DimensionalityError as exc:
+            raise ConfigurationError(f"{where}: incompatible units {src_spec.unit!r} and "
+                                     f"{dst_spec.unit!r}") from exc
+        for existing in self.connections:
+            if (existing.dst_comp, existing.dst_port) == (dst.name, connection.dst_port):
+                raise ConfigurationError(f"{where}: input {dst.name}.{connection.dst_port} is "
+                                         f"already driven by {existing.src_comp}."
+                                         f"{existing.src_port}")
+        self.connections.append(connection)
+        self.is_initialized = False
+
+    def add_event_connection(self, connection: EventConnection) -> None:
+        src, dst = self._component(connection.src_comp), self._component(connection.dst_comp)
+        where = "{}.{} -> {}.{}".format(*connection.key())
+        if connection.src_port not in src.event_indicators:
+            raise ConfigurationError(f"{where}: {src.name!r} has no event indicator "
+                                     f"{connection.src_port!r}; indicators: "
+                                     f"{sorted(src.event_indicators) or 'none'}")
+        spec = dst.input_specs.get(connection.dst_port)
+        if spec is None or spec.type != PortType.EVENT:
+            events = sorted(n for n, s in dst.input_specs.items() if s.type == PortType.EVENT)
+            raise ConfigurationError(f"{where}: {dst.name!r} has no EVENT input "
+                                     f"{connection.dst_port!r}; EVENT inputs: {events or 'none'}")
+        self.event_connections.append(connection)
+        self.is_initialized = False
+
+    # ------------------------------------------------------------------ compiling
+    def _compile(self) -> EnginePlan:
+        algorithm = self.algorithm
+        algorithm.validate()
+        for connection in self.event_connections:
+            listener = self.components[connection.dst_comp]
+            if not listener.has_event_handling():
+                raise ConfigurationError(
+                    f"{listener.name!r} receives {connection.src_comp}.{connection.src_port} "
+                    "but handles no events: override _handle_events_internal or call "
+                    f"add_event_handler({connection.dst_port!r}, handler)")
+        for component in self.components.values():
+            if component.event_indicators and not component.can_rollback():
+                raise ConfigurationError(
+                    f"{component.name!r} has event indicators but cannot roll back: its FMU "
+                    "does not declare canGetAndSetFMUstate and it overrides no "
+                    "snapshot_state/restore_state pair")
+            component._event_routes = {}
+        for connection in self.event_connections:
+            routes = self.components[connection.dst_comp]._event_routes
+            routes.setdefault(connection.src_port, set()).add(connection.dst_port)
+        plan = EnginePlan(self.name, self.components)
+        for c in self.connections:
+            src_spec = self.components[c.src_comp].output_specs[c.src_port]
+            dst_spec = self.components[c.dst_comp].input_specs[c.dst_port]
+            plan.connect(*c.key(), *conversion(src_spec.unit, dst_spec.unit))
+        for component in self.components.values():
+            for event in component.event_indicators:
+                plan.add_indicator(component, event)
+        for c in self.event_connections:
+            plan.add_event_connection(c.src_comp, c.src_port, c.dst_comp)
+        analysis = analyze({n: c.feedthrough() for n, c in self.components.items()},
+                           [c.key() for c in self.connections])
+        order, sizes, loops = analysis.schedule()
+        if order:
+            plan.check(lib().ssx_set_schedule(
+                plan.sys, ffi.new("int[]", [plan.index[n] for n in order]),
+                ffi.new("int[]", sizes), ffi.new("int[]", [int(x) for x in loops]), len(sizes)),
+                f"{self.name}: schedule")
+        return plan
+
+    def _push_options(self, plan: EnginePlan) -> None:
+        algorithm = self.algorithm
+        algorithm.validate()
+        coupling = algorithm.coupling if isinstance(algorithm, HybridAlgorithm) else algorithm
+        plan.check(lib().ssx_set_coupling(
+            plan.sys, 0 if isinstance(coupling, GaussSeidelAlgorithm) else 1), "coupling")
+        plan.check(lib().ssx_set_loop_options(plan.sys, coupling.tolerance, coupling.max_iter,
+                                              coupling.damping), "loop options")
+        if isinstance(algorithm, HybridAlgorithm):
+            plan.check(lib().ssx_set_hybrid_options(
+                plan.sys, algorithm.tol_time, algorithm.tol_value, algorithm.max_iter,
+                algorithm.max_microsteps, int(algorithm.record_internal_steps),
+                0 if algorithm.method == "illinois" else 1, algorithm.zeno_min_interval),
+                "hybrid options")
+
+    # ------------------------------------------------------------------ running
+    def initialize(self, t0: float = 0.0) -> None:
+        """Build the engine system, initialize every component at t0, record the first sample."""
+        if not math.isfinite(t0):
+            raise ConfigurationError(f"{self.name}: t0 must be finite, got {t0}")
+        if self._plan is not None:
+            self._plan.before_recording()
+        plan = self._compile()
+        self._plan = plan
+        self._push_options(plan)
+        for component in self.components.values():
+            component._start(t0)
+        if lib().ssx_initialize(plan.sys, t0) < 0:
+            raise simulation_error(plan)
+        self.history = SystemHistory()
+        self.t = t0
+        self.is_initialized = True
+
+    def run(self, t0: float, tf: float, dt: float) -> SimulationResult:
+        """Simulate on the grid t0 + k*dt (the last point exactly tf) plus event instants."""
+        if not self.is_initialized or self._plan is None:
+            raise ConfigurationError(f"{self.name}: call initialize(t0) before run()")
+        for label, value in (("t0", t0), ("tf", tf), ("dt", dt)):
+            if not isinstance(value, int | float) or not math.isfinite(value):
+                raise ConfigurationError(f"{self.name}: {label} must be a finite number, "
+                                         f"got {value!r}")
+        if not dt > 0:
+            raise ConfigurationError(f"{self.name}: dt must be positive, got {dt}")
+        if tf < t0:
+            raise ConfigurationError(f"{self.name}: tf={tf} is before t0={t0}")
+        if not math.isclose(t0, self.t, rel_tol=0.0, abs_tol=1e-12 * max(1.0, abs(t0))):
+            raise ConfigurationError(f"{self.name}: run starts at t0={t0} but the system is at "
+                                     f"t={self.t}")
+        plan = self._plan
+        self._push_options(plan)
+        logger.info("Starting simulation run from t=%s to t=%s with dt=%s", t0, tf, dt)
+        plan.before_recording()
+        start = timeit.default_timer()
+        status = lib().ssx_run(plan.sys, float(t0), float(tf), float(dt))
+        wall = timeit.default_timer() - start
+        events = read_events(plan)
+        self.history = SystemHistory(events)
+        self.t = float(lib().ssx_time(plan.sys))
+        if status < 0:
+            raise simulation_error(plan)
+        for component in self.components.values():
+            component.t = self.t
+        algorithm = self.algorithm
+        if isinstance(algorithm, HybridAlgorithm):
+            log_events([e for e in events if e.t >= t0], t0, dt, algorithm.method)
+        logger.info("Simulation completed in %.2f seconds", wall)
+        units = {n: {p: c.output_specs[p].unit for p in plan.outputs[n]}
+                 for n, c in self.components.items()}
+        return SimulationResult(HistoryView(plan), events, read_statistics(plan, events), units,
+                                t0, tf, dt, wall)
+
+    # ------------------------------------------------------------------ results
+    def get_history(self) -> dict[str, Any]:
+        """{component: (t, {output: values})} of everything recorded since initialize (also
+        after a failed run), plus "Events": {(component, event): [DenseTime]}."""
+        if self._plan is None:
+            raise ConfigurationError(f"{self.name}: nothing recorded yet; call initialize")
+        view = HistoryView(self._plan)
+        history: dict[str, Any] = {name: view[name] for name in self.components}
+        history["Events"] = self.history.get_all_event_histories()
+        return history
+
+    def statistics(self) -> Any:
+        if self._plan is None:
+            raise ConfigurationError(f"{self.name}: nothing run yet")
+        return read_statistics(self._plan, self.history.events)
+
+    def describe(self) -> str:
+        from ..graph.describe import describe_system
+
+        return describe_system(self)
+
+    def reset(self) -> None:
+        """Drop the engine system; components keep their parameters."""
+        if self._plan is not None:
+            self._plan.before_recording()
+        self._plan = None
+        self.is_initialized = False
+        self.history = SystemHistory()
+        for component in self.components.values():
+            component.reset()
+
+

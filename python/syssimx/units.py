@@ -1,0 +1,55 @@
+"""Physical units: one pint registry for the package and the translation of FMI unit strings."""
+
+from __future__ import annotations
+
+import re
+from functools import lru_cache
+
+import pint
+
+ureg = pint.UnitRegistry()
+Quantity = ureg.Quantity
+
+# FMI writes products with '.' and powers as trailing integers ("kg.m2", "m/s2", "s-1").
+_PRODUCT = re.compile(r"(?<=[A-Za-z0-9])\.(?=[A-Za-z])")
+_POWER = re.compile(r"(?<=[A-Za-z])(-?\d+)")
+
+
+def pint_expression(unit: str) -> str:
+    """The pint spelling of an FMI unit string, e.g. "kg.m2" -> "kg*m**2"."""
+    expression = _PRODUCT.sub("*", unit.strip())
+    return _POWER.sub(r"**\1", expression)
+
+
+@lru_cache(maxsize=512)
+def to_unit(unit: str) -> pint.Unit:
+    """Parse an FMI or pint unit string; "1" and "" are dimensionless."""
+    if unit.strip() in ("", "1"):
+        return ureg.dimensionless
+    try:
+        return ureg.Unit(pint_expression(unit))
+    except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError, ValueError,
+            AttributeError, TypeError) as exc:
+        raise ValueError(f"unknown unit {unit!r}") from exc
+
+
+def conversion(src_unit: str | None, dst_unit: str | None) -> tuple[float, float]:
+    """(scale, offset) with dst = scale * src + offset. A side without unit takes the other's.
+
+    Raises pint.DimensionalityError when the units measure different quantities.
+    """
+    if not src_unit or not dst_unit:
+        return 1.0, 0.0
+    src, dst = to_unit(src_unit), to_unit(dst_unit)
+    zero = Quantity(0.0, src).to(dst).magnitude
+    one = Quantity(1.0, src).to(dst).magnitude
+    return float(one - zero), float(zero)
+
+
+def magnitude_in(value: object, unit: str | None) -> float:
+    """A number or a pint quantity as a float in `unit` (a plain number is taken as in `unit`)."""
+    if isinstance(value, pint.Quantity):
+        if unit is None:
+            return float(value.to(ureg.dimensionless).magnitude)
+        return float(value.to(to_unit(unit)).magnitude)
+    return float(value)  # type: ignore[arg-type]
