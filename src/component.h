@@ -1,0 +1,85 @@
+/* One component of a system: its ports and the behaviour behind one interface. Built-in
+ * behaviour comes from a table per kind (FMU or Python); a hook set from Python replaces the
+ * matching built-in. */
+#ifndef SSX_COMPONENT_H
+#define SSX_COMPONENT_H
+
+#include "syssimx_engine.h"
+
+/* Slot 0 holds the macro-step snapshot, slot 1 the short probe after an event. */
+enum { SSX_SNAPSHOT_SLOTS = 2 };
+
+typedef struct ssx_component ssx_component;
+
+typedef struct {
+    int (*do_step)(ssx_system *sys, ssx_component *c, double t, double dt);
+    int (*write_inputs)(ssx_system *sys, ssx_component *c);
+    int (*read_outputs)(ssx_system *sys, ssx_component *c);
+    int (*evaluate_outputs)(ssx_system *sys, ssx_component *c, double t);
+    int (*snapshot)(ssx_system *sys, ssx_component *c, int slot);
+    int (*restore)(ssx_system *sys, ssx_component *c, int slot, double t);
+} ssx_component_ops;
+
+/* Ports of one value type, batched for a single fmi2Get/Set call. */
+typedef struct {
+    unsigned int *vr;
+    int *port; /* index of each entry in the component's port array */
+    size_t n;
+} ssx_port_batch;
+
+typedef struct {
+    ssx_value_type type;
+    unsigned int vr;
+} ssx_port;
+
+struct ssx_component {
+    char *name;
+    int index;
+    const ssx_component_ops *ops;
+    ssx_hooks hooks;
+    ssx_fmu *fmu; /* borrowed; NULL for a Python component */
+    int can_snapshot;
+
+    ssx_port *output_ports;
+    double *outputs;
+    int n_outputs;
+    ssx_port *input_ports;
+    double *inputs;
+    double *input_starts;
+    int *input_driver; /* connection index driving each input, or -1 */
+    int n_inputs;
+
+    ssx_port_batch output_batch[3]; /* by ssx_value_type, built at initialization */
+    ssx_port_batch input_batch[3];
+    double *real_scratch;
+    int *int_scratch;
+
+    /* built-in FMU snapshots: one reused FMU state per slot, valid for one instance generation */
+    void *fmu_state[SSX_SNAPSHOT_SLOTS];
+    long fmu_state_generation[SSX_SNAPSHOT_SLOTS];
+    /* engine-side port values saved with each snapshot, so a restore brings them back too */
+    double *saved_outputs[SSX_SNAPSHOT_SLOTS];
+    double *saved_inputs[SSX_SNAPSHOT_SLOTS];
+};
+
+extern const ssx_component_ops ssx_fmu_component_ops;
+extern const ssx_component_ops ssx_python_component_ops;
+
+/* Dispatch: a Python hook if set, else the built-in. Each returns 0 or -1 with the error set. */
+int component_do_step(ssx_system *sys, ssx_component *c, double t, double dt);
+int component_write_inputs(ssx_system *sys, ssx_component *c);
+int component_read_outputs(ssx_system *sys, ssx_component *c);
+int component_evaluate_outputs(ssx_system *sys, ssx_component *c, double t);
+int component_snapshot(ssx_system *sys, ssx_component *c, int slot);
+int component_restore(ssx_system *sys, ssx_component *c, int slot, double t);
+int component_handle_events(ssx_system *sys, ssx_component *c, const int *indicators, int n,
+                            double t);
+int component_initialize(ssx_system *sys, ssx_component *c, double t0);
+int component_record(ssx_system *sys, ssx_component *c, double t);
+int component_can_roll_back(const ssx_component *c);
+
+/* Builds the per-type batches; called when the system initializes. */
+int component_prepare(ssx_component *c);
+void component_free(ssx_component *c);
+
+#endif

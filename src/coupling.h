@@ -1,0 +1,17 @@
+/* Coupling of the components over one macro step (Jacobi or Gauss-Seidel) and at a single
+ * instant (consistent outputs at initialization). */
+#ifndef SSX_COUPLING_H
+#define SSX_COUPLING_H
+
+#include "system.h"
+
+/* Fills the default schedule (add order, no loops) when none was set. */
+int coupling_prepare(ssx_system *sys);
+/* dst input = scale * src output + offset for every driven input of component c. */
+void coupling_propagate_inputs(ssx_system *sys, const ssx_component *c);
+/* Steps every component from t to t + h with the configured coupling. */
+int coupling_step(ssx_system *sys, double t, double h);
+/* Makes all outputs at t consistent with the connections (zero-time evaluation, loops solved). */
+int coupling_settle(ssx_system *sys, double t);
+
+#endif

@@ -1,0 +1,74 @@
+/* Error reporting of the engine. */
+#include "error.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "fmu_binding.h"
+
+static int vfail(ssx_system *sys, int component, int indicator, double t, const char *format,
+                 va_list args)
+{
+    ssx_error *e = &sys->error;
+    e->component = component;
+    e->indicator = indicator;
+    e->time = t;
+    e->fmi_status = -1;
+    e->in_callback = 0;
+    e->zeno = 0;
+    vsnprintf(e->message, sizeof e->message, format, args);
+    return -1;
+}
+
+int fail(ssx_system *sys, int component, int indicator, double t, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    vfail(sys, component, indicator, t, format, args);
+    va_end(args);
+    return -1;
+}
+
+int fail_zeno(ssx_system *sys, int component, int indicator, double t, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    vfail(sys, component, indicator, t, format, args);
+    va_end(args);
+    sys->error.zeno = 1;
+    return -1;
+}
+
+int fail_fmi(ssx_system *sys, const ssx_component *c, double t, int status, const char *call)
+{
+    const char *log = ssx_fmu_last_message(c->fmu);
+    fail(sys, c->index, -1, t, "component '%s': %s failed at t=%.17g with status %s%s%s%s",
+         c->name, call, t, ssx_fmi2_status_name(status), log[0] ? " (FMU log: " : "", log,
+         log[0] ? ")" : " (the FMU logged no message)");
+    sys->error.fmi_status = status;
+    return -1;
+}
+
+int fail_hook(ssx_system *sys, const ssx_component *c, double t, const char *hook)
+{
+    fail(sys, c->index, -1, t, "component '%s': the Python %s hook failed at t=%.17g", c->name,
+         hook, t);
+    sys->error.in_callback = 1;
+    return -1;
+}
+
+void clear_error(ssx_system *sys)
+{
+    memset(&sys->error, 0, sizeof sys->error);
+    sys->error.component = -1;
+    sys->error.indicator = -1;
+    sys->error.fmi_status = -1;
+    sys->error.time = NAN;
+}
+
+int fmi_ok(int status)
+{
+    return status == 0 || status == 1;
+}

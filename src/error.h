@@ -1,0 +1,28 @@
+/* Filling ssx_error: every failure names what failed, where and when. All return -1. */
+#ifndef SSX_ERROR_H
+#define SSX_ERROR_H
+
+#include "component.h"
+#include "system.h"
+
+#if defined(__GNUC__)
+#define SSX_PRINTF(fmt, args) __attribute__((format(printf, fmt, args)))
+#else
+#define SSX_PRINTF(fmt, args)
+#endif
+
+/* A failure of the engine or of bad input; component/indicator may be -1, t may be NAN. */
+int fail(ssx_system *sys, int component, int indicator, double t, const char *format, ...)
+    SSX_PRINTF(5, 6);
+/* An fmi2 call of component c returned `status` (or the binding failed, status -1). */
+int fail_fmi(ssx_system *sys, const ssx_component *c, double t, int status, const char *call);
+/* A Python hook of component c reported failure; Python keeps the exception. */
+int fail_hook(ssx_system *sys, const ssx_component *c, double t, const char *hook);
+/* Marks the current error as chattering / too many micro steps. */
+int fail_zeno(ssx_system *sys, int component, int indicator, double t, const char *format, ...)
+    SSX_PRINTF(5, 6);
+void clear_error(ssx_system *sys);
+/* fmi2OK and fmi2Warning let the simulation go on. */
+int fmi_ok(int status);
+
+#endif

@@ -1,0 +1,13 @@
+/* Internal helpers of the FMU binding that the engine needs beyond the public ssx_fmu_* calls. */
+#ifndef SSX_FMU_BINDING_H
+#define SSX_FMU_BINDING_H
+
+#include "syssimx_engine.h"
+
+/* Counts instantiations: FMU states of an earlier instance are invalid (the binding frees them
+ * when their instance goes away), so a holder compares generations before reusing a state. */
+long ssx_fmu_generation(const ssx_fmu *fmu);
+const char *ssx_fmu_instance_name(const ssx_fmu *fmu);
+const char *ssx_fmi2_status_name(int status);
+
+#endif

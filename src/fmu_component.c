@@ -1,0 +1,133 @@
+/* Built-in behaviour of an FMU component: its fmi2 calls, batched by value type. */
+#include <stddef.h>
+
+#include "component.h"
+#include "error.h"
+#include "fmu_binding.h"
+#include "system.h"
+
+static int fmu_read_outputs(ssx_system *sys, ssx_component *c)
+{
+    const ssx_port_batch *real = &c->output_batch[SSX_REAL];
+    if (real->n > 0) {
+        int status = ssx_fmu_get_real(c->fmu, real->vr, real->n, c->real_scratch);
+        if (!fmi_ok(status)) {
+            return fail_fmi(sys, c, sys->time, status, "fmi2GetReal");
+        }
+        for (size_t i = 0; i < real->n; ++i) {
+            c->outputs[real->port[i]] = c->real_scratch[i];
+        }
+    }
+    for (int type = SSX_INTEGER; type <= SSX_BOOLEAN; ++type) {
+        const ssx_port_batch *b = &c->output_batch[type];
+        if (b->n == 0) {
+            continue;
+        }
+        int status = type == SSX_INTEGER
+                         ? ssx_fmu_get_integer(c->fmu, b->vr, b->n, c->int_scratch)
+                         : ssx_fmu_get_boolean(c->fmu, b->vr, b->n, c->int_scratch);
+        if (!fmi_ok(status)) {
+            return fail_fmi(sys, c, sys->time, status,
+                            type == SSX_INTEGER ? "fmi2GetInteger" : "fmi2GetBoolean");
+        }
+        for (size_t i = 0; i < b->n; ++i) {
+            int value = c->int_scratch[i];
+            c->outputs[b->port[i]] = type == SSX_BOOLEAN ? (value != 0) : (double)value;
+        }
+    }
+    return 0;
+}
+
+static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
+{
+    const ssx_port_batch *real = &c->input_batch[SSX_REAL];
+    if (real->n > 0) {
+        for (size_t i = 0; i < real->n; ++i) {
+            c->real_scratch[i] = c->inputs[real->port[i]];
+        }
+        int status = ssx_fmu_set_real(c->fmu, real->vr, real->n, c->real_scratch);
+        if (!fmi_ok(status)) {
+            return fail_fmi(sys, c, sys->time, status, "fmi2SetReal");
+        }
+    }
+    for (int type = SSX_INTEGER; type <= SSX_BOOLEAN; ++type) {
+        const ssx_port_batch *b = &c->input_batch[type];
+        if (b->n == 0) {
+            continue;
+        }
+        for (size_t i = 0; i < b->n; ++i) {
+            double value = c->inputs[b->port[i]];
+            /* integers round to nearest: a scaled connection may land a hair off an integer */
+            c->int_scratch[i] = type == SSX_BOOLEAN ? (value != 0.0)
+                                                    : (int)(value < 0 ? value - 0.5 : value + 0.5);
+        }
+        int status = type == SSX_INTEGER
+                         ? ssx_fmu_set_integer(c->fmu, b->vr, b->n, c->int_scratch)
+                         : ssx_fmu_set_boolean(c->fmu, b->vr, b->n, c->int_scratch);
+        if (!fmi_ok(status)) {
+            return fail_fmi(sys, c, sys->time, status,
+                            type == SSX_INTEGER ? "fmi2SetInteger" : "fmi2SetBoolean");
+        }
+    }
+    return 0;
+}
+
+static int fmu_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
+{
+    /* In hybrid mode the engine may set an earlier state again, so it must not promise not to. */
+    int status = ssx_fmu_do_step(c->fmu, t, dt, !sys->stepping_hybrid);
+    if (!fmi_ok(status)) {
+        return fail_fmi(sys, c, t, status, "fmi2DoStep");
+    }
+    return fmu_read_outputs(sys, c);
+}
+
+static int fmu_evaluate_outputs(ssx_system *sys, ssx_component *c, double t)
+{
+    (void)t;
+    /* Our FMUs compute outputs from the current inputs: setting then getting is a zero-time
+     * evaluation. */
+    if (fmu_write_inputs(sys, c) != 0) {
+        return -1;
+    }
+    return fmu_read_outputs(sys, c);
+}
+
+static int fmu_snapshot(ssx_system *sys, ssx_component *c, int slot)
+{
+    long generation = ssx_fmu_generation(c->fmu);
+    if (c->fmu_state_generation[slot] != generation) {
+        c->fmu_state[slot] = NULL; /* released with its instance by the binding */
+        c->fmu_state_generation[slot] = generation;
+    }
+    int status = ssx_fmu_get_state(c->fmu, &c->fmu_state[slot]);
+    if (!fmi_ok(status)) {
+        return fail_fmi(sys, c, sys->time, status, "fmi2GetFMUstate");
+    }
+    return 0;
+}
+
+static int fmu_restore(ssx_system *sys, ssx_component *c, int slot, double t)
+{
+    if (c->fmu_state[slot] == NULL ||
+        c->fmu_state_generation[slot] != ssx_fmu_generation(c->fmu)) {
+        return fail(sys, c->index, -1, t,
+                    "component '%s': no FMU state in snapshot slot %d for the live instance "
+                    "(was the FMU instantiated again after the snapshot?)",
+                    c->name, slot);
+    }
+    int status = ssx_fmu_set_state(c->fmu, c->fmu_state[slot]);
+    if (!fmi_ok(status)) {
+        return fail_fmi(sys, c, t, status, "fmi2SetFMUstate");
+    }
+    return 0;
+}
+
+const ssx_component_ops ssx_fmu_component_ops = {
+    .do_step = fmu_do_step,
+    .write_inputs = fmu_write_inputs,
+    .read_outputs = fmu_read_outputs,
+    .evaluate_outputs = fmu_evaluate_outputs,
+    .snapshot = fmu_snapshot,
+    .restore = fmu_restore,
+};

@@ -1,0 +1,450 @@
+/* The hybrid macro step: one snapshot and one coupled step when nothing crosses; otherwise
+ * localization of the earliest crossing by restoring and re-stepping the whole system, event
+ * handling in superdense time at the far side of the final bracket, and the sign bookkeeping that
+ * keeps a handled crossing from firing again. */
+#include "hybrid.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "coupling.h"
+#include "error.h"
+#include "indicator.h"
+
+enum { MACRO_SLOT = 0, PROBE_SLOT = 1 };
+enum { SIDE_NONE = 0, SIDE_LEFT = 1, SIDE_RIGHT = 2 };
+
+typedef struct {
+    double a0;            /* start of the macro piece: the snapshot time */
+    double t_end;         /* end of the macro piece */
+    double a, b;          /* final bracket */
+    int iterations;
+    long do_steps_before; /* statistics at the start of the piece, for the event's cost */
+    long restores_before;
+} event_bracket;
+
+/* Per-instant workspace, one entry per indicator. */
+typedef struct {
+    double *z_at_b;
+    double *band;
+    double *z_after;
+    double *z_probe;
+    int *fired;
+    int *next;
+    int *listened;
+} instant_work;
+
+static int snapshot_all(ssx_system *sys, int slot)
+{
+    for (int i = 0; i < sys->n_components; ++i) {
+        if (component_snapshot(sys, sys->components[i], slot) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static int restore_all(ssx_system *sys, int slot, double t)
+{
+    for (int i = 0; i < sys->n_components; ++i) {
+        if (component_restore(sys, sys->components[i], slot, t) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* The whole system from the macro snapshot at a0 to time t: one restore, one coupled step. */
+static int step_from_snapshot(ssx_system *sys, double a0, double t)
+{
+    if (restore_all(sys, MACRO_SLOT, a0) != 0 || coupling_step(sys, a0, t - a0) != 0) {
+        return -1;
+    }
+    return indicators_evaluate(sys, t);
+}
+
+static int any_fires(const ssx_system *sys)
+{
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        if (indicator_fires(&sys->indicators[i], sys->indicators[i].value)) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* Earliest Illinois estimate over the crossing indicators; NAN when none is usable. */
+static double illinois_estimate(const ssx_system *sys, double a, double b)
+{
+    double earliest = NAN;
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        const ssx_indicator *ind = &sys->indicators[i];
+        if (!ind->crossing || ind->w_left * ind->w_right > 0.0 || ind->w_left == ind->w_right) {
+            continue;
+        }
+        double estimate = a + (b - a) * ind->w_left / (ind->w_left - ind->w_right);
+        if (isfinite(estimate) && (isnan(earliest) || estimate < earliest)) {
+            earliest = estimate;
+        }
+    }
+    return earliest;
+}
+
+/* Every indicator crossing at the far end is within tol_value of zero. */
+static int far_side_converged(const ssx_system *sys)
+{
+    if (!(sys->hybrid.tol_value > 0.0)) {
+        return 0;
+    }
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        const ssx_indicator *ind = &sys->indicators[i];
+        if (ind->crossing && fabs(ind->z_right) > sys->hybrid.tol_value) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
+/* Shrinks [a0, t_end] around the earliest crossing; leaves the system in the state at b. */
+static int locate(ssx_system *sys, event_bracket *br)
+{
+    const ssx_hybrid_options *opt = &sys->hybrid;
+    double a = br->a0;
+    double b = br->t_end;
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        ssx_indicator *ind = &sys->indicators[i];
+        ind->z_right = ind->value;
+        ind->w_left = ind->z_left;
+        ind->w_right = ind->z_right;
+        ind->crossing = indicator_fires(ind, ind->value);
+    }
+    int last_side = SIDE_NONE;
+    int state_at_b = 1;
+    br->iterations = 0;
+    while (b - a > opt->tol_time && !far_side_converged(sys)) {
+        if (br->iterations >= opt->max_iterations) {
+            return fail(sys, -1, -1, a,
+                        "event localization did not reach tol_time=%g within %d iterations: "
+                        "bracket [%.17g, %.17g]",
+                        opt->tol_time, opt->max_iterations, a, b);
+        }
+        double t = opt->locator == SSX_ILLINOIS ? illinois_estimate(sys, a, b) : NAN;
+        if (!(t > a && t < b)) {
+            t = 0.5 * (a + b);
+        }
+        /* half a tolerance inside the bracket: the far end also moves when the estimate
+         * converges from one side */
+        double margin = 0.5 * opt->tol_time;
+        t = fmin(fmax(t, a + margin), b - margin);
+        br->iterations++;
+        sys->stats.localization_iterations++;
+        if (step_from_snapshot(sys, br->a0, t) != 0) {
+            return -1;
+        }
+        if (opt->record_internal_steps && system_record(sys, t, -1) != 0) {
+            return -1;
+        }
+        if (any_fires(sys)) {
+            b = t;
+            for (int i = 0; i < sys->n_indicators; ++i) {
+                ssx_indicator *ind = &sys->indicators[i];
+                ind->z_right = ind->w_right = ind->value;
+                ind->crossing = indicator_fires(ind, ind->value);
+                if (last_side == SIDE_RIGHT) {
+                    ind->w_left *= 0.5;
+                }
+            }
+            last_side = SIDE_RIGHT;
+            state_at_b = 1;
+        } else {
+            a = t;
+            for (int i = 0; i < sys->n_indicators; ++i) {
+                ssx_indicator *ind = &sys->indicators[i];
+                ind->z_left = ind->w_left = ind->value;
+                if (last_side == SIDE_LEFT) {
+                    ind->w_right *= 0.5;
+                }
+            }
+            last_side = SIDE_LEFT;
+            state_at_b = 0;
+        }
+    }
+    if (!state_at_b && step_from_snapshot(sys, br->a0, b) != 0) {
+        return -1;
+    }
+    br->a = a;
+    br->b = b;
+    return 0;
+}
+
+static void work_free(instant_work *w)
+{
+    free(w->z_at_b);
+    free(w->fired);
+}
+
+static int work_init(instant_work *w, ssx_system *sys, double t)
+{
+    memset(w, 0, sizeof *w);
+    size_t n = (size_t)sys->n_indicators;
+    w->z_at_b = malloc(5 * n * sizeof(double));
+    w->fired = malloc(3 * n * sizeof(int));
+    if (w->z_at_b == NULL || w->fired == NULL) {
+        work_free(w);
+        return fail(sys, -1, -1, t, "out of memory handling an event");
+    }
+    w->band = w->z_at_b + n;
+    w->z_after = w->band + n;
+    w->z_probe = w->z_after + n;
+    w->next = w->fired + n;
+    w->listened = w->next + n;
+    return 0;
+}
+
+/* |z| below which a fired indicator counts as sitting on its zero: the localization residue. */
+static double residue_band(const ssx_system *sys, const event_bracket *br,
+                           const ssx_indicator *ind, double z)
+{
+    double slope = fabs(ind->z_right - ind->z_left) / fmax(br->b - br->a, 1e-300);
+    return 2.0 * fmax(sys->hybrid.tol_value, fmax(fabs(z), slope * sys->hybrid.tol_time));
+}
+
+static int sign_of(double z, int otherwise)
+{
+    return z > 0.0 ? 1 : z < 0.0 ? -1 : otherwise;
+}
+
+/* Where the fired indicators are going: a short step from b, then back. */
+static int probe(ssx_system *sys, double b, double delta, instant_work *w)
+{
+    if (snapshot_all(sys, PROBE_SLOT) != 0 || coupling_step(sys, b, delta) != 0 ||
+        indicators_evaluate(sys, b + delta) != 0) {
+        return -1;
+    }
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        w->z_probe[i] = sys->indicators[i].value;
+    }
+    if (restore_all(sys, PROBE_SLOT, b) != 0) {
+        return -1;
+    }
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        sys->indicators[i].value = w->z_after[i];
+    }
+    return 0;
+}
+
+static int notify_listeners(ssx_system *sys, double b, instant_work *w)
+{
+    for (int c = 0; c < sys->n_components; ++c) {
+        int n = 0;
+        for (int i = 0; i < sys->n_indicators; ++i) {
+            if (!w->fired[i]) {
+                continue;
+            }
+            for (int k = 0; k < sys->n_event_links; ++k) {
+                if (sys->event_links[k].indicator == i && sys->event_links[k].listener == c) {
+                    w->listened[n++] = i;
+                    break;
+                }
+            }
+        }
+        if (n > 0 && component_handle_events(sys, sys->components[c], w->listened, n, b) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static double zeno_interval(const ssx_system *sys)
+{
+    return sys->hybrid.zeno_min_interval > 0.0 ? sys->hybrid.zeno_min_interval
+                                               : 10.0 * sys->hybrid.tol_time;
+}
+
+static int check_zeno(ssx_system *sys, double b, int micro, const instant_work *w)
+{
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        ssx_indicator *ind = &sys->indicators[i];
+        if (!w->fired[i]) {
+            continue;
+        }
+        /* cascades at one instant are bounded by max_microsteps instead */
+        if (micro == 0 && ind->fired_before && b - ind->last_event_time < zeno_interval(sys)) {
+            return fail_zeno(sys, ind->component, i, b,
+                             "indicator %d of component '%s' fired again at t=%.17g, only %.3g "
+                             "after its previous event (event number %ld): chattering (Zeno) "
+                             "behaviour; the minimum interval is %.3g",
+                             i, sys->components[ind->component]->name, b,
+                             b - ind->last_event_time, ind->fire_count + 1, zeno_interval(sys));
+        }
+    }
+    return 0;
+}
+
+/* Signs after a handling round; marks the cascading crossings in w->next. */
+static int settle_signs(ssx_system *sys, double b, const event_bracket *br, instant_work *w)
+{
+    int need_probe = 0;
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        w->z_after[i] = sys->indicators[i].value;
+        need_probe |= w->fired[i] && fabs(w->z_after[i]) <= w->band[i];
+    }
+    if (need_probe) {
+        double slope_time = 0.0; /* time the residue at b needs to be left behind */
+        for (int i = 0; i < sys->n_indicators; ++i) {
+            const ssx_indicator *ind = &sys->indicators[i];
+            double slope = fabs(ind->z_right - ind->z_left) / fmax(br->b - br->a, 1e-300);
+            if (w->fired[i] && slope > 0.0) {
+                slope_time = fmax(slope_time, fabs(w->z_at_b[i]) / slope);
+            }
+        }
+        double delta = 10.0 * fmax(sys->hybrid.tol_time, slope_time);
+        delta = fmin(delta, fmax(10.0 * sys->hybrid.tol_time, 0.1 * (br->t_end - br->a0)));
+        if (probe(sys, b, delta, w) != 0) {
+            return -1;
+        }
+    }
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        ssx_indicator *ind = &sys->indicators[i];
+        /* a fired indicator still within its residue band goes where the probe says; any other
+         * sign change was made by the handling itself */
+        int from_probe = w->fired[i] && fabs(w->z_after[i]) <= w->band[i];
+        int new_sign = from_probe ? sign_of(w->z_probe[i], ind->sign)
+                                  : sign_of(w->z_after[i], ind->sign);
+        w->next[i] = 0;
+        if (ind->sign != 0 && new_sign != ind->sign && !from_probe) {
+            int crossing = new_sign > 0 ? 1 : -1;
+            w->next[i] = ind->direction == 0 || ind->direction == crossing;
+        }
+        ind->sign = new_sign;
+    }
+    return 0;
+}
+
+static int add_event_records(ssx_system *sys, double b, int micro, const event_bracket *br,
+                             const instant_work *w)
+{
+    int first = 1;
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        if (!w->fired[i]) {
+            continue;
+        }
+        /* the instant's cost goes on its first record, so sums over records stay right */
+        int carries_cost = first && micro == 0;
+        ssx_event_record record = {
+            .t = b,
+            .micro = micro,
+            .indicator = i,
+            .component = sys->indicators[i].component,
+            .iterations = carries_cost ? br->iterations : 0,
+            .rollbacks = carries_cost ? (int)(sys->stats.state_restores - br->restores_before) : 0,
+            .do_steps = carries_cost ? sys->stats.do_step_calls - br->do_steps_before : 0,
+        };
+        first = 0;
+        if (system_add_event_record(sys, &record) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* Handles the instant b: rounds of (record before, notify, settle, record after) while
+ * handling makes indicators cross, up to max_microsteps rounds. */
+static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work *w)
+{
+    double b = br->b;
+    if (system_record(sys, b, 0) != 0) {
+        return -1;
+    }
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        ssx_indicator *ind = &sys->indicators[i];
+        w->fired[i] = indicator_fires(ind, ind->value);
+        w->z_at_b[i] = ind->value;
+        indicator_follow(ind, ind->value);
+        w->band[i] = residue_band(sys, br, ind, ind->value);
+    }
+    for (int micro = 0;; ++micro) {
+        if (micro >= sys->hybrid.max_microsteps) {
+            int first = -1;
+            for (int i = 0; i < sys->n_indicators && first < 0; ++i) {
+                first = w->fired[i] ? i : -1;
+            }
+            return fail_zeno(sys, first >= 0 ? sys->indicators[first].component : -1, first, b,
+                             "more than %d micro steps of cascading events at t=%.17g (the "
+                             "handlers keep making indicators cross; first: indicator %d)",
+                             sys->hybrid.max_microsteps, b, first);
+        }
+        if (check_zeno(sys, b, micro, w) != 0) {
+            return -1;
+        }
+        for (int i = 0; i < sys->n_indicators; ++i) {
+            if (w->fired[i]) {
+                sys->indicators[i].fired_before = 1;
+                sys->indicators[i].last_event_time = b;
+                sys->indicators[i].fire_count++;
+            }
+        }
+        sys->stats.events++;
+        if (notify_listeners(sys, b, w) != 0 || coupling_settle(sys, b) != 0 ||
+            system_record(sys, b, micro + 1) != 0 || indicators_evaluate(sys, b) != 0 ||
+            settle_signs(sys, b, br, w) != 0 || add_event_records(sys, b, micro, br, w) != 0) {
+            return -1;
+        }
+        int cascades = 0;
+        for (int i = 0; i < sys->n_indicators; ++i) {
+            if (w->next[i]) {
+                cascades = 1;
+                /* the next round's residue is the value after this round */
+                w->z_at_b[i] = w->z_after[i];
+                w->band[i] = residue_band(sys, br, &sys->indicators[i], w->z_after[i]);
+            }
+            w->fired[i] = w->next[i];
+        }
+        if (!cascades) {
+            return 0;
+        }
+    }
+}
+
+int hybrid_step(ssx_system *sys, double t, double t_next)
+{
+    double a0 = t;
+    while (a0 < t_next) {
+        sys->time = a0;
+        event_bracket br = {.a0 = a0,
+                            .t_end = t_next,
+                            .do_steps_before = sys->stats.do_step_calls,
+                            .restores_before = sys->stats.state_restores};
+        for (int i = 0; i < sys->n_indicators; ++i) {
+            sys->indicators[i].z_left = sys->indicators[i].value;
+        }
+        if (snapshot_all(sys, MACRO_SLOT) != 0 || coupling_step(sys, a0, t_next - a0) != 0 ||
+            indicators_evaluate(sys, t_next) != 0) {
+            return -1;
+        }
+        sys->stats.macro_steps++;
+        if (!any_fires(sys)) {
+            for (int i = 0; i < sys->n_indicators; ++i) {
+                indicator_follow(&sys->indicators[i], sys->indicators[i].value);
+            }
+            sys->time = t_next;
+            return system_record(sys, t_next, 0);
+        }
+        if (locate(sys, &br) != 0) {
+            return -1;
+        }
+        sys->time = br.b;
+        instant_work w;
+        if (work_init(&w, sys, br.b) != 0) {
+            return -1;
+        }
+        int status = handle_instant(sys, &br, &w);
+        work_free(&w);
+        if (status != 0) {
+            return -1;
+        }
+        a0 = br.b;
+    }
+    return 0;
+}

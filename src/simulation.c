@@ -1,0 +1,164 @@
+/* Initialization and the time loop over the communication grid t0 + k*dt. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "component.h"
+#include "coupling.h"
+#include "error.h"
+#include "hybrid.h"
+#include "indicator.h"
+#include "system.h"
+
+/* Steps beyond this would not fit the history's size arithmetic. */
+#define SSX_MAX_GRID_STEPS 1e12
+
+static int check_components(ssx_system *sys)
+{
+    int hybrid = system_is_hybrid(sys);
+    for (int i = 0; i < sys->n_components; ++i) {
+        ssx_component *c = sys->components[i];
+        if (c->fmu == NULL && (c->hooks.do_step == NULL || c->hooks.evaluate_outputs == NULL)) {
+            return fail(sys, i, -1, sys->time,
+                        "Python component '%s' needs do_step and evaluate_outputs hooks",
+                        c->name);
+        }
+        if (hybrid && !component_can_roll_back(c)) {
+            return fail(sys, i, -1, sys->time,
+                        "component '%s' cannot save and restore its state, but the system has "
+                        "event indicators: locating an event restores every component",
+                        c->name);
+        }
+        if (component_prepare(c) != 0) {
+            return fail(sys, i, -1, sys->time, "out of memory preparing component '%s'", c->name);
+        }
+    }
+    return 0;
+}
+
+static int start_history(ssx_system *sys)
+{
+    int n = sys->n_components;
+    int *columns = malloc(((size_t)n + 1) * sizeof *columns);
+    double **views = realloc(sys->output_views, ((size_t)n + 1) * sizeof *views);
+    if (views != NULL) {
+        sys->output_views = views;
+    }
+    if (columns == NULL || views == NULL) {
+        free(columns);
+        return fail(sys, -1, -1, sys->time, "out of memory starting the history");
+    }
+    for (int i = 0; i < n; ++i) {
+        columns[i] = sys->components[i]->n_outputs;
+        views[i] = sys->components[i]->outputs;
+    }
+    int status = history_start(&sys->history, n, columns);
+    free(columns);
+    if (status != 0 || history_reserve(&sys->history, 1) != 0) {
+        return fail(sys, -1, -1, sys->time, "out of memory starting the history");
+    }
+    return 0;
+}
+
+int ssx_initialize(ssx_system *sys, double t0)
+{
+    clear_error(sys);
+    sys->initialized = 0;
+    if (!isfinite(t0)) {
+        return fail(sys, -1, -1, t0, "system '%s': the start time must be finite", sys->name);
+    }
+    sys->time = t0;
+    memset(&sys->stats, 0, sizeof sys->stats);
+    sys->n_events = 0;
+    sys->stepping_hybrid = system_is_hybrid(sys);
+    if (check_components(sys) != 0 || coupling_prepare(sys) != 0) {
+        return -1;
+    }
+    for (int i = 0; i < sys->n_components; ++i) {
+        ssx_component *c = sys->components[i];
+        for (int k = 0; k < c->n_inputs; ++k) {
+            if (c->input_driver[k] < 0) {
+                c->inputs[k] = c->input_starts[k];
+            }
+        }
+        if (component_initialize(sys, c, t0) != 0) {
+            return -1;
+        }
+    }
+    if (coupling_settle(sys, t0) != 0 || start_history(sys) != 0 ||
+        indicators_evaluate(sys, t0) != 0) {
+        return -1;
+    }
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        ssx_indicator *ind = &sys->indicators[i];
+        ind->sign = 0;
+        ind->fired_before = 0;
+        ind->fire_count = 0;
+        indicator_follow(ind, ind->value);
+    }
+    if (system_record(sys, t0, 0) != 0) {
+        return -1;
+    }
+    sys->initialized = 1;
+    return 0;
+}
+
+static int plain_step(ssx_system *sys, double t, double t_next)
+{
+    if (coupling_step(sys, t, t_next - t) != 0) {
+        return -1;
+    }
+    sys->stats.macro_steps++;
+    sys->time = t_next;
+    return system_record(sys, t_next, 0);
+}
+
+int ssx_run(ssx_system *sys, double t0, double tf, double dt)
+{
+    clear_error(sys);
+    if (!sys->initialized) {
+        return fail(sys, -1, -1, t0,
+                    "system '%s' is not initialized (call ssx_initialize after changing it)",
+                    sys->name);
+    }
+    if (!isfinite(t0) || !isfinite(tf) || !isfinite(dt)) {
+        return fail(sys, -1, -1, t0, "system '%s': t0, tf and dt must be finite (got %g, %g, %g)",
+                    sys->name, t0, tf, dt);
+    }
+    if (!(dt > 0.0)) {
+        return fail(sys, -1, -1, t0, "system '%s': the step dt must be positive (got %g)",
+                    sys->name, dt);
+    }
+    if (tf < t0) {
+        return fail(sys, -1, -1, t0, "system '%s': tf=%.17g lies before t0=%.17g", sys->name, tf,
+                    t0);
+    }
+    if (fabs(t0 - sys->time) > 1e-12 * fmax(1.0, fabs(t0))) {
+        return fail(sys, -1, -1, t0, "system '%s' is at t=%.17g; a run must start there, not at "
+                    "t0=%.17g", sys->name, sys->time, t0);
+    }
+    double ratio = (tf - t0) / dt;
+    if (ratio > SSX_MAX_GRID_STEPS) {
+        return fail(sys, -1, -1, t0, "system '%s': %.3g steps of dt=%g are too many", sys->name,
+                    ratio, dt);
+    }
+    /* A remainder below 1e-9 steps joins the last step instead of making a sliver step. */
+    long n_steps = tf > t0 ? (long)ceil(ratio - 1e-9) : 0;
+    if (n_steps < 1 && tf > t0) {
+        n_steps = 1;
+    }
+    if (history_reserve(&sys->history, (size_t)n_steps) != 0) {
+        return fail(sys, -1, -1, t0, "out of memory reserving %ld history samples", n_steps);
+    }
+    int hybrid = system_is_hybrid(sys);
+    double t = t0;
+    for (long k = 1; k <= n_steps; ++k) {
+        double t_next = k == n_steps ? tf : t0 + (double)k * dt;
+        if ((hybrid ? hybrid_step(sys, t, t_next) : plain_step(sys, t, t_next)) != 0) {
+            return -1;
+        }
+        t = t_next;
+    }
+    sys->time = tf > t0 ? tf : sys->time;
+    return 0;
+}

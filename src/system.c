@@ -1,0 +1,585 @@
+/* Building a system: components, ports, connections, indicators, event connections, schedule
+ * and options; plus the read-only accessors of its results. */
+#define _POSIX_C_SOURCE 200809L
+
+#include "system.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "error.h"
+
+static int grow(void **array, int *capacity, int needed, size_t element_size)
+{
+    if (needed <= *capacity) {
+        return 0;
+    }
+    int new_capacity = *capacity > 0 ? *capacity * 2 : 8;
+    while (new_capacity < needed) {
+        new_capacity *= 2;
+    }
+    void *grown = realloc(*array, (size_t)new_capacity * element_size);
+    if (grown == NULL) {
+        return -1;
+    }
+    *array = grown;
+    *capacity = new_capacity;
+    return 0;
+}
+
+ssx_system *ssx_system_new(const char *name)
+{
+    ssx_system *sys = calloc(1, sizeof *sys);
+    if (sys == NULL) {
+        return NULL;
+    }
+    sys->name = strdup(name != NULL ? name : "system");
+    if (sys->name == NULL) {
+        free(sys);
+        return NULL;
+    }
+    sys->coupling = SSX_GAUSS_SEIDEL;
+    sys->loop = (ssx_loop_options){.tolerance = 1e-10, .max_iterations = 50, .damping = 1.0};
+    sys->hybrid = (ssx_hybrid_options){.tol_time = 1e-9,
+                                       .tol_value = 1e-9,
+                                       .max_iterations = 100,
+                                       .max_microsteps = 10,
+                                       .record_internal_steps = 0,
+                                       .locator = SSX_ILLINOIS,
+                                       .zeno_min_interval = 0.0};
+    clear_error(sys);
+    return sys;
+}
+
+void ssx_system_free(ssx_system *sys)
+{
+    if (sys == NULL) {
+        return;
+    }
+    for (int i = 0; i < sys->n_components; ++i) {
+        component_free(sys->components[i]);
+    }
+    free(sys->components);
+    free(sys->connections);
+    free(sys->indicators);
+    free(sys->event_links);
+    free(sys->order);
+    free(sys->groups);
+    history_free(&sys->history);
+    free(sys->output_views);
+    free(sys->events);
+    free(sys->name);
+    free(sys);
+}
+
+const ssx_error *ssx_last_error(const ssx_system *sys)
+{
+    return sys != NULL ? &sys->error : NULL;
+}
+
+ssx_component *system_component(ssx_system *sys, int index)
+{
+    if (index < 0 || index >= sys->n_components) {
+        fail(sys, -1, -1, sys->time, "unknown component index %d (system '%s' has %d components)",
+             index, sys->name, sys->n_components);
+        return NULL;
+    }
+    return sys->components[index];
+}
+
+int system_is_hybrid(const ssx_system *sys)
+{
+    return sys->n_indicators > 0;
+}
+
+/* Any change of structure requires a new ssx_initialize. */
+static void structure_changed(ssx_system *sys)
+{
+    sys->initialized = 0;
+}
+
+static int add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
+                         const ssx_component_ops *ops)
+{
+    if (name == NULL || name[0] == '\0') {
+        return fail(sys, -1, -1, NAN, "system '%s': a component needs a non-empty name",
+                    sys->name);
+    }
+    for (int i = 0; i < sys->n_components; ++i) {
+        if (strcmp(sys->components[i]->name, name) == 0) {
+            return fail(sys, i, -1, NAN, "system '%s' already has a component named '%s'",
+                        sys->name, name);
+        }
+    }
+    if (grow((void **)&sys->components, &sys->components_capacity, sys->n_components + 1,
+             sizeof *sys->components) != 0) {
+        return fail(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
+    }
+    ssx_component *c = calloc(1, sizeof *c);
+    if (c == NULL || (c->name = strdup(name)) == NULL) {
+        free(c);
+        return fail(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
+    }
+    c->index = sys->n_components;
+    c->ops = ops;
+    c->fmu = fmu;
+    c->can_snapshot = can_snapshot != 0;
+    for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
+        c->fmu_state_generation[slot] = -1;
+    }
+    sys->components[sys->n_components++] = c;
+    structure_changed(sys);
+    return c->index;
+}
+
+int ssx_add_fmu_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_get_set_state)
+{
+    if (fmu == NULL) {
+        return fail(sys, -1, -1, NAN, "component '%s': no FMU given", name ? name : "?");
+    }
+    return add_component(sys, name, fmu, can_get_set_state, &ssx_fmu_component_ops);
+}
+
+int ssx_add_python_component(ssx_system *sys, const char *name, int can_snapshot)
+{
+    return add_component(sys, name, NULL, can_snapshot, &ssx_python_component_ops);
+}
+
+int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks)
+{
+    ssx_component *c = system_component(sys, component);
+    if (c == NULL) {
+        return -1;
+    }
+    if (hooks == NULL) {
+        memset(&c->hooks, 0, sizeof c->hooks);
+    } else {
+        c->hooks = *hooks;
+    }
+    structure_changed(sys);
+    return 0;
+}
+
+int ssx_component_count(const ssx_system *sys)
+{
+    return sys->n_components;
+}
+
+static int valid_type(ssx_value_type type)
+{
+    return type == SSX_REAL || type == SSX_INTEGER || type == SSX_BOOLEAN;
+}
+
+int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned int vr)
+{
+    ssx_component *c = system_component(sys, component);
+    if (c == NULL) {
+        return -1;
+    }
+    if (!valid_type(type)) {
+        return fail(sys, component, -1, NAN, "component '%s': unknown value type %d", c->name,
+                    (int)type);
+    }
+    size_t n = (size_t)c->n_outputs + 1;
+    ssx_port *ports = realloc(c->output_ports, n * sizeof *ports);
+    if (ports != NULL) {
+        c->output_ports = ports;
+    }
+    double *values = realloc(c->outputs, n * sizeof *values);
+    if (values != NULL) {
+        c->outputs = values;
+    }
+    if (ports == NULL || values == NULL) {
+        return fail(sys, component, -1, NAN, "out of memory adding an output to '%s'", c->name);
+    }
+    c->output_ports[c->n_outputs] = (ssx_port){.type = type, .vr = vr};
+    c->outputs[c->n_outputs] = 0.0;
+    structure_changed(sys);
+    return c->n_outputs++;
+}
+
+int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned int vr,
+                  double start)
+{
+    ssx_component *c = system_component(sys, component);
+    if (c == NULL) {
+        return -1;
+    }
+    if (!valid_type(type)) {
+        return fail(sys, component, -1, NAN, "component '%s': unknown value type %d", c->name,
+                    (int)type);
+    }
+    if (!isfinite(start)) {
+        return fail(sys, component, -1, NAN, "component '%s': the start value of an input must "
+                    "be finite", c->name);
+    }
+    size_t n = (size_t)c->n_inputs + 1;
+    ssx_port *ports = realloc(c->input_ports, n * sizeof *ports);
+    if (ports != NULL) {
+        c->input_ports = ports;
+    }
+    double *values = realloc(c->inputs, n * sizeof *values);
+    if (values != NULL) {
+        c->inputs = values;
+    }
+    double *starts = realloc(c->input_starts, n * sizeof *starts);
+    if (starts != NULL) {
+        c->input_starts = starts;
+    }
+    int *drivers = realloc(c->input_driver, n * sizeof *drivers);
+    if (drivers != NULL) {
+        c->input_driver = drivers;
+    }
+    if (ports == NULL || values == NULL || starts == NULL || drivers == NULL) {
+        return fail(sys, component, -1, NAN, "out of memory adding an input to '%s'", c->name);
+    }
+    c->input_ports[c->n_inputs] = (ssx_port){.type = type, .vr = vr};
+    c->inputs[c->n_inputs] = start;
+    c->input_starts[c->n_inputs] = start;
+    c->input_driver[c->n_inputs] = -1;
+    structure_changed(sys);
+    return c->n_inputs++;
+}
+
+double *ssx_outputs(ssx_system *sys, int component)
+{
+    ssx_component *c = system_component(sys, component);
+    return c != NULL ? c->outputs : NULL;
+}
+
+double *ssx_inputs(ssx_system *sys, int component)
+{
+    ssx_component *c = system_component(sys, component);
+    return c != NULL ? c->inputs : NULL;
+}
+
+int ssx_output_count(const ssx_system *sys, int component)
+{
+    return component >= 0 && component < sys->n_components ? sys->components[component]->n_outputs
+                                                            : -1;
+}
+
+int ssx_input_count(const ssx_system *sys, int component)
+{
+    return component >= 0 && component < sys->n_components ? sys->components[component]->n_inputs
+                                                            : -1;
+}
+
+int ssx_connect(ssx_system *sys, int src_component, int src_output, int dst_component,
+                int dst_input, double scale, double offset)
+{
+    ssx_component *src = system_component(sys, src_component);
+    ssx_component *dst = src != NULL ? system_component(sys, dst_component) : NULL;
+    if (src == NULL || dst == NULL) {
+        return -1;
+    }
+    if (src_output < 0 || src_output >= src->n_outputs) {
+        return fail(sys, src_component, -1, NAN, "component '%s' has no output %d (it has %d)",
+                    src->name, src_output, src->n_outputs);
+    }
+    if (dst_input < 0 || dst_input >= dst->n_inputs) {
+        return fail(sys, dst_component, -1, NAN, "component '%s' has no input %d (it has %d)",
+                    dst->name, dst_input, dst->n_inputs);
+    }
+    if (!isfinite(scale) || !isfinite(offset)) {
+        return fail(sys, dst_component, -1, NAN,
+                    "connection %s.out[%d] -> %s.in[%d]: scale and offset must be finite",
+                    src->name, src_output, dst->name, dst_input);
+    }
+    int driver = dst->input_driver[dst_input];
+    if (driver >= 0) {
+        const ssx_connection *existing = &sys->connections[driver];
+        return fail(sys, dst_component, -1, NAN,
+                    "input %d of component '%s' is already driven by output %d of component "
+                    "'%s': an input takes exactly one driver",
+                    dst_input, dst->name, existing->src_output,
+                    sys->components[existing->src_component]->name);
+    }
+    if (grow((void **)&sys->connections, &sys->connections_capacity, sys->n_connections + 1,
+             sizeof *sys->connections) != 0) {
+        return fail(sys, -1, -1, NAN, "out of memory adding a connection");
+    }
+    sys->connections[sys->n_connections] = (ssx_connection){
+        .src_component = src_component,
+        .src_output = src_output,
+        .dst_component = dst_component,
+        .dst_input = dst_input,
+        .scale = scale,
+        .offset = offset,
+    };
+    dst->input_driver[dst_input] = sys->n_connections++;
+    structure_changed(sys);
+    return 0;
+}
+
+static int add_indicator(ssx_system *sys, ssx_indicator indicator)
+{
+    if (indicator.direction < -1 || indicator.direction > 1) {
+        return fail(sys, indicator.component, -1, NAN,
+                    "component '%s': indicator direction must be -1, 0 or +1, not %d",
+                    sys->components[indicator.component]->name, indicator.direction);
+    }
+    if (grow((void **)&sys->indicators, &sys->indicators_capacity, sys->n_indicators + 1,
+             sizeof *sys->indicators) != 0) {
+        return fail(sys, -1, -1, NAN, "out of memory adding an indicator");
+    }
+    sys->indicators[sys->n_indicators] = indicator;
+    structure_changed(sys);
+    return sys->n_indicators++;
+}
+
+int ssx_add_indicator_output(ssx_system *sys, int component, int output, int direction)
+{
+    ssx_component *c = system_component(sys, component);
+    if (c == NULL) {
+        return -1;
+    }
+    if (output < 0 || output >= c->n_outputs) {
+        return fail(sys, component, -1, NAN, "component '%s' has no output %d (it has %d)",
+                    c->name, output, c->n_outputs);
+    }
+    return add_indicator(sys, (ssx_indicator){.component = component,
+                                              .output = output,
+                                              .direction = direction});
+}
+
+int ssx_add_indicator_callback(ssx_system *sys, int component,
+                               int (*evaluate)(void *user, double t, double *value), void *user,
+                               int direction)
+{
+    ssx_component *c = system_component(sys, component);
+    if (c == NULL) {
+        return -1;
+    }
+    if (evaluate == NULL) {
+        return fail(sys, component, -1, NAN, "component '%s': a callback indicator needs an "
+                    "evaluate function", c->name);
+    }
+    return add_indicator(sys, (ssx_indicator){.component = component,
+                                              .output = -1,
+                                              .evaluate = evaluate,
+                                              .user = user,
+                                              .direction = direction});
+}
+
+int ssx_indicator_count(const ssx_system *sys)
+{
+    return sys->n_indicators;
+}
+
+double ssx_indicator_value(const ssx_system *sys, int indicator)
+{
+    return indicator >= 0 && indicator < sys->n_indicators ? sys->indicators[indicator].value
+                                                           : NAN;
+}
+
+int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_component)
+{
+    if (indicator < 0 || indicator >= sys->n_indicators) {
+        return fail(sys, -1, indicator, NAN, "unknown indicator index %d (system '%s' has %d)",
+                    indicator, sys->name, sys->n_indicators);
+    }
+    if (system_component(sys, listener_component) == NULL) {
+        return -1;
+    }
+    for (int i = 0; i < sys->n_event_links; ++i) {
+        if (sys->event_links[i].indicator == indicator &&
+            sys->event_links[i].listener == listener_component) {
+            return 0; /* already connected: an event reaches a listener once */
+        }
+    }
+    if (grow((void **)&sys->event_links, &sys->event_links_capacity, sys->n_event_links + 1,
+             sizeof *sys->event_links) != 0) {
+        return fail(sys, -1, -1, NAN, "out of memory adding an event connection");
+    }
+    sys->event_links[sys->n_event_links++] =
+        (ssx_event_link){.indicator = indicator, .listener = listener_component};
+    return 0;
+}
+
+int ssx_set_schedule(ssx_system *sys, const int *order, const int *group_sizes,
+                     const int *group_is_loop, int n_groups)
+{
+    int n = sys->n_components;
+    if (order == NULL || group_sizes == NULL || n_groups < 1) {
+        return fail(sys, -1, -1, NAN, "system '%s': a schedule needs an order and groups",
+                    sys->name);
+    }
+    int total = 0;
+    for (int g = 0; g < n_groups; ++g) {
+        if (group_sizes[g] < 1) {
+            return fail(sys, -1, -1, NAN, "system '%s': schedule group %d is empty", sys->name, g);
+        }
+        total += group_sizes[g];
+    }
+    if (total != n) {
+        return fail(sys, -1, -1, NAN,
+                    "system '%s': the schedule lists %d components, the system has %d", sys->name,
+                    total, n);
+    }
+    int *seen = calloc((size_t)n + 1, sizeof *seen);
+    int *new_order = malloc(((size_t)n + 1) * sizeof *new_order);
+    ssx_group *groups = malloc((size_t)n_groups * sizeof *groups);
+    if (seen == NULL || new_order == NULL || groups == NULL) {
+        free(seen);
+        free(new_order);
+        free(groups);
+        return fail(sys, -1, -1, NAN, "out of memory setting the schedule");
+    }
+    for (int i = 0; i < n; ++i) {
+        if (order[i] < 0 || order[i] >= n || seen[order[i]]) {
+            free(seen);
+            free(new_order);
+            free(groups);
+            return fail(sys, order[i] >= 0 && order[i] < n ? order[i] : -1, -1, NAN,
+                        "system '%s': the schedule must list every component exactly once "
+                        "(entry %d is %d)",
+                        sys->name, i, order[i]);
+        }
+        seen[order[i]] = 1;
+        new_order[i] = order[i];
+    }
+    for (int g = 0, first = 0; g < n_groups; first += group_sizes[g], ++g) {
+        groups[g] = (ssx_group){.first = first,
+                                .size = group_sizes[g],
+                                .is_loop = group_is_loop != NULL && group_is_loop[g] != 0};
+    }
+    free(seen);
+    free(sys->order);
+    free(sys->groups);
+    sys->order = new_order;
+    sys->groups = groups;
+    sys->n_groups = n_groups;
+    sys->has_schedule = 1;
+    structure_changed(sys);
+    return 0;
+}
+
+int ssx_set_coupling(ssx_system *sys, ssx_coupling coupling)
+{
+    if (coupling != SSX_GAUSS_SEIDEL && coupling != SSX_JACOBI) {
+        return fail(sys, -1, -1, NAN, "unknown coupling %d (0 Gauss-Seidel, 1 Jacobi)",
+                    (int)coupling);
+    }
+    sys->coupling = coupling;
+    return 0;
+}
+
+int ssx_set_loop_options(ssx_system *sys, double tolerance, int max_iterations, double damping)
+{
+    if (!(tolerance > 0.0) || !isfinite(tolerance) || max_iterations < 1 || !(damping > 0.0) ||
+        !(damping <= 1.0)) {
+        return fail(sys, -1, -1, NAN,
+                    "loop options: need tolerance > 0, max_iterations >= 1 and 0 < damping <= 1 "
+                    "(got %g, %d, %g)",
+                    tolerance, max_iterations, damping);
+    }
+    sys->loop = (ssx_loop_options){tolerance, max_iterations, damping};
+    return 0;
+}
+
+int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, int max_iterations,
+                           int max_microsteps, int record_internal_steps, ssx_locator locator,
+                           double zeno_min_interval)
+{
+    if (!(tol_time > 0.0) || !isfinite(tol_time) || !(tol_value >= 0.0) || !isfinite(tol_value) ||
+        max_iterations < 1 || max_microsteps < 1 || !isfinite(zeno_min_interval) ||
+        (locator != SSX_ILLINOIS && locator != SSX_BISECTION)) {
+        return fail(sys, -1, -1, NAN,
+                    "hybrid options: need tol_time > 0, tol_value >= 0, max_iterations >= 1, "
+                    "max_microsteps >= 1, a finite zeno_min_interval and locator 0 (Illinois) or "
+                    "1 (bisection)");
+    }
+    sys->hybrid = (ssx_hybrid_options){.tol_time = tol_time,
+                                       .tol_value = tol_value,
+                                       .max_iterations = max_iterations,
+                                       .max_microsteps = max_microsteps,
+                                       .record_internal_steps = record_internal_steps != 0,
+                                       .locator = locator,
+                                       .zeno_min_interval = zeno_min_interval};
+    return 0;
+}
+
+double ssx_time(const ssx_system *sys)
+{
+    return sys->time;
+}
+
+int system_record(ssx_system *sys, double t, int micro)
+{
+    if (history_append(&sys->history, t, micro, (const double *const *)sys->output_views) != 0) {
+        return fail(sys, -1, -1, t, "out of memory recording the sample at t=%.17g", t);
+    }
+    for (int i = 0; i < sys->n_components; ++i) {
+        if (component_record(sys, sys->components[i], t) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int system_add_event_record(ssx_system *sys, const ssx_event_record *record)
+{
+    if (sys->n_events == sys->events_capacity) {
+        size_t capacity = sys->events_capacity ? sys->events_capacity * 2 : 16;
+        ssx_event_record *grown = realloc(sys->events, capacity * sizeof *grown);
+        if (grown == NULL) {
+            return fail(sys, record->component, record->indicator, record->t,
+                        "out of memory recording an event");
+        }
+        sys->events = grown;
+        sys->events_capacity = capacity;
+    }
+    sys->events[sys->n_events++] = *record;
+    return 0;
+}
+
+size_t ssx_history_length(const ssx_system *sys)
+{
+    return sys->history.length;
+}
+
+const double *ssx_history_time(const ssx_system *sys)
+{
+    return sys->history.time;
+}
+
+const int *ssx_history_micro(const ssx_system *sys)
+{
+    return sys->history.micro;
+}
+
+const double *ssx_history_values(const ssx_system *sys, int component)
+{
+    if (component < 0 || component >= sys->history.n_components) {
+        return NULL;
+    }
+    return sys->history.values[component];
+}
+
+size_t ssx_history_bytes(const ssx_system *sys)
+{
+    return history_bytes(&sys->history);
+}
+
+size_t ssx_event_count(const ssx_system *sys)
+{
+    return sys->n_events;
+}
+
+int ssx_event_get(const ssx_system *sys, size_t index, ssx_event_record *out)
+{
+    if (index >= sys->n_events || out == NULL) {
+        return -1;
+    }
+    *out = sys->events[index];
+    return 0;
+}
+
+void ssx_get_statistics(const ssx_system *sys, ssx_statistics *out)
+{
+    if (out != NULL) {
+        *out = sys->stats;
+    }
+}

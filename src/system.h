@@ -1,0 +1,108 @@
+/* The system's internal layout, shared by the engine's source files. */
+#ifndef SSX_SYSTEM_H
+#define SSX_SYSTEM_H
+
+#include "component.h"
+#include "history.h"
+#include "syssimx_engine.h"
+
+typedef struct {
+    int src_component;
+    int src_output;
+    int dst_component;
+    int dst_input;
+    double scale;
+    double offset;
+} ssx_connection;
+
+typedef struct {
+    int component;
+    int output; /* -1 for a callback indicator */
+    int (*evaluate)(void *user, double t, double *value);
+    void *user;
+    int direction;
+    double value;
+    int sign;   /* side the indicator is on: -1 or +1; 0 while unknown (started at zero) */
+    int fired_before;
+    double last_event_time;
+    long fire_count;
+    /* localization workspace */
+    double z_left, z_right;  /* values at the bracket ends */
+    double w_left, w_right;  /* Illinois-weighted values at the bracket ends */
+    int crossing;            /* crosses (in its direction) at the current right end */
+} ssx_indicator;
+
+typedef struct {
+    int indicator;
+    int listener;
+} ssx_event_link;
+
+typedef struct {
+    int first;  /* offset into the schedule order */
+    int size;
+    int is_loop;
+} ssx_group;
+
+typedef struct {
+    double tolerance;
+    int max_iterations;
+    double damping;
+} ssx_loop_options;
+
+typedef struct {
+    double tol_time;
+    double tol_value;
+    int max_iterations;
+    int max_microsteps;
+    int record_internal_steps;
+    ssx_locator locator;
+    double zeno_min_interval; /* <= 0: ten times tol_time */
+} ssx_hybrid_options;
+
+struct ssx_system {
+    char *name;
+    ssx_component **components;
+    int n_components;
+    int components_capacity;
+
+    ssx_connection *connections;
+    int n_connections;
+    int connections_capacity;
+
+    ssx_indicator *indicators;
+    int n_indicators;
+    int indicators_capacity;
+
+    ssx_event_link *event_links;
+    int n_event_links;
+    int event_links_capacity;
+
+    int *order;          /* schedule: component indices, group after group */
+    ssx_group *groups;
+    int n_groups;
+    int has_schedule;
+
+    ssx_coupling coupling;
+    ssx_loop_options loop;
+    ssx_hybrid_options hybrid;
+
+    ssx_history history;
+    double **output_views; /* per component: its outputs array, for recording */
+    ssx_event_record *events;
+    size_t n_events;
+    size_t events_capacity;
+    ssx_statistics stats;
+    ssx_error error;
+
+    double time;
+    int initialized;
+    int stepping_hybrid; /* FMUs are told that a rollback may follow */
+};
+
+ssx_component *system_component(ssx_system *sys, int index); /* NULL with the error set */
+int system_is_hybrid(const ssx_system *sys);
+/* Appends one sample (t, micro) of every component's outputs and calls the record hooks. */
+int system_record(ssx_system *sys, double t, int micro);
+int system_add_event_record(ssx_system *sys, const ssx_event_record *record);
+
+#endif
