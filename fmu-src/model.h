@@ -49,6 +49,11 @@ typedef struct {
     const int *initial_depends;
 } model_variable;
 
+/* A fixed Real parameter with initial="exact", the most common row. */
+#define REAL_PARAMETER(vr, name, unit, start, description)                                  \
+    [vr] = {name, vr, TYPE_REAL, CAUSALITY_PARAMETER, VARIABILITY_FIXED, INITIAL_EXACT, unit, \
+            start, description, -1, NULL, NULL}
+
 /* Equations. `v` holds every variable by value reference (Integer and Boolean values as
  * doubles); `x` is the continuous state vector. */
 typedef struct {

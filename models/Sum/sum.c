@@ -1,0 +1,30 @@
+/* Sum.mo: y = b - c * u (with a gain, the smallest algebraic loop: y = b - c k y). */
+#include "model.h"
+
+enum { VR_Y, VR_U, VR_B, VR_C, VARIABLE_COUNT };
+
+static const model_variable variables[VARIABLE_COUNT] = {
+    [VR_Y] = {"y", VR_Y, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,
+              NULL, 0, "output b - c * u", -1, DEPENDS(VR_U), DEPENDS(VR_U, VR_B, VR_C)},
+    [VR_U] = {"u", VR_U, TYPE_REAL, CAUSALITY_INPUT, VARIABILITY_CONTINUOUS, INITIAL_NONE, NULL, 0,
+              "input", -1, NULL, NULL},
+    REAL_PARAMETER(VR_B, "b", NULL, 0, "offset"),
+    REAL_PARAMETER(VR_C, "c", NULL, 1, "weight of the input"),
+};
+
+static void outputs(double *v, double t, const double *x)
+{
+    (void)t;
+    (void)x;
+    v[VR_Y] = v[VR_B] - v[VR_C] * v[VR_U];
+}
+
+const model_definition fmu_model = {
+    .name = "Sum",
+    .description = "Offset minus weighted input (Sum.mo)",
+    .variables = variables,
+    .n_variables = VARIABLE_COUNT,
+    .default_stop_time = 1.0,
+    .default_step_size = 1e-3,
+    .outputs = outputs,
+};

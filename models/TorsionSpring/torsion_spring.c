@@ -1,0 +1,44 @@
+/* TorsionSpring.mo: a spring-damper between two bodies, outputs computed from the inputs only. */
+#include "model.h"
+
+enum {
+    VR_TAU1, VR_TAU2, VR_THETA1, VR_THETA2, VR_OMEGA1, VR_OMEGA2, VR_K, VR_D,
+    VARIABLE_COUNT
+};
+
+#define INPUT(vr, name, unit, description)                                                     \
+    [vr] = {name, vr, TYPE_REAL, CAUSALITY_INPUT, VARIABILITY_CONTINUOUS, INITIAL_NONE, unit, 0, \
+            description, -1, NULL, NULL}
+#define TORQUE(vr, name, description)                                                          \
+    [vr] = {name, vr, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,   \
+            "N.m", 0, description, -1, DEPENDS(VR_THETA1, VR_THETA2, VR_OMEGA1, VR_OMEGA2),     \
+            DEPENDS(VR_THETA1, VR_THETA2, VR_OMEGA1, VR_OMEGA2, VR_K, VR_D)}
+
+static const model_variable variables[VARIABLE_COUNT] = {
+    TORQUE(VR_TAU1, "tau1", "torque on body 1"),
+    TORQUE(VR_TAU2, "tau2", "torque on body 2"),
+    INPUT(VR_THETA1, "theta1", "rad", "angle of body 1"),
+    INPUT(VR_THETA2, "theta2", "rad", "angle of body 2"),
+    INPUT(VR_OMEGA1, "omega1", "rad/s", "angular velocity of body 1"),
+    INPUT(VR_OMEGA2, "omega2", "rad/s", "angular velocity of body 2"),
+    REAL_PARAMETER(VR_K, "k", "N.m/rad", 100, "stiffness"),
+    REAL_PARAMETER(VR_D, "d", "N.m.s/rad", 1, "damping"),
+};
+
+static void outputs(double *v, double t, const double *x)
+{
+    (void)t;
+    (void)x;
+    v[VR_TAU1] = -v[VR_K] * (v[VR_THETA1] - v[VR_THETA2]) - v[VR_D] * (v[VR_OMEGA1] - v[VR_OMEGA2]);
+    v[VR_TAU2] = -v[VR_TAU1];
+}
+
+const model_definition fmu_model = {
+    .name = "TorsionSpring",
+    .description = "Spring-damper between two rotating bodies (TorsionSpring.mo)",
+    .variables = variables,
+    .n_variables = VARIABLE_COUNT,
+    .default_stop_time = 1.0,
+    .default_step_size = 1e-3,
+    .outputs = outputs,
+};
