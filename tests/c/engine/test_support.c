@@ -1,0 +1,58 @@
+/* Helpers of the engine's C tests. */
+#include "test_support.h"
+
+#include <string.h>
+
+#include "engine_test_fmus.h"
+
+typedef struct {
+    const char *stem;
+    const char *binary;
+    const char *guid;
+} built_fmu;
+
+static const built_fmu built_fmus[] = {ENGINE_TEST_FMUS};
+
+ssx_fmu *load_fmu(const char *stem)
+{
+    for (size_t i = 0; i < sizeof built_fmus / sizeof built_fmus[0]; ++i) {
+        if (strcmp(built_fmus[i].stem, stem) == 0) {
+            char error[512];
+            ssx_fmu *fmu = ssx_fmu_load(built_fmus[i].binary, stem, built_fmus[i].guid, "", stem,
+                                        0, error, sizeof error);
+            if (fmu == NULL) {
+                fprintf(stderr, "cannot load %s: %s\n", stem, error);
+                exit(1);
+            }
+            return fmu;
+        }
+    }
+    fprintf(stderr, "the FMU %s was not built\n", stem);
+    exit(1);
+}
+
+int start_pendulum(ssx_fmu *fmu, double t, double theta0, double omega0, double tolerance)
+{
+    const unsigned int vr[] = {PENDULUM_THETA0, PENDULUM_OMEGA0};
+    const double values[] = {theta0, omega0};
+    int status;
+    if ((status = ssx_fmu_instantiate(fmu)) != 0 ||
+        (status = ssx_fmu_setup_experiment(fmu, tolerance > 0, tolerance, t, 0, 0.0)) != 0 ||
+        (status = ssx_fmu_enter_initialization_mode(fmu)) != 0 ||
+        (status = ssx_fmu_set_real(fmu, vr, 2, values)) != 0 ||
+        (status = ssx_fmu_exit_initialization_mode(fmu)) != 0) {
+        return status;
+    }
+    return 0;
+}
+
+int add_pendulum(ssx_system *sys, const char *name, ssx_fmu *fmu)
+{
+    int c = ssx_add_fmu_component(sys, name, fmu, 1);
+    CHECK(c >= 0);
+    CHECK(ssx_add_output(sys, c, SSX_REAL, PENDULUM_THETA) == 0);
+    CHECK(ssx_add_output(sys, c, SSX_REAL, PENDULUM_OMEGA) == 1);
+    CHECK(ssx_add_output(sys, c, SSX_REAL, PENDULUM_ALPHA) == 2);
+    CHECK(ssx_add_input(sys, c, SSX_REAL, PENDULUM_TORQUE, 0.0) == 0);
+    return c;
+}

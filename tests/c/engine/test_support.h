@@ -1,0 +1,59 @@
+/* Shared helpers of the engine's C tests: checks that stop the test at the first failure, and
+ * the pendulum FMU set up like the seed tutorial. */
+#ifndef SSX_TEST_SUPPORT_H
+#define SSX_TEST_SUPPORT_H
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "syssimx_engine.h"
+
+#define CHECK(condition) do { \
+        if (!(condition)) { \
+            fprintf(stderr, "%s:%d: check failed: %s\n", __FILE__, __LINE__, #condition); \
+            exit(1); \
+        } \
+    } while (0)
+
+#define CHECK_CLOSE(actual, expected, tolerance) do { \
+        double actual_ = (actual), expected_ = (expected); \
+        if (!(fabs(actual_ - expected_) <= (tolerance))) { \
+            fprintf(stderr, "%s:%d: %s = %.17g, expected %.17g within %g (off by %.3g)\n", \
+                    __FILE__, __LINE__, #actual, actual_, expected_, (double)(tolerance), \
+                    actual_ - expected_); \
+            exit(1); \
+        } \
+    } while (0)
+
+/* Runs an engine call that must succeed; prints the engine's error otherwise. */
+#define CHECK_OK(sys, call) do { \
+        if ((call) != 0) { \
+            fprintf(stderr, "%s:%d: %s failed: %s\n", __FILE__, __LINE__, #call, \
+                    ssx_last_error(sys)->message); \
+            exit(1); \
+        } \
+    } while (0)
+
+/* Value references of the pendulum FMUs (models/Pendulum/pendulum.c). */
+enum {
+    PENDULUM_THETA = 0,
+    PENDULUM_OMEGA = 1,
+    PENDULUM_ALPHA = 2,
+    PENDULUM_TORQUE = 4,
+    PENDULUM_THETA0 = 7,
+    PENDULUM_OMEGA0 = 8,
+};
+
+/* Quarter period of the seed's pendulum (theta0 = 0.5, m g L / I = 11.772):
+ * K(sin^2(0.25)) / sqrt(11.772), scipy's ellipk. */
+#define PENDULUM_QUARTER_PERIOD 0.46507759431173046
+
+/* Loads one of the built FMUs by its stem (e.g. "pendulum_cvode"); exits on failure. */
+ssx_fmu *load_fmu(const char *stem);
+/* Instantiates and initializes a pendulum at time t with the given initial state.
+ * tolerance <= 0 leaves the tolerance undefined. Returns the first failing fmi2 status or 0. */
+int start_pendulum(ssx_fmu *fmu, double t, double theta0, double omega0, double tolerance);
+/* Adds the pendulum as a component: outputs theta, omega, alpha; input torque (start 0). */
+int add_pendulum(ssx_system *sys, const char *name, ssx_fmu *fmu);
+
+#endif
