@@ -33,6 +33,7 @@ typedef struct {
     int *fired;
     int *next;
     int *listened;
+    int *turned_back; /* the first probe moved a fired indicator towards its near side */
 } instant_work;
 
 static int snapshot_all(ssx_system *sys, int slot)
@@ -189,7 +190,7 @@ static int work_init(instant_work *w, ssx_system *sys, double t)
     memset(w, 0, sizeof *w);
     size_t n = (size_t)sys->n_indicators;
     w->z_at_b = malloc(5 * n * sizeof(double));
-    w->fired = malloc(3 * n * sizeof(int));
+    w->fired = malloc(4 * n * sizeof(int));
     if (w->z_at_b == NULL || w->fired == NULL) {
         work_free(w);
         return fail(sys, -1, -1, t, "out of memory handling an event");
@@ -199,6 +200,7 @@ static int work_init(instant_work *w, ssx_system *sys, double t)
     w->z_probe = w->z_after + n;
     w->next = w->fired + n;
     w->listened = w->next + n;
+    w->turned_back = w->listened + n;
     return 0;
 }
 
@@ -215,18 +217,41 @@ static int sign_of(double z, int otherwise)
     return z > 0.0 ? 1 : z < 0.0 ? -1 : otherwise;
 }
 
-/* Where the fired indicators are going: a short step from b, then back. */
-static int probe(ssx_system *sys, double b, double delta, instant_work *w)
+static int near_zero(const instant_work *w, int i)
 {
-    if (snapshot_all(sys, PROBE_SLOT) != 0 || coupling_step(sys, b, delta) != 0 ||
-        indicators_evaluate(sys, b + delta) != 0) {
+    return w->fired[i] && fabs(w->z_after[i]) <= w->band[i];
+}
+
+/* Where the fired indicators that still sit on their zero are going: steps from b, ten times
+ * longer each, until every one of them has left its residue band (or the step reaches
+ * delta_max); the state goes back to b after each. */
+static int probe(ssx_system *sys, double b, double delta_max, instant_work *w)
+{
+    if (snapshot_all(sys, PROBE_SLOT) != 0) {
         return -1;
     }
-    for (int i = 0; i < sys->n_indicators; ++i) {
-        w->z_probe[i] = sys->indicators[i].value;
-    }
-    if (restore_all(sys, PROBE_SLOT, b) != 0) {
-        return -1;
+    double delta = 10.0 * sys->hybrid.tol_time;
+    for (int first = 1;; first = 0) {
+        if (coupling_step(sys, b, delta) != 0 || indicators_evaluate(sys, b + delta) != 0) {
+            return -1;
+        }
+        int settled = 1;
+        for (int i = 0; i < sys->n_indicators; ++i) {
+            const ssx_indicator *ind = &sys->indicators[i];
+            w->z_probe[i] = ind->value;
+            if (first) {
+                /* ind->sign is the far side here */
+                w->turned_back[i] = (ind->value - w->z_after[i]) * (double)ind->sign < 0.0;
+            }
+            settled &= !near_zero(w, i) || fabs(ind->value) > w->band[i];
+        }
+        if (restore_all(sys, PROBE_SLOT, b) != 0) {
+            return -1;
+        }
+        if (settled || delta >= delta_max) {
+            break;
+        }
+        delta = fmin(10.0 * delta, delta_max);
     }
     for (int i = 0; i < sys->n_indicators; ++i) {
         sys->indicators[i].value = w->z_after[i];
@@ -288,30 +313,34 @@ static int settle_signs(ssx_system *sys, double b, const event_bracket *br, inst
     int need_probe = 0;
     for (int i = 0; i < sys->n_indicators; ++i) {
         w->z_after[i] = sys->indicators[i].value;
-        need_probe |= w->fired[i] && fabs(w->z_after[i]) <= w->band[i];
+        w->turned_back[i] = 0;
     }
-    if (need_probe) {
-        double slope_time = 0.0; /* time the residue at b needs to be left behind */
-        for (int i = 0; i < sys->n_indicators; ++i) {
-            const ssx_indicator *ind = &sys->indicators[i];
-            double slope = fabs(ind->z_right - ind->z_left) / fmax(br->b - br->a, 1e-300);
-            if (w->fired[i] && slope > 0.0) {
-                slope_time = fmax(slope_time, fabs(w->z_at_b[i]) / slope);
-            }
-        }
-        double delta = 10.0 * fmax(sys->hybrid.tol_time, slope_time);
-        delta = fmin(delta, fmax(10.0 * sys->hybrid.tol_time, 0.1 * (br->t_end - br->a0)));
-        if (probe(sys, b, delta, w) != 0) {
-            return -1;
-        }
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        need_probe |= near_zero(w, i);
+    }
+    /* the probe stays well inside the macro step it belongs to */
+    double delta_max = fmax(10.0 * sys->hybrid.tol_time, 0.1 * (br->t_end - br->a0));
+    if (need_probe && probe(sys, b, delta_max, w) != 0) {
+        return -1;
     }
     for (int i = 0; i < sys->n_indicators; ++i) {
         ssx_indicator *ind = &sys->indicators[i];
         /* a fired indicator still within its residue band goes where the probe says; any other
          * sign change was made by the handling itself */
-        int from_probe = w->fired[i] && fabs(w->z_after[i]) <= w->band[i];
+        int from_probe = near_zero(w, i);
         int new_sign = from_probe ? sign_of(w->z_probe[i], ind->sign)
                                   : sign_of(w->z_after[i], ind->sign);
+        /* Turned back towards its near side yet unable to leave the far one: the handled state
+         * cannot climb out of the residue at b (a ball too slow to leave the floor) and would
+         * sink unseen. That is the end of a Zeno sequence. */
+        if (from_probe && new_sign == ind->sign && w->turned_back[i]) {
+            return fail_zeno(sys, ind->component, i, b,
+                             "indicator %d of component '%s' cannot leave zero after its event "
+                             "at t=%.17g (event number %ld): the handled state turns back but "
+                             "stays within the residue %.3g; chattering (Zeno) behaviour",
+                             i, sys->components[ind->component]->name, b, ind->fire_count,
+                             fabs(w->z_after[i]));
+        }
         w->next[i] = 0;
         if (ind->sign != 0 && new_sign != ind->sign && !from_probe) {
             int crossing = new_sign > 0 ? 1 : -1;
@@ -351,10 +380,11 @@ static int add_event_records(ssx_system *sys, double b, int micro, const event_b
 
 /* Handles the instant b: rounds of (record before, notify, settle, record after) while
  * handling makes indicators cross, up to max_microsteps rounds. */
-static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work *w)
+static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work *w,
+                          int record_before)
 {
     double b = br->b;
-    if (system_record(sys, b, 0) != 0) {
+    if (record_before && system_record(sys, b, 0) != 0) {
         return -1;
     }
     for (int i = 0; i < sys->n_indicators; ++i) {
@@ -407,11 +437,64 @@ static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work
     }
 }
 
+/* An indicator sitting exactly on zero (as it can at the start) has no side yet: the probe
+ * tells where it goes. Going to the far side of its direction is a crossing at a0 itself,
+ * handled there (its sample before handling is already recorded). */
+static int resolve_zero_start(ssx_system *sys, double a0, double t_next)
+{
+    int unknown = 0;
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        unknown |= sys->indicators[i].sign == 0;
+    }
+    if (!unknown) {
+        return 0;
+    }
+    instant_work w;
+    if (work_init(&w, sys, a0) != 0) {
+        return -1;
+    }
+    event_bracket br = {.a0 = a0,
+                        .t_end = t_next,
+                        .a = a0,
+                        .b = a0,
+                        .do_steps_before = sys->stats.do_step_calls,
+                        .restores_before = sys->stats.state_restores};
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        ssx_indicator *ind = &sys->indicators[i];
+        ind->z_left = ind->z_right = ind->value;
+        w.fired[i] = ind->sign == 0;
+        w.z_after[i] = ind->value;
+        w.band[i] = 0.0;
+    }
+    int status = probe(sys, a0, fmax(10.0 * sys->hybrid.tol_time, 0.1 * (t_next - a0)), &w);
+    int fires = 0;
+    for (int i = 0; status == 0 && i < sys->n_indicators; ++i) {
+        ssx_indicator *ind = &sys->indicators[i];
+        if (ind->sign != 0 || w.z_probe[i] == 0.0) {
+            continue;
+        }
+        int going = w.z_probe[i] > 0.0 ? 1 : -1;
+        int crossing = ind->direction == 0 || ind->direction == going;
+        /* a crossing starts on the near side, so that the zero at a0 counts as the far one */
+        ind->sign = crossing ? -going : going;
+        fires |= crossing;
+    }
+    if (status == 0 && fires) {
+        sys->time = a0;
+        status = handle_instant(sys, &br, &w, 0);
+    }
+    work_free(&w);
+    return status;
+}
+
 int hybrid_step(ssx_system *sys, double t, double t_next)
 {
     double a0 = t;
     while (a0 < t_next) {
         sys->time = a0;
+        if (resolve_zero_start(sys, a0, t_next) != 0) {
+            return -1;
+        }
         event_bracket br = {.a0 = a0,
                             .t_end = t_next,
                             .do_steps_before = sys->stats.do_step_calls,
@@ -439,7 +522,7 @@ int hybrid_step(ssx_system *sys, double t, double t_next)
         if (work_init(&w, sys, br.b) != 0) {
             return -1;
         }
-        int status = handle_instant(sys, &br, &w);
+        int status = handle_instant(sys, &br, &w, 1);
         work_free(&w);
         if (status != 0) {
             return -1;
