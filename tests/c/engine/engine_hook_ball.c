@@ -127,8 +127,66 @@ static void run(int direction, ssx_locator locator)
     ssx_system_free(sys);
 }
 
+/* Default options past the accumulation point t_inf = t1 (1 + e) / (1 - e): the run ends with
+ * a Zeno error, the ball never sinks through the floor, and the history stays readable. */
+static void zeno_at_the_accumulation_point(void)
+{
+    ssx_system *sys = ssx_system_new("hook ball");
+    ball b = {.sys = sys, .h = 1.0, .v = 0.0};
+    b.component = ssx_add_python_component(sys, "Ball", 1);
+    CHECK(ssx_add_output(sys, b.component, SSX_REAL, 0) == 0);
+    CHECK(ssx_add_output(sys, b.component, SSX_REAL, 1) == 1);
+    ssx_hooks hooks = {.user = &b, .do_step = fly, .evaluate_outputs = show, .snapshot = save,
+                       .restore = load, .handle_events = bounce};
+    CHECK_OK(sys, ssx_set_hooks(sys, b.component, &hooks));
+    CHECK(ssx_add_indicator_output(sys, b.component, 0, -1) == 0);
+    CHECK_OK(sys, ssx_add_event_connection(sys, 0, b.component));
+    CHECK_OK(sys, ssx_initialize(sys, 0.0));
+    double t_inf = bounce_time(1) * (1.0 + RESTITUTION) / (1.0 - RESTITUTION);
+    CHECK(ssx_run(sys, 0.0, t_inf + 1.0, 0.01) == -1);
+    const ssx_error *e = ssx_last_error(sys);
+    CHECK(e->zeno == 1 && e->component == b.component && e->indicator == 0);
+    CHECK(e->time < t_inf && e->time > t_inf - 1e-3);
+    const double *values = ssx_history_values(sys, b.component);
+    size_t n = ssx_history_length(sys);
+    CHECK(ssx_history_time(sys)[n - 1] <= t_inf);
+    for (size_t k = 0; k < n; ++k) {
+        CHECK(values[2 * k] > -1e-8);
+    }
+    ssx_system_free(sys);
+}
+
+/* Thrown down from the floor itself: the indicator starts exactly on zero and goes to the far
+ * side, which is a crossing at t0, handled once; then it bounces on flights of 2 e^k v0 / g. */
+static void crossing_at_the_start_time(void)
+{
+    ssx_system *sys = ssx_system_new("hook ball");
+    ball b = {.sys = sys, .h = 0.0, .v = -2.0};
+    b.component = ssx_add_python_component(sys, "Ball", 1);
+    CHECK(ssx_add_output(sys, b.component, SSX_REAL, 0) == 0);
+    CHECK(ssx_add_output(sys, b.component, SSX_REAL, 1) == 1);
+    ssx_hooks hooks = {.user = &b, .do_step = fly, .evaluate_outputs = show, .snapshot = save,
+                       .restore = load, .handle_events = bounce};
+    CHECK_OK(sys, ssx_set_hooks(sys, b.component, &hooks));
+    CHECK(ssx_add_indicator_output(sys, b.component, 0, -1) == 0);
+    CHECK_OK(sys, ssx_add_event_connection(sys, 0, b.component));
+    CHECK_OK(sys, ssx_set_hybrid_options(sys, TOL_TIME, 0.0, 100, 10, 0, SSX_ILLINOIS, 0.0));
+    CHECK_OK(sys, ssx_initialize(sys, 0.0));
+    double flight = 2.0 * RESTITUTION * 2.0 / GRAVITY;
+    CHECK_OK(sys, ssx_run(sys, 0.0, 1.5 * flight, 0.05));
+    CHECK(ssx_event_count(sys) == 2);
+    ssx_event_record first, second;
+    CHECK(ssx_event_get(sys, 0, &first) == 0 && ssx_event_get(sys, 1, &second) == 0);
+    CHECK(first.t == 0.0 && first.micro == 0);
+    CHECK_CLOSE(second.t, flight, 2.0 * TOL_TIME);
+    CHECK(ssx_history_time(sys)[1] == 0.0 && ssx_history_micro(sys)[1] == 1);
+    ssx_system_free(sys);
+}
+
 int main(void)
 {
+    zeno_at_the_accumulation_point();
+    crossing_at_the_start_time();
     run(-1, SSX_ILLINOIS);
     run(0, SSX_ILLINOIS);
     run(0, SSX_BISECTION);
