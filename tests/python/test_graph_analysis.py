@@ -12,18 +12,40 @@ NO_FEEDTHROUGH = {"y": set()}
 FEEDTHROUGH = {"y": {"u"}}
 
 
-def test_chain_runs_in_data_flow_order_even_without_feedthrough() -> None:
-    # Added in reverse, so insertion order alone would get it wrong.
+def test_chain_of_zero_delay_links_runs_in_data_flow_order() -> None:
+    # Added in reverse, so insertion order alone would get it wrong. C's output closes the
+    # circle through A, which has no feedthrough: no loop.
     components = {"C": FEEDTHROUGH, "B": FEEDTHROUGH, "A": NO_FEEDTHROUGH}
-    connections = [("A", "y", "B", "u"), ("B", "y", "C", "u")]
+    connections = [("A", "y", "B", "u"), ("B", "y", "C", "u"), ("C", "y", "A", "u")]
     analysis = analyze(components, connections)
     assert analysis.generations == [["A"], ["B"], ["C"]]
     assert analysis.order == ["A", "B", "C"]
     assert analysis.loops == []
     assert analysis.loop_connections == []
-    # Only A -> B is zero-delay: C's output reaches nobody, so nothing waits on it.
-    assert sorted(analysis.graph.edges) == [("A", "B")]
+    assert sorted(analysis.graph.edges) == [("A", "B"), ("B", "C")]
     assert analysis.schedule() == (["A", "B", "C"], [1, 1, 1], [False, False, False])
+
+
+def test_feedthrough_nobody_reads_is_no_dependency() -> None:
+    # C computes y from u without delay, but nobody reads y, so C waits for no one: it shares
+    # A's generation and, with no connection between them, keeps the order of addition.
+    components = {"C": FEEDTHROUGH, "B": FEEDTHROUGH, "A": NO_FEEDTHROUGH}
+    connections = [("A", "y", "B", "u"), ("B", "y", "C", "u")]
+    analysis = analyze(components, connections)
+    assert sorted(analysis.graph.edges) == [("A", "B")]
+    assert analysis.generations == [["C", "A"], ["B"]]
+
+
+def test_inside_a_generation_consumers_run_before_their_delayed_producers() -> None:
+    # No feedthrough anywhere: one generation, and each consumer steps before its producer so
+    # that it reads the value of the start of the macro step (SysSimX's Gauss-Seidel).
+    components = {"A": NO_FEEDTHROUGH, "B": NO_FEEDTHROUGH, "C": NO_FEEDTHROUGH}
+    analysis = analyze(components, [("A", "y", "B", "u"), ("B", "y", "C", "u")])
+    assert analysis.generations == [["C", "B", "A"]]
+    # A delayed cycle cannot be ordered so: the connection given first decides.
+    cycle = analyze({"A": NO_FEEDTHROUGH, "B": NO_FEEDTHROUGH},
+                    [("B", "y", "A", "u"), ("A", "y", "B", "u")])
+    assert cycle.generations == [["A", "B"]]
 
 
 def test_two_component_loop_is_one_group() -> None:
@@ -112,8 +134,9 @@ def test_loops_sharing_a_component_are_one_group_and_generations_follow() -> Non
     ]
     analysis = analyze(components, connections)
     assert analysis.loops == [["A", "B", "Sink"]]
-    assert analysis.generations == [["Feed", "A", "B", "Sink"], ["C"]]
-    assert analysis.schedule() == (["Feed", "A", "B", "Sink", "C"], [1, 3, 1], [False, True, False])
+    # C's output is unconnected, so Feed -> C is delayed: one generation, C before Feed.
+    assert analysis.generations == [["A", "B", "Sink", "C", "Feed"]]
+    assert analysis.schedule() == (["A", "B", "Sink", "C", "Feed"], [3, 1, 1], [True, False, False])
 
 
 def test_unknown_component_in_a_connection_is_named() -> None:

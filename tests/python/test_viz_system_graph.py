@@ -190,9 +190,8 @@ def test_describe_reports_units_groups_order_and_loops() -> None:
         "Event connections:",
         "  Pendulum.wall_hit -> Pendulum.omega_invert",
         "Execution order (Gauss-Seidel generations):",
-        "  1: Pendulum",
-        "  2: Sensor",
-        "  3: Gain*, Sum*",
+        "  1: Sensor, Pendulum",
+        "  2: Gain*, Sum*",
         "Algebraic loops:",
         "  * Gain, Sum: Sum.y -> Gain.u; Gain.y -> Sum.u",
     ]

@@ -5,6 +5,13 @@ outputs from ``i`` without delay (direct feedthrough): the value ``dst`` passes 
 communication point then depends on the value ``src`` produces at that same point, so ``src``
 must be evaluated first. A cycle of zero-delay connections is an algebraic loop, which the
 engine solves at every communication point.
+
+Execution follows SysSimX's Gauss-Seidel semantics: components run in topological generations of
+the zero-delay graph, and a delayed connection inside one generation carries the value of the
+start of the macro step. The engine steps one group after the other and hands each its
+producers' newest outputs, so inside a generation consumers run before their producers wherever
+the delayed connections allow it (in a cycle of delayed connections, the connection given first
+decides).
 """
 
 from __future__ import annotations
@@ -29,8 +36,9 @@ class SystemAnalysis:
     Attributes:
         graph: components as nodes, one edge per zero-delay dependency; the edge attribute
             ``connections`` lists the connections behind it.
-        generations: Gauss-Seidel execution order in generations; a generation only depends on
-            earlier ones, and the members of one algebraic loop are adjacent in it.
+        generations: Gauss-Seidel execution order in generations (topological generations of the
+            zero-delay graph's condensation); the members of one algebraic loop are adjacent,
+            and inside a generation consumers precede their delayed producers.
         loops: the algebraic loops, each a list of components (a single component when its own
             feedthrough output feeds its own input).
         order: every component once, the generations flattened.
@@ -94,11 +102,7 @@ def analyze(
         key=lambda members: added[members[0]],
     )
     loops = [scc for scc in sccs if len(scc) > 1 or graph.has_edge(scc[0], scc[0])]
-    precedence = _precedence(graph, sccs, connections)
-    generations = [
-        [name for scc_id in sorted(generation) for name in sccs[scc_id]]
-        for generation in nx.topological_generations(precedence)
-    ]
+    generations = _generations(graph, sccs, connections)
     order = [name for generation in generations for name in generation]
     position = {name: index for index, name in enumerate(order)}
     loops.sort(key=lambda loop: position[loop[0]])
@@ -170,26 +174,28 @@ def _zero_delay_graph(
     return graph
 
 
-def _precedence(
+def _generations(
     graph: nx.DiGraph, sccs: list[list[str]], connections: Sequence[ConnectionKey]
-) -> nx.DiGraph:
-    """Which strongly connected component must run before which, as a DAG over ``sccs`` indices.
-
-    Zero-delay edges are binding. A delayed connection is followed too where it closes no
-    cycle: Gauss-Seidel then hands the consumer its producer's newest value. Connections are
-    taken in the order given, so the user decides which delayed edge of a cycle gives way.
-    """
+) -> list[list[str]]:
+    """Topological generations of the condensation, each ordered so that a consumer runs before
+    its delayed producer, and otherwise in the order the components were added (``sccs`` is
+    sorted that way, so an SCC's index is its rank)."""
     condensed = nx.condensation(graph, scc=[set(scc) for scc in sccs])
     scc_of = condensed.graph["mapping"]
-    precedence = nx.DiGraph(condensed.edges)
-    precedence.add_nodes_from(range(len(sccs)))
-    for src, _, dst, _ in connections:
-        before, after = scc_of[src], scc_of[dst]
-        if before == after or precedence.has_edge(before, after):
-            continue
-        if not nx.has_path(precedence, after, before):
-            precedence.add_edge(before, after)
-    return precedence
+    generations = []
+    for generation in nx.topological_generations(condensed):
+        members = set(generation)
+        consumers_first = nx.DiGraph()
+        consumers_first.add_nodes_from(members)
+        for src, _, dst, _ in connections:
+            producer, consumer = scc_of[src], scc_of[dst]
+            if producer == consumer or not {producer, consumer} <= members:
+                continue
+            if not nx.has_path(consumers_first, producer, consumer):
+                consumers_first.add_edge(consumer, producer)
+        ranked = nx.lexicographical_topological_sort(consumers_first, key=int)
+        generations.append([name for scc_id in ranked for name in sccs[scc_id]])
+    return generations
 
 
 def _format_connection(connection: ConnectionKey) -> str:
