@@ -239,7 +239,7 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
         plot_result(result, signals, path=args.plot)
         out.write(f"wrote the plot to {args.plot}\n")
     for record in getattr(result, "events", None) or []:
-        out.write(f"event {record.component}.{record.name} at t = {record.t:.12g}\n")
+        out.write(f"event {record.component}.{record.name} at t = {record.t!r}\n")
     if args.output is None:
         for name, series in columns.items():
             out.write(f"{name} = {series[-1]:.12g} at t = {t[-1]:.12g}\n")
@@ -261,3 +261,7 @@ def _write_csv(path: Path, t: Any, columns: dict[str, Any]) -> None:
         writer.writerow(["time", *columns])
         for row, time in enumerate(t):
             writer.writerow([repr(float(time)), *(repr(float(v[row])) for v in columns.values())])
+
+
+if __name__ == "__main__":
+    sys.exit(main())
