@@ -48,6 +48,13 @@ class FMUInstance:
     def alive(self) -> bool:
         return self.mode != "none"
 
+    def counters(self) -> dict[str, int]:
+        """fmi2 calls made on this FMU so far (by the engine and through this proxy)."""
+        raw = ffi.new("ssx_fmu_counters *")
+        lib().ssx_fmu_get_counters(self.fmu, raw)
+        return {name: int(getattr(raw, name)) for name in
+                ("do_step", "get_state", "set_state", "get_values", "set_values", "instantiate")}
+
     def _check(self, status: int, call: str) -> int:
         if status > 1 or status < 0:
             message = string(lib().ssx_fmu_last_message(self.fmu))

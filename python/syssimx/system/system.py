@@ -266,6 +266,10 @@ class System:
             raise ConfigurationError(f"{self.name}: nothing run yet")
         return read_statistics(self._plan, self.history.events)
 
+    def history_bytes(self) -> int:
+        """Memory the engine holds for the recorded history."""
+        return int(lib().ssx_history_bytes(self._plan.sys)) if self._plan is not None else 0
+
     def describe(self) -> str:
         from ..graph.describe import describe_system
 
