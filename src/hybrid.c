@@ -26,7 +26,6 @@ typedef struct {
 
 /* Per-instant workspace, one entry per indicator. */
 typedef struct {
-    double *z_at_b;
     double *band;
     double *z_after;
     double *z_probe;
@@ -181,7 +180,7 @@ static int locate(ssx_system *sys, event_bracket *br)
 
 static void work_free(instant_work *w)
 {
-    free(w->z_at_b);
+    free(w->band);
     free(w->fired);
 }
 
@@ -189,13 +188,12 @@ static int work_init(instant_work *w, ssx_system *sys, double t)
 {
     memset(w, 0, sizeof *w);
     size_t n = (size_t)sys->n_indicators;
-    w->z_at_b = malloc(5 * n * sizeof(double));
+    w->band = malloc(3 * n * sizeof(double));
     w->fired = malloc(4 * n * sizeof(int));
-    if (w->z_at_b == NULL || w->fired == NULL) {
+    if (w->band == NULL || w->fired == NULL) {
         work_free(w);
         return fail(sys, -1, -1, t, "out of memory handling an event");
     }
-    w->band = w->z_at_b + n;
     w->z_after = w->band + n;
     w->z_probe = w->z_after + n;
     w->next = w->fired + n;
@@ -390,7 +388,6 @@ static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work
     for (int i = 0; i < sys->n_indicators; ++i) {
         ssx_indicator *ind = &sys->indicators[i];
         w->fired[i] = indicator_fires(ind, ind->value);
-        w->z_at_b[i] = ind->value;
         indicator_follow(ind, ind->value);
         w->band[i] = residue_band(sys, br, ind, ind->value);
     }
@@ -425,9 +422,8 @@ static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work
         for (int i = 0; i < sys->n_indicators; ++i) {
             if (w->next[i]) {
                 cascades = 1;
-                /* the next round's residue is the value after this round */
-                w->z_at_b[i] = w->z_after[i];
-                w->band[i] = residue_band(sys, br, &sys->indicators[i], w->z_after[i]);
+                /* handling put it there, no localization residue: only tol_value is zero */
+                w->band[i] = 2.0 * sys->hybrid.tol_value;
             }
             w->fired[i] = w->next[i];
         }
