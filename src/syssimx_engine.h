@@ -175,7 +175,8 @@ int ssx_set_schedule(ssx_system *sys, const int *order, const int *group_sizes,
                      const int *group_is_loop, int n_groups);
 int ssx_set_coupling(ssx_system *sys, ssx_coupling coupling);
 int ssx_set_loop_options(ssx_system *sys, double tolerance, int max_iterations, double damping);
-/* Hybrid mode is active whenever an indicator exists. */
+/* Hybrid mode is active whenever an indicator exists. zeno_min_interval <= 0 means ten times
+ * tol_time. */
 int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, int max_iterations,
                            int max_microsteps, int record_internal_steps, ssx_locator locator,
                            double zeno_min_interval);
@@ -193,7 +194,8 @@ double ssx_time(const ssx_system *sys);
  * one column per output. Pointers are valid until the next call that records. */
 size_t ssx_history_length(const ssx_system *sys);
 const double *ssx_history_time(const ssx_system *sys);
-const int *ssx_history_micro(const ssx_system *sys);
+const int *ssx_history_micro(const ssx_system *sys); /* -1: a localization trial
+                                                       (record_internal_steps) */
 const double *ssx_history_values(const ssx_system *sys, int component);
 size_t ssx_history_bytes(const ssx_system *sys); /* bytes allocated for the history */
 

@@ -85,6 +85,33 @@ static ssx_event_record locate_first_event(ssx_locator locator, double tol_value
     return event;
 }
 
+/* record_internal_steps adds one sample per localization trial, marked with micro -1. */
+static void internal_steps_recorded(void)
+{
+    ssx_fmu *fmu = load_fmu("pendulum_cvode");
+    int c;
+    ssx_system *sys = pendulum_system(fmu, SSX_ILLINOIS, 1e-9, &c);
+    CHECK_OK(sys, ssx_set_hybrid_options(sys, 1e-9, 1e-9, 100, 10, 1, SSX_ILLINOIS, 0.0));
+    CHECK_OK(sys, ssx_initialize(sys, 0.0));
+    CHECK_OK(sys, ssx_run(sys, 0.0, 1.0, 0.05));
+    ssx_event_record event;
+    CHECK(ssx_event_count(sys) == 1 && ssx_event_get(sys, 0, &event) == 0);
+    size_t n = ssx_history_length(sys);
+    CHECK(n == 21 + 2 + (size_t)event.iterations);
+    const double *time = ssx_history_time(sys);
+    const int *micro = ssx_history_micro(sys);
+    int trials = 0;
+    for (size_t k = 0; k < n; ++k) {
+        if (micro[k] == -1) {
+            CHECK(time[k] > 0.45 && time[k] < 0.5);
+            ++trials;
+        }
+    }
+    CHECK(trials == event.iterations);
+    ssx_system_free(sys);
+    ssx_fmu_free(fmu);
+}
+
 typedef struct {
     ssx_system *sys;
     ssx_fmu *fmu;
@@ -189,6 +216,7 @@ int main(void)
     CHECK(seed_illinois.iterations <= 10);
     CHECK(illinois.iterations <= 10);
     CHECK(bisection.iterations == 26);
+    internal_steps_recorded();
     handler_reverses_and_next_events_follow();
     two_crossings_in_one_step();
     return 0;
