@@ -75,7 +75,8 @@ def _parser() -> argparse.ArgumentParser:
                           help="communication step in s (default: the FMU's, or (TF-T0)/500)")
     simulate.add_argument("--set", action="append", default=[], type=_assignment,
                           metavar="NAME=VALUE", dest="assignments",
-                          help="set a parameter before initialization (repeatable)")
+                          help="set a parameter, or hold an input at a constant value "
+                               "(repeatable)")
     simulate.add_argument("--event", action="append", default=[], type=_event,
                           metavar="VAR:DIRECTION", dest="events",
                           help="locate zero crossings of output VAR; DIRECTION is -1|falling, "
@@ -212,8 +213,11 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
                            f"stop {tf}, step {dt}")
 
     component = FMUComponent(md.modelName or path.stem, str(path))
-    if args.assignments:
-        component.set_parameters(**dict(args.assignments))
+    assignments = dict(args.assignments)
+    held_inputs = {n: v for n, v in assignments.items() if n in component.input_specs}
+    component.set_parameters(**{n: v for n, v in assignments.items() if n not in held_inputs})
+    if held_inputs:
+        component.set_inputs(held_inputs)
     for variable, direction in args.events:
         if variable not in component.output_specs:
             raise CommandError(f"--event {variable}: not an output of {path.name}; outputs: "

@@ -28,7 +28,8 @@ def read_csv(path: Path) -> dict[str, np.ndarray]:
 def test_csv_equals_fmpy_on_the_same_grid(tmp_path: Path, capsys: pytest.CaptureFixture[str]):
     csv_path, png_path = tmp_path / "out.csv", tmp_path / "out.png"
     argv = ["simulate", "pendulum_euler", "--stop-time", "1.5", "--step-size", "0.01",
-            "--set", "theta0=1.2", "--set", "omega0=-0.3", "--output", str(csv_path),
+            "--set", "theta0=1.2", "--set", "omega0=-0.3", "--set", "torque=3",
+            "--output", str(csv_path),
             "--plot", str(png_path)]
     assert main(argv) == 0
     assert capsys.readouterr().out.splitlines() == [
@@ -37,7 +38,8 @@ def test_csv_equals_fmpy_on_the_same_grid(tmp_path: Path, capsys: pytest.Capture
     ]
     ours = read_csv(csv_path)
     reference = simulate_fmu(fmus.path("pendulum_euler"), start_time=0.0, stop_time=1.5,
-                             output_interval=0.01, start_values={"theta0": 1.2, "omega0": -0.3},
+                             output_interval=0.01,
+                             start_values={"theta0": 1.2, "omega0": -0.3, "torque": 3.0},
                              output=["theta", "omega", "alpha"])
     assert list(ours) == ["time", "theta", "omega", "alpha"]
     for column in ours:
