@@ -244,18 +244,20 @@ int ssx_fmu_free_instance(ssx_fmu *fmu)
     if (fmu == NULL) {
         return -1;
     }
+    int worst = fmi2OK;
     if (fmu->instance != NULL) {
         /* States belong to their instance: release them while it still exists. */
         while (fmu->n_states > 0) {
             fmi2FMUstate state = fmu->states[--fmu->n_states];
             if (fmu->fn.free_state != NULL) {
-                fmu->fn.free_state(fmu->instance, &state);
+                int status = (int)fmu->fn.free_state(fmu->instance, &state);
+                worst = status > worst ? status : worst;
             }
         }
         fmu->fn.free_instance(fmu->instance);
         fmu->instance = NULL;
     }
-    return 0;
+    return worst; /* the worst fmi2FreeFMUstate status; the instance is gone either way */
 }
 
 void ssx_fmu_free(ssx_fmu *fmu)
@@ -264,8 +266,9 @@ void ssx_fmu_free(ssx_fmu *fmu)
         return;
     }
     if (fmu->instance != NULL) {
-        fmu->fn.terminate(fmu->instance);
-        ssx_fmu_free_instance(fmu);
+        /* Teardown goes on whatever the FMU answers: there is no one left to report to. */
+        (void)fmu->fn.terminate(fmu->instance);
+        (void)ssx_fmu_free_instance(fmu);
     }
     free(fmu->states);
     free(fmu->model_identifier);
@@ -281,7 +284,8 @@ int ssx_fmu_instantiate(ssx_fmu *fmu)
     if (fmu == NULL) {
         return -1;
     }
-    ssx_fmu_free_instance(fmu);
+    /* a state the old instance fails to free is its leak, not a reason to refuse a new one */
+    (void)ssx_fmu_free_instance(fmu);
     fmu->last_message[0] = '\0';
     fmu->counters.instantiate++;
     fmu->instance = fmu->fn.instantiate(fmu->instance_name, fmi2CoSimulation, fmu->guid,
