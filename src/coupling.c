@@ -9,6 +9,13 @@
 int coupling_prepare(ssx_system *sys)
 {
     if (sys->has_schedule) {
+        const ssx_group *last = &sys->groups[sys->n_groups - 1];
+        if (last->first + last->size != sys->n_components) {
+            return fail(sys, -1, -1, sys->time,
+                        "system '%s': the schedule lists %d components but the system now has "
+                        "%d; set the schedule again after adding components",
+                        sys->name, last->first + last->size, sys->n_components);
+        }
         return 0;
     }
     int n = sys->n_components;

@@ -61,6 +61,18 @@ static void bad_input(void)
     ssx_fmu_get_counters(fmu, &counters);
     CHECK(counters.do_step == 0);
 
+    const int order[] = {b, a};
+    const int sizes[] = {2};
+    CHECK(ssx_set_schedule(sys, order, sizes, NULL, 1) == 0);
+    const int twice[] = {a, a};
+    CHECK(ssx_set_schedule(sys, twice, sizes, NULL, 1) == -1);
+    CHECK_MESSAGE(sys, "every component exactly once");
+    ssx_fmu *third = load_fmu("pendulum_euler");
+    CHECK(start_pendulum(third, 0.0, 0.1, 0.0, 0.0) == 0);
+    add_pendulum(sys, "third", third);
+    CHECK(ssx_initialize(sys, 0.0) == -1);
+    CHECK_MESSAGE(sys, "the schedule lists 2 components but the system now has 3");
+
     CHECK(ssx_set_hybrid_options(sys, 0.0, 1e-9, 10, 10, 0, SSX_ILLINOIS, 0.0) == -1);
     CHECK(ssx_set_loop_options(sys, 1e-9, 10, 1.5) == -1);
     CHECK(ssx_add_indicator_output(sys, a, 0, 2) == -1);
@@ -68,6 +80,7 @@ static void bad_input(void)
     ssx_system_free(sys);
     ssx_fmu_free(fmu);
     ssx_fmu_free(other);
+    ssx_fmu_free(third);
 }
 
 enum { FAILING_Y = 0, FAILING_U = 1 };
