@@ -120,15 +120,24 @@ def analyze(
 
 
 def analyze_system(system: Any) -> SystemAnalysis:
-    """Analyze a System: its components' ``direct_feedthrough`` and its ``connections``."""
-    components = {
-        name: getattr(component, "direct_feedthrough", None) or {}
-        for name, component in system.components.items()
-    }
+    """Analyze a System from its components' feedthrough and its ``connections``.
+
+    A component's feedthrough is its ``feedthrough()`` (what the System schedules with) when it
+    has one, else its declared ``direct_feedthrough``.
+    """
+    components = {name: _feedthrough_of(component)
+                  for name, component in system.components.items()}
     connections = [
         (c.src_comp, c.src_port, c.dst_comp, c.dst_port) for c in system.connections
     ]
     return analyze(components, connections)
+
+
+def _feedthrough_of(component: Any) -> FeedthroughMap:
+    method = getattr(component, "feedthrough", None)
+    if callable(method):
+        return method()
+    return getattr(component, "direct_feedthrough", None) or {}
 
 
 def feedthrough_from_model_description(model_description: Any) -> dict[str, set[str]]:
