@@ -30,9 +30,7 @@ def test_exact_quarter_period_is_the_elliptic_integral() -> None:
 
 @pytest.mark.parametrize("torque", [0.0, 5.0])
 def test_cvode_follows_scipy_for_three_seconds(open_fmu, torque: float) -> None:
-    fmu = open_fmu(
-        "pendulum_cvode", starts={"theta0": THETA0, "torque": torque}, tolerance=1e-10
-    )
+    fmu = open_fmu("pendulum_cvode", starts={"theta0": THETA0, "torque": torque}, tolerance=1e-10)
     dt = 0.01
     times = np.arange(1, 301) * dt
     theta = []
