@@ -20,6 +20,7 @@ import matplotlib.pyplot as plt
 from syssimx import FMUComponent, System, fmus
 from syssimx.core.port import PortSpec, PortType
 from syssimx.system.connection import EventConnection
+from syssimx.viz.system_graph_visualizer import SystemGraphVisualizer
 
 EXACT_EVENT_TIME = 0.46507759431173046
 
@@ -129,6 +130,12 @@ def build(solver: str) -> tuple[System, FMUPendulum]:
     return system, pendulum
 
 
+def picture(system: System) -> str:
+    """The tutorial's system picture (Graphviz source: component, wall_hit -> omega_invert)."""
+    visualizer = SystemGraphVisualizer(system)
+    return visualizer.visualize().source
+
+
 def simulate(solver: str) -> tuple[System, FMUPendulum, float | None]:
     """Run the tutorial's scenario (1 s, dt 0.05, tol 1e-9); returns the first event time."""
     system, pendulum = build(solver)
@@ -176,6 +183,8 @@ def plot(results: dict[str, tuple[System, FMUPendulum, float | None]], path: str
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--plot", metavar="PATH", help="write the tutorial's figure (PNG)")
+    parser.add_argument("--picture", metavar="PATH",
+                        help="write the system picture of the Euler system (.svg, .png, .gv)")
     args = parser.parse_args()
     logging.basicConfig(level=logging.WARNING,
                         format="[%(module)s] %(levelname)s: %(message)s")
@@ -190,6 +199,9 @@ def main() -> None:
     if args.plot:
         plot(results, args.plot)
         print(f"figure written to {args.plot}")
+    if args.picture:
+        SystemGraphVisualizer(results["euler"][0]).save(args.picture)
+        print(f"system picture written to {args.picture}")
 
 
 if __name__ == "__main__":

@@ -78,6 +78,7 @@ class HistoryView:
     engine is about to record again, then copied once."""
 
     def __init__(self, plan: EnginePlan) -> None:
+        self._plan: EnginePlan | None = plan  # the views point into its memory
         self._data: dict[str, tuple[np.ndarray, dict[str, np.ndarray]]] = {}
         self._micro: np.ndarray
         for name, component in plan.components.items():
@@ -89,6 +90,7 @@ class HistoryView:
         self._data = {name: (t.copy(), {p: v.copy() for p, v in values.items()})
                       for name, (t, values) in self._data.items()}
         self._micro = self._micro.copy()
+        self._plan = None
 
     @property
     def micro(self) -> np.ndarray:
