@@ -65,13 +65,12 @@ int history_reserve(ssx_history *h, size_t extra)
 int history_append(ssx_history *h, double t, int micro, const double *const *outputs)
 {
     if (h->length == h->capacity) {
-        size_t capacity = h->capacity + h->capacity / 2;
-        if (capacity < h->capacity + 16) {
-            capacity = h->capacity + 16;
-        }
-        if (set_capacity(h, capacity) != 0) {
+        size_t growth = h->last_growth + h->last_growth / 2;
+        growth = growth < 64 ? 64 : growth;
+        if (set_capacity(h, h->capacity + growth) != 0) {
             return -1;
         }
+        h->last_growth = growth;
     }
     size_t row = h->length;
     h->time[row] = t;

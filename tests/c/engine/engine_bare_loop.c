@@ -49,8 +49,34 @@ static void compare(const char *stem, double t0, double tf, double dt, size_t ex
     ssx_fmu_free(bare_fmu);
 }
 
+/* The history of 100 FMUs x 3 outputs is reserved for the grid up front: within 1.2x of the
+ * raw float64 size (time axis plus outputs). */
+static void history_size(void)
+{
+    enum { COMPONENTS = 100, STEPS = 10000 };
+    ssx_fmu *fmus[COMPONENTS];
+    ssx_system *sys = ssx_system_new("history size");
+    for (int i = 0; i < COMPONENTS; ++i) {
+        char name[32];
+        snprintf(name, sizeof name, "pendulum%d", i);
+        fmus[i] = load_fmu("pendulum_euler");
+        CHECK(start_pendulum(fmus[i], 0.0, 0.5, 0.0, 0.0) == 0);
+        add_pendulum(sys, name, fmus[i]);
+    }
+    CHECK_OK(sys, ssx_initialize(sys, 0.0));
+    CHECK_OK(sys, ssx_run(sys, 0.0, STEPS * 1e-4, 1e-4));
+    CHECK(ssx_history_length(sys) == STEPS + 1);
+    double raw = (double)(STEPS + 1) * (3.0 * COMPONENTS + 1.0) * sizeof(double);
+    CHECK((double)ssx_history_bytes(sys) <= 1.2 * raw);
+    ssx_system_free(sys);
+    for (int i = 0; i < COMPONENTS; ++i) {
+        ssx_fmu_free(fmus[i]);
+    }
+}
+
 int main(void)
 {
+    history_size();
     compare("pendulum_euler", 0.0, 1.0, 0.01, 101);
     compare("pendulum_cvode", 0.0, 1.0, 0.05, 21);
     compare("pendulum_cvode", 0.25, 1.0, 0.07, 12); /* 10 full steps and a shorter last one */
