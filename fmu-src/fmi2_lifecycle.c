@@ -121,6 +121,7 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
         return NULL;
     }
     strcpy(inst->name, instanceName);
+    memcpy(inst->guid, guid, sizeof guid);
     fmu_apply_start_values(inst);
     if (fmu_solver_create(inst) != 0) {
         fmu_error(&reporter, "fmi2Instantiate: the %s solver could not be created",

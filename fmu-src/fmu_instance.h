@@ -3,6 +3,7 @@
 #define SYSSIMX_FMU_INSTANCE_H
 
 #include "fmi2Functions.h"
+#include "fmu_guid.h"
 #include "model.h"
 
 typedef enum {
@@ -19,6 +20,7 @@ typedef struct {
 
 typedef struct fmu_instance {
     char *name;
+    char guid[FMU_GUID_LENGTH]; /* computed once: states carry it to reject foreign bytes */
     fmu_logging_callbacks callbacks;
     int logging_on;
     unsigned log_categories; /* bit set of enabled categories (fmu_log.h) */

@@ -4,7 +4,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "fmu_guid.h"
 #include "fmu_instance.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
@@ -34,9 +33,7 @@ static size_t data_count(const fmu_instance *inst)
 
 static int matches(const fmu_instance *inst, const state_header *header)
 {
-    char guid[FMU_GUID_LENGTH];
-    fmu_guid(guid);
-    return strncmp(header->guid, guid, sizeof header->guid) == 0 &&
+    return strncmp(header->guid, inst->guid, sizeof header->guid) == 0 &&
            header->n_values == inst->n_variables && header->n_states == inst->model->n_states &&
            header->phase >= PHASE_INSTANTIATED && header->phase <= PHASE_TERMINATED;
 }
@@ -44,7 +41,7 @@ static int matches(const fmu_instance *inst, const state_header *header)
 static void capture(const fmu_instance *inst, fmu_snapshot *snapshot)
 {
     memset(&snapshot->header, 0, sizeof snapshot->header);
-    fmu_guid(snapshot->header.guid);
+    memcpy(snapshot->header.guid, inst->guid, sizeof inst->guid);
     snapshot->header.n_values = inst->n_variables;
     snapshot->header.n_states = inst->model->n_states;
     snapshot->header.phase = inst->phase;

@@ -30,11 +30,6 @@ def lib() -> Any:
     return ffi.dlopen(str(_paths.engine_library()))
 
 
-def last_error(system: Any) -> Any:
-    """The ssx_error of `system` (a cdata pointer) describing the last failed call."""
-    return lib().ssx_last_error(system)
-
-
 def string(pointer: Any) -> str:
     """A C string as str ("" for NULL)."""
     return "" if pointer == ffi.NULL else ffi.string(pointer).decode("utf-8", "replace")

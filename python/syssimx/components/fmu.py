@@ -62,7 +62,8 @@ class FMUComponent(CoSimComponent):
                     reader=lambda n=spec.name: self._engine_value("in", n))
 
     def _engine_value(self, direction: str, name: str) -> float | int | bool:
-        """The engine's current value of a port (the start value before any system exists)."""
+        """The engine's current value of a port. Before the component runs in a system, an
+        input reads its start value and an output 0 (the FMU computes it at initialization)."""
         if self._binding is None:
             if direction == "in":
                 return self.inputs[name]._raw
@@ -74,9 +75,6 @@ class FMUComponent(CoSimComponent):
 
     def value_reference(self, name: str) -> int:
         return int(self.info.variables[name].valueReference)
-
-    def feedthrough(self) -> dict[str, set[str]]:
-        return {n: set(self.direct_feedthrough.get(n, ())) for n in self.engine_outputs()}
 
     def set_inputs(self, signals: dict[str, Any], t: float | None = None) -> None:
         """Set inputs; they go to the FMU at once when it is instantiated."""

@@ -21,7 +21,6 @@ from ..engine import ffi, lib
 from ..errors import ConfigurationError
 
 _ENGINE_TYPE = {PortType.REAL: 0, PortType.INT: 1, PortType.BOOL: 2}
-_DIRECTIONS = {-1: -1, 0: 0, 1: 1}
 
 
 @dataclass
@@ -101,14 +100,14 @@ class EnginePlan:
         if indicator.variable is not None:
             output = self.outputs[component.name].index(indicator.variable)
             number = self.check(lib().ssx_add_indicator_output(
-                self.sys, index, output, _DIRECTIONS[indicator.direction]),
+                self.sys, index, output, int(indicator.direction)),
                 f"{component.name}.{event}")
         else:
             callback = ffi.callback("int(void *, double, double *)",
                                     self._indicator_callback(component, event))
             self._callbacks.append(callback)
             number = self.check(lib().ssx_add_indicator_callback(
-                self.sys, index, callback, ffi.NULL, _DIRECTIONS[indicator.direction]),
+                self.sys, index, callback, ffi.NULL, int(indicator.direction)),
                 f"{component.name}.{event}")
         self.indicators.append((component.name, event))
         self.indicator_index[(component.name, event)] = number

@@ -261,11 +261,6 @@ class System:
         history["Events"] = self.history.get_all_event_histories()
         return history
 
-    def statistics(self) -> Any:
-        if self._plan is None:
-            raise ConfigurationError(f"{self.name}: nothing run yet")
-        return read_statistics(self._plan, self.history.events)
-
     def history_bytes(self) -> int:
         """Memory the engine holds for the recorded history."""
         return int(lib().ssx_history_bytes(self._plan.sys)) if self._plan is not None else 0

@@ -56,21 +56,24 @@ class HybridAlgorithm:
 
 
 def log_events(records: Sequence[EventRecord], t0: float, dt: float, method: str) -> None:
-    """The run's events, as the located bracket, iterations and handling of each instant."""
+    """The run's event instants: bracket on the grid, localization cost, handled events."""
     if not logger.isEnabledFor(logging.INFO):
         return
-    rule = "=" * 80
+    instants: dict[tuple[float, int], list[EventRecord]] = {}
     for record in records:
-        k = math.floor((record.t - t0) / dt + 1e-9)
-        left = t0 + k * dt
-        if math.isclose(left, record.t, abs_tol=1e-12) and k > 0 and record.iterations > 0:
-            left -= dt  # located on a grid point: the crossing was found in the step before
+        instants.setdefault((record.t, record.micro), []).append(record)
+    rule = "=" * 80
+    for (t, micro), group in instants.items():
+        names = ", ".join(f"{r.component}.{r.event}" for r in group)
         logger.info(rule)
-        logger.info("Event crossing in [%.6f, %.6f]: %s.%s", left, left + dt,
-                    record.component, record.event)
-        logger.debug("%s localization: %d iterations, %d rollbacks, %d doStep calls", method,
-                     record.iterations, record.rollbacks, record.do_steps)
-        logger.info("Event located at t=%.8f", record.t)
-        logger.info("Handling 1 event(s) at t=%.8f, micro=%d: %s.%s", record.t, record.micro,
-                    record.component, record.event)
+        if micro == 0:
+            k = math.floor((t - t0) / dt + 1e-9)
+            left = t0 + k * dt
+            if k > 0 and math.isclose(left, t, abs_tol=1e-12) and group[0].iterations > 0:
+                left -= dt  # located on a grid point: the crossing was in the step before
+            logger.info("Event crossing in [%.6f, %.6f]: %s", left, left + dt, names)
+            logger.debug("%s localization: %d iterations, %d rollbacks, %d doStep calls",
+                         method, group[0].iterations, group[0].rollbacks, group[0].do_steps)
+            logger.info("Event located at t=%.8f", t)
+        logger.info("Handling %d event(s) at t=%.8f, micro=%d: %s", len(group), t, micro, names)
         logger.info(rule)
