@@ -433,11 +433,16 @@ static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work
     }
 }
 
-/* An indicator sitting exactly on zero (as it can at the start) has no side yet: the probe
- * tells where it goes. Going to the far side of its direction is a crossing at a0 itself,
- * handled there (its sample before handling is already recorded). */
+/* An indicator starting exactly on zero has no side yet: the probe tells where it goes. Going to
+ * the far side of its direction is a crossing at the start itself, handled there (its sample
+ * before handling is already recorded). Done once per initialization: an indicator that stays
+ * on zero later takes its side from its first nonzero value, without an event. */
 static int resolve_zero_start(ssx_system *sys, double a0, double t_next)
 {
+    if (!sys->zero_start_pending) {
+        return 0;
+    }
+    sys->zero_start_pending = 0;
     int unknown = 0;
     for (int i = 0; i < sys->n_indicators; ++i) {
         unknown |= sys->indicators[i].sign == 0;

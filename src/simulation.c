@@ -99,6 +99,7 @@ int ssx_initialize(ssx_system *sys, double t0)
     if (system_record(sys, t0, 0) != 0) {
         return -1;
     }
+    sys->zero_start_pending = 1;
     sys->initialized = 1;
     return 0;
 }

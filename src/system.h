@@ -97,6 +97,7 @@ struct ssx_system {
     double time;
     int initialized;
     int stepping_hybrid; /* FMUs are told that a rollback may follow */
+    int zero_start_pending; /* indicators starting on zero still need their side probed */
 };
 
 ssx_component *system_component(ssx_system *sys, int index); /* NULL with the error set */
