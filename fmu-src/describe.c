@@ -37,6 +37,11 @@ static void write_escaped(FILE *out, const char *text)
 static int collect(variable_list *list)
 {
     list->count = 0;
+    size_t capacity = sizeof list->rows / sizeof *list->rows;
+    if (fmu_model.n_variables + fmu_solver_variable_count > capacity) {
+        fprintf(stderr, "more than %zu variables: enlarge variable_list\n", capacity);
+        return -1;
+    }
     for (size_t i = 0; i < fmu_model.n_variables; ++i) {
         if (fmu_model.variables[i].vr != i) {
             fprintf(stderr, "variable %s: value reference %u is not its row %zu\n",

@@ -18,7 +18,7 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
         return fmi2Error;
     double t = currentCommunicationPoint;
     double h = communicationStepSize;
-    if (isnan(h) || h < 0.0 || !isfinite(h))
+    if (!isfinite(h) || h < 0.0)
         return fmu_error(inst, "fmi2DoStep: communication step size %g is negative or not finite",
                          h);
     if (!isfinite(t))

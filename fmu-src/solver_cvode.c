@@ -97,6 +97,7 @@ static int configure(fmu_instance *inst, cvode_data *data)
         data->jacobian ? SUNLinSol_Dense(data->y, data->jacobian, data->context) : NULL;
     if (data->y == NULL || data->cvode == NULL || data->linear_solver == NULL)
         return -1;
+    /* placeholders: every integration starts with restart(), which sets y and the tolerances */
     N_VConst(0.0, data->y);
     if (CVodeSetErrHandlerFn(data->cvode, report, inst) != CV_SUCCESS ||
         CVodeInit(data->cvode, right_hand_side, inst->time, data->y) != CV_SUCCESS ||

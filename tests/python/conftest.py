@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 import pytest
 from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
+from fmpy.model_description import ScalarVariable
 from syssimx import fmus
 
 
@@ -16,7 +17,7 @@ class OpenFMU:
     """An fmpy slave of a bundled FMU, with its variables by name and the messages it logged."""
 
     slave: FMU2Slave
-    variables: dict[str, object]
+    variables: dict[str, ScalarVariable]
     messages: list[tuple[int, str]] = field(default_factory=list)
     callbacks: fmi2CallbackFunctions | None = None  # keeps fmpy's logger callback alive
 
