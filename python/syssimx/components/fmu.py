@@ -23,7 +23,7 @@ from ..errors import ConfigurationError, FMUFileError
 from ..units import magnitude_in
 from .base import CoSimComponent
 from .fmu_instance import FMUInstance
-from .model_description import FMUInfo, Parameter, read_fmu, start_value
+from .model_description import FMUInfo, Parameter, read_fmu, start_value, variable_unit
 
 
 class FMUComponent(CoSimComponent):
@@ -174,17 +174,20 @@ class FMUComponent(CoSimComponent):
         return self.can_get_set_state or super().can_rollback()
 
     def get_state(self) -> dict[str, dict[str, Any]]:
-        """Outputs and parameters (and other non-fixed variables) read from the FMU."""
-        names = [v.name for v in self.info.description.modelVariables
-                 if v.variability != "fixed" and v.causality != "local"
-                 and v.type in ("Real", "Integer", "Enumeration", "Boolean")]
-        state = {}
+        """Outputs, parameters and the other non-fixed, non-local variables, read from the FMU
+        (one fmi2Get call per value type)."""
         getters = {"Real": self.instance.getReal, "Integer": self.instance.getInteger,
                    "Enumeration": self.instance.getInteger, "Boolean": self.instance.getBoolean}
-        for name in names:
-            variable = self.info.variables[name]
-            value = getters[variable.type]([variable.valueReference])[0]
-            state[name] = {"value": value, "unit": variable.unit}
+        by_type: dict[str, list[Any]] = {}
+        for variable in self.info.description.modelVariables:
+            if (variable.variability != "fixed" and variable.causality != "local"
+                    and variable.type in getters):
+                by_type.setdefault(variable.type, []).append(variable)
+        state: dict[str, dict[str, Any]] = {}
+        for kind, variables in by_type.items():
+            values = getters[kind]([v.valueReference for v in variables])
+            for variable, value in zip(variables, values, strict=True):
+                state[variable.name] = {"value": value, "unit": variable_unit(variable)}
         for name, value in self.parameters.items():
             state.setdefault(name, {"value": value, "unit": self.info.parameters[name].unit})
         return state
