@@ -155,7 +155,8 @@ class FMUComponent(CoSimComponent):
         """One doStep of the FMU from t to t + dt, inputs written first, outputs read after."""
         if not dt > 0.0:
             raise ValueError(f"{self.name}: doStep needs a positive step, got {dt}")
-        self._require_binding().plan.builtin_do_step(self, t, dt)
+        binding = self._binding or self._require_binding()
+        binding.plan.builtin_do_step(binding.index, t, dt)
 
     def _update_output_states(self, t: float | None = None,
                               event_names: list[str] | None = None) -> None:

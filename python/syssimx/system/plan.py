@@ -53,6 +53,7 @@ class EnginePlan:
         self._callbacks: list[Any] = []  # cffi callbacks must outlive the system
         self._hook_structs: list[Any] = []
         self._views: weakref.WeakSet[Any] = weakref.WeakSet()
+        self._do_step = lib().ssx_component_do_step
         for name, component in components.items():
             self._add_component(name, component)
 
@@ -170,9 +171,10 @@ class EnginePlan:
         index = self.index[component.name]
         self.raise_for(lib().ssx_component_read_outputs(self.sys, index), component)
 
-    def builtin_do_step(self, component: CoSimComponent, t: float, dt: float) -> None:
-        index = self.index[component.name]
-        self.raise_for(lib().ssx_component_do_step(self.sys, index, t, dt), component)
+    def builtin_do_step(self, index: int, t: float, dt: float) -> None:
+        """The engine's own doStep of component `index` (called per substep by overrides)."""
+        if self._do_step(self.sys, index, t, dt) < 0:
+            self.raise_for(-1, self.components[list(self.index)[index]])
 
     def raise_for(self, result: int, component: CoSimComponent) -> None:
         if result < 0:
