@@ -159,8 +159,10 @@ def test_result_table_of_a_hybrid_run(tmp_path):
     system, _ = clock_system({"a": crossing(0.25)})
     result = system.run(0.0, 0.5, 0.1)
     frame = result.to_dataframe()
-    assert list(frame.columns) == ["time", "micro", "C.x"]
+    assert list(frame.columns) == ["time", "micro", "C.x", "C.a"]
     assert len(frame) == 6 + 2
     assert frame["micro"].tolist().count(1) == 1  # the sample after handling
+    # the EVENT output is true on exactly that sample
+    assert frame.loc[frame["C.a"], ["time", "micro"]].values.tolist() == [[0.25, 1.0]]
     path = result.to_csv(tmp_path / "run.csv")
-    assert path.read_text().splitlines()[0] == "time,micro,C.x"
+    assert path.read_text().splitlines()[0] == "time,micro,C.x,C.a"

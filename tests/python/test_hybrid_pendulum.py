@@ -50,6 +50,7 @@ def test_seed_tutorial_cvode_event_within_1e_8():
     assert t[-1] == 1.0
     assert data["theta"][-1] == pytest.approx(free_pendulum(1.0 - 2 * EXACT), abs=1e-6)
     assert np.all(data["theta"] > -1e-8)  # it never passes the wall
+    assert t[data["wall_hit"]].tolist() == [event_time]  # the EVENT output, as in SysSimX
     events = system.history.get_all_event_histories()[(pendulum.name, "wall_hit")]
     assert len(events) == 1 and events[0].micro == 0
 

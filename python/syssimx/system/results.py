@@ -77,14 +77,25 @@ class HistoryView:
     """Per-component (time, {port: values}) over the engine's buffers: zero-copy until the
     engine is about to record again, then copied once."""
 
-    def __init__(self, plan: EnginePlan) -> None:
+    def __init__(self, plan: EnginePlan, events: Sequence[EventRecord]) -> None:
         self._plan: EnginePlan | None = plan  # the views point into its memory
         self._data: dict[str, tuple[np.ndarray, dict[str, np.ndarray]]] = {}
-        self._micro: np.ndarray
-        for name, component in plan.components.items():
-            self._data[name] = plan.component_history(component)
         self._micro = plan.history_time()[1]
+        for name, component in plan.components.items():
+            t, values = plan.component_history(component)
+            for event in component.event_indicators:
+                values[event] = self._event_column(t, name, event, events)
+            self._data[name] = (t, values)
         plan.register_view(self)
+
+    def _event_column(self, t: np.ndarray, component: str, event: str,
+                      events: Sequence[EventRecord]) -> np.ndarray:
+        """EVENT output: True on the sample taken right after the event was handled."""
+        column = np.zeros(len(t), dtype=bool)
+        for e in events:
+            if (e.component, e.event) == (component, event):
+                column |= (t == e.t) & (self._micro == e.micro + 1)
+        return column
 
     def detach(self) -> None:
         self._data = {name: (t.copy(), {p: v.copy() for p, v in values.items()})

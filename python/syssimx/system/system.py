@@ -245,10 +245,10 @@ class System:
         if isinstance(algorithm, HybridAlgorithm):
             log_events([e for e in events if e.t >= t0], t0, dt, algorithm.method)
         logger.info("Simulation completed in %.2f seconds", wall)
-        units = {n: {p: c.output_specs[p].unit for p in plan.outputs[n]}
+        units = {n: {p: c.output_specs[p].unit for p in [*plan.outputs[n], *c.event_indicators]}
                  for n, c in self.components.items()}
-        return SimulationResult(HistoryView(plan), events, read_statistics(plan, events), units,
-                                t0, tf, dt, wall)
+        return SimulationResult(HistoryView(plan, events), events,
+                                read_statistics(plan, events), units, t0, tf, dt, wall)
 
     # ------------------------------------------------------------------ results
     def get_history(self) -> dict[str, Any]:
@@ -256,7 +256,7 @@ class System:
         after a failed run), plus "Events": {(component, event): [DenseTime]}."""
         if self._plan is None:
             raise ConfigurationError(f"{self.name}: nothing recorded yet; call initialize")
-        view = HistoryView(self._plan)
+        view = HistoryView(self._plan, self.history.events)
         history: dict[str, Any] = {name: view[name] for name in self.components}
         history["Events"] = self.history.get_all_event_histories()
         return history
