@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from syssimx import FMUComponent, System, fmus
+from syssimx import CoSimComponent, FMUComponent, PortSpec, PortType, System, fmus
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "hybrid_pendulum.py"
 
@@ -61,3 +61,39 @@ def test_seed_system_describes_and_draws_itself():
     assert pendulum.name in report and "wall_hit" in report
     source = example.picture(system)
     assert "wall_hit" in source and "omega_invert" in source
+
+
+class Counter(CoSimComponent):
+    """Counts its steps: INT and BOOL outputs, and keeps the times the engine recorded."""
+
+    def __init__(self, name: str):
+        super().__init__(name)
+        self.output_specs["n"] = PortSpec("n", PortType.INT, "out")
+        self.output_specs["odd"] = PortSpec("odd", PortType.BOOL, "out")
+        self.recorded: list[float] = []
+
+    def _initialize_component(self, t0: float) -> None:
+        self.n = 0
+
+    def _do_step_internal(self, t: float, dt: float) -> None:
+        self.n += 1
+
+    def _update_output_states(self, t=None, event_names=None) -> None:
+        self.outputs["n"].set(self.n, t)
+        self.outputs["odd"].set(self.n % 2 == 1, t)
+
+    def _record_outputs(self, t: float) -> None:
+        self.recorded.append(t)
+
+
+def test_integer_and_boolean_outputs_and_the_record_hook():
+    counter = Counter("K")
+    system = System("counting")
+    system.add_component(counter)
+    system.initialize(0.0)
+    t, data = system.run(0.0, 0.5, 0.1)["K"]
+    assert data["n"].dtype == np.int64 and data["n"].tolist() == [0, 1, 2, 3, 4, 5]
+    assert data["odd"].dtype == np.bool_
+    assert data["odd"].tolist() == [False, True, False, True, False, True]
+    np.testing.assert_allclose(counter.recorded, t, atol=1e-15)
+    assert counter.get_outputs() == {"n": 5, "odd": True}
