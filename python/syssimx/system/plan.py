@@ -23,6 +23,21 @@ from ..errors import ConfigurationError
 _ENGINE_TYPE = {PortType.REAL: 0, PortType.INT: 1, PortType.BOOL: 2}
 
 
+# What the engine may still use while a system is freed (its FMUs, the callbacks it calls to
+# release Python snapshots), by system address. Held here rather than by the plan, because a
+# garbage-collection cycle may clear the plan's attributes before the system's destructor runs.
+_ENGINE_REFERENCES: dict[int, list[Any]] = {}
+
+
+def _address(pointer: Any) -> int:
+    return int(ffi.cast("uintptr_t", pointer))
+
+
+def _free_system(pointer: Any) -> None:
+    lib().ssx_system_free(pointer)
+    _ENGINE_REFERENCES.pop(_address(pointer), None)
+
+
 @dataclass
 class CallbackFailure:
     """A Python exception raised in a callback from the engine."""
@@ -37,12 +52,13 @@ class EnginePlan:
     """The engine system of one System; rebuilt by every System.initialize."""
 
     def __init__(self, name: str, components: Mapping[str, CoSimComponent]) -> None:
-        keep_alive = [c._fmu for c in components.values() if isinstance(c, FMUComponent)]
         raw = lib().ssx_system_new(name.encode())
         if raw == ffi.NULL:
             raise MemoryError("ssx_system_new failed")
-        # The destructor holds the FMU handles, so the system is freed before them.
-        self.sys = ffi.gc(raw, lambda p, _fmus=keep_alive: lib().ssx_system_free(p))
+        self._engine_references: list[Any] = [
+            c._fmu for c in components.values() if isinstance(c, FMUComponent)]
+        _ENGINE_REFERENCES[_address(raw)] = self._engine_references
+        self.sys = ffi.gc(raw, _free_system)
         self.components = dict(components)
         self.index = {name: i for i, name in enumerate(components)}
         self.outputs = {n: c.engine_outputs() for n, c in components.items()}
@@ -50,7 +66,6 @@ class EnginePlan:
         self.indicators: list[tuple[str, str]] = []  # engine index -> (component, event)
         self.indicator_index: dict[tuple[str, str], int] = {}
         self.failure: CallbackFailure | None = None
-        self._callbacks: list[Any] = []  # cffi callbacks must outlive the system
         self._hook_structs: list[Any] = []
         self._views: weakref.WeakSet[Any] = weakref.WeakSet()
         self._do_step = lib().ssx_component_do_step
@@ -106,7 +121,7 @@ class EnginePlan:
         else:
             callback = ffi.callback("int(void *, double, double *)",
                                     self._indicator_callback(component, event))
-            self._callbacks.append(callback)
+            self._engine_references.append(callback)
             number = self.check(lib().ssx_add_indicator_callback(
                 self.sys, index, callback, ffi.NULL, int(indicator.direction)),
                 f"{component.name}.{event}")
@@ -266,7 +281,7 @@ class _HookBuilder:
                 time_arg: int | None = -1) -> None:
             nonlocal needed
             callback = ffi.callback(signature, self._guard(where, body, time_arg))
-            plan._callbacks.append(callback)
+            plan._engine_references.append(callback)
             setattr(hooks[0], field, callback)
             needed = True
 
