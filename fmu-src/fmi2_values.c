@@ -94,17 +94,20 @@ fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
                      vr ? vr[0] : 0u);
 }
 
-/* Whether the variable may be written now, per FMI 2.0 (causality, variability, phase). */
+/* Whether the variable may be written now, per FMI 2.0 (causality, variability, phase).
+ * Masters re-apply all parameters after fmi2SetFMUstate (SysSimX does): a fixed parameter set
+ * in step mode to the value it already has changes nothing and is accepted; a new value is not. */
 static fmi2Status check_settable(const fmu_instance *inst, const char *function,
-                                 const model_variable *var)
+                                 const model_variable *var, double value)
 {
     if (var->causality == CAUSALITY_INPUT)
         return fmi2OK;
     if (var->causality == CAUSALITY_PARAMETER) {
-        if (inst->phase != PHASE_STEP || var->variability == VARIABILITY_TUNABLE)
+        if (inst->phase != PHASE_STEP || var->variability == VARIABILITY_TUNABLE ||
+            inst->values[var->vr] == value)
             return fmi2OK;
         return fmu_error(inst,
-                         "%s: %s is a fixed parameter and cannot be set in step mode "
+                         "%s: %s is a fixed parameter and cannot be changed in step mode "
                          "(set it before fmi2ExitInitializationMode, or use fmi2Reset)",
                          function, var->name);
     }
@@ -125,26 +128,38 @@ static fmu_instance *prepare_set(fmi2Component c, const char *function,
         fmu_error(inst, "%s: the value array is NULL", function);
         return NULL;
     }
-    for (size_t i = 0; i < nvr; ++i)
-        if (check_settable(inst, function, fmu_variable(inst, vr[i])) != fmi2OK)
-            return NULL;
     return inst;
 }
 
-/* Stores the values; a changed value in step mode restarts the integration there. */
-static void store(fmu_instance *inst, const fmi2ValueReference vr[], size_t nvr,
-                  const double *converted)
+static double real_at(const void *values, size_t i) { return ((const fmi2Real *)values)[i]; }
+static double integer_at(const void *values, size_t i)
 {
+    return (double)((const fmi2Integer *)values)[i];
+}
+static double boolean_at(const void *values, size_t i)
+{
+    return ((const fmi2Boolean *)values)[i] != fmi2False ? 1.0 : 0.0;
+}
+
+/* Checks every value first, so a refused call stores nothing; a changed value in step mode
+ * restarts the integration there. */
+static fmi2Status store(fmu_instance *inst, const char *function, const fmi2ValueReference vr[],
+                        size_t nvr, const void *values, double (*value_at)(const void *, size_t))
+{
+    for (size_t i = 0; i < nvr; ++i)
+        if (check_settable(inst, function, fmu_variable(inst, vr[i]), value_at(values, i)) !=
+            fmi2OK)
+            return fmi2Error;
     int changed = 0;
     for (size_t i = 0; i < nvr; ++i) {
-        changed |= inst->values[vr[i]] != converted[i];
-        inst->values[vr[i]] = converted[i];
+        double value = value_at(values, i);
+        changed |= inst->values[vr[i]] != value;
+        inst->values[vr[i]] = value;
     }
     if (changed && inst->phase == PHASE_STEP)
         fmu_solver_invalidate(inst);
+    return fmi2OK;
 }
-
-#define SET_CHUNK 64
 
 fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                        const fmi2Real value[])
@@ -156,8 +171,7 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
         if (isnan(value[i]))
             return fmu_error(inst, "fmi2SetReal: value for %s is NaN",
                              fmu_variable(inst, vr[i])->name);
-    store(inst, vr, nvr, value);
-    return fmi2OK;
+    return store(inst, "fmi2SetReal", vr, nvr, value, real_at);
 }
 
 fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
@@ -166,14 +180,7 @@ fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
     fmu_instance *inst = prepare_set(c, "fmi2SetInteger", vr, nvr, value, TYPE_INTEGER);
     if (inst == NULL)
         return fmi2Error;
-    for (size_t start = 0; start < nvr; start += SET_CHUNK) {
-        double converted[SET_CHUNK];
-        size_t n = nvr - start < SET_CHUNK ? nvr - start : SET_CHUNK;
-        for (size_t i = 0; i < n; ++i)
-            converted[i] = (double)value[start + i];
-        store(inst, vr + start, n, converted);
-    }
-    return fmi2OK;
+    return store(inst, "fmi2SetInteger", vr, nvr, value, integer_at);
 }
 
 fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
@@ -182,14 +189,7 @@ fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t
     fmu_instance *inst = prepare_set(c, "fmi2SetBoolean", vr, nvr, value, TYPE_BOOLEAN);
     if (inst == NULL)
         return fmi2Error;
-    for (size_t start = 0; start < nvr; start += SET_CHUNK) {
-        double converted[SET_CHUNK];
-        size_t n = nvr - start < SET_CHUNK ? nvr - start : SET_CHUNK;
-        for (size_t i = 0; i < n; ++i)
-            converted[i] = value[start + i] != fmi2False ? 1.0 : 0.0;
-        store(inst, vr + start, n, converted);
-    }
-    return fmi2OK;
+    return store(inst, "fmi2SetBoolean", vr, nvr, value, boolean_at);
 }
 
 fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,

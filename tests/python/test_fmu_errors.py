@@ -48,3 +48,26 @@ def test_failing_fmu_reports_why(open_fmu) -> None:
     fmu = open_fmu("failing", starts={"fail_time": 0.2})
     fmu.slave.doStep(0.0, 0.2)
     refused(fmu, fmu.slave.doStep, 0.2, 0.1, expected="passed fail_time")
+
+
+@pytest.mark.parametrize("name", ["pendulum_euler", "pendulum_cvode"])
+def test_masters_habits_after_a_restore_are_accepted(open_fmu, name: str) -> None:
+    """SysSimX re-applies every parameter after fmi2SetFMUstate and, after an event, steps from
+    the event time plus its tol_time (1e-8 by default): unchanged parameters and a skip of that
+    size are accepted; the FMU keeps integrating from its own time."""
+    fmu = open_fmu(name, starts={"theta0": 0.5})
+    fmu.slave.doStep(0.0, 0.1)
+    state = fmu.slave.getFMUstate()
+    fmu.slave.doStep(0.1, 0.1)
+    fmu.slave.setFMUstate(state)
+    count = len(fmu.messages)
+    fmu.slave.setReal([fmu.vr("m"), fmu.vr("theta0")], [40.0, 0.5])
+    fmu.slave.doStep(0.1 + 1e-8, 0.1)
+    assert len(fmu.messages) == count  # nothing to complain about
+    theta_skipped = fmu.get("theta")
+    fmu.slave.setFMUstate(state)
+    fmu.slave.doStep(0.1, 0.1 + 1e-8)
+    # the same interval [0.1, 0.2 + 1e-8], up to the rounding of its end point
+    assert fmu.get("theta") == pytest.approx(theta_skipped, abs=1e-12)
+    refused(fmu, fmu.slave.setReal, [fmu.vr("theta0")], [0.25], expected="fixed parameter")
+    fmu.slave.freeFMUstate(state)
