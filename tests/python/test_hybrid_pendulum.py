@@ -119,3 +119,15 @@ def test_illinois_needs_few_iterations_bisection_many():
     assert illinois.events == bisection.events == 1
     # no event-free step is repeated: one doStep per grid step plus the localization trials
     assert illinois.do_step_calls <= 20 + illinois.localization_iterations + 2
+
+
+def test_initialize_again_reproduces_the_run():
+    # the handler's start values apply to the new instance only, not to `parameters`
+    system, pendulum = declarative_system()
+    first = system.run(0.0, 1.0, 0.05)
+    theta, event_time = first["P"][1]["theta"].copy(), first.events[0].t
+    assert pendulum.parameters["theta0"] == THETA0
+    system.initialize(0.0)
+    again = system.run(0.0, 1.0, 0.05)
+    np.testing.assert_array_equal(again["P"][1]["theta"], theta)
+    assert again.events[0].t == event_time

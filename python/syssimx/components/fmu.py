@@ -136,16 +136,28 @@ class FMUComponent(CoSimComponent):
         self._set_event_ports(t0, None)
 
     def reinitialize(self, t: float, **start_values: Any) -> None:
-        """Fresh instance at time t with the parameters (updated with start_values) applied:
-        instantiate, setupExperiment(t), initialization mode, parameters, inputs, exit."""
-        if start_values:
-            self.set_parameters(**start_values)
-        self.instance.instantiate()
-        self.instance.setupExperiment(startTime=t)
-        self.instance.enterInitializationMode()
-        self._apply_parameters_starts()
-        self._apply_input_starts()
-        self.instance.exitInitializationMode()
+        """Fresh instance at time t: instantiate, setupExperiment(t), initialization mode with
+        the parameters and inputs applied, exit. `start_values` (parameters, numbers or pint
+        quantities) override `parameters` for this instance only, so a later
+        System.initialize starts from the parameters the user set."""
+        saved = self.parameters
+        overrides = {}
+        for name, value in start_values.items():
+            if name not in self.info.parameters:
+                raise ConfigurationError(
+                    f"component {self.name!r} has no parameter {name!r}; "
+                    f"known parameters: {sorted(self.info.parameters)}")
+            overrides[name] = _coerce_parameter(self.name, self.info.parameters[name], value)
+        self.parameters = {**saved, **overrides}
+        try:
+            self.instance.instantiate()
+            self.instance.setupExperiment(startTime=t)
+            self.instance.enterInitializationMode()
+            self._apply_parameters_starts()
+            self._apply_input_starts()
+            self.instance.exitInitializationMode()
+        finally:
+            self.parameters = saved
         self.t = t
         if self._binding is not None:
             self._binding.plan.read_outputs(self)
