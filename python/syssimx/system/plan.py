@@ -66,7 +66,6 @@ class EnginePlan:
         self.indicators: list[tuple[str, str]] = []  # engine index -> (component, event)
         self.indicator_index: dict[tuple[str, str], int] = {}
         self.failure: CallbackFailure | None = None
-        self._hook_structs: list[Any] = []
         self._views: weakref.WeakSet[Any] = weakref.WeakSet()
         self._do_step = lib().ssx_component_do_step
         for name, component in components.items():
@@ -100,8 +99,7 @@ class EnginePlan:
                                            vr(port) if vr else 0, start), f"{name}.{port}")
         component._binding = Binding(self, index)
         hooks = _HookBuilder(self, component).build()
-        if hooks is not None:
-            self._hook_structs.append(hooks)
+        if hooks is not None:  # the engine copies the struct; the callbacks are kept above
             self.check(lib().ssx_set_hooks(self.sys, index, hooks), f"{name}: hooks")
 
     def connect(self, src: str, src_port: str, dst: str, dst_port: str, scale: float,
@@ -328,11 +326,11 @@ class _HookBuilder:
         c = self.component
         self._free_snapshot(slot)
         ports = {n: p.raw() for n, p in c.outputs.items()}
-        self.snapshots[slot] = (c.snapshot_state(), ports, c.t)
+        self.snapshots[slot] = (c.snapshot_state(), ports)
 
     def _restore(self, slot: int, t: float) -> None:
         c = self.component
-        snapshot, ports, _ = self.snapshots[slot]
+        snapshot, ports = self.snapshots[slot]
         if not self.is_fmu:
             for name, value in ports.items():
                 c.outputs[name]._raw = value
