@@ -97,3 +97,32 @@ def test_integer_and_boolean_outputs_and_the_record_hook():
     assert data["odd"].tolist() == [False, True, False, True, False, True]
     np.testing.assert_allclose(counter.recorded, t, atol=1e-15)
     assert counter.get_outputs() == {"n": 5, "odd": True}
+
+
+def python_calls_during_run(dt: float) -> int:
+    """Python function calls made while a plain FMU with a C indicator runs event-free."""
+    pendulum = FMUComponent("P", fmus.path("pendulum_euler"))
+    pendulum.set_parameters(theta0=0.5)
+    pendulum.add_event_indicator("rising", variable="theta", direction=1)
+    system = System("no python per step")
+    system.add_component(pendulum)
+    system.initialize(0.0)
+    calls = 0
+
+    def count(frame, event, arg) -> None:
+        nonlocal calls
+        calls += event == "call"
+
+    sys.setprofile(count)
+    try:
+        result = system.run(0.0, 0.4, dt)
+    finally:
+        sys.setprofile(None)
+    assert result.events == [] and result.statistics.macro_steps == round(0.4 / dt)
+    return calls
+
+
+def test_declarative_path_runs_no_python_per_step():
+    python_calls_during_run(1e-2)  # first use parses cffi types: not part of the comparison
+    # ten times the macro steps, not one Python call more
+    assert python_calls_during_run(1e-3) == python_calls_during_run(1e-2)
