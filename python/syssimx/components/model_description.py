@@ -17,6 +17,7 @@ from fmpy.model_description import ModelDescription, ModelVariable
 
 from ..core.port import PortSpec, PortType
 from ..errors import FMUFileError
+from ..graph.analysis import feedthrough_from_model_description
 
 _PORT_TYPES = {"Real": PortType.REAL, "Integer": PortType.INT, "Enumeration": PortType.INT,
                "Boolean": PortType.BOOL}
@@ -129,15 +130,10 @@ def _collect_ports_and_parameters(info: FMUInfo) -> None:
 
 
 def _collect_feedthrough(info: FMUInfo) -> None:
-    """Output -> inputs it depends on directly. An <Unknown> without a dependencies attribute
-    depends on every input (FMI 2.0, ModelStructure)."""
-    all_inputs = set(info.input_specs)
-    info.feedthrough = {name: set(all_inputs) for name in info.output_specs}
-    for unknown in info.description.outputs:
-        name = unknown.variable.name
-        if name not in info.output_specs or unknown.dependencies is None:
-            continue
-        info.feedthrough[name] = {v.name for v in unknown.dependencies if v.name in all_inputs}
+    """Output -> the inputs it depends on directly, from ModelStructure."""
+    declared = feedthrough_from_model_description(info.description)
+    info.feedthrough = {name: declared[name] & set(info.input_specs)
+                        for name in info.output_specs}
 
 
 def start_value(info: FMUInfo, name: str) -> float | int | bool | str | None:
