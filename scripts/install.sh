@@ -25,6 +25,8 @@ if [ ! -x .venv/bin/python ]; then
   echo "== creating the virtual environment .venv"
   "$python" -m venv .venv
 fi
+# meson-python runs the meson and ninja it finds first on PATH: the ones of the venv.
+export PATH="$root/.venv/bin:$PATH"
 echo "== installing the Python dependencies"
 .venv/bin/python -m pip install -q --disable-pip-version-check --upgrade pip
 .venv/bin/python -m pip install -q --disable-pip-version-check -r scripts/requirements.txt
