@@ -111,3 +111,6 @@ class Port:
 
     def __repr__(self) -> str:
         return f"Port({self.spec.name}={self.get()!r})"
+
+
+PortState = Port  # SysSimX's name for the mutable port value
