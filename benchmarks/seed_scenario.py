@@ -328,6 +328,14 @@ def main() -> None:
         print(f"{path:<16}{solver:<8}{row['wall'] * 1e3:>9.3f}{row['wall'] / base:>8.1f}"
               f"{error:>13}{calls['do_step']:>8}{calls['get_state']:>9}{calls['set_state']:>9}"
               f"{calls['instantiate']:>9}")
+    reference = f"SysSimX {SYSSIMX_VERSION}"
+    for solver in SOLVERS:
+        theirs = rows.get((reference, solver), {})
+        if "wall" in theirs:
+            print(f"{reference} / ours, {solver}: "
+                  f"{theirs['wall'] / rows[('declarative', solver)]['wall']:.0f}x the declarative "
+                  f"path, {theirs['wall'] / rows[('subclass', solver)]['wall']:.1f}x the seed "
+                  "subclass")
     print("\nFMU calls are for the whole run (20 macro steps and one event); per event:")
     for (path, solver), row in rows.items():
         if "event_calls" in row:
