@@ -83,6 +83,10 @@ class CoSimComponent:
     def engine_inputs(self) -> list[str]:
         return [n for n, s in self.input_specs.items() if s.type in ENGINE_TYPES]
 
+    def input_start(self, name: str) -> float:
+        """The value an input holds until a connection drives it."""
+        return float(self.inputs[name].raw())
+
     def feedthrough(self) -> dict[str, set[str]]:
         """Output -> inputs it depends on directly (the declared `direct_feedthrough`)."""
         return {name: set(self.direct_feedthrough.get(name, ())) for name in self.engine_outputs()}

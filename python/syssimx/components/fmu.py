@@ -73,6 +73,10 @@ class FMUComponent(CoSimComponent):
         return int(value) if kind == PortType.INT else bool(value) if kind == PortType.BOOL \
             else value
 
+    def input_start(self, name: str) -> float:
+        """The modelDescription start value, or what set_inputs gave."""
+        return float(self._input_starts[name])
+
     def value_reference(self, name: str) -> int:
         return int(self.info.variables[name].valueReference)
 

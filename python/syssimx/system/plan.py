@@ -94,7 +94,7 @@ class EnginePlan:
                                             vr(port) if vr else 0), f"{name}.{port}")
         for port in self.inputs[name]:
             spec = component.input_specs[port]
-            start = float(component.inputs[port].raw())
+            start = component.input_start(port)
             self.check(lib().ssx_add_input(self.sys, index, _ENGINE_TYPE[spec.type],
                                            vr(port) if vr else 0, start), f"{name}.{port}")
         component._binding = Binding(self, index)
