@@ -218,3 +218,13 @@ def test_no_zero_length_step(pendulum: FMUComponent):
     pendulum.initialize(0.0)
     with pytest.raises(ValueError, match="positive step"):
         pendulum.instance.doStep(0.0, 0.0)
+
+
+def test_component_initialized_elsewhere_needs_a_new_initialize(pendulum: FMUComponent):
+    system = system_with(pendulum)
+    system.initialize(0.0)
+    pendulum.initialize(0.0)  # on its own: the component now lives in a private system
+    with pytest.raises(ConfigurationError, match="initialized elsewhere"):
+        system.run(0.0, 1.0, 0.1)
+    system.initialize(0.0)
+    assert system.run(0.0, 0.1, 0.1)["P"][0][-1] == 0.1

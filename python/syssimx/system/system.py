@@ -228,6 +228,11 @@ class System:
             raise ConfigurationError(f"{self.name}: run starts at t0={t0} but the system is at "
                                      f"t={self.t}")
         plan = self._plan
+        for component in self.components.values():
+            if component._binding is None or component._binding.plan is not plan:
+                raise ConfigurationError(
+                    f"{self.name}: component {component.name!r} was initialized elsewhere since "
+                    "this system's initialize; call initialize again")
         self._push_options(plan)
         logger.info("Starting simulation run from t=%s to t=%s with dt=%s", t0, tf, dt)
         plan.before_recording()
