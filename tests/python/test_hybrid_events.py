@@ -166,3 +166,12 @@ def test_result_table_of_a_hybrid_run(tmp_path):
     assert frame.loc[frame["C.a"], ["time", "micro"]].values.tolist() == [[0.25, 1.0]]
     path = result.to_csv(tmp_path / "run.csv")
     assert path.read_text().splitlines()[0] == "time,micro,C.x,C.a"
+
+
+def test_keyboard_interrupt_in_a_handler_stays_an_interrupt():
+    def interrupted(comp: Clock, names: list[str], t: float) -> None:
+        raise KeyboardInterrupt
+
+    system, _ = clock_system({"a": crossing(0.35)}, handler=interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        system.run(0.0, 1.0, 0.1)

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, NoReturn
 
 from ..engine import ffi, lib
 from ..errors import AlgebraicLoopError, SimulationError, ZenoError
@@ -12,6 +12,16 @@ if TYPE_CHECKING:
     from .plan import EnginePlan
 
 _STATUS = {0: "OK", 1: "Warning", 2: "Discard", 3: "Error", 4: "Fatal", 5: "Pending"}
+
+
+def raise_failure(plan: EnginePlan, default_component: str | None = None) -> NoReturn:
+    """Raise the plan's last failure. An interrupt (KeyboardInterrupt, SystemExit) raised in a
+    callback is raised as it is; anything else becomes a SimulationError."""
+    failure = plan.failure
+    if failure is not None and not isinstance(failure.error, Exception):
+        plan.failure = None
+        raise failure.error
+    raise simulation_error(plan, default_component)
 
 
 def simulation_error(plan: EnginePlan, default_component: str | None = None) -> SimulationError:

@@ -191,9 +191,9 @@ class EnginePlan:
 
     def raise_for(self, result: int, component: CoSimComponent) -> None:
         if result < 0:
-            from .failure import simulation_error
+            from .failure import raise_failure
 
-            raise simulation_error(self, default_component=component.name)
+            raise_failure(self, default_component=component.name)
 
     # ------------------------------------------------------------------ history
     def register_view(self, view: Any) -> None:

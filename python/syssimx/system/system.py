@@ -18,7 +18,7 @@ from ..units import conversion
 from .algorithms import Algorithm, GaussSeidelAlgorithm, HybridAlgorithm, JacobiAlgorithm
 from .algorithms.hybrid import log_events
 from .connection import Connection, EventConnection
-from .failure import simulation_error
+from .failure import raise_failure
 from .plan import EnginePlan
 from .results import HistoryView, SimulationResult, SystemHistory, read_events, read_statistics
 from .schedule import engine_schedule
@@ -207,7 +207,7 @@ class System:
         for component in self.components.values():
             component._start(t0)
         if lib().ssx_initialize(plan.sys, t0) < 0:
-            raise simulation_error(plan)
+            raise_failure(plan)
         self.history = SystemHistory()
         self.t = t0
         self.is_initialized = True
@@ -243,7 +243,7 @@ class System:
         self.history = SystemHistory(events)
         self.t = float(lib().ssx_time(plan.sys))
         if status < 0:
-            raise simulation_error(plan)
+            raise_failure(plan)
         for component in self.components.values():
             component.t = self.t
         algorithm = self.algorithm
