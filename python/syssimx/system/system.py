@@ -21,7 +21,6 @@ from .connection import Connection, EventConnection
 from .failure import raise_failure
 from .plan import EnginePlan
 from .results import HistoryView, SimulationResult, SystemHistory, read_events, read_statistics
-from .schedule import engine_schedule
 
 logger = logging.getLogger("syssimx.system")
 
@@ -170,8 +169,7 @@ class System:
             plan.add_event_connection(c.src_comp, c.src_port, c.dst_comp)
         analysis = analyze({n: c.feedthrough() for n, c in self.components.items()},
                            [c.key() for c in self.connections])
-        order, sizes, loops = engine_schedule(analysis, list(self.components),
-                                              [c.key() for c in self.connections])
+        order, sizes, loops = analysis.schedule()
         if order:
             plan.check(lib().ssx_set_schedule(
                 plan.sys, ffi.new("int[]", [plan.index[n] for n in order]),
