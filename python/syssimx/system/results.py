@@ -94,7 +94,9 @@ class HistoryView:
         column = np.zeros(len(t), dtype=bool)
         for e in events:
             if (e.component, e.event) == (component, event):
-                column |= (t == e.t) & (self._micro == e.micro + 1)
+                # samples are in time order: look only at those taken at the event's instant
+                first, end = np.searchsorted(t, e.t, "left"), np.searchsorted(t, e.t, "right")
+                column[first:end] |= self._micro[first:end] == e.micro + 1
         return column
 
     def detach(self) -> None:
