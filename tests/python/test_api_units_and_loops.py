@@ -43,6 +43,10 @@ DESCRIPTION = """<?xml version="1.0" encoding="UTF-8"?>
       <Real unit="kg.m2" start="0.5"/></ScalarVariable>
     <ScalarVariable name="n" valueReference="6" causality="parameter" variability="fixed">
       <Integer start="3"/></ScalarVariable>
+    <ScalarVariable name="R" valueReference="7" causality="output" variability="continuous">
+      <Real unit="Ohm"/></ScalarVariable>
+    <ScalarVariable name="odd" valueReference="8" causality="output" variability="continuous">
+      <Real unit="bogus_unit"/></ScalarVariable>
   </ModelVariables>
   <ModelStructure>
     <Outputs>
@@ -76,7 +80,16 @@ def test_units_inherited_from_declared_types(typed_fmu: Path):
 def test_feedthrough_from_model_structure(typed_fmu: Path):
     info = read_fmu(typed_fmu)
     # an <Unknown> without dependencies depends on every input; an empty list on none
-    assert info.feedthrough == {"phi": {"tau"}, "both": {"tau", "gain"}, "none": set()}
+    assert info.feedthrough == {"phi": {"tau"}, "both": {"tau", "gain"}, "none": set(),
+                                "R": {"tau", "gain"}, "odd": {"tau", "gain"}}
+
+
+def test_units_pint_cannot_read_are_mended_or_dropped(typed_fmu: Path,
+                                                       caplog: pytest.LogCaptureFixture):
+    info = read_fmu(typed_fmu)
+    assert info.output_specs["R"].unit == "ohm"
+    assert info.output_specs["odd"].unit is None
+    assert "'bogus_unit' is unknown to pint" in caplog.text
 
 
 @pytest.mark.parametrize(("fmi", "pint_unit"), [

@@ -6,6 +6,7 @@ error naming the file and what is wrong with it.
 
 from __future__ import annotations
 
+import logging
 import sys
 import zipfile
 from dataclasses import dataclass, field
@@ -18,6 +19,9 @@ from fmpy.model_description import ModelDescription, ModelVariable
 from ..core.port import PortSpec, PortType
 from ..errors import FMUFileError
 from ..graph.analysis import feedthrough_from_model_description
+from ..units import to_unit
+
+logger = logging.getLogger("syssimx.fmu")
 
 _PORT_TYPES = {"Real": PortType.REAL, "Integer": PortType.INT, "Enumeration": PortType.INT,
                "Boolean": PortType.BOOL}
@@ -61,6 +65,21 @@ def variable_unit(variable: ModelVariable) -> str | None:
         return variable.unit
     declared = variable.declaredType
     return getattr(declared, "unit", None) or None
+
+
+def _pint_unit(unit: str | None, where: str) -> str | None:
+    """`unit` if pint reads it (else its lower-case spelling, e.g. "Ohm"); a unit pint cannot
+    read is dropped with a warning, so the FMU stays usable without unit conversion there."""
+    for candidate in (unit, unit.lower() if unit else None):
+        if candidate:
+            try:
+                to_unit(candidate)
+                return candidate
+            except ValueError:
+                continue
+    if unit:
+        logger.warning("%s: unit %r is unknown to pint; the port carries no unit", where, unit)
+    return None
 
 
 def _start_value(variable: ModelVariable, kind: PortType) -> float | int | bool | str | None:
@@ -117,7 +136,8 @@ def _collect_ports_and_parameters(info: FMUInfo) -> None:
         kind = _PORT_TYPES.get(variable.type)
         if kind is None:
             continue  # String variables have no place among the engine's doubles
-        unit = variable_unit(variable) if kind == PortType.REAL else None
+        unit = (_pint_unit(variable_unit(variable), f"{info.path.name}: {variable.name}")
+                if kind == PortType.REAL else None)
         if variable.causality in ("input", "output"):
             spec = PortSpec(variable.name, kind, "in" if variable.causality == "input" else "out",
                             unit, variable.description)
