@@ -65,9 +65,7 @@ class FMUComponent(CoSimComponent):
         """The engine's current value of a port. Before the component runs in a system, an
         input reads its start value and an output 0 (the FMU computes it at initialization)."""
         if self._binding is None:
-            if direction == "in":
-                return self.inputs[name]._raw
-            return 0.0
+            return self._input_starts[name] if direction == "in" else 0.0
         value = self._binding.plan.port_value(self, direction, name)
         kind = (self.output_specs if direction == "out" else self.input_specs)[name].type
         return int(value) if kind == PortType.INT else bool(value) if kind == PortType.BOOL \
@@ -87,7 +85,6 @@ class FMUComponent(CoSimComponent):
                 raise ConfigurationError(f"component {self.name!r} has no input {name!r}; "
                                          f"inputs: {sorted(self.input_specs) or 'none'}")
             self._input_starts[name] = self.input_specs[name].coerce(value)
-            self.inputs[name]._raw = self._input_starts[name]
         if self._binding is not None:
             self._binding.plan.write_inputs(self, signals)
         if self.instance.alive():
@@ -123,8 +120,7 @@ class FMUComponent(CoSimComponent):
         setting fixed parameters after initialization)."""
         step_mode = self.instance.mode == "step"
         values = {n: v for n, v in self.parameters.items()
-                  if v is not None and self.info.parameters[n].type != PortType.STRING
-                  and (self.info.parameters[n].tunable or not step_mode)}
+                  if v is not None and (self.info.parameters[n].tunable or not step_mode)}
         self._write_to_fmu(values)
 
     def _apply_input_starts(self) -> None:
