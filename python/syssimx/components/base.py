@@ -245,13 +245,13 @@ class CoSimComponent:
 
     def get_history_arrays(self, port_names: list[str] | None = None
                            ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-        """(time, {output: values}) recorded by the engine system the component runs in."""
+        """(time, {output: values}) recorded by the engine system the component runs in, copied
+        (the engine's buffers move when it records again; System results are zero-copy)."""
         if self._binding is None:
             return np.empty(0), {n: np.empty(0) for n in self.engine_outputs()}
         t, values = self._binding.plan.component_history(self)
-        if port_names is not None:
-            values = {n: values[n] for n in port_names}
-        return t, values
+        names = self.engine_outputs() if port_names is None else port_names
+        return t.copy(), {n: np.array(values[n]) for n in names}
 
     def get_history(self, port_names: list[str] | None = None) -> dict[str, dict[str, Any]]:
         """{output: {"time", "values", "unit"}}."""
