@@ -117,8 +117,9 @@ class EnginePlan:
                 self.sys, index, output, int(indicator.direction)),
                 f"{component.name}.{event}")
         else:
+            # error=-1: an exception escaping the Python side still reports failure to C
             callback = ffi.callback("int(void *, double, double *)",
-                                    self._indicator_callback(component, event))
+                                    self._indicator_callback(component, event), error=-1)
             self._engine_references.append(callback)
             number = self.check(lib().ssx_add_indicator_callback(
                 self.sys, index, callback, ffi.NULL, int(indicator.direction)),
@@ -278,7 +279,7 @@ class _HookBuilder:
         def add(field: str, signature: str, where: str, body: Callable[..., None],
                 time_arg: int | None = -1) -> None:
             nonlocal needed
-            callback = ffi.callback(signature, self._guard(where, body, time_arg))
+            callback = ffi.callback(signature, self._guard(where, body, time_arg), error=-1)
             plan._engine_references.append(callback)
             setattr(hooks[0], field, callback)
             needed = True
