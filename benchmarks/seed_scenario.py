@@ -9,9 +9,9 @@ Three ways to run it:
   subclass     the seed tutorial's FMUPendulum subclass, unchanged (examples/hybrid_pendulum.py)
   SysSimX      the SysSimX 0.4.3 package from PyPI running the seed's code on the same FMUs,
                in a virtual environment this script creates (python -m venv; pip install);
-               two adaptations let it run on our strict FMUs (both in the script below):
-               parameters set after setFMUstate are limited to tunable ones, and doStep
-               starts at the FMU's own time (as the seed's lenient OpenModelica FMUs do)
+               fmpy's FMU2Slave calls are counted. Euler runs unmodified. For CVODE, SysSimX
+               asks for steps from times the FMU is not at (see the script below), which our
+               FMUs refuse; that run emulates the seed's lenient FMUs
 
     python benchmarks/seed_scenario.py [--repeat N] [--no-syssimx]
 """
@@ -110,35 +110,11 @@ SYSSIMX_SCRIPT = textwrap.dedent('''
         return wrapper
     FMU2Slave.instantiate = counting("instantiate", FMU2Slave.instantiate)
 
-    # FMI 2.0 forbids setting fixed parameters after initialization; our FMUs refuse it and
-    # SysSimX's _apply_parameters_starts does it after setFMUstate. Only for this comparison,
-    # restrict it to tunable parameters in step mode (what syssimx does).
-    from syssimx.components.fmu import FMUComponent as _Base
-    def tracking(method, stepping):
-        def wrapper(self, *args, **kwargs):
-            result = method(self, *args, **kwargs)
-            self._stepping = stepping
-            return result
-        return wrapper
-    FMU2Slave.instantiate = tracking(FMU2Slave.instantiate, False)
-    FMU2Slave.exitInitializationMode = tracking(FMU2Slave.exitInitializationMode, True)
-    _apply_all = _Base._apply_parameters_starts
-    def apply_in_mode(self):
-        if not getattr(self._instance, "_stepping", False):
-            return _apply_all(self)
-        saved = self.parameters
-        self.parameters = {n: v for n, v in saved.items()
-                           if self._md_vars[n].variability == "tunable"}
-        try:
-            _apply_all(self)
-        finally:
-            self.parameters = saved
-    _Base._apply_parameters_starts = apply_in_mode
-
-    # SysSimX asks for doStep at times the FMU is not at (it skips tol_time after an event and
-    # probes from moved points); our FMUs refuse a communication point that differs from
-    # their time, the seed's OpenModelica FMUs integrate from their own time. Emulate the
-    # latter: every doStep starts at the FMU's own time (tracked through state get/set).
+    # CVODE only: with the seed's re-instantiating restore_state, SysSimX restores the snapshot
+    # of the bracket's start and then asks for a step from the bracket's moved left end (e.g.
+    # FMU at 0.45, doStep from 0.4625). Our FMUs refuse a communication point that far from
+    # their time; the seed's OpenModelica FMUs integrate from their own time. Emulate the
+    # latter for that run: every doStep starts at the FMU's own time.
     _setup, _do_step = FMU2Slave.setupExperiment, FMU2Slave.doStep
     _get_state, _set_state = FMU2Slave.getFMUstate, FMU2Slave.setFMUstate
     def setup(self, tolerance=None, startTime=0.0, stopTime=None):
@@ -157,10 +133,15 @@ SYSSIMX_SCRIPT = textwrap.dedent('''
     def set_state(self, state):
         _set_state(self, state)
         self._time = self._state_times[state.value]
-    FMU2Slave.setupExperiment = setup
-    FMU2Slave.doStep = counting("do_step", do_step)
-    FMU2Slave.getFMUstate = counting("get_state", get_state)
-    FMU2Slave.setFMUstate = counting("set_state", set_state)
+    if sys.argv[4] == "cvode":
+        FMU2Slave.setupExperiment = setup
+        FMU2Slave.doStep = do_step
+        FMU2Slave.getFMUstate = get_state
+        FMU2Slave.setFMUstate = set_state
+
+    FMU2Slave.doStep = counting("do_step", FMU2Slave.doStep)
+    FMU2Slave.getFMUstate = counting("get_state", FMU2Slave.getFMUstate)
+    FMU2Slave.setFMUstate = counting("set_state", FMU2Slave.setFMUstate)
 
     # The seed tutorial's class, as written.
     class FMUPendulum(FMUComponent):
@@ -261,12 +242,10 @@ SYSSIMX_SCRIPT = textwrap.dedent('''
                 "event_time": crossings[0].t if crossings else None,
                 "events": len(crossings), "calls": used}
 
-    report = {}
-    for solver in ("euler", "cvode"):
-        try:
-            report[solver] = scenario(solver)
-        except Exception as exc:  # reported, not hidden: SysSimX may not run on strict FMUs
-            report[solver] = {"error": f"{type(exc).__name__}: {exc}"}
+    try:
+        report = scenario(sys.argv[4])
+    except Exception as exc:  # reported, not hidden: SysSimX may not run on strict FMUs
+        report = {"error": f"{type(exc).__name__}: {exc}"}
     print(json.dumps(report))
 ''')
 
@@ -284,17 +263,22 @@ def syssimx_environment() -> Path:
     return python
 
 
-def measure_syssimx(repeat: int) -> dict[str, Any]:
+def measure_syssimx(repeat: int) -> dict[str, dict[str, Any]]:
+    """One child process per solver: the CVODE run patches fmpy for the whole process."""
     python = syssimx_environment()
     with tempfile.NamedTemporaryFile("w", suffix=".py", delete=False) as script:
         script.write(SYSSIMX_SCRIPT)
     # the child must import SysSimX from its environment, not this source tree
     environment = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
-    output = subprocess.run(
-        [str(python), script.name, fmus.path("pendulum_euler"), fmus.path("pendulum_cvode"),
-         str(repeat)], check=True, capture_output=True, text=True, env=environment)
+    report = {}
+    for solver in SOLVERS:
+        output = subprocess.run(
+            [str(python), script.name, fmus.path("pendulum_euler"),
+             fmus.path("pendulum_cvode"), str(repeat), solver],
+            check=True, capture_output=True, text=True, env=environment)
+        report[solver] = json.loads(output.stdout.strip().splitlines()[-1])
     Path(script.name).unlink()
-    return json.loads(output.stdout.strip().splitlines()[-1])
+    return report
 
 
 def main() -> None:

@@ -98,13 +98,14 @@ fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
  * Masters re-apply all parameters after fmi2SetFMUstate (SysSimX does): a fixed parameter set
  * in step mode to the value it already has changes nothing and is accepted; a new value is not. */
 static fmi2Status check_settable(const fmu_instance *inst, const char *function,
-                                 const model_variable *var, double value)
+                                 fmi2ValueReference vr, double value)
 {
+    const model_variable *var = fmu_variable(inst, vr);
     if (var->causality == CAUSALITY_INPUT)
         return fmi2OK;
     if (var->causality == CAUSALITY_PARAMETER) {
         if (inst->phase != PHASE_STEP || var->variability == VARIABILITY_TUNABLE ||
-            inst->values[var->vr] == value)
+            inst->values[vr] == value)
             return fmi2OK;
         return fmu_error(inst,
                          "%s: %s is a fixed parameter and cannot be changed in step mode "
@@ -147,8 +148,7 @@ static fmi2Status store(fmu_instance *inst, const char *function, const fmi2Valu
                         size_t nvr, const void *values, double (*value_at)(const void *, size_t))
 {
     for (size_t i = 0; i < nvr; ++i)
-        if (check_settable(inst, function, fmu_variable(inst, vr[i]), value_at(values, i)) !=
-            fmi2OK)
+        if (check_settable(inst, function, vr[i], value_at(values, i)) != fmi2OK)
             return fmi2Error;
     int changed = 0;
     for (size_t i = 0; i < nvr; ++i) {

@@ -61,7 +61,10 @@ def test_masters_habits_after_a_restore_are_accepted(open_fmu, name: str) -> Non
     fmu.slave.doStep(0.1, 0.1)
     fmu.slave.setFMUstate(state)
     count = len(fmu.messages)
-    fmu.slave.setReal([fmu.vr("m"), fmu.vr("theta0")], [40.0, 0.5])
+    # every parameter, the back-end's included, as SysSimX's _apply_parameters_starts does
+    backend = "euler_step_size" if name.endswith("euler") else "cvode_relative_tolerance"
+    names = ["m", "theta0", backend]
+    fmu.slave.setReal([fmu.vr(n) for n in names], [fmu.get(n) for n in names])
     fmu.slave.doStep(0.1 + 1e-8, 0.1)
     assert len(fmu.messages) == count  # nothing to complain about
     theta_skipped = fmu.get("theta")
@@ -70,4 +73,6 @@ def test_masters_habits_after_a_restore_are_accepted(open_fmu, name: str) -> Non
     # the same interval [0.1, 0.2 + 1e-8], up to the rounding of its end point
     assert fmu.get("theta") == pytest.approx(theta_skipped, abs=1e-12)
     refused(fmu, fmu.slave.setReal, [fmu.vr("theta0")], [0.25], expected="fixed parameter")
+    refused(fmu, fmu.slave.setReal, [fmu.vr(backend)], [0.5 * fmu.get(backend)],
+            expected="fixed parameter")
     fmu.slave.freeFMUstate(state)
