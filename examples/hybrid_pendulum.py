@@ -188,7 +188,7 @@ def main() -> None:
     args = parser.parse_args()
     logging.basicConfig(level=logging.WARNING,
                         format="[%(module)s] %(levelname)s: %(message)s")
-    logging.getLogger("syssimx").setLevel(logging.INFO)
+    logging.getLogger("syssimx").setLevel(logging.DEBUG)  # as the seed tutorial does
     results = {solver: simulate(solver) for solver in ("euler", "cvode")}
     for solver, (_, _, event_time) in results.items():
         if event_time is None:
