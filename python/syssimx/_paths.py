@@ -16,10 +16,15 @@ ENGINE_LIBRARY = "libsyssimx_engine.so"
 ENGINE_HEADER = "syssimx_engine.h"
 
 
+# A relative SYSSIMX_BUILD_DIR means relative to where syssimx was imported, whatever the
+# current directory is later.
+_IMPORT_DIR = Path.cwd()
+
+
 def build_dir() -> Path | None:
     """The meson build directory named by SYSSIMX_BUILD_DIR, if any."""
     value = os.environ.get("SYSSIMX_BUILD_DIR")
-    return Path(value).resolve() if value else None
+    return (_IMPORT_DIR / value).resolve() if value else None
 
 
 def engine_library() -> Path:
