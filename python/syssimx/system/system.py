@@ -273,6 +273,12 @@ class System:
 
         return describe_system(self)
 
+    def _repr_svg_(self) -> str:
+        """Jupyter shows the system as its graph (graphviz is imported only here: optional)."""
+        from ..viz.system_graph_visualizer import system_svg
+
+        return system_svg(self)
+
     def reset(self) -> None:
         """Drop the engine system; components keep their parameters."""
         if self._plan is not None:
