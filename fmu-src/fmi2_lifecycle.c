@@ -154,6 +154,7 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined,
     inst->tolerance_defined = toleranceDefined != fmi2False;
     inst->tolerance = toleranceDefined ? tolerance : 0.0;
     inst->time = startTime;
+    inst->outputs_stale = 1;
     return fmi2OK;
 }
 

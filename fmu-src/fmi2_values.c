@@ -44,7 +44,8 @@ static fmu_instance *prepare_get(fmi2Component c, const char *function,
         fmu_error(inst, "%s: the value array is NULL", function);
         return NULL;
     }
-    fmu_refresh_outputs(inst); /* outputs follow the current state and inputs */
+    if (inst->outputs_stale) /* outputs follow the current state and inputs */
+        fmu_refresh_outputs(inst);
     return inst;
 }
 
@@ -156,8 +157,11 @@ static fmi2Status store(fmu_instance *inst, const char *function, const fmi2Valu
         changed |= inst->values[vr[i]] != value;
         inst->values[vr[i]] = value;
     }
-    if (changed && inst->phase == PHASE_STEP)
-        fmu_solver_invalidate(inst);
+    if (changed) {
+        inst->outputs_stale = 1;
+        if (inst->phase == PHASE_STEP)
+            fmu_solver_invalidate(inst);
+    }
     return fmi2OK;
 }
 

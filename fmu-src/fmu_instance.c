@@ -25,16 +25,6 @@ fmu_instance *fmu_checked(fmi2Component c, const char *function, unsigned allowe
     return inst;
 }
 
-const model_variable *fmu_variable(const fmu_instance *inst, fmi2ValueReference vr)
-{
-    size_t n_model = inst->model->n_variables;
-    if (vr < n_model)
-        return &inst->model->variables[vr];
-    if (vr < inst->n_variables)
-        return &inst->solver_variables[vr - n_model];
-    return NULL;
-}
-
 double fmu_solver_parameter(const fmu_instance *inst, size_t i)
 {
     return inst->values[inst->model->n_variables + i];
@@ -58,6 +48,7 @@ void fmu_refresh_outputs(fmu_instance *inst)
     if (inst->phase < PHASE_STEP && inst->model->n_states > 0)
         inst->model->initial_states(inst->values, inst->x);
     inst->model->outputs(inst->values, inst->time, inst->x);
+    inst->outputs_stale = 0;
 }
 
 void fmu_handle_events(fmu_instance *inst, double t, double *x)

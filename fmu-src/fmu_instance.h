@@ -32,6 +32,9 @@ typedef struct fmu_instance {
     double *values;          /* by value reference */
     double *x;               /* continuous states */
     double time;
+    /* set when an input, a parameter, the state or the time changed since the outputs were last
+     * computed: a get then recomputes them, otherwise it serves the values doStep computed */
+    int outputs_stale;
 
     int tolerance_defined;
     double tolerance;
@@ -53,8 +56,17 @@ fmu_instance *fmu_checked(fmi2Component c, const char *function, unsigned allowe
 
 const char *fmu_phase_name(fmu_phase phase);
 
-/* The table row of a value reference, or NULL when the FMU has no such variable. */
-const model_variable *fmu_variable(const fmu_instance *inst, fmi2ValueReference vr);
+/* The table row of a value reference, or NULL when the FMU has no such variable. Inline: every
+ * fmi2Get and fmi2Set checks each of its value references with it. */
+static inline const model_variable *fmu_variable(const fmu_instance *inst, fmi2ValueReference vr)
+{
+    size_t n_model = inst->model->n_variables;
+    if (vr < n_model)
+        return &inst->model->variables[vr];
+    if (vr < inst->n_variables)
+        return &inst->solver_variables[vr - n_model];
+    return NULL;
+}
 
 /* Every variable back to its start value, the states from the parameters, time to zero. */
 void fmu_apply_start_values(fmu_instance *inst);
@@ -62,7 +74,7 @@ void fmu_apply_start_values(fmu_instance *inst);
 /* Value of the back-end parameter with index `i` in the back-end's variable table. */
 double fmu_solver_parameter(const fmu_instance *inst, size_t i);
 
-/* Recompute outputs and locals from the current state and inputs (cheap, called on every get). */
+/* Recompute outputs and locals from the current state and inputs; clears outputs_stale. */
 void fmu_refresh_outputs(fmu_instance *inst);
 
 /* Apply the internal events the back-end marked in inst->fired at time t (changes x), and log them. */

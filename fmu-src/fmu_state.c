@@ -85,6 +85,7 @@ fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate)
     inst->time = snapshot->header.time;
     memcpy(inst->values, snapshot->data, inst->n_variables * sizeof(double));
     memcpy(inst->x, snapshot->data + inst->n_variables, inst->model->n_states * sizeof(double));
+    inst->outputs_stale = 1;
     fmu_solver_invalidate(inst);
     return fmi2OK;
 }

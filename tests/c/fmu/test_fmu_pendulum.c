@@ -81,6 +81,48 @@ static void run_to(test_fmu *fmu, fmi2Component c, double t_from, double t_to, d
         CHECK_OK(fmu->do_step(c, t_from + k * dt, dt, fmi2False));
 }
 
+/* The FMU serves gets from the outputs its last doStep computed; every other change of inputs,
+ * state or parameters must make the next get recompute them. */
+static void check_outputs_follow_every_change(test_fmu *fmu, int cvode)
+{
+    fmi2Component c = start_pendulum(fmu, cvode, 0.0);
+    CHECK_NEAR("alpha after initialization", fmu_get(fmu, c, "alpha"),
+               -STIFFNESS * sin(THETA0), 1e-15);
+    run_to(fmu, c, 0.0, 0.2, 0.01);
+    double theta = fmu_get(fmu, c, "theta");
+    double alpha = fmu_get(fmu, c, "alpha");
+    CHECK_NEAR("alpha after steps", alpha, -STIFFNESS * sin(theta), 1e-15);
+    const double pushed = -STIFFNESS * sin(theta) + 7.0 / 20.0; /* alpha with torque 7 */
+
+    fmu_set(fmu, c, "torque", 7.0);
+    /* taken before any get: the state holds the torque but not yet the alpha that follows */
+    fmi2FMUstate state = NULL;
+    CHECK_OK(fmu->get_state(c, &state));
+    CHECK_NEAR("alpha after setting the torque", fmu_get(fmu, c, "alpha"), pushed, 1e-15);
+    fmu_set(fmu, c, "torque", 7.0);
+    CHECK_NEAR("alpha after setting the same torque again", fmu_get(fmu, c, "alpha"), pushed,
+               1e-15);
+    fmu_set(fmu, c, "torque", 0.0);
+    CHECK_NEAR("alpha after setting the torque back to 0", fmu_get(fmu, c, "alpha"), alpha, 0.0);
+    run_to(fmu, c, 0.2, 0.5, 0.01);
+    CHECK(fmu_get(fmu, c, "theta") != theta);
+
+    CHECK_OK(fmu->set_state(c, state));
+    CHECK_NEAR("theta after setting the state back", fmu_get(fmu, c, "theta"), theta, 0.0);
+    CHECK_NEAR("alpha after setting the state back (torque 7 again)", fmu_get(fmu, c, "alpha"),
+               pushed, 1e-15);
+    CHECK_OK(fmu->free_state(c, &state));
+
+    CHECK_OK(fmu->reset(c));
+    CHECK_NEAR("alpha after reset (theta0 = 0, torque = 0)", fmu_get(fmu, c, "alpha"), 0.0, 0.0);
+    CHECK_OK(fmu->setup_experiment(c, cvode, 1e-10, 0.0, fmi2False, 0.0));
+    CHECK_OK(fmu->enter_initialization_mode(c));
+    fmu_set(fmu, c, "theta0", THETA0);
+    CHECK_NEAR("alpha after setting theta0 in initialization mode", fmu_get(fmu, c, "alpha"),
+               -STIFFNESS * sin(THETA0), 1e-15);
+    fmu->free_instance(c);
+}
+
 /* get state at t1, run to t2, set it back, run to t2 again; also through serialization into
  * a fresh instance. The engine reuses one state buffer: fmi2GetFMUstate must not reallocate. */
 static void check_state_round_trip(test_fmu *fmu, int cvode)
@@ -226,6 +268,7 @@ int main(int argc, char **argv)
     check_quarter_period(&fmu, cvode);
     check_energy(&fmu, cvode);
     check_feedthrough(&fmu, cvode);
+    check_outputs_follow_every_change(&fmu, cvode);
     check_state_round_trip(&fmu, cvode);
     check_reset(&fmu, cvode);
     check_master_habits(&fmu, cvode);
