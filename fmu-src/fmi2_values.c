@@ -14,19 +14,30 @@
 
 static const char *const type_names[] = {"Real", "Integer", "Boolean"};
 
-/* Checks every value reference before anything is read or written. */
+static fmi2Status refuse_reference(const fmu_instance *inst, const char *function,
+                                   fmi2ValueReference vr)
+{
+    const model_variable *var = fmu_variable(inst, vr);
+    if (var == NULL)
+        return fmu_error(inst, "%s: unknown value reference %u", function, vr);
+    return fmu_error(inst, "%s: variable %s (value reference %u) is of type %s", function,
+                     var->name, vr, type_names[var->type]);
+}
+
+/* Checks every value reference before anything is read or written. The model's own variables
+ * are looked up directly: this runs on every get and set. */
 static fmi2Status check_references(const fmu_instance *inst, const char *function,
                                    const fmi2ValueReference vr[], size_t nvr, variable_type type)
 {
     if (nvr > 0 && vr == NULL)
         return fmu_error(inst, "%s: the value reference array is NULL", function);
+    const model_variable *model_variables = inst->model->variables;
+    const size_t n_model = inst->model->n_variables;
     for (size_t i = 0; i < nvr; ++i) {
-        const model_variable *var = fmu_variable(inst, vr[i]);
-        if (var == NULL)
-            return fmu_error(inst, "%s: unknown value reference %u", function, vr[i]);
-        if (var->type != type)
-            return fmu_error(inst, "%s: variable %s (value reference %u) is of type %s",
-                             function, var->name, vr[i], type_names[var->type]);
+        const fmi2ValueReference r = vr[i];
+        const model_variable *var = r < n_model ? &model_variables[r] : fmu_variable(inst, r);
+        if (var == NULL || var->type != type)
+            return refuse_reference(inst, function, r);
     }
     return fmi2OK;
 }

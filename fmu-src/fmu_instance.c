@@ -13,16 +13,10 @@ const char *fmu_phase_name(fmu_phase phase)
     return phase_names[phase];
 }
 
-fmu_instance *fmu_checked(fmi2Component c, const char *function, unsigned allowed)
+fmu_instance *fmu_refuse_in_phase(fmu_instance *inst, const char *function)
 {
-    fmu_instance *inst = c;
-    if (inst == NULL)
-        return NULL;
-    if ((allowed & PHASE_BIT(inst->phase)) == 0) {
-        fmu_error(inst, "%s is not allowed in %s", function, fmu_phase_name(inst->phase));
-        return NULL;
-    }
-    return inst;
+    fmu_error(inst, "%s is not allowed in %s", function, fmu_phase_name(inst->phase));
+    return NULL;
 }
 
 double fmu_solver_parameter(const fmu_instance *inst, size_t i)

@@ -13,6 +13,8 @@ typedef enum {
     PHASE_TERMINATED
 } fmu_phase;
 
+#define PHASE_BIT(phase) (1u << (phase))
+
 typedef struct {
     fmi2CallbackLogger logger;
     fmi2ComponentEnvironment environment;
@@ -48,11 +50,20 @@ typedef struct fmu_instance {
     void *solver;            /* back-end data */
 } fmu_instance;
 
-#define PHASE_BIT(phase) (1u << (phase))
+/* Logs that `function` is not allowed in the instance's phase; returns NULL. */
+fmu_instance *fmu_refuse_in_phase(fmu_instance *inst, const char *function);
 
 /* The instance behind c when the call is allowed in one of the phases in `allowed` (a set of
- * PHASE_BIT); otherwise logs why and returns NULL. */
-fmu_instance *fmu_checked(fmi2Component c, const char *function, unsigned allowed);
+ * PHASE_BIT); otherwise logs why and returns NULL. Inline: every fmi2 call starts here. */
+static inline fmu_instance *fmu_checked(fmi2Component c, const char *function, unsigned allowed)
+{
+    fmu_instance *inst = c;
+    if (inst == NULL)
+        return NULL;
+    if ((allowed & PHASE_BIT(inst->phase)) == 0)
+        return fmu_refuse_in_phase(inst, function);
+    return inst;
+}
 
 const char *fmu_phase_name(fmu_phase phase);
 

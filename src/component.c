@@ -156,8 +156,10 @@ static void free_prepared(ssx_component *c)
     }
     free(c->real_scratch);
     free(c->int_scratch);
+    free(c->inputs_written);
     c->real_scratch = NULL;
     c->int_scratch = NULL;
+    c->inputs_written = NULL;
     for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
         free(c->saved_outputs[slot]);
         free(c->saved_inputs[slot]);
@@ -180,7 +182,9 @@ int component_prepare(ssx_component *c)
     size_t widest = (size_t)(c->n_outputs > c->n_inputs ? c->n_outputs : c->n_inputs) + 1;
     c->real_scratch = malloc(widest * sizeof *c->real_scratch);
     c->int_scratch = malloc(widest * sizeof *c->int_scratch);
-    if (c->real_scratch == NULL || c->int_scratch == NULL) {
+    c->inputs_written = malloc(((size_t)c->n_inputs + 1) * sizeof *c->inputs_written);
+    c->inputs_written_epoch = -1;
+    if (c->real_scratch == NULL || c->int_scratch == NULL || c->inputs_written == NULL) {
         return -1;
     }
     for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {

@@ -53,6 +53,10 @@ struct ssx_component {
     ssx_port_batch input_batch[3];
     double *real_scratch;
     int *int_scratch;
+    /* the inputs as last written to the FMU and its values epoch right after that write
+     * (-1: nothing written yet); equal inputs at an unchanged epoch need no fmi2Set */
+    double *inputs_written;
+    long inputs_written_epoch;
 
     /* built-in FMU snapshots: one reused FMU state per slot, valid for one instance generation */
     void *fmu_state[SSX_SNAPSHOT_SLOTS];

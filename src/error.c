@@ -68,7 +68,3 @@ void clear_error(ssx_system *sys)
     sys->error.time = NAN;
 }
 
-int fmi_ok(int status)
-{
-    return status == 0 || status == 1;
-}

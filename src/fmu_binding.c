@@ -48,6 +48,7 @@ struct ssx_fmu {
     fmi2CallbackFunctions callbacks; /* must outlive the instance: the FMU keeps the pointer */
     fmi2Component instance;
     long generation;
+    long values_epoch; /* see ssx_fmu_values_epoch */
     /* FMU states handed out by the live instance, freed with it */
     void **states;
     size_t n_states;
@@ -292,6 +293,7 @@ int ssx_fmu_instantiate(ssx_fmu *fmu)
                                         fmu->resource_uri, &fmu->callbacks, fmi2False,
                                         fmu->logging_on ? fmi2True : fmi2False);
     fmu->generation++;
+    fmu->values_epoch++;
     if (fmu->instance == NULL) {
         if (fmu->last_message[0] == '\0') {
             note(fmu, "fmi2Instantiate returned NULL");
@@ -367,6 +369,7 @@ int ssx_fmu_set_real(ssx_fmu *fmu, const unsigned int *vr, size_t n, const doubl
         return -1;
     }
     fmu->counters.set_values++;
+    fmu->values_epoch++;
     return (int)fmu->fn.set_real(fmu->instance, vr, n, values);
 }
 
@@ -385,6 +388,7 @@ int ssx_fmu_set_integer(ssx_fmu *fmu, const unsigned int *vr, size_t n, const in
         return -1;
     }
     fmu->counters.set_values++;
+    fmu->values_epoch++;
     return (int)fmu->fn.set_integer(fmu->instance, vr, n, values);
 }
 
@@ -403,6 +407,7 @@ int ssx_fmu_set_boolean(ssx_fmu *fmu, const unsigned int *vr, size_t n, const in
         return -1;
     }
     fmu->counters.set_values++;
+    fmu->values_epoch++;
     return (int)fmu->fn.set_boolean(fmu->instance, vr, n, values);
 }
 
@@ -446,6 +451,7 @@ int ssx_fmu_set_state(ssx_fmu *fmu, void *state)
         return -1;
     }
     fmu->counters.set_state++;
+    fmu->values_epoch++;
     return (int)fmu->fn.set_state(fmu->instance, state);
 }
 
@@ -536,6 +542,7 @@ int ssx_fmu_reset(ssx_fmu *fmu)
     if (!live(fmu, "fmi2Reset")) {
         return -1;
     }
+    fmu->values_epoch++;
     return (int)fmu->fn.reset(fmu->instance);
 }
 
@@ -567,6 +574,11 @@ void ssx_fmu_get_counters(const ssx_fmu *fmu, ssx_fmu_counters *out)
 long ssx_fmu_generation(const ssx_fmu *fmu)
 {
     return fmu != NULL ? fmu->generation : 0;
+}
+
+long ssx_fmu_values_epoch(const ssx_fmu *fmu)
+{
+    return fmu != NULL ? fmu->values_epoch : 0;
 }
 
 const char *ssx_fmu_instance_name(const ssx_fmu *fmu)

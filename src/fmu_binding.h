@@ -7,6 +7,10 @@
 /* Counts instantiations: FMU states of an earlier instance are invalid (the binding frees them
  * when their instance goes away), so a holder compares generations before reusing a state. */
 long ssx_fmu_generation(const ssx_fmu *fmu);
+/* Counts the calls that may change the instance's inputs: fmi2Set*, fmi2SetFMUstate, fmi2Reset
+ * and instantiation. Unchanged since a holder's own write, the instance still holds what the
+ * holder wrote, so writing the same values again can be skipped. */
+long ssx_fmu_values_epoch(const ssx_fmu *fmu);
 const char *ssx_fmu_instance_name(const ssx_fmu *fmu);
 const char *ssx_fmi2_status_name(int status);
 

@@ -1,5 +1,6 @@
 /* Built-in behaviour of an FMU component: its fmi2 calls, batched by value type. */
 #include <stddef.h>
+#include <string.h>
 
 #include "component.h"
 #include "error.h"
@@ -38,8 +39,26 @@ static int fmu_read_outputs(ssx_system *sys, ssx_component *c)
     return 0;
 }
 
+/* Whether the FMU already holds every input value: nothing set it since the engine's last write
+ * (connected inputs change each step; unconnected ones only when Python writes them). */
+static int inputs_unchanged(const ssx_component *c)
+{
+    if (c->inputs_written_epoch != ssx_fmu_values_epoch(c->fmu)) {
+        return 0;
+    }
+    for (int i = 0; i < c->n_inputs; ++i) {
+        if (c->inputs[i] != c->inputs_written[i]) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
 static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
 {
+    if (inputs_unchanged(c)) {
+        return 0;
+    }
     const ssx_port_batch *real = &c->input_batch[SSX_REAL];
     if (real->n > 0) {
         for (size_t i = 0; i < real->n; ++i) {
@@ -69,6 +88,10 @@ static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
                             type == SSX_INTEGER ? "fmi2SetInteger" : "fmi2SetBoolean");
         }
     }
+    if (c->n_inputs > 0) {
+        memcpy(c->inputs_written, c->inputs, (size_t)c->n_inputs * sizeof(double));
+    }
+    c->inputs_written_epoch = ssx_fmu_values_epoch(c->fmu);
     return 0;
 }
 
