@@ -74,8 +74,54 @@ static void history_size(void)
     }
 }
 
+/* alpha of the default pendulum (m g L / I = 40 * 9.81 * 0.6 / 20, I = 20) at theta and torque */
+static double pendulum_alpha(double theta, double torque)
+{
+    return -(40.0 * 9.81 * 0.6 / 20.0) * sin(theta) + torque / 20.0;
+}
+
+/* The engine skips writing inputs the FMU already holds; a value set in the FMU by anything
+ * else (a direct fmi2SetReal, a restored FMU state) must still be overwritten by the next write. */
+static void inputs_reach_the_fmu(void)
+{
+    const unsigned int torque_vr[] = {PENDULUM_TORQUE}, alpha_vr[] = {PENDULUM_ALPHA};
+    const unsigned int theta_vr[] = {PENDULUM_THETA};
+    ssx_fmu *fmu = load_fmu("pendulum_euler");
+    CHECK(start_pendulum(fmu, 0.0, 0.5, 0.0, 0.0) == 0);
+    ssx_system *sys = ssx_system_new("inputs");
+    int c = add_pendulum(sys, "pendulum", fmu);
+    CHECK_OK(sys, ssx_initialize(sys, 0.0));
+    CHECK_OK(sys, ssx_run(sys, 0.0, 0.1, 0.01));
+    double theta = 0.0, alpha = 0.0;
+    CHECK(ssx_fmu_get_real(fmu, theta_vr, 1, &theta) == 0);
+
+    const double five = 5.0;
+    CHECK(ssx_fmu_set_real(fmu, torque_vr, 1, &five) == 0);
+    CHECK_OK(sys, ssx_component_write_inputs(sys, c));
+    CHECK(ssx_fmu_get_real(fmu, alpha_vr, 1, &alpha) == 0);
+    CHECK_CLOSE(alpha, pendulum_alpha(theta, 0.0), 1e-15); /* the engine's 0 again */
+
+    double *inputs = ssx_inputs(sys, c);
+    inputs[0] = 3.0;
+    CHECK_OK(sys, ssx_component_write_inputs(sys, c));
+    CHECK(ssx_fmu_get_real(fmu, alpha_vr, 1, &alpha) == 0);
+    CHECK_CLOSE(alpha, pendulum_alpha(theta, 3.0), 1e-15);
+
+    CHECK_OK(sys, ssx_component_snapshot(sys, c, 0)); /* the FMU state holds torque 3 */
+    inputs[0] = 1.0;
+    CHECK_OK(sys, ssx_component_write_inputs(sys, c));
+    CHECK_OK(sys, ssx_component_restore(sys, c, 0, 0.1)); /* torque 3 in the FMU, 1 in the engine */
+    CHECK_OK(sys, ssx_component_write_inputs(sys, c));
+    CHECK(ssx_fmu_get_real(fmu, alpha_vr, 1, &alpha) == 0);
+    CHECK_CLOSE(alpha, pendulum_alpha(theta, 1.0), 1e-15);
+
+    ssx_system_free(sys);
+    ssx_fmu_free(fmu);
+}
+
 int main(void)
 {
+    inputs_reach_the_fmu();
     history_size();
     compare("pendulum_euler", 0.0, 1.0, 0.01, 101);
     compare("pendulum_cvode", 0.0, 1.0, 0.05, 21);
