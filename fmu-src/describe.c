@@ -61,6 +61,18 @@ static int collect(variable_list *list)
     return 0;
 }
 
+/* The shortest decimal form that reads back as the same double. */
+static void write_real(FILE *out, double value)
+{
+    char text[32];
+    for (int digits = 15; digits <= 17; ++digits) {
+        snprintf(text, sizeof text, "%.*g", digits, value);
+        if (strtod(text, NULL) == value)
+            break;
+    }
+    fputs(text, out);
+}
+
 static void write_units(FILE *out, const variable_list *list)
 {
     const char *written[64];
@@ -90,22 +102,15 @@ static void write_units(FILE *out, const variable_list *list)
             fprintf(out, " s=\"%d\"", def->s);
         if (def->rad)
             fprintf(out, " rad=\"%d\"", def->rad);
+        if (def->factor != 1.0) {
+            fputs(" factor=\"", out);
+            write_real(out, def->factor);
+            fputc('"', out);
+        }
         fputs("/>\n    </Unit>\n", out);
     }
     if (opened)
         fputs("  </UnitDefinitions>\n", out);
-}
-
-/* The shortest decimal form that reads back as the same double. */
-static void write_real(FILE *out, double value)
-{
-    char text[32];
-    for (int digits = 15; digits <= 17; ++digits) {
-        snprintf(text, sizeof text, "%.*g", digits, value);
-        if (strtod(text, NULL) == value)
-            break;
-    }
-    fputs(text, out);
 }
 
 static void write_variable(FILE *out, const model_variable *v, size_t vr)

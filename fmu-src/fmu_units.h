@@ -5,6 +5,7 @@
 typedef struct {
     const char *name;
     int kg, m, s, rad;
+    double factor; /* value in SI = factor * value in this unit */
 } unit_definition;
 
 /* The definition of a unit name, or NULL when the unit is unknown (a build error). */

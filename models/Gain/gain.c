@@ -1,12 +1,12 @@
-/* Gain.mo: y = k * u. */
+/* Gain.mo: y = k * u, a length in metres to a length in metres. */
 #include "model.h"
 
 enum { VR_Y, VR_U, VR_K, VARIABLE_COUNT };
 
 static const model_variable variables[VARIABLE_COUNT] = {
     [VR_Y] = {"y", VR_Y, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,
-              NULL, 0, "output k * u", -1, DEPENDS(VR_U), DEPENDS(VR_U, VR_K)},
-    [VR_U] = {"u", VR_U, TYPE_REAL, CAUSALITY_INPUT, VARIABILITY_CONTINUOUS, INITIAL_NONE, NULL, 0,
+              "m", 0, "output k * u", -1, DEPENDS(VR_U), DEPENDS(VR_U, VR_K)},
+    [VR_U] = {"u", VR_U, TYPE_REAL, CAUSALITY_INPUT, VARIABILITY_CONTINUOUS, INITIAL_NONE, "m", 0,
               "input", -1, NULL, NULL},
     REAL_PARAMETER(VR_K, "k", NULL, 1, "gain"),
 };

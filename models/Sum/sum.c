@@ -1,15 +1,17 @@
-/* Sum.mo: y = b - c * u (with a gain, the smallest algebraic loop: y = b - c k y). */
+/* Sum.mo: y = b - c * u (with a gain, the smallest algebraic loop: y = b - c k y).
+ * The input is in centimetres and the output in metres, so that a loop through the gain (metres)
+ * converts units inside the loop; c carries the factor from cm to m (c = 0.01 is a unit weight). */
 #include "model.h"
 
 enum { VR_Y, VR_U, VR_B, VR_C, VARIABLE_COUNT };
 
 static const model_variable variables[VARIABLE_COUNT] = {
     [VR_Y] = {"y", VR_Y, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,
-              NULL, 0, "output b - c * u", -1, DEPENDS(VR_U), DEPENDS(VR_U, VR_B, VR_C)},
-    [VR_U] = {"u", VR_U, TYPE_REAL, CAUSALITY_INPUT, VARIABILITY_CONTINUOUS, INITIAL_NONE, NULL, 0,
+              "m", 0, "output b - c * u", -1, DEPENDS(VR_U), DEPENDS(VR_U, VR_B, VR_C)},
+    [VR_U] = {"u", VR_U, TYPE_REAL, CAUSALITY_INPUT, VARIABILITY_CONTINUOUS, INITIAL_NONE, "cm", 0,
               "input", -1, NULL, NULL},
-    REAL_PARAMETER(VR_B, "b", NULL, 0, "offset"),
-    REAL_PARAMETER(VR_C, "c", NULL, 1, "weight of the input"),
+    REAL_PARAMETER(VR_B, "b", "m", 0, "offset"),
+    REAL_PARAMETER(VR_C, "c", NULL, 1, "weight of the input, in m per cm of input"),
 };
 
 static void outputs(double *v, double t, const double *x)
