@@ -8,13 +8,10 @@ a hook (`_do_step_internal`, `_update_output_states`, `snapshot_state`/`restore_
 
 from __future__ import annotations
 
-import shutil
-import tempfile
 import weakref
 from pathlib import Path
 from typing import Any
 
-import fmpy
 import pint
 
 from ..core.port import Port, PortSpec, PortType
@@ -22,6 +19,7 @@ from ..engine import ffi, lib
 from ..errors import ConfigurationError, FMUFileError
 from ..units import magnitude_in
 from .base import CoSimComponent
+from .extraction import extractions
 from .fmu_instance import FMUInstance
 from .model_description import FMUInfo, Parameter, read_fmu, start_value, variable_unit
 
@@ -38,9 +36,10 @@ class FMUComponent(CoSimComponent):
         self.direct_feedthrough = {k: set(v) for k, v in self.info.feedthrough.items()}
         self.parameters = {n: p.start for n, p in self.info.parameters.items()}
         self._input_starts = {n: _start(self.info, n) for n in self.info.input_specs}
-        self._fmu, self._unzip_dir = _load(self.info, name)
+        self._fmu, self._unzip_dir, extraction_key = _load(self.info, name)
         self.instance = FMUInstance(self._fmu, name)
-        self._finalizer = weakref.finalize(self, _release, self.instance, self._unzip_dir)
+        self._finalizer = weakref.finalize(self, _release, self.instance, self._unzip_dir,
+                                           extraction_key)
         self._sync_ports()
 
     @property
@@ -249,10 +248,12 @@ def _coerce_parameter(component: str, parameter: Parameter, value: Any) -> Any:
         raise ConfigurationError(f"{where}: {exc}") from exc
 
 
-def _load(info: FMUInfo, name: str) -> tuple[Any, Path]:
-    """Extract the archive and load its binary into the engine (no instance yet)."""
-    unzip_dir = Path(tempfile.mkdtemp(prefix="syssimx_"))
-    fmpy.extract(str(info.path), unzipdir=str(unzip_dir))
+def _load(info: FMUInfo, name: str) -> tuple[Any, Path, tuple[str, int, int] | None]:
+    """Extract the archive (shared where FMI allows) and load its binary into the engine (no
+    instance yet)."""
+    once_per_process = bool(getattr(info.description.coSimulation,
+                                    "canBeInstantiatedOnlyOncePerProcess", False))
+    unzip_dir, key = extractions.acquire(info.path, shareable=not once_per_process)
     binary = unzip_dir / info.binary_name()
     error = ffi.new("char[1024]")
     handle = lib().ssx_fmu_load(str(binary).encode(), info.model_identifier.encode(),
@@ -260,14 +261,14 @@ def _load(info: FMUInfo, name: str) -> tuple[Any, Path]:
                                 (unzip_dir / "resources").as_uri().encode(), name.encode(), 0,
                                 error, 1024)
     if handle == ffi.NULL:
-        shutil.rmtree(unzip_dir, ignore_errors=True)
+        extractions.release(unzip_dir, key)
         raise FMUFileError(f"{info.path}: cannot load {info.binary_name()}: "
                            f"{ffi.string(error).decode(errors='replace')}")
-    return handle, unzip_dir
+    return handle, unzip_dir, key
 
 
-def _release(instance: FMUInstance, unzip_dir: Path) -> None:
+def _release(instance: FMUInstance, unzip_dir: Path, key: tuple[str, int, int] | None) -> None:
     instance.mode = "none"
     instance.generation += 1
     lib().ssx_fmu_free(instance.fmu)
-    shutil.rmtree(unzip_dir, ignore_errors=True)
+    extractions.release(unzip_dir, key)
