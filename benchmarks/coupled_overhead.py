@@ -136,7 +136,7 @@ def main() -> None:
         ours = measure_ours(count, STEPS, args.repeat)
         rows.append((count, STEPS, "ours: System.run (Python)", ours["wall"], None))
         notes.append(f"ours, {count} FMU(s): FMU binary copies mapped: {ours['binary_copies']} "
-                     "(one extraction per component); the C loop maps one for all")
+                     "(components of one FMU file share its extraction), as in the C loop")
         c_loop = measure_c_loop(count, args.repeat)
         if isinstance(c_loop, str):
             notes.append(f"C loop, {count} FMU(s): {c_loop}")
