@@ -75,10 +75,13 @@ int history_append(ssx_history *h, double t, int micro, const double *const *out
     size_t row = h->length;
     h->time[row] = t;
     h->micro[row] = micro;
+    /* a plain loop: rows are a few doubles, too short to pay for a memcpy call */
     for (int c = 0; c < h->n_components; ++c) {
         size_t n = (size_t)h->columns[c];
-        if (n > 0) {
-            memcpy(h->values[c] + row * n, outputs[c], n * sizeof(double));
+        double *dst = h->values[c] + row * n;
+        const double *src = outputs[c];
+        for (size_t j = 0; j < n; ++j) {
+            dst[j] = src[j];
         }
     }
     h->length++;
