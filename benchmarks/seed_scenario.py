@@ -19,7 +19,8 @@ Three ways to run it:
 from __future__ import annotations
 
 import argparse
-import importlib.util
+import ast
+import importlib
 import json
 import os
 import statistics
@@ -32,45 +33,26 @@ import venv
 from pathlib import Path
 from typing import Any
 
-from syssimx import EventConnection, FMUComponent, HybridAlgorithm, System, fmus
+from syssimx import FMUComponent, System, fmus
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+sys.path.insert(0, str(EXAMPLES))
+hybrid_pendulum = importlib.import_module("hybrid_pendulum")  # the seed tutorial's code
+pendulum_wall = importlib.import_module("pendulum_wall")  # the same scenario, declarative
 
 EXACT = 0.46507759431173046
-EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "hybrid_pendulum.py"
+EXAMPLE = EXAMPLES / "hybrid_pendulum.py"
 SYSSIMX_VERSION = "0.4.3"
 SOLVERS = ("euler", "cvode")
 FMU_CALLS = ("do_step", "get_state", "set_state", "instantiate")
 
 
 def declarative(solver: str) -> tuple[System, FMUComponent]:
-    pendulum = FMUComponent("P", fmus.path(f"pendulum_{solver}"))
-    pendulum.set_parameters(theta0=0.5, omega0=0.0)
-    if solver == "cvode":
-        pendulum.set_parameters(cvode_relative_tolerance=1e-10)
-    pendulum.add_event_indicator("wall_hit", variable="theta", direction=-1)
-
-    def bounce(component: FMUComponent, event_names: list[str], t: float) -> None:
-        outputs = component.get_outputs()
-        component.reinitialize(t, theta0=outputs["theta"].magnitude,
-                               omega0=-outputs["omega"].magnitude)
-
-    pendulum.add_event_handler("omega_invert", bounce)
-    system = System("declarative")
-    system.add_component(pendulum)
-    system.add_event_connection(EventConnection("P", "wall_hit", "P", "omega_invert"))
-    system.set_algorithm(HybridAlgorithm(tol_time=1e-9, tol_value=1e-9))
-    system.initialize(0.0)
-    return system, pendulum
+    return pendulum_wall.build(solver)
 
 
 def subclass(solver: str) -> tuple[System, FMUComponent]:
-    spec = importlib.util.spec_from_file_location("hybrid_pendulum", EXAMPLE)
-    assert spec is not None and spec.loader is not None
-    example = sys.modules.get(spec.name)
-    if example is None:
-        example = importlib.util.module_from_spec(spec)
-        sys.modules[spec.name] = example
-        spec.loader.exec_module(example)
-    system, pendulum = example.build(solver)
+    system, pendulum = hybrid_pendulum.build(solver)
     system.algorithm.tol_time = 1e-9
     system.algorithm.tol_value = 1e-9
     return system, pendulum
@@ -143,77 +125,8 @@ SYSSIMX_SCRIPT = textwrap.dedent('''
     FMU2Slave.getFMUstate = counting("get_state", FMU2Slave.getFMUstate)
     FMU2Slave.setFMUstate = counting("set_state", FMU2Slave.setFMUstate)
 
-    # The seed tutorial's class, as written.
-    class FMUPendulum(FMUComponent):
-        def __init__(self, name="Pendulum", solver="euler"):
-            fmu_path = fmu_paths[solver]
-            self.solver = solver
-            super().__init__(name, fmu_path, group="Mechanical")
-            self.input_specs.update({
-                "omega_invert": PortSpec("omega_invert", PortType.EVENT, "in")})
-
-        def _do_step_internal(self, t, dt):
-            if self.solver == "euler":
-                t_right = t + dt
-                while t < t_right - 1e-12:
-                    dt_internal = min(1e-4, t_right - t)
-                    super()._do_step_internal(t, dt_internal)
-                    t += dt_internal
-            else:
-                super()._do_step_internal(t, dt)
-
-        def snapshot_state(self):
-            if self.solver == "euler":
-                return self._instance.getFMUstate()
-            else:
-                return super().get_state()
-
-        def restore_state(self, snapshot, t):
-            self.t = t
-            if self.solver == "euler":
-                self._instance.setFMUstate(snapshot)
-                self._apply_parameters_starts()
-            else:
-                theta0 = snapshot["theta"]["value"]
-                omega0 = snapshot["omega"]["value"]
-                self._instance.instantiate()
-                self._instance.setupExperiment(startTime=t)
-                self._instance.enterInitializationMode()
-                self.set_parameters(**{"theta0": theta0, "omega0": omega0})
-                self._apply_parameters_starts()
-                self._apply_input_starts()
-                self._instance.exitInitializationMode()
-            self._update_output_states(t)
-            self._record_outputs(t)
-
-        def _handle_events_internal(self, event_names, t):
-            if "wall_hit" not in event_names:
-                return
-            restitution = 1
-            output = self.get_outputs()
-            theta0 = output["theta"].magnitude
-            omega0 = -restitution * output["omega"].magnitude
-            self._instance.instantiate()
-            self._instance.setupExperiment(startTime=t)
-            self._instance.enterInitializationMode()
-            self.set_parameters(**{"theta0": theta0, "omega0": omega0})
-            self._apply_parameters_starts()
-            self._apply_input_starts()
-            self._instance.exitInitializationMode()
-
-        def _update_output_states(self, t=None, event_names=[]):
-            super()._update_output_states(t)
-            if event_names:
-                for event_name in event_names:
-                    if event_name in self.output_specs.keys():
-                        self.outputs[event_name].set(value=True, t=t)
-            else:
-                for out_port in self.outputs.values():
-                    if out_port.spec.type == PortType.EVENT:
-                        out_port.set(value=False, t=t)
-
-    def wall_hit_indicator(comp):
-        return comp.get_outputs()["theta"].magnitude
+    # The seed tutorial's FMUPendulum and wall_hit_indicator, taken from the example file.
+    exec(sys.argv[5], globals())
 
     def scenario(solver):
         walls = []
@@ -263,6 +176,15 @@ def syssimx_environment() -> Path:
     return python
 
 
+def seed_definitions() -> str:
+    """The source of the seed's FMUPendulum and wall_hit_indicator in examples/."""
+    source = EXAMPLE.read_text()
+    wanted = {"FMUPendulum", "wall_hit_indicator"}
+    nodes = [node for node in ast.parse(source).body
+             if isinstance(node, ast.ClassDef | ast.FunctionDef) and node.name in wanted]
+    return "\n\n".join(ast.get_source_segment(source, node) or "" for node in nodes)
+
+
 def measure_syssimx(repeat: int) -> dict[str, dict[str, Any]]:
     """One child process per solver: the CVODE run patches fmpy for the whole process."""
     python = syssimx_environment()
@@ -274,7 +196,7 @@ def measure_syssimx(repeat: int) -> dict[str, dict[str, Any]]:
     for solver in SOLVERS:
         output = subprocess.run(
             [str(python), script.name, fmus.path("pendulum_euler"),
-             fmus.path("pendulum_cvode"), str(repeat), solver],
+             fmus.path("pendulum_cvode"), str(repeat), solver, seed_definitions()],
             check=True, capture_output=True, text=True, env=environment)
         report[solver] = json.loads(output.stdout.strip().splitlines()[-1])
     Path(script.name).unlink()

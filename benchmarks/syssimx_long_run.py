@@ -12,27 +12,19 @@ whole history): 0.31 / 4.5 / 68.7 s for 1 000 / 4 000 / 16 000 macro steps.
 from __future__ import annotations
 
 import argparse
+import importlib
+import sys
 import time
+from pathlib import Path
 
-from syssimx import EventConnection, FMUComponent, HybridAlgorithm, System, fmus
+from syssimx import System
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples"))
+pendulum_wall = importlib.import_module("pendulum_wall")
 
 
 def pendulum_with_wall() -> System:
-    pendulum = FMUComponent("P", fmus.path("pendulum_euler"))
-    pendulum.set_parameters(theta0=0.5, omega0=0.0)
-    pendulum.add_event_indicator("wall_hit", variable="theta", direction=-1)
-
-    def bounce(component: FMUComponent, event_names: list[str], t: float) -> None:
-        outputs = component.get_outputs()
-        component.reinitialize(t, theta0=outputs["theta"].magnitude,
-                               omega0=-outputs["omega"].magnitude)
-
-    pendulum.add_event_handler("omega_invert", bounce)
-    system = System("pendulum with wall")
-    system.add_component(pendulum)
-    system.add_event_connection(EventConnection("P", "wall_hit", "P", "omega_invert"))
-    system.set_algorithm(HybridAlgorithm(tol_time=1e-9, tol_value=1e-9))
-    system.initialize(0.0)
+    system, _ = pendulum_wall.build("euler")
     return system
 
 

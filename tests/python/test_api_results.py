@@ -3,15 +3,13 @@
 from __future__ import annotations
 
 import gc
-import importlib.util
 import sys
 from pathlib import Path
 
+import hybrid_pendulum
 import numpy as np
 import pytest
 from syssimx import CoSimComponent, FMUComponent, PortSpec, PortType, System, fmus
-
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "hybrid_pendulum.py"
 
 
 def run_and_forget_the_system() -> object:
@@ -45,21 +43,11 @@ def test_plot_writes_a_png(tmp_path: Path):
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
-def load_example():
-    spec = importlib.util.spec_from_file_location("hybrid_pendulum", EXAMPLE)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    return module
-
-
 def test_seed_system_describes_and_draws_itself():
-    example = load_example()
-    system, pendulum = example.build("euler")
+    system, pendulum = hybrid_pendulum.build("euler")
     report = system.describe()
     assert pendulum.name in report and "wall_hit" in report
-    source = example.picture(system)
+    source = hybrid_pendulum.picture(system)
     assert "wall_hit" in source and "omega_invert" in source
 
 

@@ -2,32 +2,21 @@
 
 from __future__ import annotations
 
-import importlib.util
 import sys
 from pathlib import Path
 
+import hybrid_pendulum
 import numpy as np
+import pendulum_wall
 import pytest
 from scipy.integrate import solve_ivp
 from scipy.special import ellipk
-from syssimx import EventConnection, FMUComponent, HybridAlgorithm, System, fmus
 from syssimx.system import Statistics
 
 M, L, G, INERTIA, THETA0 = 40.0, 0.6, 9.81, 20.0, 0.5
 OMEGA_N = np.sqrt(M * G * L / INERTIA)
 # Quarter period of the free pendulum released from rest at THETA0: first wall hit.
 EXACT = ellipk(np.sin(THETA0 / 2) ** 2) / OMEGA_N
-
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "hybrid_pendulum.py"
-
-
-def load_example():
-    spec = importlib.util.spec_from_file_location("hybrid_pendulum", EXAMPLE)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module
-    spec.loader.exec_module(module)
-    return module
 
 
 def free_pendulum(t: float) -> float:
@@ -42,8 +31,7 @@ def test_exact_reference_is_the_seed_number():
 
 
 def test_seed_tutorial_cvode_event_within_1e_8():
-    example = load_example()
-    system, pendulum, event_time = example.simulate("cvode")
+    system, pendulum, event_time = hybrid_pendulum.simulate("cvode")
     assert abs(event_time - EXACT) < 1e-8
     # elastic wall: after 2 t* the pendulum starts over from THETA0
     t, data = system.get_history()[pendulum.name]
@@ -56,44 +44,22 @@ def test_seed_tutorial_cvode_event_within_1e_8():
 
 
 def test_seed_tutorial_euler_event_within_5e_6():
-    example = load_example()
-    _, _, event_time = example.simulate("euler")
+    _, _, event_time = hybrid_pendulum.simulate("euler")
     # explicit Euler with 1e-4 internal steps: O(h) error of about 2e-6 in the crossing time
     assert abs(event_time - EXACT) < 5e-6
 
 
 def test_example_writes_the_figure(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                                    capsys: pytest.CaptureFixture[str]):
-    example = load_example()
     figure = tmp_path / "pendulum.png"
     monkeypatch.setattr(sys, "argv", ["hybrid_pendulum.py", "--plot", str(figure)])
-    example.main()
+    hybrid_pendulum.main()
     assert figure.stat().st_size > 10_000
     assert "cvode: wall hit at t = 0.46507759" in capsys.readouterr().out
 
 
-def declarative_system(method: str = "illinois") -> tuple[System, FMUComponent]:
-    """The seed scenario without subclassing: variable indicator (in C), Python handler."""
-    pendulum = FMUComponent("P", fmus.path("pendulum_cvode"))
-    pendulum.set_parameters(theta0=THETA0, omega0=0.0, cvode_relative_tolerance=1e-10)
-    pendulum.add_event_indicator("wall_hit", variable="theta", direction=-1)
-
-    def bounce(component: FMUComponent, event_names: list[str], t: float) -> None:
-        outputs = component.get_outputs()
-        component.reinitialize(t, theta0=outputs["theta"].magnitude,
-                               omega0=-outputs["omega"].magnitude)
-
-    pendulum.add_event_handler("omega_invert", bounce)
-    system = System("declarative")
-    system.add_component(pendulum)
-    system.add_event_connection(EventConnection("P", "wall_hit", "P", "omega_invert"))
-    system.set_algorithm(HybridAlgorithm(tol_time=1e-9, tol_value=1e-9, method=method))
-    system.initialize(0.0)
-    return system, pendulum
-
-
 def test_declarative_plain_component_locates_the_wall_hit():
-    system, _ = declarative_system()
+    system, _ = pendulum_wall.build("cvode")
     result = system.run(0.0, 1.0, 0.05)
     assert [e.event for e in result.events] == ["wall_hit"]
     assert abs(result.events[0].t - EXACT) < 1e-8
@@ -105,7 +71,7 @@ def test_declarative_plain_component_locates_the_wall_hit():
 
 
 def iteration_statistics(method: str) -> Statistics:
-    system, _ = declarative_system(method)
+    system, _ = pendulum_wall.build("cvode", method)
     system.algorithm.tol_value = 0.0  # stop on the bracket width alone
     return system.run(0.0, 1.0, 0.05).statistics
 
@@ -123,7 +89,7 @@ def test_illinois_needs_few_iterations_bisection_many():
 
 def test_initialize_again_reproduces_the_run():
     # the handler's start values apply to the new instance only, not to `parameters`
-    system, pendulum = declarative_system()
+    system, pendulum = pendulum_wall.build("cvode")
     first = system.run(0.0, 1.0, 0.05)
     theta, event_time = first["P"][1]["theta"].copy(), first.events[0].t
     assert pendulum.parameters["theta0"] == THETA0
