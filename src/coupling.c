@@ -63,46 +63,57 @@ static int step_member(ssx_system *sys, ssx_component *c, double t, double h)
     return component_do_step(sys, c, t, h);
 }
 
-/* Gauss-Seidel: each component's inputs come from the latest outputs, just before it steps. */
+/* A loop group is solved at the end of its step, at t + h: the sample recorded there satisfies
+ * the loop equations, and its solved inputs are the consistent start of the next step (kept with
+ * the snapshots, so a restore brings them back too). */
+static int solve_loop_at(ssx_system *sys, const ssx_group *g, double t)
+{
+    for (int m = 0; m < g->size; ++m) {
+        coupling_propagate_inputs(sys, member(sys, g, m));
+    }
+    return loop_solve(sys, g, t);
+}
+
+/* Gauss-Seidel: each component's inputs come from the latest outputs, just before it steps.
+ * Loop members step from the loop's solution at t instead. */
 static int step_gauss_seidel(ssx_system *sys, double t, double h)
 {
     for (int gi = 0; gi < sys->n_groups; ++gi) {
         const ssx_group *g = &sys->groups[gi];
         for (int m = 0; m < g->size; ++m) {
             ssx_component *c = member(sys, g, m);
-            coupling_propagate_inputs(sys, c);
-            if (!g->is_loop && step_member(sys, c, t, h) != 0) {
+            if (!g->is_loop) {
+                coupling_propagate_inputs(sys, c);
+            }
+            if (step_member(sys, c, t, h) != 0) {
                 return -1;
             }
         }
-        if (g->is_loop) {
-            if (loop_solve(sys, g, t) != 0) {
-                return -1;
-            }
-            for (int m = 0; m < g->size; ++m) {
-                if (step_member(sys, member(sys, g, m), t, h) != 0) {
-                    return -1;
-                }
-            }
+        if (g->is_loop && solve_loop_at(sys, g, t + h) != 0) {
+            return -1;
         }
     }
     return 0;
 }
 
-/* Jacobi: every input comes from the outputs at t; then all components step. */
+/* Jacobi: every input comes from the outputs at t; then all components step, and the loops are
+ * solved with every output at t + h. */
 static int step_jacobi(ssx_system *sys, double t, double h)
 {
     for (int gi = 0; gi < sys->n_groups; ++gi) {
         const ssx_group *g = &sys->groups[gi];
-        for (int m = 0; m < g->size; ++m) {
+        for (int m = 0; m < g->size && !g->is_loop; ++m) {
             coupling_propagate_inputs(sys, member(sys, g, m));
-        }
-        if (g->is_loop && loop_solve(sys, g, t) != 0) {
-            return -1;
         }
     }
     for (int i = 0; i < sys->n_components; ++i) {
         if (step_member(sys, sys->components[sys->order[i]], t, h) != 0) {
+            return -1;
+        }
+    }
+    for (int gi = 0; gi < sys->n_groups; ++gi) {
+        const ssx_group *g = &sys->groups[gi];
+        if (g->is_loop && solve_loop_at(sys, g, t + h) != 0) {
             return -1;
         }
     }

@@ -1,6 +1,7 @@
 /* Algebraic loops between static components written as hooks (as Python components would be):
- * solutions against closed forms, scale/offset inside the loop, and the error on a loop without
- * a solution. */
+ * solutions against closed forms, scale/offset inside the loop, the error on a loop without
+ * a solution, and a loop whose solution moves with time, which every recorded sample must
+ * satisfy. */
 #include <math.h>
 #include <string.h>
 
@@ -116,9 +117,114 @@ static void loop_without_solution(void)
     ssx_system_free(sys);
 }
 
+/* A block whose law depends on time: y = t - u / 2, evaluated at the time the engine gives. */
+typedef struct {
+    ssx_system *sys;
+    int component;
+    double indicator_time; /* the callback indicator t - indicator_time */
+} ramp_block;
+
+static int ramp_evaluate(void *user, double t)
+{
+    ramp_block *b = user;
+    ssx_outputs(b->sys, b->component)[0] = t - 0.5 * ssx_inputs(b->sys, b->component)[0];
+    return 0;
+}
+
+static int ramp_step(void *user, double t, double dt)
+{
+    return ramp_evaluate(user, t + dt);
+}
+
+static int no_state(void *user, int slot)
+{
+    (void)user;
+    (void)slot;
+    return 0;
+}
+
+static int no_state_at(void *user, int slot, double t)
+{
+    (void)user;
+    (void)slot;
+    (void)t;
+    return 0;
+}
+
+static int time_passed(void *user, double t, double *value)
+{
+    *value = t - ((ramp_block *)user)->indicator_time;
+    return 0;
+}
+
+/* y_r = t - u_r / 2 and y_f = u_f closed through u_r = y_f, u_f = y_r: y_r = 2 t / 3. Both
+ * blocks are stateless, so a snapshot holds nothing; with event_time > 0 an indicator on time
+ * makes the hybrid path locate it (restoring and re-stepping the loop). */
+static void time_varying_loop(ssx_coupling coupling, double event_time)
+{
+    ssx_system *sys = ssx_system_new("moving loop");
+    ramp_block ramp = {.sys = sys, .indicator_time = event_time};
+    static_block follower;
+    int r = ssx_add_python_component(sys, "Ramp", 1);
+    CHECK(r >= 0);
+    CHECK(ssx_add_output(sys, r, SSX_REAL, 0) == 0);
+    CHECK(ssx_add_input(sys, r, SSX_REAL, 0, 0.0) == 0);
+    ramp.component = r;
+    ssx_hooks ramp_hooks = {.user = &ramp, .do_step = ramp_step, .evaluate_outputs = ramp_evaluate,
+                            .snapshot = no_state, .restore = no_state_at};
+    CHECK_OK(sys, ssx_set_hooks(sys, r, &ramp_hooks));
+    int f = ssx_add_python_component(sys, "Follower", 1);
+    CHECK(f >= 0);
+    CHECK(ssx_add_output(sys, f, SSX_REAL, 0) == 0);
+    CHECK(ssx_add_input(sys, f, SSX_REAL, 0, 0.0) == 0);
+    follower = (static_block){.sys = sys, .component = f, .law = identity};
+    ssx_hooks follower_hooks = {.user = &follower, .do_step = step,
+                                .evaluate_outputs = evaluate, .snapshot = no_state,
+                                .restore = no_state_at};
+    CHECK_OK(sys, ssx_set_hooks(sys, f, &follower_hooks));
+    CHECK_OK(sys, ssx_connect(sys, r, 0, f, 0, 1.0, 0.0));
+    CHECK_OK(sys, ssx_connect(sys, f, 0, r, 0, 1.0, 0.0));
+    const int order[] = {r, f};
+    const int sizes[] = {2};
+    const int is_loop[] = {1};
+    CHECK_OK(sys, ssx_set_schedule(sys, order, sizes, is_loop, 1));
+    CHECK_OK(sys, ssx_set_coupling(sys, coupling));
+    /* a residual below 1e-12 keeps the equations within 1e-10 with room to spare */
+    CHECK_OK(sys, ssx_set_loop_options(sys, 1e-12, 50, 1.0));
+    if (event_time > 0.0) {
+        CHECK(ssx_add_indicator_callback(sys, r, time_passed, &ramp, 1) == 0);
+    }
+    CHECK_OK(sys, ssx_initialize(sys, 0.0));
+    CHECK_OK(sys, ssx_run(sys, 0.0, 1.0, 0.1));
+
+    size_t n = ssx_history_length(sys);
+    CHECK(n == (event_time > 0.0 ? 11u + 2u : 11u)); /* the event adds its two samples */
+    const double *t = ssx_history_time(sys);
+    const double *y_ramp = ssx_history_values(sys, r);
+    const double *y_follower = ssx_history_values(sys, f);
+    for (size_t k = 0; k < n; ++k) {
+        CHECK_CLOSE(y_ramp[k], t[k] - 0.5 * y_follower[k], 1e-10);
+        CHECK_CLOSE(y_follower[k], y_ramp[k], 1e-10);
+        CHECK_CLOSE(y_ramp[k], 2.0 * t[k] / 3.0, 1e-10);
+    }
+    ssx_statistics stats;
+    ssx_get_statistics(sys, &stats);
+    if (event_time <= 0.0) {
+        CHECK(stats.loop_solves == 1 + 10); /* once at t0, once per step */
+    } else {
+        CHECK(ssx_event_count(sys) == 1);
+        CHECK(stats.localization_iterations > 0);
+    }
+    ssx_system_free(sys);
+}
+
 int main(void)
 {
     linear_loop();
+    time_varying_loop(SSX_GAUSS_SEIDEL, 0.0);
+    time_varying_loop(SSX_JACOBI, 0.0);
+    time_varying_loop(SSX_GAUSS_SEIDEL, 0.33);
+    time_varying_loop(SSX_JACOBI, 0.33);
     nonlinear_loop_with_scale_and_offset();
     loop_without_solution();
     return 0;
