@@ -15,8 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from syssimx import (Connection, FMUComponent, GaussSeidelAlgorithm, JacobiAlgorithm, System,
-                     fmus)
+from syssimx import Connection, FMUComponent, GaussSeidelAlgorithm, JacobiAlgorithm, System, fmus
 
 KP, KI, K, INTEGRAL0 = 0.5, 1.0, 0.5, 1.0
 TF, DT = 2.0, 0.1
