@@ -220,8 +220,8 @@ static int write_description(FILE *out, const char *model_identifier)
             "  <CoSimulation modelIdentifier=\"%s\" canHandleVariableCommunicationStepSize=\"true\"\n"
             "    canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\"\n"
             "    canNotUseMemoryManagementFunctions=\"true\" canInterpolateInputs=\"false\"\n"
-            "    providesDirectionalDerivative=\"false\"/>\n",
-            model_identifier);
+            "    providesDirectionalDerivative=\"%s\"/>\n",
+            model_identifier, fmu_model.partial_derivative != NULL ? "true" : "false");
     write_units(out, &list);
     fputs("  <LogCategories>\n", out);
     for (int i = 0; i < LOG_CATEGORY_COUNT; ++i)

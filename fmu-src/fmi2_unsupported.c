@@ -1,5 +1,5 @@
-/* Functions this Co-Simulation FMU exports but does not support: the Model-Exchange interface,
- * input derivatives and directional derivatives. Each returns fmi2Error with a message. */
+/* Functions this Co-Simulation FMU exports but does not support: the Model-Exchange interface
+ * and input derivatives. Each returns fmi2Error with a message. */
 #include "fmu_instance.h"
 #include "fmu_log.h"
 
@@ -9,16 +9,6 @@ static fmi2Status unsupported(fmi2Component c, const char *function)
     if (inst == NULL)
         return fmi2Error;
     return fmu_error(inst, "%s is not supported by this Co-Simulation FMU", function);
-}
-
-fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown_ref[],
-                                        size_t nUnknown, const fmi2ValueReference vKnown_ref[],
-                                        size_t nKnown, const fmi2Real dvKnown[],
-                                        fmi2Real dvUnknown[])
-{
-    (void)vUnknown_ref, (void)nUnknown, (void)vKnown_ref, (void)nKnown, (void)dvKnown,
-        (void)dvUnknown;
-    return unsupported(c, "fmi2GetDirectionalDerivative");
 }
 
 fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,

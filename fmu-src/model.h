@@ -78,6 +78,11 @@ typedef struct {
     void (*handle_events)(double *v, double t, double *x, const int *fired);
     /* NULL when the model can always step; otherwise a reason to refuse a step ending at t_end */
     const char *(*step_refusal)(const double *v, double t_end);
+    /* NULL when not provided; otherwise d output / d input at the current point with the states
+     * held fixed (the feedthrough Jacobian a co-simulation master needs at a communication
+     * point), for any output and input value reference. Serves fmi2GetDirectionalDerivative. */
+    double (*partial_derivative)(const double *v, const double *x, unsigned output,
+                                 unsigned input);
 } model_definition;
 
 extern const model_definition fmu_model;

@@ -18,6 +18,13 @@ static void outputs(double *v, double t, const double *x)
     v[VR_Y] = v[VR_K] * v[VR_U];
 }
 
+static double partial_derivative(const double *v, const double *x, unsigned output,
+                                 unsigned input)
+{
+    (void)x;
+    return output == VR_Y && input == VR_U ? v[VR_K] : 0.0;
+}
+
 const model_definition fmu_model = {
     .name = "Gain",
     .description = "Static gain (Gain.mo)",
@@ -26,4 +33,5 @@ const model_definition fmu_model = {
     .default_stop_time = 1.0,
     .default_step_size = 1e-3,
     .outputs = outputs,
+    .partial_derivative = partial_derivative,
 };

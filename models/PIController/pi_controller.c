@@ -57,6 +57,16 @@ static void outputs(double *v, double t, const double *x)
     v[VR_U] = v[VR_KP] * error(v) + v[VR_KI] * x[0];
 }
 
+/* u = kp (setpoint - measurement) + ki x: the integral is a state, held fixed. */
+static double partial_derivative(const double *v, const double *x, unsigned output,
+                                 unsigned input)
+{
+    (void)x;
+    if (output != VR_U)
+        return 0.0;
+    return input == VR_SETPOINT ? v[VR_KP] : input == VR_MEASUREMENT ? -v[VR_KP] : 0.0;
+}
+
 const model_definition fmu_model = {
     .name = "PIController",
     .description = "Proportional-integral controller (PIController.mo)",
@@ -69,4 +79,5 @@ const model_definition fmu_model = {
     .initial_states = initial_states,
     .derivatives = derivatives,
     .outputs = outputs,
+    .partial_derivative = partial_derivative,
 };

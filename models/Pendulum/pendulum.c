@@ -63,6 +63,14 @@ static void outputs(double *v, double t, const double *x)
     v[VR_ALPHA] = angular_acceleration(v, x[0]);
 }
 
+/* theta and omega are states; alpha moves with the torque by 1 / inertia. */
+static double partial_derivative(const double *v, const double *x, unsigned output,
+                                 unsigned input)
+{
+    (void)x;
+    return output == VR_ALPHA && input == VR_TORQUE ? 1.0 / v[VR_INERTIA] : 0.0;
+}
+
 const model_definition fmu_model = {
     .name = "Pendulum",
     .description = "Rigid pendulum with a torque input (Pendulum.mo)",
@@ -76,4 +84,5 @@ const model_definition fmu_model = {
     .initial_states = initial_states,
     .derivatives = derivatives,
     .outputs = outputs,
+    .partial_derivative = partial_derivative,
 };

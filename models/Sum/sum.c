@@ -21,6 +21,13 @@ static void outputs(double *v, double t, const double *x)
     v[VR_Y] = v[VR_B] - v[VR_C] * v[VR_U];
 }
 
+static double partial_derivative(const double *v, const double *x, unsigned output,
+                                 unsigned input)
+{
+    (void)x;
+    return output == VR_Y && input == VR_U ? -v[VR_C] : 0.0;
+}
+
 const model_definition fmu_model = {
     .name = "Sum",
     .description = "Offset minus weighted input (Sum.mo)",
@@ -29,4 +36,5 @@ const model_definition fmu_model = {
     .default_stop_time = 1.0,
     .default_step_size = 1e-3,
     .outputs = outputs,
+    .partial_derivative = partial_derivative,
 };

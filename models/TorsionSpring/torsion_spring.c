@@ -33,6 +33,19 @@ static void outputs(double *v, double t, const double *x)
     v[VR_TAU2] = -v[VR_TAU1];
 }
 
+/* tau1 = -k (theta1 - theta2) - d (omega1 - omega2) and tau2 = -tau1: linear in the inputs. */
+static double partial_derivative(const double *v, const double *x, unsigned output,
+                                 unsigned input)
+{
+    (void)x;
+    double d_tau1 = input == VR_THETA1 ? -v[VR_K]
+                    : input == VR_THETA2 ? v[VR_K]
+                    : input == VR_OMEGA1 ? -v[VR_D]
+                    : input == VR_OMEGA2 ? v[VR_D]
+                                         : 0.0;
+    return output == VR_TAU1 ? d_tau1 : output == VR_TAU2 ? -d_tau1 : 0.0;
+}
+
 const model_definition fmu_model = {
     .name = "TorsionSpring",
     .description = "Spring-damper between two rotating bodies (TorsionSpring.mo)",
@@ -41,4 +54,5 @@ const model_definition fmu_model = {
     .default_stop_time = 1.0,
     .default_step_size = 1e-3,
     .outputs = outputs,
+    .partial_derivative = partial_derivative,
 };
