@@ -43,7 +43,8 @@ STEPS = 10_000
 MEMORY_FMUS, MEMORY_STEPS = 100, 100_000
 MEMORY_TARGET = 1.2
 HERE = Path(__file__).resolve().parent
-C_LINE = re.compile(r"(\d+) FMU\(s\) x (\d+) steps of (\S+) s: bare doStep ([\d.]+) ms, "
+C_LINE = re.compile(r"(\d+) FMU\(s\) x (\d+) steps of (\S+) s(?: \([^)]*\))?: "
+                    r"bare doStep ([\d.]+) ms, "
                     r"bare doStep\+set\+get ([\d.]+) ms, engine ([\d.]+) ms")
 
 
