@@ -1,5 +1,6 @@
-/* Newton's method with a finite-difference Jacobian and damping; a damped fixed-point
- * iteration as fallback when Newton fails (singular Jacobian, no convergence). */
+/* Newton's method with damping; a damped fixed-point iteration as fallback when Newton fails
+ * (singular Jacobian, no convergence). A Jacobian column comes from the owning FMU's directional
+ * derivatives when it provides them, otherwise from finite differences. */
 #include "algebraic_loop.h"
 
 #include <float.h>
@@ -17,6 +18,9 @@ typedef struct {
     int n;
     ssx_component **owner; /* component whose input is unknown k */
     int *input;            /* its input index */
+    int *analytic;         /* column k from the owner's directional derivatives */
+    int *rows;             /* scratch: the unknowns driven by one component's outputs */
+    unsigned int *output_vr; /* scratch: the outputs driving those unknowns */
     double *x, *r, *r_step, *x_trial, *jacobian, *dx;
 } loop_work;
 
@@ -34,8 +38,33 @@ static void work_free(loop_work *w)
 {
     free(w->owner);
     free(w->input);
+    free(w->analytic);
+    free(w->output_vr);
     free(w->x);
     free(w->jacobian);
+}
+
+static const ssx_connection *driver_of(const loop_work *w, int k)
+{
+    return &w->sys->connections[w->owner[k]->input_driver[w->input[k]]];
+}
+
+/* The component's loop outputs can be differentiated by its FMU: it provides directional
+ * derivatives, no Python code stands between the engine and the FMU, and they are all Real. */
+static int has_directional_derivatives(const loop_work *w, const ssx_component *c)
+{
+    if (w->sys->loop.jacobian != SSX_JACOBIAN_AUTO || c->fmu == NULL ||
+        !c->provides_directional_derivatives || c->hooks.evaluate_outputs != NULL) {
+        return 0;
+    }
+    for (int k = 0; k < w->n; ++k) {
+        const ssx_connection *link = driver_of(w, k);
+        if (link->src_component == c->index &&
+            c->output_ports[link->src_output].type != SSX_REAL) {
+            return 0;
+        }
+    }
+    return 1;
 }
 
 static int work_init(loop_work *w, ssx_system *sys, const ssx_group *g, double t)
@@ -51,9 +80,12 @@ static int work_init(loop_work *w, ssx_system *sys, const ssx_group *g, double t
     size_t size = (size_t)capacity + 1;
     w->owner = malloc(size * sizeof *w->owner);
     w->input = malloc(size * sizeof *w->input);
+    w->analytic = malloc(2 * size * sizeof *w->analytic);
+    w->output_vr = malloc(size * sizeof *w->output_vr);
     w->x = malloc(5 * size * sizeof *w->x);
     w->jacobian = malloc(size * size * sizeof *w->jacobian);
-    if (w->owner == NULL || w->input == NULL || w->x == NULL || w->jacobian == NULL) {
+    if (w->owner == NULL || w->input == NULL || w->analytic == NULL || w->output_vr == NULL ||
+        w->x == NULL || w->jacobian == NULL) {
         work_free(w);
         return fail(sys, -1, -1, t, "out of memory solving an algebraic loop");
     }
@@ -61,6 +93,7 @@ static int work_init(loop_work *w, ssx_system *sys, const ssx_group *g, double t
     w->r_step = w->r + size;
     w->x_trial = w->r_step + size;
     w->dx = w->x_trial + size;
+    w->rows = w->analytic + size;
     for (int m = 0; m < g->size; ++m) {
         ssx_component *c = sys->components[sys->order[g->first + m]];
         for (int i = 0; i < c->n_inputs; ++i) {
@@ -73,6 +106,9 @@ static int work_init(loop_work *w, ssx_system *sys, const ssx_group *g, double t
                 w->n++;
             }
         }
+    }
+    for (int k = 0; k < w->n; ++k) {
+        w->analytic[k] = has_directional_derivatives(w, w->owner[k]);
     }
     return 0;
 }
@@ -91,7 +127,7 @@ static int residual(loop_work *w, const double *x, double *r)
         }
     }
     for (int k = 0; k < w->n; ++k) {
-        const ssx_connection *link = &sys->connections[w->owner[k]->input_driver[w->input[k]]];
+        const ssx_connection *link = driver_of(w, k);
         double driven = link->scale * sys->components[link->src_component]->outputs[link->src_output] +
                         link->offset;
         r[k] = x[k] - driven;
@@ -150,6 +186,67 @@ static int solve_dense(double *a, double *b, int n)
     return 0;
 }
 
+/* Column j from the owner's fmi2GetDirectionalDerivative at the current point: input j moves
+ * only the owner's outputs, so dr_k/dx_j = delta_kj - scale_k d(output driving k)/d(input j). */
+static int directional_column(loop_work *w, int j)
+{
+    ssx_system *sys = w->sys;
+    ssx_component *c = w->owner[j];
+    int n_rows = 0;
+    for (int k = 0; k < w->n; ++k) {
+        const ssx_connection *link = driver_of(w, k);
+        w->jacobian[k * w->n + j] = k == j ? 1.0 : 0.0;
+        if (link->src_component == c->index) {
+            w->rows[n_rows] = k;
+            w->output_vr[n_rows] = c->output_ports[link->src_output].vr;
+            n_rows++;
+        }
+    }
+    if (n_rows == 0) {
+        return 0;
+    }
+    const unsigned int known = c->input_ports[w->input[j]].vr;
+    const double seed = 1.0;
+    sys->stats.directional_derivatives++;
+    int status = ssx_fmu_get_directional_derivative(c->fmu, w->output_vr, (size_t)n_rows, &known,
+                                                    1, &seed, w->r_step);
+    if (!fmi_ok(status)) {
+        return fail_fmi(sys, c, w->t, status, "fmi2GetDirectionalDerivative");
+    }
+    for (int m = 0; m < n_rows; ++m) {
+        int k = w->rows[m];
+        w->jacobian[k * w->n + j] -= driver_of(w, k)->scale * w->r_step[m];
+    }
+    return 0;
+}
+
+/* The Jacobian at w->x, whose residual w->r was just evaluated (every member is at w->x):
+ * directional derivatives first, while the FMUs still hold x, then finite differences. */
+static int jacobian(loop_work *w)
+{
+    int n = w->n;
+    for (int j = 0; j < n; ++j) {
+        if (w->analytic[j] && directional_column(w, j) != 0) {
+            return -1;
+        }
+    }
+    for (int j = 0; j < n; ++j) {
+        if (w->analytic[j]) {
+            continue;
+        }
+        memcpy(w->x_trial, w->x, (size_t)n * sizeof *w->x);
+        double delta = sqrt(DBL_EPSILON) * fmax(1.0, fabs(w->x[j]));
+        w->x_trial[j] += delta;
+        if (residual(w, w->x_trial, w->r_step) != 0) {
+            return -1;
+        }
+        for (int k = 0; k < n; ++k) {
+            w->jacobian[k * n + j] = (w->r_step[k] - w->r[k]) / delta;
+        }
+    }
+    return 0;
+}
+
 /* Returns 1 when converged, 0 when not, -1 on a component failure. */
 static int newton(loop_work *w, double *residual_norm)
 {
@@ -167,16 +264,8 @@ static int newton(loop_work *w, double *residual_norm)
             return 0;
         }
         sys->stats.loop_iterations++;
-        for (int j = 0; j < n; ++j) {
-            memcpy(w->x_trial, w->x, (size_t)n * sizeof *w->x);
-            double delta = sqrt(DBL_EPSILON) * fmax(1.0, fabs(w->x[j]));
-            w->x_trial[j] += delta;
-            if (residual(w, w->x_trial, w->r_step) != 0) {
-                return -1;
-            }
-            for (int k = 0; k < n; ++k) {
-                w->jacobian[k * n + j] = (w->r_step[k] - w->r[k]) / delta;
-            }
+        if (jacobian(w) != 0) {
+            return -1;
         }
         for (int k = 0; k < n; ++k) {
             w->dx[k] = -w->r[k];

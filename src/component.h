@@ -39,6 +39,7 @@ struct ssx_component {
     ssx_hooks hooks;
     ssx_fmu *fmu; /* borrowed; NULL for a Python component */
     int can_snapshot;
+    int provides_directional_derivatives; /* FMU components only */
 
     ssx_port *output_ports;
     double *outputs;

@@ -533,6 +533,7 @@ int ssx_fmu_get_directional_derivative(ssx_fmu *fmu, const unsigned int *unknown
         note(fmu, "this FMU does not provide fmi2GetDirectionalDerivative");
         return -1;
     }
+    fmu->counters.directional_derivative++;
     return (int)fmu->fn.get_directional_derivative(fmu->instance, unknowns, n_unknowns, knowns,
                                                    n_knowns, dv_known, dv_unknown);
 }

@@ -21,6 +21,7 @@
 typedef enum { SSX_REAL = 0, SSX_INTEGER = 1, SSX_BOOLEAN = 2 } ssx_value_type;
 typedef enum { SSX_GAUSS_SEIDEL = 0, SSX_JACOBI = 1 } ssx_coupling;
 typedef enum { SSX_ILLINOIS = 0, SSX_BISECTION = 1 } ssx_locator;
+typedef enum { SSX_JACOBIAN_AUTO = 0, SSX_JACOBIAN_FINITE_DIFFERENCES = 1 } ssx_loop_jacobian;
 
 /* ------------------------------------------------------------------------------------------
  * One loaded FMU binary with (at most) one live instance. Owned by the Python FMUComponent,
@@ -35,6 +36,7 @@ typedef struct {
     long get_values;   /* fmi2Get* calls, any type */
     long set_values;   /* fmi2Set* calls, any type */
     long instantiate;
+    long directional_derivative; /* fmi2GetDirectionalDerivative calls */
 } ssx_fmu_counters;
 
 /* dlopen(binary_path, RTLD_NOW | RTLD_LOCAL) and resolve the fmi2 functions (prefixed with
@@ -98,6 +100,7 @@ typedef struct {
     long localization_iterations;
     long loop_iterations;        /* Newton/fixed-point iterations of algebraic loops */
     long loop_solves;
+    long directional_derivatives; /* fmi2GetDirectionalDerivative calls for loop Jacobians */
 } ssx_statistics;
 
 typedef struct {
@@ -175,6 +178,14 @@ int ssx_set_schedule(ssx_system *sys, const int *order, const int *group_sizes,
                      const int *group_is_loop, int n_groups);
 int ssx_set_coupling(ssx_system *sys, ssx_coupling coupling);
 int ssx_set_loop_options(ssx_system *sys, double tolerance, int max_iterations, double damping);
+/* The FMU of an FMU component provides fmi2GetDirectionalDerivative (its modelDescription says
+ * providesDirectionalDerivative="true"); off until set. */
+int ssx_set_directional_derivatives(ssx_system *sys, int component, int provided);
+/* How Newton builds a loop's Jacobian. SSX_JACOBIAN_AUTO (the default): the columns of the
+ * inputs of FMU components that provide directional derivatives (and have no evaluate_outputs
+ * hook) come from fmi2GetDirectionalDerivative, the others from finite differences.
+ * SSX_JACOBIAN_FINITE_DIFFERENCES: every column from finite differences. */
+int ssx_set_loop_jacobian(ssx_system *sys, ssx_loop_jacobian jacobian);
 /* Hybrid mode is active whenever an indicator exists. zeno_min_interval <= 0 means ten times
  * tol_time. */
 int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, int max_iterations,

@@ -40,7 +40,10 @@ ssx_system *ssx_system_new(const char *name)
         return NULL;
     }
     sys->coupling = SSX_GAUSS_SEIDEL;
-    sys->loop = (ssx_loop_options){.tolerance = 1e-10, .max_iterations = 50, .damping = 1.0};
+    sys->loop = (ssx_loop_options){.tolerance = 1e-10,
+                                   .max_iterations = 50,
+                                   .damping = 1.0,
+                                   .jacobian = SSX_JACOBIAN_AUTO};
     sys->hybrid = (ssx_hybrid_options){.tol_time = 1e-9,
                                        .tol_value = 1e-9,
                                        .max_iterations = 100,
@@ -475,7 +478,33 @@ int ssx_set_loop_options(ssx_system *sys, double tolerance, int max_iterations, 
                     "(got %g, %d, %g)",
                     tolerance, max_iterations, damping);
     }
-    sys->loop = (ssx_loop_options){tolerance, max_iterations, damping};
+    sys->loop.tolerance = tolerance;
+    sys->loop.max_iterations = max_iterations;
+    sys->loop.damping = damping;
+    return 0;
+}
+
+int ssx_set_directional_derivatives(ssx_system *sys, int component, int provided)
+{
+    ssx_component *c = system_component(sys, component);
+    if (c == NULL) {
+        return -1;
+    }
+    if (c->fmu == NULL && provided) {
+        return fail(sys, component, -1, NAN,
+                    "component '%s' is not an FMU component: it has no directional derivatives",
+                    c->name);
+    }
+    c->provides_directional_derivatives = provided != 0;
+    return 0;
+}
+
+int ssx_set_loop_jacobian(ssx_system *sys, ssx_loop_jacobian jacobian)
+{
+    if (jacobian != SSX_JACOBIAN_AUTO && jacobian != SSX_JACOBIAN_FINITE_DIFFERENCES) {
+        return fail(sys, -1, -1, NAN, "loop Jacobian: unknown mode %d", (int)jacobian);
+    }
+    sys->loop.jacobian = jacobian;
     return 0;
 }
 

@@ -47,6 +47,7 @@ typedef struct {
     double tolerance;
     int max_iterations;
     double damping;
+    ssx_loop_jacobian jacobian;
 } ssx_loop_options;
 
 typedef struct {

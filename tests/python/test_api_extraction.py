@@ -3,6 +3,7 @@ instantiated only once per process; the last user removes the directory."""
 
 from __future__ import annotations
 
+import gc
 import zipfile
 from pathlib import Path
 
@@ -24,6 +25,8 @@ def once_per_process_copy(tmp_path: Path) -> Path:
 
 
 def test_components_of_one_file_share_one_extraction() -> None:
+    # components of earlier tests that wait in reference cycles would still hold the extraction
+    gc.collect()
     first = FMUComponent("A", fmus.path("pendulum_euler"))
     second = FMUComponent("B", fmus.path("pendulum_euler"))
     other = FMUComponent("C", fmus.path("pendulum_cvode"))

@@ -53,7 +53,8 @@ class FMUInstance:
         raw = ffi.new("ssx_fmu_counters *")
         lib().ssx_fmu_get_counters(self.fmu, raw)
         return {name: int(getattr(raw, name)) for name in
-                ("do_step", "get_state", "set_state", "get_values", "set_values", "instantiate")}
+                ("do_step", "get_state", "set_state", "get_values", "set_values", "instantiate",
+                 "directional_derivative")}
 
     def _check(self, status: int, call: str) -> int:
         if status > 1 or status < 0:

@@ -7,6 +7,7 @@ A Python exception raised inside a callback is kept here and re-raised by the Sy
 
 from __future__ import annotations
 
+import functools
 import weakref
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -33,8 +34,8 @@ def _address(pointer: Any) -> int:
     return int(ffi.cast("uintptr_t", pointer))
 
 
-def _free_system(pointer: Any) -> None:
-    lib().ssx_system_free(pointer)
+def _free_system(release: Callable[[Any], None], pointer: Any) -> None:
+    release(pointer)
     _ENGINE_REFERENCES.pop(_address(pointer), None)
 
 
@@ -58,7 +59,9 @@ class EnginePlan:
         self._engine_references: list[Any] = [
             c._fmu for c in components.values() if isinstance(c, FMUComponent)]
         _ENGINE_REFERENCES[_address(raw)] = self._engine_references
-        self.sys = ffi.gc(raw, _free_system)
+        # The release function is looked up now: a collection may run this destructor while
+        # cffi holds the lock that a first lookup of a library function would wait for.
+        self.sys = ffi.gc(raw, functools.partial(_free_system, lib().ssx_system_free))
         self.components = dict(components)
         self.index = {name: i for i, name in enumerate(components)}
         self.outputs = {n: c.engine_outputs() for n, c in components.items()}
@@ -83,6 +86,9 @@ class EnginePlan:
         if isinstance(component, FMUComponent):
             self.check(lib().ssx_add_fmu_component(self.sys, name.encode(), component._fmu,
                                                    int(component.can_get_set_state)), name)
+            provided = component.info.description.coSimulation.providesDirectionalDerivative
+            self.check(lib().ssx_set_directional_derivatives(self.sys, index, int(bool(provided))),
+                       f"{name}: directional derivatives")
             vr = component.value_reference
         else:
             self.check(lib().ssx_add_python_component(self.sys, name.encode(),

@@ -50,6 +50,7 @@ class Statistics:
     loop_iterations: int
     loop_solves: int
     iterations_per_event: tuple[int, ...]
+    directional_derivatives: int  # fmi2GetDirectionalDerivative calls for loop Jacobians
 
 
 def read_events(plan: EnginePlan) -> list[EventRecord]:
@@ -70,7 +71,8 @@ def read_statistics(plan: EnginePlan, events: Sequence[EventRecord]) -> Statisti
     return Statistics(int(raw.macro_steps), int(raw.do_step_calls), int(raw.state_saves),
                       int(raw.state_restores), int(raw.events),
                       int(raw.localization_iterations), int(raw.loop_iterations),
-                      int(raw.loop_solves), tuple(e.iterations for e in events))
+                      int(raw.loop_solves), tuple(e.iterations for e in events),
+                      int(raw.directional_derivatives))
 
 
 class HistoryView:

@@ -16,6 +16,7 @@ from ..errors import ConfigurationError
 from ..graph.analysis import analyze
 from ..units import conversion
 from .algorithms import Algorithm, GaussSeidelAlgorithm, HybridAlgorithm, JacobiAlgorithm
+from .algorithms.coupling import LOOP_JACOBIANS
 from .algorithms.hybrid import log_events
 from .connection import Connection, EventConnection
 from .failure import raise_failure
@@ -185,6 +186,8 @@ class System:
             plan.sys, 0 if isinstance(coupling, GaussSeidelAlgorithm) else 1), "coupling")
         plan.check(lib().ssx_set_loop_options(plan.sys, coupling.tolerance, coupling.max_iter,
                                               coupling.damping), "loop options")
+        plan.check(lib().ssx_set_loop_jacobian(
+            plan.sys, LOOP_JACOBIANS.index(coupling.loop_jacobian)), "loop Jacobian")
         if isinstance(algorithm, HybridAlgorithm):
             plan.check(lib().ssx_set_hybrid_options(
                 plan.sys, algorithm.tol_time, algorithm.tol_value, algorithm.max_iter,
