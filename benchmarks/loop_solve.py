@@ -1,13 +1,15 @@
 """Cost of solving an algebraic loop at every communication point.
 
 A PI controller (feedthrough from its measurement) drives a gain whose output is the
-measurement: an algebraic loop of two FMUs, solved by the engine at every communication point.
-The same system with the loop broken by a delay (the gain declared without feedthrough, so
-Gauss-Seidel hands the controller the gain's output of the previous point) is timed side by side.
+measurement: an algebraic loop of two FMUs, solved by the engine at every communication point,
+with Newton's Jacobian from fmi2GetDirectionalDerivative (both FMUs provide it) or from finite
+differences. The same system with the loop broken by a delay (the gain declared without
+feedthrough, so Gauss-Seidel hands the controller the gain's output of the previous point) is
+timed side by side.
 
-Prints Newton iterations per step, the time per step of both variants, their ratio and the
-overhead of the loop solve per step, and how far each variant is from the exact solution of the
-continuous loop (u = ki * I / (1 + kp * k), I' = -k * u).
+Prints Newton iterations per solve and the time per step of each variant, the overhead of the
+loop solve per step against the delayed loop, and how far each variant is from the exact
+solution of the continuous loop (u = ki * I / (1 + kp * k), I' = -k * u).
 
     python benchmarks/loop_solve.py [--steps N] [--repeats R]
 """
@@ -20,12 +22,17 @@ import time
 from typing import Any
 
 import numpy as np
-from syssimx import Connection, FMUComponent, System, fmus
+from syssimx import Connection, FMUComponent, GaussSeidelAlgorithm, System, fmus
 
 KP, KI, GAIN, INTEGRAL0 = 0.5, 1.0, 0.5, 1.0
+# variant -> the loop's Jacobian, or None when the loop is broken by a delay
+VARIANTS = {"loop solved, directional derivatives": "auto",
+            "loop solved, finite differences": "finite_differences",
+            "loop delayed": None}
 
 
-def build(loop_solved: bool) -> System:
+def build(loop_jacobian: str | None) -> System:
+    loop_solved = loop_jacobian is not None
     controller = FMUComponent("PI", fmus.path("pi_controller"))
     controller.set_parameters(kp=KP, ki=KI, integral0=INTEGRAL0)
     gain = FMUComponent("Gain", fmus.path("gain"))
@@ -37,6 +44,7 @@ def build(loop_solved: bool) -> System:
     system.add_component(gain)
     system.add_connection(Connection("PI", "u", "Gain", "u"))
     system.add_connection(Connection("Gain", "y", "PI", "measurement"))
+    system.set_algorithm(GaussSeidelAlgorithm(loop_jacobian=loop_jacobian or "auto"))
     return system
 
 
@@ -45,10 +53,10 @@ def exact_control(t: np.ndarray) -> np.ndarray:
     return KI * INTEGRAL0 * np.exp(-rate * t) / (1.0 + KP * GAIN)
 
 
-def timed_run(loop_solved: bool, tf: float, dt: float) -> tuple[float, System, Any]:
+def timed_run(loop_jacobian: str | None, tf: float, dt: float) -> tuple[float, System, Any]:
     """Seconds of ``run`` alone, and the system with its result (kept together: the result's
     arrays live in the system's engine)."""
-    system = build(loop_solved)
+    system = build(loop_jacobian)
     system.initialize(0.0)
     start = time.perf_counter()
     result = system.run(0.0, tf, dt)
@@ -63,29 +71,33 @@ def main() -> None:
     dt = 1e-3
     tf = args.steps * dt
 
-    best = {True: math.inf, False: math.inf}
-    results: dict[bool, tuple[System, Any]] = {}
-    for _ in range(args.repeats):  # alternate, so both variants see the same machine load
-        for loop_solved in (True, False):
-            seconds, system, result = timed_run(loop_solved, tf, dt)
-            best[loop_solved] = min(best[loop_solved], seconds)
-            results[loop_solved] = system, result
+    best = dict.fromkeys(VARIANTS, math.inf)
+    results: dict[str, tuple[System, Any]] = {}
+    for _ in range(args.repeats):  # interleaved, so every variant sees the same machine load
+        for label, loop_jacobian in VARIANTS.items():
+            seconds, system, result = timed_run(loop_jacobian, tf, dt)
+            best[label] = min(best[label], seconds)
+            results[label] = system, result
 
-    stats = results[True][1].statistics
     print(f"PI controller + gain, {args.steps} steps of {dt} s, best of {args.repeats} runs")
-    print(f"loop solves: {stats.loop_solves} ({stats.loop_solves / args.steps:.3f} per step), "
-          f"Newton iterations: {stats.loop_iterations} "
-          f"({stats.loop_iterations / max(stats.loop_solves, 1):.3f} per solve)")
-    print("| variant | us per step | abs error of u at t0 | max abs error of u after t0 |")
-    print("|---|---|---|---|")
-    for loop_solved, label in ((True, "loop solved"), (False, "loop delayed")):
-        t, values = results[loop_solved][1]["PI"]
+    print("| variant | us per step | loop solves per step | Newton iterations per solve "
+          "| directional derivatives per solve | abs error of u at t0 "
+          "| max abs error of u after t0 |")
+    print("|---|---|---|---|---|---|---|")
+    for label in VARIANTS:
+        result = results[label][1]
+        stats = result.statistics
+        solves = max(stats.loop_solves, 1)
+        t, values = result["PI"]
         error = np.abs(values["u"] - exact_control(t))
-        print(f"| {label} | {best[loop_solved] / args.steps * 1e6:.2f} | {error[0]:.2e} "
+        print(f"| {label} | {best[label] / args.steps * 1e6:.2f} "
+              f"| {stats.loop_solves / args.steps:.3f} | {stats.loop_iterations / solves:.3f} "
+              f"| {stats.directional_derivatives / solves:.3f} | {error[0]:.2e} "
               f"| {float(np.max(error[1:])):.2e} |")
-    overhead = (best[True] - best[False]) / args.steps * 1e6
-    print(f"ratio solved/delayed: {best[True] / best[False]:.2f}; "
-          f"loop-solve overhead: {overhead:.2f} us per step")
+    delayed = best["loop delayed"]
+    for label in list(VARIANTS)[:2]:
+        print(f"{label}: ratio to delayed {best[label] / delayed:.2f}, loop-solve overhead "
+              f"{(best[label] - delayed) / args.steps * 1e6:.2f} us per step")
 
 
 if __name__ == "__main__":
