@@ -6,21 +6,14 @@ Gauss-Seidel are first-order in dt: halving dt halves the error.
 
 from __future__ import annotations
 
+import coupled_pendulums  # the system: two pendulum FMUs and the torsion spring FMU
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
-from syssimx import (
-    Connection,
-    FMUComponent,
-    GaussSeidelAlgorithm,
-    JacobiAlgorithm,
-    System,
-    fmus,
-)
+from syssimx import GaussSeidelAlgorithm, JacobiAlgorithm
 
 M, L, G, INERTIA = 40.0, 0.6, 9.81, 20.0
-K, D = 100.0, 1.0
-TF = 2.0
+K, D, TF = coupled_pendulums.K, coupled_pendulums.D, coupled_pendulums.TF  # spring, horizon
 DTS = (0.04, 0.02, 0.01)
 
 
@@ -36,25 +29,8 @@ def monolithic(t_eval: np.ndarray) -> np.ndarray:
     return solution.y[[0, 2]]
 
 
-def coupled(algorithm: JacobiAlgorithm) -> System:
-    system = System("coupled pendulums")
-    for name, theta0 in (("P1", 0.5), ("P2", 0.0)):
-        pendulum = FMUComponent(name, fmus.path("pendulum_cvode"))
-        pendulum.set_parameters(theta0=theta0, cvode_relative_tolerance=1e-11)
-        system.add_component(pendulum)
-    spring = FMUComponent("Spring", fmus.path("torsion_spring"))
-    spring.set_parameters(k=K, d=D)
-    system.add_component(spring)
-    for i in ("1", "2"):
-        system.add_connection(Connection(f"P{i}", "theta", "Spring", f"theta{i}"))
-        system.add_connection(Connection(f"P{i}", "omega", "Spring", f"omega{i}"))
-        system.add_connection(Connection("Spring", f"tau{i}", f"P{i}", "torque"))
-    system.set_algorithm(algorithm)
-    return system
-
-
 def max_error(algorithm: JacobiAlgorithm, dt: float) -> float:
-    system = coupled(algorithm)
+    system = coupled_pendulums.build(algorithm)
     system.initialize(0.0)
     result = system.run(0.0, TF, dt)
     t, p1 = result["P1"]
@@ -79,7 +55,7 @@ def test_gauss_seidel_is_not_worse_than_jacobi():
 
 
 def test_spring_sees_the_pendulum_angles():
-    system = coupled(GaussSeidelAlgorithm())
+    system = coupled_pendulums.build(GaussSeidelAlgorithm())
     system.initialize(0.0)
     result = system.run(0.0, 0.1, 0.01)
     _, spring = result["Spring"]

@@ -1,55 +1,12 @@
-"""The SysSimX quickstart (LinearSource -> Integrator) runs unchanged and gives its number."""
+"""The SysSimX quickstart (LinearSource -> Integrator, examples/quickstart.py, its classes as
+SysSimX documents them) runs unchanged and gives its number."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
-from syssimx import (
-    Connection,
-    CoSimComponent,
-    JacobiAlgorithm,
-    PortSpec,
-    PortType,
-    SimulationError,
-    System,
-)
-
-
-class LinearSource(CoSimComponent):
-    def __init__(self, name: str, a: float = 1.0, b: float = 0.0):
-        super().__init__(name, group="Source")
-        self.a = a
-        self.b = b
-        self.output_specs.update({"y": PortSpec(name="y", type=PortType.REAL, direction="out")})
-
-    def _initialize_component(self, t0: float) -> None:
-        pass
-
-    def _do_step_internal(self, t: float, dt: float) -> None:
-        pass
-
-    def _update_output_states(self, t: float | None = None, event_names=None):
-        t_now = 0.0 if t is None else t
-        self.outputs["y"].set(self.a * t_now + self.b, t)
-
-
-class Integrator(CoSimComponent):
-    def __init__(self, name: str, x0: float = 0.0):
-        super().__init__(name, group="Integrator")
-        self.x0 = x0
-        self.input_specs.update({"u": PortSpec(name="u", type=PortType.REAL, direction="in")})
-        self.output_specs.update({"y": PortSpec(name="y", type=PortType.REAL, direction="out")})
-
-    def _initialize_component(self, t0: float) -> None:
-        self.x = self.x0
-        self.outputs["y"].set(self.x, t0)
-
-    def _do_step_internal(self, t: float, dt: float) -> None:
-        u = self.inputs["u"].get()
-        self.x = self.x + dt * float(u)
-
-    def _update_output_states(self, t: float | None = None, event_names=None):
-        self.outputs["y"].set(self.x, t)
+from quickstart import Integrator, LinearSource
+from syssimx import Connection, JacobiAlgorithm, SimulationError, System
 
 
 def quickstart_system() -> System:
