@@ -20,6 +20,7 @@ typedef struct {
     double t_end;         /* end of the macro piece */
     double a, b;          /* final bracket */
     int iterations;
+    int localized;        /* the crossing was bracketed: its trials are in the localization log */
     long do_steps_before; /* statistics at the start of the piece, for the event's cost */
     long restores_before;
 } event_bracket;
@@ -106,6 +107,20 @@ static int far_side_converged(const ssx_system *sys)
     return 1;
 }
 
+/* A row of the localization log with every indicator's current value (left: the values
+ * at the bracket's left end instead). */
+static int log_row(ssx_system *sys, double t, double a, double b, int left)
+{
+    double *values = localization_log_row(&sys->localization, t, a, b);
+    if (values == NULL) {
+        return fail(sys, -1, -1, t, "out of memory logging the localization at t=%.17g", t);
+    }
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        values[i] = left ? sys->indicators[i].z_left : sys->indicators[i].value;
+    }
+    return 0;
+}
+
 /* Shrinks [a0, t_end] around the earliest crossing; leaves the system in the state at b. */
 static int locate(ssx_system *sys, event_bracket *br)
 {
@@ -118,6 +133,11 @@ static int locate(ssx_system *sys, event_bracket *br)
         ind->w_left = ind->z_left;
         ind->w_right = ind->z_right;
         ind->crossing = indicator_fires(ind, ind->value);
+    }
+    localization_log_begin(&sys->localization, sys->n_indicators);
+    br->localized = 1;
+    if (log_row(sys, a, a, b, 1) != 0 || log_row(sys, b, a, b, 0) != 0) {
+        return -1;
     }
     int last_side = SIDE_NONE;
     int state_at_b = 1;
@@ -168,6 +188,9 @@ static int locate(ssx_system *sys, event_bracket *br)
             }
             last_side = SIDE_LEFT;
             state_at_b = 0;
+        }
+        if (log_row(sys, t, a, b, 0) != 0) {
+            return -1;
         }
     }
     if (!state_at_b && step_from_snapshot(sys, br->a0, b) != 0) {
@@ -369,6 +392,13 @@ static int add_event_records(ssx_system *sys, double b, int micro, const event_b
             .do_steps = carries_cost ? sys->stats.do_step_calls - br->do_steps_before : 0,
         };
         first = 0;
+        if (micro == 0 && br->localized) {
+            if (localization_log_publish(&sys->localization, &record) != 0) {
+                return fail(sys, record.component, i, b, "out of memory recording an event");
+            }
+        } else {
+            localization_log_none(&sys->localization, &record);
+        }
         if (system_add_event_record(sys, &record) != 0) {
             return -1;
         }

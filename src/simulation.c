@@ -70,6 +70,7 @@ int ssx_initialize(ssx_system *sys, double t0)
     sys->time = t0;
     memset(&sys->stats, 0, sizeof sys->stats);
     sys->n_events = 0;
+    localization_log_clear(&sys->localization);
     sys->stepping_hybrid = system_is_hybrid(sys);
     if (check_components(sys) != 0 || coupling_prepare(sys) != 0) {
         return -1;

@@ -111,7 +111,23 @@ typedef struct {
     int iterations;     /* localization iterations spent on the instant (0 for cascades) */
     int rollbacks;      /* restores spent on the instant */
     long do_steps;      /* doStep calls spent on the instant */
+    /* Localization of a micro-0 event (n_trials == 0 and NAN values for cascades and for a
+     * crossing at the very start): the initial bracket [t_left, t_right] (the macro piece that
+     * crossed), this record's indicator at its ends, and its trials, read with
+     * ssx_event_trial(first_trial + k) for k < n_trials. Every record of an instant lists the
+     * instant's trials, so n_trials equals the iterations of the instant's first record. */
+    double t_left, t_right;
+    double value_left, value_right;
+    size_t first_trial;
+    int n_trials;
 } ssx_event_record;
+
+/* One localization trial: the whole system stepped from the bracket's left start to t. */
+typedef struct {
+    double t;
+    double a, b;   /* the bracket after the trial (t is one of its ends) */
+    double value;  /* the record's indicator at t */
+} ssx_localization_trial;
 
 /* Python-implemented behaviour. Every member may be NULL, which keeps the built-in behaviour of
  * an FMU component (for a Python component, do_step and evaluate_outputs are required).
@@ -212,6 +228,8 @@ size_t ssx_history_bytes(const ssx_system *sys); /* bytes allocated for the hist
 
 size_t ssx_event_count(const ssx_system *sys);
 int ssx_event_get(const ssx_system *sys, size_t index, ssx_event_record *out);
+size_t ssx_event_trial_count(const ssx_system *sys);
+int ssx_event_trial(const ssx_system *sys, size_t index, ssx_localization_trial *out);
 void ssx_get_statistics(const ssx_system *sys, ssx_statistics *out);
 
 #endif

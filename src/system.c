@@ -72,6 +72,7 @@ void ssx_system_free(ssx_system *sys)
     history_free(&sys->history);
     free(sys->output_views);
     free(sys->events);
+    localization_log_free(&sys->localization);
     free(sys->name);
     free(sys);
 }
@@ -605,6 +606,20 @@ int ssx_event_get(const ssx_system *sys, size_t index, ssx_event_record *out)
         return -1;
     }
     *out = sys->events[index];
+    return 0;
+}
+
+size_t ssx_event_trial_count(const ssx_system *sys)
+{
+    return sys->localization.n_trials;
+}
+
+int ssx_event_trial(const ssx_system *sys, size_t index, ssx_localization_trial *out)
+{
+    if (index >= sys->localization.n_trials || out == NULL) {
+        return -1;
+    }
+    *out = sys->localization.trials[index];
     return 0;
 }
 

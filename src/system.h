@@ -4,6 +4,7 @@
 
 #include "component.h"
 #include "history.h"
+#include "localization_log.h"
 #include "syssimx_engine.h"
 
 typedef struct {
@@ -92,6 +93,7 @@ struct ssx_system {
     ssx_event_record *events;
     size_t n_events;
     size_t events_capacity;
+    ssx_localization_log localization;
     ssx_statistics stats;
     ssx_error error;
 

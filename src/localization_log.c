@@ -1,0 +1,92 @@
+/* The localization trials of the event records. */
+#include "localization_log.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+enum { END_ROWS = 2, ROW_HEAD = 3 };
+
+void localization_log_free(ssx_localization_log *log)
+{
+    free(log->rows);
+    free(log->trials);
+    *log = (ssx_localization_log){0};
+}
+
+void localization_log_clear(ssx_localization_log *log)
+{
+    log->n_rows = 0;
+    log->n_trials = 0;
+}
+
+void localization_log_begin(ssx_localization_log *log, int n_indicators)
+{
+    log->n_rows = 0;
+    log->stride = ROW_HEAD + (size_t)n_indicators;
+}
+
+double *localization_log_row(ssx_localization_log *log, double t, double a, double b)
+{
+    size_t needed = (log->n_rows + 1) * log->stride;
+    if (needed > log->rows_capacity) {
+        size_t capacity = log->rows_capacity ? log->rows_capacity : 32 * log->stride;
+        while (capacity < needed) {
+            capacity *= 2;
+        }
+        double *grown = realloc(log->rows, capacity * sizeof *grown);
+        if (grown == NULL) {
+            return NULL;
+        }
+        log->rows = grown;
+        log->rows_capacity = capacity;
+    }
+    double *row = log->rows + log->n_rows++ * log->stride;
+    row[0] = t;
+    row[1] = a;
+    row[2] = b;
+    return row + ROW_HEAD;
+}
+
+int localization_log_publish(ssx_localization_log *log, ssx_event_record *record)
+{
+    if (log->n_rows < END_ROWS) {
+        localization_log_none(log, record);
+        return 0;
+    }
+    size_t column = ROW_HEAD + (size_t)record->indicator;
+    size_t n = log->n_rows - END_ROWS;
+    if (log->n_trials + n > log->trials_capacity) {
+        size_t capacity = log->trials_capacity ? log->trials_capacity : 64;
+        while (capacity < log->n_trials + n) {
+            capacity *= 2;
+        }
+        ssx_localization_trial *grown = realloc(log->trials, capacity * sizeof *grown);
+        if (grown == NULL) {
+            return -1;
+        }
+        log->trials = grown;
+        log->trials_capacity = capacity;
+    }
+    const double *left = log->rows;
+    const double *right = log->rows + log->stride;
+    record->t_left = left[0];
+    record->value_left = left[column];
+    record->t_right = right[0];
+    record->value_right = right[column];
+    record->first_trial = log->n_trials;
+    record->n_trials = (int)n;
+    for (size_t k = 0; k < n; ++k) {
+        const double *row = log->rows + (END_ROWS + k) * log->stride;
+        log->trials[log->n_trials++] =
+            (ssx_localization_trial){.t = row[0], .a = row[1], .b = row[2], .value = row[column]};
+    }
+    return 0;
+}
+
+void localization_log_none(const ssx_localization_log *log, ssx_event_record *record)
+{
+    record->t_left = record->t_right = NAN;
+    record->value_left = record->value_right = NAN;
+    record->first_trial = log->n_trials;
+    record->n_trials = 0;
+}
