@@ -2,9 +2,9 @@
 
 from .algorithms import GaussSeidelAlgorithm, HybridAlgorithm, JacobiAlgorithm
 from .connection import Connection, EventConnection
-from .results import EventRecord, SimulationResult, Statistics, SystemHistory
+from .results import EventRecord, LocalizationTrial, SimulationResult, Statistics, SystemHistory
 from .system import System
 
 __all__ = ["Connection", "EventConnection", "EventRecord", "GaussSeidelAlgorithm",
-           "HybridAlgorithm", "JacobiAlgorithm", "SimulationResult", "Statistics", "System",
-           "SystemHistory"]
+           "HybridAlgorithm", "JacobiAlgorithm", "LocalizationTrial", "SimulationResult",
+           "Statistics", "System", "SystemHistory"]

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -17,8 +18,28 @@ if TYPE_CHECKING:
 
 
 @dataclass(frozen=True)
+class LocalizationTrial:
+    """One localization trial: the whole system stepped to t from the bracket's left start;
+    [a, b] is the bracket after the trial (t is one of its ends), value the event's indicator
+    at t."""
+
+    t: float
+    a: float
+    b: float
+    value: float
+
+
+@dataclass(frozen=True)
 class EventRecord:
-    """One handled event: instant (t, micro), source and the localization cost."""
+    """One handled event: instant (t, micro), source and the localization cost.
+
+    For an event located by rollback (micro 0), t_left and t_right are the initial bracket
+    (the macro step, or its part after an earlier event, in which the indicator crossed),
+    value_left and value_right the indicator there, and trials the localization trials in
+    order: one per iteration, brackets nested and shrinking, the last one ending at t. Records
+    of one instant share its trials. Cascading events (micro > 0) and a crossing at the very
+    start have no trials and NaN bracket values.
+    """
 
     t: float
     micro: int
@@ -27,6 +48,11 @@ class EventRecord:
     iterations: int
     rollbacks: int
     do_steps: int
+    t_left: float = math.nan
+    t_right: float = math.nan
+    value_left: float = math.nan
+    value_right: float = math.nan
+    trials: tuple[LocalizationTrial, ...] = ()
 
     @property
     def time(self) -> DenseTime:
@@ -35,6 +61,14 @@ class EventRecord:
     @property
     def name(self) -> str:
         return self.event
+
+    @property
+    def located_value(self) -> float:
+        """The indicator at the located time t (NaN without localization)."""
+        for trial in reversed(self.trials):
+            if trial.t == self.t:
+                return trial.value
+        return self.value_right if self.t == self.t_right else math.nan
 
 
 @dataclass(frozen=True)
@@ -53,15 +87,27 @@ class Statistics:
     directional_derivatives: int  # fmi2GetDirectionalDerivative calls for loop Jacobians
 
 
+def read_trials(plan: EnginePlan, first: int, count: int) -> tuple[LocalizationTrial, ...]:
+    trial = ffi.new("ssx_localization_trial *")
+    trials = []
+    for i in range(first, first + count):
+        if lib().ssx_event_trial(plan.sys, i, trial) == 0:
+            trials.append(LocalizationTrial(float(trial.t), float(trial.a), float(trial.b),
+                                            float(trial.value)))
+    return tuple(trials)
+
+
 def read_events(plan: EnginePlan) -> list[EventRecord]:
     record = ffi.new("ssx_event_record *")
     events = []
     for i in range(int(lib().ssx_event_count(plan.sys))):
         if lib().ssx_event_get(plan.sys, i, record) == 0:
             component, event = plan.indicators[record.indicator]
-            events.append(EventRecord(float(record.t), int(record.micro), component, event,
-                                      int(record.iterations), int(record.rollbacks),
-                                      int(record.do_steps)))
+            events.append(EventRecord(
+                float(record.t), int(record.micro), component, event, int(record.iterations),
+                int(record.rollbacks), int(record.do_steps), float(record.t_left),
+                float(record.t_right), float(record.value_left), float(record.value_right),
+                read_trials(plan, int(record.first_trial), int(record.n_trials))))
     return events
 
 

@@ -249,7 +249,7 @@ class System:
             component.t = self.t
         algorithm = self.algorithm
         if isinstance(algorithm, HybridAlgorithm):
-            log_events([e for e in events if e.t >= t0], t0, dt, algorithm.method)
+            log_events([e for e in events if e.t >= t0], algorithm.method)
         logger.info("Simulation completed in %.2f seconds", wall)
         units = {n: {p: c.output_specs[p].unit for p in [*plan.outputs[n], *c.event_indicators]}
                  for n, c in self.components.items()}

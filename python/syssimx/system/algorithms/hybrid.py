@@ -55,8 +55,33 @@ class HybridAlgorithm:
         self.coupling.validate()
 
 
-def log_events(records: Sequence[EventRecord], t0: float, dt: float, method: str) -> None:
-    """The run's event instants: bracket on the grid, localization cost, handled events."""
+def _indicators_at(group: Sequence[EventRecord], side: str) -> dict[str, dict[str, float]]:
+    """{component: {event: value}} at the left or right end of the initial bracket."""
+    values: dict[str, dict[str, float]] = {}
+    for r in group:
+        values.setdefault(r.component, {})[r.event] = (r.value_left if side == "left"
+                                                       else r.value_right)
+    return values
+
+
+def _log_localization(group: Sequence[EventRecord], method: str) -> None:
+    """The seed's DEBUG lines: indicators at the initial bracket ends, the bracket each trial
+    splits, the indicators at the located time."""
+    first = group[0]
+    logger.debug("Starting %s for event localization ...", method)
+    logger.debug("Indicators at left  (t=%.8f): %s", first.t_left, _indicators_at(group, "left"))
+    logger.debug("Indicators at right (t=%.8f): %s", first.t_right,
+                 _indicators_at(group, "right"))
+    a, b = first.t_left, first.t_right
+    for k, trial in enumerate(first.trials, start=1):
+        logger.debug("%s iteration %d: interval [%.8f, %.8f]", method.capitalize(), k, a, b)
+        a, b = trial.a, trial.b
+    for r in group:
+        logger.debug("Indicator %s.%s = %.4e", r.component, r.event, r.located_value)
+
+
+def log_events(records: Sequence[EventRecord], method: str) -> None:
+    """The run's event instants: bracket, localization trials (DEBUG), handled events."""
     if not logger.isEnabledFor(logging.INFO):
         return
     instants: dict[tuple[float, int], list[EventRecord]] = {}
@@ -66,14 +91,16 @@ def log_events(records: Sequence[EventRecord], t0: float, dt: float, method: str
     for (t, micro), group in instants.items():
         names = ", ".join(f"{r.component}.{r.event}" for r in group)
         logger.info(rule)
-        if micro == 0:
-            k = math.floor((t - t0) / dt + 1e-9)
-            left = t0 + k * dt
-            if k > 0 and math.isclose(left, t, abs_tol=1e-12) and group[0].iterations > 0:
-                left -= dt  # located on a grid point: the crossing was in the step before
-            logger.info("Event crossing in [%.6f, %.6f]: %s", left, left + dt, names)
+        if micro == 0 and not math.isnan(group[0].t_left):
+            logger.info("Event crossing in [%.6f, %.6f]: %s", group[0].t_left,
+                        group[0].t_right, names)
+            _log_localization(group, method)
             logger.debug("%s localization: %d iterations, %d rollbacks, %d doStep calls",
                          method, group[0].iterations, group[0].rollbacks, group[0].do_steps)
             logger.info("Event located at t=%.8f", t)
+            logger.debug("  Events at located time: %s", names)
+        elif micro == 0:
+            # a crossing at the very start: no bracket, the instant is the grid point itself
+            logger.info("Event crossing at t=%.6f: %s", t, names)
         logger.info("Handling %d event(s) at t=%.8f, micro=%d: %s", len(group), t, micro, names)
         logger.info(rule)
