@@ -12,22 +12,11 @@
  * 1e-8 leaves a margin of ten over both. */
 #define EVENT_TIME_TOLERANCE 1e-8
 
-static ssx_system *pendulum_system(ssx_fmu *fmu, ssx_locator locator, double tol_value,
-                                   int *component)
-{
-    CHECK(start_pendulum(fmu, 0.0, 0.5, 0.0, 1e-10) == 0);
-    ssx_system *sys = ssx_system_new("hybrid pendulum");
-    *component = add_pendulum(sys, "Pendulum_CVODE", fmu);
-    CHECK(ssx_add_indicator_output(sys, *component, 0, -1) == 0);
-    CHECK_OK(sys, ssx_set_hybrid_options(sys, 1e-9, tol_value, 100, 10, 0, locator, 0.0));
-    return sys;
-}
-
 static void event_free_steps_cost_one_do_step(void)
 {
     ssx_fmu *fmu = load_fmu("pendulum_cvode");
     int c;
-    ssx_system *sys = pendulum_system(fmu, SSX_ILLINOIS, 1e-9, &c);
+    ssx_system *sys = seed_pendulum_system(fmu, SSX_ILLINOIS, 1e-9, 1e-9, &c);
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
     CHECK_OK(sys, ssx_run(sys, 0.0, 0.45, 0.05)); /* theta stays positive up to 0.465 */
     ssx_statistics stats;
@@ -47,7 +36,7 @@ static ssx_event_record locate_first_event(ssx_locator locator, double tol_value
 {
     ssx_fmu *fmu = load_fmu("pendulum_cvode");
     int c;
-    ssx_system *sys = pendulum_system(fmu, locator, tol_value, &c);
+    ssx_system *sys = seed_pendulum_system(fmu, locator, 1e-9, tol_value, &c);
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
     CHECK_OK(sys, ssx_run(sys, 0.0, 1.0, 0.05));
 
@@ -90,7 +79,7 @@ static void internal_steps_recorded(void)
 {
     ssx_fmu *fmu = load_fmu("pendulum_cvode");
     int c;
-    ssx_system *sys = pendulum_system(fmu, SSX_ILLINOIS, 1e-9, &c);
+    ssx_system *sys = seed_pendulum_system(fmu, SSX_ILLINOIS, 1e-9, 1e-9, &c);
     CHECK_OK(sys, ssx_set_hybrid_options(sys, 1e-9, 1e-9, 100, 10, 1, SSX_ILLINOIS, 0.0));
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
     CHECK_OK(sys, ssx_run(sys, 0.0, 1.0, 0.05));
@@ -112,31 +101,12 @@ static void internal_steps_recorded(void)
     ssx_fmu_free(fmu);
 }
 
-typedef struct {
-    ssx_system *sys;
-    ssx_fmu *fmu;
-    int component;
-    int calls;
-} bounce_back;
-
-/* The seed's handler: a fresh instance started at the event with the velocity reversed. */
-static int reverse_velocity(void *user, const int *indicators, int n, double t)
-{
-    bounce_back *b = user;
-    if (n != 1 || indicators[0] != 0) {
-        return -1;
-    }
-    const double *out = ssx_outputs(b->sys, b->component);
-    b->calls++;
-    return start_pendulum(b->fmu, t, out[0], -out[1], 1e-10) == 0 ? 0 : -1;
-}
-
 static void handler_reverses_and_next_events_follow(void)
 {
     ssx_fmu *fmu = load_fmu("pendulum_cvode");
     int c;
-    ssx_system *sys = pendulum_system(fmu, SSX_ILLINOIS, 1e-9, &c);
-    bounce_back state = {.sys = sys, .fmu = fmu, .component = c};
+    ssx_system *sys = seed_pendulum_system(fmu, SSX_ILLINOIS, 1e-9, 1e-9, &c);
+    wall_bounce state = {.sys = sys, .fmu = fmu, .component = c};
     ssx_hooks hooks = {.user = &state, .handle_events = reverse_velocity};
     CHECK_OK(sys, ssx_set_hooks(sys, c, &hooks));
     CHECK_OK(sys, ssx_add_event_connection(sys, 0, c));

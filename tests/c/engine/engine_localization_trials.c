@@ -8,17 +8,6 @@
 
 #define TOL_TIME 1e-9
 
-static ssx_system *pendulum_system(ssx_fmu *fmu, ssx_locator locator, double tol_value,
-                                   int *component)
-{
-    CHECK(start_pendulum(fmu, 0.0, 0.5, 0.0, 1e-10) == 0);
-    ssx_system *sys = ssx_system_new("hybrid pendulum");
-    *component = add_pendulum(sys, "Pendulum_CVODE", fmu);
-    CHECK(ssx_add_indicator_output(sys, *component, 0, -1) == 0);
-    CHECK_OK(sys, ssx_set_hybrid_options(sys, TOL_TIME, tol_value, 100, 10, 0, locator, 0.0));
-    return sys;
-}
-
 /* theta as recorded on the grid at t (the indicator is output 0) */
 static double recorded_theta(const ssx_system *sys, int component, double t)
 {
@@ -37,7 +26,7 @@ static void trials_of_the_first_event(ssx_locator locator, double tol_value)
 {
     ssx_fmu *fmu = load_fmu("pendulum_cvode");
     int c;
-    ssx_system *sys = pendulum_system(fmu, locator, tol_value, &c);
+    ssx_system *sys = seed_pendulum_system(fmu, locator, TOL_TIME, tol_value, &c);
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
     CHECK_OK(sys, ssx_run(sys, 0.0, 1.0, 0.05));
     ssx_event_record event;
@@ -92,7 +81,7 @@ static void no_event_no_trials(void)
 {
     ssx_fmu *fmu = load_fmu("pendulum_cvode");
     int c;
-    ssx_system *sys = pendulum_system(fmu, SSX_ILLINOIS, 1e-9, &c);
+    ssx_system *sys = seed_pendulum_system(fmu, SSX_ILLINOIS, TOL_TIME, 1e-9, &c);
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
     CHECK_OK(sys, ssx_run(sys, 0.0, 0.45, 0.05));
     CHECK(ssx_event_count(sys) == 0 && ssx_event_trial_count(sys) == 0);
@@ -102,27 +91,12 @@ static void no_event_no_trials(void)
 
 /* Reflected at every crossing, the pendulum has three events in [0, 2.5]: each record lists its
  * own trials, one after the other in the shared buffer. */
-typedef struct {
-    ssx_system *sys;
-    ssx_fmu *fmu;
-    int component;
-} bounce_back;
-
-static int reverse_velocity(void *user, const int *indicators, int n, double t)
-{
-    (void)indicators;
-    (void)n;
-    bounce_back *b = user;
-    const double *out = ssx_outputs(b->sys, b->component);
-    return start_pendulum(b->fmu, t, out[0], -out[1], 1e-10) == 0 ? 0 : -1;
-}
-
 static void trials_of_successive_events(void)
 {
     ssx_fmu *fmu = load_fmu("pendulum_cvode");
     int c;
-    ssx_system *sys = pendulum_system(fmu, SSX_BISECTION, 1e-9, &c);
-    bounce_back state = {.sys = sys, .fmu = fmu, .component = c};
+    ssx_system *sys = seed_pendulum_system(fmu, SSX_BISECTION, TOL_TIME, 1e-9, &c);
+    wall_bounce state = {.sys = sys, .fmu = fmu, .component = c};
     ssx_hooks hooks = {.user = &state, .handle_events = reverse_velocity};
     CHECK_OK(sys, ssx_set_hooks(sys, c, &hooks));
     CHECK_OK(sys, ssx_add_event_connection(sys, 0, c));

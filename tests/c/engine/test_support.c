@@ -56,3 +56,25 @@ int add_pendulum(ssx_system *sys, const char *name, ssx_fmu *fmu)
     CHECK(ssx_add_input(sys, c, SSX_REAL, PENDULUM_TORQUE, 0.0) == 0);
     return c;
 }
+
+ssx_system *seed_pendulum_system(ssx_fmu *fmu, ssx_locator locator, double tol_time,
+                                 double tol_value, int *component)
+{
+    CHECK(start_pendulum(fmu, 0.0, 0.5, 0.0, 1e-10) == 0);
+    ssx_system *sys = ssx_system_new("hybrid pendulum");
+    *component = add_pendulum(sys, "Pendulum_CVODE", fmu);
+    CHECK(ssx_add_indicator_output(sys, *component, 0, -1) == 0);
+    CHECK_OK(sys, ssx_set_hybrid_options(sys, tol_time, tol_value, 100, 10, 0, locator, 0.0));
+    return sys;
+}
+
+int reverse_velocity(void *user, const int *indicators, int n, double t)
+{
+    wall_bounce *b = user;
+    if (n != 1 || indicators[0] != 0) {
+        return -1;
+    }
+    const double *out = ssx_outputs(b->sys, b->component);
+    b->calls++;
+    return start_pendulum(b->fmu, t, out[0], -out[1], 1e-10) == 0 ? 0 : -1;
+}

@@ -56,4 +56,20 @@ int start_pendulum(ssx_fmu *fmu, double t, double theta0, double omega0, double 
 /* Adds the pendulum as a component: outputs theta, omega, alpha; input torque (start 0). */
 int add_pendulum(ssx_system *sys, const char *name, ssx_fmu *fmu);
 
+/* The seed's scenario: the pendulum started at theta0 = 0.5 (CVODE rtol 1e-10) as the only
+ * component, with indicator 0 on theta falling through zero, hybrid options tol_time, tol_value
+ * and locator. Writes the component index to *component. */
+ssx_system *seed_pendulum_system(ssx_fmu *fmu, ssx_locator locator, double tol_time,
+                                 double tol_value, int *component);
+
+/* The seed's wall: handle_events hook that restarts the pendulum at the event with the
+ * velocity reversed (a fresh instance, like the tutorial's FMUPendulum). */
+typedef struct {
+    ssx_system *sys;
+    ssx_fmu *fmu;
+    int component;
+    int calls;
+} wall_bounce;
+int reverse_velocity(void *user, const int *indicators, int n, double t);
+
 #endif
