@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "array.h"
 #include "fmi2Functions.h"
 
 typedef struct {
@@ -227,14 +228,9 @@ static int knows_state(const ssx_fmu *fmu, const void *state)
 
 static int remember_state(ssx_fmu *fmu, void *state)
 {
-    if (fmu->n_states == fmu->states_capacity) {
-        size_t capacity = fmu->states_capacity ? 2 * fmu->states_capacity : 4;
-        void **grown = realloc(fmu->states, capacity * sizeof *grown);
-        if (grown == NULL) {
-            return -1;
-        }
-        fmu->states = grown;
-        fmu->states_capacity = capacity;
+    if (array_reserve((void **)&fmu->states, &fmu->states_capacity, fmu->n_states + 1,
+                      sizeof *fmu->states, 4) != 0) {
+        return -1;
     }
     fmu->states[fmu->n_states++] = state;
     return 0;

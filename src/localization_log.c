@@ -4,6 +4,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "array.h"
+
 enum { END_ROWS = 2, ROW_HEAD = 3 };
 
 void localization_log_free(ssx_localization_log *log)
@@ -27,18 +29,9 @@ void localization_log_begin(ssx_localization_log *log, int n_indicators)
 
 double *localization_log_row(ssx_localization_log *log, double t, double a, double b)
 {
-    size_t needed = (log->n_rows + 1) * log->stride;
-    if (needed > log->rows_capacity) {
-        size_t capacity = log->rows_capacity ? log->rows_capacity : 32 * log->stride;
-        while (capacity < needed) {
-            capacity *= 2;
-        }
-        double *grown = realloc(log->rows, capacity * sizeof *grown);
-        if (grown == NULL) {
-            return NULL;
-        }
-        log->rows = grown;
-        log->rows_capacity = capacity;
+    if (array_reserve((void **)&log->rows, &log->rows_capacity, (log->n_rows + 1) * log->stride,
+                      sizeof *log->rows, 32 * log->stride) != 0) {
+        return NULL;
     }
     double *row = log->rows + log->n_rows++ * log->stride;
     row[0] = t;
@@ -55,17 +48,9 @@ int localization_log_publish(ssx_localization_log *log, ssx_event_record *record
     }
     size_t column = ROW_HEAD + (size_t)record->indicator;
     size_t n = log->n_rows - END_ROWS;
-    if (log->n_trials + n > log->trials_capacity) {
-        size_t capacity = log->trials_capacity ? log->trials_capacity : 64;
-        while (capacity < log->n_trials + n) {
-            capacity *= 2;
-        }
-        ssx_localization_trial *grown = realloc(log->trials, capacity * sizeof *grown);
-        if (grown == NULL) {
-            return -1;
-        }
-        log->trials = grown;
-        log->trials_capacity = capacity;
+    if (array_reserve((void **)&log->trials, &log->trials_capacity, log->n_trials + n,
+                      sizeof *log->trials, 64) != 0) {
+        return -1;
     }
     const double *left = log->rows;
     const double *right = log->rows + log->stride;

@@ -8,25 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "array.h"
 #include "error.h"
-
-static int grow(void **array, int *capacity, int needed, size_t element_size)
-{
-    if (needed <= *capacity) {
-        return 0;
-    }
-    int new_capacity = *capacity > 0 ? *capacity * 2 : 8;
-    while (new_capacity < needed) {
-        new_capacity *= 2;
-    }
-    void *grown = realloc(*array, (size_t)new_capacity * element_size);
-    if (grown == NULL) {
-        return -1;
-    }
-    *array = grown;
-    *capacity = new_capacity;
-    return 0;
-}
 
 ssx_system *ssx_system_new(const char *name)
 {
@@ -116,8 +99,8 @@ static int add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int ca
                         sys->name, name);
         }
     }
-    if (grow((void **)&sys->components, &sys->components_capacity, sys->n_components + 1,
-             sizeof *sys->components) != 0) {
+    if (array_reserve((void **)&sys->components, &sys->components_capacity,
+                      (size_t)sys->n_components + 1, sizeof *sys->components, 8) != 0) {
         return fail(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
     }
     ssx_component *c = calloc(1, sizeof *c);
@@ -300,8 +283,8 @@ int ssx_connect(ssx_system *sys, int src_component, int src_output, int dst_comp
                     dst_input, dst->name, existing->src_output,
                     sys->components[existing->src_component]->name);
     }
-    if (grow((void **)&sys->connections, &sys->connections_capacity, sys->n_connections + 1,
-             sizeof *sys->connections) != 0) {
+    if (array_reserve((void **)&sys->connections, &sys->connections_capacity,
+                      (size_t)sys->n_connections + 1, sizeof *sys->connections, 8) != 0) {
         return fail(sys, -1, -1, NAN, "out of memory adding a connection");
     }
     sys->connections[sys->n_connections] = (ssx_connection){
@@ -324,8 +307,8 @@ static int add_indicator(ssx_system *sys, ssx_indicator indicator)
                     "component '%s': indicator direction must be -1, 0 or +1, not %d",
                     sys->components[indicator.component]->name, indicator.direction);
     }
-    if (grow((void **)&sys->indicators, &sys->indicators_capacity, sys->n_indicators + 1,
-             sizeof *sys->indicators) != 0) {
+    if (array_reserve((void **)&sys->indicators, &sys->indicators_capacity,
+                      (size_t)sys->n_indicators + 1, sizeof *sys->indicators, 8) != 0) {
         return fail(sys, -1, -1, NAN, "out of memory adding an indicator");
     }
     sys->indicators[sys->n_indicators] = indicator;
@@ -393,8 +376,8 @@ int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_compon
             return 0; /* already connected: an event reaches a listener once */
         }
     }
-    if (grow((void **)&sys->event_links, &sys->event_links_capacity, sys->n_event_links + 1,
-             sizeof *sys->event_links) != 0) {
+    if (array_reserve((void **)&sys->event_links, &sys->event_links_capacity,
+                      (size_t)sys->n_event_links + 1, sizeof *sys->event_links, 8) != 0) {
         return fail(sys, -1, -1, NAN, "out of memory adding an event connection");
     }
     sys->event_links[sys->n_event_links++] =
@@ -553,15 +536,10 @@ int system_record(ssx_system *sys, double t, int micro)
 
 int system_add_event_record(ssx_system *sys, const ssx_event_record *record)
 {
-    if (sys->n_events == sys->events_capacity) {
-        size_t capacity = sys->events_capacity ? sys->events_capacity * 2 : 16;
-        ssx_event_record *grown = realloc(sys->events, capacity * sizeof *grown);
-        if (grown == NULL) {
-            return fail(sys, record->component, record->indicator, record->t,
-                        "out of memory recording an event");
-        }
-        sys->events = grown;
-        sys->events_capacity = capacity;
+    if (array_reserve((void **)&sys->events, &sys->events_capacity, sys->n_events + 1,
+                      sizeof *sys->events, 16) != 0) {
+        return fail(sys, record->component, record->indicator, record->t,
+                    "out of memory recording an event");
     }
     sys->events[sys->n_events++] = *record;
     return 0;

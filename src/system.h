@@ -65,19 +65,19 @@ struct ssx_system {
     char *name;
     ssx_component **components;
     int n_components;
-    int components_capacity;
+    size_t components_capacity;
 
     ssx_connection *connections;
     int n_connections;
-    int connections_capacity;
+    size_t connections_capacity;
 
     ssx_indicator *indicators;
     int n_indicators;
-    int indicators_capacity;
+    size_t indicators_capacity;
 
     ssx_event_link *event_links;
     int n_event_links;
-    int event_links_capacity;
+    size_t event_links_capacity;
 
     int *order;          /* schedule: component indices, group after group */
     ssx_group *groups;
