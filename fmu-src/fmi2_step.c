@@ -10,6 +10,25 @@
  * its own time. Beyond this relative difference the two disagree and the step is refused. */
 #define TIME_MATCH_TOLERANCE 1e-7
 
+/* When the model asks to stop (INFINITY when it never does). */
+static double stop_time(const fmu_instance *inst)
+{
+    return inst->model->termination_time != NULL ? inst->model->termination_time(inst->values)
+                                                 : INFINITY;
+}
+
+static fmi2Status refuse_step(fmu_instance *inst, double t, double t_end, const char *reason,
+                              step_refusal_kind kind)
+{
+    static const fmi2Status statuses[] = {fmi2Error, fmi2Discard, fmi2Fatal};
+    fmi2Status status = statuses[kind];
+    fmu_log(inst, status, status == fmi2Discard ? LOG_STATUS_WARNING : LOG_STATUS_ERROR,
+            "fmi2DoStep from t = %.17g to %.17g: %s", t, t_end, reason);
+    if (status == fmi2Fatal)
+        inst->phase = PHASE_FATAL;
+    return status;
+}
+
 fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
                       fmi2Real communicationStepSize, fmi2Boolean noSetFMUStatePriorToCurrentPoint)
 {
@@ -36,13 +55,24 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
         return fmi2OK;
     }
     if (inst->model->step_refusal != NULL) {
-        const char *reason = inst->model->step_refusal(inst->values, t_end);
+        step_refusal_kind kind = STEP_FAILS;
+        const char *reason = inst->model->step_refusal(inst->values, t_end, &kind);
         if (reason != NULL)
-            return fmu_error(inst, "fmi2DoStep from t = %g to %g: %s", t, t_end, reason);
+            return refuse_step(inst, t, t_end, reason, kind);
     }
-    fmi2Status status = fmu_solver_step(inst, t_end);
+    /* A model that asks to stop inside the step is integrated up to that time only. */
+    double t_stop = stop_time(inst);
+    fmi2Status status = fmi2OK;
+    if (fmin(t_end, t_stop) > inst->time)
+        status = fmu_solver_step(inst, fmin(t_end, t_stop));
     fmu_refresh_outputs(inst);
-    return status;
+    if (status > fmi2Warning || t_stop > t_end)
+        return status;
+    fmu_log(inst, fmi2Discard, LOG_STATUS_WARNING,
+            "fmi2DoStep from t = %.17g to %.17g: the model asks to end the simulation at "
+            "t = %.17g",
+            t, t_end, inst->time);
+    return fmi2Discard;
 }
 
 fmi2Status fmi2CancelStep(fmi2Component c)
@@ -94,7 +124,7 @@ fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boo
         return fmi2Error;
     if (s != fmi2Terminated || value == NULL)
         return fmu_error(inst, "fmi2GetBooleanStatus: only fmi2Terminated is available");
-    *value = fmi2False; /* the FMU never asks to end the simulation */
+    *value = inst->time >= stop_time(inst) ? fmi2True : fmi2False;
     return fmi2OK;
 }
 

@@ -57,6 +57,13 @@ static fmu_instance *prepare_get(fmi2Component c, const char *function,
     }
     if (inst->outputs_stale) /* outputs follow the current state and inputs */
         fmu_refresh_outputs(inst);
+    if (inst->model->read_refusal != NULL) {
+        const char *reason = inst->model->read_refusal(inst->values, inst->time);
+        if (reason != NULL) {
+            fmu_error(inst, "%s at t = %.17g: %s", function, inst->time, reason);
+            return NULL;
+        }
+    }
     return inst;
 }
 

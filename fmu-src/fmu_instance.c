@@ -6,7 +6,7 @@
 #include "fmu_solver.h"
 
 static const char *const phase_names[] = {"instantiated", "initialization mode", "step mode",
-                                          "terminated"};
+                                          "terminated", "the fatal state (after fmi2Fatal)"};
 
 const char *fmu_phase_name(fmu_phase phase)
 {

@@ -10,7 +10,8 @@ typedef enum {
     PHASE_INSTANTIATED,
     PHASE_INITIALIZATION,
     PHASE_STEP,
-    PHASE_TERMINATED
+    PHASE_TERMINATED,
+    PHASE_FATAL /* after fmi2Fatal: no call is allowed any more */
 } fmu_phase;
 
 #define PHASE_BIT(phase) (1u << (phase))

@@ -54,6 +54,11 @@ typedef struct {
     [vr] = {name, vr, TYPE_REAL, CAUSALITY_PARAMETER, VARIABILITY_FIXED, INITIAL_EXACT, unit, \
             start, description, -1, NULL, NULL}
 
+/* How a refused step fails: the step fails and may be retried (fmi2Error), or the step could
+ * not be completed (fmi2Discard: the FMU stays at the step's start), or the model is broken for
+ * good (fmi2Fatal: every later call is refused). */
+typedef enum { STEP_FAILS, STEP_DISCARDED, STEP_FATAL } step_refusal_kind;
+
 /* Equations. `v` holds every variable by value reference (Integer and Boolean values as
  * doubles); `x` is the continuous state vector. */
 typedef struct {
@@ -76,8 +81,15 @@ typedef struct {
     void (*event_indicators)(const double *v, double t, const double *x, double *z);
     /* apply the events marked in fired[]; may change x and discrete variables in v */
     void (*handle_events)(double *v, double t, double *x, const int *fired);
-    /* NULL when the model can always step; otherwise a reason to refuse a step ending at t_end */
-    const char *(*step_refusal)(const double *v, double t_end);
+    /* NULL when the model can always step; otherwise a reason to refuse a step ending at t_end,
+     * and in *kind how the refusal fails (set to STEP_FAILS only when it is not the default) */
+    const char *(*step_refusal)(const double *v, double t_end, step_refusal_kind *kind);
+    /* NULL when the model never asks to stop; otherwise the time at which it asks the master to
+     * end the simulation (INFINITY: not now). fmi2DoStep stops there and returns fmi2Discard;
+     * fmi2GetBooleanStatus(fmi2Terminated) then answers true. */
+    double (*termination_time)(const double *v);
+    /* NULL when values can always be read; otherwise a reason to refuse fmi2Get* at time t */
+    const char *(*read_refusal)(const double *v, double t);
     /* NULL when not provided; otherwise d output / d input at the current point with the states
      * held fixed (the feedthrough Jacobian a co-simulation master needs at a communication
      * point), for any output and input value reference. Serves fmi2GetDirectionalDerivative. */

@@ -1,28 +1,59 @@
-/* Failing.mo: y = u, and fmi2DoStep returns fmi2Error (with a log message) for any step that
- * ends after fail_time. It lets masters test how they report a failing FMU. */
+/* Failing.mo: y = u, and after fail_time the FMU fails in the way `failure` chooses. It lets
+ * masters test how they report a failing FMU:
+ *   0  fmi2DoStep returns fmi2Error (with a log message) for a step that ends after fail_time
+ *   1  fmi2DoStep returns fmi2Fatal: the instance accepts no further call
+ *   2  fmi2DoStep returns fmi2Discard without asking to terminate (stays at the step's start)
+ *   3  every fmi2Get* fails once the FMU's time is past fail_time
+ *   4  y becomes NaN past fail_time */
+#include <math.h>
+
 #include "model.h"
 
-enum { VR_Y, VR_U, VR_FAIL_TIME, VARIABLE_COUNT };
+enum { VR_Y, VR_U, VR_FAIL_TIME, VR_FAILURE, VARIABLE_COUNT };
+enum { FAIL_ERROR, FAIL_FATAL, FAIL_DISCARD, FAIL_READ, FAIL_NAN };
 
 static const model_variable variables[VARIABLE_COUNT] = {
     [VR_Y] = {"y", VR_Y, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,
               NULL, 0, "copy of the input", -1, DEPENDS(VR_U), DEPENDS(VR_U)},
     [VR_U] = {"u", VR_U, TYPE_REAL, CAUSALITY_INPUT, VARIABILITY_CONTINUOUS, INITIAL_NONE, NULL, 0,
               "input", -1, NULL, NULL},
-    REAL_PARAMETER(VR_FAIL_TIME, "fail_time", "s", 1, "steps ending after this time fail"),
+    REAL_PARAMETER(VR_FAIL_TIME, "fail_time", "s", 1, "the FMU fails after this time"),
+    [VR_FAILURE] = {"failure", VR_FAILURE, TYPE_INTEGER, CAUSALITY_PARAMETER, VARIABILITY_FIXED,
+                    INITIAL_EXACT, NULL, FAIL_ERROR,
+                    "0 doStep error, 1 doStep fatal, 2 doStep discard, 3 fmi2Get error, "
+                    "4 NaN output",
+                    -1, NULL, NULL},
 };
 
 static void outputs(double *v, double t, const double *x)
 {
-    (void)t;
     (void)x;
-    v[VR_Y] = v[VR_U];
+    int nan_now = (int)v[VR_FAILURE] == FAIL_NAN && t > v[VR_FAIL_TIME];
+    v[VR_Y] = nan_now ? NAN : v[VR_U];
 }
 
-static const char *step_refusal(const double *v, double t_end)
+static const char *step_refusal(const double *v, double t_end, step_refusal_kind *kind)
 {
-    return t_end > v[VR_FAIL_TIME] ? "the simulation passed fail_time (a deliberate failure)"
-                                   : NULL;
+    int failure = (int)v[VR_FAILURE];
+    if (t_end <= v[VR_FAIL_TIME] || failure > FAIL_DISCARD) {
+        return NULL;
+    }
+    if (failure == FAIL_FATAL) {
+        *kind = STEP_FATAL;
+        return "the simulation passed fail_time (a deliberate fatal failure)";
+    }
+    if (failure == FAIL_DISCARD) {
+        *kind = STEP_DISCARDED;
+        return "the simulation passed fail_time (a deliberate discard)";
+    }
+    return "the simulation passed fail_time (a deliberate failure)";
+}
+
+static const char *read_refusal(const double *v, double t)
+{
+    return (int)v[VR_FAILURE] == FAIL_READ && t > v[VR_FAIL_TIME]
+               ? "the simulation passed fail_time (a deliberate read failure)"
+               : NULL;
 }
 
 const model_definition fmu_model = {
@@ -34,4 +65,5 @@ const model_definition fmu_model = {
     .default_step_size = 1e-3,
     .outputs = outputs,
     .step_refusal = step_refusal,
+    .read_refusal = read_refusal,
 };
