@@ -2,6 +2,7 @@
  * built-ins Python calls as super(), and the per-type port batches. */
 #include "component.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -12,7 +13,11 @@ int component_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
 {
     sys->stats.do_step_calls++;
     if (c->hooks.do_step != NULL) {
-        return c->hooks.do_step(c->hooks.user, t, dt) == 0 ? 0 : fail_hook(sys, c, t, "do_step");
+        if (c->hooks.do_step(c->hooks.user, t, dt) != 0) {
+            return fail_hook(sys, c, t, "do_step");
+        }
+        /* an FMU's values were checked where the built-in read them; Python wrote these */
+        return c->fmu == NULL ? component_check_outputs(sys, c, t + dt) : 0;
     }
     return c->ops->do_step(sys, c, t, dt);
 }
@@ -30,9 +35,10 @@ int component_read_outputs(ssx_system *sys, ssx_component *c)
 int component_evaluate_outputs(ssx_system *sys, ssx_component *c, double t)
 {
     if (c->hooks.evaluate_outputs != NULL) {
-        return c->hooks.evaluate_outputs(c->hooks.user, t) == 0
-                   ? 0
-                   : fail_hook(sys, c, t, "evaluate_outputs");
+        if (c->hooks.evaluate_outputs(c->hooks.user, t) != 0) {
+            return fail_hook(sys, c, t, "evaluate_outputs");
+        }
+        return c->fmu == NULL ? component_check_outputs(sys, c, t) : 0;
     }
     return c->ops->evaluate_outputs(sys, c, t);
 }
@@ -101,6 +107,19 @@ int component_record(ssx_system *sys, ssx_component *c, double t)
         return 0;
     }
     return c->hooks.record(c->hooks.user, t) == 0 ? 0 : fail_hook(sys, c, t, "record");
+}
+
+int component_check_outputs(ssx_system *sys, const ssx_component *c, double t)
+{
+    if (sys->allow_non_finite) {
+        return 0;
+    }
+    for (int i = 0; i < c->n_outputs; ++i) {
+        if (!isfinite(c->outputs[i])) {
+            return fail_non_finite(sys, c, i, t);
+        }
+    }
+    return 0;
 }
 
 int component_can_roll_back(const ssx_component *c)

@@ -14,6 +14,7 @@ static int vfail(ssx_system *sys, int component, int indicator, double t, const 
     ssx_error *e = &sys->error;
     e->component = component;
     e->indicator = indicator;
+    e->output = -1;
     e->time = t;
     e->fmi_status = -1;
     e->in_callback = 0;
@@ -51,6 +52,16 @@ int fail_fmi(ssx_system *sys, const ssx_component *c, double t, int status, cons
     return -1;
 }
 
+int fail_non_finite(ssx_system *sys, const ssx_component *c, int output, double t)
+{
+    fail(sys, c->index, -1, t,
+         "component '%s': output %d is %g at t=%.17g (non-finite values stop the run unless they "
+         "are allowed)",
+         c->name, output, c->outputs[output], t);
+    sys->error.output = output;
+    return -1;
+}
+
 int fail_hook(ssx_system *sys, const ssx_component *c, double t, const char *hook)
 {
     fail(sys, c->index, -1, t, "component '%s': the Python %s hook failed at t=%.17g", c->name,
@@ -64,6 +75,7 @@ void clear_error(ssx_system *sys)
     memset(&sys->error, 0, sizeof sys->error);
     sys->error.component = -1;
     sys->error.indicator = -1;
+    sys->error.output = -1;
     sys->error.fmi_status = -1;
     sys->error.time = NAN;
 }

@@ -16,6 +16,8 @@ int fail(ssx_system *sys, int component, int indicator, double t, const char *fo
     SSX_PRINTF(5, 6);
 /* An fmi2 call of component c returned `status` (or the binding failed, status -1). */
 int fail_fmi(ssx_system *sys, const ssx_component *c, double t, int status, const char *call);
+/* Output `output` of component c holds a NaN or an infinity at time t. */
+int fail_non_finite(ssx_system *sys, const ssx_component *c, int output, double t);
 /* A Python hook of component c reported failure; Python keeps the exception. */
 int fail_hook(ssx_system *sys, const ssx_component *c, double t, const char *hook);
 /* Marks the current error as chattering / too many micro steps. */

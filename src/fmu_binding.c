@@ -36,6 +36,8 @@ typedef struct {
     fmi2SerializeFMUstateTYPE *serialize_state;
     fmi2DeSerializeFMUstateTYPE *deserialize_state;
     fmi2GetDirectionalDerivativeTYPE *get_directional_derivative;
+    fmi2GetBooleanStatusTYPE *get_boolean_status;
+    fmi2GetRealStatusTYPE *get_real_status;
 } fmi2_table;
 
 struct ssx_fmu {
@@ -56,6 +58,10 @@ struct ssx_fmu {
     size_t states_capacity;
     ssx_fmu_counters counters;
     char last_message[1024];
+    /* the call that returned fmi2Fatal, or NULL: after it FMI 2.0 allows no call at all, not
+     * even fmi2FreeInstance, so the instance is abandoned and the library stays loaded */
+    const char *fatal_call;
+    const char *current_call; /* the fmi2 function being called, named by live() */
 };
 
 static const char *const status_names[] = {"fmi2OK",    "fmi2Warning", "fmi2Discard",
@@ -156,6 +162,8 @@ ssx_fmu *ssx_fmu_load(const char *binary_path, const char *model_identifier, con
     RESOLVE(serialize_state, "fmi2SerializeFMUstate");
     RESOLVE(deserialize_state, "fmi2DeSerializeFMUstate");
     RESOLVE(get_directional_derivative, "fmi2GetDirectionalDerivative");
+    RESOLVE(get_boolean_status, "fmi2GetBooleanStatus");
+    RESOLVE(get_real_status, "fmi2GetRealStatus");
 
     const struct {
         const char *name;
@@ -205,6 +213,37 @@ ssx_fmu *ssx_fmu_load(const char *binary_path, const char *model_identifier, con
     return fmu;
 }
 
+/* Every call on the instance goes through here first. */
+static int live(ssx_fmu *fmu, const char *function)
+{
+    if (fmu == NULL) {
+        return 0;
+    }
+    if (fmu->fatal_call != NULL) {
+        snprintf(fmu->last_message, sizeof fmu->last_message,
+                 "%s refused: %s returned fmi2Fatal earlier, and FMI 2.0 allows no further call "
+                 "on the FMU",
+                 function, fmu->fatal_call);
+        return 0;
+    }
+    if (fmu->instance == NULL) {
+        snprintf(fmu->last_message, sizeof fmu->last_message,
+                 "%s called without a live instance (call instantiate first)", function);
+        return 0;
+    }
+    fmu->current_call = function;
+    return 1;
+}
+
+/* Every status an instance returns comes back through here: a fatal one ends all calls. */
+static int outcome(ssx_fmu *fmu, fmi2Status status)
+{
+    if (status == fmi2Fatal && fmu->fatal_call == NULL) {
+        fmu->fatal_call = fmu->current_call;
+    }
+    return (int)status;
+}
+
 static int forget_state(ssx_fmu *fmu, void *state)
 {
     for (size_t i = 0; i < fmu->n_states; ++i) {
@@ -241,6 +280,12 @@ int ssx_fmu_free_instance(ssx_fmu *fmu)
     if (fmu == NULL) {
         return -1;
     }
+    if (fmu->fatal_call != NULL) {
+        /* abandoned, not freed: FMI 2.0 forbids fmi2FreeFMUstate and fmi2FreeInstance now */
+        fmu->n_states = 0;
+        fmu->instance = NULL;
+        return fmi2OK;
+    }
     int worst = fmi2OK;
     if (fmu->instance != NULL) {
         /* States belong to their instance: release them while it still exists. */
@@ -262,23 +307,30 @@ void ssx_fmu_free(ssx_fmu *fmu)
     if (fmu == NULL) {
         return;
     }
-    if (fmu->instance != NULL) {
+    if (fmu->instance != NULL && fmu->fatal_call == NULL) {
         /* Teardown goes on whatever the FMU answers: there is no one left to report to. */
         (void)fmu->fn.terminate(fmu->instance);
-        (void)ssx_fmu_free_instance(fmu);
     }
+    (void)ssx_fmu_free_instance(fmu);
     free(fmu->states);
     free(fmu->model_identifier);
     free(fmu->guid);
     free(fmu->resource_uri);
     free(fmu->instance_name);
-    dlclose(fmu->library);
+    /* unloading would run the code of a library that declared itself broken */
+    if (fmu->fatal_call == NULL) {
+        dlclose(fmu->library);
+    }
     free(fmu);
 }
 
 int ssx_fmu_instantiate(ssx_fmu *fmu)
 {
     if (fmu == NULL) {
+        return -1;
+    }
+    if (fmu->fatal_call != NULL) {
+        (void)live(fmu, "fmi2Instantiate"); /* says why */
         return -1;
     }
     /* a state the old instance fails to free is its leak, not a reason to refuse a new one */
@@ -299,29 +351,15 @@ int ssx_fmu_instantiate(ssx_fmu *fmu)
     return 0;
 }
 
-/* Every call on the instance goes through here first. */
-static int live(ssx_fmu *fmu, const char *function)
-{
-    if (fmu == NULL) {
-        return 0;
-    }
-    if (fmu->instance == NULL) {
-        snprintf(fmu->last_message, sizeof fmu->last_message,
-                 "%s called without a live instance (call instantiate first)", function);
-        return 0;
-    }
-    return 1;
-}
-
 int ssx_fmu_setup_experiment(ssx_fmu *fmu, int tolerance_defined, double tolerance,
                              double start_time, int stop_time_defined, double stop_time)
 {
     if (!live(fmu, "fmi2SetupExperiment")) {
         return -1;
     }
-    return (int)fmu->fn.setup_experiment(fmu->instance, tolerance_defined ? fmi2True : fmi2False,
+    return outcome(fmu, fmu->fn.setup_experiment(fmu->instance, tolerance_defined ? fmi2True : fmi2False,
                                          tolerance, start_time,
-                                         stop_time_defined ? fmi2True : fmi2False, stop_time);
+                                         stop_time_defined ? fmi2True : fmi2False, stop_time));
 }
 
 int ssx_fmu_enter_initialization_mode(ssx_fmu *fmu)
@@ -329,7 +367,7 @@ int ssx_fmu_enter_initialization_mode(ssx_fmu *fmu)
     if (!live(fmu, "fmi2EnterInitializationMode")) {
         return -1;
     }
-    return (int)fmu->fn.enter_initialization_mode(fmu->instance);
+    return outcome(fmu, fmu->fn.enter_initialization_mode(fmu->instance));
 }
 
 int ssx_fmu_exit_initialization_mode(ssx_fmu *fmu)
@@ -337,7 +375,7 @@ int ssx_fmu_exit_initialization_mode(ssx_fmu *fmu)
     if (!live(fmu, "fmi2ExitInitializationMode")) {
         return -1;
     }
-    return (int)fmu->fn.exit_initialization_mode(fmu->instance);
+    return outcome(fmu, fmu->fn.exit_initialization_mode(fmu->instance));
 }
 
 int ssx_fmu_do_step(ssx_fmu *fmu, double t, double h, int no_set_fmu_state_prior)
@@ -346,8 +384,8 @@ int ssx_fmu_do_step(ssx_fmu *fmu, double t, double h, int no_set_fmu_state_prior
         return -1;
     }
     fmu->counters.do_step++;
-    return (int)fmu->fn.do_step(fmu->instance, t, h,
-                                no_set_fmu_state_prior ? fmi2True : fmi2False);
+    return outcome(fmu, fmu->fn.do_step(fmu->instance, t, h,
+                                no_set_fmu_state_prior ? fmi2True : fmi2False));
 }
 
 int ssx_fmu_get_real(ssx_fmu *fmu, const unsigned int *vr, size_t n, double *values)
@@ -356,7 +394,7 @@ int ssx_fmu_get_real(ssx_fmu *fmu, const unsigned int *vr, size_t n, double *val
         return -1;
     }
     fmu->counters.get_values++;
-    return (int)fmu->fn.get_real(fmu->instance, vr, n, values);
+    return outcome(fmu, fmu->fn.get_real(fmu->instance, vr, n, values));
 }
 
 int ssx_fmu_set_real(ssx_fmu *fmu, const unsigned int *vr, size_t n, const double *values)
@@ -366,7 +404,7 @@ int ssx_fmu_set_real(ssx_fmu *fmu, const unsigned int *vr, size_t n, const doubl
     }
     fmu->counters.set_values++;
     fmu->values_epoch++;
-    return (int)fmu->fn.set_real(fmu->instance, vr, n, values);
+    return outcome(fmu, fmu->fn.set_real(fmu->instance, vr, n, values));
 }
 
 int ssx_fmu_get_integer(ssx_fmu *fmu, const unsigned int *vr, size_t n, int *values)
@@ -375,7 +413,7 @@ int ssx_fmu_get_integer(ssx_fmu *fmu, const unsigned int *vr, size_t n, int *val
         return -1;
     }
     fmu->counters.get_values++;
-    return (int)fmu->fn.get_integer(fmu->instance, vr, n, values);
+    return outcome(fmu, fmu->fn.get_integer(fmu->instance, vr, n, values));
 }
 
 int ssx_fmu_set_integer(ssx_fmu *fmu, const unsigned int *vr, size_t n, const int *values)
@@ -385,7 +423,7 @@ int ssx_fmu_set_integer(ssx_fmu *fmu, const unsigned int *vr, size_t n, const in
     }
     fmu->counters.set_values++;
     fmu->values_epoch++;
-    return (int)fmu->fn.set_integer(fmu->instance, vr, n, values);
+    return outcome(fmu, fmu->fn.set_integer(fmu->instance, vr, n, values));
 }
 
 int ssx_fmu_get_boolean(ssx_fmu *fmu, const unsigned int *vr, size_t n, int *values)
@@ -394,7 +432,7 @@ int ssx_fmu_get_boolean(ssx_fmu *fmu, const unsigned int *vr, size_t n, int *val
         return -1;
     }
     fmu->counters.get_values++;
-    return (int)fmu->fn.get_boolean(fmu->instance, vr, n, values);
+    return outcome(fmu, fmu->fn.get_boolean(fmu->instance, vr, n, values));
 }
 
 int ssx_fmu_set_boolean(ssx_fmu *fmu, const unsigned int *vr, size_t n, const int *values)
@@ -404,7 +442,7 @@ int ssx_fmu_set_boolean(ssx_fmu *fmu, const unsigned int *vr, size_t n, const in
     }
     fmu->counters.set_values++;
     fmu->values_epoch++;
-    return (int)fmu->fn.set_boolean(fmu->instance, vr, n, values);
+    return outcome(fmu, fmu->fn.set_boolean(fmu->instance, vr, n, values));
 }
 
 int ssx_fmu_get_state(ssx_fmu *fmu, void **state)
@@ -422,7 +460,7 @@ int ssx_fmu_get_state(ssx_fmu *fmu, void **state)
     }
     int fresh = *state == NULL;
     fmu->counters.get_state++;
-    fmi2Status status = fmu->fn.get_state(fmu->instance, state);
+    int status = outcome(fmu, fmu->fn.get_state(fmu->instance, state));
     if (fresh && *state != NULL && remember_state(fmu, *state) != 0) {
         if (fmu->fn.free_state != NULL) {
             fmu->fn.free_state(fmu->instance, state);
@@ -430,7 +468,7 @@ int ssx_fmu_get_state(ssx_fmu *fmu, void **state)
         note(fmu, "out of memory tracking FMU states");
         return -1;
     }
-    return (int)status;
+    return status;
 }
 
 int ssx_fmu_set_state(ssx_fmu *fmu, void *state)
@@ -448,7 +486,7 @@ int ssx_fmu_set_state(ssx_fmu *fmu, void *state)
     }
     fmu->counters.set_state++;
     fmu->values_epoch++;
-    return (int)fmu->fn.set_state(fmu->instance, state);
+    return outcome(fmu, fmu->fn.set_state(fmu->instance, state));
 }
 
 int ssx_fmu_free_state(ssx_fmu *fmu, void **state)
@@ -459,15 +497,16 @@ int ssx_fmu_free_state(ssx_fmu *fmu, void **state)
     if (*state == NULL) {
         return 0;
     }
-    /* A state of an earlier instance was already released with it. */
-    if (forget_state(fmu, *state) != 0) {
+    /* A state of an earlier instance was already released with it; one of a dead instance
+     * may not be released at all. */
+    if (forget_state(fmu, *state) != 0 || fmu->fatal_call != NULL) {
         *state = NULL;
         return 0;
     }
     if (!live(fmu, "fmi2FreeFMUstate") || fmu->fn.free_state == NULL) {
         return -1;
     }
-    return (int)fmu->fn.free_state(fmu->instance, state);
+    return outcome(fmu, fmu->fn.free_state(fmu->instance, state));
 }
 
 int ssx_fmu_serialized_state_size(ssx_fmu *fmu, void *state, size_t *size)
@@ -479,7 +518,7 @@ int ssx_fmu_serialized_state_size(ssx_fmu *fmu, void *state, size_t *size)
         note(fmu, "this FMU does not provide fmi2SerializedFMUstateSize");
         return -1;
     }
-    return (int)fmu->fn.serialized_state_size(fmu->instance, state, size);
+    return outcome(fmu, fmu->fn.serialized_state_size(fmu->instance, state, size));
 }
 
 int ssx_fmu_serialize_state(ssx_fmu *fmu, void *state, char *bytes, size_t size)
@@ -491,7 +530,7 @@ int ssx_fmu_serialize_state(ssx_fmu *fmu, void *state, char *bytes, size_t size)
         note(fmu, "this FMU does not provide fmi2SerializeFMUstate");
         return -1;
     }
-    return (int)fmu->fn.serialize_state(fmu->instance, state, bytes, size);
+    return outcome(fmu, fmu->fn.serialize_state(fmu->instance, state, bytes, size));
 }
 
 int ssx_fmu_deserialize_state(ssx_fmu *fmu, const char *bytes, size_t size, void **state)
@@ -509,12 +548,12 @@ int ssx_fmu_deserialize_state(ssx_fmu *fmu, const char *bytes, size_t size, void
         return -1;
     }
     int fresh = *state == NULL;
-    fmi2Status status = fmu->fn.deserialize_state(fmu->instance, bytes, size, state);
+    int status = outcome(fmu, fmu->fn.deserialize_state(fmu->instance, bytes, size, state));
     if (fresh && *state != NULL && remember_state(fmu, *state) != 0) {
         note(fmu, "out of memory tracking FMU states");
         return -1;
     }
-    return (int)status;
+    return status;
 }
 
 int ssx_fmu_get_directional_derivative(ssx_fmu *fmu, const unsigned int *unknowns,
@@ -530,8 +569,8 @@ int ssx_fmu_get_directional_derivative(ssx_fmu *fmu, const unsigned int *unknown
         return -1;
     }
     fmu->counters.directional_derivative++;
-    return (int)fmu->fn.get_directional_derivative(fmu->instance, unknowns, n_unknowns, knowns,
-                                                   n_knowns, dv_known, dv_unknown);
+    return outcome(fmu, fmu->fn.get_directional_derivative(fmu->instance, unknowns, n_unknowns, knowns,
+                                                   n_knowns, dv_known, dv_unknown));
 }
 
 int ssx_fmu_reset(ssx_fmu *fmu)
@@ -540,7 +579,7 @@ int ssx_fmu_reset(ssx_fmu *fmu)
         return -1;
     }
     fmu->values_epoch++;
-    return (int)fmu->fn.reset(fmu->instance);
+    return outcome(fmu, fmu->fn.reset(fmu->instance));
 }
 
 int ssx_fmu_terminate(ssx_fmu *fmu)
@@ -548,7 +587,39 @@ int ssx_fmu_terminate(ssx_fmu *fmu)
     if (!live(fmu, "fmi2Terminate")) {
         return -1;
     }
-    return (int)fmu->fn.terminate(fmu->instance);
+    return outcome(fmu, fmu->fn.terminate(fmu->instance));
+}
+
+int ssx_fmu_get_terminated(ssx_fmu *fmu, int *terminated)
+{
+    if (terminated == NULL || !live(fmu, "fmi2GetBooleanStatus")) {
+        return -1;
+    }
+    if (fmu->fn.get_boolean_status == NULL) {
+        note(fmu, "this FMU does not provide fmi2GetBooleanStatus");
+        return -1;
+    }
+    fmi2Boolean value = fmi2False;
+    int status = outcome(fmu, fmu->fn.get_boolean_status(fmu->instance, fmi2Terminated, &value));
+    *terminated = value != fmi2False;
+    return status;
+}
+
+int ssx_fmu_get_last_successful_time(ssx_fmu *fmu, double *time)
+{
+    if (time == NULL || !live(fmu, "fmi2GetRealStatus")) {
+        return -1;
+    }
+    if (fmu->fn.get_real_status == NULL) {
+        note(fmu, "this FMU does not provide fmi2GetRealStatus");
+        return -1;
+    }
+    return outcome(fmu, fmu->fn.get_real_status(fmu->instance, fmi2LastSuccessfulTime, time));
+}
+
+int ssx_fmu_is_dead(const ssx_fmu *fmu)
+{
+    return fmu != NULL && fmu->fatal_call != NULL;
 }
 
 int ssx_fmu_is_instantiated(const ssx_fmu *fmu)

@@ -1,19 +1,25 @@
-/* Built-in behaviour of an FMU component: its fmi2 calls, batched by value type. */
+/* Built-in behaviour of an FMU component: its fmi2 calls, batched by value type, and what the
+ * statuses of a step mean. */
+#include <math.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <string.h>
+
+#include "fmi2Functions.h"
 
 #include "component.h"
 #include "error.h"
 #include "fmu_binding.h"
 #include "system.h"
 
-static int fmu_read_outputs(ssx_system *sys, ssx_component *c)
+/* Reads every output; a failure is reported at t, the time the FMU is at. */
+static int read_outputs_at(ssx_system *sys, ssx_component *c, double t)
 {
     const ssx_port_batch *real = &c->output_batch[SSX_REAL];
     if (real->n > 0) {
         int status = ssx_fmu_get_real(c->fmu, real->vr, real->n, c->real_scratch);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, sys->time, status, "fmi2GetReal");
+            return fail_fmi(sys, c, t, status, "fmi2GetReal");
         }
         for (size_t i = 0; i < real->n; ++i) {
             c->outputs[real->port[i]] = c->real_scratch[i];
@@ -28,7 +34,7 @@ static int fmu_read_outputs(ssx_system *sys, ssx_component *c)
                          ? ssx_fmu_get_integer(c->fmu, b->vr, b->n, c->int_scratch)
                          : ssx_fmu_get_boolean(c->fmu, b->vr, b->n, c->int_scratch);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, sys->time, status,
+            return fail_fmi(sys, c, t, status,
                             type == SSX_INTEGER ? "fmi2GetInteger" : "fmi2GetBoolean");
         }
         for (size_t i = 0; i < b->n; ++i) {
@@ -36,7 +42,12 @@ static int fmu_read_outputs(ssx_system *sys, ssx_component *c)
             c->outputs[b->port[i]] = type == SSX_BOOLEAN ? (value != 0) : (double)value;
         }
     }
-    return 0;
+    return component_check_outputs(sys, c, t);
+}
+
+static int fmu_read_outputs(ssx_system *sys, ssx_component *c)
+{
+    return read_outputs_at(sys, c, sys->time);
 }
 
 /* Whether the FMU already holds every input value: nothing set it since the engine's last write
@@ -95,14 +106,59 @@ static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
     return 0;
 }
 
+/* fmi2Discard means one of two things. The FMU asks to end the simulation (fmi2Terminated):
+ * the request is kept for the run to end cleanly, and the step counts as done when the FMU
+ * reached its end. Otherwise the FMU could not complete the step: a failure that says how far
+ * it got (fmi2LastSuccessfulTime). */
+static int discarded_step(ssx_system *sys, ssx_component *c, double t, double dt)
+{
+    double t_end = t + dt;
+    char log[sizeof sys->termination.message];
+    snprintf(log, sizeof log, "%s", ssx_fmu_last_message(c->fmu)); /* before queries overwrite it */
+    int terminated = 0;
+    double reached = NAN;
+    int asked = ssx_fmu_get_terminated(c->fmu, &terminated);
+    if (!fmi_ok(ssx_fmu_get_last_successful_time(c->fmu, &reached))) {
+        reached = NAN;
+    }
+    if (!fmi_ok(asked) || !terminated) {
+        char got_to[96] = "fmi2GetRealStatus(fmi2LastSuccessfulTime) failed";
+        if (!isnan(reached)) {
+            snprintf(got_to, sizeof got_to, "fmi2LastSuccessfulTime=%.17g", reached);
+        }
+        fail(sys, c->index, -1, isnan(reached) ? t : reached,
+             "component '%s': fmi2DoStep from t=%.17g to %.17g returned fmi2Discard without "
+             "asking to terminate: the FMU completed the step only up to %s%s%s%s",
+             c->name, t, t_end, got_to, log[0] ? " (FMU log: " : "", log,
+             log[0] ? ")" : " (the FMU logged no message)");
+        sys->error.fmi_status = fmi2Discard;
+        return -1;
+    }
+    if (sys->termination.component < 0) {
+        sys->termination.component = c->index;
+        sys->termination.time = isnan(reached) ? t : reached;
+        snprintf(sys->termination.message, sizeof sys->termination.message, "%s", log);
+    }
+    /* the grid's own rounding: a remainder below 1e-9 steps is the step's end */
+    if (reached >= t_end - 1e-9 * dt) {
+        return read_outputs_at(sys, c, t_end);
+    }
+    return fail(sys, c->index, -1, t,
+                "component '%s' asked to stop at t=%.17g, inside the step from %.17g to %.17g",
+                c->name, sys->termination.time, t, t_end);
+}
+
 static int fmu_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
 {
     /* In hybrid mode the engine may set an earlier state again, so it must not promise not to. */
     int status = ssx_fmu_do_step(c->fmu, t, dt, !sys->stepping_hybrid);
+    if (status == fmi2Discard) {
+        return discarded_step(sys, c, t, dt);
+    }
     if (!fmi_ok(status)) {
         return fail_fmi(sys, c, t, status, "fmi2DoStep");
     }
-    return fmu_read_outputs(sys, c);
+    return read_outputs_at(sys, c, t + dt);
 }
 
 static int fmu_evaluate_outputs(ssx_system *sys, ssx_component *c, double t)
@@ -132,6 +188,12 @@ static int fmu_snapshot(ssx_system *sys, ssx_component *c, int slot)
 
 static int fmu_restore(ssx_system *sys, ssx_component *c, int slot, double t)
 {
+    /* a restore is followed by stepping again, which a component that asked to stop refuses */
+    if (sys->termination.component >= 0) {
+        return fail(sys, c->index, -1, t,
+                    "component '%s' asked to stop at t=%.17g: the system is not stepped again",
+                    sys->components[sys->termination.component]->name, sys->termination.time);
+    }
     if (c->fmu_state[slot] == NULL ||
         c->fmu_state_generation[slot] != ssx_fmu_generation(c->fmu)) {
         return fail(sys, c->index, -1, t,

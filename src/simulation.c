@@ -60,6 +60,17 @@ static int start_history(ssx_system *sys)
     return 0;
 }
 
+const ssx_termination *ssx_get_termination(const ssx_system *sys)
+{
+    return sys != NULL ? &sys->termination : NULL;
+}
+
+int ssx_set_allow_non_finite(ssx_system *sys, int allow)
+{
+    sys->allow_non_finite = allow != 0;
+    return 0;
+}
+
 int ssx_initialize(ssx_system *sys, double t0)
 {
     clear_error(sys);
@@ -68,6 +79,7 @@ int ssx_initialize(ssx_system *sys, double t0)
         return fail(sys, -1, -1, t0, "system '%s': the start time must be finite", sys->name);
     }
     sys->time = t0;
+    sys->termination.component = -1;
     memset(&sys->stats, 0, sizeof sys->stats);
     sys->n_events = 0;
     localization_log_clear(&sys->localization);
@@ -123,6 +135,13 @@ int ssx_run(ssx_system *sys, double t0, double tf, double dt)
                     "system '%s' is not initialized (call ssx_initialize after changing it)",
                     sys->name);
     }
+    if (sys->termination.component >= 0) {
+        return fail(sys, sys->termination.component, -1, t0,
+                    "system '%s' ended at t=%.17g: component '%s' asked to stop at t=%.17g; "
+                    "initialize the system again to start a new run",
+                    sys->name, sys->time, sys->components[sys->termination.component]->name,
+                    sys->termination.time);
+    }
     if (!isfinite(t0) || !isfinite(tf) || !isfinite(dt)) {
         return fail(sys, -1, -1, t0, "system '%s': t0, tf and dt must be finite (got %g, %g, %g)",
                     sys->name, t0, tf, dt);
@@ -156,7 +175,13 @@ int ssx_run(ssx_system *sys, double t0, double tf, double dt)
     double t = t0;
     for (long k = 1; k <= n_steps; ++k) {
         double t_next = k == n_steps ? tf : t0 + (double)k * dt;
-        if ((hybrid ? hybrid_step(sys, t, t_next) : plain_step(sys, t, t_next)) != 0) {
+        int status = hybrid ? hybrid_step(sys, t, t_next) : plain_step(sys, t, t_next);
+        if (sys->termination.component >= 0) {
+            /* the end, not a failure: sys->time is the last point the whole system completed */
+            clear_error(sys);
+            return 0;
+        }
+        if (status != 0) {
             return -1;
         }
         t = t_next;

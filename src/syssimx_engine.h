@@ -71,6 +71,14 @@ int ssx_fmu_get_directional_derivative(ssx_fmu *fmu, const unsigned int *unknown
                                        const double *dv_known, double *dv_unknown);
 int ssx_fmu_reset(ssx_fmu *fmu);
 int ssx_fmu_terminate(ssx_fmu *fmu);
+/* After fmi2DoStep returned fmi2Discard: whether the FMU asks to end the simulation
+ * (fmi2GetBooleanStatus(fmi2Terminated)) and the time it reached (fmi2GetRealStatus(
+ * fmi2LastSuccessfulTime)). Each returns the fmi2Status, or -1. */
+int ssx_fmu_get_terminated(ssx_fmu *fmu, int *terminated);
+int ssx_fmu_get_last_successful_time(ssx_fmu *fmu, double *time);
+/* 1 once a call returned fmi2Fatal: every later call is refused without reaching the FMU (FMI
+ * 2.0 forbids them all, even fmi2FreeInstance); freeing abandons the instance. */
+int ssx_fmu_is_dead(const ssx_fmu *fmu);
 int ssx_fmu_is_instantiated(const ssx_fmu *fmu);
 const char *ssx_fmu_last_message(const ssx_fmu *fmu); /* last message the FMU logged, "" if none */
 void ssx_fmu_get_counters(const ssx_fmu *fmu, ssx_fmu_counters *out);
@@ -84,6 +92,7 @@ typedef struct ssx_system ssx_system;
 typedef struct {
     int component;   /* index of the component involved, or -1 */
     int indicator;   /* index of the indicator involved, or -1 */
+    int output;      /* index of the component's output involved, or -1 */
     double time;     /* simulation time of the failure */
     int fmi_status;  /* fmi2Status of the failing call, or -1 */
     int in_callback; /* 1 when a Python callback reported the failure (Python keeps the exception) */
@@ -144,6 +153,19 @@ typedef struct {
     int (*handle_events)(void *user, const int *indicators, int n_indicators, double t);
     int (*record)(void *user, double t);                   /* a sample is being recorded at t */
 } ssx_hooks;
+
+/* A component asked to end the simulation: its fmi2DoStep returned fmi2Discard and
+ * fmi2GetBooleanStatus(fmi2Terminated) answered true. The run ends cleanly at the last
+ * communication point the whole system completed: the step's end when the FMU completed the
+ * step (its fmi2LastSuccessfulTime reached the step's end), else the step's start. In the hybrid
+ * algorithm nothing steps the component again: a request met while an event is being located
+ * or probed ends the run at the last accepted instant. A later ssx_run fails until
+ * ssx_initialize. */
+typedef struct {
+    int component;      /* the component that asked, or -1 while none has */
+    double time;        /* the time it reached (fmi2LastSuccessfulTime) */
+    char message[1024]; /* the FMU's last log message, "" if none */
+} ssx_termination;
 
 ssx_system *ssx_system_new(const char *name);
 void ssx_system_free(ssx_system *sys); /* never frees the borrowed ssx_fmu objects */
@@ -207,6 +229,12 @@ int ssx_set_loop_jacobian(ssx_system *sys, ssx_loop_jacobian jacobian);
 int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, int max_iterations,
                            int max_microsteps, int record_internal_steps, ssx_locator locator,
                            double zeno_min_interval);
+
+const ssx_termination *ssx_get_termination(const ssx_system *sys);
+/* Off by default: a NaN or infinite output stops the run with an error naming the component,
+ * the output and the time (the samples before it are kept). On: such values are recorded. An
+ * event indicator must be finite either way. */
+int ssx_set_allow_non_finite(ssx_system *sys, int allow);
 
 /* initialize: the components are already initialized (fmi2 init is done by Python through the
  * ssx_fmu_* calls); this reads outputs, applies connections (solving loops), clears and starts

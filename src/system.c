@@ -34,6 +34,7 @@ ssx_system *ssx_system_new(const char *name)
                                        .record_internal_steps = 0,
                                        .locator = SSX_ILLINOIS,
                                        .zeno_min_interval = 0.0};
+    sys->termination.component = -1;
     clear_error(sys);
     return sys;
 }

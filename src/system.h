@@ -96,6 +96,8 @@ struct ssx_system {
     ssx_localization_log localization;
     ssx_statistics stats;
     ssx_error error;
+    ssx_termination termination;
+    int allow_non_finite;
 
     double time;
     int initialized;
