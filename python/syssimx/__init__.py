@@ -25,6 +25,7 @@ from .system import (
     JacobiAlgorithm,
     SimulationResult,
     System,
+    Termination,
 )
 
 __version__ = "0.1.0"
@@ -49,6 +50,7 @@ __all__ = [
     "SimulationResult",
     "SysSimXError",
     "System",
+    "Termination",
     "ZenoError",
     "__version__",
 ]

@@ -52,6 +52,10 @@ def simulation_error(plan: EnginePlan, default_component: str | None = None) -> 
             fmu_message = ffi.string(lib().ssx_fmu_last_message(instance.fmu)).decode(
                 errors="replace")
     text = message
+    if error.output >= 0 and component in plan.outputs:
+        # the engine numbers outputs; the user knows them by name
+        port = plan.outputs[component][error.output]
+        text = text.replace(f"output {error.output} is", f"output {port!r} is", 1)
     if status is not None and _STATUS.get(status, "") not in text:
         text += f" (status {_STATUS.get(status, status)})"
     return kind(text, component=component, time=time, status=status, fmu_message=fmu_message,

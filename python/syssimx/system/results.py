@@ -12,6 +12,7 @@ import numpy as np
 
 from ..core.events import DenseTime
 from ..engine import ffi, lib
+from .termination import Termination
 
 if TYPE_CHECKING:
     from .plan import EnginePlan
@@ -73,7 +74,7 @@ class EventRecord:
 
 @dataclass(frozen=True)
 class Statistics:
-    """Counters of a run (since System.initialize)."""
+    """Counters of a run (since System.initialize), and whether a component ended it."""
 
     macro_steps: int
     do_step_calls: int
@@ -85,6 +86,19 @@ class Statistics:
     loop_solves: int
     iterations_per_event: tuple[int, ...]
     directional_derivatives: int  # fmi2GetDirectionalDerivative calls for loop Jacobians
+    termination: Termination | None = None
+
+    def __str__(self) -> str:
+        lines = [f"macro steps: {self.macro_steps}",
+                 f"doStep calls: {self.do_step_calls}",
+                 f"state saves: {self.state_saves}, restores: {self.state_restores}",
+                 f"events: {self.events}, localization iterations: "
+                 f"{self.localization_iterations} {list(self.iterations_per_event)}",
+                 f"loop solves: {self.loop_solves}, iterations: {self.loop_iterations}, "
+                 f"directional derivatives: {self.directional_derivatives}"]
+        if self.termination is not None:
+            lines.append(f"terminated: {self.termination}")
+        return "\n".join(lines)
 
 
 def read_trials(plan: EnginePlan, first: int, count: int) -> tuple[LocalizationTrial, ...]:
@@ -111,14 +125,15 @@ def read_events(plan: EnginePlan) -> list[EventRecord]:
     return events
 
 
-def read_statistics(plan: EnginePlan, events: Sequence[EventRecord]) -> Statistics:
+def read_statistics(plan: EnginePlan, events: Sequence[EventRecord],
+                    termination: Termination | None = None) -> Statistics:
     raw = ffi.new("ssx_statistics *")
     lib().ssx_get_statistics(plan.sys, raw)
     return Statistics(int(raw.macro_steps), int(raw.do_step_calls), int(raw.state_saves),
                       int(raw.state_restores), int(raw.events),
                       int(raw.localization_iterations), int(raw.loop_iterations),
                       int(raw.loop_solves), tuple(e.iterations for e in events),
-                      int(raw.directional_derivatives))
+                      int(raw.directional_derivatives), termination)
 
 
 class HistoryView:
@@ -183,7 +198,9 @@ class SystemHistory:
 
 
 class SimulationResult:
-    """`result["Comp"]` -> (t, {port: ndarray}); `.events`, `.statistics`, tables and plots."""
+    """`result["Comp"]` -> (t, {port: ndarray}); `.events`, `.statistics`, tables and plots.
+    `.termination` is None, or which component asked to stop and when (the samples then end at
+    the last communication point the whole system completed)."""
 
     def __init__(self, history: HistoryView, events: Sequence[EventRecord],
                  statistics: Statistics, units: dict[str, dict[str, str | None]],
@@ -191,6 +208,7 @@ class SimulationResult:
         self._history = history
         self.events = list(events)
         self.statistics = statistics
+        self.termination = statistics.termination
         self.units = units
         self.t0, self.tf, self.dt, self.wall_time = t0, tf, dt, wall_time
 

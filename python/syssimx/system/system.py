@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import logging
 import math
+import numbers
 import timeit
 from typing import Any
 
@@ -22,6 +23,7 @@ from .connection import Connection, EventConnection
 from .failure import raise_failure
 from .plan import EnginePlan
 from .results import HistoryView, SimulationResult, SystemHistory, read_events, read_statistics
+from .termination import Termination, read_termination
 
 logger = logging.getLogger("syssimx.system")
 
@@ -40,6 +42,7 @@ class System:
         self.history = SystemHistory()
         self.t = 0.0
         self.is_initialized = False
+        self.termination: Termination | None = None  # set when a component ended the run
         self._algorithm: Algorithm = GaussSeidelAlgorithm()
         self._algorithm_chosen = False
         self._plan: EnginePlan | None = None
@@ -196,15 +199,21 @@ class System:
                 "hybrid options")
 
     # ------------------------------------------------------------------ running
-    def initialize(self, t0: float = 0.0) -> None:
-        """Build the engine system, initialize every component at t0, record the first sample."""
-        if not math.isfinite(t0):
-            raise ConfigurationError(f"{self.name}: t0 must be finite, got {t0}")
+    def initialize(self, t0: float = 0.0, *, allow_non_finite: bool | None = None) -> None:
+        """Build the engine system, initialize every component at t0, record the first sample.
+
+        allow_non_finite: record NaN and infinite outputs instead of stopping the run at the
+        first one (None keeps the engine's default: stop)."""
+        t0 = _time_value(self.name, "t0", t0)
         if self._plan is not None:
             self._plan.before_recording()
         plan = self._compile()
         self._plan = plan
         self._push_options(plan)
+        if allow_non_finite is not None:
+            plan.check(lib().ssx_set_allow_non_finite(plan.sys, int(bool(allow_non_finite))),
+                       "allow_non_finite")
+        self.termination = None
         for component in self.components.values():
             component._start(t0)
         if lib().ssx_initialize(plan.sys, t0) < 0:
@@ -217,10 +226,8 @@ class System:
         """Simulate on the grid t0 + k*dt (the last point exactly tf) plus event instants."""
         if not self.is_initialized or self._plan is None:
             raise ConfigurationError(f"{self.name}: call initialize(t0) before run()")
-        for label, value in (("t0", t0), ("tf", tf), ("dt", dt)):
-            if not isinstance(value, int | float) or not math.isfinite(value):
-                raise ConfigurationError(f"{self.name}: {label} must be a finite number, "
-                                         f"got {value!r}")
+        t0, tf, dt = (_time_value(self.name, label, value)
+                      for label, value in (("t0", t0), ("tf", tf), ("dt", dt)))
         if not dt > 0:
             raise ConfigurationError(f"{self.name}: dt must be positive, got {dt}")
         if tf < t0:
@@ -238,13 +245,17 @@ class System:
         logger.info("Starting simulation run from t=%s to t=%s with dt=%s", t0, tf, dt)
         plan.before_recording()
         start = timeit.default_timer()
-        status = lib().ssx_run(plan.sys, float(t0), float(tf), float(dt))
+        status = lib().ssx_run(plan.sys, t0, tf, dt)
         wall = timeit.default_timer() - start
         events = read_events(plan)
         self.history = SystemHistory(events)
         self.t = float(lib().ssx_time(plan.sys))
         if status < 0:
             raise_failure(plan)
+        self.termination = read_termination(plan)
+        if self.termination is not None:
+            plan.failure = None  # what a hook raised because the component stopped
+            logger.info("%s: %s; the run ends at t=%s", self.name, self.termination, self.t)
         for component in self.components.values():
             component.t = self.t
         algorithm = self.algorithm
@@ -254,7 +265,8 @@ class System:
         units = {n: {p: c.output_specs[p].unit for p in [*plan.outputs[n], *c.event_indicators]}
                  for n, c in self.components.items()}
         return SimulationResult(HistoryView(plan, events), events,
-                                read_statistics(plan, events), units, t0, tf, dt, wall)
+                                read_statistics(plan, events, self.termination), units, t0, tf,
+                                dt, wall)
 
     # ------------------------------------------------------------------ results
     def get_history(self) -> dict[str, Any]:
@@ -289,7 +301,14 @@ class System:
         self._plan = None
         self.is_initialized = False
         self.history = SystemHistory()
+        self.termination = None
         for component in self.components.values():
             component.reset()
 
 
+def _time_value(system: str, label: str, value: object) -> float:
+    """A time or step as a float: any real number (numpy scalars too), finite."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) \
+            or not math.isfinite(value):
+        raise ConfigurationError(f"{system}: {label} must be a finite number, got {value!r}")
+    return float(value)
