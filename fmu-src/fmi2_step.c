@@ -29,6 +29,23 @@ static fmi2Status refuse_step(fmu_instance *inst, double t, double t_end, const 
     return status;
 }
 
+/* A model that asks to stop inside the step is integrated up to that time only. */
+static fmi2Status step_until_stop(fmu_instance *inst, double t, double t_end)
+{
+    double t_stop = stop_time(inst);
+    fmi2Status status = fmi2OK;
+    if (fmin(t_end, t_stop) > inst->time)
+        status = fmu_solver_step(inst, fmin(t_end, t_stop));
+    fmu_refresh_outputs(inst);
+    if (status > fmi2Warning || t_stop > t_end)
+        return status;
+    fmu_log(inst, fmi2Discard, LOG_STATUS_WARNING,
+            "fmi2DoStep from t = %.17g to %.17g: the model asks to end the simulation at "
+            "t = %.17g",
+            t, t_end, inst->time);
+    return fmi2Discard;
+}
+
 fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
                       fmi2Real communicationStepSize, fmi2Boolean noSetFMUStatePriorToCurrentPoint)
 {
@@ -60,19 +77,11 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
         if (reason != NULL)
             return refuse_step(inst, t, t_end, reason, kind);
     }
-    /* A model that asks to stop inside the step is integrated up to that time only. */
-    double t_stop = stop_time(inst);
-    fmi2Status status = fmi2OK;
-    if (fmin(t_end, t_stop) > inst->time)
-        status = fmu_solver_step(inst, fmin(t_end, t_stop));
+    if (inst->model->termination_time != NULL)
+        return step_until_stop(inst, t, t_end);
+    fmi2Status status = fmu_solver_step(inst, t_end);
     fmu_refresh_outputs(inst);
-    if (status > fmi2Warning || t_stop > t_end)
-        return status;
-    fmu_log(inst, fmi2Discard, LOG_STATUS_WARNING,
-            "fmi2DoStep from t = %.17g to %.17g: the model asks to end the simulation at "
-            "t = %.17g",
-            t, t_end, inst->time);
-    return fmi2Discard;
+    return status;
 }
 
 fmi2Status fmi2CancelStep(fmi2Component c)

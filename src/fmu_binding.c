@@ -50,6 +50,11 @@ struct ssx_fmu {
     int logging_on;
     fmi2CallbackFunctions callbacks; /* must outlive the instance: the FMU keeps the pointer */
     fmi2Component instance;
+    const char *current_call; /* the fmi2 function being called, named by live() */
+    /* the call that returned fmi2Fatal, or NULL: after it FMI 2.0 allows no call at all, not
+     * even fmi2FreeInstance, so the instance and its states are abandoned (instance NULL) and
+     * the library stays loaded */
+    const char *fatal_call;
     long generation;
     long values_epoch; /* see ssx_fmu_values_epoch */
     /* FMU states handed out by the live instance, freed with it */
@@ -58,10 +63,6 @@ struct ssx_fmu {
     size_t states_capacity;
     ssx_fmu_counters counters;
     char last_message[1024];
-    /* the call that returned fmi2Fatal, or NULL: after it FMI 2.0 allows no call at all, not
-     * even fmi2FreeInstance, so the instance is abandoned and the library stays loaded */
-    const char *fatal_call;
-    const char *current_call; /* the fmi2 function being called, named by live() */
 };
 
 static const char *const status_names[] = {"fmi2OK",    "fmi2Warning", "fmi2Discard",
@@ -219,16 +220,16 @@ static int live(ssx_fmu *fmu, const char *function)
     if (fmu == NULL) {
         return 0;
     }
-    if (fmu->fatal_call != NULL) {
-        snprintf(fmu->last_message, sizeof fmu->last_message,
-                 "%s refused: %s returned fmi2Fatal earlier, and FMI 2.0 allows no further call "
-                 "on the FMU",
-                 function, fmu->fatal_call);
-        return 0;
-    }
     if (fmu->instance == NULL) {
-        snprintf(fmu->last_message, sizeof fmu->last_message,
-                 "%s called without a live instance (call instantiate first)", function);
+        if (fmu->fatal_call != NULL) {
+            snprintf(fmu->last_message, sizeof fmu->last_message,
+                     "%s refused: %s returned fmi2Fatal earlier, and FMI 2.0 allows no further "
+                     "call on the FMU",
+                     function, fmu->fatal_call);
+        } else {
+            snprintf(fmu->last_message, sizeof fmu->last_message,
+                     "%s called without a live instance (call instantiate first)", function);
+        }
         return 0;
     }
     fmu->current_call = function;
@@ -238,8 +239,10 @@ static int live(ssx_fmu *fmu, const char *function)
 /* Every status an instance returns comes back through here: a fatal one ends all calls. */
 static int outcome(ssx_fmu *fmu, fmi2Status status)
 {
-    if (status == fmi2Fatal && fmu->fatal_call == NULL) {
+    if (status == fmi2Fatal) {
         fmu->fatal_call = fmu->current_call;
+        fmu->instance = NULL;
+        fmu->n_states = 0;
     }
     return (int)status;
 }
@@ -280,12 +283,6 @@ int ssx_fmu_free_instance(ssx_fmu *fmu)
     if (fmu == NULL) {
         return -1;
     }
-    if (fmu->fatal_call != NULL) {
-        /* abandoned, not freed: FMI 2.0 forbids fmi2FreeFMUstate and fmi2FreeInstance now */
-        fmu->n_states = 0;
-        fmu->instance = NULL;
-        return fmi2OK;
-    }
     int worst = fmi2OK;
     if (fmu->instance != NULL) {
         /* States belong to their instance: release them while it still exists. */
@@ -307,7 +304,7 @@ void ssx_fmu_free(ssx_fmu *fmu)
     if (fmu == NULL) {
         return;
     }
-    if (fmu->instance != NULL && fmu->fatal_call == NULL) {
+    if (fmu->instance != NULL) {
         /* Teardown goes on whatever the FMU answers: there is no one left to report to. */
         (void)fmu->fn.terminate(fmu->instance);
     }
@@ -497,9 +494,9 @@ int ssx_fmu_free_state(ssx_fmu *fmu, void **state)
     if (*state == NULL) {
         return 0;
     }
-    /* A state of an earlier instance was already released with it; one of a dead instance
-     * may not be released at all. */
-    if (forget_state(fmu, *state) != 0 || fmu->fatal_call != NULL) {
+    /* A state of an earlier instance was already released with it (one of an instance
+     * abandoned after fmi2Fatal may not be released at all). */
+    if (forget_state(fmu, *state) != 0) {
         *state = NULL;
         return 0;
     }
