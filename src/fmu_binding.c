@@ -354,9 +354,9 @@ int ssx_fmu_setup_experiment(ssx_fmu *fmu, int tolerance_defined, double toleran
     if (!live(fmu, "fmi2SetupExperiment")) {
         return -1;
     }
-    return outcome(fmu, fmu->fn.setup_experiment(fmu->instance, tolerance_defined ? fmi2True : fmi2False,
-                                         tolerance, start_time,
-                                         stop_time_defined ? fmi2True : fmi2False, stop_time));
+    return outcome(fmu, fmu->fn.setup_experiment(
+                            fmu->instance, tolerance_defined ? fmi2True : fmi2False, tolerance,
+                            start_time, stop_time_defined ? fmi2True : fmi2False, stop_time));
 }
 
 int ssx_fmu_enter_initialization_mode(ssx_fmu *fmu)
@@ -382,7 +382,7 @@ int ssx_fmu_do_step(ssx_fmu *fmu, double t, double h, int no_set_fmu_state_prior
     }
     fmu->counters.do_step++;
     return outcome(fmu, fmu->fn.do_step(fmu->instance, t, h,
-                                no_set_fmu_state_prior ? fmi2True : fmi2False));
+                                        no_set_fmu_state_prior ? fmi2True : fmi2False));
 }
 
 int ssx_fmu_get_real(ssx_fmu *fmu, const unsigned int *vr, size_t n, double *values)
@@ -566,8 +566,9 @@ int ssx_fmu_get_directional_derivative(ssx_fmu *fmu, const unsigned int *unknown
         return -1;
     }
     fmu->counters.directional_derivative++;
-    return outcome(fmu, fmu->fn.get_directional_derivative(fmu->instance, unknowns, n_unknowns, knowns,
-                                                   n_knowns, dv_known, dv_unknown));
+    return outcome(fmu, fmu->fn.get_directional_derivative(fmu->instance, unknowns, n_unknowns,
+                                                           knowns, n_knowns, dv_known,
+                                                           dv_unknown));
 }
 
 int ssx_fmu_reset(ssx_fmu *fmu)

@@ -1,5 +1,5 @@
-/* Terminating.mo: a ramp y = y0 + slope * t that asks the master to end the simulation at stop_time.
- * fmi2DoStep integrates up to stop_time, returns fmi2Discard, and fmi2GetBooleanStatus
+/* Terminating.mo: a ramp y = y0 + slope * t that asks the master to end the simulation at
+ * stop_time. fmi2DoStep integrates up to stop_time, returns fmi2Discard, and fmi2GetBooleanStatus
  * (fmi2Terminated) answers true, as the Reference FMU Stair does at t = 9. */
 #include "model.h"
 
