@@ -4,9 +4,20 @@ scalars as times and steps."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
-from syssimx import FMUComponent, FMUError, SimulationError, System, fmus
+from syssimx import (
+    CoSimComponent,
+    FMUComponent,
+    FMUError,
+    PortSpec,
+    PortType,
+    SimulationError,
+    System,
+    fmus,
+)
 from syssimx.engine import lib, string
 
 FAILURES = {"error": 0, "fatal": 1, "discard": 2, "read": 3, "nan": 4}
@@ -108,3 +119,29 @@ def test_numpy_scalars_are_accepted_as_times_and_steps(t0, tf, dt):
     np.testing.assert_array_equal(t, np.arange(0, float(tf) + 0.5 * float(dt), float(dt)))
     np.testing.assert_array_equal(data["y"], t)
     assert type(system.t) is float and system.t == float(tf)
+
+
+class Reciprocal(CoSimComponent):
+    """y = 1 / (1 - t): infinite at t = 1 (a Python component)."""
+
+    def __init__(self, name: str) -> None:
+        super().__init__(name)
+        self.output_specs["y"] = PortSpec(name="y", type=PortType.REAL, direction="out")
+
+    def _do_step_internal(self, t: float, dt: float) -> None:
+        pass
+
+    def _update_output_states(self, t: float | None = None, event_names=None) -> None:
+        now = 0.0 if t is None else t
+        self.outputs["y"].set(math.inf if now == 1.0 else 1.0 / (1.0 - now), t)
+
+
+def test_a_python_component_with_an_infinite_output_stops_the_run_too():
+    system = System("S")
+    system.add_component(Reciprocal("R"))
+    system.initialize(0.0)
+    with pytest.raises(SimulationError) as info:
+        system.run(0.0, 2.0, 0.5)
+    assert str(info.value) == ("component 'R': output 'y' is inf at t=1 (non-finite values stop "
+                               "the run unless they are allowed)")
+    np.testing.assert_array_equal(system.get_history()["R"][1]["y"], [1.0, 2.0])

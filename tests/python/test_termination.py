@@ -138,3 +138,21 @@ def test_reference_stair_ends_at_9_like_fmpy(dt: float):
     assert result.termination.time == pytest.approx(9.0, rel=1e-12)
     assert str(result.statistics).splitlines()[-1] == \
         "terminated: component 'Stair' asked to stop at t = 9"
+
+
+class Substepping(FMUComponent):
+    """Overrides the step hook like the seed's subclass, stepping through the built-in."""
+
+    def _do_step_internal(self, t: float, dt: float) -> None:
+        super()._do_step_internal(t, dt)
+
+
+def test_a_stop_reached_through_a_python_step_hook_also_ends_the_run():
+    ramp = Substepping("Ramp", fmus.path("terminating"))
+    ramp.set_parameters(stop_time=1.0)
+    system = System("S")
+    system.add_component(ramp)
+    system.initialize(0.0)
+    result = system.run(0.0, 2.0, 0.3)
+    assert result["Ramp"][0][-1] == pytest.approx(0.9, abs=1e-15)
+    assert result.termination.component == "Ramp" and result.termination.time == 1.0
