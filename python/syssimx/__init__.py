@@ -6,7 +6,17 @@ indicators and event connections, then initialize and run. The SysSimX API is ke
 
 import logging
 
-from .components import CoSimComponent, FMUComponent
+from . import algorithms
+from .components import (
+    ComponentCheckpoint,
+    CoSimComponent,
+    FEMComponent,
+    FMUComponent,
+    ModeSwitchEvent,
+    MultiComponent,
+    OpenSimComponent,
+    SwitchRegions,
+)
 from .core import DenseTime, Port, PortSpec, PortType
 from .errors import (
     AlgebraicLoopError,
@@ -22,6 +32,7 @@ from .system import (
     EventConnection,
     GaussSeidelAlgorithm,
     HybridAlgorithm,
+    IJCSAAlgorithm,
     JacobiAlgorithm,
     SimulationResult,
     System,
@@ -33,26 +44,34 @@ __version__ = "0.1.0"
 __all__ = [
     "AlgebraicLoopError",
     "CoSimComponent",
+    "ComponentCheckpoint",
     "ConfigurationError",
     "Connection",
     "DenseTime",
     "EventConnection",
+    "FEMComponent",
     "FMUComponent",
     "FMUError",
     "FMUFileError",
     "GaussSeidelAlgorithm",
     "HybridAlgorithm",
+    "IJCSAAlgorithm",
     "JacobiAlgorithm",
+    "ModeSwitchEvent",
+    "MultiComponent",
+    "OpenSimComponent",
     "Port",
     "PortSpec",
     "PortType",
     "SimulationError",
     "SimulationResult",
+    "SwitchRegions",
     "SysSimXError",
     "System",
     "Termination",
     "ZenoError",
     "__version__",
+    "algorithms",
 ]
 
 logging.getLogger(__name__).addHandler(logging.NullHandler())

@@ -1,7 +1,12 @@
-"""Components: the base class, pure Python components and FMU components."""
+"""Components: the base class, pure Python components, FMU components and model switching."""
 
-from .base import CoSimComponent
+from .base import ComponentCheckpoint, CoSimComponent
 from .fmu import FMUComponent
 from .fmu_instance import FMUInstance, FMUState
+from .multi import ModeSwitchEvent, MultiComponent
+from .optional import FEMComponent, OpenSimComponent
+from .switch_regions import SwitchRegions
 
-__all__ = ["CoSimComponent", "FMUComponent", "FMUInstance", "FMUState"]
+__all__ = ["CoSimComponent", "ComponentCheckpoint", "FEMComponent", "FMUComponent",
+           "FMUInstance", "FMUState", "ModeSwitchEvent", "MultiComponent", "OpenSimComponent",
+           "SwitchRegions"]

@@ -9,6 +9,7 @@ is stepped through callbacks into the hooks below (engine inputs -> `inputs` por
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Mapping
+from copy import deepcopy
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -21,10 +22,25 @@ from ..errors import ConfigurationError
 if TYPE_CHECKING:
     from ..system.plan import EnginePlan
     from ..system.system import System
+    from .history import ComponentHistory
 
 EventHandler = Callable[[Any, list[str], float], None]
 
 ENGINE_TYPES = (PortType.REAL, PortType.INT, PortType.BOOL)
+
+
+@dataclass(frozen=True)
+class ComponentCheckpoint:
+    """A component's state at `time`: its solver state (snapshot_state), port values,
+    parameters and subclass metadata. Restorable on the component that took it only."""
+
+    owner: CoSimComponent
+    time: float
+    solver_state: Any
+    inputs: dict[str, Any]
+    outputs: dict[str, Any]
+    parameters: dict[str, Any]
+    metadata: Any = None
 
 
 @dataclass(frozen=True)
@@ -61,6 +77,7 @@ class CoSimComponent:
         self.t: float = 0.0
         self._binding: Binding | None = None
         self._private_system: System | None = None
+        self._parameter_defaults: dict[str, Any] | None = None  # see get_default_parameters
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.name!r})"
@@ -71,6 +88,7 @@ class CoSimComponent:
 
     def _sync_ports(self) -> None:
         """Create a Port for every spec added since (subclasses fill the specs in __init__)."""
+        self._remember_default_parameters()
         for specs, ports in ((self.input_specs, self.inputs), (self.output_specs, self.outputs)):
             for name, spec in specs.items():
                 if name not in ports or ports[name].spec != spec:
@@ -92,7 +110,20 @@ class CoSimComponent:
         return {name: set(self.direct_feedthrough.get(name, ())) for name in self.engine_outputs()}
 
     # ---------------------------------------------------------------- parameters
+    def _remember_default_parameters(self) -> None:
+        """The parameters before anything changed them: at the end of construction (the
+        first port sync) or at the first set_parameters, whichever comes first."""
+        if self._parameter_defaults is None:
+            self._parameter_defaults = deepcopy(self.parameters)
+
+    def get_default_parameters(self) -> dict[str, Any]:
+        """The parameters as the component declared them (an FMU: its modelDescription start
+        values), whatever set_parameters changed since."""
+        self._remember_default_parameters()
+        return deepcopy(self._parameter_defaults or {})
+
     def set_parameters(self, **parameters: Any) -> None:
+        self._remember_default_parameters()
         for name, value in parameters.items():
             if name not in self.parameters:
                 raise ConfigurationError(
@@ -159,7 +190,8 @@ class CoSimComponent:
 
     def has_event_handling(self) -> bool:
         """Whether events delivered to this component do anything."""
-        return bool(self.event_handlers) or _overrides(self, "_handle_events_internal")
+        return (bool(self.event_handlers) or bool(self.self_handled_events())
+                or _overrides(self, "_handle_events_internal"))
 
     def _handle_events_internal(self, event_names: list[str], t: float) -> None:
         """Run the handlers registered with add_event_handler for the EVENT inputs the events
@@ -214,6 +246,104 @@ class CoSimComponent:
         for name, value in self.parameters.items():
             state.setdefault(name, {"value": value, "unit": None})
         return state
+
+    def set_state(self, state: Mapping[str, Any], t: float) -> None:
+        """Restart at t from a physical state {name: {"value", "unit"} or value}: the entries
+        naming parameters become this instance's start values (reinitialize), those naming
+        inputs are set; other entries (outputs) are ignored."""
+        def value(entry: Any) -> Any:
+            return entry["value"] if isinstance(entry, Mapping) else entry
+
+        inputs = {n: value(v) for n, v in state.items() if n in self.input_specs
+                  and self.input_specs[n].type != PortType.EVENT}
+        if inputs:
+            self.set_inputs(inputs, t)
+        self.reinitialize(t, **{n: value(v) for n, v in state.items() if n in self.parameters})
+
+    def reinitialize(self, t: float, **start_values: Any) -> None:
+        """Start again at t, with `start_values` overriding parameters for this start only:
+        _initialize_component(t) and the outputs (FMUComponent: a fresh FMU instance)."""
+        unknown = sorted(set(start_values) - set(self.parameters))
+        if unknown:
+            raise ConfigurationError(f"component {self.name!r} has no parameter {unknown[0]!r}; "
+                                     f"known parameters: {sorted(self.parameters) or 'none'}")
+        saved = self.parameters
+        self.parameters = {**saved, **start_values}
+        try:
+            self._sync_ports()
+            self.t = t
+            self._initialize_component(t)
+            self._update_output_states(t)
+        finally:
+            self.parameters = saved
+        if self._binding is not None:
+            self._binding.plan.push_outputs(self)
+
+    def reinitialize_instance(self, t: float) -> None:
+        """SysSimX's name: start again at t with the current parameters (reinitialize)."""
+        self.reinitialize(t)
+
+    def soft_reset(self, t0: float = 0.0) -> None:
+        """Back to the initial state at t0 with the current parameters. Used on its own, the
+        component's history restarts at t0; in a System, initialize the System before its
+        next run."""
+        if self._binding is None or self._private_system is not None:
+            self._standalone().initialize(t0)
+        else:
+            self.reinitialize(t0)
+
+    # ---------------------------------------------------------------- checkpoints
+    def checkpoint(self) -> ComponentCheckpoint:
+        """The component's state now, for restore_checkpoint (needs rollback support)."""
+        if not self.can_rollback():
+            raise ConfigurationError(f"{self.name}: cannot take a checkpoint: the component "
+                                     "does not support rollback (snapshot_state/restore_state)")
+        self._sync_ports()
+        return ComponentCheckpoint(
+            self, self.t, self.snapshot_state(),
+            {n: p.raw() for n, p in self.inputs.items()},
+            {n: p.raw() for n, p in self.outputs.items()},
+            deepcopy(self.parameters), deepcopy(self._checkpoint_metadata()))
+
+    def restore_checkpoint(self, checkpoint: ComponentCheckpoint) -> None:
+        """Return to a checkpoint of this component: solver state, time, ports, parameters."""
+        if checkpoint.owner is not self:
+            raise ConfigurationError(f"{self.name}: the checkpoint belongs to "
+                                     f"{checkpoint.owner.name!r}")
+        self.parameters = deepcopy(checkpoint.parameters)
+        self._restore_checkpoint_metadata(deepcopy(checkpoint.metadata))
+        for ports, values in ((self.inputs, checkpoint.inputs),
+                              (self.outputs, checkpoint.outputs)):
+            for name, value in values.items():
+                ports[name]._raw = value
+        self.restore_state(checkpoint.solver_state, checkpoint.time)
+        self.t = checkpoint.time
+        if self._binding is not None:
+            # a Python component's ports go to the engine; an FMU's ports read the engine,
+            # which restore_state refreshed from the FMU, so this writes the same values back
+            self._binding.plan.write_inputs(self)
+            self._binding.plan.push_outputs(self)
+        if self._private_system is not None and self._private_system.is_initialized:
+            self._private_system.restart_recording(checkpoint.time)
+
+    def _checkpoint_metadata(self) -> Any:
+        """State a subclass keeps outside its solver (e.g. the active model); checkpointed."""
+        return None
+
+    def _restore_checkpoint_metadata(self, metadata: Any) -> None:
+        """Restore what _checkpoint_metadata returned."""
+
+    @property
+    def history(self) -> ComponentHistory:
+        """The recorded outputs (SysSimX's ComponentHistory over the engine's samples)."""
+        from .history import ComponentHistory
+
+        return ComponentHistory(self)
+
+    def self_handled_events(self) -> list[str]:
+        """Event indicators whose events the component handles itself, with no
+        EventConnection (a MultiComponent's region boundaries)."""
+        return []
 
     # Called by the System (or the private system) once the engine plan exists.
     def _start(self, t0: float) -> None:
@@ -270,10 +400,15 @@ class CoSimComponent:
         self.reset()
 
 
+# Classes whose hooks the engine runs itself (no Python per call); any other class's hook,
+# a user's or a syssimx Python component's like MultiComponent, is called back through Python.
+_ENGINE_BUILT_IN = ("syssimx.components.base", "syssimx.components.fmu")
+
+
 def _overrides(component: object, method: str) -> bool:
-    """Whether the component's class replaces the method of the syssimx class defining it."""
+    """Whether the component's class replaces the method of the built-in class defining it."""
     own = getattr(type(component), method)
     for klass in type(component).__mro__:
-        if klass.__module__.startswith("syssimx.") and method in vars(klass):
+        if klass.__module__ in _ENGINE_BUILT_IN and method in vars(klass):
             return own is not vars(klass)[method]
     return False

@@ -1,11 +1,13 @@
 """Systems of components: connections, algorithms, results."""
 
-from .algorithms import GaussSeidelAlgorithm, HybridAlgorithm, JacobiAlgorithm
+from .algorithms import GaussSeidelAlgorithm, HybridAlgorithm, IJCSAAlgorithm, JacobiAlgorithm
 from .connection import Connection, EventConnection
+from .loader import ConfigError, build_system, load_config, run_from_config
 from .results import EventRecord, LocalizationTrial, SimulationResult, Statistics, SystemHistory
 from .system import System
 from .termination import Termination
 
-__all__ = ["Connection", "EventConnection", "EventRecord", "GaussSeidelAlgorithm",
-           "HybridAlgorithm", "JacobiAlgorithm", "LocalizationTrial", "SimulationResult",
-           "Statistics", "System", "SystemHistory", "Termination"]
+__all__ = ["ConfigError", "Connection", "EventConnection", "EventRecord",
+           "GaussSeidelAlgorithm", "HybridAlgorithm", "IJCSAAlgorithm", "JacobiAlgorithm",
+           "LocalizationTrial", "SimulationResult", "Statistics", "System", "SystemHistory",
+           "Termination", "build_system", "load_config", "run_from_config"]

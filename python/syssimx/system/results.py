@@ -12,6 +12,7 @@ import numpy as np
 
 from ..core.events import DenseTime
 from ..engine import ffi, lib
+from .event_log import EventLog
 from .termination import Termination
 
 if TYPE_CHECKING:
@@ -204,9 +205,12 @@ class SimulationResult:
 
     def __init__(self, history: HistoryView, events: Sequence[EventRecord],
                  statistics: Statistics, units: dict[str, dict[str, str | None]],
-                 t0: float, tf: float, dt: float, wall_time: float) -> None:
+                 t0: float, tf: float, dt: float, wall_time: float,
+                 mode_switches: dict[str, tuple[Any, ...]] | None = None) -> None:
         self._history = history
-        self.events = list(events)
+        self.events = EventLog(events)
+        # {component: (ModeSwitchEvent, ...)} of the MultiComponents that switched
+        self.mode_switches = mode_switches or {}
         self.statistics = statistics
         self.termination = statistics.termination
         self.units = units

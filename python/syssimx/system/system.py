@@ -171,6 +171,9 @@ class System:
                 plan.add_indicator(component, event)
         for c in self.event_connections:
             plan.add_event_connection(c.src_comp, c.src_port, c.dst_comp)
+        for component in self.components.values():
+            for event in component.self_handled_events():
+                plan.add_event_connection(component.name, event, component.name)
         analysis = analyze({n: c.feedthrough() for n, c in self.components.items()},
                            [c.key() for c in self.connections])
         order, sizes, loops = analysis.schedule()
@@ -222,6 +225,17 @@ class System:
         self.t = t0
         self.is_initialized = True
 
+    def restart_recording(self, t: float) -> None:
+        """Continue from t with the components as they are now (a component restored to a
+        checkpoint): the history restarts with the sample at t."""
+        if self._plan is None:
+            raise ConfigurationError(f"{self.name}: call initialize(t0) first")
+        self._plan.before_recording()
+        if lib().ssx_initialize(self._plan.sys, t) < 0:
+            raise_failure(self._plan)
+        self.history = SystemHistory()
+        self.t = t
+
     def run(self, t0: float, tf: float, dt: float) -> SimulationResult:
         """Simulate on the grid t0 + k*dt (the last point exactly tf) plus event instants."""
         if not self.is_initialized or self._plan is None:
@@ -264,9 +278,11 @@ class System:
         logger.info("Simulation completed in %.2f seconds", wall)
         units = {n: {p: c.output_specs[p].unit for p in [*plan.outputs[n], *c.event_indicators]}
                  for n, c in self.components.items()}
+        switches = {n: c.history.mode_switch_events for n, c in self.components.items()
+                    if c.history.mode_switch_events}
         return SimulationResult(HistoryView(plan, events), events,
                                 read_statistics(plan, events, self.termination), units, t0, tf,
-                                dt, wall)
+                                dt, wall, switches)
 
     # ------------------------------------------------------------------ results
     def get_history(self) -> dict[str, Any]:

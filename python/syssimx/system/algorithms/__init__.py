@@ -2,7 +2,9 @@
 
 from .coupling import GaussSeidelAlgorithm, JacobiAlgorithm
 from .hybrid import HybridAlgorithm
+from .ijcsa import IJCSAAlgorithm
 
 Algorithm = JacobiAlgorithm | GaussSeidelAlgorithm | HybridAlgorithm
 
-__all__ = ["Algorithm", "GaussSeidelAlgorithm", "HybridAlgorithm", "JacobiAlgorithm"]
+__all__ = ["Algorithm", "GaussSeidelAlgorithm", "HybridAlgorithm", "IJCSAAlgorithm",
+           "JacobiAlgorithm"]

@@ -9,7 +9,7 @@ from __future__ import annotations
 import logging
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import InitVar, dataclass, field
 from typing import TYPE_CHECKING
 
 from .coupling import GaussSeidelAlgorithm, JacobiAlgorithm
@@ -32,6 +32,17 @@ class HybridAlgorithm:
     method: "illinois" (default) or "bisection"; zeno_min_interval: two firings of one indicator
     closer than this are chattering (0 means ten times tol_time); coupling: the continuous
     coupling between events.
+
+    SysSimX's options, accepted with their meaning; each works around a fault of SysSimX's
+    algorithm that the engine does not have. sign_tolerance (>= 0): SysSimX treats
+    |indicator| below it as zero so that values resting near zero do not fire again; the
+    engine tracks each indicator's side, so a handled crossing fires again only on a real
+    crossing (no effect here). max_deferrals (>= 0): SysSimX holds back a located event that
+    its accepted trajectory has not reached yet; the engine locates on the accepted
+    trajectory itself, so no event is ever premature (no effect here). raise_on_missed_event:
+    SysSimX warns, or raises when true, when its accepted trajectory crosses where its trial
+    did not; the two are the same trajectory here, so `missed_events` stays empty.
+    gauss_seidel_algorithm: SysSimX's name of `coupling`.
     """
 
     tol_time: float = 1e-9
@@ -43,6 +54,15 @@ class HybridAlgorithm:
     zeno_min_interval: float = 0.0
     coupling: JacobiAlgorithm = field(default_factory=GaussSeidelAlgorithm)
     name: str = "Hybrid"
+    sign_tolerance: float = 1e-10
+    max_deferrals: int = 50
+    raise_on_missed_event: bool = False
+    gauss_seidel_algorithm: InitVar[JacobiAlgorithm | None] = None
+    missed_events: list = field(init=False, default_factory=list, repr=False)
+
+    def __post_init__(self, gauss_seidel_algorithm: JacobiAlgorithm | None) -> None:
+        if gauss_seidel_algorithm is not None:
+            self.coupling = gauss_seidel_algorithm
 
     def validate(self) -> None:
         if self.method not in METHODS:
@@ -52,6 +72,16 @@ class HybridAlgorithm:
                 and self.max_microsteps >= 1 and self.zeno_min_interval >= 0):
             raise ValueError("HybridAlgorithm: tol_time > 0, tol_value >= 0, max_iter >= 1, "
                              "max_microsteps >= 1 and zeno_min_interval >= 0 are required")
+        if not (math.isfinite(self.sign_tolerance) and self.sign_tolerance >= 0):
+            raise ValueError(f"HybridAlgorithm: sign_tolerance must be a finite number >= 0, "
+                             f"got {self.sign_tolerance}")
+        if isinstance(self.max_deferrals, bool) or not isinstance(self.max_deferrals, int) \
+                or self.max_deferrals < 0:
+            raise ValueError(f"HybridAlgorithm: max_deferrals must be an integer >= 0, got "
+                             f"{self.max_deferrals!r}")
+        if not isinstance(self.coupling, JacobiAlgorithm):
+            raise ValueError(f"HybridAlgorithm: the coupling (gauss_seidel_algorithm) must be a "
+                             f"JacobiAlgorithm or GaussSeidelAlgorithm, got {self.coupling!r}")
         self.coupling.validate()
 
 
@@ -104,3 +134,17 @@ def log_events(records: Sequence[EventRecord], method: str) -> None:
             logger.info("Event crossing at t=%.6f: %s", t, names)
         logger.info("Handling %d event(s) at t=%.8f, micro=%d: %s", len(group), t, micro, names)
         logger.info(rule)
+
+
+def _gauss_seidel_algorithm(algorithm: HybridAlgorithm) -> JacobiAlgorithm:
+    return algorithm.coupling
+
+
+def _set_gauss_seidel_algorithm(algorithm: HybridAlgorithm, coupling: JacobiAlgorithm) -> None:
+    algorithm.coupling = coupling
+
+
+# SysSimX's name of the coupling, readable and settable after construction (the dataclass
+# keeps the constructor argument above; the attribute is installed once the class exists)
+HybridAlgorithm.gauss_seidel_algorithm = property(  # type: ignore[assignment]
+    _gauss_seidel_algorithm, _set_gauss_seidel_algorithm)

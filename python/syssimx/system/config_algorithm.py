@@ -1,0 +1,50 @@
+"""The `algorithm` entry of a description: {type: jacobi|gauss_seidel|hybrid|ijcsa, options}.
+
+A hybrid algorithm's coupling (`coupling` or SysSimX's `gauss_seidel_algorithm`) is a type name
+or a mapping of the same form."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from .algorithms import (
+    Algorithm,
+    GaussSeidelAlgorithm,
+    HybridAlgorithm,
+    IJCSAAlgorithm,
+    JacobiAlgorithm,
+)
+from .config_source import Source
+
+ALGORITHMS: dict[str, Callable[..., Algorithm]] = {
+    "jacobi": JacobiAlgorithm,
+    "gauss_seidel": GaussSeidelAlgorithm,
+    "hybrid": HybridAlgorithm,
+    "ijcsa": IJCSAAlgorithm,
+}
+COUPLING_KEYS = ("coupling", "gauss_seidel_algorithm")
+
+
+def build_algorithm(source: Source, entry: Any, label: str = "algorithm") -> Algorithm:
+    if isinstance(entry, str):
+        entry = {"type": entry}
+    if not isinstance(entry, dict):
+        raise source.error(label, f"must be a mapping with a 'type', got {entry!r}", entry)
+    kind = entry.get("type")
+    if kind not in ALGORITHMS:
+        raise source.error(label, f"unknown type {kind!r}; types: {sorted(ALGORITHMS)}", entry)
+    options = {k: v for k, v in entry.items() if k != "type"}
+    if kind == "hybrid":
+        for key in COUPLING_KEYS:
+            if key in options:
+                options[key] = build_algorithm(source, options[key], f"{label}.{key}")
+                if isinstance(options[key], HybridAlgorithm):
+                    raise source.error(f"{label}.{key}", "the coupling of a hybrid algorithm "
+                                       "is jacobi, gauss_seidel or ijcsa", entry)
+    try:
+        algorithm = ALGORITHMS[kind](**options)
+        algorithm.validate()
+    except (TypeError, ValueError) as exc:
+        raise source.error(label, f"invalid options for {kind!r}: {exc}", entry) from exc
+    return algorithm

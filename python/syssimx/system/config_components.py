@@ -1,0 +1,190 @@
+"""One component of a system description: its class, constructor arguments, parameters and
+(syssimx's extensions) a bundled or relative FMU, event indicators on outputs and event
+handlers that restart the component from its outputs."""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import sys
+from pathlib import Path
+from typing import Any
+
+from ..components.base import CoSimComponent
+from ..errors import ConfigurationError
+from .config_handlers import reinitialize_handler
+from .config_source import Source
+
+COMPONENT_KEYS = ("name", "class", "fmu", "args", "parameters", "event_indicators",
+                  "event_handlers")
+INDICATOR_KEYS = ("name", "variable", "direction")
+HANDLER_KEYS = ("input", "reinitialize")
+FMU_CLASS = "syssimx:FMUComponent"
+
+
+def build_component(source: Source, index: int, entry: Any) -> CoSimComponent:
+    """The component of `components[index]`, with its parameters, indicators and handlers."""
+    label = f"components[{index}]"
+    if not isinstance(entry, dict):
+        raise source.error(label, f"must be a mapping with 'name' and 'class' (or 'fmu'), got "
+                           f"{type(entry).__name__} {entry!r}", entry)
+    name = entry.get("name")
+    if not isinstance(name, str) or not name:
+        raise source.error(label, "needs a 'name' (a non-empty string)", entry)
+    label = f"{label} {name!r}"
+    unknown = sorted(set(entry) - set(COMPONENT_KEYS))
+    if unknown:
+        raise source.error(label, f"unknown key(s) {unknown}; known: {list(COMPONENT_KEYS)}",
+                           entry)
+    args = _mapping(source, label, entry, "args")
+    if "fmu" in entry:
+        if "class" in entry:
+            raise source.error(label, "give either 'class' or 'fmu', not both", entry)
+        if "fmu_path" in args:
+            raise source.error(label, "'fmu' and args.fmu_path both name the FMU", entry)
+        spec = FMU_CLASS
+        args = {"fmu_path": entry["fmu"], **args}
+    elif "class" in entry:
+        spec = entry["class"]
+    else:
+        raise source.error(label, "needs 'class' (\"module:Class\") or 'fmu' (a bundled FMU "
+                           "name or a path to an .fmu file)", entry)
+    cls = _resolve_class(source, label, entry, spec)
+    if "fmu_path" in args:
+        args["fmu_path"] = _fmu_path(source, label, entry, args["fmu_path"])
+    try:
+        component = cls(name=name, **args)
+    except (TypeError, ValueError, OSError, ConfigurationError) as exc:
+        raise source.error(label, f"cannot construct {spec} with args {args}: {exc}",
+                           entry) from exc
+    if not isinstance(component, CoSimComponent):
+        raise source.error(label, f"{spec} is not a CoSimComponent", entry)
+    parameters = _mapping(source, label, entry, "parameters")
+    try:
+        component.set_parameters(**parameters)
+    except (KeyError, TypeError, ValueError) as exc:
+        raise source.error(f"{label} parameters", str(exc), entry) from exc
+    for k, indicator in enumerate(_sequence(source, label, entry, "event_indicators")):
+        _add_indicator(source, f"{label} event_indicators[{k}]", component, indicator)
+    for k, handler in enumerate(_sequence(source, label, entry, "event_handlers")):
+        _add_handler(source, f"{label} event_handlers[{k}]", component, handler)
+    return component
+
+
+def _mapping(source: Source, label: str, entry: dict, key: str) -> dict[str, Any]:
+    value = entry.get(key)
+    if value is None:
+        return {}
+    if not isinstance(value, dict):
+        raise source.error(label, f"'{key}' must be a mapping, got {type(value).__name__} "
+                           f"{value!r}", entry)
+    return dict(value)
+
+
+def _sequence(source: Source, label: str, entry: dict, key: str) -> list[Any]:
+    value = entry.get(key)
+    if value is None:
+        return []
+    if not isinstance(value, list):
+        raise source.error(label, f"'{key}' must be a list, got {type(value).__name__}", entry)
+    return value
+
+
+def _resolve_class(source: Source, label: str, entry: dict, spec: Any) -> type:
+    """"module.path:Class". A module not importable from sys.path is also looked for as a
+    .py file beside the description."""
+    if not isinstance(spec, str) or spec.count(":") != 1 or not all(spec.split(":")):
+        raise source.error(label, f"class {spec!r} is not of the form 'module.path:ClassName'",
+                           entry)
+    module_name, class_name = spec.split(":")
+    try:
+        module = importlib.import_module(module_name)
+    except ModuleNotFoundError as exc:
+        module = _module_beside(source, module_name)
+        if module is None:
+            raise source.error(label, f"cannot import module {module_name!r}: {exc}",
+                               entry) from exc
+    except ImportError as exc:
+        raise source.error(label, f"cannot import module {module_name!r}: {exc}",
+                           entry) from exc
+    cls = getattr(module, class_name, None)
+    if cls is None:
+        raise source.error(label, f"module {module_name!r} has no {class_name!r}", entry)
+    if not isinstance(cls, type):
+        raise source.error(label, f"{spec!r} is not a class", entry)
+    return cls
+
+
+def _module_beside(source: Source, module_name: str) -> Any:
+    """The module `a.b` from <description folder>/a/b.py, or None."""
+    path = source.directory.joinpath(*module_name.split(".")).with_suffix(".py")
+    if source.path is None or not path.is_file():
+        return None
+    if module_name in sys.modules:
+        return sys.modules[module_name]
+    spec = importlib.util.spec_from_file_location(module_name, path)
+    if spec is None or spec.loader is None:
+        return None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[module_name] = module
+    try:
+        spec.loader.exec_module(module)
+    except BaseException:
+        del sys.modules[module_name]
+        raise
+    return module
+
+
+def _fmu_path(source: Source, label: str, entry: dict, value: Any) -> str:
+    """A bundled FMU's name (syssimx.fmus.path), or a path (relative to the description)."""
+    if not isinstance(value, str | Path) or not str(value):
+        raise source.error(label, f"the FMU must be a name or a path, got {value!r}", entry)
+    text = str(value)
+    if not text.endswith(".fmu") and "/" not in text:
+        from .. import fmus
+
+        try:
+            return fmus.path(text)
+        except FileNotFoundError as exc:
+            raise source.error(label, str(exc), entry) from exc
+    path = Path(text).expanduser()
+    return str(path if path.is_absolute() else source.directory / path)
+
+
+def _add_indicator(source: Source, label: str, component: CoSimComponent, entry: Any) -> None:
+    """{name, variable, direction}: a zero crossing of an output, evaluated in C."""
+    if not isinstance(entry, dict):
+        raise source.error(label, "must be a mapping {name, variable, direction}", entry)
+    unknown = sorted(set(entry) - set(INDICATOR_KEYS))
+    missing = [k for k in ("name", "variable") if k not in entry]
+    if unknown or missing:
+        raise source.error(label, f"unknown key(s) {unknown}" if unknown else
+                           f"missing {missing}; an indicator is {{name, variable, direction}}",
+                           entry)
+    direction = entry.get("direction", 0)
+    if direction in ("falling", "rising", "both"):
+        direction = {"falling": -1, "rising": 1, "both": 0}[direction]
+    try:
+        component.add_event_indicator(str(entry["name"]), variable=str(entry["variable"]),
+                                      direction=direction)
+    except ConfigurationError as exc:
+        raise source.error(label, str(exc), entry) from exc
+
+
+def _add_handler(source: Source, label: str, component: CoSimComponent, entry: Any) -> None:
+    """{input, reinitialize: {parameter: expression of outputs}}."""
+    if not isinstance(entry, dict):
+        raise source.error(label, "must be a mapping {input, reinitialize}", entry)
+    unknown = sorted(set(entry) - set(HANDLER_KEYS))
+    if unknown or set(entry) != set(HANDLER_KEYS):
+        raise source.error(label, f"unknown key(s) {unknown}" if unknown else
+                           f"needs both {list(HANDLER_KEYS)}", entry)
+    restart = entry["reinitialize"]
+    if not isinstance(restart, dict) or not restart:
+        raise source.error(label, "'reinitialize' must map parameters to outputs or numbers, "
+                           f"e.g. {{omega0: -omega}}; got {restart!r}", entry)
+    try:
+        handler = reinitialize_handler(component, restart)
+        component.add_event_handler(str(entry["input"]), handler)
+    except ConfigurationError as exc:
+        raise source.error(label, str(exc), entry) from exc

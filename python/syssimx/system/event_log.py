@@ -1,0 +1,61 @@
+"""result.events: the handled events in order, also readable the way SysSimX code reads them.
+
+A list of EventRecord (`result.events[0].t`, `len(result.events)`, iteration), and, like
+SysSimX's `{(component, event): [DenseTime, ...]}`, indexable by a (component, event) pair with
+keys(), values(), items() and get().
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from typing import TYPE_CHECKING, Any, SupportsIndex, overload
+
+if TYPE_CHECKING:
+    from ..core.events import DenseTime
+    from .results import EventRecord
+
+
+class EventLog(list["EventRecord"]):
+    """The events of a run in handling order; `log["P", "wall_hit"]` -> [DenseTime, ...]."""
+
+    def __init__(self, events: Iterable[EventRecord] = ()) -> None:
+        super().__init__(events)
+
+    def _by_source(self) -> dict[tuple[str, str], list[DenseTime]]:
+        histories: dict[tuple[str, str], list[DenseTime]] = {}
+        for record in self:
+            histories.setdefault((record.component, record.event), []).append(record.time)
+        return histories
+
+    @overload
+    def __getitem__(self, key: SupportsIndex) -> EventRecord: ...
+    @overload
+    def __getitem__(self, key: slice) -> list[EventRecord]: ...
+    @overload
+    def __getitem__(self, key: tuple[str, str]) -> list[DenseTime]: ...
+
+    def __getitem__(self, key: Any) -> Any:
+        if isinstance(key, tuple):
+            histories = self._by_source()
+            if key not in histories:
+                raise KeyError(f"no event {key!r}; events: {sorted(histories)}")
+            return histories[key]
+        return super().__getitem__(key)
+
+    def __contains__(self, item: object) -> bool:
+        if isinstance(item, tuple):
+            return item in self._by_source()
+        return super().__contains__(item)
+
+    def keys(self) -> list[tuple[str, str]]:
+        """The (component, event) pairs that fired, in order of their first firing."""
+        return list(self._by_source())
+
+    def values(self) -> list[list[DenseTime]]:
+        return list(self._by_source().values())
+
+    def items(self) -> list[tuple[tuple[str, str], list[DenseTime]]]:
+        return list(self._by_source().items())
+
+    def get(self, key: tuple[str, str], default: Any = None) -> Any:
+        return self._by_source().get(key, default)

@@ -1,0 +1,118 @@
+"""Declarative systems (YAML and JSON, SysSimX's schema plus syssimx's FMU entries) give the
+numbers of the same systems built in Python."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import coupled_pendulums
+import numpy as np
+import pytest
+import yaml
+from syssimx import GaussSeidelAlgorithm, HybridAlgorithm, IJCSAAlgorithm, System
+from syssimx.system.loader import build_system, load_config, run_from_config
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+QUARTER_PERIOD = 0.46507759431173046  # theta0 = 0.5: K(sin^2(theta0/2)) / sqrt(m g L / I)
+
+
+def as_json(tmp_path: Path, name: str) -> Path:
+    """The example description `name`.yaml written as JSON (the same mapping)."""
+    config = yaml.safe_load((EXAMPLES / f"{name}.yaml").read_text())
+    target = tmp_path / f"{name}.json"
+    target.write_text(json.dumps(config))
+    return target
+
+
+@pytest.mark.parametrize("file", ["quickstart.yaml", "quickstart.json"])
+def test_quickstart_description_gives_12_25_at_t_5(file: str):
+    result = run_from_config(EXAMPLES / file)
+    t, data = result["Integrator"]
+    assert len(t) == 51 and t[-1] == 5.0
+    assert data["y"][-1] == pytest.approx(12.25, abs=1e-12)
+
+
+def test_quickstart_yaml_and_json_describe_the_same_system():
+    assert load_config(EXAMPLES / "quickstart.yaml") == {
+        **load_config(EXAMPLES / "quickstart.json"),
+        "connections": [{"src": "LinearSource.y", "dst": "Integrator.u"}]}
+
+
+def test_run_arguments_override_the_run_entry():
+    result = run_from_config(EXAMPLES / "quickstart.yaml", tf=2.0, dt=0.5)
+    t, data = result["Integrator"]
+    # Euler of y' = t with h = 0.5: 0.5 * (0 + 0.5 + 1.0 + 1.5) = 1.5
+    assert list(t) == [0.0, 0.5, 1.0, 1.5, 2.0]
+    assert data["y"][-1] == pytest.approx(1.5, abs=1e-15)
+
+
+@pytest.mark.parametrize("form", ["yaml", "json"])
+def test_coupled_fmus_match_the_python_built_system(tmp_path: Path, form: str):
+    path = EXAMPLES / "coupled_pendulums.yaml" if form == "yaml" \
+        else as_json(tmp_path, "coupled_pendulums")
+    declared = run_from_config(path)
+    python_built = coupled_pendulums.build(GaussSeidelAlgorithm())
+    python_built.initialize(0.0)
+    reference = python_built.run(0.0, 2.0, 0.01)
+    for name in ("P1", "P2", "Spring"):
+        t, values = declared[name]
+        t_ref, values_ref = reference[name]
+        np.testing.assert_array_equal(t, t_ref)
+        assert set(values) == set(values_ref)
+        for port, column in values.items():
+            np.testing.assert_allclose(column, values_ref[port], rtol=0, atol=1e-12)
+    assert declared.statistics.do_step_calls == reference.statistics.do_step_calls == 3 * 200
+
+
+@pytest.mark.parametrize("form", ["yaml", "json"])
+def test_pendulum_against_the_wall_declared_in_the_file(tmp_path: Path, form: str):
+    path = EXAMPLES / "pendulum_wall.yaml" if form == "yaml" \
+        else as_json(tmp_path, "pendulum_wall")
+    system = build_system(path)
+    assert isinstance(system.algorithm, HybridAlgorithm)
+    system.initialize(0.0)
+    result = system.run(0.0, 1.0, 0.05)
+    assert len(result.events) == 1
+    assert result.events[0].t == pytest.approx(QUARTER_PERIOD, abs=1e-9)
+    # the handler restarted the FMU from its outputs with the velocity reversed
+    t, values = result["P"]
+    before, handled = np.flatnonzero(t == result.events[0].t)
+    assert list(result.micro[[before, handled]]) == [0, 1]
+    assert values["omega"][before] < 0
+    assert values["omega"][handled] == -values["omega"][before]
+    assert values["theta"][handled] == values["theta"][before]
+    assert np.all(values["theta"][t > result.events[0].t] > 0)
+
+
+def test_a_description_mapping_builds_without_a_file():
+    system = build_system({
+        "system": {"name": "loop"},
+        "components": [{"name": "PI", "fmu": "pi_controller",
+                        "parameters": {"kp": 0.5, "ki": 1.0, "integral0": 1.0}},
+                       {"name": "Gain", "fmu": "gain", "parameters": {"k": 0.5}}],
+        "connections": [{"src": "PI.u", "dst": "Gain.u"},
+                        {"src": {"component": "Gain", "port": "y"},
+                         "dst": {"component": "PI", "port": "measurement"}}],
+        "algorithm": {"type": "ijcsa", "max_iter": 20, "tol": 1e-12}})
+    assert isinstance(system, System)
+    assert isinstance(system.algorithm, IJCSAAlgorithm)
+    assert (system.algorithm.max_iter, system.algorithm.tolerance) == (20, 1e-12)
+    system.initialize(0.0)
+    result = system.run(0.0, 1.0, 0.1)
+    # the algebraic loop holds at every sample: u = ki I / (1 + kp k), y = k u
+    np.testing.assert_allclose(result["Gain"][1]["y"], 0.5 * result["PI"][1]["u"], atol=1e-12)
+
+
+def test_hybrid_options_and_coupling_from_the_file(tmp_path: Path):
+    config = load_config(EXAMPLES / "pendulum_wall.yaml")
+    config["algorithm"] = {"type": "hybrid", "tol_time": 1e-9, "method": "bisection",
+                           "sign_tolerance": 1e-12, "max_deferrals": 0,
+                           "raise_on_missed_event": True,
+                           "gauss_seidel_algorithm": {"type": "jacobi", "tolerance": 1e-8}}
+    system = build_system(config)
+    algorithm = system.algorithm
+    assert isinstance(algorithm, HybridAlgorithm)
+    assert (algorithm.method, algorithm.sign_tolerance, algorithm.max_deferrals,
+            algorithm.raise_on_missed_event) == ("bisection", 1e-12, 0, True)
+    assert algorithm.coupling.name == "Jacobi" and algorithm.coupling.tolerance == 1e-8
