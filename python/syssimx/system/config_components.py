@@ -13,7 +13,7 @@ from typing import Any
 from ..components.base import CoSimComponent
 from ..errors import ConfigurationError
 from .config_handlers import reinitialize_handler
-from .config_source import Source
+from .config_source import Source, kind
 
 COMPONENT_KEYS = ("name", "class", "fmu", "args", "parameters", "event_indicators",
                   "event_handlers")
@@ -27,7 +27,7 @@ def build_component(source: Source, index: int, entry: Any) -> CoSimComponent:
     label = f"components[{index}]"
     if not isinstance(entry, dict):
         raise source.error(label, f"must be a mapping with 'name' and 'class' (or 'fmu'), got "
-                           f"{type(entry).__name__} {entry!r}", entry)
+                           f"{kind(entry)} {entry!r}", entry)
     name = entry.get("name")
     if not isinstance(name, str) or not name:
         raise source.error(label, "needs a 'name' (a non-empty string)", entry)
@@ -76,7 +76,7 @@ def _mapping(source: Source, label: str, entry: dict, key: str) -> dict[str, Any
     if value is None:
         return {}
     if not isinstance(value, dict):
-        raise source.error(label, f"'{key}' must be a mapping, got {type(value).__name__} "
+        raise source.error(label, f"'{key}' must be a mapping, got {kind(value)} "
                            f"{value!r}", entry)
     return dict(value)
 
@@ -86,7 +86,7 @@ def _sequence(source: Source, label: str, entry: dict, key: str) -> list[Any]:
     if value is None:
         return []
     if not isinstance(value, list):
-        raise source.error(label, f"'{key}' must be a list, got {type(value).__name__}", entry)
+        raise source.error(label, f"'{key}' must be a list, got {kind(value)}", entry)
     return value
 
 

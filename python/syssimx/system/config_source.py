@@ -45,6 +45,14 @@ class Source:
         return ConfigError(f"{prefix + ': ' if prefix else ''}{entry}: {message}")
 
 
+def kind(value: object) -> str:
+    """How a description names a value's type: mapping, list, string, number, ..."""
+    if isinstance(value, dict):
+        return "mapping"
+    return {list: "list", str: "string", int: "number", float: "number", bool: "boolean",
+            type(None): "nothing"}.get(type(value), type(value).__name__)
+
+
 def read_file(path: str | Path) -> dict[str, Any]:
     """The description in a .json file (JSON) or any other file (YAML), as a mapping."""
     source = Source(Path(path))
@@ -62,7 +70,7 @@ def read_file(path: str | Path) -> dict[str, Any]:
     if not isinstance(config, dict):
         raise ConfigError(f"{path}: the top level of a system description must be a mapping "
                           f"(system, components, connections, ...), got "
-                          f"{type(config).__name__}")
+                          f"{kind(config)}")
     return config
 
 

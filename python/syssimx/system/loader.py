@@ -26,7 +26,7 @@ from typing import Any
 from ..errors import ConfigurationError
 from .config_algorithm import build_algorithm
 from .config_components import build_component
-from .config_source import ConfigError, Source, read_file
+from .config_source import ConfigError, Source, kind, read_file
 from .connection import Connection, EventConnection
 from .results import SimulationResult
 from .system import System
@@ -62,12 +62,12 @@ def build_system(config: dict[str, Any] | str | Path) -> System:
         except ConfigurationError as exc:
             raise source.error(f"components[{index}] {component.name!r}", str(exc),
                                entry) from exc
-    for kind, connect in (("connections", _connect), ("event_connections", _connect_event)):
-        entries = config.get(kind) or []
+    for key, connect in (("connections", _connect), ("event_connections", _connect_event)):
+        entries = config.get(key) or []
         if not isinstance(entries, list):
-            raise source.error(kind, f"must be a list, got {type(entries).__name__}", config)
+            raise source.error(key, f"must be a list, got {kind(entries)}", config)
         for index, entry in enumerate(entries):
-            connect(source, f"{kind}[{index}]", system, entry)
+            connect(source, f"{key}[{index}]", system, entry)
     if config.get("algorithm") is not None:
         algorithm = build_algorithm(source, config["algorithm"])
         try:
@@ -117,7 +117,7 @@ def _open(config: dict[str, Any] | str | Path) -> tuple[Source, dict[str, Any]]:
         return Source(Path(config)), read_file(config)
     if not isinstance(config, dict):
         raise ConfigError(f"a system description is a mapping or a file path, got "
-                          f"{type(config).__name__}")
+                          f"{kind(config)}")
     return Source(), config
 
 
