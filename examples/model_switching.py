@@ -88,7 +88,7 @@ def build() -> tuple[System, Load]:
 
 
 def main() -> None:
-    system, load = build()
+    system, _ = build()
     result = system.run(0.0, 3.0, 0.05)
     t_switch = math.sqrt(2 * (H0 - (BREAKPOINT - BAND)) / G)
     for switch in result.mode_switches["Load"]:
