@@ -312,19 +312,24 @@ class CoSimComponent:
                                      f"{checkpoint.owner.name!r}")
         self.parameters = deepcopy(checkpoint.parameters)
         self._restore_checkpoint_metadata(deepcopy(checkpoint.metadata))
+        self._publish_ports(checkpoint)
+        self.restore_state(checkpoint.solver_state, checkpoint.time)
+        self.t = checkpoint.time
+        self._publish_ports(checkpoint)
+        if self._private_system is not None and self._private_system.is_initialized:
+            self._private_system.restart_recording(checkpoint.time)
+            self._publish_ports(checkpoint)  # the restart gave unconnected inputs their starts
+
+    def _publish_ports(self, checkpoint: ComponentCheckpoint) -> None:
+        """The checkpoint's port values, in the ports and the engine. (An FMU's ports read
+        the engine, which restore_state refreshed from the FMU: this writes them back.)"""
         for ports, values in ((self.inputs, checkpoint.inputs),
                               (self.outputs, checkpoint.outputs)):
             for name, value in values.items():
                 ports[name]._raw = value
-        self.restore_state(checkpoint.solver_state, checkpoint.time)
-        self.t = checkpoint.time
         if self._binding is not None:
-            # a Python component's ports go to the engine; an FMU's ports read the engine,
-            # which restore_state refreshed from the FMU, so this writes the same values back
             self._binding.plan.write_inputs(self)
             self._binding.plan.push_outputs(self)
-        if self._private_system is not None and self._private_system.is_initialized:
-            self._private_system.restart_recording(checkpoint.time)
 
     def _checkpoint_metadata(self) -> Any:
         """State a subclass keeps outside its solver (e.g. the active model); checkpointed."""
