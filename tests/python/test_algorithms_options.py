@@ -34,7 +34,7 @@ def collect_dropped_components():
     """Finalize the FMUs a test dropped here, not inside a later cffi call (the finalizer's
     function lookup would wait for cffi's lock: issue 9, fixed on another branch)."""
     yield
-    gc.collect()
+    gc.collect(1)  # the young generations: where a test's objects are
 
 
 QUARTER_PERIOD = pendulum_wall.QUARTER_PERIOD
