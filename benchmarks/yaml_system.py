@@ -9,7 +9,9 @@
                SysSimX's environment
 
 SysSimX runs in its own virtual environment (--syssimx-python, default: the one
-seed_scenario.py creates). Without PyYAML there, it reads the same description as JSON.
+seed_scenario.py creates). Packages that environment lacks (PyYAML, fmpy and what fmpy
+imports) are lent from this one through a folder of links on its PYTHONPATH; SysSimX's own
+code is never shadowed.
 
     python benchmarks/yaml_system.py [--repeat N] [--syssimx-python PATH]
 """
@@ -17,6 +19,7 @@ seed_scenario.py creates). Without PyYAML there, it reads the same description a
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import json
 import os
 import statistics
@@ -35,6 +38,8 @@ from syssimx.system.loader import run_from_config
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 CASES = {"quickstart": {"tf": 100.0, "dt": 0.01, "probe": ("Integrator", "y")},
          "coupled": {"tf": 20.0, "dt": 0.01, "probe": ("P1", "theta")}}
+
+LENDABLE = ("yaml", "fmpy", "attr", "attrs", "lxml")
 
 CHILD = textwrap.dedent('''
     import importlib.util, json, statistics, sys, time
@@ -87,11 +92,30 @@ def measure_ours(path: Path, case: dict[str, Any], repeat: int) -> dict[str, Any
             "samples": len(t), "read": "yaml"}
 
 
+def lend_packages(python: str, directory: Path) -> list[str]:
+    """Link the LENDABLE packages `python` cannot import into `directory`; their names."""
+    probe = subprocess.run(
+        [python, "-c", "import importlib.util, sys; print(' '.join(n for n in sys.argv[1:] "
+         "if importlib.util.find_spec(n) is None))", *LENDABLE],
+        capture_output=True, text=True, check=True,
+        env={k: v for k, v in os.environ.items() if k != "PYTHONPATH"})
+    lent = []
+    for name in probe.stdout.split():
+        spec = importlib.util.find_spec(name)
+        if spec is None or spec.origin is None:
+            continue
+        origin = Path(spec.origin)
+        source = origin.parent if origin.name == "__init__.py" else origin
+        (directory / source.name).symlink_to(source)
+        lent.append(name)
+    return lent
+
+
 def measure_syssimx(python: str, files: tuple[Path, Path], case: dict[str, Any],
-                    repeat: int) -> dict[str, Any]:
+                    repeat: int, lent: Path) -> dict[str, Any]:
     # SysSimX from its environment, not this source tree; the quickstart classes from examples/
     environment = {**{k: v for k, v in os.environ.items() if k != "PYTHONPATH"},
-                   "PYTHONPATH": str(EXAMPLES)}
+                   "PYTHONPATH": os.pathsep.join([str(EXAMPLES), str(lent)])}
     with tempfile.NamedTemporaryFile("w", suffix=".py", delete=False) as script:
         script.write(CHILD)
     try:
@@ -122,11 +146,16 @@ def main() -> None:
 
     with tempfile.TemporaryDirectory() as directory:
         files = descriptions(Path(directory))
+        lent = Path(directory) / "lent"
+        lent.mkdir()
+        names = lend_packages(python, lent)
+        if names:
+            print(f"lent to SysSimX's environment from this one: {', '.join(names)}")
         print(f"{'case':<12}{'steps':>7}{'syssimx ms':>12}{'SysSimX ms':>12}{'ratio':>8}"
               f"{'last value (both)':>22}  SysSimX read")
         for name, case in CASES.items():
             ours = measure_ours(files[name][0], case, args.repeat)
-            theirs = measure_syssimx(python, files[name], case, args.repeat)
+            theirs = measure_syssimx(python, files[name], case, args.repeat, lent)
             steps = round(case["tf"] / case["dt"])
             if "error" in theirs:
                 print(f"{name:<12}{steps:>7}{ours['wall'] * 1e3:>12.2f}  SysSimX failed: "
@@ -135,7 +164,7 @@ def main() -> None:
             same = "equal" if abs(ours["value"] - theirs["value"]) <= 1e-9 * max(
                 1.0, abs(ours["value"])) else f"{ours['value']:.6g} / {theirs['value']:.6g}"
             print(f"{name:<12}{steps:>7}{ours['wall'] * 1e3:>12.2f}"
-                  f"{theirs['wall'] * 1e3:>12.1f}{theirs['wall'] / ours['wall']:>8.0f}"
+                  f"{theirs['wall'] * 1e3:>12.1f}{theirs["wall"] / ours["wall"]:>8.1f}"
                   f"{same:>22}  {theirs['read']}")
 
 
