@@ -164,7 +164,7 @@ def main() -> None:
             same = "equal" if abs(ours["value"] - theirs["value"]) <= 1e-9 * max(
                 1.0, abs(ours["value"])) else f"{ours['value']:.6g} / {theirs['value']:.6g}"
             print(f"{name:<12}{steps:>7}{ours['wall'] * 1e3:>12.2f}"
-                  f"{theirs['wall'] * 1e3:>12.1f}{theirs["wall"] / ours["wall"]:>8.1f}"
+                  f"{theirs['wall'] * 1e3:>12.1f}{theirs['wall'] / ours['wall']:>8.1f}"
                   f"{same:>22}  {theirs['read']}")
 
 
