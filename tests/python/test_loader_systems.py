@@ -126,3 +126,43 @@ def test_hybrid_options_and_coupling_from_the_file(tmp_path: Path):
     assert (algorithm.method, algorithm.sign_tolerance, algorithm.max_deferrals,
             algorithm.raise_on_missed_event) == ("bisection", 1e-12, 0, True)
     assert algorithm.coupling.name == "Jacobi" and algorithm.coupling.tolerance == 1e-8
+
+
+def test_a_class_from_a_module_beside_the_description(tmp_path: Path):
+    (tmp_path / "my_blocks_beside.py").write_text(
+        "from syssimx import CoSimComponent, PortSpec, PortType\n\n\n"
+        "class Clock(CoSimComponent):\n"
+        "    def __init__(self, name, rate=1.0):\n"
+        "        super().__init__(name)\n"
+        "        self.rate = rate\n"
+        "        self.output_specs['t'] = PortSpec('t', PortType.REAL, 'out')\n\n"
+        "    def _do_step_internal(self, t, dt):\n"
+        "        pass\n\n"
+        "    def _update_output_states(self, t=None, event_names=None):\n"
+        "        self.outputs['t'].set(self.rate * (t or 0.0), t)\n")
+    path = tmp_path / "clock.yaml"
+    path.write_text("components:\n  - {name: C, class: 'my_blocks_beside:Clock', "
+                    "args: {rate: 3.0}}\nrun: {t0: 0, tf: 1, dt: 0.25}\n")
+    t, values = run_from_config(path)["C"]
+    np.testing.assert_array_equal(values["t"], 3.0 * t)
+
+
+def test_a_bounce_with_restitution_written_in_the_file():
+    """reinitialize: {v0: -0.8*v}: the continuous ball bounces at the closed-form times."""
+    g, h0, e = 9.81, 1.0, 0.8
+    system = build_system({
+        "components": [{
+            "name": "Ball", "fmu": "bouncing_ball_continuous_cvode",
+            "parameters": {"h0": h0, "v0": 0.0, "g": g, "cvode_relative_tolerance": 1e-12},
+            "event_indicators": [{"name": "floor", "variable": "h", "direction": "falling"}],
+            "event_handlers": [{"input": "bounce", "reinitialize": {"h0": "h", "v0": "-0.8*v"}}],
+        }],
+        "event_connections": [{"src": "Ball.floor", "dst": "Ball.bounce"}],
+        "algorithm": {"type": "hybrid", "tol_time": 1e-10}})
+    system.initialize(0.0)
+    result = system.run(0.0, 2.0, 0.01)
+    t1 = (2 * h0 / g) ** 0.5
+    flights = [2 * e**k * g * t1 / g for k in range(1, 4)]
+    expected = np.cumsum([t1, *flights])
+    np.testing.assert_allclose([ev.t for ev in result.events], expected[expected < 2.0],
+                               rtol=0, atol=1e-8)
