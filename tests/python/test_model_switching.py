@@ -5,6 +5,9 @@ from __future__ import annotations
 
 import gc
 import math
+import re
+import runpy
+from pathlib import Path
 from typing import Any
 
 import model_switching  # examples/: free fall FMU -> parachute model
@@ -23,6 +26,8 @@ from syssimx import (
     System,
 )
 from syssimx.errors import ConfigurationError
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 HEAT, COOL, BREAKPOINT, BAND = 0.7, 1.3, 1.0, 0.1
 
@@ -219,3 +224,13 @@ def test_a_missing_state_translation_names_the_component():
                        r"_adapt_state\(state, target_mode\)"):
         system.run(0.0, 2.0, 0.1)
     assert thermostat.active_mode == "heating"  # nothing was committed
+
+
+def test_the_example_prints_the_switch_against_its_closed_form(
+        capsys: pytest.CaptureFixture[str]):
+    runpy.run_path(str(EXAMPLES / "model_switching.py"), run_name="__main__")
+    switch, height = capsys.readouterr().out.splitlines()
+    assert switch.startswith("free_fall -> parachute at t = 1.1106013")
+    assert abs(float(switch.split("difference ")[1].split()[0])) < 1e-9
+    located, exact = (float(x) for x in re.findall(r"(-?\d+\.\d{6,}) m", height))
+    assert located == pytest.approx(exact, abs=1e-8)
