@@ -45,7 +45,10 @@ def load_config(path: str | Path) -> dict[str, Any]:
 
 def build_system(config: dict[str, Any] | str | Path) -> System:
     """The System a description (a mapping, or a YAML/JSON file) declares, not initialized."""
-    source, config = _open(config)
+    return _build(*_open(config))
+
+
+def _build(source: Source, config: dict[str, Any]) -> System:
     unknown = sorted(set(config) - set(TOP_LEVEL_KEYS))
     if unknown:
         raise source.error("top level", f"unknown key(s) {unknown}; known: "
@@ -83,7 +86,7 @@ def run_from_config(config: dict[str, Any] | str | Path, t0: float | None = None
     """Build, initialize and run a description; t0, tf and dt override its `run` entry."""
     source, config = _open(config)
     settings = run_settings(source, config, {"t0": t0, "tf": tf, "dt": dt})
-    system = build_system(config if source.path is None else source.path)
+    system = _build(source, config)
     system.initialize(settings["t0"])
     options = {} if progress is None else {"progress": progress}
     return system.run(settings["t0"], settings["tf"], settings["dt"], **options)
