@@ -110,6 +110,7 @@ def test_switches_both_ways_at_the_closed_form_times():
     # each switch restarts the next model from the located state: errors add up over 7 switches
     np.testing.assert_allclose([s.time for s in switches], expected, rtol=0, atol=1e-9)
     assert switches == thermostat.switch_events == thermostat.history.mode_switch_events
+    assert system.get_history()["ModeSwitches"] == {"T": switches}
     assert all(isinstance(s, ModeSwitchEvent) and s.source_state is None for s in switches)
     # the events are the generated region boundary, located like any event
     assert [e.event for e in result.events] == ["region_boundary_0"] * len(expected)

@@ -278,21 +278,26 @@ class System:
         logger.info("Simulation completed in %.2f seconds", wall)
         units = {n: {p: c.output_specs[p].unit for p in [*plan.outputs[n], *c.event_indicators]}
                  for n, c in self.components.items()}
-        switches = {n: c.history.mode_switch_events for n, c in self.components.items()
-                    if c.history.mode_switch_events}
         return SimulationResult(HistoryView(plan, events), events,
                                 read_statistics(plan, events, self.termination), units, t0, tf,
-                                dt, wall, switches)
+                                dt, wall, self._mode_switches())
+
+    def _mode_switches(self) -> dict[str, tuple[Any, ...]]:
+        """{component: (ModeSwitchEvent, ...)} of the components that switched models."""
+        return {n: c.history.mode_switch_events for n, c in self.components.items()
+                if c.history.mode_switch_events}
 
     # ------------------------------------------------------------------ results
     def get_history(self) -> dict[str, Any]:
         """{component: (t, {output: values})} of everything recorded since initialize (also
-        after a failed run), plus "Events": {(component, event): [DenseTime]}."""
+        after a failed run), plus "Events": {(component, event): [DenseTime]} and
+        "ModeSwitches": {component: (ModeSwitchEvent, ...)}."""
         if self._plan is None:
             raise ConfigurationError(f"{self.name}: nothing recorded yet; call initialize")
         view = HistoryView(self._plan, self.history.events)
         history: dict[str, Any] = {name: view[name] for name in self.components}
         history["Events"] = self.history.get_all_event_histories()
+        history["ModeSwitches"] = self._mode_switches()
         return history
 
     def history_bytes(self) -> int:
