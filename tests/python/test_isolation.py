@@ -1,0 +1,224 @@
+"""Isolated FMUs: the binary runs in a host process, so a crash, an abort, an exit or a hang in
+the FMU becomes a SimulationError, and everything else gives the in-process numbers bit for bit.
+
+The misbehaving FMU (tests/c/hostile) is built by meson beside the tests, not installed: it is
+found in SYSSIMX_BUILD_DIR or in the build directory scripts/install.sh keeps (build/release).
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from syssimx import ConfigurationError, FMUComponent, SimulationError, System, fmus
+from syssimx._paths import build_dir
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "examples"
+FMI2_FATAL = 4
+
+
+def hostile_fmu() -> str:
+    build = build_dir() or ROOT / "build" / "release"
+    path = build / "tests" / "c" / "hostile" / "hostile.fmu"
+    if not path.is_file():
+        pytest.skip(f"the hostile test FMU is not built ({path} is missing): run meson compile")
+    return str(path)
+
+
+def child_processes() -> set[int]:
+    """This process's children, zombies included, read from /proc."""
+    found = set()
+    for stat in Path("/proc").glob("[0-9]*/stat"):
+        try:
+            text = stat.read_text()
+        except OSError:  # the process ended meanwhile
+            continue
+        parent = text.rsplit(")", 1)[1].split()[1]
+        if int(parent) == os.getpid():
+            found.add(int(stat.parent.name))
+    return found
+
+
+def hostile_system(mode: int, step_timeout: float | None = None) -> tuple[System, FMUComponent]:
+    hostile = FMUComponent("H", hostile_fmu(), isolated=True, step_timeout=step_timeout)
+    hostile.set_parameters(mode=mode, fail_time=0.45)
+    system = System("hostile")
+    system.add_component(hostile)
+    system.initialize(0.0)
+    return system, hostile
+
+
+def run_pendulum(fmu: str, isolated: bool) -> tuple[np.ndarray, dict[str, np.ndarray], dict]:
+    pendulum = FMUComponent("P", fmus.path(fmu), isolated=isolated)
+    pendulum.set_parameters(theta0=0.5, omega0=0.2)
+    system = System("one pendulum")
+    system.add_component(pendulum)
+    system.initialize(0.0)
+    t, data = system.run(0.0, 2.0, 0.01)["P"]
+    return t.copy(), {k: v.copy() for k, v in data.items()}, pendulum.instance.counters()
+
+
+@pytest.mark.parametrize("fmu", ["pendulum_euler", "pendulum_cvode"])
+def test_isolated_fmu_gives_the_in_process_results_bit_for_bit(fmu: str) -> None:
+    t_here, here, calls_here = run_pendulum(fmu, isolated=False)
+    t_there, there, calls_there = run_pendulum(fmu, isolated=True)
+    assert np.array_equal(t_here, t_there)
+    assert here.keys() == there.keys() == {"theta", "omega", "alpha"}
+    for name in here:
+        assert np.array_equal(here[name], there[name]), name
+    assert calls_here == calls_there
+    assert calls_there["do_step"] == 200
+
+
+@pytest.mark.parametrize("solver", ["cvode", "euler"])
+def test_seed_scenario_isolated_locates_the_in_process_event_times(
+    solver: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """examples/pendulum_wall.py as written, its FMUComponent isolated: rollback with
+    fmi2Get/SetFMUstate through the host, handler re-instantiation, same events to the bit."""
+    monkeypatch.syspath_prepend(str(EXAMPLES))
+    import pendulum_wall
+
+    runs = []
+    for isolated in (False, True):
+        monkeypatch.setattr(pendulum_wall, "FMUComponent",
+                            functools.partial(FMUComponent, isolated=isolated))
+        system, pendulum = pendulum_wall.build(solver)
+        result = system.run(0.0, 3.0, 0.05)
+        runs.append(([e.t for e in result.events], result["P"][1]["theta"].copy(),
+                     pendulum.instance.counters()))
+    (events_here, theta_here, calls_here), (events_there, theta_there, calls_there) = runs
+    assert len(events_there) == 3
+    assert events_there == events_here
+    assert abs(events_there[0] - pendulum_wall.QUARTER_PERIOD) < (1e-9 if solver == "cvode"
+                                                                   else 3e-6)
+    assert np.array_equal(theta_here, theta_there)
+    assert calls_there == calls_here
+    assert calls_there["set_state"] > 0 and calls_there["instantiate"] == 4
+
+
+def test_fmu_state_serializes_through_the_host_to_the_in_process_bytes() -> None:
+    blobs = []
+    for isolated in (False, True):
+        pendulum = FMUComponent("P", fmus.path("pendulum_euler"), isolated=isolated)
+        pendulum.set_parameters(theta0=0.5)
+        pendulum.initialize(0.0)
+        instance = pendulum.instance
+        state = instance.getFMUstate()
+        instance.doStep(0.0, 0.1)
+        after_step = instance.getReal([pendulum.value_reference("theta")])
+        instance.setFMUstate(state)
+        instance.doStep(0.0, 0.1)
+        assert instance.getReal([pendulum.value_reference("theta")]) == after_step
+        blob = instance.serializeFMUstate(state)
+        copy = instance.deserializeFMUstate(blob)
+        assert instance.serializeFMUstate(copy) == blob
+        blobs.append(blob)
+        pendulum.free()
+    assert blobs[0] == blobs[1]
+
+
+@pytest.mark.parametrize(("mode", "how"), [
+    (1, "died of signal 11 (SIGSEGV"),
+    (2, "died of signal 6 (SIGABRT"),
+    (3, "exited with status 3"),
+])
+def test_crash_becomes_a_simulation_error_naming_component_time_and_signal(
+    mode: int, how: str
+) -> None:
+    before = child_processes()  # hosts of other tests' components may still run
+    system, hostile = hostile_system(mode)
+    with pytest.raises(SimulationError) as info:
+        system.run(0.0, 1.0, 0.1)
+    error = info.value
+    assert error.component == "H"
+    assert error.time == pytest.approx(0.4)  # the step from 0.4 to 0.5 passes fail_time
+    assert error.status == FMI2_FATAL
+    assert error.fmu_message.startswith(f"the FMU process {how}")
+    assert error.fmu_message.endswith("in fmi2DoStep")
+    assert "'H'" in str(error) and "t=0.4" in str(error) and how in str(error)
+    t, data = system.get_history()["H"]
+    np.testing.assert_allclose(t, [0.0, 0.1, 0.2, 0.3, 0.4], atol=1e-12)
+    np.testing.assert_array_equal(data["y"], t)
+    assert child_processes() <= before  # reaped: no zombie
+    unzip_dir = hostile._unzip_dir
+    hostile.free()
+    assert not unzip_dir.exists()
+
+
+def test_step_timeout_kills_a_hung_fmu_and_leaves_nothing_behind() -> None:
+    before = child_processes()
+    system, hostile = hostile_system(mode=4, step_timeout=0.3)
+    with pytest.raises(SimulationError) as info:
+        system.run(0.0, 1.0, 0.1)
+    assert info.value.component == "H"
+    assert info.value.time == pytest.approx(0.4)
+    assert info.value.fmu_message == ("fmi2DoStep did not return within the step timeout of "
+                                      "0.3 s: the FMU process was killed")
+    assert child_processes() <= before
+    unzip_dir = hostile._unzip_dir
+    hostile.free()
+    assert not unzip_dir.exists()
+
+
+def test_after_a_crash_the_next_initialize_starts_a_new_host() -> None:
+    before = child_processes()
+    system, hostile = hostile_system(mode=1)
+    with pytest.raises(SimulationError, match="SIGSEGV"):
+        system.run(0.0, 1.0, 0.1)
+    hostile.set_parameters(mode=0)
+    system.initialize(0.0)
+    t, data = system.run(0.0, 1.0, 0.1)["H"]
+    np.testing.assert_allclose(data["y"], np.linspace(0.0, 1.0, 11), atol=1e-12)
+    assert len(child_processes() - before) == 1
+    hostile.free()
+    assert child_processes() <= before
+
+
+def test_calls_after_the_host_died_fail_with_the_same_reason() -> None:
+    system, hostile = hostile_system(mode=3)
+    with pytest.raises(SimulationError):
+        system.run(0.0, 1.0, 0.1)
+    with pytest.raises(Exception, match=r"fmi2GetReal returned Fatal: the FMU process exited "
+                                        r"with status 3 in fmi2DoStep"):
+        hostile.instance.getReal([0])
+
+
+BAD_FORMAT_RUN = """
+from syssimx import FMUComponent, SimulationError, System
+hostile = FMUComponent("H", {path!r}, isolated={isolated})
+hostile.set_parameters(mode=5, fail_time=0.45)
+system = System("hostile")
+system.add_component(hostile)
+system.initialize(0.0)
+try:
+    system.run(0.0, 1.0, 0.1)
+except SimulationError as error:
+    print(repr(error.fmu_message), error.time, error.status)
+"""
+
+
+@pytest.mark.parametrize("isolated", [False, True])
+def test_logger_format_without_arguments_is_logged_as_raw_text(isolated: bool) -> None:
+    """An FMU logging "%s%s%n" with no arguments: the "%n" conversion is refused and the raw
+    text is the message, in process too (a separate interpreter, as the unfixed logger
+    crashes)."""
+    script = BAD_FORMAT_RUN.format(path=hostile_fmu(), isolated=isolated)
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                          env=os.environ, check=False)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["'%s%s%n'", "0.4", "3"]
+
+
+def test_step_timeout_needs_isolation_and_a_positive_number() -> None:
+    with pytest.raises(ConfigurationError, match=r"'P': step_timeout needs isolated=True"):
+        FMUComponent("P", fmus.path("pendulum_euler"), step_timeout=1.0)
+    with pytest.raises(ConfigurationError,
+                       match=r"'P': step_timeout must be a positive number of seconds, got 0"):
+        FMUComponent("P", fmus.path("pendulum_euler"), isolated=True, step_timeout=0)
