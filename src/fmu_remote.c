@@ -5,6 +5,7 @@
 #include "fmu_remote.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
 #include <stdint.h>
@@ -15,7 +16,6 @@
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <time.h>
-#include <fcntl.h>
 #include <unistd.h>
 
 #include "fmi2Functions.h"
@@ -311,7 +311,9 @@ static int call(ssx_remote *r, remote_request *rq, void *out, size_t out_size, u
         remote_reply reply;
         remote_receive_result got = remote_receive(r->socket, &reply, sizeof reply, deadline,
                                                    r->pid);
-        if (got == RECEIVED && reserve(r, (size_t)reply.payload + 1) != 0) {
+        /* a reply the host would never send (the FMU wrote to the socket itself) ends it */
+        if (got == RECEIVED && (reply.payload >= SIZE_MAX / 2 ||
+                                reserve(r, (size_t)reply.payload + 1) != 0)) {
             got = PEER_GONE;
         }
         if (got == RECEIVED) {
@@ -376,9 +378,12 @@ static fmi2Component remote_instantiate(fmi2String instance_name, fmi2Type type,
                                         fmi2Boolean visible, fmi2Boolean logging_on)
 {
     ssx_remote *r = ssx_fmu_remote(callbacks->componentEnvironment);
+    instance_name = instance_name != NULL ? instance_name : "";
+    guid = guid != NULL ? guid : "";
+    resource_uri = resource_uri != NULL ? resource_uri : "";
     r->callbacks = callbacks;
     free(r->instance_name);
-    r->instance_name = strdup(instance_name != NULL ? instance_name : "");
+    r->instance_name = strdup(instance_name);
     if (r->pid == 0) { /* the last host died: this instance gets a new one */
         char error[1024];
         if (start_host(r, error, sizeof error) != 0) {

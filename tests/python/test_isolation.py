@@ -174,7 +174,7 @@ def test_after_a_crash_the_next_initialize_starts_a_new_host() -> None:
         system.run(0.0, 1.0, 0.1)
     hostile.set_parameters(mode=0)
     system.initialize(0.0)
-    t, data = system.run(0.0, 1.0, 0.1)["H"]
+    _, data = system.run(0.0, 1.0, 0.1)["H"]
     np.testing.assert_allclose(data["y"], np.linspace(0.0, 1.0, 11), atol=1e-12)
     assert len(child_processes() - before) == 1
     hostile.free()
