@@ -5,16 +5,18 @@
  *
  * The engine starts it with the socket on descriptor REMOTE_SOCKET_FD (fmu_remote_protocol.h)
  * and forwards every fmi2 call; the host makes the call and answers with what the FMU logged
- * and the call's result. It ends when the engine closes the socket, or dies with the engine. */
-#define _DEFAULT_SOURCE
+ * and the call's result. It ends when the engine closes the socket, even while the FMU is
+ * still inside a call (the engine's process died). */
+#define _GNU_SOURCE /* POLLRDHUP */
 
 #include <dlfcn.h>
-#include <signal.h>
+#include <poll.h>
+#include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/prctl.h>
+#include <unistd.h>
 
 #include "fmi2Functions.h"
 #include "fmu_message.h"
@@ -255,6 +257,17 @@ static int serve_requests(host *h)
     }
 }
 
+/* Ends the host when the engine's end of the socket closes. The main thread cannot notice
+ * while the FMU runs away inside a call, and PR_SET_PDEATHSIG would fire when the engine's
+ * thread that started the host ends, not its process. */
+static void *watch_engine(void *socket)
+{
+    struct pollfd hangup = {.fd = *(const int *)socket, .events = POLLRDHUP};
+    while (poll(&hangup, 1, -1) < 0 || (hangup.revents & (POLLRDHUP | POLLHUP)) == 0) {
+    }
+    _exit(0);
+}
+
 int main(int argc, char **argv)
 {
     if (argc != 3) {
@@ -262,9 +275,12 @@ int main(int argc, char **argv)
                 argv[0]);
         return 2;
     }
-    /* An orphaned host (the engine's process was killed) must not run on. */
-    prctl(PR_SET_PDEATHSIG, SIGKILL);
     host h = {.socket = REMOTE_SOCKET_FD};
+    pthread_t watchdog;
+    if (pthread_create(&watchdog, NULL, watch_engine, &h.socket) != 0) {
+        fprintf(stderr, "%s: cannot start the watchdog thread\n", argv[0]);
+        return 1;
+    }
     h.callbacks.logger = logger;
     h.callbacks.allocateMemory = calloc;
     h.callbacks.freeMemory = free;

@@ -9,6 +9,11 @@ from __future__ import annotations
 
 import functools
 import os
+import signal
+import subprocess
+import sys
+import threading
+import time
 from pathlib import Path
 
 import numpy as np
@@ -186,6 +191,49 @@ def test_calls_after_the_host_died_fail_with_the_same_reason() -> None:
     with pytest.raises(Exception, match=r"fmi2GetReal returned Fatal: the FMU process exited "
                                         r"with status 3 in fmi2DoStep"):
         hostile.instance.getReal([0])
+
+
+def test_a_component_made_in_a_thread_that_ended_still_runs() -> None:
+    """The host lives as long as the engine's process, not as long as the thread that
+    started it."""
+    made: list[tuple[System, FMUComponent]] = []
+    worker = threading.Thread(target=lambda: made.append(hostile_system(mode=0)))
+    worker.start()
+    worker.join()
+    system, hostile = made[0]
+    _, data = system.run(0.0, 1.0, 0.1)["H"]
+    np.testing.assert_allclose(data["y"], np.linspace(0.0, 1.0, 11), atol=1e-12)
+    hostile.free()
+
+
+ORPHAN_SCRIPT = """
+import sys
+sys.path.insert(0, {tests!r})
+from test_isolation import child_processes, hostile_system
+system, hostile = hostile_system(mode=4)
+print(*child_processes(), flush=True)
+system.run(0.0, 1.0, 0.1)  # never returns: no step_timeout
+"""
+
+
+def test_a_host_stuck_in_the_fmu_ends_when_the_engine_process_is_killed() -> None:
+    script = ORPHAN_SCRIPT.format(tests=str(Path(__file__).parent))
+    with subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                          text=True) as engine:
+        assert engine.stdout is not None
+        line = engine.stdout.readline()
+        hosts = [int(pid) for pid in line.split()]
+        assert len(hosts) == 1, line
+        engine.send_signal(signal.SIGKILL)
+        engine.wait()
+    host_stat = Path(f"/proc/{hosts[0]}/stat")
+    for _ in range(500):  # the host notices within milliseconds; give it 5 s on a busy machine
+        if not host_stat.exists() or host_stat.read_text().rsplit(")", 1)[1].split()[0] == "Z":
+            break
+        time.sleep(0.01)
+    else:
+        os.kill(hosts[0], signal.SIGKILL)
+        pytest.fail("the orphaned FMU host kept running after its engine process was killed")
 
 
 @pytest.mark.parametrize("isolated", [False, True])
