@@ -7,8 +7,11 @@ a host process, every fmi2 call over a socket), side by side in one run.
              hits located by rollback, so fmi2Get/SetFMUstate cross the socket too
 
 For each case: the wall time per macro step in process and isolated (median of --repeat runs,
-the two alternating), their ratio, the time isolation adds per doStep and per fmi2 call (the
-FMU's counters give the calls per run), and whether the results are bit-identical.
+the two alternating; five times as many for the short seed run), their ratio, the time
+isolation adds per doStep, and whether the results are bit-identical. A doStep and the
+fmi2GetReal of the outputs after it share one round trip to the host. For scale, the same run
+also times a bare round trip over a socket between two processes (a Python echo child, so it
+includes some interpreter time on both ends).
 
     python benchmarks/isolation_cost.py [--repeat N]
 """
@@ -18,7 +21,9 @@ from __future__ import annotations
 import argparse
 import functools
 import gc
+import socket
 import statistics
+import subprocess
 import sys
 import time
 from collections.abc import Callable
@@ -29,6 +34,11 @@ from syssimx import FMUComponent, System, fmus
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 GRID_STEPS, GRID_DT = 10_000, 1e-3
+ROUND_TRIPS = 20_000
+ECHO = ("import socket\n"
+        "s = socket.socket(fileno={fd})\n"
+        "while (b := s.recv(64)):\n"
+        "    s.sendall(b)\n")
 
 Run = tuple[float, int, int, int, np.ndarray]  # wall, macro steps, doSteps, fmi2 calls, theta
 
@@ -85,9 +95,28 @@ def compare(name: str, run: Callable[[bool], Run], repeat: int) -> None:
     print(f"{name}: {steps} macro steps, {do_steps} doStep, {calls} fmi2 calls per run")
     print(f"  in process {here / steps * 1e6:8.2f} us per step   isolated "
           f"{there / steps * 1e6:8.2f} us per step   ratio {there / here:5.1f}")
-    print(f"  isolation adds {(there - here) / do_steps * 1e6:.2f} us per doStep, "
-          f"{(there - here) / calls * 1e6:.2f} us per fmi2 call; "
+    print(f"  isolation adds {(there - here) / do_steps * 1e6:.2f} us per doStep; "
           f"results bit-identical: {'yes' if identical else 'NO'}")
+
+
+def socket_round_trip() -> float:
+    """Seconds per 64-byte round trip to an echoing child process."""
+    ours, theirs = socket.socketpair()
+    with subprocess.Popen([sys.executable, "-c", ECHO.format(fd=theirs.fileno())],
+                          pass_fds=(theirs.fileno(),),
+                          stdin=subprocess.DEVNULL) as child:
+        theirs.close()
+        message = bytes(64)
+        ours.sendall(message)
+        ours.recv(64)  # the child is up
+        start = time.perf_counter()
+        for _ in range(ROUND_TRIPS):
+            ours.sendall(message)
+            ours.recv(64)
+        elapsed = time.perf_counter() - start
+        ours.close()
+        child.wait()
+    return elapsed / ROUND_TRIPS
 
 
 def main() -> None:
@@ -98,7 +127,8 @@ def main() -> None:
             args.repeat)
     compare("grid, pendulum_cvode, dt 1e-3", functools.partial(grid_run, "pendulum_cvode"),
             args.repeat)
-    compare("seed scenario, pendulum_cvode, 3 s, 3 events", seed_run, args.repeat)
+    compare("seed scenario, pendulum_cvode, 3 s, 3 events", seed_run, 5 * args.repeat)
+    print(f"bare socket round trip between two processes: {socket_round_trip() * 1e6:.2f} us")
 
 
 if __name__ == "__main__":

@@ -124,8 +124,23 @@ static int serve(host *h, const remote_request *rq, uint64_t *value, size_t *rep
         return FN(fmi2TerminateTYPE, rq->call)(h->instance);
     case CALL_RESET:
         return FN(fmi2ResetTYPE, rq->call)(h->instance);
-    case CALL_DO_STEP:
-        return FN(fmi2DoStepTYPE, rq->call)(h->instance, rq->a, rq->b, (fmi2Boolean)rq->flag);
+    case CALL_DO_STEP: {
+        int status = FN(fmi2DoStepTYPE, rq->call)(h->instance, rq->a, rq->b,
+                                                  (fmi2Boolean)rq->flag);
+        fmi2Real *out = grown(&h->reply, &h->reply_capacity, n * sizeof(fmi2Real));
+        if (out == NULL && n > 0) {
+            return fmi2Fatal;
+        }
+        *reply_size = n * sizeof(fmi2Real);
+        *value = REMOTE_NOT_READ;
+        if (n > 0 && status <= fmi2Warning) {
+            *value = (uint64_t)FN(fmi2GetRealTYPE, CALL_GET_REAL)(
+                h->instance, (const fmi2ValueReference *)in, n, out);
+        } else if (n > 0) {
+            memset(out, 0, n * sizeof(fmi2Real));
+        }
+        return status;
+    }
     case CALL_GET_REAL:
     case CALL_GET_INTEGER:
     case CALL_GET_BOOLEAN: {

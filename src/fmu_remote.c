@@ -37,6 +37,14 @@ struct ssx_remote {
     char *instance_name;
     char *buffer; /* a request's payload, then each reply's */
     size_t capacity;
+    /* The engine reads the same outputs after every doStep. The host reads them right after
+     * the step and sends them with its result, so that fmi2GetReal costs no second round
+     * trip; any other call in between discards them. */
+    fmi2ValueReference *read_after_step;
+    size_t n_read_after_step;
+    double *read_values;
+    int read_status;
+    int read_ready;
     char gone[512]; /* why the host ended, "" while it runs */
 };
 
@@ -260,6 +268,8 @@ void ssx_remote_stop(ssx_remote *r)
     free(r->model_identifier);
     free(r->instance_name);
     free(r->buffer);
+    free(r->read_after_step);
+    free(r->read_values);
     free(r);
 }
 
@@ -298,6 +308,7 @@ static int lost(ssx_remote *r, remote_call call, remote_receive_result why)
  * out_size bytes, goes to out. */
 static int call(ssx_remote *r, remote_request *rq, void *out, size_t out_size, uint64_t *value)
 {
+    r->read_ready = 0;
     if (r->pid == 0) {
         deliver(r, fmi2Fatal, "logStatusFatal", r->gone);
         return fmi2Fatal;
@@ -443,9 +454,43 @@ static fmi2Status remote_reset(fmi2Component c)
 static fmi2Status remote_do_step(fmi2Component c, fmi2Real t, fmi2Real h,
                                  fmi2Boolean no_set_state_prior)
 {
+    ssx_remote *r = c;
+    size_t n = r->n_read_after_step;
     remote_request rq = {.call = CALL_DO_STEP, .flag = (uint32_t)no_set_state_prior, .a = t,
-                         .b = h};
-    return call(c, &rq, NULL, 0, NULL);
+                         .b = h, .n = n};
+    if (stage(r, &rq, r->read_after_step, n * sizeof *r->read_after_step, NULL, 0, NULL, 0) !=
+        0) {
+        return fmi2Error;
+    }
+    uint64_t read_status = REMOTE_NOT_READ;
+    int status = call(r, &rq, r->read_values, n * sizeof *r->read_values, &read_status);
+    if (status <= fmi2Warning && n > 0 && read_status != REMOTE_NOT_READ) {
+        r->read_status = (int)read_status;
+        r->read_ready = 1;
+    }
+    return status;
+}
+
+/* Remembers which outputs to read after each step: the last list read with fmi2GetReal. */
+static void read_after_steps(ssx_remote *r, const fmi2ValueReference *vr, size_t n)
+{
+    if (n == r->n_read_after_step &&
+        (n == 0 || memcmp(vr, r->read_after_step, n * sizeof *vr) == 0)) {
+        return;
+    }
+    fmi2ValueReference *list = realloc(r->read_after_step, n * sizeof *vr + 1);
+    double *values = realloc(r->read_values, n * sizeof *values + 1);
+    if (list != NULL) {
+        r->read_after_step = list;
+    }
+    if (values != NULL) {
+        r->read_values = values;
+    }
+    /* without room the steps read nothing ahead: slower, never wrong */
+    r->n_read_after_step = list != NULL && values != NULL ? n : 0;
+    if (n > 0 && r->n_read_after_step == n) {
+        memcpy(r->read_after_step, vr, n * sizeof *vr);
+    }
 }
 
 static int get_values(ssx_remote *r, remote_call which, const fmi2ValueReference *vr, size_t n,
@@ -471,7 +516,16 @@ static int set_values(ssx_remote *r, remote_call which, const fmi2ValueReference
 static fmi2Status remote_get_real(fmi2Component c, const fmi2ValueReference vr[], size_t n,
                                   fmi2Real values[])
 {
-    return get_values(c, CALL_GET_REAL, vr, n, values, sizeof *values);
+    ssx_remote *r = c;
+    if (r->read_ready && n == r->n_read_after_step &&
+        memcmp(vr, r->read_after_step, n * sizeof *vr) == 0) {
+        r->read_ready = 0;
+        memcpy(values, r->read_values, n * sizeof *values);
+        return r->read_status;
+    }
+    int status = get_values(r, CALL_GET_REAL, vr, n, values, sizeof *values);
+    read_after_steps(r, vr, n);
+    return status;
 }
 
 static fmi2Status remote_get_integer(fmi2Component c, const fmi2ValueReference vr[], size_t n,

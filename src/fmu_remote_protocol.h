@@ -65,7 +65,8 @@ static const char *const remote_call_names[CALL_COUNT] = {
  * - Instantiate: instance name, GUID and resource URI, each ended by '\0'; flag: visible,
  *   flag2: loggingOn, n: the fmi2Type.
  * - SetupExperiment: flag: toleranceDefined, a: tolerance, b: start, flag2: stopTimeDefined,
- *   c: stop. DoStep: a: t, b: h, flag: noSetFMUStatePriorToCurrentPoint.
+ *   c: stop. DoStep: a: t, b: h, flag: noSetFMUStatePriorToCurrentPoint; n value references
+ *   to read with fmi2GetReal right after a successful step.
  * - Get<Type>: n value references. Set<Type>: n values, then n value references.
  * - Get/Set/FreeFMUstate, SerializedFMUstateSize: state (0 for a new one).
  *   SerializeFMUstate: state, n bytes wanted. DeSerializeFMUstate: state, n bytes of payload.
@@ -90,14 +91,17 @@ typedef enum { REPLY_HELLO, REPLY_LOG, REPLY_RESULT } remote_reply_kind;
  * - LOG: status is the fmi2Status the FMU logged with; payload is the category and the
  *   formatted message, each ended by '\0'.
  * - RESULT: status is the call's fmi2Status (Instantiate: 0 or -1 for NULL); value is the
- *   state of Get/DeSerializeFMUstate or the size of SerializedFMUstateSize; payload is what
- *   Get<Type>, SerializeFMUstate or GetDirectionalDerivative wrote. */
+ *   state of Get/DeSerializeFMUstate, the size of SerializedFMUstateSize, or for DoStep the
+ *   status of the fmi2GetReal after it (REMOTE_NOT_READ when the step failed); payload is what
+ *   Get<Type>, SerializeFMUstate, GetDirectionalDerivative or DoStep's fmi2GetReal wrote. */
 typedef struct {
     uint32_t kind;
     int32_t status;
     uint64_t value;
     uint64_t payload;
 } remote_reply;
+
+#define REMOTE_NOT_READ UINT64_MAX
 
 /* The descriptor the host finds its socket on. */
 #define REMOTE_SOCKET_FD 3

@@ -44,6 +44,7 @@ class FMUComponent(CoSimComponent):
                                      f"number of seconds, got {step_timeout!r}")
         super().__init__(name, group=group)
         self.isolated = isolated
+        self.step_timeout = step_timeout
         self.info: FMUInfo = read_fmu(fmu_path)
         self.fmu_path = str(self.info.path)
         self.input_specs.update(self.info.input_specs)
