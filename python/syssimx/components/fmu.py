@@ -269,17 +269,18 @@ def _load(info: FMUInfo, name: str, isolated: bool, step_timeout: float | None
           ) -> tuple[Any, Path, tuple[str, int, int] | None]:
     """Extract the archive (shared where FMI allows) and load its binary into the engine, or
     into a host process of its own when isolated (no instance yet)."""
+    host = str(fmu_host()).encode() if isolated else None
     once_per_process = bool(getattr(info.description.coSimulation,
                                     "canBeInstantiatedOnlyOncePerProcess", False))
-    unzip_dir, key = extractions.acquire(info.path, shareable=not once_per_process)
+    # every isolated FMU has a process of its own, so it may share the extraction
+    unzip_dir, key = extractions.acquire(info.path, shareable=isolated or not once_per_process)
     binary = unzip_dir / info.binary_name()
     error = ffi.new("char[1024]")
     arguments = (str(binary).encode(), info.model_identifier.encode(),
                  info.description.guid.encode(), (unzip_dir / "resources").as_uri().encode(),
                  name.encode(), 0, error, 1024)
-    if isolated:
-        handle = lib().ssx_fmu_load_isolated(str(fmu_host()).encode(), step_timeout or 0.0,
-                                             *arguments)
+    if host is not None:
+        handle = lib().ssx_fmu_load_isolated(host, step_timeout or 0.0, *arguments)
     else:
         handle = lib().ssx_fmu_load(*arguments)
     if handle == ffi.NULL:
