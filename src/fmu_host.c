@@ -83,17 +83,6 @@ static void logger(fmi2ComponentEnvironment environment, fmi2String instance_nam
 /* The fmi2 function of a call, as its own type. */
 #define FN(type, call) ((type *)h->fn[call])
 
-/* A state crosses the socket as a number; the engine hands it back unchanged. */
-static uint64_t state_number(fmi2FMUstate state)
-{
-    return (uint64_t)(uintptr_t)state;
-}
-
-static fmi2FMUstate state_pointer(uint64_t number)
-{
-    return (fmi2FMUstate)(uintptr_t)number;
-}
-
 /* Makes the call. Returns its fmi2Status; *value and *reply_size describe the result. */
 static int serve(host *h, const remote_request *rq, uint64_t *value, size_t *reply_size)
 {

@@ -558,17 +558,6 @@ static fmi2Status remote_set_boolean(fmi2Component c, const fmi2ValueReference v
     return set_values(c, CALL_SET_BOOLEAN, vr, n, values, sizeof *values);
 }
 
-/* The host's fmi2FMUstate pointers stand for themselves here: the engine only compares them. */
-static fmi2FMUstate state_pointer(uint64_t number)
-{
-    return (fmi2FMUstate)(uintptr_t)number;
-}
-
-static uint64_t state_number(fmi2FMUstate state)
-{
-    return (uint64_t)(uintptr_t)state;
-}
-
 static fmi2Status remote_get_state(fmi2Component c, fmi2FMUstate *state)
 {
     remote_request rq = {.call = CALL_GET_FMU_STATE, .state = state_number(*state)};

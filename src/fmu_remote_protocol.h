@@ -103,6 +103,18 @@ typedef struct {
 
 #define REMOTE_NOT_READ UINT64_MAX
 
+/* An fmi2FMUstate of the host crosses the socket as a number. The engine hands it back
+ * unchanged and only compares it: it stands for the state without being dereferenced. */
+static inline uint64_t state_number(void *state)
+{
+    return (uint64_t)(uintptr_t)state;
+}
+
+static inline void *state_pointer(uint64_t number)
+{
+    return (void *)(uintptr_t)number;
+}
+
 /* The descriptor the host finds its socket on. */
 #define REMOTE_SOCKET_FD 3
 
