@@ -79,6 +79,40 @@ def test_isolated_fmu_gives_the_in_process_results_bit_for_bit(fmu: str) -> None
     assert calls_there["do_step"] == 200
 
 
+def reference_fmu(name: str) -> str:
+    root = Path(os.environ.get("SYSSIMX_REFERENCE_FMUS", ROOT.parent / "shared" / "reference-fmus"))
+    path = root / "fmi2" / f"{name}.fmu"
+    if not path.is_file():
+        pytest.skip(f"the Reference FMUs are not available ({path} is missing)")
+    return str(path)
+
+
+@pytest.mark.parametrize(("name", "inputs"), [
+    ("Feedthrough", {"Float64_continuous_input": 1.5, "Int32_input": 7, "Boolean_input": True,
+                     "Enumeration_input": 2}),
+    ("Stair", {}),
+    ("BouncingBall", {}),
+])
+def test_reference_fmus_isolated_give_the_in_process_outputs(name: str,
+                                                             inputs: dict[str, object]) -> None:
+    """Third-party binaries through the host, Integer and Boolean values included."""
+    runs = []
+    for isolated in (False, True):
+        fmu = FMUComponent("R", reference_fmu(name), isolated=isolated)
+        fmu.set_inputs(inputs)
+        system = System("reference")
+        system.add_component(fmu)
+        system.initialize(0.0)
+        _, data = system.run(0.0, 3.0, 0.01)["R"]
+        runs.append({k: v.copy() for k, v in data.items()})
+        fmu.free()
+    assert runs[0].keys() == runs[1].keys()
+    for port in runs[0]:
+        assert np.array_equal(runs[0][port], runs[1][port]), port
+    if name == "Feedthrough":
+        assert runs[1]["Int32_output"][-1] == 7 and runs[1]["Boolean_output"][-1] == 1
+
+
 @pytest.mark.parametrize("solver", ["cvode", "euler"])
 def test_seed_scenario_isolated_locates_the_in_process_event_times(
     solver: str, monkeypatch: pytest.MonkeyPatch
