@@ -260,4 +260,20 @@ size_t ssx_event_trial_count(const ssx_system *sys);
 int ssx_event_trial(const ssx_system *sys, size_t index, ssx_localization_trial *out);
 void ssx_get_statistics(const ssx_system *sys, ssx_statistics *out);
 
+/* ------------------------------------------------------------------------------------------
+ * Isolation: an FMU whose binary runs in a process of its own.
+ * ------------------------------------------------------------------------------------------ */
+/* Like ssx_fmu_load, but the binary is loaded by a host process (host_path: the syssimx-fmu-host
+ * executable installed beside the engine library) and every fmi2 call is forwarded to it, FMU
+ * states included. A crash, abort or exit inside the FMU fails the call with fmi2Fatal and the
+ * FMU's last message says how the process ended (the signal); this process goes on. With
+ * step_timeout > 0, a call that has not returned after step_timeout seconds kills the host and
+ * fails the same way. The next ssx_fmu_instantiate starts a new host; ssx_fmu_free ends it and
+ * waits for it. */
+ssx_fmu *ssx_fmu_load_isolated(const char *host_path, double step_timeout,
+                               const char *binary_path, const char *model_identifier,
+                               const char *guid, const char *resource_uri,
+                               const char *instance_name, int logging_on, char *error,
+                               size_t error_size);
+
 #endif

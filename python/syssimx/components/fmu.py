@@ -4,6 +4,10 @@ Plain use costs no Python per step: the engine calls the FMU directly, rolls it 
 fmi2Get/SetFMUstate for event localization and evaluates variable indicators in C. Overriding
 a hook (`_do_step_internal`, `_update_output_states`, `snapshot_state`/`restore_state`,
 `_handle_events_internal`, `_record_outputs`) routes that hook through Python.
+
+By default the FMU's binary runs inside this process, like any library: a crash in it ends
+Python. `isolated=True` runs it in a host process of its own (every fmi2 call crosses a
+socket), so a crash, an abort or, with `step_timeout`, a hang becomes a SimulationError.
 """
 
 from __future__ import annotations
@@ -14,6 +18,7 @@ from typing import Any
 
 import pint
 
+from .._paths import fmu_host
 from ..core.port import Port, PortSpec, PortType
 from ..engine import ffi, lib
 from ..errors import ConfigurationError, FMUFileError
@@ -27,8 +32,19 @@ from .model_description import FMUInfo, Parameter, read_fmu, start_value, variab
 class FMUComponent(CoSimComponent):
     """An FMI 2.0 Co-Simulation FMU (linux64 binary) as a component."""
 
-    def __init__(self, name: str, fmu_path: str | Path, group: str | None = None) -> None:
+    def __init__(self, name: str, fmu_path: str | Path, group: str | None = None, *,
+                 isolated: bool = False, step_timeout: float | None = None) -> None:
+        """`isolated`: run the binary in a process of its own; `step_timeout` (seconds, needs
+        isolation): an fmi2 call that takes longer kills that process and fails the run."""
+        if step_timeout is not None and not isolated:
+            raise ConfigurationError(f"component {name!r}: step_timeout needs isolated=True "
+                                     "(a hung FMU inside this process cannot be stopped)")
+        if step_timeout is not None and not step_timeout > 0:
+            raise ConfigurationError(f"component {name!r}: step_timeout must be a positive "
+                                     f"number of seconds, got {step_timeout!r}")
         super().__init__(name, group=group)
+        self.isolated = isolated
+        self.step_timeout = step_timeout
         self.info: FMUInfo = read_fmu(fmu_path)
         self.fmu_path = str(self.info.path)
         self.input_specs.update(self.info.input_specs)
@@ -36,7 +52,8 @@ class FMUComponent(CoSimComponent):
         self.direct_feedthrough = {k: set(v) for k, v in self.info.feedthrough.items()}
         self.parameters = {n: p.start for n, p in self.info.parameters.items()}
         self._input_starts = {n: _start(self.info, n) for n in self.info.input_specs}
-        self._fmu, self._unzip_dir, extraction_key = _load(self.info, name)
+        self._fmu, self._unzip_dir, extraction_key = _load(self.info, name, isolated,
+                                                           step_timeout)
         self.instance = FMUInstance(self._fmu, name)
         self._finalizer = weakref.finalize(self, _release, self.instance, self._unzip_dir,
                                            extraction_key)
@@ -248,18 +265,24 @@ def _coerce_parameter(component: str, parameter: Parameter, value: Any) -> Any:
         raise ConfigurationError(f"{where}: {exc}") from exc
 
 
-def _load(info: FMUInfo, name: str) -> tuple[Any, Path, tuple[str, int, int] | None]:
-    """Extract the archive (shared where FMI allows) and load its binary into the engine (no
-    instance yet)."""
+def _load(info: FMUInfo, name: str, isolated: bool, step_timeout: float | None
+          ) -> tuple[Any, Path, tuple[str, int, int] | None]:
+    """Extract the archive (shared where FMI allows) and load its binary into the engine, or
+    into a host process of its own when isolated (no instance yet)."""
+    host = str(fmu_host()).encode() if isolated else None
     once_per_process = bool(getattr(info.description.coSimulation,
                                     "canBeInstantiatedOnlyOncePerProcess", False))
-    unzip_dir, key = extractions.acquire(info.path, shareable=not once_per_process)
+    # every isolated FMU has a process of its own, so it may share the extraction
+    unzip_dir, key = extractions.acquire(info.path, shareable=isolated or not once_per_process)
     binary = unzip_dir / info.binary_name()
     error = ffi.new("char[1024]")
-    handle = lib().ssx_fmu_load(str(binary).encode(), info.model_identifier.encode(),
-                                info.description.guid.encode(),
-                                (unzip_dir / "resources").as_uri().encode(), name.encode(), 0,
-                                error, 1024)
+    arguments = (str(binary).encode(), info.model_identifier.encode(),
+                 info.description.guid.encode(), (unzip_dir / "resources").as_uri().encode(),
+                 name.encode(), 0, error, 1024)
+    if host is not None:
+        handle = lib().ssx_fmu_load_isolated(host, step_timeout or 0.0, *arguments)
+    else:
+        handle = lib().ssx_fmu_load(*arguments)
     if handle == ffi.NULL:
         extractions.release(unzip_dir, key)
         raise FMUFileError(f"{info.path}: cannot load {info.binary_name()}: "
