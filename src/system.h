@@ -5,6 +5,7 @@
 #include "component.h"
 #include "history.h"
 #include "localization_log.h"
+#include "monitor.h"
 #include "syssimx_engine.h"
 
 typedef struct {
@@ -96,6 +97,7 @@ struct ssx_system {
     ssx_localization_log localization;
     ssx_statistics stats;
     ssx_error error;
+    ssx_monitor monitor;
 
     double time;
     int initialized;
