@@ -1,61 +1,108 @@
 /* Reference-counted history buffers that grow as they are used. */
+#define _GNU_SOURCE /* mremap */
+
 #include "history.h"
 
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 
-/* Rows of a new history. Growth then doubles the capacity: amortized O(1) per sample, and
- * with glibc a large buffer grows by mremap, so only the rows written become resident. */
+/* Rows of a new history. Growth then doubles the capacity: amortized O(1) per sample. */
 enum { INITIAL_ROWS = 256 };
+
+/* Buffers from this size on are pages of their own (mmap): they grow and shrink by mremap,
+ * which copies nothing, and pages beyond the recorded rows are never made resident. malloc
+ * does so too above its mmap threshold, but that threshold moves with the program's frees. */
+#if defined(__linux__)
+static const size_t MAPPED_MIN_BYTES = 1024 * 1024;
+#else
+static const size_t MAPPED_MIN_BYTES = (size_t)-1;
+#endif
+
+static int is_mapped(size_t bytes)
+{
+    return bytes >= MAPPED_MIN_BYTES;
+}
+
+static void buffer_free(ssx_buffer *buffer)
+{
+    if (buffer->data != NULL && is_mapped(buffer->bytes)) {
+        munmap(buffer->data, buffer->bytes);
+    } else {
+        free(buffer->data);
+    }
+    buffer->data = NULL;
+    buffer->bytes = 0;
+}
+
+static void *buffer_allocate(size_t bytes)
+{
+    if (!is_mapped(bytes)) {
+        return malloc(bytes);
+    }
+    void *data = mmap(NULL, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    return data != MAP_FAILED ? data : NULL;
+}
+
+/* Keeps the contents up to the smaller size. Returns 0, or -1 with the buffer unchanged. */
+static int buffer_resize(ssx_buffer *buffer, size_t bytes)
+{
+    void *data;
+    if (buffer->data == NULL) {
+        data = buffer_allocate(bytes);
+    } else if (is_mapped(buffer->bytes) && is_mapped(bytes)) {
+        data = mremap(buffer->data, buffer->bytes, bytes, MREMAP_MAYMOVE);
+        data = data != MAP_FAILED ? data : NULL;
+    } else if (!is_mapped(buffer->bytes) && !is_mapped(bytes)) {
+        data = realloc(buffer->data, bytes);
+    } else { /* crossing the threshold: the other kind of allocation */
+        data = buffer_allocate(bytes);
+        if (data != NULL) {
+            memcpy(data, buffer->data, bytes < buffer->bytes ? bytes : buffer->bytes);
+            buffer_free(buffer);
+        }
+    }
+    if (data == NULL) {
+        return -1;
+    }
+    buffer->data = data;
+    buffer->bytes = bytes;
+    return 0;
+}
+
+static size_t row_bytes(const ssx_history_block *b, int component)
+{
+    return (size_t)b->columns[component] * sizeof(double);
+}
 
 static void block_free(ssx_history_block *b)
 {
     for (int c = 0; c < b->n_components; ++c) {
-        free(b->values[c]);
+        buffer_free(&b->values[c]);
     }
     free(b->values);
     free(b->columns);
-    free(b->time);
-    free(b->micro);
+    buffer_free(&b->time);
+    buffer_free(&b->micro);
     free(b);
-}
-
-static int resize_buffers(ssx_history_block *b, size_t capacity)
-{
-    double *time = realloc(b->time, capacity * sizeof *time);
-    if (time == NULL) {
-        return -1;
-    }
-    b->time = time;
-    int *micro = realloc(b->micro, capacity * sizeof *micro);
-    if (micro == NULL) {
-        return -1;
-    }
-    b->micro = micro;
-    for (int c = 0; c < b->n_components; ++c) {
-        if (b->columns[c] == 0) {
-            continue;
-        }
-        double *values = realloc(b->values[c], capacity * (size_t)b->columns[c] * sizeof *values);
-        if (values == NULL) {
-            return -1;
-        }
-        b->values[c] = values;
-    }
-    return 0;
 }
 
 /* Resizes every buffer of the block to `capacity` rows. On failure some buffers have the new
  * size and the others the old one: the capacity becomes the smaller of the two, which every
- * buffer holds. */
+ * buffer holds (each buffer knows its own size for freeing). */
 static int block_resize(ssx_history_block *b, size_t capacity)
 {
-    if (resize_buffers(b, capacity) != 0) {
-        b->capacity = capacity < b->capacity ? capacity : b->capacity;
-        return -1;
+    int status = buffer_resize(&b->time, capacity * sizeof(double));
+    status = status != 0 ? status : buffer_resize(&b->micro, capacity * sizeof(int));
+    for (int c = 0; c < b->n_components && status == 0; ++c) {
+        if (b->columns[c] > 0) {
+            status = buffer_resize(&b->values[c], capacity * row_bytes(b, c));
+        }
     }
-    b->capacity = capacity;
-    return 0;
+    if (status == 0 || capacity < b->capacity) {
+        b->capacity = capacity;
+    }
+    return status;
 }
 
 static ssx_history_block *block_new(int n_components, const int *columns, size_t capacity)
@@ -122,17 +169,38 @@ static int move_to_new_block(ssx_history *h, size_t capacity)
     if (b == NULL) {
         return -1;
     }
-    memcpy(b->time, old->time, h->length * sizeof *b->time);
-    memcpy(b->micro, old->micro, h->length * sizeof *b->micro);
+    memcpy(b->time.data, old->time.data, h->length * sizeof(double));
+    memcpy(b->micro.data, old->micro.data, h->length * sizeof(int));
     for (int c = 0; c < b->n_components; ++c) {
         if (b->columns[c] > 0) {
-            memcpy(b->values[c], old->values[c],
-                   h->length * (size_t)b->columns[c] * sizeof *b->values[c]);
+            memcpy(b->values[c].data, old->values[c].data, h->length * row_bytes(b, c));
         }
     }
     h->block = b;
     history_block_release(old);
     return 0;
+}
+
+/* Rows reserved ahead for a known grid are limited to this much memory. */
+static const size_t RESERVE_MAX_BYTES = 64 * 1024 * 1024;
+
+static size_t sample_bytes(const ssx_history_block *b)
+{
+    size_t bytes = sizeof(double) + sizeof(int);
+    for (int c = 0; c < b->n_components; ++c) {
+        bytes += row_bytes(b, c);
+    }
+    return bytes;
+}
+
+int history_reserve(ssx_history *h, size_t extra)
+{
+    size_t limit = RESERVE_MAX_BYTES / sample_bytes(h->block);
+    size_t needed = h->length + (extra < limit ? extra : limit);
+    if (needed <= h->block->capacity) {
+        return 0;
+    }
+    return is_shared(h->block) ? move_to_new_block(h, needed) : block_resize(h->block, needed);
 }
 
 static int grow(ssx_history *h)
@@ -149,12 +217,12 @@ int history_append(ssx_history *h, double t, int micro, const double *const *out
     }
     ssx_history_block *b = h->block;
     size_t row = h->length;
-    b->time[row] = t;
-    b->micro[row] = micro;
+    ((double *)b->time.data)[row] = t;
+    ((int *)b->micro.data)[row] = micro;
     /* a plain loop: rows are a few doubles, too short to pay for a memcpy call */
     for (int c = 0; c < b->n_components; ++c) {
         size_t n = (size_t)b->columns[c];
-        double *dst = b->values[c] + row * n;
+        double *dst = (double *)b->values[c].data + row * n;
         const double *src = outputs[c];
         for (size_t j = 0; j < n; ++j) {
             dst[j] = src[j];
@@ -175,12 +243,5 @@ void history_trim(ssx_history *h)
 
 size_t history_bytes(const ssx_history *h)
 {
-    if (h->block == NULL) {
-        return 0;
-    }
-    size_t per_sample = sizeof(double) + sizeof(int);
-    for (int c = 0; c < h->block->n_components; ++c) {
-        per_sample += (size_t)h->block->columns[c] * sizeof(double);
-    }
-    return h->block->capacity * per_sample;
+    return h->block != NULL ? h->block->capacity * sample_bytes(h->block) : 0;
 }

@@ -13,14 +13,20 @@
 #include <stdatomic.h>
 #include <stddef.h>
 
+/* One growable buffer; `bytes` is its allocated size (it decides how it was allocated). */
+typedef struct {
+    void *data;
+    size_t bytes;
+} ssx_buffer;
+
 typedef struct ssx_history_block {
     atomic_long references; /* released from any thread (a collected numpy array) */
-    size_t capacity;
+    size_t capacity;        /* rows every buffer holds */
     int n_components;
-    int *columns;     /* outputs per component */
-    double *time;
-    int *micro;
-    double **values;  /* per component: capacity x columns */
+    int *columns;           /* outputs per component */
+    ssx_buffer time;        /* double per row */
+    ssx_buffer micro;       /* int per row */
+    ssx_buffer *values;     /* per component: capacity x columns doubles */
 } ssx_history_block;
 
 typedef struct {
@@ -31,7 +37,10 @@ typedef struct {
 void history_free(ssx_history *h);
 /* Drops every sample (readers keep theirs) and fixes the matrix shapes from the output counts. */
 int history_start(ssx_history *h, int n_components, const int *columns);
-/* Appends one sample; the room grows geometrically (twice the capacity), as it is used. */
+/* Makes room for `extra` more samples, but for no more than 64 MiB of them: a grid known in
+ * advance is recorded without moving, and a huge one (a typo in dt) grows as it is used. */
+int history_reserve(ssx_history *h, size_t extra);
+/* Appends one sample; beyond the reserved room it grows geometrically (twice the capacity). */
 int history_append(ssx_history *h, double t, int micro, const double *const *outputs);
 /* Gives back the room beyond the recorded samples, unless a reader holds the block. */
 void history_trim(ssx_history *h);

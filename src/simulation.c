@@ -176,7 +176,9 @@ int ssx_run(ssx_system *sys, double t0, double tf, double dt)
     if (n_steps < 1 && tf > t0) {
         n_steps = 1;
     }
-    /* the history grows as the run records: a huge grid costs nothing until it is stepped */
+    if (history_reserve(&sys->history, (size_t)n_steps) != 0) {
+        return fail(sys, -1, -1, t0, "out of memory reserving history samples");
+    }
     int status = run_grid(sys, t0, tf, dt, n_steps);
     history_trim(&sys->history);
     return status;

@@ -559,12 +559,12 @@ size_t ssx_history_length(const ssx_system *sys)
 
 const double *ssx_history_time(const ssx_system *sys)
 {
-    return sys->history.block != NULL ? sys->history.block->time : NULL;
+    return sys->history.block != NULL ? sys->history.block->time.data : NULL;
 }
 
 const int *ssx_history_micro(const ssx_system *sys)
 {
-    return sys->history.block != NULL ? sys->history.block->micro : NULL;
+    return sys->history.block != NULL ? sys->history.block->micro.data : NULL;
 }
 
 const double *ssx_history_values(const ssx_system *sys, int component)
@@ -573,7 +573,7 @@ const double *ssx_history_values(const ssx_system *sys, int component)
     if (b == NULL || component < 0 || component >= b->n_components) {
         return NULL;
     }
-    return b->values[component];
+    return b->values[component].data;
 }
 
 size_t ssx_history_bytes(const ssx_system *sys)
