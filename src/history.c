@@ -7,7 +7,7 @@
 #include <string.h>
 #include <sys/mman.h>
 
-/* Rows of a new history. Growth then doubles the capacity: amortized O(1) per sample. */
+/* Rows of a new history, and the least growth beyond a reservation. */
 enum { INITIAL_ROWS = 256 };
 
 /* Buffers from this size on are pages of their own (mmap): they grow and shrink by mremap,
@@ -145,6 +145,7 @@ void history_free(ssx_history *h)
     history_block_release(h->block);
     h->block = NULL;
     h->length = 0;
+    h->last_growth = 0;
 }
 
 int history_start(ssx_history *h, int n_components, const int *columns)
@@ -181,6 +182,21 @@ static int move_to_new_block(ssx_history *h, size_t capacity)
     return 0;
 }
 
+/* Room for `needed` rows. A block no reader holds is resized in place. A held one is copied
+ * into a new block of at least twice the rows in use: in a loop of short runs whose last
+ * result is still held, the history is then copied O(log n) times, not once per run. */
+static int make_room(ssx_history *h, size_t needed)
+{
+    if (needed <= h->block->capacity) {
+        return 0;
+    }
+    if (!is_shared(h->block)) {
+        return block_resize(h->block, needed);
+    }
+    size_t doubled = 2 * h->length;
+    return move_to_new_block(h, needed > doubled ? needed : doubled);
+}
+
 /* Rows reserved ahead for a known grid are limited to this much memory. */
 static const size_t RESERVE_MAX_BYTES = 64 * 1024 * 1024;
 
@@ -196,24 +212,19 @@ static size_t sample_bytes(const ssx_history_block *b)
 int history_reserve(ssx_history *h, size_t extra)
 {
     size_t limit = RESERVE_MAX_BYTES / sample_bytes(h->block);
-    size_t needed = h->length + (extra < limit ? extra : limit);
-    if (needed <= h->block->capacity) {
-        return 0;
-    }
-    return is_shared(h->block) ? move_to_new_block(h, needed) : block_resize(h->block, needed);
-}
-
-static int grow(ssx_history *h)
-{
-    size_t capacity = h->block->capacity > 0 ? 2 * h->block->capacity : INITIAL_ROWS;
-    return is_shared(h->block) ? move_to_new_block(h, capacity)
-                               : block_resize(h->block, capacity);
+    return make_room(h, h->length + (extra < limit ? extra : limit));
 }
 
 int history_append(ssx_history *h, double t, int micro, const double *const *outputs)
 {
-    if (h->length == h->block->capacity && grow(h) != 0) {
-        return -1;
+    if (h->length == h->block->capacity) {
+        /* beyond the reserved grid: event samples, or a grid larger than the reservation */
+        size_t growth = h->last_growth + h->last_growth / 2;
+        growth = growth < INITIAL_ROWS ? INITIAL_ROWS : growth;
+        if (make_room(h, h->block->capacity + growth) != 0) {
+            return -1;
+        }
+        h->last_growth = growth;
     }
     ssx_history_block *b = h->block;
     size_t row = h->length;
@@ -234,7 +245,7 @@ int history_append(ssx_history *h, double t, int micro, const double *const *out
 
 void history_trim(ssx_history *h)
 {
-    if (h->block != NULL && !is_shared(h->block) && h->block->capacity > h->length &&
+    if (h->block != NULL && !is_shared(h->block) && h->block->capacity / 2 > h->length &&
         h->length > 0) {
         /* a failed shrink only keeps some buffers larger than needed */
         (void)block_resize(h->block, h->length);

@@ -4,7 +4,7 @@
  * The buffers live in a reference-counted block, so that readers (numpy arrays in Python) can
  * keep the samples they were given without a copy. The history holds one reference; each
  * ssx_history_retain adds one. Samples are only ever appended, so a reader's rows are never
- * written again; growth moves the buffers in place (realloc) only while no reader holds the
+ * written again; growth moves the buffers (realloc, mremap) only while no reader holds the
  * block, and otherwise copies the samples into a new block and leaves the old one to its
  * readers. */
 #ifndef SSX_HISTORY_H
@@ -31,6 +31,7 @@ typedef struct ssx_history_block {
 
 typedef struct {
     size_t length;
+    size_t last_growth; /* rows added by the last growth beyond a reservation */
     ssx_history_block *block;
 } ssx_history;
 
@@ -40,9 +41,13 @@ int history_start(ssx_history *h, int n_components, const int *columns);
 /* Makes room for `extra` more samples, but for no more than 64 MiB of them: a grid known in
  * advance is recorded without moving, and a huge one (a typo in dt) grows as it is used. */
 int history_reserve(ssx_history *h, size_t extra);
-/* Appends one sample; beyond the reserved room it grows geometrically (twice the capacity). */
+/* Appends one sample. Beyond the reserved room (events, a grid larger than the reservation)
+ * each growth adds 1.5 times the previous one: amortized O(1) per sample, with slack in
+ * proportion to the unplanned samples, not to the whole history. */
 int history_append(ssx_history *h, double t, int micro, const double *const *outputs);
-/* Gives back the room beyond the recorded samples, unless a reader holds the block. */
+/* Gives back the room of a run stopped long before its reservation was used (more than half
+ * of it empty), unless a reader holds the block. Smaller slack stays: a continued run fills
+ * it without copying samples a reader holds. */
 void history_trim(ssx_history *h);
 size_t history_bytes(const ssx_history *h);
 

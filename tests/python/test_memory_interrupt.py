@@ -61,11 +61,11 @@ def test_ctrl_c_stops_a_huge_run_quickly_with_samples_and_without_reserving_it()
         system.run(0.0, 1.0, HUGE_DT, timeout=30.0)
     assert time.monotonic() - start < 5.0
     assert_samples_up_to_the_stop(system, HUGE_DT)
-    # 36 B per sample were recorded (well under 0.5 GB in the time given); reserving the whole
-    # grid would have been 36 GB at once
-    samples = len(system.get_history()["P"][0])
-    assert system.history_bytes() == samples * (8 + 4 + 3 * 8)
-    assert resident_bytes() - before < 4 * system.history_bytes() + 64e6
+    # 36 B per sample: the whole grid would be 36 GB. The engine holds the samples recorded,
+    # at most its reservation ahead (64 MiB) or half as much again beyond it
+    recorded = len(system.get_history()["P"][0]) * (8 + 4 + 3 * 8)
+    assert system.history_bytes() <= max(1.5 * recorded, 64 * 2**20) + 2**20
+    assert resident_bytes() - before < 2 * recorded + 64e6
 
 
 def test_ctrl_c_in_a_hybrid_run_with_a_python_handler_is_a_keyboard_interrupt():
