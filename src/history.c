@@ -146,6 +146,7 @@ void history_free(ssx_history *h)
     h->block = NULL;
     h->length = 0;
     h->last_growth = 0;
+    h->copied_for_reader = 0;
 }
 
 int history_start(ssx_history *h, int n_components, const int *columns)
@@ -178,6 +179,7 @@ static int move_to_new_block(ssx_history *h, size_t capacity)
         }
     }
     h->block = b;
+    h->copied_for_reader = 1;
     history_block_release(old);
     return 0;
 }
@@ -245,11 +247,12 @@ int history_append(ssx_history *h, double t, int micro, const double *const *out
 
 void history_trim(ssx_history *h)
 {
-    if (h->block != NULL && !is_shared(h->block) && h->block->capacity / 2 > h->length &&
-        h->length > 0) {
+    if (h->block != NULL && !is_shared(h->block) && !h->copied_for_reader &&
+        h->block->capacity > h->length && h->length > 0) {
         /* a failed shrink only keeps some buffers larger than needed */
         (void)block_resize(h->block, h->length);
     }
+    h->copied_for_reader = 0;
 }
 
 size_t history_bytes(const ssx_history *h)

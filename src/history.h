@@ -32,6 +32,7 @@ typedef struct ssx_history_block {
 typedef struct {
     size_t length;
     size_t last_growth; /* rows added by the last growth beyond a reservation */
+    int copied_for_reader; /* since the last trim, samples were copied away from a reader */
     ssx_history_block *block;
 } ssx_history;
 
@@ -45,9 +46,10 @@ int history_reserve(ssx_history *h, size_t extra);
  * each growth adds 1.5 times the previous one: amortized O(1) per sample, with slack in
  * proportion to the unplanned samples, not to the whole history. */
 int history_append(ssx_history *h, double t, int micro, const double *const *outputs);
-/* Gives back the room of a run stopped long before its reservation was used (more than half
- * of it empty), unless a reader holds the block. Smaller slack stays: a continued run fills
- * it without copying samples a reader holds. */
+/* At the end of a run: gives back the room beyond the recorded samples, unless a reader holds
+ * the block or the run had to copy the samples away from a reader. That copy's room of twice
+ * the samples stays, so that the next run, while this run's result holds the block, fills it
+ * instead of copying again. */
 void history_trim(ssx_history *h);
 size_t history_bytes(const ssx_history *h);
 
