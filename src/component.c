@@ -221,12 +221,8 @@ void component_free(ssx_component *c)
     if (c == NULL) {
         return;
     }
-    /* FMU states stay with their (borrowed) instance, which releases them when it is freed. */
-    if (c->fmu == NULL && c->hooks.free_snapshot != NULL) {
-        for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
-            c->hooks.free_snapshot(c->hooks.user, slot);
-        }
-    }
+    /* FMU states stay with their (borrowed) instance, which releases them when it is freed;
+     * Python snapshots go with the Python objects that hold them. */
     free_prepared(c);
     free(c->name);
     free(c->output_ports);

@@ -140,7 +140,8 @@ typedef struct {
 
 /* Python-implemented behaviour. Every member may be NULL, which keeps the built-in behaviour of
  * an FMU component (for a Python component, do_step and evaluate_outputs are required).
- * Callbacks return 0 on success and -1 on failure (Python keeps the exception).
+ * Callbacks return 0 on success and -1 on failure (Python keeps the exception). The engine
+ * calls none of them while a system is freed: Python drops its snapshots with its objects.
  * Python reads inputs and writes outputs through ssx_inputs()/ssx_outputs(). */
 typedef struct {
     void *user;
@@ -149,7 +150,6 @@ typedef struct {
     int (*evaluate_outputs)(void *user, double t);         /* zero-time: outputs from inputs */
     int (*snapshot)(void *user, int slot);                 /* save the state into slot */
     int (*restore)(void *user, int slot, double t);        /* the state of slot, now at time t */
-    int (*free_snapshot)(void *user, int slot);
     int (*handle_events)(void *user, const int *indicators, int n_indicators, double t);
     int (*record)(void *user, double t);                   /* a sample is being recorded at t */
 } ssx_hooks;
@@ -245,14 +245,30 @@ int ssx_initialize(ssx_system *sys, double t0);
 int ssx_run(ssx_system *sys, double t0, double tf, double dt);
 double ssx_time(const ssx_system *sys);
 
+/* A watch over ssx_run: between macro steps, about every SSX_MONITOR_INTERVAL_MS of wall
+ * time, monitor(user, t) is called with the time reached; nonzero stops the run, which then
+ * fails at t with in_callback set (the monitor keeps its reason). The clock is read only
+ * every few steps, as many as take about a tenth of the interval. Python runs its signal
+ * handlers there, so Ctrl-C and timeouts stop a run. NULL removes the monitor. */
+enum { SSX_MONITOR_INTERVAL_MS = 50 };
+int ssx_set_monitor(ssx_system *sys, int (*monitor)(void *user, double t), void *user);
+
 /* History: one shared time axis; per component a row-major matrix with one row per sample and
- * one column per output. Pointers are valid until the next call that records. */
+ * one column per output. Pointers are valid until the next call that records, unless the
+ * history is retained. */
 size_t ssx_history_length(const ssx_system *sys);
 const double *ssx_history_time(const ssx_system *sys);
 const int *ssx_history_micro(const ssx_system *sys); /* -1: a localization trial
                                                        (record_internal_steps) */
 const double *ssx_history_values(const ssx_system *sys, int component);
 size_t ssx_history_bytes(const ssx_system *sys); /* bytes allocated for the history */
+/* A reference to the buffers the history accessors return now: until it is released, their
+ * first ssx_history_length() samples are never written, moved or freed, whatever the system
+ * does (record, initialize again, ssx_system_free). This is how Python hands out numpy arrays
+ * without a copy. NULL before ssx_initialize. Release from any thread, once per retain. */
+typedef struct ssx_history_block ssx_history_block;
+ssx_history_block *ssx_history_retain(ssx_system *sys);
+void ssx_history_release(ssx_history_block *block);
 
 size_t ssx_event_count(const ssx_system *sys);
 int ssx_event_get(const ssx_system *sys, size_t index, ssx_event_record *out);

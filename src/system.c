@@ -520,6 +520,13 @@ double ssx_time(const ssx_system *sys)
     return sys->time;
 }
 
+int ssx_set_monitor(ssx_system *sys, int (*monitor)(void *user, double t), void *user)
+{
+    sys->monitor.call = monitor;
+    sys->monitor.user = user;
+    return 0;
+}
+
 int system_record(ssx_system *sys, double t, int micro)
 {
     if (history_append(&sys->history, t, micro, (const double *const *)sys->output_views) != 0) {
@@ -553,25 +560,36 @@ size_t ssx_history_length(const ssx_system *sys)
 
 const double *ssx_history_time(const ssx_system *sys)
 {
-    return sys->history.time;
+    return sys->history.block != NULL ? sys->history.block->time.data : NULL;
 }
 
 const int *ssx_history_micro(const ssx_system *sys)
 {
-    return sys->history.micro;
+    return sys->history.block != NULL ? sys->history.block->micro.data : NULL;
 }
 
 const double *ssx_history_values(const ssx_system *sys, int component)
 {
-    if (component < 0 || component >= sys->history.n_components) {
+    const ssx_history_block *b = sys->history.block;
+    if (b == NULL || component < 0 || component >= b->n_components) {
         return NULL;
     }
-    return sys->history.values[component];
+    return b->values[component].data;
 }
 
 size_t ssx_history_bytes(const ssx_system *sys)
 {
     return history_bytes(&sys->history);
+}
+
+ssx_history_block *ssx_history_retain(ssx_system *sys)
+{
+    return sys->history.block != NULL ? history_block_retain(sys->history.block) : NULL;
+}
+
+void ssx_history_release(ssx_history_block *block)
+{
+    history_block_release(block);
 }
 
 size_t ssx_event_count(const ssx_system *sys)

@@ -5,6 +5,7 @@
 #include "component.h"
 #include "history.h"
 #include "localization_log.h"
+#include "monitor.h"
 #include "syssimx_engine.h"
 
 typedef struct {
@@ -98,6 +99,7 @@ struct ssx_system {
     ssx_error error;
     ssx_termination termination;
     int allow_non_finite;
+    ssx_monitor monitor;
 
     double time;
     int initialized;

@@ -14,6 +14,7 @@ from .errors import (
     FMUError,
     FMUFileError,
     SimulationError,
+    SimulationTimeoutError,
     SysSimXError,
     ZenoError,
 )
@@ -48,6 +49,7 @@ __all__ = [
     "PortType",
     "SimulationError",
     "SimulationResult",
+    "SimulationTimeoutError",
     "SysSimXError",
     "System",
     "Termination",

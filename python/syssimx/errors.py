@@ -41,6 +41,10 @@ class SimulationError(SysSimXError):
         self.event = event
 
 
+class SimulationTimeoutError(SimulationError, TimeoutError):
+    """A run took longer than its `timeout` of wall time; the samples up to there are kept."""
+
+
 class ZenoError(SimulationError):
     """Events chatter (Zeno behaviour) or one instant needs more than max_microsteps rounds."""
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import logging
 import math
 import numbers
+import time
 import timeit
 from typing import Any
 
@@ -205,8 +206,6 @@ class System:
         allow_non_finite: record NaN and infinite outputs instead of stopping the run at the
         first one (None keeps the engine's default: stop)."""
         t0 = _time_value(self.name, "t0", t0)
-        if self._plan is not None:
-            self._plan.before_recording()
         plan = self._compile()
         self._plan = plan
         self._push_options(plan)
@@ -222,8 +221,13 @@ class System:
         self.t = t0
         self.is_initialized = True
 
-    def run(self, t0: float, tf: float, dt: float) -> SimulationResult:
-        """Simulate on the grid t0 + k*dt (the last point exactly tf) plus event instants."""
+    def run(self, t0: float, tf: float, dt: float, timeout: float | None = None
+            ) -> SimulationResult:
+        """Simulate on the grid t0 + k*dt (the last point exactly tf) plus event instants.
+
+        Ctrl-C stops a run within about 0.1 s with KeyboardInterrupt, and `timeout` (seconds
+        of wall time) with SimulationTimeoutError; the samples recorded up to the last
+        completed step stay readable through get_history()."""
         if not self.is_initialized or self._plan is None:
             raise ConfigurationError(f"{self.name}: call initialize(t0) before run()")
         t0, tf, dt = (_time_value(self.name, label, value)
@@ -232,6 +236,9 @@ class System:
             raise ConfigurationError(f"{self.name}: dt must be positive, got {dt}")
         if tf < t0:
             raise ConfigurationError(f"{self.name}: tf={tf} is before t0={t0}")
+        if timeout is not None and not (isinstance(timeout, int | float) and timeout > 0):
+            raise ConfigurationError(f"{self.name}: timeout must be a positive number of "
+                                     f"seconds or None, got {timeout!r}")
         if not math.isclose(t0, self.t, rel_tol=0.0, abs_tol=1e-12 * max(1.0, abs(t0))):
             raise ConfigurationError(f"{self.name}: run starts at t0={t0} but the system is at "
                                      f"t={self.t}")
@@ -243,8 +250,9 @@ class System:
                     "this system's initialize; call initialize again")
         self._push_options(plan)
         logger.info("Starting simulation run from t=%s to t=%s with dt=%s", t0, tf, dt)
-        plan.before_recording()
         start = timeit.default_timer()
+        plan.timeout = timeout
+        plan.deadline = time.monotonic() + timeout if timeout is not None else None
         status = lib().ssx_run(plan.sys, t0, tf, dt)
         wall = timeit.default_timer() - start
         events = read_events(plan)
@@ -296,8 +304,6 @@ class System:
 
     def reset(self) -> None:
         """Drop the engine system; components keep their parameters."""
-        if self._plan is not None:
-            self._plan.before_recording()
         self._plan = None
         self.is_initialized = False
         self.history = SystemHistory()
