@@ -30,7 +30,8 @@ class ExtractionCache:
     """Reference-counted extraction directories, keyed by archive identity."""
 
     def __init__(self) -> None:
-        self._lock = threading.Lock()
+        # reentrant: a component collected while acquire holds the lock releases through it
+        self._lock = threading.RLock()
         self._entries: dict[tuple[str, int, int], _Extraction] = {}
         self._directories: set[Path] = set()  # every folder not yet removed, private ones too
         atexit.register(self.remove_all)

@@ -7,6 +7,7 @@ a clear error naming the file and what is wrong with it.
 from __future__ import annotations
 
 import logging
+import math
 import sys
 import zipfile
 import zlib
@@ -52,6 +53,7 @@ class FMUInfo:
     model_identifier: str
     can_get_set_state: bool
     variables: dict[str, ScalarVariable]
+    default_tolerance: float | None = None  # DefaultExperiment tolerance
     input_specs: dict[str, PortSpec] = field(default_factory=dict)
     output_specs: dict[str, PortSpec] = field(default_factory=dict)
     parameters: dict[str, Parameter] = field(default_factory=dict)
@@ -112,7 +114,8 @@ def read_fmu(fmu_path: str | Path) -> FMUInfo:
         identifier = _model_identifier(description.coSimulation.modelIdentifier, path)
         info = FMUInfo(path=path, description=description, model_identifier=identifier,
                        can_get_set_state=bool(description.coSimulation.canGetAndSetFMUstate),
-                       variables={v.name: v for v in description.modelVariables})
+                       variables={v.name: v for v in description.modelVariables},
+                       default_tolerance=_default_tolerance(description, path))
         if info.binary_name() not in names:
             raise FMUFileError(f"{path} has no {PLATFORM} binary ({info.binary_name()} missing)")
     _collect_ports_and_parameters(info)
@@ -127,6 +130,21 @@ def _read_description(archive: zipfile.ZipFile, path: Path) -> ModelDescription:
     except (zipfile.BadZipFile, zlib.error, EOFError, NotImplementedError, OSError) as exc:
         raise FMUFileError(f"{path}: cannot read modelDescription.xml from the archive: "
                            f"{exc or type(exc).__name__}") from exc
+
+
+def _default_tolerance(description: ModelDescription, path: Path) -> float | None:
+    experiment = description.defaultExperiment
+    text = experiment.tolerance if experiment is not None else None
+    if text is None:
+        return None
+    try:
+        tolerance = float(text)
+    except ValueError:
+        tolerance = math.nan
+    if not (math.isfinite(tolerance) and tolerance > 0):
+        raise FMUFileError(f"{path}: DefaultExperiment tolerance {text!r} is not a positive "
+                           "number")
+    return tolerance
 
 
 def _model_identifier(identifier: str | None, path: Path) -> str:

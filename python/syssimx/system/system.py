@@ -196,8 +196,10 @@ class System:
                 "hybrid options")
 
     # ------------------------------------------------------------------ running
-    def initialize(self, t0: float = 0.0) -> None:
-        """Build the engine system, initialize every component at t0, record the first sample."""
+    def initialize(self, t0: float = 0.0, tolerance: float | None = None) -> None:
+        """Build the engine system, initialize every component at t0, record the first sample.
+        `tolerance`: the relative tolerance of FMUs given none of their own (default: each
+        FMU's DefaultExperiment tolerance)."""
         if not math.isfinite(t0):
             raise ConfigurationError(f"{self.name}: t0 must be finite, got {t0}")
         if self._plan is not None:
@@ -206,7 +208,7 @@ class System:
         self._plan = plan
         self._push_options(plan)
         for component in self.components.values():
-            component._start(t0)
+            component._start(t0, tolerance)
         if lib().ssx_initialize(plan.sys, t0) < 0:
             raise_failure(plan)
         self.history = SystemHistory()
