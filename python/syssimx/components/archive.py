@@ -31,8 +31,8 @@ _CHUNK = 2**20
 _DRIVE = re.compile(r"^[A-Za-z]:")
 
 
-def size_limit() -> int:
-    """The most bytes an FMU archive may inflate to."""
+def size_limit(path: Path) -> int:
+    """The most bytes the FMU archive at `path` may inflate to."""
     text = os.environ.get(SIZE_LIMIT_VARIABLE)
     if text is None:
         return DEFAULT_SIZE_LIMIT
@@ -41,7 +41,8 @@ def size_limit() -> int:
     except ValueError:
         limit = -1
     if limit <= 0:
-        raise ConfigurationError(f"{SIZE_LIMIT_VARIABLE}={text!r} is not a positive number of "
+        raise ConfigurationError(f"{path}: cannot check the archive's size: "
+                                 f"{SIZE_LIMIT_VARIABLE}={text!r} is not a positive number of "
                                  "bytes")
     return limit
 
@@ -67,7 +68,7 @@ def open_archive(path: Path) -> Iterator[zipfile.ZipFile]:
 
 def check_entries(archive: zipfile.ZipFile, path: Path) -> None:
     """Refuse entries that would escape the extraction folder and content above the limit."""
-    limit = size_limit()
+    limit = size_limit(path)
     total = 0
     for info in archive.infolist():
         name = info.filename
@@ -99,7 +100,7 @@ def extract(path: Path, directory: Path) -> None:
     inflated against the size limit. On failure the directory is removed."""
     try:
         with open_archive(path) as archive:
-            limit = size_limit()
+            limit = size_limit(path)
             written = 0
             root = directory.resolve()
             for info in archive.infolist():
