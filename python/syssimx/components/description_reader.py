@@ -1,10 +1,10 @@
 """A lean reader of FMI 2.0 modelDescription.xml: what syssimx uses, with FMPy's meaning.
 
 fmpy's read_model_description keeps the whole XML tree and a forty-field object per variable
-(31 s and 2.6 GB for 10**6 variables). This reader streams the file with lxml's iterparse,
-drops each variable's element once read and keeps a slotted record of eleven fields per
-variable. The records and the description keep fmpy's attribute names (`modelVariables`,
-`coSimulation.modelIdentifier`, `valueReference`, `declaredType`, `outputs[i].dependencies`, ...)
+(31 s and 2.6 GB for 10**6 variables). This reader is an lxml parser target: the file streams
+through it, no tree is built, and each variable becomes a slotted record of ten fields. The
+records and the description keep fmpy's attribute names (`modelVariables`, `valueReference`,
+`coSimulation.modelIdentifier`, `declaredType`, `outputs[i].dependencies`, ...)
 and its defaults (causality "local", variability "continuous", `initial` from FMI's table), so
 code written against fmpy's objects reads these unchanged.
 
@@ -51,8 +51,7 @@ _COSIMULATION_FLAGS = ("canHandleVariableCommunicationStepSize", "canInterpolate
                        "canRunAsynchronuously")
 _ROOT_TEXT = ("fmiVersion", "modelName", "guid", "description", "author", "version", "copyright",
               "license", "generationTool", "generationDateAndTime", "variableNamingConvention")
-_EVENT_TAGS = ("fmiModelDescription", "CoSimulation", "ModelExchange", "DefaultExperiment",
-               "SimpleType", "ScalarVariable", "Unknown")
+_CHUNK = 2**20
 
 
 @dataclass(slots=True, eq=False)
@@ -69,7 +68,6 @@ class ScalarVariable:
     unit: str | None
     declaredType: SimpleType | None  # noqa: N815
     start: str | None
-    sourceline: int | None
 
 
 def _flag(text: str | None) -> bool:
@@ -96,112 +94,147 @@ def _is_start_of(kind: str, text: str) -> bool:
 
 
 class _Reader:
-    """The state of one streaming read; `where` names the file in every error."""
+    """An lxml parser target: builds the description from start and end tags, with no tree
+    (attributes arrive as plain dicts). `where` names the file in every error."""
 
     def __init__(self, where: str) -> None:
         self.where = where
         self.description = ModelDescription()
         self.types: dict[str, SimpleType] = {}
         self.names: set[str] = set()
+        self.type_attributes: dict[str, str] | None = None  # inside a SimpleType
+        self.simple: SimpleType | None = None
+        self.variable_attributes: dict[str, str] | None = None  # inside a ScalarVariable
+        self.value: tuple[str, dict[str, str]] | None = None  # its type element
+        self.in_outputs = False
 
-    def fail(self, problem: str, line: int | None = None) -> FMUFileError:
-        at = f" (line {line})" if line is not None else ""
-        return FMUFileError(f"{self.where}: modelDescription.xml{at}: {problem}")
+    def fail(self, problem: str) -> FMUFileError:
+        return FMUFileError(f"{self.where}: modelDescription.xml: {problem}")
 
-    def root(self, element: etree._Element) -> None:
-        for name in _ROOT_TEXT:
-            value = element.get(name)
-            if value is not None:
-                setattr(self.description, name, value)
+    # ------------------------------------------------------------ parser target
+    def start(self, tag: str, attributes: dict[str, str]) -> None:
+        if self.variable_attributes is not None:
+            if self.value is None and tag in VALUE_TYPES:
+                self.value = (tag, attributes)
+        elif tag == "ScalarVariable":
+            self.variable_attributes = attributes
+            self.value = None
+        elif tag == "Unknown":
+            if self.in_outputs:  # syssimx reads the feedthrough of outputs only
+                self.unknown(attributes)
+        elif self.type_attributes is not None:
+            if self.simple is None:
+                self.simple_type(tag, attributes)
+        elif tag == "SimpleType":
+            self.type_attributes = attributes
+            self.simple = None
+        elif tag == "Outputs":
+            self.in_outputs = True
+        elif tag in ("CoSimulation", "ModelExchange"):
+            self.interface(tag, attributes)
+        elif tag == "DefaultExperiment":
+            self.description.defaultExperiment = DefaultExperiment(
+                startTime=attributes.get("startTime"), stopTime=attributes.get("stopTime"),
+                tolerance=attributes.get("tolerance"), stepSize=attributes.get("stepSize"))
+        elif tag == "fmiModelDescription":
+            for name in _ROOT_TEXT:
+                if name in attributes:
+                    setattr(self.description, name, attributes[name])
 
-    def interface(self, element: etree._Element) -> None:
-        cosimulation = element.tag == "CoSimulation"
+    def end(self, tag: str) -> None:
+        if tag == "ScalarVariable":
+            self.variable()
+            self.variable_attributes = None
+        elif tag == "SimpleType":
+            if self.simple is None:
+                raise self.fail(f"SimpleType {self.type_attributes.get('name')!r} has no type "
+                                "element")
+            self.type_attributes = None
+        elif tag == "Outputs":
+            self.in_outputs = False
+
+    def close(self) -> ModelDescription:
+        if self.description.fmiVersion is None:
+            raise self.fail("the root element is not an fmiModelDescription with an "
+                            "fmiVersion")
+        return self.description
+
+    # ------------------------------------------------------------ elements
+    def interface(self, tag: str, attributes: dict[str, str]) -> None:
+        cosimulation = tag == "CoSimulation"
         interface = CoSimulation() if cosimulation else ModelExchange()
-        interface.modelIdentifier = element.get("modelIdentifier")
+        interface.modelIdentifier = attributes.get("modelIdentifier")
         flags = _INTERFACE_FLAGS + (_COSIMULATION_FLAGS if cosimulation else ())
         for name in flags:
-            setattr(interface, name, _flag(element.get(name)))
+            setattr(interface, name, _flag(attributes.get(name)))
         if cosimulation:
             self.description.coSimulation = interface
         else:
             self.description.modelExchange = interface
 
-    def default_experiment(self, element: etree._Element) -> None:
-        self.description.defaultExperiment = DefaultExperiment(
-            startTime=element.get("startTime"), stopTime=element.get("stopTime"),
-            tolerance=element.get("tolerance"), stepSize=element.get("stepSize"))
+    def simple_type(self, tag: str, attributes: dict[str, str]) -> None:
+        type_attributes = self.type_attributes or {}
+        self.simple = SimpleType(name=type_attributes.get("name"), type=tag,
+                                 description=type_attributes.get("description"),
+                                 unit=attributes.get("unit"),
+                                 quantity=attributes.get("quantity"))
+        self.description.typeDefinitions.append(self.simple)
+        self.types[self.simple.name] = self.simple
 
-    def simple_type(self, element: etree._Element) -> None:
-        if len(element) == 0:
-            raise self.fail(f"SimpleType {element.get('name')!r} has no type element",
-                            element.sourceline)
-        first = element[0]
-        simple = SimpleType(name=element.get("name"), type=first.tag,
-                            description=element.get("description"), unit=first.get("unit"),
-                            quantity=first.get("quantity"))
-        self.description.typeDefinitions.append(simple)
-        self.types[simple.name] = simple
-
-    def variable(self, element: etree._Element) -> None:
-        line = element.sourceline
-        name = element.get("name")
+    def variable(self) -> None:
+        attributes = self.variable_attributes or {}
+        name = attributes.get("name")
         if name is None:
-            raise self.fail("a ScalarVariable has no name", line)
+            raise self.fail(f"a ScalarVariable has no name (valueReference "
+                            f"{attributes.get('valueReference')!r})")
         if name in self.names:
-            raise self.fail(f"variable {name!r}: the name is not unique", line)
+            raise self.fail(f"variable {name!r}: the name is not unique")
         self.names.add(name)
-        value = next((child for child in element if child.tag in VALUE_TYPES), None)
-        if value is None:
-            raise self.fail(f"variable {name!r} has no type element "
-                            f"({', '.join(VALUE_TYPES)})", line)
-        kind = value.tag
-        vr_text = element.get("valueReference")
+        if self.value is None:
+            raise self.fail(f"variable {name!r} has no type element ({', '.join(VALUE_TYPES)})")
+        kind, typed = self.value
+        vr_text = attributes.get("valueReference")
         try:
             vr = int(vr_text)  # type: ignore[arg-type]
         except (TypeError, ValueError):
             raise self.fail(f"variable {name!r}: valueReference {vr_text!r} is not an "
-                            "integer", line) from None
+                            "integer") from None
         if not 0 <= vr <= MAX_VALUE_REFERENCE:
             raise self.fail(f"variable {name!r}: valueReference {vr} is outside 0.."
-                            f"{MAX_VALUE_REFERENCE}", line)
-        start = value.get("start")
+                            f"{MAX_VALUE_REFERENCE}")
+        start = typed.get("start")
         if start is not None and not _is_start_of(kind, start.strip()):
-            raise self.fail(f"variable {name!r}: start {start!r} is not a {kind} value", line)
-        declared_name = value.get("declaredType")
+            raise self.fail(f"variable {name!r}: start {start!r} is not a {kind} value")
+        declared_name = typed.get("declaredType")
         declared = None
         if declared_name is not None:
             declared = self.types.get(declared_name)
             if declared is None:
                 raise self.fail(f"variable {name!r}: declaredType {declared_name!r} is not "
-                                "defined", line)
-        causality = element.get("causality", "local")
-        variability = element.get("variability", "continuous")
-        initial = element.get("initial")
+                                "defined")
+        causality = attributes.get("causality", "local")
+        variability = attributes.get("variability", "continuous")
+        initial = attributes.get("initial")
         if initial is None:
             try:
                 initial = _INITIAL_DEFAULTS[variability][causality]
             except KeyError:
                 raise self.fail(f"variable {name!r}: causality={causality!r} with "
-                                f"variability={variability!r} is not allowed", line) from None
+                                f"variability={variability!r} is not allowed") from None
         self.description.modelVariables.append(ScalarVariable(
-            name, vr, kind, causality, variability, initial, element.get("description"),
-            value.get("unit") if kind == "Real" else None, declared, start, line))
+            name, vr, kind, causality, variability, initial, attributes.get("description"),
+            typed.get("unit") if kind == "Real" else None, declared, start))
 
-    def unknown(self, element: etree._Element) -> None:
-        section = element.getparent().tag
-        if section != "Outputs":
-            return  # syssimx reads the feedthrough of outputs only
+    def unknown(self, attributes: dict[str, str]) -> None:
         variables = self.description.modelVariables
-        line = element.sourceline
-        unknown = Unknown(index=self._index(element.get("index"), line), sourceline=line)
+        unknown = Unknown(index=self._index(attributes.get("index")))
         unknown.variable = variables[unknown.index - 1]
-        dependencies = element.get("dependencies")
+        dependencies = attributes.get("dependencies")
         if dependencies is not None:
-            unknown.dependencies = [variables[self._index(i, line) - 1]
-                                    for i in dependencies.split()]
+            unknown.dependencies = [variables[self._index(i) - 1] for i in dependencies.split()]
         self.description.outputs.append(unknown)
 
-    def _index(self, text: str | None, line: int | None) -> int:
+    def _index(self, text: str | None) -> int:
         count = len(self.description.modelVariables)
         try:
             index = int(text)  # type: ignore[arg-type]
@@ -209,7 +242,7 @@ class _Reader:
             index = 0
         if not 1 <= index <= count:
             raise self.fail(f"ModelStructure index {text!r} names no variable (there are "
-                            f"{count})", line)
+                            f"{count})")
         return index
 
 
@@ -219,23 +252,11 @@ def read_description(stream: IO[bytes], where: str | Path) -> ModelDescription:
     No entity is resolved, no DTD loaded and nothing fetched from the network.
     """
     reader = _Reader(str(where))
-    handlers = {"fmiModelDescription": reader.root, "CoSimulation": reader.interface,
-                "ModelExchange": reader.interface, "DefaultExperiment": reader.default_experiment,
-                "SimpleType": reader.simple_type, "ScalarVariable": reader.variable,
-                "Unknown": reader.unknown}
-    events = etree.iterparse(stream, events=("end",), tag=_EVENT_TAGS, resolve_entities=False,
-                             load_dtd=False, no_network=True)
+    parser = etree.XMLParser(target=reader, resolve_entities=False, load_dtd=False,
+                             no_network=True)
     try:
-        for _, element in events:
-            handlers[element.tag](element)
-            if element.tag != "fmiModelDescription":
-                # read: free the element and its siblings before it
-                element.clear()
-                while element.getprevious() is not None:
-                    del element.getparent()[0]
+        while chunk := stream.read(_CHUNK):
+            parser.feed(chunk)
+        return parser.close()
     except etree.XMLSyntaxError as exc:
         raise reader.fail(f"not well-formed XML: {exc}") from exc
-    description = reader.description
-    if description.fmiVersion is None:
-        raise reader.fail("the root element is not an fmiModelDescription with an fmiVersion")
-    return description

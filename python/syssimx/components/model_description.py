@@ -157,18 +157,23 @@ def _model_identifier(identifier: str | None, path: Path) -> str:
     return identifier
 
 
+_PORT_CAUSALITIES = frozenset({"input", "output", "parameter"})
+
+
 def _collect_ports_and_parameters(info: FMUInfo) -> None:
     unreadable: dict[str, list[str]] = {}  # unit pint cannot read -> the variables using it
-    for variable in info.description.modelVariables:
+    readable: dict[str, str | None] = {}  # the FMI unit -> what pint reads (a large FMU
+    for variable in info.description.modelVariables:  # repeats a few units many times)
         kind = _PORT_TYPES.get(variable.type)
-        if kind is None:
-            continue  # String variables have no place among the engine's doubles
+        if kind is None or variable.causality not in _PORT_CAUSALITIES:
+            continue  # locals are no ports; String variables have no place among doubles
         unit = variable_unit(variable) if kind == PortType.REAL else None
         if unit:
-            readable = _pint_unit(unit)
-            if readable is None:
+            if unit not in readable:
+                readable[unit] = _pint_unit(unit)
+            if readable[unit] is None:
                 unreadable.setdefault(unit, []).append(variable.name)
-            unit = readable
+            unit = readable[unit]
         if variable.causality in ("input", "output"):
             spec = PortSpec(variable.name, kind, "in" if variable.causality == "input" else "out",
                             unit, variable.description)
