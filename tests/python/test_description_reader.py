@@ -109,3 +109,12 @@ def test_a_dimensionless_port_connects_to_dimensionless_not_to_metres():
     assert units.conversion("-", "1") == (1.0, 0.0)
     with pytest.raises(pint.DimensionalityError):
         units.conversion("-", "m")
+
+
+def test_no_syssimx_error_has_an_empty_message():
+    from syssimx.errors import FMUFileError, SimulationError, SysSimXError
+
+    assert str(SysSimXError()) == "Base class of every syssimx error."
+    assert str(FMUFileError("")) == ("The .fmu file cannot be used: missing, a broken or "
+                                     "hostile archive, an invalid")
+    assert str(SimulationError("", component="P")).startswith("A run failed.")
