@@ -118,3 +118,25 @@ def test_no_syssimx_error_has_an_empty_message():
     assert str(FMUFileError("")) == ("The .fmu file cannot be used: missing, a broken or "
                                      "hostile archive, an invalid")
     assert str(SimulationError("", component="P")).startswith("A run failed.")
+
+
+def test_what_tools_write_into_annotations_is_ignored_as_fmpy_ignores_it(tmp_path: Path):
+    with zipfile.ZipFile(fmus.path("gain")) as gain:
+        entries = {name: gain.read(name) for name in gain.namelist()}
+    text = entries["modelDescription.xml"].decode()
+    text = text.replace("  <ModelVariables>", """  <VendorAnnotations><Tool name="t">
+    <CoSimulation modelIdentifier="elsewhere"/>
+    <ScalarVariable name="ghost" valueReference="9"><Real/></ScalarVariable>
+  </Tool></VendorAnnotations>
+  <ModelVariables>""")
+    text = text.replace('<Real start="1"/>', '<Real start="1"/><Annotations><Tool name="t">'
+                        '<Real start="not a number"/><Unknown index="99"/></Tool></Annotations>')
+    entries["modelDescription.xml"] = text.encode()
+    path = tmp_path / "annotated.fmu"
+    with zipfile.ZipFile(path, "w") as archive:
+        for name, data in entries.items():
+            archive.writestr(name, data)
+    assert_same(path)
+    ours, _ = both(path)
+    assert [v.name for v in ours.modelVariables] == ["y", "u", "k"]
+    assert ours.coSimulation.modelIdentifier == "gain"

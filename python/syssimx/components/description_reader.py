@@ -96,7 +96,12 @@ def _is_start_of(kind: str, text: str) -> bool:
 
 class _Reader:
     """An lxml parser target: builds the description from start and end tags, with no tree
-    (attributes arrive as plain dicts). `where` names the file in every error."""
+    (attributes arrive as plain dicts). `where` names the file in every error.
+
+    Elements count only at their place in the schema, as fmpy's paths read them
+    (fmiModelDescription/CoSimulation, .../ModelVariables/ScalarVariable/Real,
+    .../ModelStructure/Outputs/Unknown): whatever a tool writes into annotations is ignored.
+    """
 
     def __init__(self, where: str) -> None:
         self.where = where
@@ -107,52 +112,59 @@ class _Reader:
         self.simple: SimpleType | None = None
         self.variable_attributes: dict[str, str] | None = None  # inside a ScalarVariable
         self.value: tuple[str, dict[str, str]] | None = None  # its type element
-        self.in_outputs = False
+        self.depth = 0  # of the element being read; the root is at 1
+        self.section = ""  # the current element at depth 2 (ModelVariables, ...)
+        self.subsection = ""  # and at depth 3 (ScalarVariable, Outputs, ...)
 
     def fail(self, problem: str) -> FMUFileError:
         return FMUFileError(f"{self.where}: modelDescription.xml: {problem}")
 
     # ------------------------------------------------------------ parser target
     def start(self, tag: str, attributes: dict[str, str]) -> None:
-        if self.variable_attributes is not None:
-            if self.value is None and tag in VALUE_TYPES:
-                self.value = (tag, attributes)
-        elif tag == "ScalarVariable":
-            self.variable_attributes = attributes
-            self.value = None
-        elif tag == "Unknown":
-            if self.in_outputs:  # syssimx reads the feedthrough of outputs only
-                self.unknown(attributes)
-        elif self.type_attributes is not None:
-            if self.simple is None:
-                self.simple_type(tag, attributes)
-        elif tag == "SimpleType":
-            self.type_attributes = attributes
-            self.simple = None
-        elif tag == "Outputs":
-            self.in_outputs = True
-        elif tag in ("CoSimulation", "ModelExchange"):
-            self.interface(tag, attributes)
-        elif tag == "DefaultExperiment":
-            self.description.defaultExperiment = DefaultExperiment(
-                startTime=attributes.get("startTime"), stopTime=attributes.get("stopTime"),
-                tolerance=attributes.get("tolerance"), stepSize=attributes.get("stepSize"))
-        elif tag == "fmiModelDescription":
+        self.depth += 1
+        depth = self.depth
+        if depth == 4:
+            if self.variable_attributes is not None:
+                if self.value is None and tag in VALUE_TYPES:
+                    self.value = (tag, attributes)
+            elif self.type_attributes is not None:
+                if self.simple is None:
+                    self.simple_type(tag, attributes)
+            elif tag == "Unknown" and self.subsection == "Outputs":
+                self.unknown(attributes)  # syssimx reads the feedthrough of outputs only
+        elif depth == 3:
+            self.subsection = tag
+            if tag == "ScalarVariable" and self.section == "ModelVariables":
+                self.variable_attributes = attributes
+                self.value = None
+            elif tag == "SimpleType" and self.section == "TypeDefinitions":
+                self.type_attributes = attributes
+                self.simple = None
+        elif depth == 2:
+            self.section = tag
+            if tag in ("CoSimulation", "ModelExchange"):
+                self.interface(tag, attributes)
+            elif tag == "DefaultExperiment":
+                self.description.defaultExperiment = DefaultExperiment(
+                    startTime=attributes.get("startTime"), stopTime=attributes.get("stopTime"),
+                    tolerance=attributes.get("tolerance"), stepSize=attributes.get("stepSize"))
+        elif depth == 1 and tag == "fmiModelDescription":
             for name in _ROOT_TEXT:
                 if name in attributes:
                     setattr(self.description, name, attributes[name])
 
     def end(self, tag: str) -> None:
-        if tag == "ScalarVariable":
+        self.depth -= 1
+        if self.depth != 2:
+            return
+        if self.variable_attributes is not None:
             self.variable()
             self.variable_attributes = None
-        elif tag == "SimpleType":
+        elif self.type_attributes is not None:
             if self.simple is None:
                 raise self.fail(f"SimpleType {self.type_attributes.get('name')!r} has no type "
                                 "element")
             self.type_attributes = None
-        elif tag == "Outputs":
-            self.in_outputs = False
 
     def close(self) -> ModelDescription:
         if self.description.fmiVersion is None:
