@@ -120,6 +120,8 @@ CASES: dict[str, tuple[Build, str]] = {
                       "not well-formed XML"),
     "FMI 1.0": (lambda tmp: edited(tmp, 'fmiVersion="2.0"', 'fmiVersion="1.0"'),
                 "FMI version 1.0 is not supported"),
+    "FMI 3.0": (lambda tmp: edited(tmp, 'fmiVersion="2.0"', 'fmiVersion="3.0"'),
+                "FMI version 3.0 is not supported"),
     "Model Exchange only": (lambda tmp: edited(tmp, "<CoSimulation ", "<ModelExchange "),
                             "Model-Exchange-only"),
     "modelIdentifier with ../": (

@@ -8,7 +8,8 @@ records and the description keep fmpy's attribute names (`modelVariables`, `valu
 and its defaults (causality "local", variability "continuous", `initial` from FMI's table), so
 code written against fmpy's objects reads these unchanged.
 
-It also refuses, as FMPy's validation does, what would make syssimx exchange wrong data: two
+It reads FMI 2.0 only (anything else is refused at the root element). It also refuses, as
+FMPy's validation does, what would make syssimx exchange wrong data: two
 variables of one name, a value reference outside 0..2**32-1, a start that is not a value of
 the variable's type, an undefined declaredType, a ModelStructure index that names no variable.
 """
@@ -152,6 +153,10 @@ class _Reader:
             for name in _ROOT_TEXT:
                 if name in attributes:
                     setattr(self.description, name, attributes[name])
+            version = self.description.fmiVersion
+            if version != "2.0":  # before reading variables of another schema
+                raise FMUFileError(f"{self.where}: FMI version {version} is not supported "
+                                   "(syssimx runs FMI 2.0 Co-Simulation FMUs)")
 
     def end(self, tag: str) -> None:
         self.depth -= 1

@@ -105,9 +105,6 @@ def read_fmu(fmu_path: str | Path) -> FMUInfo:
         if "modelDescription.xml" not in names:
             raise FMUFileError(f"{path} is not an FMU: the archive has no modelDescription.xml")
         description = _read_description(archive, path)
-        if description.fmiVersion != "2.0":
-            raise FMUFileError(f"{path}: FMI version {description.fmiVersion} is not supported "
-                               "(syssimx runs FMI 2.0 Co-Simulation FMUs)")
         if description.coSimulation is None:
             raise FMUFileError(f"{path} is a Model-Exchange-only FMU; syssimx needs "
                                "Co-Simulation")
