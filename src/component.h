@@ -68,6 +68,9 @@ struct ssx_component {
 };
 
 extern const ssx_component_ops ssx_fmu_component_ops;
+
+/* Unconnected inputs whose start is NaN take the value the initialized FMU holds. */
+int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0);
 extern const ssx_component_ops ssx_python_component_ops;
 
 /* Dispatch: a Python hook if set, else the built-in. Each returns 0 or -1 with the error set. */

@@ -94,7 +94,8 @@ int ssx_initialize(ssx_system *sys, double t0)
                 c->inputs[k] = c->input_starts[k];
             }
         }
-        if (component_initialize(sys, c, t0) != 0) {
+        if (component_initialize(sys, c, t0) != 0 ||
+            (c->fmu != NULL && fmu_component_adopt_inputs(sys, c, t0) != 0)) {
             return -1;
         }
     }

@@ -177,7 +177,9 @@ int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks);
 int ssx_component_count(const ssx_system *sys);
 
 /* Ports. vr is the FMU value reference (ignored for Python components). start is written to
- * the FMU input at initialization when the input is unconnected. Return the port's index. */
+ * the FMU input at initialization when the input is unconnected; NaN (FMU components only)
+ * means the user set no value: the input keeps the FMU's own, read by ssx_initialize. Return
+ * the port's index. */
 int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned int vr);
 int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned int vr, double start);
 double *ssx_outputs(ssx_system *sys, int component); /* n_outputs current values */

@@ -198,9 +198,10 @@ int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned 
         return fail(sys, component, -1, NAN, "component '%s': unknown value type %d", c->name,
                     (int)type);
     }
-    if (!isfinite(start)) {
+    if (isinf(start) || (isnan(start) && c->fmu == NULL)) {
         return fail(sys, component, -1, NAN, "component '%s': the start value of an input must "
-                    "be finite", c->name);
+                    "be finite (NaN, the FMU's own value, exists for FMU components only)",
+                    c->name);
     }
     size_t n = (size_t)c->n_inputs + 1;
     ssx_port *ports = realloc(c->input_ports, n * sizeof *ports);

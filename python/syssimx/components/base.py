@@ -215,8 +215,9 @@ class CoSimComponent:
             state.setdefault(name, {"value": value, "unit": None})
         return state
 
-    # Called by the System (or the private system) once the engine plan exists.
-    def _start(self, t0: float) -> None:
+    # Called by the System (or the private system) once the engine plan exists, with the
+    # tolerance given to System.initialize (used by FMU components).
+    def _start(self, t0: float, tolerance: float | None = None) -> None:
         self._sync_ports()
         self.t = t0
         self._initialize_component(t0)

@@ -200,11 +200,13 @@ class System:
                 "hybrid options")
 
     # ------------------------------------------------------------------ running
-    def initialize(self, t0: float = 0.0, *, allow_non_finite: bool | None = None) -> None:
+    def initialize(self, t0: float = 0.0, tolerance: float | None = None, *,
+                   allow_non_finite: bool | None = None) -> None:
         """Build the engine system, initialize every component at t0, record the first sample.
 
-        allow_non_finite: record NaN and infinite outputs instead of stopping the run at the
-        first one (None keeps the engine's default: stop)."""
+        tolerance: the relative tolerance of FMUs given none of their own (default: each FMU's
+        DefaultExperiment tolerance). allow_non_finite: record NaN and infinite outputs instead
+        of stopping the run at the first one (None keeps the engine's default: stop)."""
         t0 = _time_value(self.name, "t0", t0)
         plan = self._compile()
         self._plan = plan
@@ -214,7 +216,7 @@ class System:
                        "allow_non_finite")
         self.termination = None
         for component in self.components.values():
-            component._start(t0)
+            component._start(t0, tolerance)
         if lib().ssx_initialize(plan.sys, t0) < 0:
             raise_failure(plan)
         self.history = SystemHistory()
