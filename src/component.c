@@ -106,6 +106,9 @@ int component_record(ssx_system *sys, ssx_component *c, double t)
 int component_can_roll_back(const ssx_component *c)
 {
     int has_pair = c->hooks.snapshot != NULL && c->hooks.restore != NULL;
+    if (c->ops == &ssx_table_component_ops) {
+        return 1; /* a function of time: restoring its outputs restores it */
+    }
     if (c->fmu == NULL) {
         return c->can_snapshot && has_pair;
     }
@@ -207,6 +210,9 @@ void component_free(ssx_component *c)
         for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
             c->hooks.free_snapshot(c->hooks.user, slot);
         }
+    }
+    if (c->ops->release != NULL) {
+        c->ops->release(c);
     }
     free_prepared(c);
     free(c->name);

@@ -6,7 +6,7 @@ indicators and event connections, then initialize and run. The SysSimX API is ke
 
 import logging
 
-from .components import CoSimComponent, FMUComponent
+from .components import CoSimComponent, FMUComponent, TableSource
 from .core import DenseTime, Port, PortSpec, PortType
 from .errors import (
     AlgebraicLoopError,
@@ -49,6 +49,7 @@ __all__ = [
     "SimulationResult",
     "SysSimXError",
     "System",
+    "TableSource",
     "ZenoError",
     "__version__",
 ]

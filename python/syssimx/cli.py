@@ -4,6 +4,8 @@
     syssimx fmus
     syssimx simulate pendulum_euler --stop-time 1 --step-size 0.05 --set theta0=0.5 \\
         --event theta:-1 --output results.csv --plot results.png
+    syssimx simulate Feedthrough.fmu --input signals.csv --tolerance 1e-8
+    syssimx --version
 
 An FMU argument is a path to a .fmu file or the name of a bundled FMU. Bad usage exits with
 code 2, a failure while running with code 1; both print one clear line on stderr.
@@ -18,7 +20,10 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, TextIO
 
-from . import fmus
+import numpy as np
+
+from . import __version__, fmus
+from .core.port import PortType
 from .graph.analysis import feedthrough_from_model_description
 
 DIRECTIONS = {"-1": -1, "falling": -1, "0": 0, "both": 0, "1": 1, "+1": 1, "rising": 1}
@@ -30,6 +35,10 @@ CAPABILITIES = (
     "canInterpolateInputs",
     "needsExecutionTool",
 )
+
+
+# the numpy type FMPy casts an input column to, by the input's type
+_TABLE_DTYPES = {PortType.REAL: np.float64, PortType.INT: np.int32, PortType.BOOL: np.bool_}
 
 
 class CommandError(Exception):
@@ -56,6 +65,7 @@ def _parser() -> argparse.ArgumentParser:
         prog="syssimx",
         description="Hybrid co-simulation of FMI 2.0 Co-Simulation FMUs.",
     )
+    parser.add_argument("--version", action="version", version=f"syssimx {__version__}")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     info = commands.add_parser("info", help="describe an FMU: variables and capabilities")
@@ -72,7 +82,15 @@ def _parser() -> argparse.ArgumentParser:
     simulate.add_argument("--stop-time", type=float, default=None, metavar="TF",
                           help="stop time in s (default: the FMU's default experiment, or 1)")
     simulate.add_argument("--step-size", type=float, default=None, metavar="DT",
-                          help="communication step in s (default: the FMU's, or (TF-T0)/500)")
+                          help="communication step in s (default: FMPy's: the FMU's default "
+                               "experiment step, doubled while there are over 1000 steps, else "
+                               "500 to 1000 round steps)")
+    simulate.add_argument("--tolerance", type=float, default=None, metavar="RTOL",
+                          help="relative tolerance passed to the FMU (default: the FMU's "
+                               "default experiment)")
+    simulate.add_argument("--input", type=Path, default=None, metavar="CSV",
+                          help="input signals, a CSV file in FMPy's format (a time column, "
+                               "then one column per input, matched by name)")
     simulate.add_argument("--set", action="append", default=[], type=_assignment,
                           metavar="NAME=VALUE", dest="assignments",
                           help="set a parameter, or hold an input at a constant value "
@@ -200,19 +218,13 @@ def _list_fmus(args: argparse.Namespace, out: TextIO) -> None:
 
 # ---------------------------------------------------------------------------------- simulate
 def _simulate(args: argparse.Namespace, out: TextIO) -> None:
-    from . import FMUComponent, System
+    from . import FMUComponent, JacobiAlgorithm, System
 
     path = _resolve_fmu(args.fmu)
     md = _read_description(path)
-    experiment = md.defaultExperiment
-    t0 = _choose(args.start_time, getattr(experiment, "startTime", None), 0.0)
-    tf = _choose(args.stop_time, getattr(experiment, "stopTime", None), t0 + 1.0)
-    dt = _choose(args.step_size, getattr(experiment, "stepSize", None), (tf - t0) / 500)
-    if not dt > 0 or not tf > t0:
-        raise CommandError(f"need stop time > start time and step size > 0; got start {t0}, "
-                           f"stop {tf}, step {dt}")
-
-    component = FMUComponent(md.modelName or path.stem, str(path))
+    t0, tf, dt = _experiment(args, md.defaultExperiment)
+    options = {} if args.tolerance is None else {"tolerance": args.tolerance}
+    component = FMUComponent(md.modelName or path.stem, str(path), **options)
     assignments = dict(args.assignments)
     held_inputs = {n: v for n, v in assignments.items() if n in component.input_specs}
     component.set_parameters(**{n: v for n, v in assignments.items() if n not in held_inputs})
@@ -226,6 +238,10 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
                                       direction=direction)
     system = System(name=f"syssimx simulate {path.name}")
     system.add_component(component)
+    if args.input is not None:
+        _connect_input(system, component, args.input)
+        # FMPy sets the inputs at the start of each step: the Jacobi coupling's timing
+        system.set_algorithm(JacobiAlgorithm())
     system.initialize(t0)
     result = system.run(t0, tf, dt)
 
@@ -247,6 +263,60 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
     if args.output is None:
         for name, series in columns.items():
             out.write(f"{name} = {series[-1]:.12g} at t = {t[-1]:.12g}\n")
+
+
+def _experiment(args: argparse.Namespace, experiment: Any) -> tuple[float, float, float]:
+    """Start, stop and step: given, else from the default experiment, else FMPy's defaults."""
+    t0 = _choose(args.start_time, getattr(experiment, "startTime", None), 0.0)
+    tf = _choose(args.stop_time, getattr(experiment, "stopTime", None), t0 + 1.0)
+    if not tf > t0:
+        raise CommandError(f"need stop time > start time; got start {t0}, stop {tf}")
+    if args.step_size is not None:
+        dt = float(args.step_size)
+    elif getattr(experiment, "stepSize", None) is not None:
+        dt = float(experiment.stepSize)
+        while dt > 0 and (tf - t0) / dt > 1000:  # FMPy's output interval for a long experiment
+            dt *= 2
+    else:
+        from fmpy.util import auto_interval
+
+        dt = float(auto_interval(tf - t0))
+    if not dt > 0:
+        raise CommandError(f"need step size > 0; got {dt}")
+    return t0, tf, dt
+
+
+def _connect_input(system: Any, component: Any, csv_path: Path) -> None:
+    """A table source from the CSV file, its columns connected to the inputs of the same name;
+    each column is read as the input's type, held where FMPy holds it (non-continuous)."""
+    from . import Connection, TableSource
+    from .components.time_table import read_time_table
+
+    table = read_time_table(csv_path, "--input")
+    inputs = {n: s for n, s in component.input_specs.items() if s.type in _TABLE_DTYPES}
+    used = [name for name in table.columns if name in inputs]
+    ignored = [name for name in table.columns if name not in inputs]
+    if ignored:
+        print(f"syssimx: warning: {csv_path}: {', '.join(ignored)} "
+              f"{'names' if len(ignored) == 1 else 'name'} no input of {component.name}; "
+              "ignored", file=sys.stderr)
+    if not used:
+        return
+    columns = [("time", np.float64), *((n, _TABLE_DTYPES[inputs[n].type]) for n in used)]
+    signals = np.empty(len(table.time), dtype=columns)
+    signals["time"] = table.time
+    for name in used:
+        values = table.columns[name][1]
+        kind = inputs[name].type
+        # FMPy casts a column to the C type of its input: integers truncate
+        signals[name] = values if kind == PortType.REAL else values.astype(np.int32) \
+            if kind == PortType.INT else values.astype(np.int32) != 0
+    hold = [n for n in used if inputs[n].type == PortType.REAL
+            and component.info.variables[n].variability in ("discrete", "tunable")]
+    source = TableSource(csv_path.name, signals, hold=hold)  # numbers in the inputs' units
+    system.add_component(source)
+    for name in used:
+        system.add_connection(Connection(source.name, name, component.name, name))
 
 
 def _choose(given: float | None, default: Any, fallback: float) -> float:

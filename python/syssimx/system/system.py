@@ -10,6 +10,7 @@ from typing import Any
 import pint
 
 from ..components.base import CoSimComponent
+from ..components.table_source import start_tables
 from ..core.port import PortType
 from ..engine import ffi, lib
 from ..errors import ConfigurationError
@@ -205,6 +206,7 @@ class System:
         plan = self._compile()
         self._plan = plan
         self._push_options(plan)
+        start_tables(self.components, self.connections, plan, t0)
         for component in self.components.values():
             component._start(t0)
         if lib().ssx_initialize(plan.sys, t0) < 0:
