@@ -55,9 +55,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         args.run(args, sys.stdout)
     except Exception as error:  # the command line shows messages, never tracebacks
-        print(f"syssimx: error: {error}", file=sys.stderr)
+        print(f"syssimx: error: {_describe(error, args)}", file=sys.stderr)
         return 1
     return 0
+
+
+def _describe(error: Exception, args: argparse.Namespace) -> str:
+    """The error's message; one that has none still says what failed and on which file."""
+    if str(error).strip():
+        return str(error)
+    subject = f" {args.fmu}" if getattr(args, "fmu", None) else ""
+    return f"{type(error).__name__} (with no message) in 'syssimx {args.command}{subject}'"
 
 
 def _parser() -> argparse.ArgumentParser:
