@@ -268,6 +268,11 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
         out.write(f"wrote the plot to {args.plot}\n")
     for record in getattr(result, "events", None) or []:
         out.write(f"event {record.component}.{record.name} at t = {record.t!r}\n")
+    termination = result.termination
+    if termination is not None:  # a component asked to stop: the end of the run, not a failure
+        reason = f": {termination.message}" if termination.message else ""
+        out.write(f"{termination.component} terminated the run at t = {termination.time!r}"
+                  f"{reason}\n")
     if args.output is None:
         for name, series in columns.items():
             out.write(f"{name} = {series[-1]:.12g} at t = {t[-1]:.12g}\n")

@@ -112,7 +112,8 @@ def test_system_equals_fmpy_and_the_reference_result(model: str):
 
 
 @pytest.mark.parametrize("model", MODELS)
-def test_cli_equals_fmpy_with_the_default_experiment(model: str, tmp_path: Path):
+def test_cli_equals_fmpy_with_the_default_experiment(model: str, tmp_path: Path,
+                                                     capsys: pytest.CaptureFixture[str]):
     """No start, stop or step given: both take FMPy's defaults from the default experiment
     (VanDerPol's 0.01 doubles to 0.02 for 1000 steps; Resource has no step: 2e-3 from the
     length). Feedthrough gets its input table: the Int32_input column drives the FMU, the
@@ -125,6 +126,11 @@ def test_cli_equals_fmpy_with_the_default_experiment(model: str, tmp_path: Path)
     ours = run_cli(model, tmp_path, *options)
     theirs = simulate_fmu(fmu(model), input=signals, output=outputs(model))
     assert_same(ours, theirs, outputs(model), RTOL_FMPY)
+    # Stair asks to stop at 9 s (fmi2Discard with fmi2Terminated): one line says so, exit 0
+    terminated = [line for line in capsys.readouterr().out.splitlines()
+                  if " terminated the run at t = " in line]
+    assert [line.split(":")[0] for line in terminated] == (
+        [f"Stair terminated the run at t = {theirs['time'][-1]!r}"] if model == "Stair" else [])
 
 
 def feedthrough_signals() -> np.ndarray:
