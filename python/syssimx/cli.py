@@ -15,8 +15,11 @@ from __future__ import annotations
 
 import argparse
 import csv
+import itertools
+import math
 import sys
 from collections.abc import Sequence
+from math import isclose
 from pathlib import Path
 from typing import Any, TextIO
 
@@ -246,12 +249,16 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
                                       direction=direction)
     system = System(name=f"syssimx simulate {path.name}")
     system.add_component(component)
+    events: list[float] = []
     if args.input is not None:
-        _connect_input(system, component, args.input)
+        source = _connect_input(system, component, args.input)
         # FMPy sets the inputs at the start of each step: the Jacobi coupling's timing
         system.set_algorithm(JacobiAlgorithm())
+        if source is not None and md.coSimulation.canHandleVariableCommunicationStepSize:
+            events = source.event_times().tolist()
     system.initialize(t0)
-    result = system.run(t0, tf, dt)
+    result = _run(system, _communication_points(t0, tf, dt, events), dt) if events \
+        else system.run(t0, tf, dt)
 
     t, values = result[component.name]
     columns = {name: values[name] for name, spec in component.output_specs.items()
@@ -299,7 +306,43 @@ def _experiment(args: argparse.Namespace, experiment: Any) -> tuple[float, float
     return t0, tf, dt
 
 
-def _connect_input(system: Any, component: Any, csv_path: Path) -> None:
+def _communication_points(t0: float, tf: float, dt: float, events: Any) -> list[float]:
+    """FMPy's steps for an FMU that can vary its step: the grid t0 + k*dt plus every input
+    event between grid points (one within 1e-9 relative of a grid point is that point)."""
+    points, regular_steps, t = [t0], 0, t0
+    while not (t > tf or isclose(t, tf)):
+        regular = t0 + (regular_steps + 1) * dt
+        upcoming = next((e for e in events if e > t and not isclose(e, t)), math.inf)
+        step_end = upcoming if regular > upcoming and not isclose(regular, upcoming) \
+            else regular
+        t = tf if step_end > tf and not isclose(step_end, tf) else step_end
+        points.append(t)
+        regular_steps += isclose(t, regular)
+    return points
+
+
+def _run(system: Any, points: list[float], dt: float) -> Any:
+    """Runs through the communication points: stretches of regular steps of dt in one run each,
+    every step off that grid (to or from an input event, to the stop time) in a run of its own;
+    stops when a component terminates."""
+    start, result = points[0], None
+    for previous, point in itertools.pairwise(points):
+        if isclose(point - previous, dt):
+            continue
+        if previous > start:
+            result = system.run(start, previous, dt)
+            if result.termination is not None:
+                return result
+        result = system.run(previous, point, point - previous)
+        if result.termination is not None:
+            return result
+        start = point
+    if points[-1] > start:
+        result = system.run(start, points[-1], dt)
+    return result
+
+
+def _connect_input(system: Any, component: Any, csv_path: Path) -> Any:
     """A table source from the CSV file, its columns connected to the inputs of the same name;
     each column is read as the input's type, held where FMPy holds it (non-continuous)."""
     from . import Connection, TableSource
@@ -314,7 +357,7 @@ def _connect_input(system: Any, component: Any, csv_path: Path) -> None:
               f"{'names' if len(ignored) == 1 else 'name'} no input of {component.name}; "
               "ignored", file=sys.stderr)
     if not used:
-        return
+        return None
     columns = [("time", np.float64), *((n, _TABLE_DTYPES[inputs[n].type]) for n in used)]
     signals = np.empty(len(table.time), dtype=columns)
     signals["time"] = table.time
@@ -330,6 +373,7 @@ def _connect_input(system: Any, component: Any, csv_path: Path) -> None:
     system.add_component(source)
     for name in used:
         system.add_connection(Connection(source.name, name, component.name, name))
+    return source
 
 
 def _choose(given: float | None, default: Any, fallback: float) -> float:

@@ -72,3 +72,21 @@ def test_times_going_back_are_named(tmp_path: Path, capsys: pytest.CaptureFixtur
     assert capsys.readouterr().err == (
         "syssimx: error: signals.csv: table 'signals.csv': the time goes back from 2 to 1 in "
         "row 2; times must not decrease\n")
+
+
+def test_a_jump_between_grid_points_is_a_communication_point_as_in_fmpy(tmp_path: Path):
+    """The pendulum can vary its step, so FMPy steps to the jump at 0.405 and on to 0.41; so
+    does syssimx, and the results agree (one sample more than the grid)."""
+    signals, out = tmp_path / "signals.csv", tmp_path / "out.csv"
+    signals.write_text("time,torque\n0,0\n0.405,2\n0.405,-1\n1,3\n")
+    argv = ["simulate", "pendulum_euler", "--input", str(signals), "--stop-time", "1.5",
+            "--step-size", "0.01", "--output", str(out)]
+    assert main(argv) == 0
+    ours = read_columns(out)
+    theirs = simulate_fmu(fmus.path("pendulum_euler"), stop_time=1.5, output_interval=0.01,
+                          input=read_csv(signals), output=["theta", "omega", "alpha"])
+    assert len(ours["time"]) == len(theirs) == 152
+    assert ours["time"][40:43].tolist() == pytest.approx([0.4, 0.405, 0.41], rel=1e-15)
+    for column in ours:
+        # the grid after the jump is computed from its segment's start: times agree to 1e-15
+        np.testing.assert_allclose(ours[column], theirs[column], rtol=1e-12, atol=1e-15)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import sys
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pandas as pd
@@ -86,6 +87,19 @@ def test_a_held_real_column_steps_at_the_rows():
                                     True)[0][0]) for t in np.arange(13) * 0.25]
     assert values["u"].tolist() == held
     assert values["k"].tolist() == expected
+
+
+def test_event_times_are_fmpys_input_events():
+    """Repeated stamps and the rows where a held column changes: FMPy's findEvents for inputs
+    whose variability is discrete (k, b, and u when held)."""
+    for hold, discrete in (((), ("k", "b")), (("u",), ("u", "k", "b"))):
+        description = SimpleNamespace(modelVariables=[
+            SimpleNamespace(name=name, variability="discrete" if name in discrete
+                            else "continuous") for name in ("u", "k", "b")])
+        theirs = Input.findEvents(SIGNALS, description)
+        ours = TableSource("src", SIGNALS, hold=hold).event_times()
+        assert ours.tolist() == theirs[np.isfinite(theirs)].tolist()
+    assert TableSource("src", SIGNALS).event_times().tolist() == [1.0, 2.5, 3.0]
 
 
 def test_dataframe_and_fmpy_csv_give_the_same_outputs(tmp_path: Path):

@@ -9,6 +9,12 @@ Values follow FMPy's input signals exactly: the first row before the table, the 
 it; real columns interpolate linearly, integer and boolean columns (and real columns named in
 `hold`) hold the row on the left; at a repeated time stamp (a jump) the value on the right once
 the run has started. No Python runs per step.
+
+Timing: a component stepping from t reads the table at t under the Jacobi coupling (FMPy's
+simulate_fmu sets its inputs so), and under Gauss-Seidel when it runs before the table; under
+Gauss-Seidel after the table (the table feeds it without delay) it reads the table at t + dt.
+FMPy also steps to each jump between its grid points (`event_times()`), as
+`syssimx simulate --input` does; a System keeps its grid.
 """
 
 from __future__ import annotations
@@ -69,6 +75,16 @@ class TableSource(CoSimComponent):
     def column_values(self, name: str) -> np.ndarray:
         """The values of an output's column, one per table row (float64)."""
         return self.table.columns[name][1]
+
+    def event_times(self) -> np.ndarray:
+        """Where the signals jump (FMPy's input events): every repeated time stamp, and each
+        row at which a held column (integer, boolean or named in `hold`) changes value."""
+        t = self.table.time
+        times = set(t[:-1][np.diff(t) == 0].tolist())
+        for name, (kind, values) in self.table.columns.items():
+            if kind != PortType.REAL or name in self.hold:
+                times.update(t[1:][np.diff(values) != 0].tolist())
+        return np.array(sorted(times), dtype=np.float64)
 
     def can_rollback(self) -> bool:
         return True  # no state: the engine restores the outputs of every component
