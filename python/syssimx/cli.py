@@ -19,15 +19,17 @@ import itertools
 import math
 import sys
 from collections.abc import Sequence
-from math import isclose
 from pathlib import Path
-from typing import Any, TextIO
+from typing import TYPE_CHECKING, Any, TextIO
 
 import numpy as np
 
 from . import __version__, fmus
 from .core.port import PortType
 from .graph.analysis import feedthrough_from_model_description
+
+if TYPE_CHECKING:
+    from .components.table_source import TableSource
 
 DIRECTIONS = {"-1": -1, "falling": -1, "0": 0, "both": 0, "1": 1, "+1": 1, "rising": 1}
 CAPABILITIES = (
@@ -310,14 +312,14 @@ def _communication_points(t0: float, tf: float, dt: float, events: Any) -> list[
     """FMPy's steps for an FMU that can vary its step: the grid t0 + k*dt plus every input
     event between grid points (one within 1e-9 relative of a grid point is that point)."""
     points, regular_steps, t = [t0], 0, t0
-    while not (t > tf or isclose(t, tf)):
+    while not (t > tf or math.isclose(t, tf)):
         regular = t0 + (regular_steps + 1) * dt
-        upcoming = next((e for e in events if e > t and not isclose(e, t)), math.inf)
-        step_end = upcoming if regular > upcoming and not isclose(regular, upcoming) \
+        upcoming = next((e for e in events if e > t and not math.isclose(e, t)), math.inf)
+        step_end = upcoming if regular > upcoming and not math.isclose(regular, upcoming) \
             else regular
-        t = tf if step_end > tf and not isclose(step_end, tf) else step_end
+        t = tf if step_end > tf and not math.isclose(step_end, tf) else step_end
         points.append(t)
-        regular_steps += isclose(t, regular)
+        regular_steps += math.isclose(t, regular)
     return points
 
 
@@ -327,7 +329,7 @@ def _run(system: Any, points: list[float], dt: float) -> Any:
     stops when a component terminates."""
     start, result = points[0], None
     for previous, point in itertools.pairwise(points):
-        if isclose(point - previous, dt):
+        if math.isclose(point - previous, dt):
             continue
         if previous > start:
             result = system.run(start, previous, dt)
@@ -342,7 +344,7 @@ def _run(system: Any, points: list[float], dt: float) -> Any:
     return result
 
 
-def _connect_input(system: Any, component: Any, csv_path: Path) -> Any:
+def _connect_input(system: Any, component: Any, csv_path: Path) -> TableSource | None:
     """A table source from the CSV file, its columns connected to the inputs of the same name;
     each column is read as the input's type, held where FMPy holds it (non-continuous)."""
     from . import Connection, TableSource
@@ -362,11 +364,12 @@ def _connect_input(system: Any, component: Any, csv_path: Path) -> Any:
     signals = np.empty(len(table.time), dtype=columns)
     signals["time"] = table.time
     for name in used:
-        values = table.columns[name][1]
-        kind = inputs[name].type
-        # FMPy casts a column to the C type of its input: integers truncate
-        signals[name] = values if kind == PortType.REAL else values.astype(np.int32) \
-            if kind == PortType.INT else values.astype(np.int32) != 0
+        values, kind = table.columns[name][1], inputs[name].type
+        if kind == PortType.REAL:
+            signals[name] = values
+        else:  # FMPy casts the column to the input's C int (truncating); a boolean is non-zero
+            truncated = values.astype(np.int32)
+            signals[name] = truncated if kind == PortType.INT else truncated != 0
     hold = [n for n in used if inputs[n].type == PortType.REAL
             and component.info.variables[n].variability in ("discrete", "tunable")]
     source = TableSource(csv_path.name, signals, hold=hold)  # numbers in the inputs' units

@@ -25,20 +25,18 @@ from syssimx import Connection, FMUComponent, JacobiAlgorithm, System, TableSour
 from syssimx.cli import main
 
 
-def _reference_folder() -> Path | None:
+def _reference_root() -> Path:
     given = os.environ.get("SYSSIMX_REFERENCE_FMUS")
-    root = Path(given) if given else Path(__file__).resolve().parents[2] / ".." / "shared" \
-        / "reference-fmus"
-    folder = root / "fmi2"
-    return folder if folder.is_dir() else None
+    if given:
+        return Path(given)
+    return Path(__file__).resolve().parents[2].parent / "shared" / "reference-fmus"
 
 
-FOLDER = _reference_folder()
-if FOLDER is None:
-    pytest.skip("the Reference FMUs are absent: set SYSSIMX_REFERENCE_FMUS to the folder holding "
-                "fmi2/ (or place it at <repository>/../shared/reference-fmus)",
-                allow_module_level=True)
-assert FOLDER is not None
+FOLDER = _reference_root() / "fmi2"
+if not FOLDER.is_dir():
+    pytest.skip(f"the Reference FMUs are absent (no folder {FOLDER}): set SYSSIMX_REFERENCE_FMUS "
+                "to the folder holding fmi2/, or place it at <repository>/../shared/"
+                "reference-fmus", allow_module_level=True)
 
 MODELS = ["BouncingBall", "Dahlquist", "Feedthrough", "Resource", "Stair", "VanDerPol"]
 RTOL_FMPY = 1e-9

@@ -1,9 +1,8 @@
 """TableSource: input signals from a time table, one output port per column, evaluated in C.
 
-    u = TableSource("u", "Feedthrough_in.csv")          # or a structured array, a DataFrame
+    u = TableSource("u", "signals.csv")       # or a structured array, a DataFrame
     system.add_component(u)
-    system.add_connection(Connection("u", "Float64_continuous_input", "F",
-                                     "Float64_continuous_input"))
+    system.add_connection(Connection("u", "torque", "P", "torque"))
 
 Values follow FMPy's input signals exactly: the first row before the table, the last row after
 it; real columns interpolate linearly, integer and boolean columns (and real columns named in
@@ -99,6 +98,7 @@ def start_tables(components: Mapping[str, CoSimComponent], connections: Sequence
     """Before any component initializes: each table's outputs at t0, and every input a table
     drives starting at that value, so an FMU has it before it leaves initialization mode (as
     FMPy sets its inputs)."""
+    from ..system.plan import _typed  # an engine double as the port's type
     from ..units import conversion
 
     starts = {name: plan.start_table(table, t0) for name, table in components.items()
@@ -110,7 +110,4 @@ def start_tables(components: Mapping[str, CoSimComponent], connections: Sequence
         source, target = components[connection.src_comp], components[connection.dst_comp]
         spec = target.input_specs[connection.dst_port]
         scale, offset = conversion(source.output_specs[connection.src_port].unit, spec.unit)
-        converted = scale * value + offset
-        target.set_inputs({connection.dst_port: converted if spec.type == PortType.REAL
-                           else bool(converted) if spec.type == PortType.BOOL
-                           else round(converted)})
+        target.set_inputs({connection.dst_port: _typed(spec.type, scale * value + offset)})
