@@ -18,7 +18,8 @@ static int check_components(ssx_system *sys)
     int hybrid = system_is_hybrid(sys);
     for (int i = 0; i < sys->n_components; ++i) {
         ssx_component *c = sys->components[i];
-        if (c->fmu == NULL && (c->hooks.do_step == NULL || c->hooks.evaluate_outputs == NULL)) {
+        if (c->ops == &ssx_python_component_ops &&
+            (c->hooks.do_step == NULL || c->hooks.evaluate_outputs == NULL)) {
             return fail(sys, i, -1, sys->time,
                         "Python component '%s' needs do_step and evaluate_outputs hooks",
                         c->name);

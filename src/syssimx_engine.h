@@ -294,4 +294,21 @@ ssx_fmu *ssx_fmu_load_isolated(const char *host_path, double step_timeout,
                                const char *instance_name, int logging_on, char *error,
                                size_t error_size);
 
+/* ------------------------------------------------------------------------------------------
+ * Table sources: a component whose outputs are the columns of a time table, evaluated in C
+ * with the rules of FMPy's input signals (first row before the table, last row after it,
+ * linear interpolation for real columns unless held, hold of the row on the left for integer,
+ * boolean and held columns, the value on the right of a repeated time stamp once the run has
+ * started). A table has no state, so it rolls back with any system.
+ * ------------------------------------------------------------------------------------------ */
+/* time: n_rows non-decreasing finite times (copied). Returns the component's index. */
+int ssx_add_table_component(ssx_system *sys, const char *name, const double *time, size_t n_rows);
+/* One output per column, in order: values holds n_rows finite numbers (copied). hold != 0
+ * holds a real column between rows. Returns the output's index. */
+int ssx_add_table_column(ssx_system *sys, int component, ssx_value_type type, int hold,
+                         const double *values);
+/* The table's value of every column at t into values (one per output); after_event != 0 takes
+ * the value on the right of a jump at t. Changes nothing. */
+int ssx_table_values(ssx_system *sys, int component, double t, int after_event, double *values);
+
 #endif

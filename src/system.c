@@ -87,7 +87,7 @@ static void structure_changed(ssx_system *sys)
     sys->initialized = 0;
 }
 
-static int add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
+int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
                          const ssx_component_ops *ops)
 {
     if (name == NULL || name[0] == '\0') {
@@ -126,12 +126,12 @@ int ssx_add_fmu_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int c
     if (fmu == NULL) {
         return fail(sys, -1, -1, NAN, "component '%s': no FMU given", name ? name : "?");
     }
-    return add_component(sys, name, fmu, can_get_set_state, &ssx_fmu_component_ops);
+    return system_add_component(sys, name, fmu, can_get_set_state, &ssx_fmu_component_ops);
 }
 
 int ssx_add_python_component(ssx_system *sys, const char *name, int can_snapshot)
 {
-    return add_component(sys, name, NULL, can_snapshot, &ssx_python_component_ops);
+    return system_add_component(sys, name, NULL, can_snapshot, &ssx_python_component_ops);
 }
 
 int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks)

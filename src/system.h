@@ -108,6 +108,9 @@ struct ssx_system {
 };
 
 ssx_component *system_component(ssx_system *sys, int index); /* NULL with the error set */
+/* Appends a component of the given kind; returns its index, or -1 with the error set. */
+int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
+                         const ssx_component_ops *ops);
 int system_is_hybrid(const ssx_system *sys);
 /* Appends one sample (t, micro) of every component's outputs and calls the record hooks. */
 int system_record(ssx_system *sys, double t, int micro);

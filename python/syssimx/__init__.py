@@ -6,7 +6,7 @@ indicators and event connections, then initialize and run. The SysSimX API is ke
 
 import logging
 
-from .components import CoSimComponent, FMUComponent
+from .components import CoSimComponent, FMUComponent, TableSource
 from .core import DenseTime, Port, PortSpec, PortType
 from .errors import (
     AlgebraicLoopError,
@@ -52,6 +52,7 @@ __all__ = [
     "SimulationTimeoutError",
     "SysSimXError",
     "System",
+    "TableSource",
     "Termination",
     "ZenoError",
     "__version__",

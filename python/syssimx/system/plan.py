@@ -19,6 +19,7 @@ import numpy as np
 
 from ..components.base import Binding, CoSimComponent, _overrides
 from ..components.fmu import FMUComponent
+from ..components.table_source import TableSource
 from ..core.port import PortType
 from ..engine import ffi, lib
 from ..errors import ConfigurationError, SimulationTimeoutError
@@ -125,6 +126,9 @@ class EnginePlan:
 
     def _add_component(self, name: str, component: CoSimComponent) -> None:
         index = self.index[name]
+        if isinstance(component, TableSource):
+            self._add_table(name, index, component)
+            return
         if isinstance(component, FMUComponent):
             self.check(lib().ssx_add_fmu_component(self.sys, name.encode(), component._fmu,
                                                    int(component.can_get_set_state)), name)
@@ -149,6 +153,28 @@ class EnginePlan:
         hooks = _HookBuilder(self, component).build()
         if hooks is not None:  # the engine copies the struct; the callbacks are kept above
             self.check(lib().ssx_set_hooks(self.sys, index, hooks), f"{name}: hooks")
+
+    def _add_table(self, name: str, index: int, table: TableSource) -> None:
+        """A table source is evaluated in C: its table is copied into the engine, no hooks."""
+        time = np.ascontiguousarray(table.table.time, dtype=np.float64)
+        self.check(lib().ssx_add_table_component(self.sys, name.encode(),
+                                                 ffi.from_buffer("double[]", time), len(time)),
+                   name)
+        for port in self.outputs[name]:
+            values = np.ascontiguousarray(table.column_values(port), dtype=np.float64)
+            self.check(lib().ssx_add_table_column(
+                self.sys, index, _ENGINE_TYPE[table.output_specs[port].type],
+                int(port in table.hold), ffi.from_buffer("double[]", values)), f"{name}.{port}")
+        table._binding = Binding(self, index)
+
+    def start_table(self, table: TableSource, t0: float) -> dict[str, float]:
+        """The table's outputs at t0 (the value on the left of a jump), written before any
+        component initializes, so every component, whatever its place in the schedule, starts
+        from them; returned by output name."""
+        index = self.index[table.name]
+        outputs = lib().ssx_outputs(self.sys, index)
+        self.check(lib().ssx_table_values(self.sys, index, t0, 0, outputs), table.name)
+        return {name: float(outputs[i]) for i, name in enumerate(self.outputs[table.name])}
 
     def connect(self, src: str, src_port: str, dst: str, dst_port: str, scale: float,
                 offset: float) -> None:

@@ -12,6 +12,7 @@ from typing import Any
 import pint
 
 from ..components.base import CoSimComponent
+from ..components.table_source import start_tables
 from ..core.port import PortType
 from ..engine import ffi, lib
 from ..errors import ConfigurationError
@@ -215,6 +216,7 @@ class System:
             plan.check(lib().ssx_set_allow_non_finite(plan.sys, int(bool(allow_non_finite))),
                        "allow_non_finite")
         self.termination = None
+        start_tables(self.components, self.connections, plan, t0)
         for component in self.components.values():
             component._start(t0, tolerance)
         if lib().ssx_initialize(plan.sys, t0) < 0:
