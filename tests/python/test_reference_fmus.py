@@ -127,8 +127,9 @@ def test_cli_equals_fmpy_with_the_default_experiment(model: str, tmp_path: Path,
     # Stair asks to stop at 9 s (fmi2Discard with fmi2Terminated): one line says so, exit 0
     terminated = [line for line in capsys.readouterr().out.splitlines()
                   if " terminated the run at t = " in line]
+    end = float(theirs["time"][-1])
     assert [line.split(":")[0] for line in terminated] == (
-        [f"Stair terminated the run at t = {float(theirs['time'][-1])!r}"] if model == "Stair" else [])
+        [f"Stair terminated the run at t = {end!r}"] if model == "Stair" else [])
 
 
 def feedthrough_signals() -> np.ndarray:
