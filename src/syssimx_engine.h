@@ -20,7 +20,9 @@
 
 typedef enum { SSX_REAL = 0, SSX_INTEGER = 1, SSX_BOOLEAN = 2 } ssx_value_type;
 typedef enum { SSX_GAUSS_SEIDEL = 0, SSX_JACOBI = 1 } ssx_coupling;
-typedef enum { SSX_ILLINOIS = 0, SSX_BISECTION = 1 } ssx_locator;
+/* Event localization. SSX_ILLINOIS: Illinois (modified regula falsi) held within two trials of
+ * bisection's count; SSX_BISECTION; SSX_ILLINOIS_UNGUARDED: Illinois alone, for comparison. */
+typedef enum { SSX_ILLINOIS = 0, SSX_BISECTION = 1, SSX_ILLINOIS_UNGUARDED = 2 } ssx_locator;
 typedef enum { SSX_JACOBIAN_AUTO = 0, SSX_JACOBIAN_FINITE_DIFFERENCES = 1 } ssx_loop_jacobian;
 
 /* ------------------------------------------------------------------------------------------
@@ -226,8 +228,10 @@ int ssx_set_directional_derivatives(ssx_system *sys, int component, int provided
  * hook) come from fmi2GetDirectionalDerivative, the others from finite differences.
  * SSX_JACOBIAN_FINITE_DIFFERENCES: every column from finite differences. */
 int ssx_set_loop_jacobian(ssx_system *sys, ssx_loop_jacobian jacobian);
-/* Hybrid mode is active whenever an indicator exists. zeno_min_interval <= 0 means ten times
- * tol_time. */
+/* Hybrid mode is active whenever an indicator exists. Two firings of one indicator closer than
+ * zeno_min_interval are chattering (a Zeno error). zeno_min_interval <= 0: closer than ten times
+ * tol_time, or closer than a tenth of the communication step once the intervals stop shrinking
+ * (each at most 0.9 times the one before goes on: the way to an accumulation point). */
 int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, int max_iterations,
                            int max_microsteps, int record_internal_steps, ssx_locator locator,
                            double zeno_min_interval);

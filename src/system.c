@@ -10,6 +10,7 @@
 
 #include "array.h"
 #include "error.h"
+#include "hybrid.h"
 
 ssx_system *ssx_system_new(const char *name)
 {
@@ -500,11 +501,12 @@ int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, i
 {
     if (!(tol_time > 0.0) || !isfinite(tol_time) || !(tol_value >= 0.0) || !isfinite(tol_value) ||
         max_iterations < 1 || max_microsteps < 1 || !isfinite(zeno_min_interval) ||
-        (locator != SSX_ILLINOIS && locator != SSX_BISECTION)) {
+        !hybrid_locator_known((int)locator)) {
         return fail(sys, -1, -1, NAN,
                     "hybrid options: need tol_time > 0, tol_value >= 0, max_iterations >= 1, "
-                    "max_microsteps >= 1, a finite zeno_min_interval and locator 0 (Illinois) or "
-                    "1 (bisection)");
+                    "max_microsteps >= 1, a finite zeno_min_interval and a known locator (an "
+                    "ssx_locator), got locator %d",
+                    (int)locator);
     }
     sys->hybrid = (ssx_hybrid_options){.tol_time = tol_time,
                                        .tol_value = tol_value,

@@ -25,12 +25,16 @@ typedef struct {
     int direction;
     double value;
     int sign;   /* side the indicator is on: -1 or +1; 0 while unknown (started at zero) */
+    int on_zero; /* reached exactly zero in its last crossing and stays there: no new crossing
+                    until it leaves zero, whichever side it leaves to */
     int fired_before;
     double last_event_time;
+    double last_interval; /* between its last two events (infinite after the first) */
     long fire_count;
     /* localization workspace */
     double z_left, z_right;  /* values at the bracket ends */
     double w_left, w_right;  /* Illinois-weighted values at the bracket ends */
+    double z_replaced;       /* value at the end the last trial replaced */
     int crossing;            /* crosses (in its direction) at the current right end */
 } ssx_indicator;
 

@@ -20,7 +20,7 @@ from ..graph.analysis import analyze
 from ..units import conversion
 from .algorithms import Algorithm, GaussSeidelAlgorithm, HybridAlgorithm, JacobiAlgorithm
 from .algorithms.coupling import LOOP_JACOBIANS
-from .algorithms.hybrid import log_events
+from .algorithms.hybrid import locator_methods, log_events
 from .connection import Connection, EventConnection
 from .failure import raise_failure
 from .plan import EnginePlan
@@ -197,7 +197,7 @@ class System:
             plan.check(lib().ssx_set_hybrid_options(
                 plan.sys, algorithm.tol_time, algorithm.tol_value, algorithm.max_iter,
                 algorithm.max_microsteps, int(algorithm.record_internal_steps),
-                0 if algorithm.method == "illinois" else 1, algorithm.zeno_min_interval),
+                locator_methods()[algorithm.method], algorithm.zeno_min_interval),
                 "hybrid options")
 
     # ------------------------------------------------------------------ running
