@@ -131,7 +131,12 @@ static void write_variable(FILE *out, const model_variable *v, size_t vr)
     if (v->derivative_of >= 0)
         fprintf(out, " derivative=\"%d\"", v->derivative_of + 1);
     int has_start = v->initial == INITIAL_EXACT || v->causality == CAUSALITY_INPUT;
-    if (has_start) {
+    if (has_start && v->declared_start != NULL) {
+        fputs(" start=\"", out);
+        write_escaped(out, v->declared_start);
+        fputc('"', out);
+    }
+    else if (has_start) {
         if (v->type == TYPE_REAL) {
             fputs(" start=\"", out);
             write_real(out, v->start);

@@ -47,6 +47,9 @@ typedef struct {
      * and the parameters and inputs it depends on at initialization. */
     const int *depends;
     const int *initial_depends;
+    /* NULL: modelDescription.xml declares `start` exactly. Otherwise the text it declares
+     * instead, for test models that mimic exporters printing starts rounded (e.g. "%f"). */
+    const char *declared_start;
 } model_variable;
 
 /* A fixed Real parameter with initial="exact", the most common row. */

@@ -125,6 +125,9 @@ int component_check_outputs(ssx_system *sys, const ssx_component *c, double t)
 int component_can_roll_back(const ssx_component *c)
 {
     int has_pair = c->hooks.snapshot != NULL && c->hooks.restore != NULL;
+    if (c->ops == &ssx_table_component_ops) {
+        return 1; /* a function of time: restoring its outputs restores it */
+    }
     if (c->fmu == NULL) {
         return c->can_snapshot && has_pair;
     }
@@ -221,11 +224,10 @@ void component_free(ssx_component *c)
     if (c == NULL) {
         return;
     }
-    /* FMU states stay with their (borrowed) instance, which releases them when it is freed. */
-    if (c->fmu == NULL && c->hooks.free_snapshot != NULL) {
-        for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
-            c->hooks.free_snapshot(c->hooks.user, slot);
-        }
+    /* FMU states stay with their (borrowed) instance, which releases them when it is freed;
+     * Python snapshots go with the Python objects that hold them. */
+    if (c->ops->release != NULL) {
+        c->ops->release(c);
     }
     free_prepared(c);
     free(c->name);

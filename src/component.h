@@ -18,6 +18,7 @@ typedef struct {
     int (*evaluate_outputs)(ssx_system *sys, ssx_component *c, double t);
     int (*snapshot)(ssx_system *sys, ssx_component *c, int slot);
     int (*restore)(ssx_system *sys, ssx_component *c, int slot, double t);
+    void (*release)(ssx_component *c); /* frees c->data; NULL when the kind keeps none */
 } ssx_component_ops;
 
 /* Ports of one value type, batched for a single fmi2Get/Set call. */
@@ -38,6 +39,7 @@ struct ssx_component {
     const ssx_component_ops *ops;
     ssx_hooks hooks;
     ssx_fmu *fmu; /* borrowed; NULL for a Python component */
+    void *data;   /* the kind's own data (a table source's table), freed by ops->release */
     int can_snapshot;
     int provides_directional_derivatives; /* FMU components only */
 
@@ -68,7 +70,11 @@ struct ssx_component {
 };
 
 extern const ssx_component_ops ssx_fmu_component_ops;
+
+/* Unconnected inputs whose start is NaN take the value the initialized FMU holds. */
+int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0);
 extern const ssx_component_ops ssx_python_component_ops;
+extern const ssx_component_ops ssx_table_component_ops;
 
 /* Dispatch: a Python hook if set, else the built-in. Each returns 0 or -1 with the error set. */
 int component_do_step(ssx_system *sys, ssx_component *c, double t, double dt);

@@ -12,6 +12,8 @@
 
 #include "array.h"
 #include "fmi2Functions.h"
+#include "fmu_message.h"
+#include "fmu_remote.h"
 
 typedef struct {
     fmi2InstantiateTYPE *instantiate;
@@ -42,6 +44,7 @@ typedef struct {
 
 struct ssx_fmu {
     void *library;
+    ssx_remote *remote; /* an isolated FMU's host process; NULL when the binary runs here */
     fmi2_table fn;
     char *model_identifier;
     char *guid;
@@ -88,7 +91,7 @@ static void logger(fmi2ComponentEnvironment environment, fmi2String instance_nam
     }
     va_list args;
     va_start(args, message);
-    vsnprintf(fmu->last_message, sizeof fmu->last_message, message, args);
+    ssx_format_fmu_message(fmu->last_message, sizeof fmu->last_message, message, args);
     va_end(args);
 }
 
@@ -114,34 +117,57 @@ static void *resolve(void *library, const char *model_identifier, const char *na
     return symbol;
 }
 
-/* dlsym returns void *; C11 has no direct cast to a function pointer, hence the memcpy. */
+/* dlsym returns void *; C11 has no direct cast to a function pointer, hence the memcpy. An
+ * isolated FMU's functions forward each call to its host process. */
 #define RESOLVE(field, name) do { \
-        void *symbol_ = resolve(library, model_identifier, name); \
+        void *symbol_ = remote != NULL ? ssx_remote_function(remote, name) \
+                                       : resolve(library, model_identifier, name); \
         memcpy(&fmu->fn.field, &symbol_, sizeof symbol_); \
     } while (0)
 
-ssx_fmu *ssx_fmu_load(const char *binary_path, const char *model_identifier, const char *guid,
-                      const char *resource_uri, const char *instance_name, int logging_on,
-                      char *error, size_t error_size)
+static void unload(void *library, ssx_remote *remote)
+{
+    if (remote != NULL) {
+        ssx_remote_stop(remote);
+    } else {
+        dlclose(library);
+    }
+}
+
+/* host_path NULL: dlopen the binary into this process; otherwise run it in a host process. */
+static ssx_fmu *load(const char *host_path, double step_timeout, const char *binary_path,
+                     const char *model_identifier, const char *guid, const char *resource_uri,
+                     const char *instance_name, int logging_on, char *error, size_t error_size)
 {
     if (binary_path == NULL || model_identifier == NULL) {
         snprintf(error, error_size, "ssx_fmu_load: binary path and model identifier are required");
         return NULL;
     }
-    void *library = dlopen(binary_path, RTLD_NOW | RTLD_LOCAL);
-    if (library == NULL) {
-        const char *reason = dlerror();
-        snprintf(error, error_size, "cannot load the FMU binary %s: %s", binary_path,
-                 reason != NULL ? reason : "unknown dlopen failure");
-        return NULL;
+    void *library = NULL;
+    ssx_remote *remote = NULL;
+    if (host_path != NULL) {
+        remote = ssx_remote_start(host_path, binary_path, model_identifier, step_timeout, error,
+                                  error_size);
+        if (remote == NULL) {
+            return NULL;
+        }
+    } else {
+        library = dlopen(binary_path, RTLD_NOW | RTLD_LOCAL);
+        if (library == NULL) {
+            const char *reason = dlerror();
+            snprintf(error, error_size, "cannot load the FMU binary %s: %s", binary_path,
+                     reason != NULL ? reason : "unknown dlopen failure");
+            return NULL;
+        }
     }
     ssx_fmu *fmu = calloc(1, sizeof *fmu);
     if (fmu == NULL) {
-        dlclose(library);
+        unload(library, remote);
         snprintf(error, error_size, "out of memory loading %s", binary_path);
         return NULL;
     }
     fmu->library = library;
+    fmu->remote = remote;
     RESOLVE(instantiate, "fmi2Instantiate");
     RESOLVE(free_instance, "fmi2FreeInstance");
     RESOLVE(setup_experiment, "fmi2SetupExperiment");
@@ -190,7 +216,7 @@ ssx_fmu *ssx_fmu_load(const char *binary_path, const char *model_identifier, con
             snprintf(error, error_size,
                      "%s does not export %s: not an FMI 2.0 Co-Simulation binary", binary_path,
                      required[i].name);
-            dlclose(library);
+            unload(library, remote);
             free(fmu);
             return NULL;
         }
@@ -212,6 +238,28 @@ ssx_fmu *ssx_fmu_load(const char *binary_path, const char *model_identifier, con
     fmu->callbacks.stepFinished = NULL;
     fmu->callbacks.componentEnvironment = fmu;
     return fmu;
+}
+
+ssx_fmu *ssx_fmu_load(const char *binary_path, const char *model_identifier, const char *guid,
+                      const char *resource_uri, const char *instance_name, int logging_on,
+                      char *error, size_t error_size)
+{
+    return load(NULL, 0.0, binary_path, model_identifier, guid, resource_uri, instance_name,
+                logging_on, error, error_size);
+}
+
+ssx_fmu *ssx_fmu_load_isolated(const char *host_path, double step_timeout,
+                               const char *binary_path, const char *model_identifier,
+                               const char *guid, const char *resource_uri,
+                               const char *instance_name, int logging_on, char *error,
+                               size_t error_size)
+{
+    if (host_path == NULL) {
+        snprintf(error, error_size, "ssx_fmu_load_isolated: the FMU host's path is required");
+        return NULL;
+    }
+    return load(host_path, step_timeout, binary_path, model_identifier, guid, resource_uri,
+                instance_name, logging_on, error, error_size);
 }
 
 /* Every call on the instance goes through here first. */
@@ -314,9 +362,10 @@ void ssx_fmu_free(ssx_fmu *fmu)
     free(fmu->guid);
     free(fmu->resource_uri);
     free(fmu->instance_name);
-    /* unloading would run the code of a library that declared itself broken */
-    if (fmu->fatal_call == NULL) {
-        dlclose(fmu->library);
+    /* unloading would run the code of a library that declared itself broken; a host process
+     * can always be ended */
+    if (fmu->fatal_call == NULL || fmu->remote != NULL) {
+        unload(fmu->library, fmu->remote);
     }
     free(fmu);
 }
@@ -326,9 +375,14 @@ int ssx_fmu_instantiate(ssx_fmu *fmu)
     if (fmu == NULL) {
         return -1;
     }
-    if (fmu->fatal_call != NULL) {
+    if (fmu->fatal_call != NULL && fmu->remote == NULL) {
         (void)live(fmu, "fmi2Instantiate"); /* says why */
         return -1;
+    }
+    if (fmu->fatal_call != NULL) {
+        /* an isolated FMU starts over in a new host: the broken one is ended, never called */
+        ssx_remote_restart(fmu->remote);
+        fmu->fatal_call = NULL;
     }
     /* a state the old instance fails to free is its leak, not a reason to refuse a new one */
     (void)ssx_fmu_free_instance(fmu);
@@ -650,4 +704,9 @@ long ssx_fmu_values_epoch(const ssx_fmu *fmu)
 const char *ssx_fmu_instance_name(const ssx_fmu *fmu)
 {
     return fmu != NULL ? fmu->instance_name : "";
+}
+
+ssx_remote *ssx_fmu_remote(const ssx_fmu *fmu)
+{
+    return fmu != NULL ? fmu->remote : NULL;
 }

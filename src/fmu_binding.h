@@ -13,5 +13,8 @@ long ssx_fmu_generation(const ssx_fmu *fmu);
 long ssx_fmu_values_epoch(const ssx_fmu *fmu);
 const char *ssx_fmu_instance_name(const ssx_fmu *fmu);
 const char *ssx_fmi2_status_name(int status);
+/* The host process of an isolated FMU, NULL for one loaded into this process. */
+struct ssx_remote;
+struct ssx_remote *ssx_fmu_remote(const ssx_fmu *fmu);
 
 #endif

@@ -213,6 +213,33 @@ static int fmu_restore(ssx_system *sys, ssx_component *c, int slot, double t)
     return 0;
 }
 
+/* An input the user never set keeps the FMU's own value: the declared start may be a rounded
+ * print of it (exporters write 1e-7 as 0.000000), so writing the start could change the model.
+ * Reading the value lets the engine treat the input like any other. */
+int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0)
+{
+    for (int k = 0; k < c->n_inputs; ++k) {
+        if (c->input_driver[k] >= 0 || !isnan(c->input_starts[k])) {
+            continue;
+        }
+        unsigned int vr = c->input_ports[k].vr;
+        ssx_value_type type = c->input_ports[k].type;
+        double real = 0.0;
+        int integer = 0;
+        int status = type == SSX_REAL      ? ssx_fmu_get_real(c->fmu, &vr, 1, &real)
+                     : type == SSX_INTEGER ? ssx_fmu_get_integer(c->fmu, &vr, 1, &integer)
+                                           : ssx_fmu_get_boolean(c->fmu, &vr, 1, &integer);
+        if (!fmi_ok(status)) {
+            return fail_fmi(sys, c, t0, status,
+                            type == SSX_REAL      ? "fmi2GetReal"
+                            : type == SSX_INTEGER ? "fmi2GetInteger"
+                                                  : "fmi2GetBoolean");
+        }
+        c->inputs[k] = type == SSX_REAL ? real : type == SSX_BOOLEAN ? (integer != 0) : integer;
+    }
+    return 0;
+}
+
 const ssx_component_ops ssx_fmu_component_ops = {
     .do_step = fmu_do_step,
     .write_inputs = fmu_write_inputs,

@@ -1,84 +1,241 @@
-/* Growable history buffers. */
+/* Reference-counted history buffers that grow as they are used. */
+#define _GNU_SOURCE /* mremap */
+
 #include "history.h"
 
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
+
+/* Rows of a new history, and the least growth beyond a reservation. */
+enum { INITIAL_ROWS = 256 };
+
+/* Buffers from this size on are pages of their own (mmap): they grow and shrink by mremap,
+ * which copies nothing, and pages beyond the recorded rows are never made resident. malloc
+ * does so too above its mmap threshold, but that threshold moves with the program's frees. */
+#if defined(__linux__)
+static const size_t MAPPED_MIN_BYTES = 1024 * 1024;
+#else
+static const size_t MAPPED_MIN_BYTES = (size_t)-1;
+#endif
+
+static int is_mapped(size_t bytes)
+{
+    return bytes >= MAPPED_MIN_BYTES;
+}
+
+static void buffer_free(ssx_buffer *buffer)
+{
+    if (buffer->data != NULL && is_mapped(buffer->bytes)) {
+        munmap(buffer->data, buffer->bytes);
+    } else {
+        free(buffer->data);
+    }
+    buffer->data = NULL;
+    buffer->bytes = 0;
+}
+
+static void *buffer_allocate(size_t bytes)
+{
+    if (!is_mapped(bytes)) {
+        return malloc(bytes);
+    }
+    void *data = mmap(NULL, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    return data != MAP_FAILED ? data : NULL;
+}
+
+/* Keeps the contents up to the smaller size. Returns 0, or -1 with the buffer unchanged. */
+static int buffer_resize(ssx_buffer *buffer, size_t bytes)
+{
+    void *data;
+    if (buffer->data == NULL) {
+        data = buffer_allocate(bytes);
+    } else if (is_mapped(buffer->bytes) && is_mapped(bytes)) {
+        data = mremap(buffer->data, buffer->bytes, bytes, MREMAP_MAYMOVE);
+        data = data != MAP_FAILED ? data : NULL;
+    } else if (!is_mapped(buffer->bytes) && !is_mapped(bytes)) {
+        data = realloc(buffer->data, bytes);
+    } else { /* crossing the threshold: the other kind of allocation */
+        data = buffer_allocate(bytes);
+        if (data != NULL) {
+            memcpy(data, buffer->data, bytes < buffer->bytes ? bytes : buffer->bytes);
+            buffer_free(buffer);
+        }
+    }
+    if (data == NULL) {
+        return -1;
+    }
+    buffer->data = data;
+    buffer->bytes = bytes;
+    return 0;
+}
+
+static size_t row_bytes(const ssx_history_block *b, int component)
+{
+    return (size_t)b->columns[component] * sizeof(double);
+}
+
+static void block_free(ssx_history_block *b)
+{
+    for (int c = 0; c < b->n_components; ++c) {
+        buffer_free(&b->values[c]);
+    }
+    free(b->values);
+    free(b->columns);
+    buffer_free(&b->time);
+    buffer_free(&b->micro);
+    free(b);
+}
+
+/* Resizes every buffer of the block to `capacity` rows. On failure some buffers have the new
+ * size and the others the old one: the capacity becomes the smaller of the two, which every
+ * buffer holds (each buffer knows its own size for freeing). */
+static int block_resize(ssx_history_block *b, size_t capacity)
+{
+    int status = buffer_resize(&b->time, capacity * sizeof(double));
+    status = status != 0 ? status : buffer_resize(&b->micro, capacity * sizeof(int));
+    for (int c = 0; c < b->n_components && status == 0; ++c) {
+        if (b->columns[c] > 0) {
+            status = buffer_resize(&b->values[c], capacity * row_bytes(b, c));
+        }
+    }
+    if (status == 0 || capacity < b->capacity) {
+        b->capacity = capacity;
+    }
+    return status;
+}
+
+static ssx_history_block *block_new(int n_components, const int *columns, size_t capacity)
+{
+    ssx_history_block *b = calloc(1, sizeof *b);
+    if (b == NULL) {
+        return NULL;
+    }
+    atomic_init(&b->references, 1);
+    b->values = calloc((size_t)n_components + 1, sizeof *b->values);
+    b->columns = calloc((size_t)n_components + 1, sizeof *b->columns);
+    if (b->values == NULL || b->columns == NULL) {
+        block_free(b);
+        return NULL;
+    }
+    b->n_components = n_components;
+    memcpy(b->columns, columns, (size_t)n_components * sizeof *columns);
+    if (block_resize(b, capacity) != 0) {
+        block_free(b);
+        return NULL;
+    }
+    return b;
+}
+
+ssx_history_block *history_block_retain(ssx_history_block *block)
+{
+    atomic_fetch_add(&block->references, 1);
+    return block;
+}
+
+void history_block_release(ssx_history_block *block)
+{
+    if (block != NULL && atomic_fetch_sub(&block->references, 1) == 1) {
+        block_free(block);
+    }
+}
 
 void history_free(ssx_history *h)
 {
-    for (int c = 0; c < h->n_components; ++c) {
-        free(h->values[c]);
-    }
-    free(h->values);
-    free(h->columns);
-    free(h->time);
-    free(h->micro);
-    memset(h, 0, sizeof *h);
+    history_block_release(h->block);
+    h->block = NULL;
+    h->length = 0;
+    h->last_growth = 0;
+    h->copied_for_reader = 0;
 }
 
 int history_start(ssx_history *h, int n_components, const int *columns)
 {
     history_free(h);
-    h->values = calloc((size_t)n_components + 1, sizeof *h->values);
-    h->columns = calloc((size_t)n_components + 1, sizeof *h->columns);
-    if (h->values == NULL || h->columns == NULL) {
-        history_free(h);
+    h->block = block_new(n_components, columns, INITIAL_ROWS);
+    return h->block != NULL ? 0 : -1;
+}
+
+/* Only this history can hold the last reference, and only this thread adds references, so a
+ * count of 1 stays 1 while the block is resized. */
+static int is_shared(ssx_history_block *b)
+{
+    return atomic_load(&b->references) > 1;
+}
+
+/* A reader holds the block: its rows must not move, so the samples go to a new block. */
+static int move_to_new_block(ssx_history *h, size_t capacity)
+{
+    ssx_history_block *old = h->block;
+    ssx_history_block *b = block_new(old->n_components, old->columns, capacity);
+    if (b == NULL) {
         return -1;
     }
-    h->n_components = n_components;
-    memcpy(h->columns, columns, (size_t)n_components * sizeof *columns);
+    memcpy(b->time.data, old->time.data, h->length * sizeof(double));
+    memcpy(b->micro.data, old->micro.data, h->length * sizeof(int));
+    for (int c = 0; c < b->n_components; ++c) {
+        if (b->columns[c] > 0) {
+            memcpy(b->values[c].data, old->values[c].data, h->length * row_bytes(b, c));
+        }
+    }
+    h->block = b;
+    h->copied_for_reader = 1;
+    history_block_release(old);
     return 0;
 }
 
-static int set_capacity(ssx_history *h, size_t capacity)
+/* Room for `needed` rows. A block no reader holds is resized in place. A held one is copied
+ * into a new block of at least twice the rows in use: in a loop of short runs whose last
+ * result is still held, the history is then copied O(log n) times, not once per run. */
+static int make_room(ssx_history *h, size_t needed)
 {
-    double *time = realloc(h->time, capacity * sizeof *time);
-    if (time == NULL) {
-        return -1;
+    if (needed <= h->block->capacity) {
+        return 0;
     }
-    h->time = time;
-    int *micro = realloc(h->micro, capacity * sizeof *micro);
-    if (micro == NULL) {
-        return -1;
+    if (!is_shared(h->block)) {
+        return block_resize(h->block, needed);
     }
-    h->micro = micro;
-    for (int c = 0; c < h->n_components; ++c) {
-        if (h->columns[c] == 0) {
-            continue;
-        }
-        double *values = realloc(h->values[c], capacity * (size_t)h->columns[c] * sizeof *values);
-        if (values == NULL) {
-            return -1;
-        }
-        h->values[c] = values;
+    size_t doubled = 2 * h->length;
+    return move_to_new_block(h, needed > doubled ? needed : doubled);
+}
+
+/* Rows reserved ahead for a known grid are limited to this much memory. */
+static const size_t RESERVE_MAX_BYTES = 64 * 1024 * 1024;
+
+static size_t sample_bytes(const ssx_history_block *b)
+{
+    size_t bytes = sizeof(double) + sizeof(int);
+    for (int c = 0; c < b->n_components; ++c) {
+        bytes += row_bytes(b, c);
     }
-    h->capacity = capacity;
-    return 0;
+    return bytes;
 }
 
 int history_reserve(ssx_history *h, size_t extra)
 {
-    size_t needed = h->length + extra;
-    return needed <= h->capacity ? 0 : set_capacity(h, needed);
+    size_t limit = RESERVE_MAX_BYTES / sample_bytes(h->block);
+    return make_room(h, h->length + (extra < limit ? extra : limit));
 }
 
 int history_append(ssx_history *h, double t, int micro, const double *const *outputs)
 {
-    if (h->length == h->capacity) {
+    if (h->length == h->block->capacity) {
+        /* beyond the reserved grid: event samples, or a grid larger than the reservation */
         size_t growth = h->last_growth + h->last_growth / 2;
-        growth = growth < 64 ? 64 : growth;
-        if (set_capacity(h, h->capacity + growth) != 0) {
+        growth = growth < INITIAL_ROWS ? INITIAL_ROWS : growth;
+        if (make_room(h, h->block->capacity + growth) != 0) {
             return -1;
         }
         h->last_growth = growth;
     }
+    ssx_history_block *b = h->block;
     size_t row = h->length;
-    h->time[row] = t;
-    h->micro[row] = micro;
+    ((double *)b->time.data)[row] = t;
+    ((int *)b->micro.data)[row] = micro;
     /* a plain loop: rows are a few doubles, too short to pay for a memcpy call */
-    for (int c = 0; c < h->n_components; ++c) {
-        size_t n = (size_t)h->columns[c];
-        double *dst = h->values[c] + row * n;
+    for (int c = 0; c < b->n_components; ++c) {
+        size_t n = (size_t)b->columns[c];
+        double *dst = (double *)b->values[c].data + row * n;
         const double *src = outputs[c];
         for (size_t j = 0; j < n; ++j) {
             dst[j] = src[j];
@@ -88,11 +245,17 @@ int history_append(ssx_history *h, double t, int micro, const double *const *out
     return 0;
 }
 
+void history_trim(ssx_history *h)
+{
+    if (h->block != NULL && !is_shared(h->block) && !h->copied_for_reader &&
+        h->block->capacity > h->length && h->length > 0) {
+        /* a failed shrink only keeps some buffers larger than needed */
+        (void)block_resize(h->block, h->length);
+    }
+    h->copied_for_reader = 0;
+}
+
 size_t history_bytes(const ssx_history *h)
 {
-    size_t per_sample = sizeof(double) + sizeof(int);
-    for (int c = 0; c < h->n_components; ++c) {
-        per_sample += (size_t)h->columns[c] * sizeof(double);
-    }
-    return h->capacity * per_sample;
+    return h->block != NULL ? h->block->capacity * sample_bytes(h->block) : 0;
 }

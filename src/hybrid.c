@@ -4,6 +4,7 @@
  * keeps a handled crossing from firing again. */
 #include "hybrid.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,11 +14,19 @@
 #include "indicator.h"
 
 enum { MACRO_SLOT = 0, PROBE_SLOT = 1 };
+/* Fraction of the macro step over which the probe follows a handled state. */
+#define PROBE_HORIZON 0.1
+/* Event intervals that shrink at least this much each are on their way to an accumulation
+ * point (a bouncing ball's shrink by its restitution). */
+#define GEOMETRIC_APPROACH 0.9
 enum { SIDE_NONE = 0, SIDE_LEFT = 1, SIDE_RIGHT = 2 };
+/* How far past a one-sided secant estimate the next trial aims, as a fraction of its step. */
+#define OVERSHOOT 0.1
 
 typedef struct {
     double a0;            /* start of the macro piece: the snapshot time */
     double t_end;         /* end of the macro piece */
+    double grid_step;     /* the communication step the piece belongs to */
     double a, b;          /* final bracket */
     int iterations;
     int localized;        /* the crossing was bracketed: its trials are in the localization log */
@@ -75,16 +84,58 @@ static int any_fires(const ssx_system *sys)
     return 0;
 }
 
-/* Earliest Illinois estimate over the crossing indicators; NAN when none is usable. */
-static double illinois_estimate(const ssx_system *sys, double a, double b)
+/* The bracket during localization, as the methods see it. */
+typedef struct {
+    double a, b;
+    double replaced;  /* where the end that the last trial replaced was; NAN before any trial */
+    int moved;        /* which end the last trial replaced (SIDE_*) */
+    int moved_before; /* which end the trial before replaced */
+} bracket_state;
+
+/* Regula falsi on the Illinois-weighted end values of one indicator; NAN when not usable. A far
+ * end exactly on zero tells nothing of where the indicator reached zero (it may rest there). */
+static double illinois_point(const ssx_indicator *ind, const bracket_state *st)
+{
+    if (ind->z_right == 0.0 || ind->w_left * ind->w_right > 0.0 || ind->w_left == ind->w_right) {
+        return NAN;
+    }
+    return st->a + (st->b - st->a) * ind->w_left / (ind->w_left - ind->w_right);
+}
+
+/* The secant through the end the last trial moved, before and after: where the indicator
+ * extrapolates to zero. Inside the bracket it lands close to the zero, on the far side of it
+ * when the indicator curves away, so that the stale end moves too. NAN when not usable, also
+ * when the indicator did not change (a piecewise-constant indicator has no slope there). */
+static double secant_point(const ssx_indicator *ind, const bracket_state *st)
+{
+    if (st->moved == SIDE_NONE) {
+        return NAN;
+    }
+    double x = st->moved == SIDE_RIGHT ? st->b : st->a;
+    double z = st->moved == SIDE_RIGHT ? ind->z_right : ind->z_left;
+    if (z == ind->z_replaced) {
+        return NAN;
+    }
+    double t = x - z * (x - st->replaced) / (z - ind->z_replaced);
+    return t > st->a && t < st->b ? t : NAN;
+}
+
+/* The earliest of an estimate over the crossing indicators; NAN when none is usable. */
+static double earliest_point(const ssx_system *sys, const bracket_state *st,
+                             double (*point)(const ssx_indicator *, const bracket_state *),
+                             int skip_flat)
 {
     double earliest = NAN;
     for (int i = 0; i < sys->n_indicators; ++i) {
         const ssx_indicator *ind = &sys->indicators[i];
-        if (!ind->crossing || ind->w_left * ind->w_right > 0.0 || ind->w_left == ind->w_right) {
+        if (!ind->crossing) {
             continue;
         }
-        double estimate = a + (b - a) * ind->w_left / (ind->w_left - ind->w_right);
+        if (skip_flat && st->moved != SIDE_NONE &&
+            (st->moved == SIDE_RIGHT ? ind->z_right : ind->z_left) == ind->z_replaced) {
+            continue;
+        }
+        double estimate = point(ind, st);
         if (isfinite(estimate) && (isnan(earliest) || estimate < earliest)) {
             earliest = estimate;
         }
@@ -92,7 +143,121 @@ static double illinois_estimate(const ssx_system *sys, double a, double b)
     return earliest;
 }
 
-/* Every indicator crossing at the far end is within tol_value of zero. */
+static double illinois_estimate(const ssx_system *sys, const bracket_state *st)
+{
+    return earliest_point(sys, st, illinois_point, 0);
+}
+
+/* Secant steps where they land inside the bracket, Illinois elsewhere; an indicator that kept
+ * its value over the last trial is flat there and gives no estimate. */
+static double secant_illinois_estimate(const ssx_system *sys, const bracket_state *st)
+{
+    double t = earliest_point(sys, st, secant_point, 1);
+    if (isnan(t)) {
+        return earliest_point(sys, st, illinois_point, 1);
+    }
+    if (st->moved == st->moved_before) {
+        /* one end converges, the other stays: aim a little past the estimate, by a tenth of
+         * the step the secant takes, so that the stale end moves in next */
+        double x = st->moved == SIDE_RIGHT ? st->b : st->a;
+        double past = t + OVERSHOOT * (t - x);
+        return past > st->a && past < st->b ? past : t;
+    }
+    return t;
+}
+
+/* The Illinois modification: an end that stays twice in a row has its weight halved, so the
+ * secant cannot creep towards the root from one side only. */
+static void illinois_after_trial(ssx_system *sys, const bracket_state *st)
+{
+    if (st->moved != st->moved_before) {
+        return;
+    }
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        ssx_indicator *ind = &sys->indicators[i];
+        if (st->moved == SIDE_RIGHT) {
+            ind->w_left *= 0.5;
+        } else {
+            ind->w_right *= 0.5;
+        }
+    }
+}
+
+static double midpoint_estimate(const ssx_system *sys, const bracket_state *st)
+{
+    (void)sys;
+    return 0.5 * (st->a + st->b);
+}
+
+static void keep_no_weights(ssx_system *sys, const bracket_state *st)
+{
+    (void)sys;
+    (void)st;
+}
+
+enum { UNBOUNDED = -1 };
+
+/* A localization method: where to try next in the bracket, and what to update once a trial has
+ * moved one end. slack bounds its iterations to bisection's count plus slack. */
+typedef struct {
+    double (*estimate)(const ssx_system *sys, const bracket_state *st);
+    void (*after_trial)(ssx_system *sys, const bracket_state *st);
+    int slack;
+} locator_method;
+
+/* The default keeps Illinois's superlinear steps on smooth indicators, helped by secant steps
+ * through the end just moved, and is held within two trials of bisection: on a
+ * piecewise-constant indicator (an FMU output that changes only at the FMU's own steps) plain
+ * Illinois can shrink the bracket by a sliver per trial. */
+static const locator_method LOCATORS[] = {
+    [SSX_ILLINOIS] = {secant_illinois_estimate, illinois_after_trial, 2},
+    [SSX_BISECTION] = {midpoint_estimate, keep_no_weights, 0},
+    [SSX_ILLINOIS_UNGUARDED] = {illinois_estimate, illinois_after_trial, UNBOUNDED},
+};
+
+int hybrid_locator_known(int locator)
+{
+    return locator >= 0 && locator < (int)(sizeof LOCATORS / sizeof *LOCATORS);
+}
+
+/* Bisection's iteration count from a bracket of width w down to tol. */
+static int bisection_count(double w, double tol)
+{
+    int n = 0;
+    for (; w > tol; w *= 0.5) {
+        ++n;
+    }
+    return n;
+}
+
+/* The next trial time in [a, b]. A budgeted method's estimate is kept where, whichever end the
+ * trial replaces, the bracket left over still comes down to final_width by halving within the
+ * remaining budget: budget - done - 1 halvings after this trial. */
+static double next_trial(const ssx_system *sys, const locator_method *method,
+                         const bracket_state *st, double final_width, int budget, int done)
+{
+    double tol = sys->hybrid.tol_time;
+    double a = st->a;
+    double b = st->b;
+    double t = method->estimate(sys, st);
+    if (!(t > a && t < b)) {
+        t = 0.5 * (a + b);
+    }
+    /* half a tolerance inside the bracket: the far end also moves when the estimate
+     * converges from one side */
+    double lo = a + 0.5 * tol;
+    double hi = b - 0.5 * tol;
+    if (budget != UNBOUNDED) {
+        double reach = ldexp(final_width, budget - done - 1);
+        lo = fmax(lo, b - reach);
+        hi = fmin(hi, a + reach);
+    }
+    /* rounding can leave no room at the last halvings: the midpoint then */
+    return lo <= hi ? fmin(fmax(t, lo), hi) : 0.5 * (a + b);
+}
+
+/* Every indicator crossing at the far end is within tol_value of zero. An exact zero does not
+ * count: the indicator may have reached it long before and rested there. */
 static int far_side_converged(const ssx_system *sys)
 {
     if (!(sys->hybrid.tol_value > 0.0)) {
@@ -100,7 +265,7 @@ static int far_side_converged(const ssx_system *sys)
     }
     for (int i = 0; i < sys->n_indicators; ++i) {
         const ssx_indicator *ind = &sys->indicators[i];
-        if (ind->crossing && fabs(ind->z_right) > sys->hybrid.tol_value) {
+        if (ind->crossing && !(ind->z_right != 0.0 && fabs(ind->z_right) <= sys->hybrid.tol_value)) {
             return 0;
         }
     }
@@ -125,6 +290,7 @@ static int log_row(ssx_system *sys, double t, double a, double b, int left)
 static int locate(ssx_system *sys, event_bracket *br)
 {
     const ssx_hybrid_options *opt = &sys->hybrid;
+    const locator_method *method = &LOCATORS[opt->locator];
     double a = br->a0;
     double b = br->t_end;
     for (int i = 0; i < sys->n_indicators; ++i) {
@@ -139,24 +305,22 @@ static int locate(ssx_system *sys, event_bracket *br)
     if (log_row(sys, a, a, b, 1) != 0 || log_row(sys, b, a, b, 0) != 0) {
         return -1;
     }
-    int last_side = SIDE_NONE;
-    int state_at_b = 1;
+    int halvings = bisection_count(b - a, opt->tol_time);
+    /* a few roundings of the times inside tol_time: the last trials of a budgeted method land
+     * on its window's edges, which must not leave the bracket a hair above tol_time */
+    double final_width = opt->tol_time - 16.0 * DBL_EPSILON * fmax(fabs(a), fabs(b));
+    int budget = method->slack == UNBOUNDED ? UNBOUNDED : halvings + method->slack;
+    bracket_state st = {.a = a, .b = b, .replaced = NAN, .moved = SIDE_NONE,
+                        .moved_before = SIDE_NONE};
     br->iterations = 0;
-    while (b - a > opt->tol_time && !far_side_converged(sys)) {
+    while (st.b - st.a > opt->tol_time && !far_side_converged(sys)) {
         if (br->iterations >= opt->max_iterations) {
-            return fail(sys, -1, -1, a,
+            return fail(sys, -1, -1, st.a,
                         "event localization did not reach tol_time=%g within %d iterations: "
                         "bracket [%.17g, %.17g]",
-                        opt->tol_time, opt->max_iterations, a, b);
+                        opt->tol_time, opt->max_iterations, st.a, st.b);
         }
-        double t = opt->locator == SSX_ILLINOIS ? illinois_estimate(sys, a, b) : NAN;
-        if (!(t > a && t < b)) {
-            t = 0.5 * (a + b);
-        }
-        /* half a tolerance inside the bracket: the far end also moves when the estimate
-         * converges from one side */
-        double margin = 0.5 * opt->tol_time;
-        t = fmin(fmax(t, a + margin), b - margin);
+        double t = next_trial(sys, method, &st, final_width, budget, br->iterations);
         br->iterations++;
         sys->stats.localization_iterations++;
         if (step_from_snapshot(sys, br->a0, t) != 0) {
@@ -165,34 +329,34 @@ static int locate(ssx_system *sys, event_bracket *br)
         if (opt->record_internal_steps && system_record(sys, t, -1) != 0) {
             return -1;
         }
-        if (any_fires(sys)) {
-            b = t;
-            for (int i = 0; i < sys->n_indicators; ++i) {
-                ssx_indicator *ind = &sys->indicators[i];
+        int side = any_fires(sys) ? SIDE_RIGHT : SIDE_LEFT;
+        for (int i = 0; i < sys->n_indicators; ++i) {
+            ssx_indicator *ind = &sys->indicators[i];
+            if (side == SIDE_RIGHT) {
+                ind->z_replaced = ind->z_right;
                 ind->z_right = ind->w_right = ind->value;
                 ind->crossing = indicator_fires(ind, ind->value);
-                if (last_side == SIDE_RIGHT) {
-                    ind->w_left *= 0.5;
-                }
-            }
-            last_side = SIDE_RIGHT;
-            state_at_b = 1;
-        } else {
-            a = t;
-            for (int i = 0; i < sys->n_indicators; ++i) {
-                ssx_indicator *ind = &sys->indicators[i];
+            } else {
+                ind->z_replaced = ind->z_left;
                 ind->z_left = ind->w_left = ind->value;
-                if (last_side == SIDE_LEFT) {
-                    ind->w_right *= 0.5;
-                }
             }
-            last_side = SIDE_LEFT;
-            state_at_b = 0;
         }
-        if (log_row(sys, t, a, b, 0) != 0) {
+        st.replaced = side == SIDE_RIGHT ? st.b : st.a;
+        st.moved_before = st.moved;
+        st.moved = side;
+        if (side == SIDE_RIGHT) {
+            st.b = t;
+        } else {
+            st.a = t;
+        }
+        method->after_trial(sys, &st);
+        if (log_row(sys, t, st.a, st.b, 0) != 0) {
             return -1;
         }
     }
+    a = st.a;
+    b = st.b;
+    int state_at_b = st.moved != SIDE_LEFT;
     if (!state_at_b && step_from_snapshot(sys, br->a0, b) != 0) {
         return -1;
     }
@@ -302,28 +466,57 @@ static int notify_listeners(ssx_system *sys, double b, instant_work *w)
     return 0;
 }
 
-static double zeno_interval(const ssx_system *sys)
+/* Two firings of one indicator this close are chattering. With zeno_min_interval set, that is
+ * the whole rule. By default the scale is a tenth of the communication step (the horizon over
+ * which the probe judges where a handled state goes): crossings that come back faster are finer
+ * than the grid resolves, since between two grid points a master sees only the signs at the
+ * ends. They are still followed while their intervals shrink geometrically, the way to an
+ * accumulation point, which ten times tol_time or the residue test of settle_signs then stops
+ * precisely; once they stop shrinking the model chatters at a fixed fine scale (an explicit
+ * Euler FMU gains speed at every bounce and settles into flights of a few of its own steps,
+ * bouncing for ever). */
+static int chattering(const ssx_system *sys, const event_bracket *br, const ssx_indicator *ind,
+                      double interval)
 {
-    return sys->hybrid.zeno_min_interval > 0.0 ? sys->hybrid.zeno_min_interval
-                                               : 10.0 * sys->hybrid.tol_time;
+    if (sys->hybrid.zeno_min_interval > 0.0) {
+        return interval < sys->hybrid.zeno_min_interval;
+    }
+    if (interval < 10.0 * sys->hybrid.tol_time) {
+        return 1;
+    }
+    return interval < PROBE_HORIZON * br->grid_step &&
+           !(interval <= GEOMETRIC_APPROACH * ind->last_interval);
 }
 
-static int check_zeno(ssx_system *sys, double b, int micro, const instant_work *w)
+static int check_zeno(ssx_system *sys, const event_bracket *br, int micro, const instant_work *w)
 {
+    double b = br->b;
     for (int i = 0; i < sys->n_indicators; ++i) {
         ssx_indicator *ind = &sys->indicators[i];
-        if (!w->fired[i]) {
+        /* cascades at one instant are bounded by max_microsteps instead */
+        if (!w->fired[i] || micro != 0 || !ind->fired_before) {
             continue;
         }
-        /* cascades at one instant are bounded by max_microsteps instead */
-        if (micro == 0 && ind->fired_before && b - ind->last_event_time < zeno_interval(sys)) {
+        double interval = b - ind->last_event_time;
+        if (!chattering(sys, br, ind, interval)) {
+            continue;
+        }
+        const char *name = sys->components[ind->component]->name;
+        if (sys->hybrid.zeno_min_interval > 0.0 || interval < 10.0 * sys->hybrid.tol_time) {
             return fail_zeno(sys, ind->component, i, b,
                              "indicator %d of component '%s' fired again at t=%.17g, only %.3g "
                              "after its previous event (event number %ld): chattering (Zeno) "
                              "behaviour; the minimum interval is %.3g",
-                             i, sys->components[ind->component]->name, b,
-                             b - ind->last_event_time, ind->fire_count + 1, zeno_interval(sys));
+                             i, name, b, interval, ind->fire_count + 1,
+                             fmax(sys->hybrid.zeno_min_interval, 10.0 * sys->hybrid.tol_time));
         }
+        return fail_zeno(sys, ind->component, i, b,
+                         "indicator %d of component '%s' fired again at t=%.17g, only %.3g after "
+                         "its previous event (event number %ld), within a tenth of the "
+                         "communication step, and its intervals no longer shrink (the previous "
+                         "one was %.3g): chattering (Zeno) behaviour; a smaller step or "
+                         "zeno_min_interval follows such events",
+                         i, name, b, interval, ind->fire_count + 1, ind->last_interval);
     }
     return 0;
 }
@@ -340,7 +533,7 @@ static int settle_signs(ssx_system *sys, double b, const event_bracket *br, inst
         need_probe |= near_zero(w, i);
     }
     /* the probe stays well inside the macro step it belongs to */
-    double delta_max = fmax(10.0 * sys->hybrid.tol_time, 0.1 * (br->t_end - br->a0));
+    double delta_max = fmax(10.0 * sys->hybrid.tol_time, PROBE_HORIZON * (br->t_end - br->a0));
     if (need_probe && probe(sys, b, delta_max, w) != 0) {
         return -1;
     }
@@ -349,8 +542,8 @@ static int settle_signs(ssx_system *sys, double b, const event_bracket *br, inst
         /* a fired indicator still within its residue band goes where the probe says; any other
          * sign change was made by the handling itself */
         int from_probe = near_zero(w, i);
-        int new_sign = from_probe ? sign_of(w->z_probe[i], ind->sign)
-                                  : sign_of(w->z_after[i], ind->sign);
+        double z = from_probe ? w->z_probe[i] : w->z_after[i];
+        int new_sign = sign_of(z, ind->sign);
         /* Turned back towards its near side yet unable to leave the far one: the handled state
          * cannot climb out of the residue at b (a ball too slow to leave the floor) and would
          * sink unseen. That is the end of a Zeno sequence. */
@@ -362,12 +555,16 @@ static int settle_signs(ssx_system *sys, double b, const event_bracket *br, inst
                              i, sys->components[ind->component]->name, b, ind->fire_count,
                              fabs(w->z_after[i]));
         }
+        /* a handler that moves a fired indicator back across is a new crossing; one that
+         * moves an indicator resting on zero from an earlier instant only ends the rest */
+        int resting = ind->on_zero && !w->fired[i];
         w->next[i] = 0;
-        if (ind->sign != 0 && new_sign != ind->sign && !from_probe) {
+        if (ind->sign != 0 && new_sign != ind->sign && !from_probe && !resting) {
             int crossing = new_sign > 0 ? 1 : -1;
             w->next[i] = ind->direction == 0 || ind->direction == crossing;
         }
         ind->sign = new_sign;
+        ind->on_zero = ind->on_zero && z == 0.0;
     }
     return 0;
 }
@@ -432,15 +629,20 @@ static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work
                              "handlers keep making indicators cross; first: indicator %d)",
                              sys->hybrid.max_microsteps, b, first);
         }
-        if (check_zeno(sys, b, micro, w) != 0) {
+        if (check_zeno(sys, br, micro, w) != 0) {
             return -1;
         }
         for (int i = 0; i < sys->n_indicators; ++i) {
-            if (w->fired[i]) {
-                sys->indicators[i].fired_before = 1;
-                sys->indicators[i].last_event_time = b;
-                sys->indicators[i].fire_count++;
+            ssx_indicator *ind = &sys->indicators[i];
+            if (!w->fired[i]) {
+                continue;
             }
+            if (micro == 0) {
+                ind->last_interval = ind->fired_before ? b - ind->last_event_time : INFINITY;
+            }
+            ind->fired_before = 1;
+            ind->last_event_time = b;
+            ind->fire_count++;
         }
         sys->stats.events++;
         if (notify_listeners(sys, b, w) != 0 || coupling_settle(sys, b) != 0 ||
@@ -486,6 +688,7 @@ static int resolve_zero_start(ssx_system *sys, double a0, double t_next)
     }
     event_bracket br = {.a0 = a0,
                         .t_end = t_next,
+                        .grid_step = t_next - a0,
                         .a = a0,
                         .b = a0,
                         .do_steps_before = sys->stats.do_step_calls,
@@ -497,7 +700,8 @@ static int resolve_zero_start(ssx_system *sys, double a0, double t_next)
         w.z_after[i] = ind->value;
         w.band[i] = 0.0;
     }
-    int status = probe(sys, a0, fmax(10.0 * sys->hybrid.tol_time, 0.1 * (t_next - a0)), &w);
+    int status =
+        probe(sys, a0, fmax(10.0 * sys->hybrid.tol_time, PROBE_HORIZON * (t_next - a0)), &w);
     int fires = 0;
     for (int i = 0; status == 0 && i < sys->n_indicators; ++i) {
         ssx_indicator *ind = &sys->indicators[i];
@@ -528,6 +732,7 @@ int hybrid_step(ssx_system *sys, double t, double t_next)
         }
         event_bracket br = {.a0 = a0,
                             .t_end = t_next,
+                            .grid_step = t_next - t,
                             .do_steps_before = sys->stats.do_step_calls,
                             .restores_before = sys->stats.state_restores};
         for (int i = 0; i < sys->n_indicators; ++i) {

@@ -32,6 +32,9 @@ int indicators_evaluate(ssx_system *sys, double t)
 
 int indicator_crossing(const ssx_indicator *ind, double z)
 {
+    if (ind->on_zero) {
+        return 0;
+    }
     if (ind->sign > 0 && z <= 0.0) {
         return -1;
     }
@@ -51,7 +54,14 @@ void indicator_follow(ssx_indicator *ind, double z)
 {
     if (ind->sign == 0) {
         ind->sign = z > 0.0 ? 1 : z < 0.0 ? -1 : 0;
+        ind->on_zero = 0;
+    } else if (ind->on_zero) {
+        if (z != 0.0) {
+            ind->sign = z > 0.0 ? 1 : -1;
+            ind->on_zero = 0;
+        }
     } else if (indicator_crossing(ind, z) != 0) {
         ind->sign = -ind->sign;
+        ind->on_zero = z == 0.0;
     }
 }

@@ -18,7 +18,8 @@ static int check_components(ssx_system *sys)
     int hybrid = system_is_hybrid(sys);
     for (int i = 0; i < sys->n_components; ++i) {
         ssx_component *c = sys->components[i];
-        if (c->fmu == NULL && (c->hooks.do_step == NULL || c->hooks.evaluate_outputs == NULL)) {
+        if (c->ops == &ssx_python_component_ops &&
+            (c->hooks.do_step == NULL || c->hooks.evaluate_outputs == NULL)) {
             return fail(sys, i, -1, sys->time,
                         "Python component '%s' needs do_step and evaluate_outputs hooks",
                         c->name);
@@ -54,7 +55,7 @@ static int start_history(ssx_system *sys)
     }
     int status = history_start(&sys->history, n, columns);
     free(columns);
-    if (status != 0 || history_reserve(&sys->history, 1) != 0) {
+    if (status != 0) {
         return fail(sys, -1, -1, sys->time, "out of memory starting the history");
     }
     return 0;
@@ -94,7 +95,8 @@ int ssx_initialize(ssx_system *sys, double t0)
                 c->inputs[k] = c->input_starts[k];
             }
         }
-        if (component_initialize(sys, c, t0) != 0) {
+        if (component_initialize(sys, c, t0) != 0 ||
+            (c->fmu != NULL && fmu_component_adopt_inputs(sys, c, t0) != 0)) {
             return -1;
         }
     }
@@ -125,6 +127,39 @@ static int plain_step(ssx_system *sys, double t, double t_next)
     sys->stats.macro_steps++;
     sys->time = t_next;
     return system_record(sys, t_next, 0);
+}
+
+static int stopped_by_monitor(ssx_system *sys, double t)
+{
+    fail(sys, -1, -1, t, "system '%s': the run was stopped by its monitor at t=%.17g", sys->name,
+         t);
+    sys->error.in_callback = 1;
+    return -1;
+}
+
+static int run_grid(ssx_system *sys, double t0, double tf, double dt, long n_steps)
+{
+    int hybrid = system_is_hybrid(sys);
+    double t = t0;
+    monitor_start(&sys->monitor);
+    for (long k = 1; k <= n_steps; ++k) {
+        double t_next = k == n_steps ? tf : t0 + (double)k * dt;
+        int status = hybrid ? hybrid_step(sys, t, t_next) : plain_step(sys, t, t_next);
+        if (sys->termination.component >= 0) {
+            /* the end, not a failure: sys->time is the last point the whole system completed */
+            clear_error(sys);
+            return 0;
+        }
+        if (status != 0) {
+            return -1;
+        }
+        t = t_next;
+        if (monitor_after_step(&sys->monitor, t) != 0) {
+            return stopped_by_monitor(sys, t);
+        }
+    }
+    sys->time = tf > t0 ? tf : sys->time;
+    return 0;
 }
 
 int ssx_run(ssx_system *sys, double t0, double tf, double dt)
@@ -169,23 +204,9 @@ int ssx_run(ssx_system *sys, double t0, double tf, double dt)
         n_steps = 1;
     }
     if (history_reserve(&sys->history, (size_t)n_steps) != 0) {
-        return fail(sys, -1, -1, t0, "out of memory reserving %ld history samples", n_steps);
+        return fail(sys, -1, -1, t0, "out of memory reserving history samples");
     }
-    int hybrid = system_is_hybrid(sys);
-    double t = t0;
-    for (long k = 1; k <= n_steps; ++k) {
-        double t_next = k == n_steps ? tf : t0 + (double)k * dt;
-        int status = hybrid ? hybrid_step(sys, t, t_next) : plain_step(sys, t, t_next);
-        if (sys->termination.component >= 0) {
-            /* the end, not a failure: sys->time is the last point the whole system completed */
-            clear_error(sys);
-            return 0;
-        }
-        if (status != 0) {
-            return -1;
-        }
-        t = t_next;
-    }
-    sys->time = tf > t0 ? tf : sys->time;
-    return 0;
+    int status = run_grid(sys, t0, tf, dt, n_steps);
+    history_trim(&sys->history);
+    return status;
 }

@@ -20,7 +20,9 @@
 
 typedef enum { SSX_REAL = 0, SSX_INTEGER = 1, SSX_BOOLEAN = 2 } ssx_value_type;
 typedef enum { SSX_GAUSS_SEIDEL = 0, SSX_JACOBI = 1 } ssx_coupling;
-typedef enum { SSX_ILLINOIS = 0, SSX_BISECTION = 1 } ssx_locator;
+/* Event localization. SSX_ILLINOIS: Illinois (modified regula falsi) held within two trials of
+ * bisection's count; SSX_BISECTION; SSX_ILLINOIS_UNGUARDED: Illinois alone, for comparison. */
+typedef enum { SSX_ILLINOIS = 0, SSX_BISECTION = 1, SSX_ILLINOIS_UNGUARDED = 2 } ssx_locator;
 typedef enum { SSX_JACOBIAN_AUTO = 0, SSX_JACOBIAN_FINITE_DIFFERENCES = 1 } ssx_loop_jacobian;
 
 /* ------------------------------------------------------------------------------------------
@@ -140,7 +142,8 @@ typedef struct {
 
 /* Python-implemented behaviour. Every member may be NULL, which keeps the built-in behaviour of
  * an FMU component (for a Python component, do_step and evaluate_outputs are required).
- * Callbacks return 0 on success and -1 on failure (Python keeps the exception).
+ * Callbacks return 0 on success and -1 on failure (Python keeps the exception). The engine
+ * calls none of them while a system is freed: Python drops its snapshots with its objects.
  * Python reads inputs and writes outputs through ssx_inputs()/ssx_outputs(). */
 typedef struct {
     void *user;
@@ -149,7 +152,6 @@ typedef struct {
     int (*evaluate_outputs)(void *user, double t);         /* zero-time: outputs from inputs */
     int (*snapshot)(void *user, int slot);                 /* save the state into slot */
     int (*restore)(void *user, int slot, double t);        /* the state of slot, now at time t */
-    int (*free_snapshot)(void *user, int slot);
     int (*handle_events)(void *user, const int *indicators, int n_indicators, double t);
     int (*record)(void *user, double t);                   /* a sample is being recorded at t */
 } ssx_hooks;
@@ -177,7 +179,9 @@ int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks);
 int ssx_component_count(const ssx_system *sys);
 
 /* Ports. vr is the FMU value reference (ignored for Python components). start is written to
- * the FMU input at initialization when the input is unconnected. Return the port's index. */
+ * the FMU input at initialization when the input is unconnected; NaN (FMU components only)
+ * means the user set no value: the input keeps the FMU's own, read by ssx_initialize. Return
+ * the port's index. */
 int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned int vr);
 int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned int vr, double start);
 double *ssx_outputs(ssx_system *sys, int component); /* n_outputs current values */
@@ -224,8 +228,10 @@ int ssx_set_directional_derivatives(ssx_system *sys, int component, int provided
  * hook) come from fmi2GetDirectionalDerivative, the others from finite differences.
  * SSX_JACOBIAN_FINITE_DIFFERENCES: every column from finite differences. */
 int ssx_set_loop_jacobian(ssx_system *sys, ssx_loop_jacobian jacobian);
-/* Hybrid mode is active whenever an indicator exists. zeno_min_interval <= 0 means ten times
- * tol_time. */
+/* Hybrid mode is active whenever an indicator exists. Two firings of one indicator closer than
+ * zeno_min_interval are chattering (a Zeno error). zeno_min_interval <= 0: closer than ten times
+ * tol_time, or closer than a tenth of the communication step once the intervals stop shrinking
+ * (each at most 0.9 times the one before goes on: the way to an accumulation point). */
 int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, int max_iterations,
                            int max_microsteps, int record_internal_steps, ssx_locator locator,
                            double zeno_min_interval);
@@ -245,19 +251,68 @@ int ssx_initialize(ssx_system *sys, double t0);
 int ssx_run(ssx_system *sys, double t0, double tf, double dt);
 double ssx_time(const ssx_system *sys);
 
+/* A watch over ssx_run: between macro steps, about every SSX_MONITOR_INTERVAL_MS of wall
+ * time, monitor(user, t) is called with the time reached; nonzero stops the run, which then
+ * fails at t with in_callback set (the monitor keeps its reason). The clock is read only
+ * every few steps, as many as take about a tenth of the interval. Python runs its signal
+ * handlers there, so Ctrl-C and timeouts stop a run. NULL removes the monitor. */
+enum { SSX_MONITOR_INTERVAL_MS = 50 };
+int ssx_set_monitor(ssx_system *sys, int (*monitor)(void *user, double t), void *user);
+
 /* History: one shared time axis; per component a row-major matrix with one row per sample and
- * one column per output. Pointers are valid until the next call that records. */
+ * one column per output. Pointers are valid until the next call that records, unless the
+ * history is retained. */
 size_t ssx_history_length(const ssx_system *sys);
 const double *ssx_history_time(const ssx_system *sys);
 const int *ssx_history_micro(const ssx_system *sys); /* -1: a localization trial
                                                        (record_internal_steps) */
 const double *ssx_history_values(const ssx_system *sys, int component);
 size_t ssx_history_bytes(const ssx_system *sys); /* bytes allocated for the history */
+/* A reference to the buffers the history accessors return now: until it is released, their
+ * first ssx_history_length() samples are never written, moved or freed, whatever the system
+ * does (record, initialize again, ssx_system_free). This is how Python hands out numpy arrays
+ * without a copy. NULL before ssx_initialize. Release from any thread, once per retain. */
+typedef struct ssx_history_block ssx_history_block;
+ssx_history_block *ssx_history_retain(ssx_system *sys);
+void ssx_history_release(ssx_history_block *block);
 
 size_t ssx_event_count(const ssx_system *sys);
 int ssx_event_get(const ssx_system *sys, size_t index, ssx_event_record *out);
 size_t ssx_event_trial_count(const ssx_system *sys);
 int ssx_event_trial(const ssx_system *sys, size_t index, ssx_localization_trial *out);
 void ssx_get_statistics(const ssx_system *sys, ssx_statistics *out);
+
+/* ------------------------------------------------------------------------------------------
+ * Isolation: an FMU whose binary runs in a process of its own.
+ * ------------------------------------------------------------------------------------------ */
+/* Like ssx_fmu_load, but the binary is loaded by a host process (host_path: the syssimx-fmu-host
+ * executable installed beside the engine library) and every fmi2 call is forwarded to it, FMU
+ * states included. A crash, abort or exit inside the FMU fails the call with fmi2Fatal and the
+ * FMU's last message says how the process ended (the signal); this process goes on. With
+ * step_timeout > 0, a call that has not returned after step_timeout seconds kills the host and
+ * fails the same way. The next ssx_fmu_instantiate starts a new host; ssx_fmu_free ends it and
+ * waits for it. */
+ssx_fmu *ssx_fmu_load_isolated(const char *host_path, double step_timeout,
+                               const char *binary_path, const char *model_identifier,
+                               const char *guid, const char *resource_uri,
+                               const char *instance_name, int logging_on, char *error,
+                               size_t error_size);
+
+/* ------------------------------------------------------------------------------------------
+ * Table sources: a component whose outputs are the columns of a time table, evaluated in C
+ * with the rules of FMPy's input signals (first row before the table, last row after it,
+ * linear interpolation for real columns unless held, hold of the row on the left for integer,
+ * boolean and held columns, the value on the right of a repeated time stamp once the run has
+ * started). A table has no state, so it rolls back with any system.
+ * ------------------------------------------------------------------------------------------ */
+/* time: n_rows non-decreasing finite times (copied). Returns the component's index. */
+int ssx_add_table_component(ssx_system *sys, const char *name, const double *time, size_t n_rows);
+/* One output per column, in order: values holds n_rows finite numbers (copied). hold != 0
+ * holds a real column between rows. Returns the output's index. */
+int ssx_add_table_column(ssx_system *sys, int component, ssx_value_type type, int hold,
+                         const double *values);
+/* The table's value of every column at t into values (one per output); after_event != 0 takes
+ * the value on the right of a jump at t. Changes nothing. */
+int ssx_table_values(ssx_system *sys, int component, double t, int after_event, double *values);
 
 #endif

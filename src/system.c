@@ -10,6 +10,7 @@
 
 #include "array.h"
 #include "error.h"
+#include "hybrid.h"
 
 ssx_system *ssx_system_new(const char *name)
 {
@@ -87,7 +88,7 @@ static void structure_changed(ssx_system *sys)
     sys->initialized = 0;
 }
 
-static int add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
+int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
                          const ssx_component_ops *ops)
 {
     if (name == NULL || name[0] == '\0') {
@@ -126,12 +127,12 @@ int ssx_add_fmu_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int c
     if (fmu == NULL) {
         return fail(sys, -1, -1, NAN, "component '%s': no FMU given", name ? name : "?");
     }
-    return add_component(sys, name, fmu, can_get_set_state, &ssx_fmu_component_ops);
+    return system_add_component(sys, name, fmu, can_get_set_state, &ssx_fmu_component_ops);
 }
 
 int ssx_add_python_component(ssx_system *sys, const char *name, int can_snapshot)
 {
-    return add_component(sys, name, NULL, can_snapshot, &ssx_python_component_ops);
+    return system_add_component(sys, name, NULL, can_snapshot, &ssx_python_component_ops);
 }
 
 int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks)
@@ -198,9 +199,10 @@ int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned 
         return fail(sys, component, -1, NAN, "component '%s': unknown value type %d", c->name,
                     (int)type);
     }
-    if (!isfinite(start)) {
+    if (isinf(start) || (isnan(start) && c->fmu == NULL)) {
         return fail(sys, component, -1, NAN, "component '%s': the start value of an input must "
-                    "be finite", c->name);
+                    "be finite (NaN, the FMU's own value, exists for FMU components only)",
+                    c->name);
     }
     size_t n = (size_t)c->n_inputs + 1;
     ssx_port *ports = realloc(c->input_ports, n * sizeof *ports);
@@ -499,11 +501,12 @@ int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, i
 {
     if (!(tol_time > 0.0) || !isfinite(tol_time) || !(tol_value >= 0.0) || !isfinite(tol_value) ||
         max_iterations < 1 || max_microsteps < 1 || !isfinite(zeno_min_interval) ||
-        (locator != SSX_ILLINOIS && locator != SSX_BISECTION)) {
+        !hybrid_locator_known((int)locator)) {
         return fail(sys, -1, -1, NAN,
                     "hybrid options: need tol_time > 0, tol_value >= 0, max_iterations >= 1, "
-                    "max_microsteps >= 1, a finite zeno_min_interval and locator 0 (Illinois) or "
-                    "1 (bisection)");
+                    "max_microsteps >= 1, a finite zeno_min_interval and a known locator (an "
+                    "ssx_locator), got locator %d",
+                    (int)locator);
     }
     sys->hybrid = (ssx_hybrid_options){.tol_time = tol_time,
                                        .tol_value = tol_value,
@@ -518,6 +521,13 @@ int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, i
 double ssx_time(const ssx_system *sys)
 {
     return sys->time;
+}
+
+int ssx_set_monitor(ssx_system *sys, int (*monitor)(void *user, double t), void *user)
+{
+    sys->monitor.call = monitor;
+    sys->monitor.user = user;
+    return 0;
 }
 
 int system_record(ssx_system *sys, double t, int micro)
@@ -553,25 +563,36 @@ size_t ssx_history_length(const ssx_system *sys)
 
 const double *ssx_history_time(const ssx_system *sys)
 {
-    return sys->history.time;
+    return sys->history.block != NULL ? sys->history.block->time.data : NULL;
 }
 
 const int *ssx_history_micro(const ssx_system *sys)
 {
-    return sys->history.micro;
+    return sys->history.block != NULL ? sys->history.block->micro.data : NULL;
 }
 
 const double *ssx_history_values(const ssx_system *sys, int component)
 {
-    if (component < 0 || component >= sys->history.n_components) {
+    const ssx_history_block *b = sys->history.block;
+    if (b == NULL || component < 0 || component >= b->n_components) {
         return NULL;
     }
-    return sys->history.values[component];
+    return b->values[component].data;
 }
 
 size_t ssx_history_bytes(const ssx_system *sys)
 {
     return history_bytes(&sys->history);
+}
+
+ssx_history_block *ssx_history_retain(ssx_system *sys)
+{
+    return sys->history.block != NULL ? history_block_retain(sys->history.block) : NULL;
+}
+
+void ssx_history_release(ssx_history_block *block)
+{
+    history_block_release(block);
 }
 
 size_t ssx_event_count(const ssx_system *sys)

@@ -5,6 +5,7 @@
 #include "component.h"
 #include "history.h"
 #include "localization_log.h"
+#include "monitor.h"
 #include "syssimx_engine.h"
 
 typedef struct {
@@ -24,12 +25,16 @@ typedef struct {
     int direction;
     double value;
     int sign;   /* side the indicator is on: -1 or +1; 0 while unknown (started at zero) */
+    int on_zero; /* reached exactly zero in its last crossing and stays there: no new crossing
+                    until it leaves zero, whichever side it leaves to */
     int fired_before;
     double last_event_time;
+    double last_interval; /* between its last two events (infinite after the first) */
     long fire_count;
     /* localization workspace */
     double z_left, z_right;  /* values at the bracket ends */
     double w_left, w_right;  /* Illinois-weighted values at the bracket ends */
+    double z_replaced;       /* value at the end the last trial replaced */
     int crossing;            /* crosses (in its direction) at the current right end */
 } ssx_indicator;
 
@@ -98,6 +103,7 @@ struct ssx_system {
     ssx_error error;
     ssx_termination termination;
     int allow_non_finite;
+    ssx_monitor monitor;
 
     double time;
     int initialized;
@@ -106,6 +112,9 @@ struct ssx_system {
 };
 
 ssx_component *system_component(ssx_system *sys, int index); /* NULL with the error set */
+/* Appends a component of the given kind; returns its index, or -1 with the error set. */
+int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
+                         const ssx_component_ops *ops);
 int system_is_hybrid(const ssx_system *sys);
 /* Appends one sample (t, micro) of every component's outputs and calls the record hooks. */
 int system_record(ssx_system *sys, double t, int micro);

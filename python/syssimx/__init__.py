@@ -16,6 +16,7 @@ from .components import (
     MultiComponent,
     OpenSimComponent,
     SwitchRegions,
+    TableSource,
 )
 from .core import DenseTime, Port, PortSpec, PortType
 from .errors import (
@@ -24,6 +25,7 @@ from .errors import (
     FMUError,
     FMUFileError,
     SimulationError,
+    SimulationTimeoutError,
     SysSimXError,
     ZenoError,
 )
@@ -65,9 +67,11 @@ __all__ = [
     "PortType",
     "SimulationError",
     "SimulationResult",
+    "SimulationTimeoutError",
     "SwitchRegions",
     "SysSimXError",
     "System",
+    "TableSource",
     "Termination",
     "ZenoError",
     "__version__",

@@ -1,4 +1,5 @@
-"""Where the compiled parts of syssimx live: the engine library, its header and the FMUs.
+"""Where the compiled parts of syssimx live: the engine library, its header, the FMU host
+executable and the FMUs.
 
 An installed package carries them inside its own directory. During development, setting
 SYSSIMX_BUILD_DIR to a meson build directory of this repository uses that build instead.
@@ -14,6 +15,7 @@ _SOURCE_ROOT = _PACKAGE_DIR.parent.parent
 
 ENGINE_LIBRARY = "libsyssimx_engine.so"
 ENGINE_HEADER = "syssimx_engine.h"
+FMU_HOST = "syssimx-fmu-host"
 
 
 # A relative SYSSIMX_BUILD_DIR means relative to where syssimx was imported, whatever the
@@ -34,6 +36,18 @@ def engine_library() -> Path:
         raise FileNotFoundError(
             f"the syssimx engine library was not found at {candidate}; "
             "build the package (pip install .) or point SYSSIMX_BUILD_DIR at a meson build"
+        )
+    return candidate
+
+
+def fmu_host() -> Path:
+    """The executable an isolated FMU runs in, installed beside the engine library."""
+    build = build_dir()
+    candidate = build / "src" / FMU_HOST if build else _PACKAGE_DIR / FMU_HOST
+    if not candidate.is_file():
+        raise FileNotFoundError(
+            f"the syssimx FMU host {candidate} was not found; build the package (pip install .) "
+            "or point SYSSIMX_BUILD_DIR at a meson build"
         )
     return candidate
 

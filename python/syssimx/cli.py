@@ -4,6 +4,8 @@
     syssimx fmus
     syssimx simulate pendulum_euler --stop-time 1 --step-size 0.05 --set theta0=0.5 \\
         --event theta:-1 --output results.csv --plot results.png
+    syssimx simulate Feedthrough.fmu --input signals.csv --tolerance 1e-8
+    syssimx --version
 
 An FMU argument is a path to a .fmu file or the name of a bundled FMU. Bad usage exits with
 code 2, a failure while running with code 1; both print one clear line on stderr.
@@ -13,13 +15,21 @@ from __future__ import annotations
 
 import argparse
 import csv
+import itertools
+import math
 import sys
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any, TextIO
+from typing import TYPE_CHECKING, Any, TextIO
 
-from . import fmus
+import numpy as np
+
+from . import __version__, fmus
+from .core.port import PortType
 from .graph.analysis import feedthrough_from_model_description
+
+if TYPE_CHECKING:
+    from .components.table_source import TableSource
 
 DIRECTIONS = {"-1": -1, "falling": -1, "0": 0, "both": 0, "1": 1, "+1": 1, "rising": 1}
 CAPABILITIES = (
@@ -30,6 +40,10 @@ CAPABILITIES = (
     "canInterpolateInputs",
     "needsExecutionTool",
 )
+
+
+# the numpy type FMPy casts an input column to, by the input's type
+_TABLE_DTYPES = {PortType.REAL: np.float64, PortType.INT: np.int32, PortType.BOOL: np.bool_}
 
 
 class CommandError(Exception):
@@ -46,9 +60,17 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         args.run(args, sys.stdout)
     except Exception as error:  # the command line shows messages, never tracebacks
-        print(f"syssimx: error: {error}", file=sys.stderr)
+        print(f"syssimx: error: {_describe(error, args)}", file=sys.stderr)
         return 1
     return 0
+
+
+def _describe(error: Exception, args: argparse.Namespace) -> str:
+    """The error's message; one that has none still says what failed and on which file."""
+    if str(error).strip():
+        return str(error)
+    subject = f" {args.fmu}" if getattr(args, "fmu", None) else ""
+    return f"{type(error).__name__} (with no message) in 'syssimx {args.command}{subject}'"
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -56,6 +78,7 @@ def _parser() -> argparse.ArgumentParser:
         prog="syssimx",
         description="Hybrid co-simulation of FMI 2.0 Co-Simulation FMUs.",
     )
+    parser.add_argument("--version", action="version", version=f"syssimx {__version__}")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     info = commands.add_parser("info", help="describe an FMU: variables and capabilities")
@@ -72,7 +95,15 @@ def _parser() -> argparse.ArgumentParser:
     simulate.add_argument("--stop-time", type=float, default=None, metavar="TF",
                           help="stop time in s (default: the FMU's default experiment, or 1)")
     simulate.add_argument("--step-size", type=float, default=None, metavar="DT",
-                          help="communication step in s (default: the FMU's, or (TF-T0)/500)")
+                          help="communication step in s (default: FMPy's: the FMU's default "
+                               "experiment step, doubled while there are over 1000 steps, else "
+                               "500 to 1000 round steps)")
+    simulate.add_argument("--tolerance", type=float, default=None, metavar="RTOL",
+                          help="relative tolerance passed to the FMU (default: the FMU's "
+                               "default experiment)")
+    simulate.add_argument("--input", type=Path, default=None, metavar="CSV",
+                          help="input signals, a CSV file in FMPy's format (a time column, "
+                               "then one column per input, matched by name)")
     simulate.add_argument("--set", action="append", default=[], type=_assignment,
                           metavar="NAME=VALUE", dest="assignments",
                           help="set a parameter, or hold an input at a constant value "
@@ -200,19 +231,13 @@ def _list_fmus(args: argparse.Namespace, out: TextIO) -> None:
 
 # ---------------------------------------------------------------------------------- simulate
 def _simulate(args: argparse.Namespace, out: TextIO) -> None:
-    from . import FMUComponent, System
+    from . import FMUComponent, JacobiAlgorithm, System
 
     path = _resolve_fmu(args.fmu)
     md = _read_description(path)
-    experiment = md.defaultExperiment
-    t0 = _choose(args.start_time, getattr(experiment, "startTime", None), 0.0)
-    tf = _choose(args.stop_time, getattr(experiment, "stopTime", None), t0 + 1.0)
-    dt = _choose(args.step_size, getattr(experiment, "stepSize", None), (tf - t0) / 500)
-    if not dt > 0 or not tf > t0:
-        raise CommandError(f"need stop time > start time and step size > 0; got start {t0}, "
-                           f"stop {tf}, step {dt}")
-
-    component = FMUComponent(md.modelName or path.stem, str(path))
+    t0, tf, dt = _experiment(args, md.defaultExperiment)
+    options = {} if args.tolerance is None else {"tolerance": args.tolerance}
+    component = FMUComponent(md.modelName or path.stem, str(path), **options)
     assignments = dict(args.assignments)
     held_inputs = {n: v for n, v in assignments.items() if n in component.input_specs}
     component.set_parameters(**{n: v for n, v in assignments.items() if n not in held_inputs})
@@ -226,8 +251,16 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
                                       direction=direction)
     system = System(name=f"syssimx simulate {path.name}")
     system.add_component(component)
+    events: list[float] = []
+    if args.input is not None:
+        source = _connect_input(system, component, args.input)
+        # FMPy sets the inputs at the start of each step: the Jacobi coupling's timing
+        system.set_algorithm(JacobiAlgorithm())
+        if source is not None and md.coSimulation.canHandleVariableCommunicationStepSize:
+            events = source.event_times().tolist()
     system.initialize(t0)
-    result = system.run(t0, tf, dt)
+    result = _run(system, _communication_points(t0, tf, dt, events), dt) if events \
+        else system.run(t0, tf, dt)
 
     t, values = result[component.name]
     columns = {name: values[name] for name, spec in component.output_specs.items()
@@ -244,9 +277,106 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
         out.write(f"wrote the plot to {args.plot}\n")
     for record in getattr(result, "events", None) or []:
         out.write(f"event {record.component}.{record.name} at t = {record.t!r}\n")
+    termination = result.termination
+    if termination is not None:  # a component asked to stop: the end of the run, not a failure
+        reason = f": {termination.message}" if termination.message else ""
+        out.write(f"{termination.component} terminated the run at t = {termination.time!r}"
+                  f"{reason}\n")
     if args.output is None:
         for name, series in columns.items():
             out.write(f"{name} = {series[-1]:.12g} at t = {t[-1]:.12g}\n")
+
+
+def _experiment(args: argparse.Namespace, experiment: Any) -> tuple[float, float, float]:
+    """Start, stop and step: given, else from the default experiment, else FMPy's defaults."""
+    t0 = _choose(args.start_time, getattr(experiment, "startTime", None), 0.0)
+    tf = _choose(args.stop_time, getattr(experiment, "stopTime", None), t0 + 1.0)
+    if not tf > t0:
+        raise CommandError(f"need stop time > start time; got start {t0}, stop {tf}")
+    if args.step_size is not None:
+        dt = float(args.step_size)
+    elif getattr(experiment, "stepSize", None) is not None:
+        dt = float(experiment.stepSize)
+        while dt > 0 and (tf - t0) / dt > 1000:  # FMPy's output interval for a long experiment
+            dt *= 2
+    else:
+        from fmpy.util import auto_interval
+
+        dt = float(auto_interval(tf - t0))
+    if not dt > 0:
+        raise CommandError(f"need step size > 0; got {dt}")
+    return t0, tf, dt
+
+
+def _communication_points(t0: float, tf: float, dt: float, events: Any) -> list[float]:
+    """FMPy's steps for an FMU that can vary its step: the grid t0 + k*dt plus every input
+    event between grid points (one within 1e-9 relative of a grid point is that point)."""
+    points, regular_steps, t = [t0], 0, t0
+    while not (t > tf or math.isclose(t, tf)):
+        regular = t0 + (regular_steps + 1) * dt
+        upcoming = next((e for e in events if e > t and not math.isclose(e, t)), math.inf)
+        step_end = upcoming if regular > upcoming and not math.isclose(regular, upcoming) \
+            else regular
+        t = tf if step_end > tf and not math.isclose(step_end, tf) else step_end
+        points.append(t)
+        regular_steps += math.isclose(t, regular)
+    return points
+
+
+def _run(system: Any, points: list[float], dt: float) -> Any:
+    """Runs through the communication points: stretches of regular steps of dt in one run each,
+    every step off that grid (to or from an input event, to the stop time) in a run of its own;
+    stops when a component terminates."""
+    start, result = points[0], None
+    for previous, point in itertools.pairwise(points):
+        if math.isclose(point - previous, dt):
+            continue
+        if previous > start:
+            result = system.run(start, previous, dt)
+            if result.termination is not None:
+                return result
+        result = system.run(previous, point, point - previous)
+        if result.termination is not None:
+            return result
+        start = point
+    if points[-1] > start:
+        result = system.run(start, points[-1], dt)
+    return result
+
+
+def _connect_input(system: Any, component: Any, csv_path: Path) -> TableSource | None:
+    """A table source from the CSV file, its columns connected to the inputs of the same name;
+    each column is read as the input's type, held where FMPy holds it (non-continuous)."""
+    from . import Connection, TableSource
+    from .components.time_table import read_time_table
+
+    table = read_time_table(csv_path, "--input")
+    inputs = {n: s for n, s in component.input_specs.items() if s.type in _TABLE_DTYPES}
+    used = [name for name in table.columns if name in inputs]
+    ignored = [name for name in table.columns if name not in inputs]
+    if ignored:
+        print(f"syssimx: warning: {csv_path}: {', '.join(ignored)} "
+              f"{'names' if len(ignored) == 1 else 'name'} no input of {component.name}; "
+              "ignored", file=sys.stderr)
+    if not used:
+        return None
+    columns = [("time", np.float64), *((n, _TABLE_DTYPES[inputs[n].type]) for n in used)]
+    signals = np.empty(len(table.time), dtype=columns)
+    signals["time"] = table.time
+    for name in used:
+        values, kind = table.columns[name][1], inputs[name].type
+        if kind == PortType.REAL:
+            signals[name] = values
+        else:  # FMPy casts the column to the input's C int (truncating); a boolean is non-zero
+            truncated = values.astype(np.int32)
+            signals[name] = truncated if kind == PortType.INT else truncated != 0
+    hold = [n for n in used if inputs[n].type == PortType.REAL
+            and component.info.variables[n].variability in ("discrete", "tunable")]
+    source = TableSource(csv_path.name, signals, hold=hold)  # numbers in the inputs' units
+    system.add_component(source)
+    for name in used:
+        system.add_connection(Connection(source.name, name, component.name, name))
+    return source
 
 
 def _choose(given: float | None, default: Any, fallback: float) -> float:

@@ -6,13 +6,19 @@ from __future__ import annotations
 class SysSimXError(Exception):
     """Base class of every syssimx error."""
 
+    def __str__(self) -> str:
+        # a safety net: a user never sees an empty message, at worst what kind of error it is
+        text = super().__str__()
+        return text or (type(self).__doc__ or type(self).__name__).strip().splitlines()[0]
+
 
 class ConfigurationError(SysSimXError, ValueError):
     """Bad input found before anything runs: unknown names, wrong types, bad units or times."""
 
 
 class FMUFileError(ConfigurationError):
-    """The .fmu file cannot be used: missing, not a zip, no modelDescription, no binary."""
+    """The .fmu file cannot be used: missing, a broken or hostile archive, an invalid
+    modelDescription, no binary for this platform."""
 
 
 class FMUError(SysSimXError):
@@ -39,6 +45,10 @@ class SimulationError(SysSimXError):
         self.status = status
         self.fmu_message = fmu_message
         self.event = event
+
+
+class SimulationTimeoutError(SimulationError, TimeoutError):
+    """A run took longer than its `timeout` of wall time; the samples up to there are kept."""
 
 
 class ZenoError(SimulationError):

@@ -21,16 +21,24 @@ def pint_expression(unit: str) -> str:
     return _POWER.sub(r"**\1", expression)
 
 
+# What tools write for "no physical unit" (Parker and Hopsan export "-").
+DIMENSIONLESS_SPELLINGS = frozenset({"", "1", "-"})
+
+
 @lru_cache(maxsize=512)
 def to_unit(unit: str) -> pint.Unit:
-    """Parse an FMI or pint unit string; "1" and "" are dimensionless."""
-    if unit.strip() in ("", "1"):
+    """Parse an FMI or pint unit string; "1", "-" and "" are dimensionless.
+
+    Raises ValueError naming the unit for anything pint cannot read (pint itself raises many
+    kinds, some without a message, e.g. an AssertionError for "m/s/").
+    """
+    if unit.strip() in DIMENSIONLESS_SPELLINGS:
         return ureg.dimensionless
     try:
         return ureg.Unit(pint_expression(unit))
-    except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError, ValueError,
-            AttributeError, TypeError) as exc:
-        raise ValueError(f"unknown unit {unit!r}") from exc
+    except Exception as exc:  # whatever pint raises, the unit is unreadable
+        reason = str(exc) or type(exc).__name__
+        raise ValueError(f"unit {unit!r} is unknown to pint ({reason})") from exc
 
 
 def conversion(src_unit: str | None, dst_unit: str | None) -> tuple[float, float]:

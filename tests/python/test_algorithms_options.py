@@ -5,7 +5,6 @@ raise_on_missed_event, and result.events read the way SysSimX code reads it."""
 from __future__ import annotations
 
 import dataclasses
-import gc
 
 import numpy as np
 import pendulum_wall
@@ -27,15 +26,6 @@ from syssimx import (
     fmus,
 )
 from syssimx.core.events import DenseTime
-
-
-@pytest.fixture(autouse=True)
-def collect_dropped_components():
-    """Finalize the FMUs a test dropped here, not inside a later cffi call (the finalizer's
-    function lookup would wait for cffi's lock: issue 9, fixed on another branch)."""
-    yield
-    gc.collect(1)  # the young generations: where a test's objects are
-
 
 QUARTER_PERIOD = pendulum_wall.QUARTER_PERIOD
 

@@ -4,8 +4,6 @@ FEMComponent/OpenSimComponent names."""
 
 from __future__ import annotations
 
-import gc
-
 import numpy as np
 import pytest
 from quickstart import Integrator
@@ -18,14 +16,6 @@ from syssimx import (
     fmus,
 )
 from syssimx.components import FEMComponent as FEMFromComponents
-
-
-@pytest.fixture(autouse=True)
-def collect_dropped_components():
-    """Finalize the FMUs a test dropped here, not inside a later cffi call (the finalizer's
-    function lookup would wait for cffi's lock: issue 9, fixed on another branch)."""
-    yield
-    gc.collect(1)  # the young generations: where a test's objects are
 
 
 def pendulum() -> FMUComponent:

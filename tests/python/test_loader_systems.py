@@ -3,7 +3,6 @@ numbers of the same systems built in Python."""
 
 from __future__ import annotations
 
-import gc
 import json
 from pathlib import Path
 
@@ -13,15 +12,6 @@ import pytest
 import yaml
 from syssimx import GaussSeidelAlgorithm, HybridAlgorithm, IJCSAAlgorithm, System
 from syssimx.system.loader import build_system, load_config, run_from_config
-
-
-@pytest.fixture(autouse=True)
-def collect_dropped_components():
-    """Finalize the FMUs a test dropped here, not inside a later cffi call (the finalizer's
-    function lookup would wait for cffi's lock: issue 9, fixed on another branch)."""
-    yield
-    gc.collect(1)  # the young generations: where a test's objects are
-
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 QUARTER_PERIOD = 0.46507759431173046  # theta0 = 0.5: K(sin^2(theta0/2)) / sqrt(m g L / I)

@@ -3,7 +3,6 @@ switches located as events, with state transfer, against closed forms."""
 
 from __future__ import annotations
 
-import gc
 import math
 import re
 import runpy
@@ -30,14 +29,6 @@ from syssimx.errors import ConfigurationError
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 HEAT, COOL, BREAKPOINT, BAND = 0.7, 1.3, 1.0, 0.1
-
-
-@pytest.fixture(autouse=True)
-def collect_dropped_components():
-    """Finalize the FMUs a test dropped here, not inside a later cffi call (the finalizer's
-    function lookup would wait for cffi's lock: issue 9, fixed on another branch)."""
-    yield
-    gc.collect(1)  # the young generations: where a test's objects are
 
 
 class Ramp(CoSimComponent):

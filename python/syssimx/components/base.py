@@ -350,8 +350,9 @@ class CoSimComponent:
         EventConnection (a MultiComponent's region boundaries)."""
         return []
 
-    # Called by the System (or the private system) once the engine plan exists.
-    def _start(self, t0: float) -> None:
+    # Called by the System (or the private system) once the engine plan exists, with the
+    # tolerance given to System.initialize (used by FMU components).
+    def _start(self, t0: float, tolerance: float | None = None) -> None:
         self._sync_ports()
         self.t = t0
         self._initialize_component(t0)

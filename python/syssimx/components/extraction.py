@@ -5,17 +5,19 @@ canBeInstantiatedOnlyOncePerProcess. Sharing one extraction means the dynamic lo
 binary once: 100 components of one FMU then step through one copy of its code instead of 100
 (measured: 2.3x faster for 100 pendulums). An FMU that may be instantiated only once per process
 gets a private extraction each time, so each instance has its own copy of the binary's globals.
+Every extraction folder is removed by its last user, on a failed extraction, and at exit.
 """
 
 from __future__ import annotations
 
+import atexit
 import shutil
 import tempfile
 import threading
 from dataclasses import dataclass
 from pathlib import Path
 
-import fmpy
+from .archive import extract
 
 
 @dataclass
@@ -28,20 +30,23 @@ class ExtractionCache:
     """Reference-counted extraction directories, keyed by archive identity."""
 
     def __init__(self) -> None:
-        self._lock = threading.Lock()
+        # reentrant: a component collected while acquire holds the lock releases through it
+        self._lock = threading.RLock()
         self._entries: dict[tuple[str, int, int], _Extraction] = {}
+        self._directories: set[Path] = set()  # every folder not yet removed, private ones too
+        atexit.register(self.remove_all)
 
     def acquire(self, archive: Path, shareable: bool) -> tuple[Path, tuple[str, int, int] | None]:
         """The directory holding `archive` extracted, and the key to release it with (None for
         a private extraction, which the caller removes itself)."""
         if not shareable:
-            return _extract(archive), None
+            return self._extract(archive), None
         stat = archive.stat()
         key = (str(archive.resolve()), stat.st_mtime_ns, stat.st_size)
         with self._lock:
             entry = self._entries.get(key)
             if entry is None:
-                entry = self._entries[key] = _Extraction(_extract(archive), 0)
+                entry = self._entries[key] = _Extraction(self._extract(archive), 0)
             entry.users += 1
             return entry.directory, key
 
@@ -54,13 +59,20 @@ class ExtractionCache:
                 if entry.users > 0:
                     return
                 del self._entries[key]
+        self._directories.discard(directory)
         shutil.rmtree(directory, ignore_errors=True)
 
+    def _extract(self, archive: Path) -> Path:
+        directory = Path(tempfile.mkdtemp(prefix="syssimx_"))
+        extract(archive, directory)  # removes the folder if it fails
+        self._directories.add(directory)
+        return directory
 
-def _extract(archive: Path) -> Path:
-    directory = Path(tempfile.mkdtemp(prefix="syssimx_"))
-    fmpy.extract(str(archive), unzipdir=str(directory))
-    return directory
+    def remove_all(self) -> None:
+        """Remove every extraction folder (at exit: the binaries are no longer needed)."""
+        for directory in list(self._directories):
+            shutil.rmtree(directory, ignore_errors=True)
+        self._directories.clear()
 
 
 extractions = ExtractionCache()

@@ -4,16 +4,27 @@ Plain use costs no Python per step: the engine calls the FMU directly, rolls it 
 fmi2Get/SetFMUstate for event localization and evaluates variable indicators in C. Overriding
 a hook (`_do_step_internal`, `_update_output_states`, `snapshot_state`/`restore_state`,
 `_handle_events_internal`, `_record_outputs`) routes that hook through Python.
+
+By default the FMU's binary runs inside this process, like any library: a crash in it ends
+Python. `isolated=True` runs it in a host process of its own (every fmi2 call crosses a
+socket), so a crash, an abort or, with `step_timeout`, a hang becomes a SimulationError.
+
+Like FMPy, syssimx writes to the FMU only the values the user set (parameters, inputs); the
+FMU keeps its own defaults otherwise, even where the modelDescription declares a rounded copy
+of them. fmi2SetupExperiment gets the tolerance the user gave (to the component, else to
+System.initialize), else the DefaultExperiment's.
 """
 
 from __future__ import annotations
 
+import math
 import weakref
 from pathlib import Path
 from typing import Any
 
 import pint
 
+from .._paths import fmu_host
 from ..core.port import Port, PortSpec, PortType
 from ..engine import ffi, lib
 from ..errors import ConfigurationError, FMUFileError
@@ -27,20 +38,46 @@ from .model_description import FMUInfo, Parameter, read_fmu, start_value, variab
 class FMUComponent(CoSimComponent):
     """An FMI 2.0 Co-Simulation FMU (linux64 binary) as a component."""
 
-    def __init__(self, name: str, fmu_path: str | Path, group: str | None = None) -> None:
+    def __init__(self, name: str, fmu_path: str | Path, group: str | None = None,
+                 tolerance: float | None = None, *, isolated: bool = False,
+                 step_timeout: float | None = None) -> None:
+        """`tolerance`: the relative tolerance for fmi2SetupExperiment; `isolated`: run the
+        binary in a process of its own; `step_timeout` (seconds, needs isolation): an fmi2 call
+        that takes longer kills that process and fails the run."""
+        if step_timeout is not None and not isolated:
+            raise ConfigurationError(f"component {name!r}: step_timeout needs isolated=True "
+                                     "(a hung FMU inside this process cannot be stopped)")
+        if step_timeout is not None and not step_timeout > 0:
+            raise ConfigurationError(f"component {name!r}: step_timeout must be a positive "
+                                     f"number of seconds, got {step_timeout!r}")
         super().__init__(name, group=group)
+        self.isolated = isolated
+        self.step_timeout = step_timeout
         self.info: FMUInfo = read_fmu(fmu_path)
         self.fmu_path = str(self.info.path)
+        # the relative tolerance for fmi2SetupExperiment; None: System.initialize's, else the
+        # DefaultExperiment's
+        self.tolerance = _checked_tolerance(tolerance, f"{name}: tolerance")
+        self._experiment_tolerance = _first_given(self.tolerance, self.info.default_tolerance)
         self.input_specs.update(self.info.input_specs)
         self.output_specs.update(self.info.output_specs)
         self.direct_feedthrough = {k: set(v) for k, v in self.info.feedthrough.items()}
         self.parameters = {n: p.start for n, p in self.info.parameters.items()}
+        self._declared_parameters = dict(self.parameters)
+        self._parameters_set: set[str] = set()  # named in set_parameters: written even if equal
         self._input_starts = {n: _start(self.info, n) for n in self.info.input_specs}
-        self._fmu, self._unzip_dir, extraction_key = _load(self.info, name)
-        self.instance = FMUInstance(self._fmu, name)
-        self._finalizer = weakref.finalize(self, _release, self.instance, self._unzip_dir,
-                                           extraction_key)
+        self._inputs_set: set[str] = set()
+        fmu, self._unzip_dir, extraction_key = _load(self.info, name, isolated, step_timeout)
+        self.instance = FMUInstance(fmu, name)
+        # resolved now: a finalizer must not be the first to look up a library function
+        self._finalizer = weakref.finalize(self, _release, lib().ssx_fmu_free, self.instance,
+                                           self._unzip_dir, extraction_key)
         self._sync_ports()
+
+    @property
+    def _fmu(self) -> Any:
+        """The engine's ssx_fmu (FMUError after free())."""
+        return self.instance.fmu
 
     @property
     def _instance(self) -> FMUInstance:
@@ -66,13 +103,15 @@ class FMUComponent(CoSimComponent):
         if self._binding is None:
             return self._input_starts[name] if direction == "in" else 0.0
         value = self._binding.plan.port_value(self, direction, name)
+        if math.isnan(value) and direction == "in":
+            return self._input_starts[name]  # not yet read from the FMU (see input_start)
         kind = (self.output_specs if direction == "out" else self.input_specs)[name].type
         return int(value) if kind == PortType.INT else bool(value) if kind == PortType.BOOL \
             else value
 
     def input_start(self, name: str) -> float:
-        """The modelDescription start value, or what set_inputs gave."""
-        return float(self._input_starts[name])
+        """What set_inputs gave, else NaN: the engine then keeps the FMU's own value."""
+        return float(self._input_starts[name]) if name in self._inputs_set else math.nan
 
     def value_reference(self, name: str) -> int:
         return int(self.info.variables[name].valueReference)
@@ -84,6 +123,7 @@ class FMUComponent(CoSimComponent):
                 raise ConfigurationError(f"component {self.name!r} has no input {name!r}; "
                                          f"inputs: {sorted(self.input_specs) or 'none'}")
             self._input_starts[name] = self.input_specs[name].coerce(value)
+            self._inputs_set.add(name)
         if self._binding is not None:
             self._binding.plan.write_inputs(self, signals)
         if self.instance.alive():
@@ -113,24 +153,44 @@ class FMUComponent(CoSimComponent):
                     f"component {self.name!r} has no parameter {name!r}; "
                     f"known parameters: {sorted(self.info.parameters) or 'none'}")
             self.parameters[name] = _coerce_parameter(self.name, parameter, value)
+            self._parameters_set.add(name)
+
+    def user_parameters(self) -> dict[str, Any]:
+        """The parameters the user set: named in set_parameters (or reinitialize), or changed
+        in `parameters`. Only these are written to the FMU."""
+        return {n: v for n, v in self.parameters.items()
+                if v is not None and (n in self._parameters_set
+                                      or v != self._declared_parameters.get(n))}
 
     def _apply_parameters_starts(self) -> None:
-        """Write the parameters to the FMU. In step mode only tunable ones (FMI forbids
-        setting fixed parameters after initialization)."""
+        """Write the parameters the user set to the FMU. In step mode only tunable ones (FMI
+        forbids setting fixed parameters after initialization)."""
         step_mode = self.instance.mode == "step"
-        values = {n: v for n, v in self.parameters.items()
-                  if v is not None and (self.info.parameters[n].tunable or not step_mode)}
+        values = {n: v for n, v in self.user_parameters().items()
+                  if self.info.parameters[n].tunable or not step_mode}
         self._write_to_fmu(values)
 
     def _apply_input_starts(self) -> None:
-        """Write the inputs' current values (start values while unconnected) to the FMU."""
-        values = {n: self.inputs[n].raw() for n in self.engine_inputs()}
+        """Write the inputs the user set to the FMU; in a system, the engine's current input
+        values (connections drive them; an input never set holds the FMU's own value there,
+        NaN before the engine read it)."""
+        if self._binding is None:
+            values = {n: self._input_starts[n] for n in self._inputs_set}
+        else:
+            plan = self._binding.plan
+            engine = {n: plan.port_value(self, "in", n) for n in self.engine_inputs()}
+            values = {n: _typed_input(self.input_specs[n].type, v)
+                      for n, v in engine.items() if not math.isnan(v)}
         self._write_to_fmu(values)
 
     # ---------------------------------------------------------------- life cycle
-    def _start(self, t0: float) -> None:
+    def _start(self, t0: float, tolerance: float | None = None) -> None:
         self._sync_ports()
         self.t = t0
+        system_tolerance = _checked_tolerance(tolerance, f"{self.name}: the tolerance given to "
+                                              "System.initialize")
+        self._experiment_tolerance = _first_given(self.tolerance, system_tolerance,
+                                                  self.info.default_tolerance)
         self.reinitialize(t0)
         self._set_event_ports(t0, None)
 
@@ -139,7 +199,7 @@ class FMUComponent(CoSimComponent):
         the parameters and inputs applied, exit. `start_values` (parameters, numbers or pint
         quantities) override `parameters` for this instance only, so a later
         System.initialize starts from the parameters the user set."""
-        saved = self.parameters
+        saved, saved_set = self.parameters, self._parameters_set
         overrides = {}
         for name, value in start_values.items():
             if name not in self.info.parameters:
@@ -148,15 +208,16 @@ class FMUComponent(CoSimComponent):
                     f"known parameters: {sorted(self.info.parameters)}")
             overrides[name] = _coerce_parameter(self.name, self.info.parameters[name], value)
         self.parameters = {**saved, **overrides}
+        self._parameters_set = saved_set | set(overrides)
         try:
             self.instance.instantiate()
-            self.instance.setupExperiment(startTime=t)
+            self.instance.setupExperiment(tolerance=self._experiment_tolerance, startTime=t)
             self.instance.enterInitializationMode()
             self._apply_parameters_starts()
             self._apply_input_starts()
             self.instance.exitInitializationMode()
         finally:
-            self.parameters = saved
+            self.parameters, self._parameters_set = saved, saved_set
         self.t = t
         if self._binding is not None:
             self._binding.plan.read_outputs(self)
@@ -216,7 +277,8 @@ class FMUComponent(CoSimComponent):
         super().reset()
 
     def free(self) -> None:
-        """Free the instance and unload the binary (the component is unusable afterwards)."""
+        """Free the instance and unload the binary; afterwards every use of the FMU raises
+        FMUError."""
         self.reset()
         self._finalizer()
 
@@ -227,6 +289,27 @@ def _start(info: FMUInfo, name: str) -> float | int | bool:
     if value is None:
         return {PortType.REAL: 0.0, PortType.INT: 0}.get(kind, False)
     return value  # type: ignore[return-value]
+
+
+def _typed_input(kind: PortType, value: float) -> float | int | bool:
+    if kind == PortType.INT:
+        return round(value)
+    if kind == PortType.BOOL:
+        return value != 0.0
+    return value
+
+
+def _checked_tolerance(tolerance: float | None, where: str) -> float | None:
+    if tolerance is None:
+        return None
+    if isinstance(tolerance, bool) or not isinstance(tolerance, int | float) \
+            or not (math.isfinite(tolerance) and tolerance > 0):
+        raise ConfigurationError(f"{where} must be a positive number, got {tolerance!r}")
+    return float(tolerance)
+
+
+def _first_given(*values: float | None) -> float | None:
+    return next((v for v in values if v is not None), None)
 
 
 def _coerce_parameter(component: str, parameter: Parameter, value: Any) -> Any:
@@ -248,18 +331,28 @@ def _coerce_parameter(component: str, parameter: Parameter, value: Any) -> Any:
         raise ConfigurationError(f"{where}: {exc}") from exc
 
 
-def _load(info: FMUInfo, name: str) -> tuple[Any, Path, tuple[str, int, int] | None]:
-    """Extract the archive (shared where FMI allows) and load its binary into the engine (no
-    instance yet)."""
+def _load(info: FMUInfo, name: str, isolated: bool, step_timeout: float | None
+          ) -> tuple[Any, Path, tuple[str, int, int] | None]:
+    """Extract the archive (shared where FMI allows) and load its binary into the engine, or
+    into a host process of its own when isolated (no instance yet)."""
+    host = str(fmu_host()).encode() if isolated else None
     once_per_process = bool(getattr(info.description.coSimulation,
                                     "canBeInstantiatedOnlyOncePerProcess", False))
-    unzip_dir, key = extractions.acquire(info.path, shareable=not once_per_process)
-    binary = unzip_dir / info.binary_name()
+    # every isolated FMU has a process of its own, so it may share the extraction
+    unzip_dir, key = extractions.acquire(info.path, shareable=isolated or not once_per_process)
+    binary = (unzip_dir / info.binary_name()).resolve()
+    if not (binary.is_relative_to(unzip_dir.resolve()) and binary.is_file()):
+        extractions.release(unzip_dir, key)
+        raise FMUFileError(f"{info.path}: {info.binary_name()} is not a file inside the "
+                           "extracted archive; refused to load it")
     error = ffi.new("char[1024]")
-    handle = lib().ssx_fmu_load(str(binary).encode(), info.model_identifier.encode(),
-                                info.description.guid.encode(),
-                                (unzip_dir / "resources").as_uri().encode(), name.encode(), 0,
-                                error, 1024)
+    arguments = (str(binary).encode(), info.model_identifier.encode(),
+                 info.description.guid.encode(), (unzip_dir / "resources").as_uri().encode(),
+                 name.encode(), 0, error, 1024)
+    if host is not None:
+        handle = lib().ssx_fmu_load_isolated(host, step_timeout or 0.0, *arguments)
+    else:
+        handle = lib().ssx_fmu_load(*arguments)
     if handle == ffi.NULL:
         extractions.release(unzip_dir, key)
         raise FMUFileError(f"{info.path}: cannot load {info.binary_name()}: "
@@ -267,8 +360,8 @@ def _load(info: FMUInfo, name: str) -> tuple[Any, Path, tuple[str, int, int] | N
     return handle, unzip_dir, key
 
 
-def _release(instance: FMUInstance, unzip_dir: Path, key: tuple[str, int, int] | None) -> None:
-    instance.mode = "none"
-    instance.generation += 1
-    lib().ssx_fmu_free(instance.fmu)
+def _release(free_fmu: Any, instance: FMUInstance, unzip_dir: Path,
+             key: tuple[str, int, int] | None) -> None:
+    """The finalizer: `free_fmu` is ssx_fmu_free, looked up when the component was made."""
+    instance.release(free_fmu)
     extractions.release(unzip_dir, key)

@@ -2,7 +2,11 @@
 
 The engine owns the fmi2 instance (it steps it without Python); this proxy lets user code
 (the seed's FMUComponent subclass, event handlers) drive the same instance. A status above
-Warning raises FMUError with the FMU's last log message.
+Warning raises FMUError with the FMU's last log message. Once the FMU is released
+(FMUComponent.free()), every call raises FMUError instead of touching freed memory.
+
+Finalizers run whenever the garbage collector runs, possibly while cffi holds the lock that a
+first lookup of a library function takes: they only call functions resolved beforehand.
 """
 
 from __future__ import annotations
@@ -25,25 +29,49 @@ class FMUState:
         self._instance = instance
         self.generation = instance.generation
         self.handle = handle  # void ** holding the fmi2FMUstate
-        self._finalizer = weakref.finalize(self, _free_state, instance, self.generation, handle)
+        self._finalizer = weakref.finalize(self, _free_state, instance._free_state_function,
+                                           instance, self.generation, handle)
 
     def free(self) -> None:
         self._finalizer()
 
 
-def _free_state(instance: FMUInstance, generation: int, handle: Any) -> None:
+def _free_state(free_state: Any, instance: FMUInstance, generation: int, handle: Any) -> None:
     if handle[0] != ffi.NULL and instance.generation == generation and instance.alive():
-        lib().ssx_fmu_free_state(instance.fmu, handle)
+        free_state(instance.fmu, handle)
 
 
 class FMUInstance:
     """Proxy with FMU2Slave's methods; `mode` is "none", "instantiated", "init" or "step"."""
 
     def __init__(self, fmu: Any, component_name: str) -> None:
-        self.fmu = fmu
+        self._fmu = fmu
         self.component_name = component_name
         self.mode = "none"
         self.generation = 0  # bumped whenever the live instance is freed or replaced
+        self._free_state_function = lib().ssx_fmu_free_state
+
+    @property
+    def fmu(self) -> Any:
+        """The engine's ssx_fmu; FMUError once released."""
+        if self._fmu is None:
+            raise FMUError(f"{self.component_name}: the FMU was released by "
+                           "FMUComponent.free(); create a new FMUComponent to use it again",
+                           component=self.component_name)
+        return self._fmu
+
+    def released(self) -> bool:
+        return self._fmu is None
+
+    def release(self, free_fmu: Any) -> None:
+        """Free the instance and unload the binary with `free_fmu` (ssx_fmu_free, resolved
+        by the caller beforehand); afterwards every call raises FMUError."""
+        if self._fmu is None:
+            return
+        self.mode = "none"
+        self.generation += 1
+        fmu, self._fmu = self._fmu, None
+        free_fmu(fmu)
 
     def alive(self) -> bool:
         return self.mode != "none"

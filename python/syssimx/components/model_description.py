@@ -1,25 +1,28 @@
 """What syssimx needs from an FMU archive: validated files, ports, parameters, feedthrough.
 
-Everything here is checked before an FMU is loaded, so a broken or foreign .fmu gives a clear
-error naming the file and what is wrong with it.
+Everything here is checked before an FMU is loaded, so a broken, foreign or hostile .fmu gives
+a clear error naming the file and what is wrong with it.
 """
 
 from __future__ import annotations
 
 import logging
+import math
 import sys
 import zipfile
+import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from fmpy import read_model_description
-from fmpy.model_description import ModelDescription, ModelVariable
+from fmpy.model_description import ModelDescription
 
 from ..core.port import PortSpec, PortType
 from ..errors import FMUFileError
 from ..graph.analysis import feedthrough_from_model_description
 from ..units import to_unit
+from .archive import open_archive
+from .description_reader import ScalarVariable, read_description
 
 logger = logging.getLogger("syssimx.fmu")
 
@@ -49,7 +52,8 @@ class FMUInfo:
     description: ModelDescription
     model_identifier: str
     can_get_set_state: bool
-    variables: dict[str, ModelVariable]
+    variables: dict[str, ScalarVariable]
+    default_tolerance: float | None = None  # DefaultExperiment tolerance
     input_specs: dict[str, PortSpec] = field(default_factory=dict)
     output_specs: dict[str, PortSpec] = field(default_factory=dict)
     parameters: dict[str, Parameter] = field(default_factory=dict)
@@ -59,7 +63,7 @@ class FMUInfo:
         return f"binaries/{PLATFORM}/{self.model_identifier}.so"
 
 
-def variable_unit(variable: ModelVariable) -> str | None:
+def variable_unit(variable: ScalarVariable) -> str | None:
     """The variable's unit, inherited from its declaredType when the variable has none."""
     if variable.unit:
         return variable.unit
@@ -67,77 +71,106 @@ def variable_unit(variable: ModelVariable) -> str | None:
     return getattr(declared, "unit", None) or None
 
 
-def _pint_unit(unit: str | None, where: str) -> str | None:
-    """`unit` if pint reads it (else its lower-case spelling, e.g. "Ohm"); a unit pint cannot
-    read is dropped with a warning, so the FMU stays usable without unit conversion there."""
-    for candidate in (unit, unit.lower() if unit else None):
-        if candidate:
-            try:
-                to_unit(candidate)
-                return candidate
-            except ValueError:
-                continue
-    if unit:
-        logger.warning("%s: unit %r is unknown to pint; the port carries no unit", where, unit)
+def _pint_unit(unit: str) -> str | None:
+    """`unit` if pint reads it, else its lower-case spelling (e.g. "Ohm") if pint reads that,
+    else None."""
+    for candidate in (unit, unit.lower()):
+        try:
+            to_unit(candidate)
+            return candidate
+        except ValueError:
+            continue
     return None
 
 
-def _start_value(variable: ModelVariable, kind: PortType) -> float | int | bool | str | None:
+def _start_value(variable: ScalarVariable, kind: PortType) -> float | int | bool | str | None:
     start: Any = variable.start
     if start is None:
         return None
+    text = start.strip()
     if kind == PortType.REAL:
-        return float(start)
+        return float(text)
     if kind == PortType.INT:
-        return int(start)
+        return int(text)
     if kind == PortType.BOOL:
-        return start in (True, "true", "1", 1)
+        return text in ("true", "1")
     return str(start)
-
-
-def _check_archive(path: Path) -> None:
-    if not path.is_file():
-        raise FMUFileError(f"FMU file not found: {path}")
-    if not zipfile.is_zipfile(path):
-        raise FMUFileError(f"{path} is not an FMU: the file is not a zip archive")
-    with zipfile.ZipFile(path) as archive:
-        names = set(archive.namelist())
-    if "modelDescription.xml" not in names:
-        raise FMUFileError(f"{path} is not an FMU: the archive has no modelDescription.xml")
 
 
 def read_fmu(fmu_path: str | Path) -> FMUInfo:
     """Validate the archive and read its model description (no extraction, no loading)."""
     path = Path(fmu_path).resolve()
-    _check_archive(path)
-    try:
-        description = read_model_description(str(path), validate=False)
-    except Exception as exc:  # fmpy raises many kinds for a malformed description
-        raise FMUFileError(f"{path}: unreadable modelDescription.xml: {exc}") from exc
-    if description.fmiVersion != "2.0":
-        raise FMUFileError(f"{path}: FMI version {description.fmiVersion} is not supported "
-                           "(syssimx runs FMI 2.0 Co-Simulation FMUs)")
-    if description.coSimulation is None:
-        raise FMUFileError(f"{path} is a Model-Exchange-only FMU; syssimx needs Co-Simulation")
-    info = FMUInfo(path=path, description=description,
-                   model_identifier=description.coSimulation.modelIdentifier,
-                   can_get_set_state=bool(description.coSimulation.canGetAndSetFMUstate),
-                   variables={v.name: v for v in description.modelVariables})
-    with zipfile.ZipFile(path) as archive:
-        if info.binary_name() not in archive.namelist():
+    with open_archive(path) as archive:
+        names = set(archive.namelist())
+        if "modelDescription.xml" not in names:
+            raise FMUFileError(f"{path} is not an FMU: the archive has no modelDescription.xml")
+        description = _read_description(archive, path)
+        if description.coSimulation is None:
+            raise FMUFileError(f"{path} is a Model-Exchange-only FMU; syssimx needs "
+                               "Co-Simulation")
+        identifier = _model_identifier(description.coSimulation.modelIdentifier, path)
+        info = FMUInfo(path=path, description=description, model_identifier=identifier,
+                       can_get_set_state=bool(description.coSimulation.canGetAndSetFMUstate),
+                       variables={v.name: v for v in description.modelVariables},
+                       default_tolerance=_default_tolerance(description, path))
+        if info.binary_name() not in names:
             raise FMUFileError(f"{path} has no {PLATFORM} binary ({info.binary_name()} missing)")
     _collect_ports_and_parameters(info)
     _collect_feedthrough(info)
     return info
 
 
+def _read_description(archive: zipfile.ZipFile, path: Path) -> ModelDescription:
+    try:
+        with archive.open("modelDescription.xml") as stream:
+            return read_description(stream, path)
+    except (zipfile.BadZipFile, zlib.error, EOFError, NotImplementedError, OSError) as exc:
+        raise FMUFileError(f"{path}: cannot read modelDescription.xml from the archive: "
+                           f"{exc or type(exc).__name__}") from exc
+
+
+def _default_tolerance(description: ModelDescription, path: Path) -> float | None:
+    experiment = description.defaultExperiment
+    text = experiment.tolerance if experiment is not None else None
+    if text is None:
+        return None
+    try:
+        tolerance = float(text)
+    except ValueError:
+        tolerance = math.nan
+    if not (math.isfinite(tolerance) and tolerance > 0):
+        raise FMUFileError(f"{path}: DefaultExperiment tolerance {text!r} is not a positive "
+                           "number")
+    return tolerance
+
+
+def _model_identifier(identifier: str | None, path: Path) -> str:
+    """The modelIdentifier, which names the binary: a file name, never a path."""
+    if not identifier:
+        raise FMUFileError(f"{path}: the CoSimulation element has no modelIdentifier")
+    if any(c in identifier for c in "/\\\0") or ".." in identifier:
+        raise FMUFileError(f"{path}: modelIdentifier {identifier!r} is not a file name (it "
+                           "contains a path separator, '..' or a NUL); refused")
+    return identifier
+
+
+_PORT_CAUSALITIES = frozenset({"input", "output", "parameter"})
+
+
 def _collect_ports_and_parameters(info: FMUInfo) -> None:
-    for variable in info.description.modelVariables:
+    unreadable: dict[str, list[str]] = {}  # unit pint cannot read -> the variables using it
+    readable: dict[str, str | None] = {}  # the FMI unit -> what pint reads (a large FMU
+    for variable in info.description.modelVariables:  # repeats a few units many times)
         kind = _PORT_TYPES.get(variable.type)
-        if kind is None:
-            continue  # String variables have no place among the engine's doubles
-        unit = (_pint_unit(variable_unit(variable), f"{info.path.name}: {variable.name}")
-                if kind == PortType.REAL else None)
+        if kind is None or variable.causality not in _PORT_CAUSALITIES:
+            continue  # locals are no ports; String variables have no place among doubles
+        unit = variable_unit(variable) if kind == PortType.REAL else None
+        if unit:
+            if unit not in readable:
+                readable[unit] = _pint_unit(unit)
+            if readable[unit] is None:
+                unreadable.setdefault(unit, []).append(variable.name)
+            unit = readable[unit]
         if variable.causality in ("input", "output"):
             spec = PortSpec(variable.name, kind, "in" if variable.causality == "input" else "out",
                             unit, variable.description)
@@ -147,6 +180,10 @@ def _collect_ports_and_parameters(info: FMUInfo) -> None:
             info.parameters[variable.name] = Parameter(
                 variable.name, variable.valueReference, kind, unit,
                 variable.variability == "tunable", _start_value(variable, kind))
+    for unit, names in unreadable.items():
+        others = f" and {len(names) - 1} more" if len(names) > 1 else ""
+        logger.warning("%s: unit %r of variable %r%s is unknown to pint; dropped (those ports "
+                       "carry no unit)", info.path.name, unit, names[0], others)
 
 
 def _collect_feedthrough(info: FMUInfo) -> None:

@@ -6,7 +6,7 @@ import math
 from typing import TYPE_CHECKING, NoReturn
 
 from ..engine import ffi, lib
-from ..errors import AlgebraicLoopError, SimulationError, ZenoError
+from ..errors import AlgebraicLoopError, SimulationError, SimulationTimeoutError, ZenoError
 
 if TYPE_CHECKING:
     from .plan import EnginePlan
@@ -16,9 +16,10 @@ _STATUS = {0: "OK", 1: "Warning", 2: "Discard", 3: "Error", 4: "Fatal", 5: "Pend
 
 def raise_failure(plan: EnginePlan, default_component: str | None = None) -> NoReturn:
     """Raise the plan's last failure. An interrupt (KeyboardInterrupt, SystemExit) raised in a
-    callback is raised as it is; anything else becomes a SimulationError."""
+    callback and a timeout are raised as they are; anything else becomes a SimulationError."""
     failure = plan.failure
-    if failure is not None and not isinstance(failure.error, Exception):
+    if failure is not None and (not isinstance(failure.error, Exception)
+                                or isinstance(failure.error, SimulationTimeoutError)):
         plan.failure = None
         raise failure.error
     raise simulation_error(plan, default_component)

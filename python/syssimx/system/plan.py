@@ -1,14 +1,16 @@
 """EnginePlan: a System compiled into an engine system, and the Python side of its callbacks.
 
 The plan owns the ssx_system (freed when the plan is collected, before the FMUs it borrows),
-knows each component's engine index and port order, and keeps the cffi callbacks alive.
-A Python exception raised inside a callback is kept here and re-raised by the System.
+knows each component's engine index and port order, and owns the cffi callbacks: the engine
+calls none of them while the system is freed, so a collected cycle of plan, callbacks and
+components may free them in any order. A Python exception raised inside a callback is kept
+here and re-raised by the System.
 """
 
 from __future__ import annotations
 
 import functools
-import weakref
+import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -17,26 +19,28 @@ import numpy as np
 
 from ..components.base import Binding, CoSimComponent, _overrides
 from ..components.fmu import FMUComponent
+from ..components.table_source import TableSource
 from ..core.port import PortType
 from ..engine import ffi, lib
-from ..errors import ConfigurationError
+from ..errors import ConfigurationError, SimulationTimeoutError
+from .history_arrays import HistoryArrays
 
 _ENGINE_TYPE = {PortType.REAL: 0, PortType.INT: 1, PortType.BOOL: 2}
 
 
-# What the engine may still use while a system is freed (its FMUs, the callbacks it calls to
-# release Python snapshots), by system address. Held here rather than by the plan, because a
-# garbage-collection cycle may clear the plan's attributes before the system's destructor runs.
-_ENGINE_REFERENCES: dict[int, list[Any]] = {}
+# The FMUs a system borrows, by system address, until the system is freed. Held here rather
+# than by the plan, because a garbage-collection cycle may clear the plan's attributes (and
+# unload an FMU) before the system's destructor runs. FMUs refer to nothing of the plan.
+_BORROWED_FMUS: dict[int, list[Any]] = {}
 
 
 def _address(pointer: Any) -> int:
     return int(ffi.cast("uintptr_t", pointer))
 
 
-def _free_system(release: Callable[[Any], None], pointer: Any) -> None:
+def _free_system(release: Callable[[Any], None], address: int, pointer: Any) -> None:
     release(pointer)
-    _ENGINE_REFERENCES.pop(_address(pointer), None)
+    _BORROWED_FMUS.pop(address, None)
 
 
 @dataclass
@@ -56,12 +60,18 @@ class EnginePlan:
         raw = lib().ssx_system_new(name.encode())
         if raw == ffi.NULL:
             raise MemoryError("ssx_system_new failed")
-        self._engine_references: list[Any] = [
+        address = _address(raw)
+        _BORROWED_FMUS[address] = [
             c._fmu for c in components.values() if isinstance(c, FMUComponent)]
-        _ENGINE_REFERENCES[_address(raw)] = self._engine_references
-        # The release function is looked up now: a collection may run this destructor while
-        # cffi holds the lock that a first lookup of a library function would wait for.
-        self.sys = ffi.gc(raw, functools.partial(_free_system, lib().ssx_system_free))
+        # What destructors call is looked up now: a collection may run them while cffi holds
+        # the lock that a first lookup of a library function would wait for.
+        self.sys = ffi.gc(raw, functools.partial(_free_system, lib().ssx_system_free, address))
+        self._release_history = lib().ssx_history_release
+        self._callbacks: list[Any] = []  # kept alive as long as the engine may call them
+        self.name = name
+        self.deadline: float | None = None  # time.monotonic() at which the run times out
+        self.timeout: float | None = None
+        self._watch()
         self.components = dict(components)
         self.index = {name: i for i, name in enumerate(components)}
         self.outputs = {n: c.engine_outputs() for n, c in components.items()}
@@ -69,10 +79,43 @@ class EnginePlan:
         self.indicators: list[tuple[str, str]] = []  # engine index -> (component, event)
         self.indicator_index: dict[tuple[str, str], int] = {}
         self.failure: CallbackFailure | None = None
-        self._views: weakref.WeakSet[Any] = weakref.WeakSet()
         self._do_step = lib().ssx_component_do_step
         for name, component in components.items():
             self._add_component(name, component)
+
+    # ------------------------------------------------------------------ callbacks
+    def callback(self, signature: str, body: Callable[..., int], error: int,
+                 on_escape: Callable[[BaseException], None]) -> Any:
+        """A cffi callback owned by the plan. An exception escaping `body` (a Ctrl-C can arrive
+        on its first line, before any try) is handed to `on_escape`, and C gets `error`."""
+        def escaped(_type: Any, exc: BaseException | None, _traceback: Any) -> None:
+            if exc is not None:
+                on_escape(exc)
+
+        callback = ffi.callback(signature, body, error=error, onerror=escaped)
+        self._callbacks.append(callback)
+        return callback
+
+    def _watch(self) -> None:
+        """The engine's monitor: Python's signal handlers run in it (Ctrl-C stops the run with
+        KeyboardInterrupt), and it stops a run that passes its deadline."""
+        engine_time = lib().ssx_time
+
+        def stop(exc: BaseException) -> None:
+            if self.failure is None:
+                self.failure = CallbackFailure(self.name, "monitor",
+                                               float(engine_time(self.sys)), exc)
+
+        def monitor(_user: Any, t: float) -> int:
+            if self.deadline is not None and time.monotonic() >= self.deadline:
+                raise SimulationTimeoutError(
+                    f"system {self.name!r}: the run exceeded timeout={self.timeout} s of wall "
+                    f"time and stopped at t={t:.12g}; the samples up to there are in "
+                    "get_history()", time=t)
+            return 0
+
+        lib().ssx_set_monitor(self.sys, self.callback("int(void *, double)", monitor, 1, stop),
+                              ffi.NULL)
 
     # ------------------------------------------------------------------ building
     def check(self, result: int, what: str) -> int:
@@ -83,6 +126,9 @@ class EnginePlan:
 
     def _add_component(self, name: str, component: CoSimComponent) -> None:
         index = self.index[name]
+        if isinstance(component, TableSource):
+            self._add_table(name, index, component)
+            return
         if isinstance(component, FMUComponent):
             self.check(lib().ssx_add_fmu_component(self.sys, name.encode(), component._fmu,
                                                    int(component.can_get_set_state)), name)
@@ -108,6 +154,28 @@ class EnginePlan:
         if hooks is not None:  # the engine copies the struct; the callbacks are kept above
             self.check(lib().ssx_set_hooks(self.sys, index, hooks), f"{name}: hooks")
 
+    def _add_table(self, name: str, index: int, table: TableSource) -> None:
+        """A table source is evaluated in C: its table is copied into the engine, no hooks."""
+        time = np.ascontiguousarray(table.table.time, dtype=np.float64)
+        self.check(lib().ssx_add_table_component(self.sys, name.encode(),
+                                                 ffi.from_buffer("double[]", time), len(time)),
+                   name)
+        for port in self.outputs[name]:
+            values = np.ascontiguousarray(table.column_values(port), dtype=np.float64)
+            self.check(lib().ssx_add_table_column(
+                self.sys, index, _ENGINE_TYPE[table.output_specs[port].type],
+                int(port in table.hold), ffi.from_buffer("double[]", values)), f"{name}.{port}")
+        table._binding = Binding(self, index)
+
+    def start_table(self, table: TableSource, t0: float) -> dict[str, float]:
+        """The table's outputs at t0 (the value on the left of a jump), written before any
+        component initializes, so every component, whatever its place in the schedule, starts
+        from them; returned by output name."""
+        index = self.index[table.name]
+        outputs = lib().ssx_outputs(self.sys, index)
+        self.check(lib().ssx_table_values(self.sys, index, t0, 0, outputs), table.name)
+        return {name: float(outputs[i]) for i, name in enumerate(self.outputs[table.name])}
+
     def connect(self, src: str, src_port: str, dst: str, dst_port: str, scale: float,
                 offset: float) -> None:
         self.check(lib().ssx_connect(self.sys, self.index[src], self.outputs[src].index(src_port),
@@ -123,10 +191,11 @@ class EnginePlan:
                 self.sys, index, output, int(indicator.direction)),
                 f"{component.name}.{event}")
         else:
-            # error=-1: an exception escaping the Python side still reports failure to C
-            callback = ffi.callback("int(void *, double, double *)",
-                                    self._indicator_callback(component, event), error=-1)
-            self._engine_references.append(callback)
+            engine_time = lib().ssx_time
+            callback = self.callback(
+                "int(void *, double, double *)", self._indicator_callback(component, event), -1,
+                lambda exc: self.fail(component, f"event indicator {event!r}",
+                                      float(engine_time(self.sys)), exc))
             number = self.check(lib().ssx_add_indicator_callback(
                 self.sys, index, callback, ffi.NULL, int(indicator.direction)),
                 f"{component.name}.{event}")
@@ -203,34 +272,17 @@ class EnginePlan:
             raise_failure(self, default_component=component.name)
 
     # ------------------------------------------------------------------ history
-    def register_view(self, view: Any) -> None:
-        """`view.detach()` is called before the engine records again (its buffers may move)."""
-        self._views.add(view)
+    def history(self) -> HistoryArrays:
+        """The samples recorded so far, as arrays that stay valid and unchanged for their life."""
+        return HistoryArrays(self.sys, self._release_history)
 
-    def before_recording(self) -> None:
-        for view in list(self._views):
-            view.detach()
-        self._views = weakref.WeakSet()
-
-    def history_time(self) -> tuple[np.ndarray, np.ndarray]:
-        n = int(lib().ssx_history_length(self.sys))
-        if n == 0:
-            return np.empty(0), np.empty(0, dtype=np.int32)
-        t = np.frombuffer(ffi.buffer(lib().ssx_history_time(self.sys), 8 * n), dtype=np.float64)
-        micro = np.frombuffer(ffi.buffer(lib().ssx_history_micro(self.sys), 4 * n),
-                              dtype=np.int32)
-        return t, micro
-
-    def component_history(self, component: CoSimComponent
+    def component_history(self, component: CoSimComponent, arrays: HistoryArrays | None = None
                           ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-        """Zero-copy views of the engine's history (valid until the engine records again)."""
-        t, _ = self.history_time()
+        """(time, {output: values}) of one component, without a copy (Real outputs)."""
+        arrays = arrays if arrays is not None else self.history()
+        t = arrays.time()
         names = self.outputs[component.name]
-        if len(t) == 0 or not names:
-            return t, {n: np.empty(0) for n in names}
-        pointer = lib().ssx_history_values(self.sys, self.index[component.name])
-        matrix = np.frombuffer(ffi.buffer(pointer, 8 * len(t) * len(names)),
-                               dtype=np.float64).reshape(len(t), len(names))
+        matrix = arrays.values(self.index[component.name], len(names))
         columns = {}
         for j, name in enumerate(names):
             kind = component.output_specs[name].type
@@ -282,11 +334,14 @@ class _HookBuilder:
         needed = False
         fmu = self.is_fmu
 
+        engine_time = lib().ssx_time
+
         def add(field: str, signature: str, where: str, body: Callable[..., None],
                 time_arg: int | None = -1) -> None:
             nonlocal needed
-            callback = ffi.callback(signature, self._guard(where, body, time_arg), error=-1)
-            plan._engine_references.append(callback)
+            callback = plan.callback(
+                signature, self._guard(where, body, time_arg), -1,
+                lambda exc: plan.fail(c, self.where or where, float(engine_time(plan.sys)), exc))
             setattr(hooks[0], field, callback)
             needed = True
 
@@ -299,7 +354,6 @@ class _HookBuilder:
                 and c.can_rollback():
             add("snapshot", "int(void *, int)", "snapshot_state", self._snapshot, None)
             add("restore", "int(void *, int, double)", "restore_state", self._restore)
-            add("free_snapshot", "int(void *, int)", "free_snapshot", self._free_snapshot, None)
         if c.has_event_handling():
             add("handle_events", "int(void *, int *, int, double)", "event handler",
                 self._handle_events)
@@ -331,7 +385,7 @@ class _HookBuilder:
 
     def _snapshot(self, slot: int) -> None:
         c = self.component
-        self._free_snapshot(slot)
+        self._drop_snapshot(slot)
         ports = {n: p.raw() for n, p in c.outputs.items()}
         self.snapshots[slot] = (c.snapshot_state(), ports)
 
@@ -344,7 +398,7 @@ class _HookBuilder:
         c.restore_state(snapshot, t)
         c.t = t
 
-    def _free_snapshot(self, slot: int) -> None:
+    def _drop_snapshot(self, slot: int) -> None:
         entry = self.snapshots.pop(slot, None)
         if entry is not None and hasattr(entry[0], "free"):
             entry[0].free()

@@ -138,19 +138,19 @@ def read_statistics(plan: EnginePlan, events: Sequence[EventRecord],
 
 
 class HistoryView:
-    """Per-component (time, {port: values}) over the engine's buffers: zero-copy until the
-    engine is about to record again, then copied once."""
+    """Per-component (t, {port: values}) of the samples recorded when it was made: read-only
+    numpy arrays over the engine's buffers, valid and unchanged for as long as they live (the
+    engine records later samples elsewhere)."""
 
     def __init__(self, plan: EnginePlan, events: Sequence[EventRecord]) -> None:
-        self._plan: EnginePlan | None = plan  # the views point into its memory
+        arrays = plan.history()
+        self._micro = arrays.micro()
         self._data: dict[str, tuple[np.ndarray, dict[str, np.ndarray]]] = {}
-        self._micro = plan.history_time()[1]
         for name, component in plan.components.items():
-            t, values = plan.component_history(component)
+            t, values = plan.component_history(component, arrays)
             for event in component.event_indicators:
                 values[event] = self._event_column(t, name, event, events)
             self._data[name] = (t, values)
-        plan.register_view(self)
 
     def _event_column(self, t: np.ndarray, component: str, event: str,
                       events: Sequence[EventRecord]) -> np.ndarray:
@@ -162,12 +162,6 @@ class HistoryView:
                 first, end = np.searchsorted(t, e.t, "left"), np.searchsorted(t, e.t, "right")
                 column[first:end] |= self._micro[first:end] == e.micro + 1
         return column
-
-    def detach(self) -> None:
-        self._data = {name: (t.copy(), {p: v.copy() for p, v in values.items()})
-                      for name, (t, values) in self._data.items()}
-        self._micro = self._micro.copy()
-        self._plan = None
 
     @property
     def micro(self) -> np.ndarray:

@@ -5,12 +5,14 @@ from __future__ import annotations
 import logging
 import math
 import numbers
+import time
 import timeit
 from typing import Any
 
 import pint
 
 from ..components.base import CoSimComponent
+from ..components.table_source import start_tables
 from ..core.port import PortType
 from ..engine import ffi, lib
 from ..errors import ConfigurationError
@@ -18,7 +20,7 @@ from ..graph.analysis import analyze
 from ..units import conversion
 from .algorithms import Algorithm, GaussSeidelAlgorithm, HybridAlgorithm, JacobiAlgorithm
 from .algorithms.coupling import LOOP_JACOBIANS
-from .algorithms.hybrid import log_events
+from .algorithms.hybrid import locator_methods, log_events
 from .connection import Connection, EventConnection
 from .failure import raise_failure
 from .plan import EnginePlan
@@ -198,18 +200,18 @@ class System:
             plan.check(lib().ssx_set_hybrid_options(
                 plan.sys, algorithm.tol_time, algorithm.tol_value, algorithm.max_iter,
                 algorithm.max_microsteps, int(algorithm.record_internal_steps),
-                0 if algorithm.method == "illinois" else 1, algorithm.zeno_min_interval),
+                locator_methods()[algorithm.method], algorithm.zeno_min_interval),
                 "hybrid options")
 
     # ------------------------------------------------------------------ running
-    def initialize(self, t0: float = 0.0, *, allow_non_finite: bool | None = None) -> None:
+    def initialize(self, t0: float = 0.0, tolerance: float | None = None, *,
+                   allow_non_finite: bool | None = None) -> None:
         """Build the engine system, initialize every component at t0, record the first sample.
 
-        allow_non_finite: record NaN and infinite outputs instead of stopping the run at the
-        first one (None keeps the engine's default: stop)."""
+        tolerance: the relative tolerance of FMUs given none of their own (default: each FMU's
+        DefaultExperiment tolerance). allow_non_finite: record NaN and infinite outputs instead
+        of stopping the run at the first one (None keeps the engine's default: stop)."""
         t0 = _time_value(self.name, "t0", t0)
-        if self._plan is not None:
-            self._plan.before_recording()
         plan = self._compile()
         self._plan = plan
         self._push_options(plan)
@@ -217,8 +219,9 @@ class System:
             plan.check(lib().ssx_set_allow_non_finite(plan.sys, int(bool(allow_non_finite))),
                        "allow_non_finite")
         self.termination = None
+        start_tables(self.components, self.connections, plan, t0)
         for component in self.components.values():
-            component._start(t0)
+            component._start(t0, tolerance)
         if lib().ssx_initialize(plan.sys, t0) < 0:
             raise_failure(plan)
         self.history = SystemHistory()
@@ -230,14 +233,18 @@ class System:
         checkpoint): the history restarts with the sample at t."""
         if self._plan is None:
             raise ConfigurationError(f"{self.name}: call initialize(t0) first")
-        self._plan.before_recording()
         if lib().ssx_initialize(self._plan.sys, t) < 0:
             raise_failure(self._plan)
         self.history = SystemHistory()
         self.t = t
 
-    def run(self, t0: float, tf: float, dt: float) -> SimulationResult:
-        """Simulate on the grid t0 + k*dt (the last point exactly tf) plus event instants."""
+    def run(self, t0: float, tf: float, dt: float, timeout: float | None = None
+            ) -> SimulationResult:
+        """Simulate on the grid t0 + k*dt (the last point exactly tf) plus event instants.
+
+        Ctrl-C stops a run within about 0.1 s with KeyboardInterrupt, and `timeout` (seconds
+        of wall time) with SimulationTimeoutError; the samples recorded up to the last
+        completed step stay readable through get_history()."""
         if not self.is_initialized or self._plan is None:
             raise ConfigurationError(f"{self.name}: call initialize(t0) before run()")
         t0, tf, dt = (_time_value(self.name, label, value)
@@ -246,6 +253,9 @@ class System:
             raise ConfigurationError(f"{self.name}: dt must be positive, got {dt}")
         if tf < t0:
             raise ConfigurationError(f"{self.name}: tf={tf} is before t0={t0}")
+        if timeout is not None and not (isinstance(timeout, int | float) and timeout > 0):
+            raise ConfigurationError(f"{self.name}: timeout must be a positive number of "
+                                     f"seconds or None, got {timeout!r}")
         if not math.isclose(t0, self.t, rel_tol=0.0, abs_tol=1e-12 * max(1.0, abs(t0))):
             raise ConfigurationError(f"{self.name}: run starts at t0={t0} but the system is at "
                                      f"t={self.t}")
@@ -257,8 +267,9 @@ class System:
                     "this system's initialize; call initialize again")
         self._push_options(plan)
         logger.info("Starting simulation run from t=%s to t=%s with dt=%s", t0, tf, dt)
-        plan.before_recording()
         start = timeit.default_timer()
+        plan.timeout = timeout
+        plan.deadline = time.monotonic() + timeout if timeout is not None else None
         status = lib().ssx_run(plan.sys, t0, tf, dt)
         wall = timeit.default_timer() - start
         events = read_events(plan)
@@ -317,8 +328,6 @@ class System:
 
     def reset(self) -> None:
         """Drop the engine system; components keep their parameters."""
-        if self._plan is not None:
-            self._plan.before_recording()
         self._plan = None
         self.is_initialized = False
         self.history = SystemHistory()

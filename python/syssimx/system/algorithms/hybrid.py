@@ -12,6 +12,7 @@ from collections.abc import Sequence
 from dataclasses import InitVar, dataclass, field
 from typing import TYPE_CHECKING
 
+from ...engine import ffi
 from .coupling import GaussSeidelAlgorithm, JacobiAlgorithm
 
 if TYPE_CHECKING:
@@ -19,7 +20,12 @@ if TYPE_CHECKING:
 
 logger = logging.getLogger("syssimx.hybrid")
 
-METHODS = ("illinois", "bisection")
+
+
+def locator_methods() -> dict[str, int]:
+    """The engine's localization methods by name: ssx_locator's SSX_ILLINOIS is "illinois"."""
+    return {name.removeprefix("SSX_").lower(): value
+            for value, name in sorted(ffi.typeof("ssx_locator").elements.items())}
 
 
 @dataclass
@@ -29,9 +35,10 @@ class HybridAlgorithm:
     tol_time: width of the final bracket around an event; tol_value: |indicator| accepted as
     zero; max_iter: localization iterations per event; max_microsteps: handling rounds at one
     instant before a ZenoError; record_internal_steps: also record the localization trials;
-    method: "illinois" (default) or "bisection"; zeno_min_interval: two firings of one indicator
-    closer than this are chattering (0 means ten times tol_time); coupling: the continuous
-    coupling between events.
+    method: "illinois" (default: Illinois held within two iterations of bisection's count),
+    "bisection" or "illinois_unguarded" (Illinois alone, for comparison); zeno_min_interval: two
+    firings of one indicator closer than this are chattering (0: the engine's default rule, see
+    ssx_set_hybrid_options); coupling: the continuous coupling between events.
 
     SysSimX's options, accepted with their meaning; each works around a fault of SysSimX's
     algorithm that the engine does not have. sign_tolerance (>= 0): SysSimX treats
@@ -65,8 +72,9 @@ class HybridAlgorithm:
             self.coupling = gauss_seidel_algorithm
 
     def validate(self) -> None:
-        if self.method not in METHODS:
-            raise ValueError(f"HybridAlgorithm.method must be one of {METHODS}, "
+        methods = tuple(locator_methods())
+        if self.method not in methods:
+            raise ValueError(f"HybridAlgorithm.method must be one of {methods}, "
                              f"got {self.method!r}")
         if not (self.tol_time > 0 and self.tol_value >= 0 and self.max_iter >= 1
                 and self.max_microsteps >= 1 and self.zeno_min_interval >= 0):

@@ -1,0 +1,60 @@
+"""Numpy arrays over the engine's history buffers, without a copy and without dangling.
+
+Each array holds a reference to the engine buffers it views (ssx_history_retain), released
+when the last array over them is collected. While referenced, the engine never moves, writes
+or frees those samples: a later run grows into new buffers, a new initialize starts others.
+The arrays are read-only, because the same samples are the system's history and every other
+reader's; `array.copy()` gives a writable one.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..engine import ffi, lib
+
+
+class _BufferOwner:
+    """The base object of one array: its memory and the engine reference that keeps it."""
+
+    __slots__ = ("__array_interface__", "_block")
+
+    def __init__(self, block: Any, address: int, shape: tuple[int, ...], typestr: str) -> None:
+        self._block = block
+        self.__array_interface__ = {"data": (address, True), "shape": shape,
+                                    "typestr": typestr, "version": 3}
+
+
+def _address(pointer: Any) -> int:
+    return int(ffi.cast("uintptr_t", pointer))
+
+
+class HistoryArrays:
+    """The samples recorded so far by one engine system, as read-only numpy arrays."""
+
+    def __init__(self, sys: Any, release: Any) -> None:
+        """`release` is ssx_history_release, resolved by the caller before any collection can
+        need it (a finalizer must not look up a library function)."""
+        engine = lib()
+        self.length = int(engine.ssx_history_length(sys))
+        self._sys = sys
+        raw = engine.ssx_history_retain(sys) if self.length > 0 else ffi.NULL
+        self._block = ffi.gc(raw, release) if raw != ffi.NULL else None
+
+    def _view(self, pointer: Any, shape: tuple[int, ...], typestr: str) -> np.ndarray:
+        if self._block is None or 0 in shape:
+            return np.empty(shape, dtype=np.dtype(typestr))
+        return np.asarray(_BufferOwner(self._block, _address(pointer), shape, typestr))
+
+    def time(self) -> np.ndarray:
+        return self._view(lib().ssx_history_time(self._sys), (self.length,), "<f8")
+
+    def micro(self) -> np.ndarray:
+        return self._view(lib().ssx_history_micro(self._sys), (self.length,), "<i4")
+
+    def values(self, component: int, columns: int) -> np.ndarray:
+        """The component's samples x outputs matrix."""
+        return self._view(lib().ssx_history_values(self._sys, component), (self.length, columns),
+                          "<f8")

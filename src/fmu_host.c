@@ -1,0 +1,307 @@
+/* The FMU host: runs one FMU binary in a process of its own for an isolated FMUComponent, so
+ * that a crash, an abort or an endless loop in the FMU ends this process, not the user's.
+ *
+ *     syssimx-fmu-host <binary> <model identifier>
+ *
+ * The engine starts it with the socket on descriptor REMOTE_SOCKET_FD (fmu_remote_protocol.h)
+ * and forwards every fmi2 call; the host makes the call and answers with what the FMU logged
+ * and the call's result. It ends when the engine closes the socket, even while the FMU is
+ * still inside a call (the engine's process died). */
+#define _GNU_SOURCE /* POLLRDHUP */
+
+#include <dlfcn.h>
+#include <poll.h>
+#include <pthread.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "fmi2Functions.h"
+#include "fmu_message.h"
+#include "fmu_remote_protocol.h"
+#include "remote_io.h"
+
+typedef void (*any_function)(void);
+
+typedef struct {
+    int socket;
+    any_function fn[CALL_COUNT];
+    fmi2Component instance;
+    fmi2CallbackFunctions callbacks; /* the FMU keeps the pointer: lives as long as the host */
+    char *request;                   /* the request's payload */
+    size_t request_capacity;
+    char *reply;                     /* the result's payload */
+    size_t reply_capacity;
+} host;
+
+static void *grown(char **buffer, size_t *capacity, size_t size)
+{
+    if (size > *capacity) {
+        char *bigger = realloc(*buffer, size);
+        if (bigger == NULL) {
+            return NULL;
+        }
+        *buffer = bigger;
+        *capacity = size;
+    }
+    return *buffer;
+}
+
+static int send_reply(const host *h, remote_reply_kind kind, int status, uint64_t value,
+                      const void *payload, size_t size)
+{
+    remote_reply reply = {.kind = kind, .status = status, .value = value, .payload = size};
+    return remote_send(h->socket, &reply, sizeof reply, payload, size);
+}
+
+/* Sent while the call runs: the engine hands it to its own logger before the result. */
+static void logger(fmi2ComponentEnvironment environment, fmi2String instance_name,
+                   fmi2Status status, fmi2String category, fmi2String message, ...)
+{
+    (void)instance_name;
+    const host *h = environment;
+    if (h == NULL || message == NULL) {
+        return;
+    }
+    char text[2048];
+    size_t category_size = strlen(category != NULL ? category : "") + 1;
+    if (category_size > 256) {
+        category_size = 256;
+    }
+    memcpy(text, category != NULL ? category : "", category_size - 1);
+    text[category_size - 1] = '\0';
+    va_list args;
+    va_start(args, message);
+    ssx_format_fmu_message(text + category_size, sizeof text - category_size, message, args);
+    va_end(args);
+    size_t size = category_size + strlen(text + category_size) + 1;
+    (void)send_reply(h, REPLY_LOG, (int)status, 0, text, size);
+}
+
+/* The fmi2 function of a call, as its own type. */
+#define FN(type, call) ((type *)h->fn[call])
+
+/* Makes the call. Returns its fmi2Status; *value and *reply_size describe the result. */
+static int serve(host *h, const remote_request *rq, uint64_t *value, size_t *reply_size)
+{
+    const char *in = h->request;
+    size_t n = (size_t)rq->n;
+    switch ((remote_call)rq->call) {
+    case CALL_INSTANTIATE: {
+        const char *name = in;
+        const char *guid = name + strlen(name) + 1;
+        const char *resources = guid + strlen(guid) + 1;
+        h->instance = FN(fmi2InstantiateTYPE, CALL_INSTANTIATE)(
+            name, (fmi2Type)rq->n, guid, resources, &h->callbacks, (fmi2Boolean)rq->flag,
+            (fmi2Boolean)rq->flag2);
+        return h->instance != NULL ? fmi2OK : -1;
+    }
+    case CALL_FREE_INSTANCE:
+        FN(fmi2FreeInstanceTYPE, CALL_FREE_INSTANCE)(h->instance);
+        h->instance = NULL;
+        return fmi2OK;
+    case CALL_SETUP_EXPERIMENT:
+        return FN(fmi2SetupExperimentTYPE, CALL_SETUP_EXPERIMENT)(
+            h->instance, (fmi2Boolean)rq->flag, rq->a, rq->b, (fmi2Boolean)rq->flag2, rq->c);
+    case CALL_ENTER_INITIALIZATION_MODE:
+        return FN(fmi2EnterInitializationModeTYPE, rq->call)(h->instance);
+    case CALL_EXIT_INITIALIZATION_MODE:
+        return FN(fmi2ExitInitializationModeTYPE, rq->call)(h->instance);
+    case CALL_TERMINATE:
+        return FN(fmi2TerminateTYPE, rq->call)(h->instance);
+    case CALL_RESET:
+        return FN(fmi2ResetTYPE, rq->call)(h->instance);
+    case CALL_DO_STEP: {
+        int status = FN(fmi2DoStepTYPE, rq->call)(h->instance, rq->a, rq->b,
+                                                  (fmi2Boolean)rq->flag);
+        fmi2Real *out = grown(&h->reply, &h->reply_capacity, n * sizeof(fmi2Real));
+        if (out == NULL && n > 0) {
+            return fmi2Fatal;
+        }
+        *reply_size = n * sizeof(fmi2Real);
+        *value = REMOTE_NOT_READ;
+        if (n > 0 && status <= fmi2Warning) {
+            *value = (uint64_t)FN(fmi2GetRealTYPE, CALL_GET_REAL)(
+                h->instance, (const fmi2ValueReference *)in, n, out);
+        } else if (n > 0) {
+            memset(out, 0, n * sizeof(fmi2Real));
+        }
+        return status;
+    }
+    case CALL_GET_REAL:
+    case CALL_GET_INTEGER:
+    case CALL_GET_BOOLEAN: {
+        size_t item = rq->call == CALL_GET_REAL ? sizeof(fmi2Real) : sizeof(fmi2Integer);
+        void *out = grown(&h->reply, &h->reply_capacity, n * item);
+        if (out == NULL && n > 0) {
+            return fmi2Fatal;
+        }
+        *reply_size = n * item;
+        const fmi2ValueReference *vr = (const fmi2ValueReference *)in;
+        if (rq->call == CALL_GET_REAL) {
+            return FN(fmi2GetRealTYPE, rq->call)(h->instance, vr, n, out);
+        }
+        if (rq->call == CALL_GET_INTEGER) {
+            return FN(fmi2GetIntegerTYPE, rq->call)(h->instance, vr, n, out);
+        }
+        return FN(fmi2GetBooleanTYPE, rq->call)(h->instance, vr, n, out);
+    }
+    case CALL_SET_REAL:
+        return FN(fmi2SetRealTYPE, rq->call)(
+            h->instance, (const fmi2ValueReference *)(in + n * sizeof(fmi2Real)), n,
+            (const fmi2Real *)in);
+    case CALL_SET_INTEGER:
+        return FN(fmi2SetIntegerTYPE, rq->call)(
+            h->instance, (const fmi2ValueReference *)(in + n * sizeof(fmi2Integer)), n,
+            (const fmi2Integer *)in);
+    case CALL_SET_BOOLEAN:
+        return FN(fmi2SetBooleanTYPE, rq->call)(
+            h->instance, (const fmi2ValueReference *)(in + n * sizeof(fmi2Boolean)), n,
+            (const fmi2Boolean *)in);
+    case CALL_GET_FMU_STATE: {
+        fmi2FMUstate state = state_pointer(rq->state);
+        int status = FN(fmi2GetFMUstateTYPE, rq->call)(h->instance, &state);
+        *value = state_number(state);
+        return status;
+    }
+    case CALL_SET_FMU_STATE:
+        return FN(fmi2SetFMUstateTYPE, rq->call)(h->instance, state_pointer(rq->state));
+    case CALL_FREE_FMU_STATE: {
+        fmi2FMUstate state = state_pointer(rq->state);
+        return FN(fmi2FreeFMUstateTYPE, rq->call)(h->instance, &state);
+    }
+    case CALL_SERIALIZED_FMU_STATE_SIZE: {
+        size_t size = 0;
+        int status = FN(fmi2SerializedFMUstateSizeTYPE, rq->call)(
+            h->instance, state_pointer(rq->state), &size);
+        *value = size;
+        return status;
+    }
+    case CALL_SERIALIZE_FMU_STATE: {
+        char *out = grown(&h->reply, &h->reply_capacity, n);
+        if (out == NULL && n > 0) {
+            return fmi2Fatal;
+        }
+        *reply_size = n;
+        return FN(fmi2SerializeFMUstateTYPE, rq->call)(h->instance, state_pointer(rq->state),
+                                                       out, n);
+    }
+    case CALL_DESERIALIZE_FMU_STATE: {
+        fmi2FMUstate state = state_pointer(rq->state);
+        int status = FN(fmi2DeSerializeFMUstateTYPE, rq->call)(h->instance, in, n, &state);
+        *value = state_number(state);
+        return status;
+    }
+    case CALL_GET_DIRECTIONAL_DERIVATIVE: {
+        size_t n_knowns = (size_t)rq->n2;
+        const fmi2Real *seeds = (const fmi2Real *)in;
+        const fmi2ValueReference *unknowns = (const fmi2ValueReference *)(seeds + n_knowns);
+        fmi2Real *out = grown(&h->reply, &h->reply_capacity, n * sizeof(fmi2Real));
+        if (out == NULL && n > 0) {
+            return fmi2Fatal;
+        }
+        *reply_size = n * sizeof(fmi2Real);
+        return FN(fmi2GetDirectionalDerivativeTYPE, rq->call)(
+            h->instance, unknowns, n, unknowns + n, n_knowns, seeds, out);
+    }
+    case CALL_COUNT:
+        break;
+    }
+    return fmi2Fatal;
+}
+
+/* Unprefixed names first; FMUs compiled with FMI2_FUNCTION_PREFIX export <id>_fmi2Name. */
+static uint64_t resolve(host *h, void *library, const char *model_identifier)
+{
+    uint64_t exported = 0;
+    for (int call = 0; call < CALL_COUNT; ++call) {
+        void *symbol = dlsym(library, remote_call_names[call]);
+        if (symbol == NULL && model_identifier[0] != '\0') {
+            char prefixed[256];
+            snprintf(prefixed, sizeof prefixed, "%s_%s", model_identifier,
+                     remote_call_names[call]);
+            symbol = dlsym(library, prefixed);
+        }
+        /* dlsym returns void *; C11 has no direct cast to a function pointer. */
+        memcpy(&h->fn[call], &symbol, sizeof symbol);
+        if (symbol != NULL) {
+            exported |= UINT64_C(1) << call;
+        }
+    }
+    return exported;
+}
+
+/* Reads requests and answers them until the engine closes the socket. */
+static int serve_requests(host *h)
+{
+    for (;;) {
+        remote_request rq;
+        if (remote_receive(h->socket, &rq, sizeof rq, NULL, 0) != RECEIVED) {
+            return 0;
+        }
+        if (grown(&h->request, &h->request_capacity, (size_t)rq.payload) == NULL &&
+            rq.payload > 0) {
+            return 1;
+        }
+        if (remote_receive(h->socket, h->request, (size_t)rq.payload, NULL, 0) != RECEIVED) {
+            return 0;
+        }
+        /* A call the binary does not export never arrives: the engine knows the exports. */
+        if (rq.call >= CALL_COUNT || h->fn[rq.call] == NULL) {
+            return 1;
+        }
+        uint64_t value = 0;
+        size_t reply_size = 0;
+        int status = serve(h, &rq, &value, &reply_size);
+        if (send_reply(h, REPLY_RESULT, status, value, h->reply, reply_size) != 0) {
+            return 0;
+        }
+    }
+}
+
+/* Ends the host when the engine's end of the socket closes. The main thread cannot notice
+ * while the FMU runs away inside a call, and PR_SET_PDEATHSIG would fire when the engine's
+ * thread that started the host ends, not its process. */
+static void *watch_engine(void *socket)
+{
+    struct pollfd hangup = {.fd = *(const int *)socket, .events = POLLRDHUP};
+    while (poll(&hangup, 1, -1) < 0 || (hangup.revents & (POLLRDHUP | POLLHUP)) == 0) {
+    }
+    _exit(0);
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 3) {
+        fprintf(stderr, "usage: %s <FMU binary> <model identifier> (started by syssimx)\n",
+                argv[0]);
+        return 2;
+    }
+    host h = {.socket = REMOTE_SOCKET_FD};
+    pthread_t watchdog;
+    if (pthread_create(&watchdog, NULL, watch_engine, &h.socket) != 0) {
+        fprintf(stderr, "%s: cannot start the watchdog thread\n", argv[0]);
+        return 1;
+    }
+    h.callbacks.logger = logger;
+    h.callbacks.allocateMemory = calloc;
+    h.callbacks.freeMemory = free;
+    h.callbacks.componentEnvironment = &h;
+    void *library = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
+    if (library == NULL) {
+        const char *reason = dlerror();
+        char text[1024];
+        snprintf(text, sizeof text, "cannot load the FMU binary %s: %s", argv[1],
+                 reason != NULL ? reason : "unknown dlopen failure");
+        (void)send_reply(&h, REPLY_HELLO, -1, 0, text, strlen(text) + 1);
+        return 1;
+    }
+    int failed = send_reply(&h, REPLY_HELLO, 0, resolve(&h, library, argv[2]), NULL, 0) != 0 ||
+                 serve_requests(&h) != 0;
+    free(h.request);
+    free(h.reply);
+    dlclose(library);
+    return failed;
+}

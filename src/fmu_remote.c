@@ -1,0 +1,683 @@
+/* The engine's side of an isolated FMU: fmi2 functions that forward every call to the FMU host
+ * process (fmu_host.c) and turn the host's death or silence into an fmi2Fatal that says why. */
+#define _DEFAULT_SOURCE
+
+#include "fmu_remote.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "fmi2Functions.h"
+#include "fmu_binding.h"
+#include "fmu_remote_protocol.h"
+#include "remote_io.h"
+
+extern char **environ;
+
+struct ssx_remote {
+    pid_t pid; /* 0 while no host runs */
+    int socket;
+    double call_timeout;
+    uint64_t exported; /* bit i: the binary exports remote_call_names[i] */
+    char *host_path;
+    char *binary_path;
+    char *model_identifier;
+    const fmi2CallbackFunctions *callbacks; /* of the live instance, for the FMU's messages */
+    char *instance_name;
+    char *buffer; /* a request's payload, then each reply's */
+    size_t capacity;
+    /* The engine reads the same outputs after every doStep. The host reads them right after
+     * the step and sends them with its result, so that fmi2GetReal costs no second round
+     * trip; any other call in between discards them. */
+    fmi2ValueReference *read_after_step;
+    size_t n_read_after_step;
+    double *read_values;
+    int read_status;
+    int read_ready;
+    char gone[512]; /* why the host ended, "" while it runs */
+};
+
+/* ------------------------------------------------------------------ the host process */
+
+static int reserve(ssx_remote *r, size_t size)
+{
+    if (size <= r->capacity) {
+        return 0;
+    }
+    char *bigger = realloc(r->buffer, size);
+    if (bigger == NULL) {
+        return -1;
+    }
+    r->buffer = bigger;
+    r->capacity = size;
+    return 0;
+}
+
+static const char *signal_name(int signal)
+{
+    switch (signal) {
+    case SIGSEGV: return "SIGSEGV";
+    case SIGABRT: return "SIGABRT";
+    case SIGBUS: return "SIGBUS";
+    case SIGFPE: return "SIGFPE";
+    case SIGILL: return "SIGILL";
+    case SIGKILL: return "SIGKILL";
+    case SIGTERM: return "SIGTERM";
+    case SIGINT: return "SIGINT";
+    default: return "signal";
+    }
+}
+
+/* Waits for the host to end, killing it when it does not end by itself within a second, and
+ * says how it ended. */
+static void reap(ssx_remote *r, char *how, size_t how_size)
+{
+    int status = 0;
+    pid_t done = 0;
+    for (int tries = 0; tries < 100 && done == 0; ++tries) {
+        done = waitpid(r->pid, &status, WNOHANG);
+        if (done == 0) {
+            nanosleep(&(struct timespec){0, 10000000}, NULL);
+        }
+    }
+    if (done == 0) {
+        kill(r->pid, SIGKILL);
+        done = waitpid(r->pid, &status, 0);
+    }
+    if (done != r->pid) {
+        snprintf(how, how_size, "ended (its exit status is unknown: %s)", strerror(errno));
+    } else if (WIFSIGNALED(status)) {
+        snprintf(how, how_size, "died of signal %d (%s, %s)", WTERMSIG(status),
+                 signal_name(WTERMSIG(status)), strsignal(WTERMSIG(status)));
+    } else {
+        snprintf(how, how_size, "exited with status %d", WEXITSTATUS(status));
+    }
+    r->pid = 0;
+}
+
+static void close_host(ssx_remote *r, char *how, size_t how_size)
+{
+    if (r->socket >= 0) {
+        close(r->socket);
+        r->socket = -1;
+    }
+    if (r->pid > 0) {
+        reap(r, how, how_size);
+    }
+}
+
+static int spawn_host(ssx_remote *r, int host_end)
+{
+    posix_spawn_file_actions_t actions;
+    posix_spawnattr_t attributes;
+    if (posix_spawn_file_actions_init(&actions) != 0) {
+        return ENOMEM;
+    }
+    if (posix_spawnattr_init(&attributes) != 0) {
+        posix_spawn_file_actions_destroy(&actions);
+        return ENOMEM;
+    }
+    sigset_t no_signals, default_signals;
+    sigemptyset(&no_signals);
+    sigemptyset(&default_signals);
+    sigaddset(&default_signals, SIGPIPE);
+    /* Its own process group: Ctrl-C at the terminal is the engine's to handle, not the FMU's. */
+    int failed = posix_spawn_file_actions_adddup2(&actions, host_end, REMOTE_SOCKET_FD) ||
+                 posix_spawnattr_setpgroup(&attributes, 0) ||
+                 posix_spawnattr_setsigmask(&attributes, &no_signals) ||
+                 posix_spawnattr_setsigdefault(&attributes, &default_signals) ||
+                 posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP |
+                                                           POSIX_SPAWN_SETSIGMASK |
+                                                           POSIX_SPAWN_SETSIGDEF);
+    char *argv[] = {r->host_path, r->binary_path, r->model_identifier, NULL};
+    if (!failed) {
+        failed = posix_spawn(&r->pid, r->host_path, &actions, &attributes, argv, environ);
+    }
+    posix_spawnattr_destroy(&attributes);
+    posix_spawn_file_actions_destroy(&actions);
+    if (failed) {
+        r->pid = 0;
+    }
+    return failed;
+}
+
+static struct timespec deadline_after(double seconds)
+{
+    struct timespec deadline;
+    clock_gettime(CLOCK_MONOTONIC, &deadline);
+    double whole = (double)(long)seconds;
+    deadline.tv_sec += (time_t)whole;
+    deadline.tv_nsec += (long)((seconds - whole) * 1e9);
+    if (deadline.tv_nsec >= 1000000000L) {
+        deadline.tv_sec += 1;
+        deadline.tv_nsec -= 1000000000L;
+    }
+    return deadline;
+}
+
+static const struct timespec *call_deadline(const ssx_remote *r, struct timespec *storage)
+{
+    if (!(r->call_timeout > 0.0)) {
+        return NULL;
+    }
+    *storage = deadline_after(r->call_timeout);
+    return storage;
+}
+
+/* Starts the host and reads its HELLO. */
+static int start_host(ssx_remote *r, char *error, size_t error_size)
+{
+    int pair[2];
+    /* close-on-exec on both ends: only the host gets its end, as REMOTE_SOCKET_FD */
+    if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, pair) != 0) {
+        snprintf(error, error_size, "cannot create the socket to the FMU host: %s",
+                 strerror(errno));
+        return -1;
+    }
+    if (pair[1] == REMOTE_SOCKET_FD) { /* dup2 onto itself would keep close-on-exec */
+        int moved = fcntl(pair[1], F_DUPFD_CLOEXEC, REMOTE_SOCKET_FD + 1);
+        close(pair[1]);
+        pair[1] = moved;
+    }
+    int failed = pair[1] < 0 ? errno : spawn_host(r, pair[1]);
+    if (pair[1] >= 0) {
+        close(pair[1]);
+    }
+    r->socket = pair[0];
+    if (failed) {
+        snprintf(error, error_size, "cannot start the FMU host %s: %s", r->host_path,
+                 strerror(failed));
+        close_host(r, (char[64]){0}, 64);
+        return -1;
+    }
+    struct timespec storage;
+    remote_reply hello;
+    remote_receive_result got = remote_receive(r->socket, &hello, sizeof hello,
+                                               call_deadline(r, &storage), r->pid);
+    if (got == RECEIVED && hello.kind == REPLY_HELLO && hello.status == 0 && hello.payload == 0) {
+        r->exported = hello.value;
+        r->gone[0] = '\0';
+        return 0;
+    }
+    char reason[1024] = "";
+    if (got == RECEIVED && hello.kind == REPLY_HELLO && hello.payload > 0 &&
+        hello.payload < sizeof reason &&
+        remote_receive(r->socket, reason, (size_t)hello.payload, NULL, r->pid) == RECEIVED) {
+        reason[hello.payload] = '\0';
+    }
+    if (got == TIMED_OUT) {
+        kill(r->pid, SIGKILL);
+    }
+    char how[256];
+    close_host(r, how, sizeof how);
+    if (reason[0] != '\0') {
+        snprintf(error, error_size, "%s", reason);
+    } else {
+        snprintf(error, error_size, "the FMU host %s %s before it loaded %s", r->host_path,
+                 got == TIMED_OUT ? "was killed: it hung" : how, r->binary_path);
+    }
+    return -1;
+}
+
+ssx_remote *ssx_remote_start(const char *host_path, const char *binary_path,
+                             const char *model_identifier, double call_timeout, char *error,
+                             size_t error_size)
+{
+    ssx_remote *r = calloc(1, sizeof *r);
+    if (r == NULL) {
+        snprintf(error, error_size, "out of memory starting the FMU host");
+        return NULL;
+    }
+    r->socket = -1;
+    r->call_timeout = call_timeout;
+    r->host_path = strdup(host_path);
+    r->binary_path = strdup(binary_path);
+    r->model_identifier = strdup(model_identifier);
+    if (r->host_path == NULL || r->binary_path == NULL || r->model_identifier == NULL) {
+        snprintf(error, error_size, "out of memory starting the FMU host");
+        ssx_remote_stop(r);
+        return NULL;
+    }
+    if (start_host(r, error, error_size) != 0) {
+        ssx_remote_stop(r);
+        return NULL;
+    }
+    return r;
+}
+
+void ssx_remote_stop(ssx_remote *r)
+{
+    if (r == NULL) {
+        return;
+    }
+    char how[256];
+    close_host(r, how, sizeof how); /* the host ends when its socket closes */
+    free(r->host_path);
+    free(r->binary_path);
+    free(r->model_identifier);
+    free(r->instance_name);
+    free(r->buffer);
+    free(r->read_after_step);
+    free(r->read_values);
+    free(r);
+}
+
+void ssx_remote_restart(ssx_remote *r)
+{
+    if (r->pid > 0) {
+        kill(r->pid, SIGKILL);
+    }
+    char how[256];
+    close_host(r, how, sizeof how);
+}
+
+/* ------------------------------------------------------------------ one call */
+
+static void deliver(const ssx_remote *r, int status, const char *category, const char *text)
+{
+    if (r->callbacks != NULL && r->callbacks->logger != NULL) {
+        r->callbacks->logger(r->callbacks->componentEnvironment,
+                             r->instance_name != NULL ? r->instance_name : "",
+                             (fmi2Status)status, category, "%s", text);
+    }
+}
+
+/* The host died, hung or broke the protocol during `call`: it is gone, and the call fails. */
+static int lost(ssx_remote *r, remote_call call, remote_receive_result why)
+{
+    char how[256];
+    if (why == TIMED_OUT) {
+        kill(r->pid, SIGKILL);
+        close_host(r, how, sizeof how);
+        snprintf(r->gone, sizeof r->gone,
+                 "%s did not return within the step timeout of %g s: the FMU process was "
+                 "killed", remote_call_names[call], r->call_timeout);
+    } else {
+        close_host(r, how, sizeof how);
+        snprintf(r->gone, sizeof r->gone, "the FMU process %s in %s", how,
+                 remote_call_names[call]);
+    }
+    deliver(r, fmi2Fatal, "logStatusFatal", r->gone);
+    return fmi2Fatal;
+}
+
+/* Sends the request (its payload staged in r->buffer) and waits for the result, handing the
+ * FMU's messages to the logger meanwhile. The result's payload, which must be exactly
+ * out_size bytes, goes to out. */
+static int call(ssx_remote *r, remote_request *rq, void *out, size_t out_size, uint64_t *value)
+{
+    r->read_ready = 0;
+    if (r->pid == 0) {
+        deliver(r, fmi2Fatal, "logStatusFatal", r->gone);
+        return fmi2Fatal;
+    }
+    struct timespec storage;
+    const struct timespec *deadline = call_deadline(r, &storage);
+    if (remote_send(r->socket, rq, sizeof *rq, r->buffer, (size_t)rq->payload) != 0) {
+        return lost(r, rq->call, PEER_GONE);
+    }
+    for (;;) {
+        remote_reply reply;
+        remote_receive_result got = remote_receive(r->socket, &reply, sizeof reply, deadline,
+                                                   r->pid);
+        /* a reply the host would never send (the FMU wrote to the socket itself) ends it */
+        if (got == RECEIVED && (reply.payload >= SIZE_MAX / 2 ||
+                                reserve(r, (size_t)reply.payload + 1) != 0)) {
+            got = PEER_GONE;
+        }
+        if (got == RECEIVED) {
+            got = remote_receive(r->socket, r->buffer, (size_t)reply.payload, deadline, r->pid);
+        }
+        if (got != RECEIVED) {
+            return lost(r, rq->call, got);
+        }
+        if (reply.kind == REPLY_LOG) {
+            r->buffer[reply.payload] = '\0';
+            const char *category = r->buffer;
+            size_t category_size = strnlen(category, (size_t)reply.payload) + 1;
+            deliver(r, reply.status, category,
+                    category_size < reply.payload ? category + category_size : "");
+            continue;
+        }
+        if (reply.kind != REPLY_RESULT || reply.payload != out_size) {
+            return lost(r, rq->call, PEER_GONE);
+        }
+        if (out_size > 0) {
+            memcpy(out, r->buffer, out_size);
+        }
+        if (value != NULL) {
+            *value = reply.value;
+        }
+        return reply.status;
+    }
+}
+
+/* Stages the payload parts of a request in r->buffer. */
+static int stage(ssx_remote *r, remote_request *rq, const void *first, size_t first_size,
+                 const void *second, size_t second_size, const void *third, size_t third_size)
+{
+    size_t size = first_size + second_size + third_size;
+    if (reserve(r, size) != 0) {
+        return -1;
+    }
+    if (first_size > 0) {
+        memcpy(r->buffer, first, first_size);
+    }
+    if (second_size > 0) {
+        memcpy(r->buffer + first_size, second, second_size);
+    }
+    if (third_size > 0) {
+        memcpy(r->buffer + first_size + second_size, third, third_size);
+    }
+    rq->payload = size;
+    return 0;
+}
+
+static int simple_call(fmi2Component c, remote_call which)
+{
+    remote_request rq = {.call = which};
+    return call(c, &rq, NULL, 0, NULL);
+}
+
+/* ------------------------------------------------------------------ the fmi2 functions */
+
+static fmi2Component remote_instantiate(fmi2String instance_name, fmi2Type type,
+                                        fmi2String guid, fmi2String resource_uri,
+                                        const fmi2CallbackFunctions *callbacks,
+                                        fmi2Boolean visible, fmi2Boolean logging_on)
+{
+    ssx_remote *r = ssx_fmu_remote(callbacks->componentEnvironment);
+    instance_name = instance_name != NULL ? instance_name : "";
+    guid = guid != NULL ? guid : "";
+    resource_uri = resource_uri != NULL ? resource_uri : "";
+    r->callbacks = callbacks;
+    free(r->instance_name);
+    r->instance_name = strdup(instance_name);
+    if (r->pid == 0) { /* the last host died: this instance gets a new one */
+        char error[1024];
+        if (start_host(r, error, sizeof error) != 0) {
+            deliver(r, fmi2Fatal, "logStatusFatal", error);
+            return NULL;
+        }
+    }
+    size_t sizes[3] = {strlen(instance_name) + 1, strlen(guid) + 1, strlen(resource_uri) + 1};
+    remote_request rq = {.call = CALL_INSTANTIATE, .flag = (uint32_t)visible,
+                         .flag2 = (uint32_t)logging_on, .n = (uint64_t)type};
+    if (r->instance_name == NULL ||
+        stage(r, &rq, instance_name, sizes[0], guid, sizes[1], resource_uri, sizes[2]) != 0) {
+        deliver(r, fmi2Fatal, "logStatusFatal", "out of memory instantiating the isolated FMU");
+        return NULL;
+    }
+    return call(r, &rq, NULL, 0, NULL) == fmi2OK ? r : NULL;
+}
+
+static void remote_free_instance(fmi2Component c)
+{
+    ssx_remote *r = c;
+    if (r->pid != 0) {
+        (void)simple_call(r, CALL_FREE_INSTANCE);
+    }
+}
+
+static fmi2Status remote_setup_experiment(fmi2Component c, fmi2Boolean tolerance_defined,
+                                          fmi2Real tolerance, fmi2Real start_time,
+                                          fmi2Boolean stop_time_defined, fmi2Real stop_time)
+{
+    remote_request rq = {.call = CALL_SETUP_EXPERIMENT, .flag = (uint32_t)tolerance_defined,
+                         .flag2 = (uint32_t)stop_time_defined, .a = tolerance, .b = start_time,
+                         .c = stop_time};
+    return call(c, &rq, NULL, 0, NULL);
+}
+
+static fmi2Status remote_enter_initialization_mode(fmi2Component c)
+{
+    return simple_call(c, CALL_ENTER_INITIALIZATION_MODE);
+}
+
+static fmi2Status remote_exit_initialization_mode(fmi2Component c)
+{
+    return simple_call(c, CALL_EXIT_INITIALIZATION_MODE);
+}
+
+static fmi2Status remote_terminate(fmi2Component c)
+{
+    return simple_call(c, CALL_TERMINATE);
+}
+
+static fmi2Status remote_reset(fmi2Component c)
+{
+    return simple_call(c, CALL_RESET);
+}
+
+static fmi2Status remote_do_step(fmi2Component c, fmi2Real t, fmi2Real h,
+                                 fmi2Boolean no_set_state_prior)
+{
+    ssx_remote *r = c;
+    size_t n = r->n_read_after_step;
+    remote_request rq = {.call = CALL_DO_STEP, .flag = (uint32_t)no_set_state_prior, .a = t,
+                         .b = h, .n = n};
+    if (stage(r, &rq, r->read_after_step, n * sizeof *r->read_after_step, NULL, 0, NULL, 0) !=
+        0) {
+        return fmi2Error;
+    }
+    uint64_t read_status = REMOTE_NOT_READ;
+    int status = call(r, &rq, r->read_values, n * sizeof *r->read_values, &read_status);
+    if (status <= fmi2Warning && n > 0 && read_status != REMOTE_NOT_READ) {
+        r->read_status = (int)read_status;
+        r->read_ready = 1;
+    }
+    return status;
+}
+
+/* Remembers which outputs to read after each step: the last list read with fmi2GetReal. */
+static void read_after_steps(ssx_remote *r, const fmi2ValueReference *vr, size_t n)
+{
+    if (n == r->n_read_after_step &&
+        (n == 0 || memcmp(vr, r->read_after_step, n * sizeof *vr) == 0)) {
+        return;
+    }
+    fmi2ValueReference *list = realloc(r->read_after_step, n * sizeof *vr + 1);
+    double *values = realloc(r->read_values, n * sizeof *values + 1);
+    if (list != NULL) {
+        r->read_after_step = list;
+    }
+    if (values != NULL) {
+        r->read_values = values;
+    }
+    /* without room the steps read nothing ahead: slower, never wrong */
+    r->n_read_after_step = list != NULL && values != NULL ? n : 0;
+    if (n > 0 && r->n_read_after_step == n) {
+        memcpy(r->read_after_step, vr, n * sizeof *vr);
+    }
+}
+
+static int get_values(ssx_remote *r, remote_call which, const fmi2ValueReference *vr, size_t n,
+                      void *values, size_t item)
+{
+    remote_request rq = {.call = which, .n = n};
+    if (stage(r, &rq, vr, n * sizeof *vr, NULL, 0, NULL, 0) != 0) {
+        return fmi2Error;
+    }
+    return call(r, &rq, values, n * item, NULL);
+}
+
+static int set_values(ssx_remote *r, remote_call which, const fmi2ValueReference *vr, size_t n,
+                      const void *values, size_t item)
+{
+    remote_request rq = {.call = which, .n = n};
+    if (stage(r, &rq, values, n * item, vr, n * sizeof *vr, NULL, 0) != 0) {
+        return fmi2Error;
+    }
+    return call(r, &rq, NULL, 0, NULL);
+}
+
+static fmi2Status remote_get_real(fmi2Component c, const fmi2ValueReference vr[], size_t n,
+                                  fmi2Real values[])
+{
+    ssx_remote *r = c;
+    if (r->read_ready && n == r->n_read_after_step &&
+        memcmp(vr, r->read_after_step, n * sizeof *vr) == 0) {
+        r->read_ready = 0;
+        memcpy(values, r->read_values, n * sizeof *values);
+        return r->read_status;
+    }
+    int status = get_values(r, CALL_GET_REAL, vr, n, values, sizeof *values);
+    read_after_steps(r, vr, n);
+    return status;
+}
+
+static fmi2Status remote_get_integer(fmi2Component c, const fmi2ValueReference vr[], size_t n,
+                                     fmi2Integer values[])
+{
+    return get_values(c, CALL_GET_INTEGER, vr, n, values, sizeof *values);
+}
+
+static fmi2Status remote_get_boolean(fmi2Component c, const fmi2ValueReference vr[], size_t n,
+                                     fmi2Boolean values[])
+{
+    return get_values(c, CALL_GET_BOOLEAN, vr, n, values, sizeof *values);
+}
+
+static fmi2Status remote_set_real(fmi2Component c, const fmi2ValueReference vr[], size_t n,
+                                  const fmi2Real values[])
+{
+    return set_values(c, CALL_SET_REAL, vr, n, values, sizeof *values);
+}
+
+static fmi2Status remote_set_integer(fmi2Component c, const fmi2ValueReference vr[], size_t n,
+                                     const fmi2Integer values[])
+{
+    return set_values(c, CALL_SET_INTEGER, vr, n, values, sizeof *values);
+}
+
+static fmi2Status remote_set_boolean(fmi2Component c, const fmi2ValueReference vr[], size_t n,
+                                     const fmi2Boolean values[])
+{
+    return set_values(c, CALL_SET_BOOLEAN, vr, n, values, sizeof *values);
+}
+
+static fmi2Status remote_get_state(fmi2Component c, fmi2FMUstate *state)
+{
+    remote_request rq = {.call = CALL_GET_FMU_STATE, .state = state_number(*state)};
+    uint64_t value = 0;
+    int status = call(c, &rq, NULL, 0, &value);
+    if (status <= fmi2Warning) {
+        *state = state_pointer(value);
+    }
+    return status;
+}
+
+static fmi2Status remote_set_state(fmi2Component c, fmi2FMUstate state)
+{
+    remote_request rq = {.call = CALL_SET_FMU_STATE, .state = state_number(state)};
+    return call(c, &rq, NULL, 0, NULL);
+}
+
+static fmi2Status remote_free_state(fmi2Component c, fmi2FMUstate *state)
+{
+    ssx_remote *r = c;
+    remote_request rq = {.call = CALL_FREE_FMU_STATE, .state = state_number(*state)};
+    /* a dead host took its states with it */
+    int status = r->pid != 0 ? call(r, &rq, NULL, 0, NULL) : fmi2OK;
+    *state = NULL;
+    return status;
+}
+
+static fmi2Status remote_serialized_state_size(fmi2Component c, fmi2FMUstate state,
+                                               size_t *size)
+{
+    remote_request rq = {.call = CALL_SERIALIZED_FMU_STATE_SIZE, .state = state_number(state)};
+    uint64_t value = 0;
+    int status = call(c, &rq, NULL, 0, &value);
+    *size = (size_t)value;
+    return status;
+}
+
+static fmi2Status remote_serialize_state(fmi2Component c, fmi2FMUstate state, fmi2Byte bytes[],
+                                         size_t size)
+{
+    remote_request rq = {.call = CALL_SERIALIZE_FMU_STATE, .state = state_number(state),
+                         .n = size};
+    return call(c, &rq, bytes, size, NULL);
+}
+
+static fmi2Status remote_deserialize_state(fmi2Component c, const fmi2Byte bytes[], size_t size,
+                                           fmi2FMUstate *state)
+{
+    ssx_remote *r = c;
+    remote_request rq = {.call = CALL_DESERIALIZE_FMU_STATE, .state = state_number(*state),
+                         .n = size};
+    if (stage(r, &rq, bytes, size, NULL, 0, NULL, 0) != 0) {
+        return fmi2Error;
+    }
+    uint64_t value = 0;
+    int status = call(r, &rq, NULL, 0, &value);
+    if (status <= fmi2Warning) {
+        *state = state_pointer(value);
+    }
+    return status;
+}
+
+static fmi2Status remote_get_directional_derivative(fmi2Component c,
+                                                    const fmi2ValueReference unknowns[],
+                                                    size_t n_unknowns,
+                                                    const fmi2ValueReference knowns[],
+                                                    size_t n_knowns, const fmi2Real seeds[],
+                                                    fmi2Real derivatives[])
+{
+    ssx_remote *r = c;
+    remote_request rq = {.call = CALL_GET_DIRECTIONAL_DERIVATIVE, .n = n_unknowns,
+                         .n2 = n_knowns};
+    if (stage(r, &rq, seeds, n_knowns * sizeof *seeds, unknowns,
+              n_unknowns * sizeof *unknowns, knowns, n_knowns * sizeof *knowns) != 0) {
+        return fmi2Error;
+    }
+    return call(r, &rq, derivatives, n_unknowns * sizeof *derivatives, NULL);
+}
+
+void *ssx_remote_function(const ssx_remote *r, const char *name)
+{
+    void (*const forwarders[CALL_COUNT])(void) = {
+        [CALL_INSTANTIATE] = (void (*)(void))remote_instantiate,
+        [CALL_FREE_INSTANCE] = (void (*)(void))remote_free_instance,
+        [CALL_SETUP_EXPERIMENT] = (void (*)(void))remote_setup_experiment,
+        [CALL_ENTER_INITIALIZATION_MODE] = (void (*)(void))remote_enter_initialization_mode,
+        [CALL_EXIT_INITIALIZATION_MODE] = (void (*)(void))remote_exit_initialization_mode,
+        [CALL_TERMINATE] = (void (*)(void))remote_terminate,
+        [CALL_RESET] = (void (*)(void))remote_reset,
+        [CALL_GET_REAL] = (void (*)(void))remote_get_real,
+        [CALL_GET_INTEGER] = (void (*)(void))remote_get_integer,
+        [CALL_GET_BOOLEAN] = (void (*)(void))remote_get_boolean,
+        [CALL_SET_REAL] = (void (*)(void))remote_set_real,
+        [CALL_SET_INTEGER] = (void (*)(void))remote_set_integer,
+        [CALL_SET_BOOLEAN] = (void (*)(void))remote_set_boolean,
+        [CALL_DO_STEP] = (void (*)(void))remote_do_step,
+        [CALL_GET_FMU_STATE] = (void (*)(void))remote_get_state,
+        [CALL_SET_FMU_STATE] = (void (*)(void))remote_set_state,
+        [CALL_FREE_FMU_STATE] = (void (*)(void))remote_free_state,
+        [CALL_SERIALIZED_FMU_STATE_SIZE] = (void (*)(void))remote_serialized_state_size,
+        [CALL_SERIALIZE_FMU_STATE] = (void (*)(void))remote_serialize_state,
+        [CALL_DESERIALIZE_FMU_STATE] = (void (*)(void))remote_deserialize_state,
+        [CALL_GET_DIRECTIONAL_DERIVATIVE] = (void (*)(void))remote_get_directional_derivative,
+    };
+    for (int i = 0; i < CALL_COUNT; ++i) {
+        if (strcmp(name, remote_call_names[i]) == 0 && (r->exported >> i) & 1u) {
+            void *symbol;
+            /* the dlsym convention: a function travels as void * */
+            memcpy(&symbol, &forwarders[i], sizeof symbol);
+            return symbol;
+        }
+    }
+    return NULL;
+}

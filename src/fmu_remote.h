@@ -1,0 +1,30 @@
+/* An FMU binary run in a host process of its own (fmu_host.c), seen by the FMU binding as a
+ * table of fmi2 functions that forward each call over a socket. */
+#ifndef SSX_FMU_REMOTE_H
+#define SSX_FMU_REMOTE_H
+
+#include <stddef.h>
+
+typedef struct ssx_remote ssx_remote;
+
+/* Starts the host process on the binary and learns which fmi2 functions it exports.
+ * call_timeout > 0: an fmi2 call that has not returned after that many seconds kills the host
+ * (the call fails with fmi2Fatal). On failure returns NULL and writes the reason into error. */
+ssx_remote *ssx_remote_start(const char *host_path, const char *binary_path,
+                             const char *model_identifier, double call_timeout, char *error,
+                             size_t error_size);
+/* Ends the host process (waits for it: nothing is left behind) and frees the remote. */
+void ssx_remote_stop(ssx_remote *remote);
+
+/* Ends the current host, whatever it is doing, so that the next fmi2Instantiate starts a new
+ * one: how an isolated FMU recovers from fmi2Fatal without calling the broken instance again. */
+void ssx_remote_restart(ssx_remote *remote);
+
+/* The forwarding implementation of the fmi2 function `name`, as dlsym would return it, or NULL
+ * when the binary does not export it. The instance fmi2Instantiate returns is the remote
+ * itself; its callbacks' componentEnvironment must be the ssx_fmu that owns the remote. A host
+ * that dies makes the call fail with fmi2Fatal and logs why (the signal, or the timeout); the
+ * next fmi2Instantiate starts a new host. */
+void *ssx_remote_function(const ssx_remote *remote, const char *name);
+
+#endif
