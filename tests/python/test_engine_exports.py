@@ -8,7 +8,6 @@ import shutil
 import subprocess
 
 import pytest
-
 from syssimx import _paths
 from syssimx.engine import status_name
 

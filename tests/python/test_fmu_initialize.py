@@ -4,7 +4,6 @@ override the start hooks still write their values, in initialization mode."""
 from __future__ import annotations
 
 import pytest
-
 from syssimx import FMUComponent, System, fmus
 
 THETA0 = 0.5
