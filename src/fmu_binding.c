@@ -29,7 +29,6 @@ struct ssx_fmu {
     char *instance_name;
     int logging_on;
     void *instance;
-    ssx_fmu_slot current_call; /* the call being made, named by a fatal status */
     const char *last_call;     /* the last call made or refused, "" before any */
     /* the call that returned Fatal, or NULL: after it FMI allows no call at all, not even
      * freeing the instance, so the instance and its states are abandoned (instance NULL) and
@@ -226,58 +225,67 @@ static void refuse_after_fatal(ssx_fmu *fmu, const char *call)
              fmu->backend->version);
 }
 
-/* Every call on the instance starts here: refused, with the reason as the FMU's last message,
- * without a live instance or when the binary lacks the function. */
-static int begin(ssx_fmu *fmu, ssx_fmu_slot call)
+/* Why a call was refused, as the FMU's last message. */
+static int refuse(ssx_fmu *fmu, ssx_fmu_slot call)
+{
+    const char *name = fmu->names[call];
+    if (fmu->fatal_call != NULL) {
+        refuse_after_fatal(fmu, name);
+    } else if (fmu->instance == NULL) {
+        snprintf(fmu->last_message, sizeof fmu->last_message,
+                 "%s called without a live instance (call instantiate first)", name);
+    } else {
+        snprintf(fmu->last_message, sizeof fmu->last_message, "this FMU does not provide %s",
+                 name);
+    }
+    return 0;
+}
+
+/* Every call on the instance starts here: refused without a live instance or when the binary
+ * lacks the function. Inline: it runs before every doStep. */
+static inline int begin(ssx_fmu *fmu, ssx_fmu_slot call)
 {
     if (fmu == NULL) {
         return 0;
     }
-    const char *name = fmu->names[call];
-    fmu->last_call = name;
-    if (fmu->instance == NULL) {
-        if (fmu->fatal_call != NULL) {
-            refuse_after_fatal(fmu, name);
-        } else {
-            snprintf(fmu->last_message, sizeof fmu->last_message,
-                     "%s called without a live instance (call instantiate first)", name);
-        }
-        return 0;
+    fmu->last_call = fmu->names[call];
+    if (fmu->instance == NULL || fmu->fn[call] == NULL) {
+        return refuse(fmu, call);
     }
-    if (fmu->fn[call] == NULL) {
-        snprintf(fmu->last_message, sizeof fmu->last_message, "this FMU does not provide %s",
-                 name);
-        return 0;
-    }
-    fmu->current_call = call;
     return 1;
 }
 
-/* ... and ends here with the status the instance returned: counted, and a fatal one ends all
- * calls. */
-static int finish(ssx_fmu *fmu, int status)
+static void abandon(ssx_fmu *fmu, ssx_fmu_slot call)
 {
-    ssx_fmu_slot call = fmu->current_call;
+    fmu->fatal_call = fmu->names[call];
+    fmu->instance = NULL;
+    fmu->n_states = 0;
+}
+
+/* ... and ends here with the status the instance returned: counted, and a fatal one ends all
+ * calls. `call` is a constant at every use, so the counting folds away. */
+static inline int finish(ssx_fmu *fmu, ssx_fmu_slot call, int status)
+{
     if (effects[call].counter != 0) {
         long *counter = (long *)((char *)&fmu->counters + effects[call].counter - 1);
         ++*counter;
     }
     fmu->values_epoch += effects[call].sets_values;
     if (status == SSX_STATUS_FATAL) {
-        fmu->fatal_call = fmu->names[call];
-        fmu->instance = NULL;
-        fmu->n_states = 0;
+        abandon(fmu, call);
     }
     return status;
 }
 
 /* The call of `slot` through the back-end's adapter, checked. */
 #define CHECKED(fmu, slot, adapter, ...)                                                      \
-    (begin((fmu), (slot)) ? finish((fmu), (fmu)->backend->adapter((fmu)->fn, (fmu)->instance, \
-                                                                  __VA_ARGS__))               \
+    (begin((fmu), (slot)) ? finish((fmu), (slot),                                             \
+                                   (fmu)->backend->adapter((fmu)->fn, (fmu)->instance,        \
+                                                           __VA_ARGS__))                      \
                           : -1)
 #define CHECKED0(fmu, slot, adapter)                                                          \
-    (begin((fmu), (slot)) ? finish((fmu), (fmu)->backend->adapter((fmu)->fn, (fmu)->instance)) \
+    (begin((fmu), (slot)) ? finish((fmu), (slot),                                             \
+                                   (fmu)->backend->adapter((fmu)->fn, (fmu)->instance))       \
                           : -1)
 
 /* ------------------------------------------------------------------ life cycle */
@@ -375,10 +383,9 @@ int ssx_fmu_instantiate(ssx_fmu *fmu)
     /* a state the old instance fails to free is its leak, not a reason to refuse a new one */
     (void)ssx_fmu_free_instance(fmu);
     fmu->last_message[0] = '\0';
-    fmu->current_call = SLOT_INSTANTIATE;
     fmu->instance = fmu->backend->instantiate(fmu->fn, fmu->context, fmu, fmu->instance_name,
                                               fmu->guid, fmu->resource_uri, fmu->logging_on);
-    (void)finish(fmu, 0);
+    (void)finish(fmu, SLOT_INSTANTIATE, 0);
     fmu->generation++;
     if (fmu->instance == NULL) {
         if (fmu->last_message[0] == '\0') {
@@ -492,7 +499,8 @@ int ssx_fmu_get_state(ssx_fmu *fmu, void **state)
         return -1;
     }
     int fresh = *state == NULL;
-    int status = finish(fmu, fmu->backend->get_state(fmu->fn, fmu->instance, state));
+    int status =
+        finish(fmu, SLOT_GET_STATE, fmu->backend->get_state(fmu->fn, fmu->instance, state));
     if (fresh && *state != NULL && remember_state(fmu, *state) != 0) {
         if (fmu->fn[SLOT_FREE_STATE] != NULL) {
             fmu->backend->free_state(fmu->fn, fmu->instance, state);
@@ -513,7 +521,7 @@ int ssx_fmu_set_state(ssx_fmu *fmu, void *state)
                  "%s: the state does not belong to the live instance", fmu->last_call);
         return -1;
     }
-    return finish(fmu, fmu->backend->set_state(fmu->fn, fmu->instance, state));
+    return finish(fmu, SLOT_SET_STATE, fmu->backend->set_state(fmu->fn, fmu->instance, state));
 }
 
 int ssx_fmu_free_state(ssx_fmu *fmu, void **state)
@@ -554,8 +562,9 @@ int ssx_fmu_deserialize_state(ssx_fmu *fmu, const char *bytes, size_t size, void
         return -1;
     }
     int fresh = *state == NULL;
-    int status = finish(fmu, fmu->backend->deserialize_state(fmu->fn, fmu->instance, bytes, size,
-                                                             state));
+    int status = finish(fmu, SLOT_DESERIALIZE_STATE,
+                        fmu->backend->deserialize_state(fmu->fn, fmu->instance, bytes, size,
+                                                        state));
     if (fresh && *state != NULL && remember_state(fmu, *state) != 0) {
         note(fmu, "out of memory tracking FMU states");
         return -1;
