@@ -11,7 +11,12 @@ long ssx_fmu_generation(const ssx_fmu *fmu);
  * and instantiation. Unchanged since a holder's own write, the instance still holds what the
  * holder wrote, so writing the same values again can be skipped. */
 long ssx_fmu_values_epoch(const ssx_fmu *fmu);
-const char *ssx_fmu_instance_name(const ssx_fmu *fmu);
+/* After fmi2DoStep returned fmi2Discard: whether the FMU asks to end the simulation
+ * (fmi2GetBooleanStatus(fmi2Terminated)) and the time it reached (fmi2GetRealStatus(
+ * fmi2LastSuccessfulTime)). Each returns the fmi2Status, or -1. */
+int ssx_fmu_get_terminated(ssx_fmu *fmu, int *terminated);
+int ssx_fmu_get_last_successful_time(ssx_fmu *fmu, double *time);
+/* "fmi2OK" ... "fmi2Pending"; for -1 (no status: the engine failed) it says so. */
 const char *ssx_fmi2_status_name(int status);
 /* The host process of an isolated FMU, NULL for one loaded into this process. */
 struct ssx_remote;

@@ -49,6 +49,43 @@ ssx_fmu *ssx_fmu_load(const char *binary_path, const char *model_identifier, con
                       char *error, size_t error_size);
 void ssx_fmu_free(ssx_fmu *fmu); /* terminates/frees a live instance, then dlclose */
 
+/* The name of a status an ssx_fmu_* call returned, without its standard's prefix: "OK",
+ * "Warning", "Discard", "Error", "Fatal", "Pending", and "failed" for -1; NULL for any other. */
+const char *ssx_status_name(int status);
+
+/* What ssx_fmu_initialize writes in initialization mode: values by type, n_* value references
+ * and as many values each (a Boolean is 0 or 1). */
+typedef struct {
+    const unsigned int *real_vr;
+    const double *real_values;
+    size_t n_real;
+    const unsigned int *integer_vr;
+    const int *integer_values;
+    size_t n_integer;
+    const unsigned int *boolean_vr;
+    const int *boolean_values;
+    size_t n_boolean;
+} ssx_fmu_values;
+
+/* The experiment an instance is set up for; a tolerance or stop time that is not defined is
+ * not passed on (the FMU chooses). */
+typedef struct {
+    double start_time;
+    int tolerance_defined;
+    double tolerance;
+    int stop_time_defined;
+    double stop_time;
+} ssx_fmu_experiment;
+
+/* A fresh instance ready to step: instantiate (a live instance is freed first), set up the
+ * experiment, enter initialization mode, write `starts` (NULL: none) by type, call
+ * in_initialization_mode(user) when it is not NULL (it may write more values; nonzero fails
+ * the call and its caller keeps the reason), exit initialization mode. Returns the highest
+ * status of the sequence (0 OK or 1 Warning), else the status of the call that failed (-1:
+ * the engine failed or the callback did); ssx_fmu_last_call names that call. */
+int ssx_fmu_initialize(ssx_fmu *fmu, const ssx_fmu_experiment *experiment,
+                       const ssx_fmu_values *starts, int (*in_initialization_mode)(void *user),
+                       void *user);
 int ssx_fmu_instantiate(ssx_fmu *fmu); /* a live instance is freed first */
 int ssx_fmu_free_instance(ssx_fmu *fmu);
 int ssx_fmu_setup_experiment(ssx_fmu *fmu, int tolerance_defined, double tolerance,
@@ -73,16 +110,14 @@ int ssx_fmu_get_directional_derivative(ssx_fmu *fmu, const unsigned int *unknown
                                        const double *dv_known, double *dv_unknown);
 int ssx_fmu_reset(ssx_fmu *fmu);
 int ssx_fmu_terminate(ssx_fmu *fmu);
-/* After fmi2DoStep returned fmi2Discard: whether the FMU asks to end the simulation
- * (fmi2GetBooleanStatus(fmi2Terminated)) and the time it reached (fmi2GetRealStatus(
- * fmi2LastSuccessfulTime)). Each returns the fmi2Status, or -1. */
-int ssx_fmu_get_terminated(ssx_fmu *fmu, int *terminated);
-int ssx_fmu_get_last_successful_time(ssx_fmu *fmu, double *time);
 /* 1 once a call returned fmi2Fatal: every later call is refused without reaching the FMU (FMI
  * 2.0 forbids them all, even fmi2FreeInstance); freeing abandons the instance. */
 int ssx_fmu_is_dead(const ssx_fmu *fmu);
 int ssx_fmu_is_instantiated(const ssx_fmu *fmu);
 const char *ssx_fmu_last_message(const ssx_fmu *fmu); /* last message the FMU logged, "" if none */
+/* The standard's name of the last call made on the FMU or refused ("fmi2DoStep"), "" before
+ * any: the call a failure of ssx_fmu_initialize stopped at. */
+const char *ssx_fmu_last_call(const ssx_fmu *fmu);
 void ssx_fmu_get_counters(const ssx_fmu *fmu, ssx_fmu_counters *out);
 
 /* ------------------------------------------------------------------------------------------
@@ -176,7 +211,6 @@ const ssx_error *ssx_last_error(const ssx_system *sys);
 int ssx_add_fmu_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_get_set_state);
 int ssx_add_python_component(ssx_system *sys, const char *name, int can_snapshot);
 int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks);
-int ssx_component_count(const ssx_system *sys);
 
 /* Ports. vr is the FMU value reference (ignored for Python components). start is written to
  * the FMU input at initialization when the input is unconnected; NaN (FMU components only)
@@ -186,8 +220,6 @@ int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned
 int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned int vr, double start);
 double *ssx_outputs(ssx_system *sys, int component); /* n_outputs current values */
 double *ssx_inputs(ssx_system *sys, int component);  /* n_inputs current values */
-int ssx_output_count(const ssx_system *sys, int component);
-int ssx_input_count(const ssx_system *sys, int component);
 
 /* dst_input = scale * src_output + offset, applied in C (units resolved by Python). One driver
  * per input: a second connection to the same input fails. */
@@ -207,8 +239,6 @@ int ssx_add_indicator_output(ssx_system *sys, int component, int output, int dir
 int ssx_add_indicator_callback(ssx_system *sys, int component,
                                int (*evaluate)(void *user, double t, double *value), void *user,
                                int direction);
-int ssx_indicator_count(const ssx_system *sys);
-double ssx_indicator_value(const ssx_system *sys, int indicator); /* value at the current time */
 /* When the indicator fires, listener's handle_events hook receives it. */
 int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_component);
 
@@ -242,8 +272,8 @@ const ssx_termination *ssx_get_termination(const ssx_system *sys);
  * event indicator must be finite either way. */
 int ssx_set_allow_non_finite(ssx_system *sys, int allow);
 
-/* initialize: the components are already initialized (fmi2 init is done by Python through the
- * ssx_fmu_* calls); this reads outputs, applies connections (solving loops), clears and starts
+/* initialize: the components are already initialized (each FMU by ssx_fmu_initialize); this
+ * reads outputs, applies connections (solving loops), clears and starts
  * the history with the sample at t0 and evaluates the indicators. */
 int ssx_initialize(ssx_system *sys, double t0);
 /* run from the current time t0 to tf on the grid t0 + k*dt (the last point is exactly tf),

@@ -33,3 +33,10 @@ def lib() -> Any:
 def string(pointer: Any) -> str:
     """A C string as str ("" for NULL)."""
     return "" if pointer == ffi.NULL else ffi.string(pointer).decode("utf-8", "replace")
+
+
+def status_name(status: int) -> str:
+    """The engine's name of a status an ssx_fmu call returned ("OK" ... "Pending", "failed"
+    for -1); the number itself for any other."""
+    name = lib().ssx_status_name(status)
+    return str(status) if name == ffi.NULL else ffi.string(name).decode()

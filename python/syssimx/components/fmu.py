@@ -130,18 +130,21 @@ class FMUComponent(CoSimComponent):
             self._write_to_fmu({n: self._input_starts[n] for n in signals})
 
     def _write_to_fmu(self, values: dict[str, Any]) -> None:
+        setters = {PortType.REAL: self.instance.setReal, PortType.INT: self.instance.setInteger,
+                   PortType.BOOL: self.instance.setBoolean}
+        for kind, (refs, vals) in self._by_type(values).items():
+            setters[kind](refs, vals)
+
+    def _by_type(self, values: dict[str, Any]) -> dict[PortType, tuple[list[int], list[Any]]]:
+        """Value references and values of parameters and inputs, grouped by value type."""
         by_type: dict[PortType, tuple[list[int], list[Any]]] = {}
         for name, value in values.items():
-            variable = self.info.variables[name]
             kind = self.input_specs[name].type if name in self.input_specs \
                 else self.info.parameters[name].type
             refs, vals = by_type.setdefault(kind, ([], []))
-            refs.append(int(variable.valueReference))
+            refs.append(self.value_reference(name))
             vals.append(value)
-        setters = {PortType.REAL: self.instance.setReal, PortType.INT: self.instance.setInteger,
-                   PortType.BOOL: self.instance.setBoolean}
-        for kind, (refs, vals) in by_type.items():
-            setters[kind](refs, vals)
+        return by_type
 
     # ---------------------------------------------------------------- parameters
     def set_parameters(self, **parameters: Any) -> None:
@@ -165,23 +168,35 @@ class FMUComponent(CoSimComponent):
     def _apply_parameters_starts(self) -> None:
         """Write the parameters the user set to the FMU. In step mode only tunable ones (FMI
         forbids setting fixed parameters after initialization)."""
-        step_mode = self.instance.mode == "step"
-        values = {n: v for n, v in self.user_parameters().items()
-                  if self.info.parameters[n].tunable or not step_mode}
-        self._write_to_fmu(values)
+        self._write_to_fmu(self._parameter_starts(step_mode=self.instance.mode == "step"))
 
     def _apply_input_starts(self) -> None:
         """Write the inputs the user set to the FMU; in a system, the engine's current input
         values (connections drive them; an input never set holds the FMU's own value there,
         NaN before the engine read it)."""
+        self._write_to_fmu(self._input_starts_to_write())
+
+    def _parameter_starts(self, step_mode: bool) -> dict[str, Any]:
+        return {n: v for n, v in self.user_parameters().items()
+                if self.info.parameters[n].tunable or not step_mode}
+
+    def _input_starts_to_write(self) -> dict[str, Any]:
         if self._binding is None:
-            values = {n: self._input_starts[n] for n in self._inputs_set}
-        else:
-            plan = self._binding.plan
-            engine = {n: plan.port_value(self, "in", n) for n in self.engine_inputs()}
-            values = {n: _typed_input(self.input_specs[n].type, v)
-                      for n, v in engine.items() if not math.isnan(v)}
-        self._write_to_fmu(values)
+            return {n: self._input_starts[n] for n in self._inputs_set}
+        plan = self._binding.plan
+        engine = {n: plan.port_value(self, "in", n) for n in self.engine_inputs()}
+        return {n: _typed_input(self.input_specs[n].type, v)
+                for n, v in engine.items() if not math.isnan(v)}
+
+    def _start_hooks_overridden(self) -> bool:
+        """Whether a subclass writes the start values itself (SysSimX's hooks)."""
+        cls = type(self)
+        return (cls._apply_parameters_starts is not FMUComponent._apply_parameters_starts
+                or cls._apply_input_starts is not FMUComponent._apply_input_starts)
+
+    def _apply_starts(self) -> None:
+        self._apply_parameters_starts()
+        self._apply_input_starts()
 
     # ---------------------------------------------------------------- life cycle
     def _start(self, t0: float, tolerance: float | None = None) -> None:
@@ -195,10 +210,12 @@ class FMUComponent(CoSimComponent):
         self._set_event_ports(t0, None)
 
     def reinitialize(self, t: float, **start_values: Any) -> None:
-        """Fresh instance at time t: instantiate, setupExperiment(t), initialization mode with
-        the parameters and inputs applied, exit. `start_values` (parameters, numbers or pint
-        quantities) override `parameters` for this instance only, so a later
-        System.initialize starts from the parameters the user set."""
+        """Fresh instance at time t (one engine call): instantiate, setupExperiment(t),
+        initialization mode with the parameters and inputs the user set written (by
+        `_apply_parameters_starts`/`_apply_input_starts` when a subclass overrides them),
+        exit. `start_values` (parameters, numbers or pint quantities) override `parameters`
+        for this instance only, so a later System.initialize starts from the parameters the
+        user set."""
         saved, saved_set = self.parameters, self._parameters_set
         overrides = {}
         for name, value in start_values.items():
@@ -210,12 +227,14 @@ class FMUComponent(CoSimComponent):
         self.parameters = {**saved, **overrides}
         self._parameters_set = saved_set | set(overrides)
         try:
-            self.instance.instantiate()
-            self.instance.setupExperiment(tolerance=self._experiment_tolerance, startTime=t)
-            self.instance.enterInitializationMode()
-            self._apply_parameters_starts()
-            self._apply_input_starts()
-            self.instance.exitInitializationMode()
+            # the engine writes the values itself unless a subclass's hooks do
+            if self._start_hooks_overridden():
+                self.instance.initialize(t, self._experiment_tolerance,
+                                         in_initialization_mode=self._apply_starts)
+            else:
+                starts = {**self._parameter_starts(step_mode=False),
+                          **self._input_starts_to_write()}
+                self.instance.initialize(t, self._experiment_tolerance, self._by_type(starts))
         finally:
             self.parameters, self._parameters_set = saved, saved_set
         self.t = t

@@ -12,13 +12,15 @@ first lookup of a library function takes: they only call functions resolved befo
 from __future__ import annotations
 
 import weakref
-from collections.abc import Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
-from ..engine import ffi, lib, string
+from ..core.port import PortType
+from ..engine import ffi, lib, status_name, string
 from ..errors import FMUError
 
-_STATUS = {0: "OK", 1: "Warning", 2: "Discard", 3: "Error", 4: "Fatal", 5: "Pending", -1: "failed"}
+# values to write by type: value references and as many values
+Values = Mapping[PortType, tuple[Sequence[int], Sequence[Any]]]
 
 
 class FMUState:
@@ -87,12 +89,45 @@ class FMUInstance:
     def _check(self, status: int, call: str) -> int:
         if status > 1 or status < 0:
             message = string(lib().ssx_fmu_last_message(self.fmu))
-            raise FMUError(f"{self.component_name}: {call} returned {_STATUS.get(status, status)}"
+            raise FMUError(f"{self.component_name}: {call} returned {status_name(status)}"
                            + (f": {message}" if message else ""),
                            component=self.component_name, status=status, fmu_message=message)
         return status
 
     # ------------------------------------------------------------ life cycle
+    def initialize(self, start_time: float, tolerance: float | None = None,
+                   starts: Values | None = None,
+                   in_initialization_mode: Callable[[], None] | None = None) -> None:
+        """A fresh instance ready to step, in one engine call: instantiate, setupExperiment,
+        enterInitializationMode, write `starts`, call `in_initialization_mode` (it may write
+        more through this proxy; what it raises is raised here), exitInitializationMode."""
+        self.generation += 1
+        self.mode = "init"  # what the FMU is in while in_initialization_mode runs
+        experiment = ffi.new("ssx_fmu_experiment *", {
+            "start_time": start_time, "tolerance_defined": tolerance is not None,
+            "tolerance": tolerance or 0.0})
+        values, _arrays = _values(starts or {})  # the arrays live as long as this call
+        raised: list[BaseException] = []
+
+        def during(_user: Any) -> int:
+            try:
+                in_initialization_mode()  # type: ignore[misc]
+            except BaseException as exc:  # raised below, an interrupt too
+                raised.append(exc)
+                return -1
+            return 0
+
+        callback = ffi.NULL if in_initialization_mode is None \
+            else ffi.callback("int(void *)", during)
+        status = lib().ssx_fmu_initialize(self.fmu, experiment, values, callback, ffi.NULL)
+        if status in (0, 1):
+            self.mode = "step"
+            return
+        self.mode = "init" if lib().ssx_fmu_is_instantiated(self.fmu) else "none"
+        if raised:
+            raise raised[0]
+        self._check(status, string(lib().ssx_fmu_last_call(self.fmu)))
+
     def instantiate(self, visible: bool = False, callbacks: Any = None,
                     loggingOn: bool = False) -> None:  # noqa: N803 (FMPy's names)
         self.generation += 1
@@ -225,3 +260,21 @@ class FMUInstance:
     freeFMUState = freeFMUstate  # noqa: N815
     serializeFMUState = serializeFMUstate  # noqa: N815
     deserializeFMUState = deserializeFMUstate  # noqa: N815
+
+
+def _values(starts: Values) -> tuple[Any, list[Any]]:
+    """The ssx_fmu_values of `starts`, and the arrays it points at (keep them alive)."""
+    values = ffi.new("ssx_fmu_values *")
+    keep: list[Any] = [values]
+    layout = {PortType.REAL: ("real", "double[]"), PortType.INT: ("integer", "int[]"),
+              PortType.BOOL: ("boolean", "int[]")}
+    for kind, (refs, vals) in starts.items():
+        field, c_type = layout[kind]
+        items = [float(v) if kind == PortType.REAL else int(v) if kind == PortType.INT
+                 else int(bool(v)) for v in vals]
+        vr, array = ffi.new("unsigned int[]", list(refs)), ffi.new(c_type, items)
+        keep += [vr, array]
+        setattr(values, f"{field}_vr", vr)
+        setattr(values, f"{field}_values", array)
+        setattr(values, f"n_{field}", len(items))
+    return values, keep

@@ -5,13 +5,11 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, NoReturn
 
-from ..engine import ffi, lib
+from ..engine import ffi, lib, status_name
 from ..errors import AlgebraicLoopError, SimulationError, SimulationTimeoutError, ZenoError
 
 if TYPE_CHECKING:
     from .plan import EnginePlan
-
-_STATUS = {0: "OK", 1: "Warning", 2: "Discard", 3: "Error", 4: "Fatal", 5: "Pending"}
 
 
 def raise_failure(plan: EnginePlan, default_component: str | None = None) -> NoReturn:
@@ -57,7 +55,7 @@ def simulation_error(plan: EnginePlan, default_component: str | None = None) -> 
         # the engine numbers outputs; the user knows them by name
         port = plan.outputs[component][error.output]
         text = text.replace(f"output {error.output} is", f"output {port!r} is", 1)
-    if status is not None and _STATUS.get(status, "") not in text:
-        text += f" (status {_STATUS.get(status, status)})"
+    if status is not None and status_name(status) not in text:
+        text += f" (status {status_name(status)})"
     return kind(text, component=component, time=time, status=status, fmu_message=fmu_message,
                 event=event)

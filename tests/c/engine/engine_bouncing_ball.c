@@ -21,15 +21,7 @@ static int start_ball(ssx_fmu *fmu, double t, double h0, double v0)
 {
     const unsigned int vr[] = {BALL_H0, BALL_V0};
     const double values[] = {h0, v0};
-    int status;
-    if ((status = ssx_fmu_instantiate(fmu)) != 0 ||
-        (status = ssx_fmu_setup_experiment(fmu, 1, 1e-10, t, 0, 0.0)) != 0 ||
-        (status = ssx_fmu_enter_initialization_mode(fmu)) != 0 ||
-        (status = ssx_fmu_set_real(fmu, vr, 2, values)) != 0 ||
-        (status = ssx_fmu_exit_initialization_mode(fmu)) != 0) {
-        return status;
-    }
-    return 0;
+    return start_fmu(fmu, t, 1e-10, vr, values, 2);
 }
 
 static int bounce(void *user, const int *indicators, int n, double t)

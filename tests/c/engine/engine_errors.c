@@ -88,10 +88,7 @@ enum { FAILING_Y = 0, FAILING_U = 1 };
 static void failing_fmu_call(void)
 {
     ssx_fmu *fmu = load_fmu("failing");
-    CHECK(ssx_fmu_instantiate(fmu) == 0);
-    CHECK(ssx_fmu_setup_experiment(fmu, 0, 0.0, 0.0, 0, 0.0) == 0);
-    CHECK(ssx_fmu_enter_initialization_mode(fmu) == 0);
-    CHECK(ssx_fmu_exit_initialization_mode(fmu) == 0);
+    CHECK(start_fmu(fmu, 0.0, 0.0, NULL, NULL, 0) == 0);
     ssx_system *sys = ssx_system_new("failing");
     int c = ssx_add_fmu_component(sys, "Breaker", fmu, 1);
     CHECK(ssx_add_output(sys, c, SSX_REAL, FAILING_Y) == 0);

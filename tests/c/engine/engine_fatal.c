@@ -27,15 +27,14 @@ static void check_refused(ssx_fmu *fmu, int status, const char *call)
 int main(void)
 {
     ssx_fmu *fmu = load_fmu("failing");
-    CHECK(ssx_fmu_instantiate(fmu) == 0);
-    CHECK(ssx_fmu_setup_experiment(fmu, 0, 0.0, 0.0, 0, 0.0) == 0);
-    CHECK(ssx_fmu_enter_initialization_mode(fmu) == 0);
+    const int fatal = 1;
     const unsigned int time_vr = FAILING_TIME, mode_vr = FAILING_MODE;
     const double fail_time = 0.5;
-    const int fatal = 1;
-    CHECK(ssx_fmu_set_real(fmu, &time_vr, 1, &fail_time) == 0);
-    CHECK(ssx_fmu_set_integer(fmu, &mode_vr, 1, &fatal) == 0);
-    CHECK(ssx_fmu_exit_initialization_mode(fmu) == 0);
+    const ssx_fmu_experiment experiment = {.start_time = 0.0};
+    const ssx_fmu_values starts = {.real_vr = &time_vr, .real_values = &fail_time, .n_real = 1,
+                                   .integer_vr = &mode_vr, .integer_values = &fatal,
+                                   .n_integer = 1};
+    CHECK(ssx_fmu_initialize(fmu, &experiment, &starts, NULL, NULL) == 0);
     void *state = NULL;
     CHECK(ssx_fmu_get_state(fmu, &state) == 0);
 

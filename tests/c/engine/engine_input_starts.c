@@ -10,10 +10,7 @@ enum { KEEP_Y = 0, KEEP_U = 1 };
 
 static ssx_system *keep_defaults_system(ssx_fmu *fmu, double u_start)
 {
-    CHECK(ssx_fmu_instantiate(fmu) == 0);
-    CHECK(ssx_fmu_setup_experiment(fmu, 0, 0.0, 0.0, 0, 0.0) == 0);
-    CHECK(ssx_fmu_enter_initialization_mode(fmu) == 0);
-    CHECK(ssx_fmu_exit_initialization_mode(fmu) == 0);
+    CHECK(start_fmu(fmu, 0.0, 0.0, NULL, NULL, 0) == 0);
     ssx_system *sys = ssx_system_new("input starts");
     int c = ssx_add_fmu_component(sys, "K", fmu, 1);
     CHECK(ssx_add_output(sys, c, SSX_REAL, KEEP_Y) == 0);

@@ -13,11 +13,7 @@ static const double A = 1.5, B = 2.0, C = 0.02;
 
 static void start_block(ssx_fmu *fmu, const unsigned int *vr, const double *values, size_t n)
 {
-    CHECK(ssx_fmu_instantiate(fmu) == 0);
-    CHECK(ssx_fmu_setup_experiment(fmu, 0, 0.0, 0.0, 0, 0.0) == 0);
-    CHECK(ssx_fmu_set_real(fmu, vr, n, values) == 0);
-    CHECK(ssx_fmu_enter_initialization_mode(fmu) == 0);
-    CHECK(ssx_fmu_exit_initialization_mode(fmu) == 0);
+    CHECK(start_fmu(fmu, 0.0, 0.0, vr, values, n) == 0);
 }
 
 static int add_block(ssx_system *sys, const char *name, ssx_fmu *fmu, int provided)

@@ -23,11 +23,7 @@ enum { GAIN_Y = 0, GAIN_U = 1, GAIN_K = 2 };
 /* Instantiates and initializes at t = 0 with the given Real parameters. */
 static void start(ssx_fmu *fmu, const unsigned int *vr, const double *values, size_t n)
 {
-    CHECK(ssx_fmu_instantiate(fmu) == 0);
-    CHECK(ssx_fmu_setup_experiment(fmu, 0, 0.0, 0.0, 0, 0.0) == 0);
-    CHECK(ssx_fmu_enter_initialization_mode(fmu) == 0);
-    CHECK(ssx_fmu_set_real(fmu, vr, n, values) == 0);
-    CHECK(ssx_fmu_exit_initialization_mode(fmu) == 0);
+    CHECK(start_fmu(fmu, 0.0, 0.0, vr, values, n) == 0);
 }
 
 static ssx_fmu *ramp(double y0, double stop_time)
@@ -42,14 +38,13 @@ static ssx_fmu *ramp(double y0, double stop_time)
 static ssx_fmu *failing(int mode)
 {
     ssx_fmu *fmu = load_fmu("failing");
-    CHECK(ssx_fmu_instantiate(fmu) == 0);
-    CHECK(ssx_fmu_setup_experiment(fmu, 0, 0.0, 0.0, 0, 0.0) == 0);
-    CHECK(ssx_fmu_enter_initialization_mode(fmu) == 0);
     const unsigned int time_vr = FAILING_TIME, mode_vr = FAILING_MODE;
     const double fail_time = 0.5;
-    CHECK(ssx_fmu_set_real(fmu, &time_vr, 1, &fail_time) == 0);
-    CHECK(ssx_fmu_set_integer(fmu, &mode_vr, 1, &mode) == 0);
-    CHECK(ssx_fmu_exit_initialization_mode(fmu) == 0);
+    const ssx_fmu_experiment experiment = {.start_time = 0.0};
+    const ssx_fmu_values starts = {.real_vr = &time_vr, .real_values = &fail_time, .n_real = 1,
+                                   .integer_vr = &mode_vr, .integer_values = &mode,
+                                   .n_integer = 1};
+    CHECK(ssx_fmu_initialize(fmu, &experiment, &starts, NULL, NULL) == 0);
     return fmu;
 }
 

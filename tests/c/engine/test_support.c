@@ -31,19 +31,20 @@ ssx_fmu *load_fmu(const char *stem)
     exit(1);
 }
 
+int start_fmu(ssx_fmu *fmu, double t, double tolerance, const unsigned int *vr,
+              const double *values, size_t n)
+{
+    const ssx_fmu_experiment experiment = {.start_time = t, .tolerance_defined = tolerance > 0,
+                                           .tolerance = tolerance};
+    const ssx_fmu_values starts = {.real_vr = vr, .real_values = values, .n_real = n};
+    return ssx_fmu_initialize(fmu, &experiment, &starts, NULL, NULL);
+}
+
 int start_pendulum(ssx_fmu *fmu, double t, double theta0, double omega0, double tolerance)
 {
     const unsigned int vr[] = {PENDULUM_THETA0, PENDULUM_OMEGA0};
     const double values[] = {theta0, omega0};
-    int status;
-    if ((status = ssx_fmu_instantiate(fmu)) != 0 ||
-        (status = ssx_fmu_setup_experiment(fmu, tolerance > 0, tolerance, t, 0, 0.0)) != 0 ||
-        (status = ssx_fmu_enter_initialization_mode(fmu)) != 0 ||
-        (status = ssx_fmu_set_real(fmu, vr, 2, values)) != 0 ||
-        (status = ssx_fmu_exit_initialization_mode(fmu)) != 0) {
-        return status;
-    }
-    return 0;
+    return start_fmu(fmu, t, tolerance, vr, values, 2);
 }
 
 int add_pendulum(ssx_system *sys, const char *name, ssx_fmu *fmu)

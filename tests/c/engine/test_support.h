@@ -50,6 +50,10 @@ enum {
 
 /* Loads one of the built FMUs by its stem (e.g. "pendulum_cvode"); exits on failure. */
 ssx_fmu *load_fmu(const char *stem);
+/* ssx_fmu_initialize at time t with n Real start values (tolerance <= 0 leaves the tolerance
+ * undefined). Returns its status: 0 (or 1, a warning) when the FMU is ready to step. */
+int start_fmu(ssx_fmu *fmu, double t, double tolerance, const unsigned int *vr,
+              const double *values, size_t n);
 /* Instantiates and initializes a pendulum at time t with the given initial state.
  * tolerance <= 0 leaves the tolerance undefined. Returns the first failing fmi2 status or 0. */
 int start_pendulum(ssx_fmu *fmu, double t, double theta0, double omega0, double tolerance);

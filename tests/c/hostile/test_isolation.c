@@ -64,12 +64,11 @@ static void start_hostile(ssx_fmu *fmu, int mode)
 {
     const unsigned int mode_vr = HOSTILE_MODE, fail_time_vr = HOSTILE_FAIL_TIME;
     const double fail_time = 0.45;
-    CHECK(ssx_fmu_instantiate(fmu) == 0);
-    CHECK(ssx_fmu_setup_experiment(fmu, 0, 0.0, 0.0, 0, 0.0) == FMI2_OK);
-    CHECK(ssx_fmu_enter_initialization_mode(fmu) == FMI2_OK);
-    CHECK(ssx_fmu_set_integer(fmu, &mode_vr, 1, &mode) == FMI2_OK);
-    CHECK(ssx_fmu_set_real(fmu, &fail_time_vr, 1, &fail_time) == FMI2_OK);
-    CHECK(ssx_fmu_exit_initialization_mode(fmu) == FMI2_OK);
+    const ssx_fmu_experiment experiment = {.start_time = 0.0};
+    const ssx_fmu_values starts = {.real_vr = &fail_time_vr, .real_values = &fail_time,
+                                   .n_real = 1, .integer_vr = &mode_vr,
+                                   .integer_values = &mode, .n_integer = 1};
+    CHECK(ssx_fmu_initialize(fmu, &experiment, &starts, NULL, NULL) == FMI2_OK);
 }
 
 static void test_bad_log_format_in_process(const char *hostile)
@@ -119,11 +118,11 @@ static size_t exercise(ssx_fmu *fmu, double *out)
     const double starts[] = {0.5, 0.1};
     const unsigned int outputs_vr[] = {THETA, OMEGA, ALPHA};
     const unsigned int torque_vr = TORQUE;
-    CHECK(ssx_fmu_instantiate(fmu) == 0);
-    CHECK(ssx_fmu_setup_experiment(fmu, 1, 1e-8, 0.0, 0, 0.0) == FMI2_OK);
-    CHECK(ssx_fmu_enter_initialization_mode(fmu) == FMI2_OK);
-    CHECK(ssx_fmu_set_real(fmu, starts_vr, 2, starts) == FMI2_OK);
-    CHECK(ssx_fmu_exit_initialization_mode(fmu) == FMI2_OK);
+    const ssx_fmu_experiment experiment = {.start_time = 0.0, .tolerance_defined = 1,
+                                           .tolerance = 1e-8};
+    const ssx_fmu_values start_values = {.real_vr = starts_vr, .real_values = starts,
+                                         .n_real = 2};
+    CHECK(ssx_fmu_initialize(fmu, &experiment, &start_values, NULL, NULL) == FMI2_OK);
     CHECK(ssx_fmu_do_step(fmu, 0.0, 0.1, 0) == FMI2_OK);
     void *state = NULL;
     CHECK(ssx_fmu_get_state(fmu, &state) == FMI2_OK && state != NULL);

@@ -1,0 +1,120 @@
+/* What an FMI version adds to the FMU binding. The binding (fmu_binding.c) is version-neutral:
+ * it loads the binary, resolves the back-end's function table, keeps the instance, its states
+ * and counters, and checks every call in one place. A back-end (fmu_fmi2.c; an FMI 3.0 one is
+ * another file like it) names its standard's functions and calls them with their own types. */
+#ifndef SSX_FMU_BACKEND_H
+#define SSX_FMU_BACKEND_H
+
+#include <stdarg.h>
+#include <stddef.h>
+
+#include "syssimx_engine.h"
+
+/* The operations of the interface: a back-end resolves one function of its standard into each
+ * slot it has. */
+typedef enum {
+    SLOT_INSTANTIATE,
+    SLOT_FREE_INSTANCE,
+    SLOT_SETUP_EXPERIMENT,
+    SLOT_ENTER_INITIALIZATION_MODE,
+    SLOT_EXIT_INITIALIZATION_MODE,
+    SLOT_TERMINATE,
+    SLOT_RESET,
+    SLOT_GET_REAL,
+    SLOT_GET_INTEGER,
+    SLOT_GET_BOOLEAN,
+    SLOT_SET_REAL,
+    SLOT_SET_INTEGER,
+    SLOT_SET_BOOLEAN,
+    SLOT_DO_STEP,
+    SLOT_GET_STATE,
+    SLOT_SET_STATE,
+    SLOT_FREE_STATE,
+    SLOT_SERIALIZED_STATE_SIZE,
+    SLOT_SERIALIZE_STATE,
+    SLOT_DESERIALIZE_STATE,
+    SLOT_DIRECTIONAL_DERIVATIVE,
+    SLOT_GET_TERMINATED,
+    SLOT_GET_LAST_SUCCESSFUL_TIME,
+    SLOT_COUNT
+} ssx_fmu_slot;
+
+/* The status names of every FMI version, in the order of their values (0 OK ... 5 Pending);
+ * X(name) makes one entry. */
+#define SSX_STATUS_NAMES(X) X(OK) X(Warning) X(Discard) X(Error) X(Fatal) X(Pending)
+enum { SSX_STATUS_FATAL = 4 };
+
+/* A resolved function, kept untyped; each adapter converts it back to its standard's type. */
+typedef void (*ssx_fmu_function)(void);
+
+/* One row of a back-end's table: the standard's name of the function that fills `slot`, and
+ * whether a binary without it is not of that standard at all. The same table resolves the
+ * functions, checks the required ones and names the calls in messages. */
+typedef struct {
+    const char *name;
+    ssx_fmu_slot slot;
+    int required;
+} ssx_fmu_function_row;
+
+/* An FMI version's back-end. Each adapter receives the resolved functions by slot and the
+ * instance its instantiate returned, and returns the standard's status as an int (0 OK,
+ * 1 Warning, 2 Discard, 3 Error, 4 Fatal, 5 Pending: the order of ssx_status_name). The binding
+ * calls an adapter only when its slot is filled and an instance is live. */
+typedef struct {
+    const char *standard; /* "FMI 2.0 Co-Simulation", for messages */
+    const char *version;  /* "FMI 2.0", for messages */
+    const char *const *status_names; /* the standard's name of each status ("fmi2OK", ...) */
+    const ssx_fmu_function_row *functions;
+    size_t n_functions;
+    /* bytes the back-end keeps per FMU (what the instance may point at until it is freed),
+     * zeroed by the binding and passed to instantiate */
+    size_t context_size;
+    /* NULL on failure; fmu is the environment the FMU's log messages name (ssx_fmu_log) */
+    void *(*instantiate)(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
+                         const char *instance_name, const char *guid, const char *resource_uri,
+                         int logging_on);
+    void (*free_instance)(const ssx_fmu_function *fn, void *instance);
+    int (*setup_experiment)(const ssx_fmu_function *fn, void *instance, int tolerance_defined,
+                            double tolerance, double start_time, int stop_time_defined,
+                            double stop_time);
+    int (*enter_initialization_mode)(const ssx_fmu_function *fn, void *instance);
+    int (*exit_initialization_mode)(const ssx_fmu_function *fn, void *instance);
+    int (*terminate)(const ssx_fmu_function *fn, void *instance);
+    int (*reset)(const ssx_fmu_function *fn, void *instance);
+    int (*get_real)(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                    double *values);
+    int (*get_integer)(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                       size_t n, int *values);
+    int (*get_boolean)(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                       size_t n, int *values);
+    int (*set_real)(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                    const double *values);
+    int (*set_integer)(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                       size_t n, const int *values);
+    int (*set_boolean)(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                       size_t n, const int *values);
+    int (*do_step)(const ssx_fmu_function *fn, void *instance, double t, double h,
+                   int no_set_state_prior);
+    int (*get_state)(const ssx_fmu_function *fn, void *instance, void **state);
+    int (*set_state)(const ssx_fmu_function *fn, void *instance, void *state);
+    int (*free_state)(const ssx_fmu_function *fn, void *instance, void **state);
+    int (*serialized_state_size)(const ssx_fmu_function *fn, void *instance, void *state,
+                                 size_t *size);
+    int (*serialize_state)(const ssx_fmu_function *fn, void *instance, void *state, char *bytes,
+                           size_t size);
+    int (*deserialize_state)(const ssx_fmu_function *fn, void *instance, const char *bytes,
+                             size_t size, void **state);
+    int (*directional_derivative)(const ssx_fmu_function *fn, void *instance,
+                                  const unsigned int *unknowns, size_t n_unknowns,
+                                  const unsigned int *knowns, size_t n_knowns,
+                                  const double *dv_known, double *dv_unknown);
+    int (*get_terminated)(const ssx_fmu_function *fn, void *instance, int *terminated);
+    int (*get_last_successful_time)(const ssx_fmu_function *fn, void *instance, double *time);
+} ssx_fmu_backend;
+
+extern const ssx_fmu_backend ssx_fmi2_backend;
+
+/* For a back-end's logger: what the FMU logged, a printf format with its arguments. */
+void ssx_fmu_log(ssx_fmu *fmu, const char *format, va_list args);
+
+#endif

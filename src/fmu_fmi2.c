@@ -1,0 +1,246 @@
+/* The FMI 2.0 Co-Simulation back-end of the FMU binding: the fmi2 functions, which of them a
+ * binary must export, and adapters that call each with its fmi2 type. */
+#include "fmu_backend.h"
+
+#include <stdlib.h>
+
+#include "fmi2Functions.h"
+#include "fmu_binding.h"
+
+static const ssx_fmu_function_row fmi2_functions[] = {
+    {"fmi2Instantiate", SLOT_INSTANTIATE, 1},
+    {"fmi2FreeInstance", SLOT_FREE_INSTANCE, 1},
+    {"fmi2SetupExperiment", SLOT_SETUP_EXPERIMENT, 1},
+    {"fmi2EnterInitializationMode", SLOT_ENTER_INITIALIZATION_MODE, 1},
+    {"fmi2ExitInitializationMode", SLOT_EXIT_INITIALIZATION_MODE, 1},
+    {"fmi2Terminate", SLOT_TERMINATE, 1},
+    {"fmi2Reset", SLOT_RESET, 1},
+    {"fmi2GetReal", SLOT_GET_REAL, 1},
+    {"fmi2GetInteger", SLOT_GET_INTEGER, 1},
+    {"fmi2GetBoolean", SLOT_GET_BOOLEAN, 1},
+    {"fmi2SetReal", SLOT_SET_REAL, 1},
+    {"fmi2SetInteger", SLOT_SET_INTEGER, 1},
+    {"fmi2SetBoolean", SLOT_SET_BOOLEAN, 1},
+    {"fmi2DoStep", SLOT_DO_STEP, 1},
+    /* capabilities an FMU may lack */
+    {"fmi2GetFMUstate", SLOT_GET_STATE, 0},
+    {"fmi2SetFMUstate", SLOT_SET_STATE, 0},
+    {"fmi2FreeFMUstate", SLOT_FREE_STATE, 0},
+    {"fmi2SerializedFMUstateSize", SLOT_SERIALIZED_STATE_SIZE, 0},
+    {"fmi2SerializeFMUstate", SLOT_SERIALIZE_STATE, 0},
+    {"fmi2DeSerializeFMUstate", SLOT_DESERIALIZE_STATE, 0},
+    {"fmi2GetDirectionalDerivative", SLOT_DIRECTIONAL_DERIVATIVE, 0},
+    {"fmi2GetBooleanStatus", SLOT_GET_TERMINATED, 0},
+    {"fmi2GetRealStatus", SLOT_GET_LAST_SUCCESSFUL_TIME, 0},
+};
+
+#define FMI2_NAME(name) "fmi2" #name,
+static const char *const fmi2_status_names[] = {SSX_STATUS_NAMES(FMI2_NAME)};
+
+const char *ssx_fmi2_status_name(int status)
+{
+    if (status >= 0 && status < (int)(sizeof fmi2_status_names / sizeof fmi2_status_names[0])) {
+        return fmi2_status_names[status];
+    }
+    return "no fmi2 status (the engine failed)";
+}
+
+/* The function in `slot` with its fmi2 type (ISO C converts between function pointer types). */
+#define FMI2(fn, slot, type) ((type *)(fn)[slot])
+
+static void logger(fmi2ComponentEnvironment environment, fmi2String instance_name,
+                   fmi2Status status, fmi2String category, fmi2String message, ...)
+{
+    (void)instance_name;
+    (void)status;
+    (void)category;
+    if (environment == NULL || message == NULL) {
+        return;
+    }
+    va_list args;
+    va_start(args, message);
+    ssx_fmu_log(environment, message, args);
+    va_end(args);
+}
+
+/* The callbacks live in the context: FMI 2.0 lets the instance keep the pointer. */
+static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
+                         const char *instance_name, const char *guid, const char *resource_uri,
+                         int logging_on)
+{
+    fmi2CallbackFunctions *callbacks = context;
+    *callbacks = (fmi2CallbackFunctions){logger, calloc, free, NULL, fmu};
+    return FMI2(fn, SLOT_INSTANTIATE, fmi2InstantiateTYPE)(
+        instance_name, fmi2CoSimulation, guid, resource_uri, callbacks, fmi2False,
+        logging_on ? fmi2True : fmi2False);
+}
+
+static void free_instance(const ssx_fmu_function *fn, void *instance)
+{
+    FMI2(fn, SLOT_FREE_INSTANCE, fmi2FreeInstanceTYPE)(instance);
+}
+
+static int setup_experiment(const ssx_fmu_function *fn, void *instance, int tolerance_defined,
+                            double tolerance, double start_time, int stop_time_defined,
+                            double stop_time)
+{
+    return (int)FMI2(fn, SLOT_SETUP_EXPERIMENT, fmi2SetupExperimentTYPE)(
+        instance, tolerance_defined ? fmi2True : fmi2False, tolerance, start_time,
+        stop_time_defined ? fmi2True : fmi2False, stop_time);
+}
+
+static int enter_initialization_mode(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI2(fn, SLOT_ENTER_INITIALIZATION_MODE,
+                     fmi2EnterInitializationModeTYPE)(instance);
+}
+
+static int exit_initialization_mode(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI2(fn, SLOT_EXIT_INITIALIZATION_MODE, fmi2ExitInitializationModeTYPE)(instance);
+}
+
+static int terminate(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI2(fn, SLOT_TERMINATE, fmi2TerminateTYPE)(instance);
+}
+
+static int reset(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI2(fn, SLOT_RESET, fmi2ResetTYPE)(instance);
+}
+
+static int get_real(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                    double *values)
+{
+    return (int)FMI2(fn, SLOT_GET_REAL, fmi2GetRealTYPE)(instance, vr, n, values);
+}
+
+static int get_integer(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                       size_t n, int *values)
+{
+    return (int)FMI2(fn, SLOT_GET_INTEGER, fmi2GetIntegerTYPE)(instance, vr, n, values);
+}
+
+static int get_boolean(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                       size_t n, int *values)
+{
+    return (int)FMI2(fn, SLOT_GET_BOOLEAN, fmi2GetBooleanTYPE)(instance, vr, n, values);
+}
+
+static int set_real(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                    const double *values)
+{
+    return (int)FMI2(fn, SLOT_SET_REAL, fmi2SetRealTYPE)(instance, vr, n, values);
+}
+
+static int set_integer(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                       size_t n, const int *values)
+{
+    return (int)FMI2(fn, SLOT_SET_INTEGER, fmi2SetIntegerTYPE)(instance, vr, n, values);
+}
+
+static int set_boolean(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                       size_t n, const int *values)
+{
+    return (int)FMI2(fn, SLOT_SET_BOOLEAN, fmi2SetBooleanTYPE)(instance, vr, n, values);
+}
+
+static int do_step(const ssx_fmu_function *fn, void *instance, double t, double h,
+                   int no_set_state_prior)
+{
+    return (int)FMI2(fn, SLOT_DO_STEP, fmi2DoStepTYPE)(instance, t, h,
+                                                       no_set_state_prior ? fmi2True : fmi2False);
+}
+
+static int get_state(const ssx_fmu_function *fn, void *instance, void **state)
+{
+    return (int)FMI2(fn, SLOT_GET_STATE, fmi2GetFMUstateTYPE)(instance, state);
+}
+
+static int set_state(const ssx_fmu_function *fn, void *instance, void *state)
+{
+    return (int)FMI2(fn, SLOT_SET_STATE, fmi2SetFMUstateTYPE)(instance, state);
+}
+
+static int free_state(const ssx_fmu_function *fn, void *instance, void **state)
+{
+    return (int)FMI2(fn, SLOT_FREE_STATE, fmi2FreeFMUstateTYPE)(instance, state);
+}
+
+static int serialized_state_size(const ssx_fmu_function *fn, void *instance, void *state,
+                                 size_t *size)
+{
+    return (int)FMI2(fn, SLOT_SERIALIZED_STATE_SIZE, fmi2SerializedFMUstateSizeTYPE)(
+        instance, state, size);
+}
+
+static int serialize_state(const ssx_fmu_function *fn, void *instance, void *state, char *bytes,
+                           size_t size)
+{
+    return (int)FMI2(fn, SLOT_SERIALIZE_STATE, fmi2SerializeFMUstateTYPE)(instance, state, bytes,
+                                                                         size);
+}
+
+static int deserialize_state(const ssx_fmu_function *fn, void *instance, const char *bytes,
+                             size_t size, void **state)
+{
+    return (int)FMI2(fn, SLOT_DESERIALIZE_STATE, fmi2DeSerializeFMUstateTYPE)(instance, bytes,
+                                                                             size, state);
+}
+
+static int directional_derivative(const ssx_fmu_function *fn, void *instance,
+                                  const unsigned int *unknowns, size_t n_unknowns,
+                                  const unsigned int *knowns, size_t n_knowns,
+                                  const double *dv_known, double *dv_unknown)
+{
+    return (int)FMI2(fn, SLOT_DIRECTIONAL_DERIVATIVE, fmi2GetDirectionalDerivativeTYPE)(
+        instance, unknowns, n_unknowns, knowns, n_knowns, dv_known, dv_unknown);
+}
+
+static int get_terminated(const ssx_fmu_function *fn, void *instance, int *terminated)
+{
+    fmi2Boolean value = fmi2False;
+    int status = (int)FMI2(fn, SLOT_GET_TERMINATED, fmi2GetBooleanStatusTYPE)(
+        instance, fmi2Terminated, &value);
+    *terminated = value != fmi2False;
+    return status;
+}
+
+static int get_last_successful_time(const ssx_fmu_function *fn, void *instance, double *time)
+{
+    return (int)FMI2(fn, SLOT_GET_LAST_SUCCESSFUL_TIME, fmi2GetRealStatusTYPE)(
+        instance, fmi2LastSuccessfulTime, time);
+}
+
+const ssx_fmu_backend ssx_fmi2_backend = {
+    .standard = "FMI 2.0 Co-Simulation",
+    .version = "FMI 2.0",
+    .status_names = fmi2_status_names,
+    .functions = fmi2_functions,
+    .n_functions = sizeof fmi2_functions / sizeof fmi2_functions[0],
+    .context_size = sizeof(fmi2CallbackFunctions),
+    .instantiate = instantiate,
+    .free_instance = free_instance,
+    .setup_experiment = setup_experiment,
+    .enter_initialization_mode = enter_initialization_mode,
+    .exit_initialization_mode = exit_initialization_mode,
+    .terminate = terminate,
+    .reset = reset,
+    .get_real = get_real,
+    .get_integer = get_integer,
+    .get_boolean = get_boolean,
+    .set_real = set_real,
+    .set_integer = set_integer,
+    .set_boolean = set_boolean,
+    .do_step = do_step,
+    .get_state = get_state,
+    .set_state = set_state,
+    .free_state = free_state,
+    .serialized_state_size = serialized_state_size,
+    .serialize_state = serialize_state,
+    .deserialize_state = deserialize_state,
+    .directional_derivative = directional_derivative,
+    .get_terminated = get_terminated,
+    .get_last_successful_time = get_last_successful_time,
+};
