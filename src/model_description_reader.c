@@ -248,6 +248,7 @@ void ssx_md_free(ssx_md *md)
     free((void *)md->dependency_count);
     free((void *)md->dependencies);
     names_free(md->names);
+    free(md->names);
     free(md->error.subject);
     free(md->error.text);
     free(md->error.other);
