@@ -164,6 +164,7 @@ static bool finish_type(reader *r);
 static bool read_unknown(reader *r, size_t line);
 static bool keep_attributes(reader *r, slice tag);
 static bool store(reader *r, slice text, uint32_t *offset);
+static bool view(reader *r, slice value, slice *text);
 static bool fail_xml(reader *r, size_t line, const char *format, ...);
 static bool fail(reader *r, ssx_md_problem problem, size_t line, const char *subject, slice text,
                  slice other);
@@ -181,16 +182,17 @@ ssx_md *ssx_md_read(const char *xml, size_t size)
     if (md == NULL) {
         return NULL;
     }
+    if (size >= UINT32_MAX) { /* the pool's offsets are 32 bits */
+        md->error.problem = SSX_MD_TOO_LARGE;
+        return md;
+    }
     reader r = {.at = xml, .end = xml + size, .line = 1, .md = md};
     r.names = calloc(1, sizeof *r.names);
-    r.pool = malloc(1 + size / 4);
+    r.pool_capacity = 1 + size / 4; /* about what a large model's texts take */
+    r.pool = malloc(r.pool_capacity);
     if (r.names == NULL || r.pool == NULL) {
         out_of_memory(&r);
-    } else if (size >= UINT32_MAX) { /* the pool's offsets are 32 bits */
-        r.pool_capacity = 1 + size / 4;
-        md->error.problem = SSX_MD_TOO_LARGE;
     } else {
-        r.pool_capacity = 1 + size / 4;
         r.pool[0] = '\0'; /* offset 0 means absent */
         r.pool_size = 1;
         read_document(&r);
@@ -693,7 +695,10 @@ static bool start_element(reader *r, slice tag, size_t line)
         }
         for (size_t i = 0; i < r->attribute_count; ++i) {
             if (is(r->attributes[i].name, "fmiVersion")) {
-                slice version = r->attributes[i].value;
+                slice version;
+                if (!view(r, r->attributes[i].value, &version)) {
+                    return false;
+                }
                 return is(version, "2.0") ? true
                                           : fail(r, SSX_MD_NOT_FMI2, line, NULL, version,
                                                  (slice){0});
@@ -1234,7 +1239,9 @@ static char *copy(slice text)
 {
     char *out = malloc(text.length + 1);
     if (out != NULL) {
-        out[decode(out, text)] = '\0';
+        size_t length = text.plain ? (memcpy(out, text.at, text.length), text.length)
+                                   : decode(out, text);
+        out[length] = '\0';
     }
     return out;
 }
@@ -1301,6 +1308,10 @@ static size_t decode(char *out, slice text)
         char c = *p;
         if (c == '&') {
             long code = reference_code(&p, end); /* valid: checked while scanning */
+            if (code < 0) {
+                code = '&'; /* never: but an unchecked text must not stop the loop */
+                ++p;
+            }
             if (code < 0x80) {
                 out[n++] = (char)code;
             } else if (code < 0x800) {

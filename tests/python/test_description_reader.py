@@ -285,6 +285,8 @@ def read_text(text: str | bytes):
      "SimpleType 'T' has no type element"),
     ('dependencies="1"', 'dependencies="1 2"', "ModelStructure index '2' names no variable "
                                                "(there are 1)"),
+    ('dependencies="1"', 'dependencies="1 &amp;x"', "ModelStructure index '&x' names no "
+                                                    "variable (there are 1)"),
     ('<Unknown index="1"', '<Unknown', "ModelStructure index None names no variable (there are "
                                       "1)"),
     ("</ModelVariables>", "</ModelVariable>", "not well-formed XML: line 9: end tag "

@@ -133,6 +133,29 @@ static void names_what_is_malformed(void)
     refused("<fmiModelDescription fmiVersion='3.0'/>", SSX_MD_NOT_FMI2, 1, NULL);
 }
 
+/* Texts with references are named decoded, once (an '&' in a decoded text is plain). */
+static void names_decoded_texts(void)
+{
+    const char *twice = "<fmiModelDescription fmiVersion='2.0'><ModelVariables>"
+                        "<ScalarVariable name='a&amp;&#10;b' valueReference='0'><Real/>"
+                        "</ScalarVariable><ScalarVariable name='a&amp;&#10;b' "
+                        "valueReference='1'><Real/></ScalarVariable></ModelVariables>"
+                        "</fmiModelDescription>";
+    ssx_md *md = ssx_md_read(twice, strlen(twice));
+    CHECK(md->error.problem == SSX_MD_DUPLICATE_NAME);
+    CHECK(strcmp(md->error.subject, "a&\nb") == 0);
+    ssx_md_free(md);
+    const char *dependency = "<fmiModelDescription fmiVersion='2.0'><ModelVariables>"
+                             "<ScalarVariable name='y' valueReference='0' causality='output'>"
+                             "<Real/></ScalarVariable></ModelVariables><ModelStructure>"
+                             "<Outputs><Unknown index='1' dependencies='1 &amp;x'/></Outputs>"
+                             "</ModelStructure></fmiModelDescription>";
+    md = ssx_md_read(dependency, strlen(dependency));
+    CHECK(md->error.problem == SSX_MD_BAD_INDEX);
+    CHECK(strcmp(md->error.text, "&x") == 0 && md->error.count == 1);
+    ssx_md_free(md);
+}
+
 static void refuses_hostile_shapes(void)
 {
     /* a million nested elements: a stack entry each up to the limit, never recursion */
@@ -236,6 +259,7 @@ int main(void)
 {
     reads_a_document();
     names_what_is_malformed();
+    names_decoded_texts();
     refuses_hostile_shapes();
     survives_mutations();
     return 0;
