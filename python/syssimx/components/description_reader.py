@@ -38,8 +38,7 @@ from ..engine import ffi, lib
 from ..errors import FMUFileError
 from .variable_table import VariableTable, words
 
-VALUE_TYPES = ("Real", "Integer", "Boolean", "String", "Enumeration")
-MAX_VALUE_REFERENCE = 2**32 - 1  # fmi2ValueReference is an unsigned int
+MAX_VALUE_REFERENCE = 2**32 - 1  # fmi2ValueReference is an unsigned int, as the engine reads it
 
 _INTERFACE_FLAGS = ("needsExecutionTool", "canBeInstantiatedOnlyOncePerProcess",
                     "canNotUseMemoryManagementFunctions", "canGetAndSetFMUstate",
@@ -98,7 +97,7 @@ _MESSAGES: dict[str, Callable[[_Problem], str]] = {
                                               f"{p.text!r})",
     "SSX_MD_DUPLICATE_NAME": lambda p: f"variable {p.subject!r}: the name is not unique",
     "SSX_MD_NO_TYPE_ELEMENT": lambda p: f"variable {p.subject!r} has no type element "
-                                        f"({', '.join(VALUE_TYPES)})",
+                                        f"({', '.join(_value_types())})",
     "SSX_MD_VALUE_REFERENCE_NOT_INTEGER": lambda p: f"variable {p.subject!r}: valueReference "
                                                     f"{p.text!r} is not an integer",
     "SSX_MD_VALUE_REFERENCE_OUT_OF_RANGE": lambda p: f"variable {p.subject!r}: valueReference "
@@ -117,6 +116,12 @@ _MESSAGES: dict[str, Callable[[_Problem], str]] = {
     "SSX_MD_TOO_LARGE": lambda p: "the file is 4 GiB or larger, too large to read",
     "SSX_MD_NO_MEMORY": lambda p: "out of memory while reading it",
 }
+
+
+def _value_types() -> tuple[str, ...]:
+    """The type elements of a ScalarVariable: "Real", ..., "Enumeration" (the engine's words)."""
+    engine = lib()
+    return words()[engine.SSX_MD_REAL:engine.SSX_MD_ENUMERATION + 1]
 
 
 def _message(error: Any, where: str) -> str:
