@@ -132,12 +132,13 @@ static const struct {
  * (rows) and causality (columns); INVALID marks a combination the standard forbids. */
 enum { INVALID = 0xFF };
 static const uint8_t INITIAL_DEFAULT[5][6] = {
-    /*               parameter    calculatedParameter input         output             local              independent */
-    /* constant   */ {INVALID, INVALID, INVALID, SSX_MD_EXACT, SSX_MD_EXACT, INVALID},
-    /* fixed      */ {SSX_MD_EXACT, SSX_MD_CALCULATED, INVALID, INVALID, SSX_MD_CALCULATED, INVALID},
-    /* tunable    */ {SSX_MD_EXACT, SSX_MD_CALCULATED, INVALID, INVALID, SSX_MD_CALCULATED, INVALID},
-    /* discrete   */ {INVALID, INVALID, SSX_MD_EXACT, SSX_MD_CALCULATED, SSX_MD_CALCULATED, INVALID},
-    /* continuous */ {INVALID, INVALID, SSX_MD_EXACT, SSX_MD_CALCULATED, SSX_MD_CALCULATED, SSX_MD_NONE},
+    /* columns: parameter, calculatedParameter, input, output, local, independent */
+    /* constant */ {INVALID, INVALID, INVALID, SSX_MD_EXACT, SSX_MD_EXACT, INVALID},
+    /* fixed */ {SSX_MD_EXACT, SSX_MD_CALCULATED, INVALID, INVALID, SSX_MD_CALCULATED, INVALID},
+    /* tunable */ {SSX_MD_EXACT, SSX_MD_CALCULATED, INVALID, INVALID, SSX_MD_CALCULATED, INVALID},
+    /* discrete */ {INVALID, INVALID, SSX_MD_EXACT, SSX_MD_CALCULATED, SSX_MD_CALCULATED, INVALID},
+    /* continuous */ {INVALID, INVALID, SSX_MD_EXACT, SSX_MD_CALCULATED, SSX_MD_CALCULATED,
+                      SSX_MD_NONE},
 };
 
 static bool read_document(reader *r);
@@ -165,6 +166,11 @@ static bool read_unknown(reader *r, size_t line);
 static bool keep_attributes(reader *r, slice tag);
 static bool store(reader *r, slice text, uint32_t *offset);
 static bool view(reader *r, slice value, slice *text);
+static bool grow_variables(reader *r);
+static bool parse_integer(const char *text, size_t length, int64_t *value);
+static bool is_start_of(int type, const char *text, size_t length);
+static size_t decode(char *out, slice text);
+static long reference_code(const char **cursor, const char *end);
 static bool fail_xml(reader *r, size_t line, const char *format, ...);
 static bool fail(reader *r, ssx_md_problem problem, size_t line, const char *subject, slice text,
                  slice other);
@@ -847,10 +853,6 @@ static bool finish_type(reader *r)
     return true;
 }
 
-static bool grow_variables(reader *r);
-static bool parse_integer(const char *text, size_t length, int64_t *value);
-static bool is_start_of(int type, const char *text, size_t length);
-
 /* The text of an attribute value: the slice itself when there is nothing to decode, else its
  * decoded copy at the pool's free end, valid until the next store. */
 static bool view(reader *r, slice value, slice *text)
@@ -1233,8 +1235,6 @@ static bool fail_xml(reader *r, size_t line, const char *format, ...)
     return false;
 }
 
-static size_t decode(char *out, slice text);
-
 static char *copy(slice text)
 {
     char *out = malloc(text.length + 1);
@@ -1295,8 +1295,6 @@ static bool store(reader *r, slice text, uint32_t *offset)
     r->pool_size += length + 1;
     return true;
 }
-
-static long reference_code(const char **cursor, const char *end);
 
 /* An attribute value as XML delivers it: references resolved, each tab, line break or CR LF
  * pair one space. Returns the length written. */
