@@ -17,6 +17,7 @@
 #define SYSSIMX_ENGINE_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 typedef enum { SSX_REAL = 0, SSX_INTEGER = 1, SSX_BOOLEAN = 2 } ssx_value_type;
 typedef enum { SSX_GAUSS_SEIDEL = 0, SSX_JACOBI = 1 } ssx_coupling;
@@ -344,5 +345,125 @@ int ssx_add_table_column(ssx_system *sys, int component, ssx_value_type type, in
 /* The table's value of every column at t into values (one per output); after_event != 0 takes
  * the value on the right of a jump at t. Changes nothing. */
 int ssx_table_values(ssx_system *sys, int component, double t, int after_event, double *values);
+
+/* ------------------------------------------------------------------------------------------
+ * modelDescription.xml (FMI 2.0), read into compact arrays: one pass over the text, no tree,
+ * no object per variable. The reader is a small XML tokenizer for what a modelDescription
+ * uses (elements, attributes in either quote, the five predefined entities, character
+ * references, comments, processing instructions, CDATA skipped; UTF-8 only, no DOCTYPE).
+ * Elements count only at their place in the schema (fmiModelDescription/CoSimulation,
+ * .../ModelVariables/ScalarVariable/Real, .../ModelStructure/Outputs/Unknown); annotations
+ * are ignored. It refuses what would make syssimx exchange wrong data: two variables of one
+ * name, a value reference outside 0..2**32-1, a start that is not a value of the variable's
+ * type, an undefined declaredType, a causality/variability pair FMI 2.0 forbids, a
+ * ModelStructure index that names no variable.
+ * ------------------------------------------------------------------------------------------ */
+/* The words of FMI 2.0 a variable is described by; SSX_MD_NONE: absent. */
+typedef enum {
+    SSX_MD_NONE = 0,
+    SSX_MD_PARAMETER, SSX_MD_CALCULATED_PARAMETER, SSX_MD_INPUT, SSX_MD_OUTPUT, SSX_MD_LOCAL,
+    SSX_MD_INDEPENDENT,                                                      /* causality */
+    SSX_MD_CONSTANT, SSX_MD_FIXED, SSX_MD_TUNABLE, SSX_MD_DISCRETE, SSX_MD_CONTINUOUS,
+                                                                             /* variability */
+    SSX_MD_EXACT, SSX_MD_APPROX, SSX_MD_CALCULATED,                          /* initial */
+    SSX_MD_REAL, SSX_MD_INTEGER, SSX_MD_BOOLEAN, SSX_MD_STRING, SSX_MD_ENUMERATION, /* type */
+    SSX_MD_WORD_COUNT
+} ssx_md_word;
+
+/* Why reading stopped. The fields of ssx_md_error each problem fills are named after it. */
+typedef enum {
+    SSX_MD_OK = 0,
+    SSX_MD_NOT_XML,                /* line, detail */
+    SSX_MD_NOT_FMI2,               /* text: the fmiVersion, NULL when absent */
+    SSX_MD_NO_FMI_ROOT,            /* the root element is not an fmiModelDescription */
+    SSX_MD_TYPE_WITHOUT_ELEMENT,   /* subject: the SimpleType's name (NULL when absent) */
+    SSX_MD_VARIABLE_WITHOUT_NAME,  /* text: its valueReference (NULL when absent) */
+    SSX_MD_DUPLICATE_NAME,         /* subject */
+    SSX_MD_NO_TYPE_ELEMENT,        /* subject */
+    SSX_MD_VALUE_REFERENCE_NOT_INTEGER, /* subject, text (NULL when absent) */
+    SSX_MD_VALUE_REFERENCE_OUT_OF_RANGE, /* subject, text */
+    SSX_MD_BAD_START,              /* subject, text, word: the variable's type */
+    SSX_MD_UNDEFINED_TYPE,         /* subject, text: the declaredType */
+    SSX_MD_BAD_COMBINATION,        /* subject, text: causality, other: variability */
+    SSX_MD_BAD_INITIAL,            /* subject, text: initial */
+    SSX_MD_BAD_INDEX,              /* text: the index (NULL when absent), count */
+    SSX_MD_TOO_LARGE,              /* the text is 4 GiB or more */
+    SSX_MD_NO_MEMORY
+} ssx_md_problem;
+
+typedef struct {
+    ssx_md_problem problem;
+    size_t line;       /* where the element that failed starts (1: the first line) */
+    char *subject;     /* copies of the texts involved, NULL when absent */
+    char *text;
+    char *other;
+    int word;
+    size_t count;      /* variables read so far */
+    char detail[200];  /* what is wrong with the XML */
+} ssx_md_error;
+
+/* The attributes of the root, CoSimulation, ModelExchange and DefaultExperiment elements
+ * (the last of each kind). Every text in an ssx_md is an offset into its string pool of
+ * NUL-terminated UTF-8 (entities resolved), 0 meaning absent. */
+typedef struct {
+    uint32_t element;
+    uint32_t name;
+    uint32_t value;
+} ssx_md_attribute;
+
+typedef struct {
+    uint32_t name;
+    uint32_t type;         /* the tag of its type element: "Real", ... */
+    uint32_t description;
+    uint32_t unit;
+    uint32_t quantity;
+} ssx_md_simple_type;
+
+typedef struct ssx_md_names ssx_md_names;
+
+typedef struct {
+    ssx_md_error error;
+    const char *strings;
+    const ssx_md_attribute *attributes;
+    size_t attribute_count;
+    const ssx_md_simple_type *types;
+    size_t type_count;
+    /* The variables, in document order, one array per field. */
+    size_t variable_count;
+    const uint32_t *name;
+    const uint32_t *value_reference;
+    const uint32_t *description;
+    const uint32_t *unit;          /* of Real variables only */
+    const uint32_t *start;         /* the text of the XML */
+    const int32_t *declared_type;  /* index into types, -1: none */
+    const uint8_t *type;           /* ssx_md_word */
+    const uint8_t *causality;      /* the FMI 2.0 default when absent: SSX_MD_LOCAL */
+    const uint8_t *variability;    /* SSX_MD_CONTINUOUS when absent */
+    const uint8_t *initial;        /* FMI 2.0's default when absent (may be SSX_MD_NONE) */
+    /* ModelStructure/Outputs: the output's variable index (from 0) and its dependencies
+     * (variable indices, from 0) at dependencies[first_dependency[k]] onwards; a
+     * dependency_count of -1 means the attribute is absent (depends on everything). */
+    size_t output_count;
+    const uint32_t *output;
+    const size_t *first_dependency;
+    const int64_t *dependency_count;
+    const uint32_t *dependencies;
+    size_t dependency_total;
+    ssx_md_names *names;
+} ssx_md;
+
+/* Reads the modelDescription in xml[0..size). Returns NULL only when out of memory; otherwise
+ * check error.problem (the arrays hold what was read before a problem). */
+ssx_md *ssx_md_read(const char *xml, size_t size);
+void ssx_md_free(ssx_md *md);
+/* The index of the variable called name (NUL-terminated UTF-8), or -1. */
+int64_t ssx_md_find(const ssx_md *md, const char *name);
+const char *ssx_md_word_text(int word); /* "calculatedParameter", "Real", ...; "" for none */
+/* The texts at offsets[0..n) of md's pool (0: absent, written as ""), separated by NULs, into
+ * out (out_size bytes, filled as far as it reaches). Returns the bytes all of them take: ask
+ * with out_size 0, then read n texts in a single pass (what one call per text would cost
+ * Python for every field of 10**5 variables). */
+size_t ssx_md_join(const ssx_md *md, const uint32_t *offsets, size_t n, char *out,
+                   size_t out_size);
 
 #endif

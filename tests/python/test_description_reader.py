@@ -4,6 +4,8 @@ dimensionless."""
 
 from __future__ import annotations
 
+import gc
+import io
 import logging
 import os
 import zipfile
@@ -14,7 +16,7 @@ import pytest
 from fmpy import read_model_description
 from syssimx import Connection, FMUComponent, System, fmus, units
 from syssimx.components.description_reader import read_description
-from syssimx.errors import ConfigurationError
+from syssimx.errors import ConfigurationError, FMUFileError
 
 
 def reference_fmus() -> list[Path]:
@@ -140,3 +142,182 @@ def test_what_tools_write_into_annotations_is_ignored_as_fmpy_ignores_it(tmp_pat
     ours, _ = both(path)
     assert [v.name for v in ours.modelVariables] == ["y", "u", "k"]
     assert ours.coSimulation.modelIdentifier == "gain"
+
+
+# ------------------------------------------------------------------------------ XML forms
+def gain_with_description(tmp_path: Path, text: str | bytes, name: str = "edited.fmu") -> Path:
+    with zipfile.ZipFile(fmus.path("gain")) as gain:
+        entries = {entry: gain.read(entry) for entry in gain.namelist()}
+    entries["modelDescription.xml"] = text.encode() if isinstance(text, str) else text
+    path = tmp_path / name
+    with zipfile.ZipFile(path, "w") as archive:
+        for entry, data in entries.items():
+            archive.writestr(entry, data)
+    return path
+
+
+def gain_description() -> str:
+    with zipfile.ZipFile(fmus.path("gain")) as gain:
+        return gain.read("modelDescription.xml").decode()
+
+
+def test_every_xml_form_reads_as_lxml_reads_it(tmp_path: Path):
+    text = gain_description()
+    text = text.replace("<fmiModelDescription", "<!-- generated -->\n<?tool x?>\n"
+                        "<fmiModelDescription", 1)
+    text = text.replace('description="output k * u"',
+                        "description='a &lt;b&gt; &amp; &quot;c&quot; &apos;d&apos; &#233;&#x20AC;"
+                        " tab\there line\nbreak CR LF\r\nend \u00e9'")
+    text = text.replace('<Real unit="m" start="0"/>',
+                        '<Real unit="m" start=" 2.5e-1 "/><![CDATA[ <Real start="9"/> ]]>'
+                        '<!-- <Integer/> -->')
+    path = gain_with_description(tmp_path, "\ufeff" + text)
+    assert_same(path)
+    ours, _ = both(path)
+    assert ours.modelVariables[0].description == ("a <b> & \"c\" 'd' \u00e9\u20ac tab here line "
+                                                  "break CR LF end \u00e9")
+    assert ours.modelVariables[1].start == " 2.5e-1 "
+
+
+def large_description(count: int) -> str:
+    """A description of `count` variables of every type, causality and variability, with
+    declared types, starts, units, descriptions and outputs with and without dependencies."""
+    kinds = [
+        ('causality="parameter" variability="fixed"',
+         '<Real declaredType="Length" start="{i}.5"/>'),
+        ('causality="parameter" variability="tunable"', '<Integer start="-{i}"/>'),
+        ('causality="output"', '<Real unit="K"/>'),
+        ('causality="input" variability="discrete"', '<Boolean start="true"/>'),
+        ('causality="local" variability="constant"', '<String start="s{i}"/>'),
+        ('', '<Enumeration declaredType="Mode" start="2"/>'),
+        ('causality="calculatedParameter" variability="fixed"', '<Real/>'),
+    ]
+    variables = []
+    outputs = []
+    for i in range(count):
+        head, value = kinds[i % len(kinds)]
+        variables.append(f'<ScalarVariable name="v[{i}]" valueReference="{i}" {head} '
+                         f'description="number {i}">{value.format(i=i)}</ScalarVariable>')
+        if i % len(kinds) == 2:
+            dependency = f' dependencies="{i - 1} {i + 2}"' if i % 3 else ""
+            outputs.append(f'<Unknown index="{i + 1}"{dependency}/>')
+    return f"""<?xml version="1.0" encoding="UTF-8"?>
+<fmiModelDescription fmiVersion="2.0" modelName="large" guid="{{x}}">
+  <CoSimulation modelIdentifier="gain"/>
+  <DefaultExperiment startTime="0" stopTime="2"/>
+  <TypeDefinitions>
+    <SimpleType name="Length"><Real unit="m" quantity="Length"/></SimpleType>
+    <SimpleType name="Mode" description="a mode"><Enumeration>
+      <Item name="a" value="1"/><Item name="b" value="2"/></Enumeration></SimpleType>
+  </TypeDefinitions>
+  <ModelVariables>
+    {chr(10).join(variables)}
+  </ModelVariables>
+  <ModelStructure><Outputs>{"".join(outputs)}</Outputs></ModelStructure>
+</fmiModelDescription>
+"""
+
+
+def test_a_large_description_reads_as_fmpy_reads_it(tmp_path: Path):
+    assert_same(gain_with_description(tmp_path, large_description(7000)))
+
+
+def test_only_ports_become_objects_the_rest_is_looked_up_by_name(tmp_path: Path):
+    from syssimx.components.model_description import read_fmu
+    from syssimx.components.variable_table import ScalarVariable
+
+    count = 20000
+    path = gain_with_description(tmp_path, large_description(count))
+    gc.collect()
+    info = read_fmu(path)
+    made = sum(isinstance(o, ScalarVariable) for o in gc.get_objects())
+    ports = len(info.input_specs) + len(info.output_specs) + len(info.parameters)
+    assert ports == sum(1 for i in range(count) if i % 7 < 4)  # parameters, outputs, inputs
+    assert made <= ports + 1  # the declared types' variables are not among them
+    assert len(info.variables) == count
+    assert info.variables["v[19996]"].causality == "local"  # looked up, made on access
+    assert info.variables["v[19996]"].start == "s19996"
+    assert "v[20000]" not in info.variables
+    with pytest.raises(KeyError):
+        info.variables["v[20000]"]
+    table = info.description.modelVariables
+    assert [v.name for v in table[-2:]] == ["v[19998]", "v[19999]"]
+    assert sum(1 for _ in table) == count
+    assert info.parameters["v[1]"].start == -1
+    assert info.parameters["v[0]"].unit == "m"
+    assert info.feedthrough["v[2]"] == {"v[3]"} and info.feedthrough["v[23]"] == {"v[24]"}
+    assert info.feedthrough["v[9]"] == set(info.input_specs)  # no dependencies: all of them
+
+
+# ------------------------------------------------------------------------------ refusals
+MINIMAL = """<?xml version="1.0" encoding="UTF-8"?>
+<fmiModelDescription fmiVersion="2.0" modelName="m" guid="g">
+  <TypeDefinitions>
+    <SimpleType name="T"><Real/></SimpleType>
+  </TypeDefinitions>
+  <ModelVariables>
+    <ScalarVariable name="x" valueReference="0" causality="output"><Real start="1"/>
+    </ScalarVariable>
+  </ModelVariables>
+  <ModelStructure><Outputs><Unknown index="1" dependencies="1"/></Outputs></ModelStructure>
+</fmiModelDescription>
+"""
+
+
+def read_text(text: str | bytes):
+    data = text.encode() if isinstance(text, str) else text
+    return read_description(io.BytesIO(data), "m.fmu")
+
+
+@pytest.mark.parametrize(("old", "new", "message"), [
+    ('<Real start="1"/>', '<Real start="0x1p3"/>', "variable 'x': start '0x1p3' is not a Real "
+                                                    "value"),
+    ('<Real start="1"/>', '<Integer start="2147483648"/>',
+     "variable 'x': start '2147483648' is not a Integer value"),
+    ('<Real start="1"/>', '<Boolean start="yes"/>', "variable 'x': start 'yes' is not a Boolean "
+                                                     "value"),
+    ('causality="output"', 'causality="output" initial="sometimes"',
+     "variable 'x': initial='sometimes' is not one of exact, approx, calculated"),
+    ('causality="output"', 'causality="outlet"',
+     "variable 'x': causality='outlet' with variability='continuous' is not allowed"),
+    ('name="x" ', "", "a ScalarVariable has no name (valueReference '0')"),
+    ('<SimpleType name="T"><Real/></SimpleType>', '<SimpleType name="T"></SimpleType>',
+     "SimpleType 'T' has no type element"),
+    ('dependencies="1"', 'dependencies="1 2"', "ModelStructure index '2' names no variable "
+                                               "(there are 1)"),
+    ('dependencies="1"', 'dependencies="1 &amp;x"', "ModelStructure index '&x' names no "
+                                                    "variable (there are 1)"),
+    ('<Unknown index="1"', '<Unknown', "ModelStructure index None names no variable (there are "
+                                      "1)"),
+    ("</ModelVariables>", "</ModelVariable>", "not well-formed XML: line 9: end tag "
+                                              "</ModelVariable> does not match <ModelVariables> "
+                                              "of line 6"),
+    ('encoding="UTF-8"', 'encoding="ISO-8859-1"', "not well-formed XML: line 1: encoding "
+                                                  "ISO-8859-1 is not supported (FMI 2.0 "
+                                                  "requires UTF-8)"),
+    ('<fmiModelDescription', '<!DOCTYPE m [<!ENTITY a "aaaaaaaaaa">]>\n<fmiModelDescription',
+     "not well-formed XML: line 2: a DOCTYPE is not accepted in a modelDescription"),
+    ('modelName="m"', 'modelName="&a;"', "not well-formed XML: line 2: '&a...' is neither a "
+                                         "predefined entity"),
+    ('modelName="m"', 'modelName="\x01"', "not well-formed XML: line 2: character U+0001 is not "
+                                          "allowed in XML"),
+])
+def test_what_is_refused_is_named(old: str, new: str, message: str):
+    assert old in MINIMAL
+    with pytest.raises(FMUFileError) as caught:
+        read_text(MINIMAL.replace(old, new, 1))
+    assert str(caught.value).startswith(f"m.fmu: modelDescription.xml: {message}")
+
+
+def test_bytes_that_are_not_utf8_are_refused():
+    with pytest.raises(FMUFileError, match=r"m.fmu: modelDescription.xml: not well-formed XML: "
+                                           r"line 2: invalid UTF-8 \(a sequence starting with "
+                                           r"byte 0xE9\)"):
+        read_text(MINIMAL.encode().replace(b'modelName="m"', b'modelName="\xe9"'))
+
+
+@pytest.mark.parametrize("start", ["INF", "-inf", "NaN", " 1e5 ", ".5", "5.", "+1E-3"])
+def test_real_starts_python_reads_are_accepted(start: str):
+    description = read_text(MINIMAL.replace('start="1"', f'start="{start}"'))
+    assert description.modelVariables[0].start == start
+    float(start)

@@ -11,9 +11,10 @@ import math
 import sys
 import zipfile
 import zlib
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from fmpy.model_description import ModelDescription
 
@@ -22,7 +23,8 @@ from ..errors import FMUFileError
 from ..graph.analysis import feedthrough_from_model_description
 from ..units import to_unit
 from .archive import open_archive
-from .description_reader import ScalarVariable, read_description
+from .description_reader import read_description
+from .variable_table import ScalarVariable, VariableTable
 
 logger = logging.getLogger("syssimx.fmu")
 
@@ -32,9 +34,9 @@ _PORT_TYPES = {"Real": PortType.REAL, "Integer": PortType.INT, "Enumeration": Po
 PLATFORM = "linux64" if sys.platform.startswith("linux") else sys.platform
 
 
-@dataclass(frozen=True)
-class Parameter:
-    """A settable FMU parameter (causality "parameter")."""
+class Parameter(NamedTuple):
+    """A settable FMU parameter (causality "parameter"). Immutable; a tuple because a large
+    model has 10**5 of them and a tuple is made in half the time of a frozen dataclass."""
 
     name: str
     value_reference: int
@@ -52,7 +54,7 @@ class FMUInfo:
     description: ModelDescription
     model_identifier: str
     can_get_set_state: bool
-    variables: dict[str, ScalarVariable]
+    variables: Mapping[str, ScalarVariable]  # looked up by name, made when asked for
     default_tolerance: float | None = None  # DefaultExperiment tolerance
     input_specs: dict[str, PortSpec] = field(default_factory=dict)
     output_specs: dict[str, PortSpec] = field(default_factory=dict)
@@ -109,14 +111,17 @@ def read_fmu(fmu_path: str | Path) -> FMUInfo:
             raise FMUFileError(f"{path} is a Model-Exchange-only FMU; syssimx needs "
                                "Co-Simulation")
         identifier = _model_identifier(description.coSimulation.modelIdentifier, path)
+        table: VariableTable = description.modelVariables
         info = FMUInfo(path=path, description=description, model_identifier=identifier,
                        can_get_set_state=bool(description.coSimulation.canGetAndSetFMUstate),
-                       variables={v.name: v for v in description.modelVariables},
+                       variables=table.by_name(),
                        default_tolerance=_default_tolerance(description, path))
         if info.binary_name() not in names:
             raise FMUFileError(f"{path} has no {PLATFORM} binary ({info.binary_name()} missing)")
-    _collect_ports_and_parameters(info)
-    _collect_feedthrough(info)
+    # only these become objects: a large model's locals stay in the reader's arrays
+    ports = table.with_causality(*_PORT_CAUSALITIES)
+    _collect_ports_and_parameters(info, ports)
+    _collect_feedthrough(info, [v for v in ports if v.causality in ("input", "output")])
     return info
 
 
@@ -154,16 +159,16 @@ def _model_identifier(identifier: str | None, path: Path) -> str:
     return identifier
 
 
-_PORT_CAUSALITIES = frozenset({"input", "output", "parameter"})
+_PORT_CAUSALITIES = ("input", "output", "parameter")  # locals are no ports
 
 
-def _collect_ports_and_parameters(info: FMUInfo) -> None:
+def _collect_ports_and_parameters(info: FMUInfo, ports: list[ScalarVariable]) -> None:
     unreadable: dict[str, list[str]] = {}  # unit pint cannot read -> the variables using it
     readable: dict[str, str | None] = {}  # the FMI unit -> what pint reads (a large FMU
-    for variable in info.description.modelVariables:  # repeats a few units many times)
+    for variable in ports:  # repeats a few units many times)
         kind = _PORT_TYPES.get(variable.type)
-        if kind is None or variable.causality not in _PORT_CAUSALITIES:
-            continue  # locals are no ports; String variables have no place among doubles
+        if kind is None:
+            continue  # String variables have no place among doubles
         unit = variable_unit(variable) if kind == PortType.REAL else None
         if unit:
             if unit not in readable:
@@ -186,9 +191,13 @@ def _collect_ports_and_parameters(info: FMUInfo) -> None:
                        "carry no unit)", info.path.name, unit, names[0], others)
 
 
-def _collect_feedthrough(info: FMUInfo) -> None:
+def _collect_feedthrough(info: FMUInfo, inputs_and_outputs: list[ScalarVariable]) -> None:
     """Output -> the inputs it depends on directly, from ModelStructure."""
-    declared = feedthrough_from_model_description(info.description)
+    # The analysis reads inputs, outputs and ModelStructure: hand it those, not every local.
+    ports_only = ModelDescription()
+    ports_only.modelVariables = inputs_and_outputs
+    ports_only.outputs = info.description.outputs
+    declared = feedthrough_from_model_description(ports_only)
     info.feedthrough = {name: declared[name] & set(info.input_specs)
                         for name in info.output_specs}
 
