@@ -62,7 +62,7 @@ static int restore_all(ssx_system *sys, int slot, double t)
             return -1;
         }
     }
-    return 0;
+    return record_state_restored(sys, t);
 }
 
 /* The whole system from the macro snapshot at a0 to time t: one restore, one coupled step. */
@@ -326,7 +326,7 @@ static int locate(ssx_system *sys, event_bracket *br)
         if (step_from_snapshot(sys, br->a0, t) != 0) {
             return -1;
         }
-        if (opt->record_internal_steps && system_record(sys, t, -1) != 0) {
+        if (opt->record_internal_steps && record_sample(sys, t, -1) != 0) {
             return -1;
         }
         int side = any_fires(sys) ? SIDE_RIGHT : SIDE_LEFT;
@@ -596,7 +596,7 @@ static int add_event_records(ssx_system *sys, double b, int micro, const event_b
         } else {
             localization_log_none(&sys->localization, &record);
         }
-        if (system_add_event_record(sys, &record) != 0) {
+        if (record_event(sys, &record) != 0) {
             return -1;
         }
     }
@@ -609,7 +609,7 @@ static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work
                           int record_before)
 {
     double b = br->b;
-    if (record_before && system_record(sys, b, 0) != 0) {
+    if (record_before && record_sample(sys, b, 0) != 0) {
         return -1;
     }
     for (int i = 0; i < sys->n_indicators; ++i) {
@@ -646,7 +646,7 @@ static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work
         }
         sys->stats.events++;
         if (notify_listeners(sys, b, w) != 0 || coupling_settle(sys, b) != 0 ||
-            system_record(sys, b, micro + 1) != 0 || indicators_evaluate(sys, b) != 0 ||
+            record_sample(sys, b, micro + 1) != 0 || indicators_evaluate(sys, b) != 0 ||
             settle_signs(sys, b, br, w) != 0 || add_event_records(sys, b, micro, br, w) != 0) {
             return -1;
         }
@@ -748,7 +748,7 @@ int hybrid_step(ssx_system *sys, double t, double t_next)
                 indicator_follow(&sys->indicators[i], sys->indicators[i].value);
             }
             sys->time = t_next;
-            return system_record(sys, t_next, 0);
+            return record_grid_point(sys, t_next);
         }
         if (locate(sys, &br) != 0) {
             return -1;

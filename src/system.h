@@ -2,10 +2,11 @@
 #ifndef SSX_SYSTEM_H
 #define SSX_SYSTEM_H
 
+#include "algorithm.h"
 #include "component.h"
-#include "history.h"
 #include "localization_log.h"
 #include "monitor.h"
+#include "recording.h"
 #include "syssimx_engine.h"
 
 typedef struct {
@@ -90,14 +91,13 @@ struct ssx_system {
     int has_schedule;
 
     ssx_coupling coupling;
+    /* chosen at ssx_initialize */
+    const ssx_master_algorithm *algorithm;
+    int (*coupled_step)(ssx_system *sys, double t, double h); /* the coupling's step */
     ssx_loop_options loop;
     ssx_hybrid_options hybrid;
 
-    ssx_history history;
-    double **output_views; /* per component: its outputs array, for recording */
-    ssx_event_record *events;
-    size_t n_events;
-    size_t events_capacity;
+    ssx_recording recording;
     ssx_localization_log localization;
     ssx_statistics stats;
     ssx_error error;
@@ -116,8 +116,5 @@ ssx_component *system_component(ssx_system *sys, int index); /* NULL with the er
 int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
                          const ssx_component_ops *ops);
 int system_is_hybrid(const ssx_system *sys);
-/* Appends one sample (t, micro) of every component's outputs and calls the record hooks. */
-int system_record(ssx_system *sys, double t, int micro);
-int system_add_event_record(ssx_system *sys, const ssx_event_record *record);
 
 #endif
