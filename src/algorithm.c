@@ -20,7 +20,7 @@ enum { PLAIN, HYBRID };
 
 static const ssx_master_algorithm ALGORITHMS[] = {
     [PLAIN] = {"plain", NULL, plain_step},
-    [HYBRID] = {"hybrid", NULL, hybrid_step},
+    [HYBRID] = {"hybrid", hybrid_prepare, hybrid_step},
 };
 
 int master_algorithm_choose(ssx_system *sys)

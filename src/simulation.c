@@ -79,13 +79,7 @@ int ssx_initialize(ssx_system *sys, double t0)
         indicators_evaluate(sys, t0) != 0) {
         return -1;
     }
-    for (int i = 0; i < sys->n_indicators; ++i) {
-        ssx_indicator *ind = &sys->indicators[i];
-        ind->sign = 0;
-        ind->fired_before = 0;
-        ind->fire_count = 0;
-        indicator_follow(ind, ind->value);
-    }
+    indicators_start(sys);
     if (record_grid_point(sys, t0) != 0) {
         return -1;
     }

@@ -11,7 +11,6 @@
 #include "array.h"
 #include "coupling.h"
 #include "error.h"
-#include "hybrid.h"
 
 ssx_system *ssx_system_new(const char *name)
 {
@@ -53,6 +52,8 @@ void ssx_system_free(ssx_system *sys)
     free(sys->components);
     free(sys->connections);
     free(sys->indicators);
+    free(sys->indicator_states);
+    free(sys->brackets);
     free(sys->event_links);
     free(sys->order);
     free(sys->groups);
@@ -360,8 +361,10 @@ int ssx_indicator_count(const ssx_system *sys)
 
 double ssx_indicator_value(const ssx_system *sys, int indicator)
 {
-    return indicator >= 0 && indicator < sys->n_indicators ? sys->indicators[indicator].value
-                                                           : NAN;
+    /* the states exist from the first ssx_initialize on */
+    return indicator >= 0 && indicator < sys->n_indicators && sys->indicator_states != NULL
+               ? sys->indicator_states[indicator].value
+               : NAN;
 }
 
 int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_component)
@@ -501,7 +504,7 @@ int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, i
 {
     if (!(tol_time > 0.0) || !isfinite(tol_time) || !(tol_value >= 0.0) || !isfinite(tol_value) ||
         max_iterations < 1 || max_microsteps < 1 || !isfinite(zeno_min_interval) ||
-        !hybrid_locator_known((int)locator)) {
+        !locator_known((int)locator)) {
         return fail(sys, -1, -1, NAN,
                     "hybrid options: need tol_time > 0, tol_value >= 0, max_iterations >= 1, "
                     "max_microsteps >= 1, a finite zeno_min_interval and a known locator (an "

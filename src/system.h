@@ -4,6 +4,8 @@
 
 #include "algorithm.h"
 #include "component.h"
+#include "indicator.h"
+#include "locator.h"
 #include "localization_log.h"
 #include "monitor.h"
 #include "recording.h"
@@ -17,27 +19,6 @@ typedef struct {
     double scale;
     double offset;
 } ssx_connection;
-
-typedef struct {
-    int component;
-    int output; /* -1 for a callback indicator */
-    int (*evaluate)(void *user, double t, double *value);
-    void *user;
-    int direction;
-    double value;
-    int sign;   /* side the indicator is on: -1 or +1; 0 while unknown (started at zero) */
-    int on_zero; /* reached exactly zero in its last crossing and stays there: no new crossing
-                    until it leaves zero, whichever side it leaves to */
-    int fired_before;
-    double last_event_time;
-    double last_interval; /* between its last two events (infinite after the first) */
-    long fire_count;
-    /* localization workspace */
-    double z_left, z_right;  /* values at the bracket ends */
-    double w_left, w_right;  /* Illinois-weighted values at the bracket ends */
-    double z_replaced;       /* value at the end the last trial replaced */
-    int crossing;            /* crosses (in its direction) at the current right end */
-} ssx_indicator;
 
 typedef struct {
     int indicator;
@@ -80,6 +61,9 @@ struct ssx_system {
     ssx_indicator *indicators;
     int n_indicators;
     size_t indicators_capacity;
+    /* per indicator, set up by the hybrid algorithm at ssx_initialize */
+    indicator_state *indicator_states;
+    indicator_bracket *brackets; /* the localization workspace */
 
     ssx_event_link *event_links;
     int n_event_links;
