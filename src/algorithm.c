@@ -19,8 +19,8 @@ static int plain_step(ssx_system *sys, double t, double t_next)
 enum { PLAIN, HYBRID };
 
 static const ssx_master_algorithm ALGORITHMS[] = {
-    [PLAIN] = {"plain", NULL, plain_step},
-    [HYBRID] = {"hybrid", hybrid_prepare, hybrid_step},
+    [PLAIN] = {NULL, plain_step},
+    [HYBRID] = {hybrid_prepare, hybrid_step},
 };
 
 int master_algorithm_choose(ssx_system *sys)

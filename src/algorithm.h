@@ -7,7 +7,6 @@
 #include "syssimx_engine.h"
 
 typedef struct {
-    const char *name;
     /* Sets up the algorithm's workspace for the system as built; NULL when it needs none. */
     int (*prepare)(ssx_system *sys);
     /* Advances from t to the communication point t_next and records what it completes. */

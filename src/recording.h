@@ -24,6 +24,7 @@ typedef struct {
     long grid_points; /* seen since ssx_initialize */
 } ssx_decimator;
 
+/* the history or its decimator, and the record hooks; a new kind of observer adds one */
 enum { RECORDING_MAX_OBSERVERS = 3 };
 
 typedef struct {

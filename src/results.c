@@ -1,8 +1,27 @@
-/* The read-only accessors of a system's results: its history, event records, localization
- * trials and statistics. */
+/* The read-only accessors of a system's results: where it stands, its history, event records,
+ * localization trials and statistics. */
+#include <math.h>
 #include <stddef.h>
 
 #include "system.h"
+
+double ssx_time(const ssx_system *sys)
+{
+    return sys->time;
+}
+
+double ssx_indicator_value(const ssx_system *sys, int indicator)
+{
+    /* the states are set up by ssx_initialize for the indicators the system has then */
+    return sys->initialized && indicator >= 0 && indicator < sys->n_indicators
+               ? sys->indicator_states[indicator].value
+               : NAN;
+}
+
+const ssx_termination *ssx_get_termination(const ssx_system *sys)
+{
+    return sys != NULL ? &sys->termination : NULL;
+}
 
 /* The history observer's block: one every system has, decimated or not. */
 static ssx_history_block *history_block(const ssx_system *sys)

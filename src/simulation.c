@@ -36,11 +36,6 @@ static int check_components(ssx_system *sys)
     return 0;
 }
 
-const ssx_termination *ssx_get_termination(const ssx_system *sys)
-{
-    return sys != NULL ? &sys->termination : NULL;
-}
-
 int ssx_set_allow_non_finite(ssx_system *sys, int allow)
 {
     sys->allow_non_finite = allow != 0;

@@ -359,14 +359,6 @@ int ssx_indicator_count(const ssx_system *sys)
     return sys->n_indicators;
 }
 
-double ssx_indicator_value(const ssx_system *sys, int indicator)
-{
-    /* the states exist from the first ssx_initialize on */
-    return indicator >= 0 && indicator < sys->n_indicators && sys->indicator_states != NULL
-               ? sys->indicator_states[indicator].value
-               : NAN;
-}
-
 int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_component)
 {
     if (indicator < 0 || indicator >= sys->n_indicators) {
@@ -519,11 +511,6 @@ int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, i
                                        .locator = locator,
                                        .zeno_min_interval = zeno_min_interval};
     return 0;
-}
-
-double ssx_time(const ssx_system *sys)
-{
-    return sys->time;
 }
 
 int ssx_set_monitor(ssx_system *sys, int (*monitor)(void *user, double t), void *user)
