@@ -1,7 +1,8 @@
 /* The hybrid macro step: one snapshot and one coupled step when nothing crosses; otherwise
- * localization of the earliest crossing by restoring and re-stepping the whole system, event
- * handling in superdense time at the far side of the final bracket, and the sign bookkeeping that
- * keeps a handled crossing from firing again. */
+ * localization of the earliest crossing by restoring and re-stepping the whole system (where
+ * to try next is the localization method's choice, locator.c), event handling in superdense
+ * time at the far side of the final bracket, and the sign bookkeeping that keeps a handled
+ * crossing from firing again. */
 #include "hybrid.h"
 
 #include <float.h>
