@@ -3,8 +3,9 @@
  * a decimating front of it another; streaming to disk or collecting an ensemble would each be
  * one more, without a change to the algorithms.
  *
- * Every member may be NULL. Those returning int return 0, or -1 with the system's error set;
- * a failing observer stops the run. */
+ * Every member but step_complete may be NULL (step_complete is called for every sample, without
+ * a check). Those returning int return 0, or -1 with the system's error set; a failing observer
+ * stops the run. */
 #ifndef SSX_OBSERVER_H
 #define SSX_OBSERVER_H
 

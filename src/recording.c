@@ -210,7 +210,7 @@ static int step_complete(ssx_system *sys, const ssx_sample *sample)
     ssx_recording *r = &sys->recording;
     for (int k = 0; k < r->n_observers; ++k) {
         ssx_observer *o = r->observers[k];
-        if (o->ops->step_complete != NULL && o->ops->step_complete(o, sys, sample) != 0) {
+        if (o->ops->step_complete(o, sys, sample) != 0) {
             return -1;
         }
     }
