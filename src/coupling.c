@@ -6,8 +6,23 @@
 #include "algebraic_loop.h"
 #include "error.h"
 
+static int step_gauss_seidel(ssx_system *sys, double t, double h);
+static int step_jacobi(ssx_system *sys, double t, double h);
+
+/* The couplings' steps, chosen once per initialization. */
+static int (*const COUPLED_STEPS[])(ssx_system *sys, double t, double h) = {
+    [SSX_GAUSS_SEIDEL] = step_gauss_seidel,
+    [SSX_JACOBI] = step_jacobi,
+};
+
+int coupling_known(int coupling)
+{
+    return coupling >= 0 && coupling < (int)(sizeof COUPLED_STEPS / sizeof *COUPLED_STEPS);
+}
+
 int coupling_prepare(ssx_system *sys)
 {
+    sys->coupled_step = COUPLED_STEPS[sys->coupling];
     if (sys->has_schedule) {
         const ssx_group *last = &sys->groups[sys->n_groups - 1];
         if (last->first + last->size != sys->n_components) {
@@ -118,11 +133,6 @@ static int step_jacobi(ssx_system *sys, double t, double h)
         }
     }
     return 0;
-}
-
-int coupling_step(ssx_system *sys, double t, double h)
-{
-    return sys->coupling == SSX_JACOBI ? step_jacobi(sys, t, h) : step_gauss_seidel(sys, t, h);
 }
 
 int coupling_settle(ssx_system *sys, double t)

@@ -5,12 +5,18 @@
 
 #include "system.h"
 
-/* Fills the default schedule (add order, no loops) when none was set. */
+/* coupling names a coupling (an ssx_coupling). */
+int coupling_known(int coupling);
+/* Chooses the coupling's step and fills the default schedule (add order, no loops) when none
+ * was set. */
 int coupling_prepare(ssx_system *sys);
 /* dst input = scale * src output + offset for every driven input of component c. */
 void coupling_propagate_inputs(ssx_system *sys, const ssx_component *c);
-/* Steps every component from t to t + h with the configured coupling. */
-int coupling_step(ssx_system *sys, double t, double h);
+/* Steps every component from t to t + h with the coupling chosen by coupling_prepare. */
+static inline int coupling_step(ssx_system *sys, double t, double h)
+{
+    return sys->coupled_step(sys, t, h);
+}
 /* Makes all outputs at t consistent with the connections (zero-time evaluation, loops solved). */
 int coupling_settle(ssx_system *sys, double t);
 

@@ -1,7 +1,8 @@
 /* The hybrid macro step: one snapshot and one coupled step when nothing crosses; otherwise
- * localization of the earliest crossing by restoring and re-stepping the whole system, event
- * handling in superdense time at the far side of the final bracket, and the sign bookkeeping that
- * keeps a handled crossing from firing again. */
+ * localization of the earliest crossing by restoring and re-stepping the whole system (where
+ * to try next is the localization method's choice, locator.c), event handling in superdense
+ * time at the far side of the final bracket, and the sign bookkeeping that keeps a handled
+ * crossing from firing again. */
 #include "hybrid.h"
 
 #include <float.h>
@@ -12,6 +13,7 @@
 #include "coupling.h"
 #include "error.h"
 #include "indicator.h"
+#include "locator.h"
 
 enum { MACRO_SLOT = 0, PROBE_SLOT = 1 };
 /* Fraction of the macro step over which the probe follows a handled state. */
@@ -19,9 +21,6 @@ enum { MACRO_SLOT = 0, PROBE_SLOT = 1 };
 /* Event intervals that shrink at least this much each are on their way to an accumulation
  * point (a bouncing ball's shrink by its restitution). */
 #define GEOMETRIC_APPROACH 0.9
-enum { SIDE_NONE = 0, SIDE_LEFT = 1, SIDE_RIGHT = 2 };
-/* How far past a one-sided secant estimate the next trial aims, as a fraction of its step. */
-#define OVERSHOOT 0.1
 
 typedef struct {
     double a0;            /* start of the macro piece: the snapshot time */
@@ -62,7 +61,7 @@ static int restore_all(ssx_system *sys, int slot, double t)
             return -1;
         }
     }
-    return 0;
+    return record_state_restored(sys, t);
 }
 
 /* The whole system from the macro snapshot at a0 to time t: one restore, one coupled step. */
@@ -74,186 +73,21 @@ static int step_from_snapshot(ssx_system *sys, double a0, double t)
     return indicators_evaluate(sys, t);
 }
 
+/* Indicator i crosses in its direction at its current value. */
+static int fires_now(const ssx_system *sys, int i)
+{
+    const indicator_state *s = &sys->indicator_states[i];
+    return indicator_fires(&sys->indicators[i], s, s->value);
+}
+
 static int any_fires(const ssx_system *sys)
 {
     for (int i = 0; i < sys->n_indicators; ++i) {
-        if (indicator_fires(&sys->indicators[i], sys->indicators[i].value)) {
+        if (fires_now(sys, i)) {
             return 1;
         }
     }
     return 0;
-}
-
-/* The bracket during localization, as the methods see it. */
-typedef struct {
-    double a, b;
-    double replaced;  /* where the end that the last trial replaced was; NAN before any trial */
-    int moved;        /* which end the last trial replaced (SIDE_*) */
-    int moved_before; /* which end the trial before replaced */
-} bracket_state;
-
-/* Regula falsi on the Illinois-weighted end values of one indicator; NAN when not usable. A far
- * end exactly on zero tells nothing of where the indicator reached zero (it may rest there). */
-static double illinois_point(const ssx_indicator *ind, const bracket_state *st)
-{
-    if (ind->z_right == 0.0 || ind->w_left * ind->w_right > 0.0 || ind->w_left == ind->w_right) {
-        return NAN;
-    }
-    return st->a + (st->b - st->a) * ind->w_left / (ind->w_left - ind->w_right);
-}
-
-/* The secant through the end the last trial moved, before and after: where the indicator
- * extrapolates to zero. Inside the bracket it lands close to the zero, on the far side of it
- * when the indicator curves away, so that the stale end moves too. NAN when not usable, also
- * when the indicator did not change (a piecewise-constant indicator has no slope there). */
-static double secant_point(const ssx_indicator *ind, const bracket_state *st)
-{
-    if (st->moved == SIDE_NONE) {
-        return NAN;
-    }
-    double x = st->moved == SIDE_RIGHT ? st->b : st->a;
-    double z = st->moved == SIDE_RIGHT ? ind->z_right : ind->z_left;
-    if (z == ind->z_replaced) {
-        return NAN;
-    }
-    double t = x - z * (x - st->replaced) / (z - ind->z_replaced);
-    return t > st->a && t < st->b ? t : NAN;
-}
-
-/* The earliest of an estimate over the crossing indicators; NAN when none is usable. */
-static double earliest_point(const ssx_system *sys, const bracket_state *st,
-                             double (*point)(const ssx_indicator *, const bracket_state *),
-                             int skip_flat)
-{
-    double earliest = NAN;
-    for (int i = 0; i < sys->n_indicators; ++i) {
-        const ssx_indicator *ind = &sys->indicators[i];
-        if (!ind->crossing) {
-            continue;
-        }
-        if (skip_flat && st->moved != SIDE_NONE &&
-            (st->moved == SIDE_RIGHT ? ind->z_right : ind->z_left) == ind->z_replaced) {
-            continue;
-        }
-        double estimate = point(ind, st);
-        if (isfinite(estimate) && (isnan(earliest) || estimate < earliest)) {
-            earliest = estimate;
-        }
-    }
-    return earliest;
-}
-
-static double illinois_estimate(const ssx_system *sys, const bracket_state *st)
-{
-    return earliest_point(sys, st, illinois_point, 0);
-}
-
-/* Secant steps where they land inside the bracket, Illinois elsewhere; an indicator that kept
- * its value over the last trial is flat there and gives no estimate. */
-static double secant_illinois_estimate(const ssx_system *sys, const bracket_state *st)
-{
-    double t = earliest_point(sys, st, secant_point, 1);
-    if (isnan(t)) {
-        return earliest_point(sys, st, illinois_point, 1);
-    }
-    if (st->moved == st->moved_before) {
-        /* one end converges, the other stays: aim a little past the estimate, by a tenth of
-         * the step the secant takes, so that the stale end moves in next */
-        double x = st->moved == SIDE_RIGHT ? st->b : st->a;
-        double past = t + OVERSHOOT * (t - x);
-        return past > st->a && past < st->b ? past : t;
-    }
-    return t;
-}
-
-/* The Illinois modification: an end that stays twice in a row has its weight halved, so the
- * secant cannot creep towards the root from one side only. */
-static void illinois_after_trial(ssx_system *sys, const bracket_state *st)
-{
-    if (st->moved != st->moved_before) {
-        return;
-    }
-    for (int i = 0; i < sys->n_indicators; ++i) {
-        ssx_indicator *ind = &sys->indicators[i];
-        if (st->moved == SIDE_RIGHT) {
-            ind->w_left *= 0.5;
-        } else {
-            ind->w_right *= 0.5;
-        }
-    }
-}
-
-static double midpoint_estimate(const ssx_system *sys, const bracket_state *st)
-{
-    (void)sys;
-    return 0.5 * (st->a + st->b);
-}
-
-static void keep_no_weights(ssx_system *sys, const bracket_state *st)
-{
-    (void)sys;
-    (void)st;
-}
-
-enum { UNBOUNDED = -1 };
-
-/* A localization method: where to try next in the bracket, and what to update once a trial has
- * moved one end. slack bounds its iterations to bisection's count plus slack. */
-typedef struct {
-    double (*estimate)(const ssx_system *sys, const bracket_state *st);
-    void (*after_trial)(ssx_system *sys, const bracket_state *st);
-    int slack;
-} locator_method;
-
-/* The default keeps Illinois's superlinear steps on smooth indicators, helped by secant steps
- * through the end just moved, and is held within two trials of bisection: on a
- * piecewise-constant indicator (an FMU output that changes only at the FMU's own steps) plain
- * Illinois can shrink the bracket by a sliver per trial. */
-static const locator_method LOCATORS[] = {
-    [SSX_ILLINOIS] = {secant_illinois_estimate, illinois_after_trial, 2},
-    [SSX_BISECTION] = {midpoint_estimate, keep_no_weights, 0},
-    [SSX_ILLINOIS_UNGUARDED] = {illinois_estimate, illinois_after_trial, UNBOUNDED},
-};
-
-int hybrid_locator_known(int locator)
-{
-    return locator >= 0 && locator < (int)(sizeof LOCATORS / sizeof *LOCATORS);
-}
-
-/* Bisection's iteration count from a bracket of width w down to tol. */
-static int bisection_count(double w, double tol)
-{
-    int n = 0;
-    for (; w > tol; w *= 0.5) {
-        ++n;
-    }
-    return n;
-}
-
-/* The next trial time in [a, b]. A budgeted method's estimate is kept where, whichever end the
- * trial replaces, the bracket left over still comes down to final_width by halving within the
- * remaining budget: budget - done - 1 halvings after this trial. */
-static double next_trial(const ssx_system *sys, const locator_method *method,
-                         const bracket_state *st, double final_width, int budget, int done)
-{
-    double tol = sys->hybrid.tol_time;
-    double a = st->a;
-    double b = st->b;
-    double t = method->estimate(sys, st);
-    if (!(t > a && t < b)) {
-        t = 0.5 * (a + b);
-    }
-    /* half a tolerance inside the bracket: the far end also moves when the estimate
-     * converges from one side */
-    double lo = a + 0.5 * tol;
-    double hi = b - 0.5 * tol;
-    if (budget != UNBOUNDED) {
-        double reach = ldexp(final_width, budget - done - 1);
-        lo = fmax(lo, b - reach);
-        hi = fmin(hi, a + reach);
-    }
-    /* rounding can leave no room at the last halvings: the midpoint then */
-    return lo <= hi ? fmin(fmax(t, lo), hi) : 0.5 * (a + b);
 }
 
 /* Every indicator crossing at the far end is within tol_value of zero. An exact zero does not
@@ -264,8 +98,8 @@ static int far_side_converged(const ssx_system *sys)
         return 0;
     }
     for (int i = 0; i < sys->n_indicators; ++i) {
-        const ssx_indicator *ind = &sys->indicators[i];
-        if (ind->crossing && !(ind->z_right != 0.0 && fabs(ind->z_right) <= sys->hybrid.tol_value)) {
+        const indicator_bracket *end = &sys->brackets[i];
+        if (end->crossing && !(end->z_right != 0.0 && fabs(end->z_right) <= sys->hybrid.tol_value)) {
             return 0;
         }
     }
@@ -281,7 +115,7 @@ static int log_row(ssx_system *sys, double t, double a, double b, int left)
         return fail(sys, -1, -1, t, "out of memory logging the localization at t=%.17g", t);
     }
     for (int i = 0; i < sys->n_indicators; ++i) {
-        values[i] = left ? sys->indicators[i].z_left : sys->indicators[i].value;
+        values[i] = left ? sys->brackets[i].z_left : sys->indicator_states[i].value;
     }
     return 0;
 }
@@ -290,26 +124,26 @@ static int log_row(ssx_system *sys, double t, double a, double b, int left)
 static int locate(ssx_system *sys, event_bracket *br)
 {
     const ssx_hybrid_options *opt = &sys->hybrid;
-    const locator_method *method = &LOCATORS[opt->locator];
+    const locator_method *method = locator_method_of(opt->locator);
+    int n = sys->n_indicators;
+    indicator_bracket *ends = sys->brackets;
     double a = br->a0;
     double b = br->t_end;
-    for (int i = 0; i < sys->n_indicators; ++i) {
-        ssx_indicator *ind = &sys->indicators[i];
-        ind->z_right = ind->value;
-        ind->w_left = ind->z_left;
-        ind->w_right = ind->z_right;
-        ind->crossing = indicator_fires(ind, ind->value);
+    for (int i = 0; i < n; ++i) {
+        ends[i].z_right = sys->indicator_states[i].value;
+        ends[i].w_left = ends[i].z_left;
+        ends[i].w_right = ends[i].z_right;
+        ends[i].crossing = fires_now(sys, i);
     }
     localization_log_begin(&sys->localization, sys->n_indicators);
     br->localized = 1;
     if (log_row(sys, a, a, b, 1) != 0 || log_row(sys, b, a, b, 0) != 0) {
         return -1;
     }
-    int halvings = bisection_count(b - a, opt->tol_time);
     /* a few roundings of the times inside tol_time: the last trials of a budgeted method land
      * on its window's edges, which must not leave the bracket a hair above tol_time */
     double final_width = opt->tol_time - 16.0 * DBL_EPSILON * fmax(fabs(a), fabs(b));
-    int budget = method->slack == UNBOUNDED ? UNBOUNDED : halvings + method->slack;
+    int budget = locator_budget(method, b - a, opt->tol_time);
     bracket_state st = {.a = a, .b = b, .replaced = NAN, .moved = SIDE_NONE,
                         .moved_before = SIDE_NONE};
     br->iterations = 0;
@@ -320,25 +154,26 @@ static int locate(ssx_system *sys, event_bracket *br)
                         "bracket [%.17g, %.17g]",
                         opt->tol_time, opt->max_iterations, st.a, st.b);
         }
-        double t = next_trial(sys, method, &st, final_width, budget, br->iterations);
+        double t = locator_next_trial(method, ends, n, &st, opt->tol_time, final_width, budget,
+                                      br->iterations);
         br->iterations++;
         sys->stats.localization_iterations++;
         if (step_from_snapshot(sys, br->a0, t) != 0) {
             return -1;
         }
-        if (opt->record_internal_steps && system_record(sys, t, -1) != 0) {
+        if (opt->record_internal_steps && record_sample(sys, t, -1) != 0) {
             return -1;
         }
         int side = any_fires(sys) ? SIDE_RIGHT : SIDE_LEFT;
-        for (int i = 0; i < sys->n_indicators; ++i) {
-            ssx_indicator *ind = &sys->indicators[i];
+        for (int i = 0; i < n; ++i) {
+            double z = sys->indicator_states[i].value;
             if (side == SIDE_RIGHT) {
-                ind->z_replaced = ind->z_right;
-                ind->z_right = ind->w_right = ind->value;
-                ind->crossing = indicator_fires(ind, ind->value);
+                ends[i].z_replaced = ends[i].z_right;
+                ends[i].z_right = ends[i].w_right = z;
+                ends[i].crossing = fires_now(sys, i);
             } else {
-                ind->z_replaced = ind->z_left;
-                ind->z_left = ind->w_left = ind->value;
+                ends[i].z_replaced = ends[i].z_left;
+                ends[i].z_left = ends[i].w_left = z;
             }
         }
         st.replaced = side == SIDE_RIGHT ? st.b : st.a;
@@ -349,7 +184,7 @@ static int locate(ssx_system *sys, event_bracket *br)
         } else {
             st.a = t;
         }
-        method->after_trial(sys, &st);
+        method->after_trial(ends, n, &st);
         if (log_row(sys, t, st.a, st.b, 0) != 0) {
             return -1;
         }
@@ -391,9 +226,9 @@ static int work_init(instant_work *w, ssx_system *sys, double t)
 
 /* |z| below which a fired indicator counts as sitting on its zero: the localization residue. */
 static double residue_band(const ssx_system *sys, const event_bracket *br,
-                           const ssx_indicator *ind, double z)
+                           const indicator_bracket *end, double z)
 {
-    double slope = fabs(ind->z_right - ind->z_left) / fmax(br->b - br->a, 1e-300);
+    double slope = fabs(end->z_right - end->z_left) / fmax(br->b - br->a, 1e-300);
     return 2.0 * fmax(sys->hybrid.tol_value, fmax(fabs(z), slope * sys->hybrid.tol_time));
 }
 
@@ -422,13 +257,13 @@ static int probe(ssx_system *sys, double b, double delta_max, instant_work *w)
         }
         int settled = 1;
         for (int i = 0; i < sys->n_indicators; ++i) {
-            const ssx_indicator *ind = &sys->indicators[i];
-            w->z_probe[i] = ind->value;
+            const indicator_state *s = &sys->indicator_states[i];
+            w->z_probe[i] = s->value;
             if (first) {
-                /* ind->sign is the far side here */
-                w->turned_back[i] = (ind->value - w->z_after[i]) * (double)ind->sign < 0.0;
+                /* s->sign is the far side here */
+                w->turned_back[i] = (s->value - w->z_after[i]) * (double)s->sign < 0.0;
             }
-            settled &= !near_zero(w, i) || fabs(ind->value) > w->band[i];
+            settled &= !near_zero(w, i) || fabs(s->value) > w->band[i];
         }
         if (restore_all(sys, PROBE_SLOT, b) != 0) {
             return -1;
@@ -439,7 +274,7 @@ static int probe(ssx_system *sys, double b, double delta_max, instant_work *w)
         delta = fmin(10.0 * delta, delta_max);
     }
     for (int i = 0; i < sys->n_indicators; ++i) {
-        sys->indicators[i].value = w->z_after[i];
+        sys->indicator_states[i].value = w->z_after[i];
     }
     return 0;
 }
@@ -475,7 +310,7 @@ static int notify_listeners(ssx_system *sys, double b, instant_work *w)
  * precisely; once they stop shrinking the model chatters at a fixed fine scale (an explicit
  * Euler FMU gains speed at every bounce and settles into flights of a few of its own steps,
  * bouncing for ever). */
-static int chattering(const ssx_system *sys, const event_bracket *br, const ssx_indicator *ind,
+static int chattering(const ssx_system *sys, const event_bracket *br, const indicator_state *s,
                       double interval)
 {
     if (sys->hybrid.zeno_min_interval > 0.0) {
@@ -485,38 +320,39 @@ static int chattering(const ssx_system *sys, const event_bracket *br, const ssx_
         return 1;
     }
     return interval < PROBE_HORIZON * br->grid_step &&
-           !(interval <= GEOMETRIC_APPROACH * ind->last_interval);
+           !(interval <= GEOMETRIC_APPROACH * s->last_interval);
 }
 
 static int check_zeno(ssx_system *sys, const event_bracket *br, int micro, const instant_work *w)
 {
     double b = br->b;
     for (int i = 0; i < sys->n_indicators; ++i) {
-        ssx_indicator *ind = &sys->indicators[i];
+        const indicator_state *s = &sys->indicator_states[i];
+        int component = sys->indicators[i].component;
         /* cascades at one instant are bounded by max_microsteps instead */
-        if (!w->fired[i] || micro != 0 || !ind->fired_before) {
+        if (!w->fired[i] || micro != 0 || !s->fired_before) {
             continue;
         }
-        double interval = b - ind->last_event_time;
-        if (!chattering(sys, br, ind, interval)) {
+        double interval = b - s->last_event_time;
+        if (!chattering(sys, br, s, interval)) {
             continue;
         }
-        const char *name = sys->components[ind->component]->name;
+        const char *name = sys->components[component]->name;
         if (sys->hybrid.zeno_min_interval > 0.0 || interval < 10.0 * sys->hybrid.tol_time) {
-            return fail_zeno(sys, ind->component, i, b,
+            return fail_zeno(sys, component, i, b,
                              "indicator %d of component '%s' fired again at t=%.17g, only %.3g "
                              "after its previous event (event number %ld): chattering (Zeno) "
                              "behaviour; the minimum interval is %.3g",
-                             i, name, b, interval, ind->fire_count + 1,
+                             i, name, b, interval, s->fire_count + 1,
                              fmax(sys->hybrid.zeno_min_interval, 10.0 * sys->hybrid.tol_time));
         }
-        return fail_zeno(sys, ind->component, i, b,
+        return fail_zeno(sys, component, i, b,
                          "indicator %d of component '%s' fired again at t=%.17g, only %.3g after "
                          "its previous event (event number %ld), within a tenth of the "
                          "communication step, and its intervals no longer shrink (the previous "
                          "one was %.3g): chattering (Zeno) behaviour; a smaller step or "
                          "zeno_min_interval follows such events",
-                         i, name, b, interval, ind->fire_count + 1, ind->last_interval);
+                         i, name, b, interval, s->fire_count + 1, s->last_interval);
     }
     return 0;
 }
@@ -526,7 +362,7 @@ static int settle_signs(ssx_system *sys, double b, const event_bracket *br, inst
 {
     int need_probe = 0;
     for (int i = 0; i < sys->n_indicators; ++i) {
-        w->z_after[i] = sys->indicators[i].value;
+        w->z_after[i] = sys->indicator_states[i].value;
         w->turned_back[i] = 0;
     }
     for (int i = 0; i < sys->n_indicators; ++i) {
@@ -538,33 +374,34 @@ static int settle_signs(ssx_system *sys, double b, const event_bracket *br, inst
         return -1;
     }
     for (int i = 0; i < sys->n_indicators; ++i) {
-        ssx_indicator *ind = &sys->indicators[i];
+        const ssx_indicator *ind = &sys->indicators[i];
+        indicator_state *s = &sys->indicator_states[i];
         /* a fired indicator still within its residue band goes where the probe says; any other
          * sign change was made by the handling itself */
         int from_probe = near_zero(w, i);
         double z = from_probe ? w->z_probe[i] : w->z_after[i];
-        int new_sign = sign_of(z, ind->sign);
+        int new_sign = sign_of(z, s->sign);
         /* Turned back towards its near side yet unable to leave the far one: the handled state
          * cannot climb out of the residue at b (a ball too slow to leave the floor) and would
          * sink unseen. That is the end of a Zeno sequence. */
-        if (from_probe && new_sign == ind->sign && w->turned_back[i]) {
+        if (from_probe && new_sign == s->sign && w->turned_back[i]) {
             return fail_zeno(sys, ind->component, i, b,
                              "indicator %d of component '%s' cannot leave zero after its event "
                              "at t=%.17g (event number %ld): the handled state turns back but "
                              "stays within the residue %.3g; chattering (Zeno) behaviour",
-                             i, sys->components[ind->component]->name, b, ind->fire_count,
+                             i, sys->components[ind->component]->name, b, s->fire_count,
                              fabs(w->z_after[i]));
         }
         /* a handler that moves a fired indicator back across is a new crossing; one that
          * moves an indicator resting on zero from an earlier instant only ends the rest */
-        int resting = ind->on_zero && !w->fired[i];
+        int resting = s->on_zero && !w->fired[i];
         w->next[i] = 0;
-        if (ind->sign != 0 && new_sign != ind->sign && !from_probe && !resting) {
+        if (s->sign != 0 && new_sign != s->sign && !from_probe && !resting) {
             int crossing = new_sign > 0 ? 1 : -1;
             w->next[i] = ind->direction == 0 || ind->direction == crossing;
         }
-        ind->sign = new_sign;
-        ind->on_zero = ind->on_zero && z == 0.0;
+        s->sign = new_sign;
+        s->on_zero = s->on_zero && z == 0.0;
     }
     return 0;
 }
@@ -596,7 +433,7 @@ static int add_event_records(ssx_system *sys, double b, int micro, const event_b
         } else {
             localization_log_none(&sys->localization, &record);
         }
-        if (system_add_event_record(sys, &record) != 0) {
+        if (record_event(sys, &record) != 0) {
             return -1;
         }
     }
@@ -609,14 +446,14 @@ static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work
                           int record_before)
 {
     double b = br->b;
-    if (record_before && system_record(sys, b, 0) != 0) {
+    if (record_before && record_sample(sys, b, 0) != 0) {
         return -1;
     }
     for (int i = 0; i < sys->n_indicators; ++i) {
-        ssx_indicator *ind = &sys->indicators[i];
-        w->fired[i] = indicator_fires(ind, ind->value);
-        indicator_follow(ind, ind->value);
-        w->band[i] = residue_band(sys, br, ind, ind->value);
+        indicator_state *s = &sys->indicator_states[i];
+        w->fired[i] = fires_now(sys, i);
+        indicator_follow(s, s->value);
+        w->band[i] = residue_band(sys, br, &sys->brackets[i], s->value);
     }
     for (int micro = 0;; ++micro) {
         if (micro >= sys->hybrid.max_microsteps) {
@@ -633,20 +470,20 @@ static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work
             return -1;
         }
         for (int i = 0; i < sys->n_indicators; ++i) {
-            ssx_indicator *ind = &sys->indicators[i];
+            indicator_state *s = &sys->indicator_states[i];
             if (!w->fired[i]) {
                 continue;
             }
             if (micro == 0) {
-                ind->last_interval = ind->fired_before ? b - ind->last_event_time : INFINITY;
+                s->last_interval = s->fired_before ? b - s->last_event_time : INFINITY;
             }
-            ind->fired_before = 1;
-            ind->last_event_time = b;
-            ind->fire_count++;
+            s->fired_before = 1;
+            s->last_event_time = b;
+            s->fire_count++;
         }
         sys->stats.events++;
         if (notify_listeners(sys, b, w) != 0 || coupling_settle(sys, b) != 0 ||
-            system_record(sys, b, micro + 1) != 0 || indicators_evaluate(sys, b) != 0 ||
+            record_sample(sys, b, micro + 1) != 0 || indicators_evaluate(sys, b) != 0 ||
             settle_signs(sys, b, br, w) != 0 || add_event_records(sys, b, micro, br, w) != 0) {
             return -1;
         }
@@ -677,7 +514,7 @@ static int resolve_zero_start(ssx_system *sys, double a0, double t_next)
     sys->zero_start_pending = 0;
     int unknown = 0;
     for (int i = 0; i < sys->n_indicators; ++i) {
-        unknown |= sys->indicators[i].sign == 0;
+        unknown |= sys->indicator_states[i].sign == 0;
     }
     if (!unknown) {
         return 0;
@@ -694,24 +531,25 @@ static int resolve_zero_start(ssx_system *sys, double a0, double t_next)
                         .do_steps_before = sys->stats.do_step_calls,
                         .restores_before = sys->stats.state_restores};
     for (int i = 0; i < sys->n_indicators; ++i) {
-        ssx_indicator *ind = &sys->indicators[i];
-        ind->z_left = ind->z_right = ind->value;
-        w.fired[i] = ind->sign == 0;
-        w.z_after[i] = ind->value;
+        const indicator_state *s = &sys->indicator_states[i];
+        sys->brackets[i].z_left = sys->brackets[i].z_right = s->value;
+        w.fired[i] = s->sign == 0;
+        w.z_after[i] = s->value;
         w.band[i] = 0.0;
     }
     int status =
         probe(sys, a0, fmax(10.0 * sys->hybrid.tol_time, PROBE_HORIZON * (t_next - a0)), &w);
     int fires = 0;
     for (int i = 0; status == 0 && i < sys->n_indicators; ++i) {
-        ssx_indicator *ind = &sys->indicators[i];
-        if (ind->sign != 0 || w.z_probe[i] == 0.0) {
+        indicator_state *s = &sys->indicator_states[i];
+        int direction = sys->indicators[i].direction;
+        if (s->sign != 0 || w.z_probe[i] == 0.0) {
             continue;
         }
         int going = w.z_probe[i] > 0.0 ? 1 : -1;
-        int crossing = ind->direction == 0 || ind->direction == going;
+        int crossing = direction == 0 || direction == going;
         /* a crossing starts on the near side, so that the zero at a0 counts as the far one */
-        ind->sign = crossing ? -going : going;
+        s->sign = crossing ? -going : going;
         fires |= crossing;
     }
     if (status == 0 && fires) {
@@ -720,6 +558,25 @@ static int resolve_zero_start(ssx_system *sys, double a0, double t_next)
     }
     work_free(&w);
     return status;
+}
+
+int hybrid_prepare(ssx_system *sys)
+{
+    size_t n = (size_t)sys->n_indicators;
+    indicator_state *states = realloc(sys->indicator_states, n * sizeof *states);
+    if (states != NULL) {
+        sys->indicator_states = states;
+    }
+    indicator_bracket *brackets = realloc(sys->brackets, n * sizeof *brackets);
+    if (brackets != NULL) {
+        sys->brackets = brackets;
+    }
+    if (states == NULL || brackets == NULL) {
+        return fail(sys, -1, -1, sys->time, "out of memory preparing %zu event indicators", n);
+    }
+    memset(states, 0, n * sizeof *states);
+    memset(brackets, 0, n * sizeof *brackets);
+    return 0;
 }
 
 int hybrid_step(ssx_system *sys, double t, double t_next)
@@ -736,7 +593,7 @@ int hybrid_step(ssx_system *sys, double t, double t_next)
                             .do_steps_before = sys->stats.do_step_calls,
                             .restores_before = sys->stats.state_restores};
         for (int i = 0; i < sys->n_indicators; ++i) {
-            sys->indicators[i].z_left = sys->indicators[i].value;
+            sys->brackets[i].z_left = sys->indicator_states[i].value;
         }
         if (snapshot_all(sys, MACRO_SLOT) != 0 || coupling_step(sys, a0, t_next - a0) != 0 ||
             indicators_evaluate(sys, t_next) != 0) {
@@ -745,10 +602,10 @@ int hybrid_step(ssx_system *sys, double t, double t_next)
         sys->stats.macro_steps++;
         if (!any_fires(sys)) {
             for (int i = 0; i < sys->n_indicators; ++i) {
-                indicator_follow(&sys->indicators[i], sys->indicators[i].value);
+                indicator_follow(&sys->indicator_states[i], sys->indicator_states[i].value);
             }
             sys->time = t_next;
-            return system_record(sys, t_next, 0);
+            return record_grid_point(sys, t_next);
         }
         if (locate(sys, &br) != 0) {
             return -1;

@@ -4,9 +4,9 @@
 
 #include "system.h"
 
+/* Allocates the indicators' states and localization workspace for the system as built. */
+int hybrid_prepare(ssx_system *sys);
 /* Advances the system from t to t_next, locating and handling every event in between. */
 int hybrid_step(ssx_system *sys, double t, double t_next);
-/* locator names a localization method (an ssx_locator). */
-int hybrid_locator_known(int locator);
 
 #endif

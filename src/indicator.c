@@ -4,11 +4,12 @@
 #include <math.h>
 
 #include "error.h"
+#include "system.h"
 
 int indicators_evaluate(ssx_system *sys, double t)
 {
     for (int i = 0; i < sys->n_indicators; ++i) {
-        ssx_indicator *ind = &sys->indicators[i];
+        const ssx_indicator *ind = &sys->indicators[i];
         const ssx_component *c = sys->components[ind->component];
         double value;
         if (ind->output >= 0) {
@@ -25,43 +26,54 @@ int indicators_evaluate(ssx_system *sys, double t)
                         "component '%s': indicator %d is not finite (%g) at t=%.17g", c->name, i,
                         value, t);
         }
-        ind->value = value;
+        sys->indicator_states[i].value = value;
     }
     return 0;
 }
 
-int indicator_crossing(const ssx_indicator *ind, double z)
+void indicators_start(ssx_system *sys)
 {
-    if (ind->on_zero) {
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        indicator_state *s = &sys->indicator_states[i];
+        s->sign = 0;
+        s->fired_before = 0;
+        s->fire_count = 0;
+        indicator_follow(s, s->value);
+    }
+}
+
+int indicator_crossing(const indicator_state *s, double z)
+{
+    if (s->on_zero) {
         return 0;
     }
-    if (ind->sign > 0 && z <= 0.0) {
+    if (s->sign > 0 && z <= 0.0) {
         return -1;
     }
-    if (ind->sign < 0 && z >= 0.0) {
+    if (s->sign < 0 && z >= 0.0) {
         return +1;
     }
     return 0;
 }
 
-int indicator_fires(const ssx_indicator *ind, double z)
+int indicator_fires(const ssx_indicator *ind, const indicator_state *s, double z)
 {
-    int crossing = indicator_crossing(ind, z);
+    int crossing = indicator_crossing(s, z);
     return crossing != 0 && (ind->direction == 0 || ind->direction == crossing);
 }
 
-void indicator_follow(ssx_indicator *ind, double z)
+void indicator_follow(indicator_state *s, double z)
 {
-    if (ind->sign == 0) {
-        ind->sign = z > 0.0 ? 1 : z < 0.0 ? -1 : 0;
-        ind->on_zero = 0;
-    } else if (ind->on_zero) {
+    if (s->sign == 0) {
+        s->sign = z > 0.0 ? 1 : z < 0.0 ? -1 : 0;
+        s->on_zero = 0;
+    } else if (s->on_zero) {
         if (z != 0.0) {
-            ind->sign = z > 0.0 ? 1 : -1;
-            ind->on_zero = 0;
+            s->sign = z > 0.0 ? 1 : -1;
+            s->on_zero = 0;
         }
-    } else if (indicator_crossing(ind, z) != 0) {
-        ind->sign = -ind->sign;
-        ind->on_zero = z == 0.0;
+    } else if (indicator_crossing(s, z) != 0) {
+        s->sign = -s->sign;
+        s->on_zero = z == 0.0;
     }
 }

@@ -8,17 +8,41 @@
 #ifndef SSX_INDICATOR_H
 #define SSX_INDICATOR_H
 
-#include "system.h"
+#include "syssimx_engine.h"
 
-/* Evaluates every indicator at the current state (time t) into its value. */
+/* What an indicator is, as built: which value it watches and which crossings fire. */
+typedef struct {
+    int component;
+    int output; /* -1 for a callback indicator */
+    int (*evaluate)(void *user, double t, double *value);
+    void *user;
+    int direction;
+} ssx_indicator;
+
+/* Where an indicator stands in a run: its value, its side, its events so far. */
+typedef struct {
+    double value;
+    int sign;    /* side the indicator is on: -1 or +1; 0 while unknown (started at zero) */
+    int on_zero; /* reached exactly zero in its last crossing and stays there: no new crossing
+                    until it leaves zero, whichever side it leaves to */
+    int fired_before;
+    double last_event_time;
+    double last_interval; /* between its last two events (infinite after the first) */
+    long fire_count;
+} indicator_state;
+
+/* Evaluates every indicator at the current state (time t) into its state's value. */
 int indicators_evaluate(ssx_system *sys, double t);
+/* At ssx_initialize, once the values at t0 are evaluated: no events yet, each indicator on
+ * the side of its value (none when it is zero). */
+void indicators_start(ssx_system *sys);
 /* -1 / +1 when z lies on the far side of the indicator's sign or on zero (and the indicator
  * does not rest on zero already), else 0. */
-int indicator_crossing(const ssx_indicator *ind, double z);
+int indicator_crossing(const indicator_state *s, double z);
 /* A crossing in the indicator's direction. */
-int indicator_fires(const ssx_indicator *ind, double z);
+int indicator_fires(const ssx_indicator *ind, const indicator_state *s, double z);
 /* After accepting a state with value z: flips the sign on a crossing (any direction), starts
  * or ends a rest on zero. With no side yet (sign 0), takes the side of z. */
-void indicator_follow(ssx_indicator *ind, double z);
+void indicator_follow(indicator_state *s, double z);
 
 #endif

@@ -6,7 +6,6 @@
 #include "component.h"
 #include "coupling.h"
 #include "error.h"
-#include "hybrid.h"
 #include "indicator.h"
 #include "system.h"
 
@@ -37,35 +36,6 @@ static int check_components(ssx_system *sys)
     return 0;
 }
 
-static int start_history(ssx_system *sys)
-{
-    int n = sys->n_components;
-    int *columns = malloc(((size_t)n + 1) * sizeof *columns);
-    double **views = realloc(sys->output_views, ((size_t)n + 1) * sizeof *views);
-    if (views != NULL) {
-        sys->output_views = views;
-    }
-    if (columns == NULL || views == NULL) {
-        free(columns);
-        return fail(sys, -1, -1, sys->time, "out of memory starting the history");
-    }
-    for (int i = 0; i < n; ++i) {
-        columns[i] = sys->components[i]->n_outputs;
-        views[i] = sys->components[i]->outputs;
-    }
-    int status = history_start(&sys->history, n, columns);
-    free(columns);
-    if (status != 0) {
-        return fail(sys, -1, -1, sys->time, "out of memory starting the history");
-    }
-    return 0;
-}
-
-const ssx_termination *ssx_get_termination(const ssx_system *sys)
-{
-    return sys != NULL ? &sys->termination : NULL;
-}
-
 int ssx_set_allow_non_finite(ssx_system *sys, int allow)
 {
     sys->allow_non_finite = allow != 0;
@@ -82,10 +52,10 @@ int ssx_initialize(ssx_system *sys, double t0)
     sys->time = t0;
     sys->termination.component = -1;
     memset(&sys->stats, 0, sizeof sys->stats);
-    sys->n_events = 0;
     localization_log_clear(&sys->localization);
     sys->stepping_hybrid = system_is_hybrid(sys);
-    if (check_components(sys) != 0 || coupling_prepare(sys) != 0) {
+    if (check_components(sys) != 0 || coupling_prepare(sys) != 0 ||
+        master_algorithm_choose(sys) != 0) {
         return -1;
     }
     for (int i = 0; i < sys->n_components; ++i) {
@@ -100,33 +70,17 @@ int ssx_initialize(ssx_system *sys, double t0)
             return -1;
         }
     }
-    if (coupling_settle(sys, t0) != 0 || start_history(sys) != 0 ||
+    if (coupling_settle(sys, t0) != 0 || recording_start(sys) != 0 ||
         indicators_evaluate(sys, t0) != 0) {
         return -1;
     }
-    for (int i = 0; i < sys->n_indicators; ++i) {
-        ssx_indicator *ind = &sys->indicators[i];
-        ind->sign = 0;
-        ind->fired_before = 0;
-        ind->fire_count = 0;
-        indicator_follow(ind, ind->value);
-    }
-    if (system_record(sys, t0, 0) != 0) {
+    indicators_start(sys);
+    if (record_grid_point(sys, t0) != 0) {
         return -1;
     }
     sys->zero_start_pending = 1;
     sys->initialized = 1;
     return 0;
-}
-
-static int plain_step(ssx_system *sys, double t, double t_next)
-{
-    if (coupling_step(sys, t, t_next - t) != 0) {
-        return -1;
-    }
-    sys->stats.macro_steps++;
-    sys->time = t_next;
-    return system_record(sys, t_next, 0);
 }
 
 static int stopped_by_monitor(ssx_system *sys, double t)
@@ -139,12 +93,11 @@ static int stopped_by_monitor(ssx_system *sys, double t)
 
 static int run_grid(ssx_system *sys, double t0, double tf, double dt, long n_steps)
 {
-    int hybrid = system_is_hybrid(sys);
     double t = t0;
     monitor_start(&sys->monitor);
     for (long k = 1; k <= n_steps; ++k) {
         double t_next = k == n_steps ? tf : t0 + (double)k * dt;
-        int status = hybrid ? hybrid_step(sys, t, t_next) : plain_step(sys, t, t_next);
+        int status = sys->algorithm->step(sys, t, t_next);
         if (sys->termination.component >= 0) {
             /* the end, not a failure: sys->time is the last point the whole system completed */
             clear_error(sys);
@@ -203,10 +156,10 @@ int ssx_run(ssx_system *sys, double t0, double tf, double dt)
     if (n_steps < 1 && tf > t0) {
         n_steps = 1;
     }
-    if (history_reserve(&sys->history, (size_t)n_steps) != 0) {
-        return fail(sys, -1, -1, t0, "out of memory reserving history samples");
+    if (recording_run_start(sys, (size_t)n_steps, tf) != 0) {
+        return -1;
     }
     int status = run_grid(sys, t0, tf, dt, n_steps);
-    history_trim(&sys->history);
+    recording_run_end(sys);
     return status;
 }

@@ -299,6 +299,10 @@ const int *ssx_history_micro(const ssx_system *sys); /* -1: a localization trial
                                                        (record_internal_steps) */
 const double *ssx_history_values(const ssx_system *sys, int component);
 size_t ssx_history_bytes(const ssx_system *sys); /* bytes allocated for the history */
+/* Decimation: the history keeps every grid_steps-th communication point (counted from t0),
+ * the last point of each ssx_run and every event instant and trial. 1, the default, keeps
+ * every sample. Takes effect at the next ssx_initialize. */
+int ssx_set_output_interval(ssx_system *sys, int grid_steps);
 /* A reference to the buffers the history accessors return now: until it is released, their
  * first ssx_history_length() samples are never written, moved or freed, whatever the system
  * does (record, initialize again, ssx_system_free). This is how Python hands out numpy arrays

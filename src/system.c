@@ -1,5 +1,5 @@
 /* Building a system: components, ports, connections, indicators, event connections, schedule
- * and options; plus the read-only accessors of its results. */
+ * and options. Its results are read in results.c. */
 #define _POSIX_C_SOURCE 200809L
 
 #include "system.h"
@@ -9,8 +9,8 @@
 #include <string.h>
 
 #include "array.h"
+#include "coupling.h"
 #include "error.h"
-#include "hybrid.h"
 
 ssx_system *ssx_system_new(const char *name)
 {
@@ -36,6 +36,7 @@ ssx_system *ssx_system_new(const char *name)
                                        .locator = SSX_ILLINOIS,
                                        .zeno_min_interval = 0.0};
     sys->termination.component = -1;
+    recording_init(&sys->recording);
     clear_error(sys);
     return sys;
 }
@@ -51,12 +52,12 @@ void ssx_system_free(ssx_system *sys)
     free(sys->components);
     free(sys->connections);
     free(sys->indicators);
+    free(sys->indicator_states);
+    free(sys->brackets);
     free(sys->event_links);
     free(sys->order);
     free(sys->groups);
-    history_free(&sys->history);
-    free(sys->output_views);
-    free(sys->events);
+    recording_free(&sys->recording);
     localization_log_free(&sys->localization);
     free(sys->name);
     free(sys);
@@ -150,11 +151,6 @@ int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks)
     return 0;
 }
 
-int ssx_component_count(const ssx_system *sys)
-{
-    return sys->n_components;
-}
-
 static int valid_type(ssx_value_type type)
 {
     return type == SSX_REAL || type == SSX_INTEGER || type == SSX_BOOLEAN;
@@ -242,18 +238,6 @@ double *ssx_inputs(ssx_system *sys, int component)
 {
     ssx_component *c = system_component(sys, component);
     return c != NULL ? c->inputs : NULL;
-}
-
-int ssx_output_count(const ssx_system *sys, int component)
-{
-    return component >= 0 && component < sys->n_components ? sys->components[component]->n_outputs
-                                                            : -1;
-}
-
-int ssx_input_count(const ssx_system *sys, int component)
-{
-    return component >= 0 && component < sys->n_components ? sys->components[component]->n_inputs
-                                                            : -1;
 }
 
 int ssx_connect(ssx_system *sys, int src_component, int src_output, int dst_component,
@@ -353,17 +337,6 @@ int ssx_add_indicator_callback(ssx_system *sys, int component,
                                               .direction = direction});
 }
 
-int ssx_indicator_count(const ssx_system *sys)
-{
-    return sys->n_indicators;
-}
-
-double ssx_indicator_value(const ssx_system *sys, int indicator)
-{
-    return indicator >= 0 && indicator < sys->n_indicators ? sys->indicators[indicator].value
-                                                           : NAN;
-}
-
 int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_component)
 {
     if (indicator < 0 || indicator >= sys->n_indicators) {
@@ -448,7 +421,7 @@ int ssx_set_schedule(ssx_system *sys, const int *order, const int *group_sizes,
 
 int ssx_set_coupling(ssx_system *sys, ssx_coupling coupling)
 {
-    if (coupling != SSX_GAUSS_SEIDEL && coupling != SSX_JACOBI) {
+    if (!coupling_known((int)coupling)) {
         return fail(sys, -1, -1, NAN, "unknown coupling %d (0 Gauss-Seidel, 1 Jacobi)",
                     (int)coupling);
     }
@@ -501,7 +474,7 @@ int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, i
 {
     if (!(tol_time > 0.0) || !isfinite(tol_time) || !(tol_value >= 0.0) || !isfinite(tol_value) ||
         max_iterations < 1 || max_microsteps < 1 || !isfinite(zeno_min_interval) ||
-        !hybrid_locator_known((int)locator)) {
+        !locator_known((int)locator)) {
         return fail(sys, -1, -1, NAN,
                     "hybrid options: need tol_time > 0, tol_value >= 0, max_iterations >= 1, "
                     "max_microsteps >= 1, a finite zeno_min_interval and a known locator (an "
@@ -518,11 +491,6 @@ int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, i
     return 0;
 }
 
-double ssx_time(const ssx_system *sys)
-{
-    return sys->time;
-}
-
 int ssx_set_monitor(ssx_system *sys, int (*monitor)(void *user, double t), void *user)
 {
     sys->monitor.call = monitor;
@@ -530,102 +498,13 @@ int ssx_set_monitor(ssx_system *sys, int (*monitor)(void *user, double t), void 
     return 0;
 }
 
-int system_record(ssx_system *sys, double t, int micro)
+int ssx_set_output_interval(ssx_system *sys, int grid_steps)
 {
-    if (history_append(&sys->history, t, micro, (const double *const *)sys->output_views) != 0) {
-        return fail(sys, -1, -1, t, "out of memory recording the sample at t=%.17g", t);
+    if (grid_steps < 1) {
+        return fail(sys, -1, -1, NAN,
+                    "system '%s': the output interval is a number of grid steps >= 1, not %d",
+                    sys->name, grid_steps);
     }
-    for (int i = 0; i < sys->n_components; ++i) {
-        ssx_component *c = sys->components[i];
-        /* most components have no record hook: skip the call on every sample */
-        if (c->hooks.record != NULL && component_record(sys, c, t) != 0) {
-            return -1;
-        }
-    }
+    sys->recording.output_interval = grid_steps;
     return 0;
-}
-
-int system_add_event_record(ssx_system *sys, const ssx_event_record *record)
-{
-    if (array_reserve((void **)&sys->events, &sys->events_capacity, sys->n_events + 1,
-                      sizeof *sys->events, 16) != 0) {
-        return fail(sys, record->component, record->indicator, record->t,
-                    "out of memory recording an event");
-    }
-    sys->events[sys->n_events++] = *record;
-    return 0;
-}
-
-size_t ssx_history_length(const ssx_system *sys)
-{
-    return sys->history.length;
-}
-
-const double *ssx_history_time(const ssx_system *sys)
-{
-    return sys->history.block != NULL ? sys->history.block->time.data : NULL;
-}
-
-const int *ssx_history_micro(const ssx_system *sys)
-{
-    return sys->history.block != NULL ? sys->history.block->micro.data : NULL;
-}
-
-const double *ssx_history_values(const ssx_system *sys, int component)
-{
-    const ssx_history_block *b = sys->history.block;
-    if (b == NULL || component < 0 || component >= b->n_components) {
-        return NULL;
-    }
-    return b->values[component].data;
-}
-
-size_t ssx_history_bytes(const ssx_system *sys)
-{
-    return history_bytes(&sys->history);
-}
-
-ssx_history_block *ssx_history_retain(ssx_system *sys)
-{
-    return sys->history.block != NULL ? history_block_retain(sys->history.block) : NULL;
-}
-
-void ssx_history_release(ssx_history_block *block)
-{
-    history_block_release(block);
-}
-
-size_t ssx_event_count(const ssx_system *sys)
-{
-    return sys->n_events;
-}
-
-int ssx_event_get(const ssx_system *sys, size_t index, ssx_event_record *out)
-{
-    if (index >= sys->n_events || out == NULL) {
-        return -1;
-    }
-    *out = sys->events[index];
-    return 0;
-}
-
-size_t ssx_event_trial_count(const ssx_system *sys)
-{
-    return sys->localization.n_trials;
-}
-
-int ssx_event_trial(const ssx_system *sys, size_t index, ssx_localization_trial *out)
-{
-    if (index >= sys->localization.n_trials || out == NULL) {
-        return -1;
-    }
-    *out = sys->localization.trials[index];
-    return 0;
-}
-
-void ssx_get_statistics(const ssx_system *sys, ssx_statistics *out)
-{
-    if (out != NULL) {
-        *out = sys->stats;
-    }
 }

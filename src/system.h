@@ -2,10 +2,13 @@
 #ifndef SSX_SYSTEM_H
 #define SSX_SYSTEM_H
 
+#include "algorithm.h"
 #include "component.h"
-#include "history.h"
+#include "indicator.h"
+#include "locator.h"
 #include "localization_log.h"
 #include "monitor.h"
+#include "recording.h"
 #include "syssimx_engine.h"
 
 typedef struct {
@@ -16,27 +19,6 @@ typedef struct {
     double scale;
     double offset;
 } ssx_connection;
-
-typedef struct {
-    int component;
-    int output; /* -1 for a callback indicator */
-    int (*evaluate)(void *user, double t, double *value);
-    void *user;
-    int direction;
-    double value;
-    int sign;   /* side the indicator is on: -1 or +1; 0 while unknown (started at zero) */
-    int on_zero; /* reached exactly zero in its last crossing and stays there: no new crossing
-                    until it leaves zero, whichever side it leaves to */
-    int fired_before;
-    double last_event_time;
-    double last_interval; /* between its last two events (infinite after the first) */
-    long fire_count;
-    /* localization workspace */
-    double z_left, z_right;  /* values at the bracket ends */
-    double w_left, w_right;  /* Illinois-weighted values at the bracket ends */
-    double z_replaced;       /* value at the end the last trial replaced */
-    int crossing;            /* crosses (in its direction) at the current right end */
-} ssx_indicator;
 
 typedef struct {
     int indicator;
@@ -79,6 +61,9 @@ struct ssx_system {
     ssx_indicator *indicators;
     int n_indicators;
     size_t indicators_capacity;
+    /* per indicator, set up by the hybrid algorithm at ssx_initialize */
+    indicator_state *indicator_states;
+    indicator_bracket *brackets; /* the localization workspace */
 
     ssx_event_link *event_links;
     int n_event_links;
@@ -90,14 +75,13 @@ struct ssx_system {
     int has_schedule;
 
     ssx_coupling coupling;
+    /* chosen at ssx_initialize */
+    const ssx_master_algorithm *algorithm;
+    int (*coupled_step)(ssx_system *sys, double t, double h); /* the coupling's step */
     ssx_loop_options loop;
     ssx_hybrid_options hybrid;
 
-    ssx_history history;
-    double **output_views; /* per component: its outputs array, for recording */
-    ssx_event_record *events;
-    size_t n_events;
-    size_t events_capacity;
+    ssx_recording recording;
     ssx_localization_log localization;
     ssx_statistics stats;
     ssx_error error;
@@ -116,8 +100,5 @@ ssx_component *system_component(ssx_system *sys, int index); /* NULL with the er
 int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
                          const ssx_component_ops *ops);
 int system_is_hybrid(const ssx_system *sys);
-/* Appends one sample (t, micro) of every component's outputs and calls the record hooks. */
-int system_record(ssx_system *sys, double t, int micro);
-int system_add_event_record(ssx_system *sys, const ssx_event_record *record);
 
 #endif

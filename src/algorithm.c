@@ -1,0 +1,31 @@
+/* The table of master algorithms. */
+#include "algorithm.h"
+
+#include "coupling.h"
+#include "hybrid.h"
+#include "system.h"
+
+/* No events: one coupled step per communication step. */
+static int plain_step(ssx_system *sys, double t, double t_next)
+{
+    if (coupling_step(sys, t, t_next - t) != 0) {
+        return -1;
+    }
+    sys->stats.macro_steps++;
+    sys->time = t_next;
+    return record_grid_point(sys, t_next);
+}
+
+enum { PLAIN, HYBRID };
+
+static const ssx_master_algorithm ALGORITHMS[] = {
+    [PLAIN] = {NULL, plain_step},
+    [HYBRID] = {hybrid_prepare, hybrid_step},
+};
+
+int master_algorithm_choose(ssx_system *sys)
+{
+    const ssx_master_algorithm *algorithm = &ALGORITHMS[system_is_hybrid(sys) ? HYBRID : PLAIN];
+    sys->algorithm = algorithm;
+    return algorithm->prepare != NULL ? algorithm->prepare(sys) : 0;
+}

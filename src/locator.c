@@ -1,0 +1,172 @@
+/* Localization methods: bisection, Illinois, and the default, Illinois helped by secant steps
+ * and held within two trials of bisection. */
+#include "locator.h"
+
+#include <math.h>
+
+/* How far past a one-sided secant estimate the next trial aims, as a fraction of its step. */
+#define OVERSHOOT 0.1
+
+/* Regula falsi on the Illinois-weighted end values of one indicator; NAN when not usable. A far
+ * end exactly on zero tells nothing of where the indicator reached zero (it may rest there). */
+static double illinois_point(const indicator_bracket *end, const bracket_state *st)
+{
+    if (end->z_right == 0.0 || end->w_left * end->w_right > 0.0 || end->w_left == end->w_right) {
+        return NAN;
+    }
+    return st->a + (st->b - st->a) * end->w_left / (end->w_left - end->w_right);
+}
+
+/* The secant through the end the last trial moved, before and after: where the indicator
+ * extrapolates to zero. Inside the bracket it lands close to the zero, on the far side of it
+ * when the indicator curves away, so that the stale end moves too. NAN when not usable, also
+ * when the indicator did not change (a piecewise-constant indicator has no slope there). */
+static double secant_point(const indicator_bracket *end, const bracket_state *st)
+{
+    if (st->moved == SIDE_NONE) {
+        return NAN;
+    }
+    double x = st->moved == SIDE_RIGHT ? st->b : st->a;
+    double z = st->moved == SIDE_RIGHT ? end->z_right : end->z_left;
+    if (z == end->z_replaced) {
+        return NAN;
+    }
+    double t = x - z * (x - st->replaced) / (z - end->z_replaced);
+    return t > st->a && t < st->b ? t : NAN;
+}
+
+/* The earliest of an estimate over the crossing indicators; NAN when none is usable. */
+static double earliest_point(const indicator_bracket *ends, int n, const bracket_state *st,
+                             double (*point)(const indicator_bracket *, const bracket_state *),
+                             int skip_flat)
+{
+    double earliest = NAN;
+    for (int i = 0; i < n; ++i) {
+        const indicator_bracket *end = &ends[i];
+        if (!end->crossing) {
+            continue;
+        }
+        if (skip_flat && st->moved != SIDE_NONE &&
+            (st->moved == SIDE_RIGHT ? end->z_right : end->z_left) == end->z_replaced) {
+            continue;
+        }
+        double estimate = point(end, st);
+        if (isfinite(estimate) && (isnan(earliest) || estimate < earliest)) {
+            earliest = estimate;
+        }
+    }
+    return earliest;
+}
+
+static double illinois_estimate(const indicator_bracket *ends, int n, const bracket_state *st)
+{
+    return earliest_point(ends, n, st, illinois_point, 0);
+}
+
+/* Secant steps where they land inside the bracket, Illinois elsewhere; an indicator that kept
+ * its value over the last trial is flat there and gives no estimate. */
+static double secant_illinois_estimate(const indicator_bracket *ends, int n,
+                                       const bracket_state *st)
+{
+    double t = earliest_point(ends, n, st, secant_point, 1);
+    if (isnan(t)) {
+        return earliest_point(ends, n, st, illinois_point, 1);
+    }
+    if (st->moved == st->moved_before) {
+        /* one end converges, the other stays: aim a little past the estimate, by a tenth of
+         * the step the secant takes, so that the stale end moves in next */
+        double x = st->moved == SIDE_RIGHT ? st->b : st->a;
+        double past = t + OVERSHOOT * (t - x);
+        return past > st->a && past < st->b ? past : t;
+    }
+    return t;
+}
+
+/* The Illinois modification: an end that stays twice in a row has its weight halved, so the
+ * secant cannot creep towards the root from one side only. */
+static void illinois_after_trial(indicator_bracket *ends, int n, const bracket_state *st)
+{
+    if (st->moved != st->moved_before) {
+        return;
+    }
+    for (int i = 0; i < n; ++i) {
+        if (st->moved == SIDE_RIGHT) {
+            ends[i].w_left *= 0.5;
+        } else {
+            ends[i].w_right *= 0.5;
+        }
+    }
+}
+
+static double midpoint_estimate(const indicator_bracket *ends, int n, const bracket_state *st)
+{
+    (void)ends;
+    (void)n;
+    return 0.5 * (st->a + st->b);
+}
+
+static void keep_no_weights(indicator_bracket *ends, int n, const bracket_state *st)
+{
+    (void)ends;
+    (void)n;
+    (void)st;
+}
+
+/* The default keeps Illinois's superlinear steps on smooth indicators, helped by secant steps
+ * through the end just moved, and is held within two trials of bisection: on a
+ * piecewise-constant indicator (an FMU output that changes only at the FMU's own steps) plain
+ * Illinois can shrink the bracket by a sliver per trial. */
+static const locator_method LOCATORS[] = {
+    [SSX_ILLINOIS] = {secant_illinois_estimate, illinois_after_trial, 2},
+    [SSX_BISECTION] = {midpoint_estimate, keep_no_weights, 0},
+    [SSX_ILLINOIS_UNGUARDED] = {illinois_estimate, illinois_after_trial, LOCATOR_UNBOUNDED},
+};
+
+int locator_known(int locator)
+{
+    return locator >= 0 && locator < (int)(sizeof LOCATORS / sizeof *LOCATORS);
+}
+
+const locator_method *locator_method_of(ssx_locator locator)
+{
+    return &LOCATORS[locator];
+}
+
+/* Bisection's iteration count from a bracket of width w down to tol. */
+static int bisection_count(double w, double tol)
+{
+    int n = 0;
+    for (; w > tol; w *= 0.5) {
+        ++n;
+    }
+    return n;
+}
+
+int locator_budget(const locator_method *method, double w, double tol)
+{
+    return method->slack == LOCATOR_UNBOUNDED ? LOCATOR_UNBOUNDED
+                                              : bisection_count(w, tol) + method->slack;
+}
+
+double locator_next_trial(const locator_method *method, const indicator_bracket *ends, int n,
+                          const bracket_state *st, double tol, double final_width, int budget,
+                          int done)
+{
+    double a = st->a;
+    double b = st->b;
+    double t = method->estimate(ends, n, st);
+    if (!(t > a && t < b)) {
+        t = 0.5 * (a + b);
+    }
+    /* half a tolerance inside the bracket: the far end also moves when the estimate
+     * converges from one side */
+    double lo = a + 0.5 * tol;
+    double hi = b - 0.5 * tol;
+    if (budget != LOCATOR_UNBOUNDED) {
+        double reach = ldexp(final_width, budget - done - 1);
+        lo = fmax(lo, b - reach);
+        hi = fmin(hi, a + reach);
+    }
+    /* rounding can leave no room at the last halvings: the midpoint then */
+    return lo <= hi ? fmin(fmax(t, lo), hi) : 0.5 * (a + b);
+}

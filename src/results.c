@@ -1,0 +1,96 @@
+/* The read-only accessors of a system's results: where it stands, its history, event records,
+ * localization trials and statistics. */
+#include <math.h>
+#include <stddef.h>
+
+#include "system.h"
+
+double ssx_time(const ssx_system *sys)
+{
+    return sys->time;
+}
+
+const ssx_termination *ssx_get_termination(const ssx_system *sys)
+{
+    return sys != NULL ? &sys->termination : NULL;
+}
+
+/* The history observer's block: one every system has, decimated or not. */
+static ssx_history_block *history_block(const ssx_system *sys)
+{
+    return sys->recording.history.history.block;
+}
+
+size_t ssx_history_length(const ssx_system *sys)
+{
+    return sys->recording.history.history.length;
+}
+
+const double *ssx_history_time(const ssx_system *sys)
+{
+    return history_block(sys) != NULL ? history_block(sys)->time.data : NULL;
+}
+
+const int *ssx_history_micro(const ssx_system *sys)
+{
+    return history_block(sys) != NULL ? history_block(sys)->micro.data : NULL;
+}
+
+const double *ssx_history_values(const ssx_system *sys, int component)
+{
+    const ssx_history_block *b = history_block(sys);
+    if (b == NULL || component < 0 || component >= b->n_components) {
+        return NULL;
+    }
+    return b->values[component].data;
+}
+
+size_t ssx_history_bytes(const ssx_system *sys)
+{
+    return history_bytes(&sys->recording.history.history);
+}
+
+ssx_history_block *ssx_history_retain(ssx_system *sys)
+{
+    return history_block(sys) != NULL ? history_block_retain(history_block(sys)) : NULL;
+}
+
+void ssx_history_release(ssx_history_block *block)
+{
+    history_block_release(block);
+}
+
+size_t ssx_event_count(const ssx_system *sys)
+{
+    return sys->recording.n_events;
+}
+
+int ssx_event_get(const ssx_system *sys, size_t index, ssx_event_record *out)
+{
+    if (index >= sys->recording.n_events || out == NULL) {
+        return -1;
+    }
+    *out = sys->recording.events[index];
+    return 0;
+}
+
+size_t ssx_event_trial_count(const ssx_system *sys)
+{
+    return sys->localization.n_trials;
+}
+
+int ssx_event_trial(const ssx_system *sys, size_t index, ssx_localization_trial *out)
+{
+    if (index >= sys->localization.n_trials || out == NULL) {
+        return -1;
+    }
+    *out = sys->localization.trials[index];
+    return 0;
+}
+
+void ssx_get_statistics(const ssx_system *sys, ssx_statistics *out)
+{
+    if (out != NULL) {
+        *out = sys->stats;
+    }
+}
