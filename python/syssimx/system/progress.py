@@ -31,7 +31,9 @@ class ProgressBar:
         if self._bar is None:
             from tqdm import tqdm
 
+            # the monitor already paces the reports (~50 ms): tqdm draws each one
             self._bar = tqdm(total=tf - self.t0, unit="s", delay=self.delay, leave=False,
+                             mininterval=0.0, miniters=0,
                              file=self.stream if self.stream is not None else sys.stderr,
                              bar_format="{l_bar}{bar}| {n:.4g}/{total:.4g} s simulated "
                                         "[{elapsed}<{remaining}]")
