@@ -66,6 +66,22 @@ def test_event_is_located_at_the_exact_quarter_period(capsys: pytest.CaptureFixt
     assert final_theta is not None and float(final_theta.group(1)) < 0
 
 
+def test_csv_of_a_run_with_an_event_repeats_the_event_time(tmp_path: Path,
+                                                          capsys: pytest.CaptureFixture[str]):
+    """The wide layout of result.to_csv: no micro column, the event instant is two rows (before
+    and after handling), as in SysSimX's CSV."""
+    out = tmp_path / "out.csv"
+    argv = ["simulate", "pendulum_cvode", "--stop-time", "1", "--step-size", "0.05",
+            "--set", "theta0=0.5", "--set", "cvode_relative_tolerance=1e-10",
+            "--event", "theta:falling", "--output", str(out)]
+    assert main(argv) == 0
+    event_time = float(re.search(r"at t = (\S+)", capsys.readouterr().out).group(1))
+    assert out.read_text().splitlines()[0] == "time,theta [rad],omega [rad/s],alpha [rad/s2]"
+    times = read_csv(out)["time"]
+    assert len(times) == 21 + 2
+    assert times.tolist().count(event_time) == 2
+
+
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
