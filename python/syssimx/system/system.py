@@ -25,7 +25,8 @@ from .connection import Connection, EventConnection
 from .failure import raise_failure
 from .plan import EnginePlan
 from .progress import ProgressCallback, run_progress
-from .results import HistoryView, SimulationResult, SystemHistory, read_events
+from .results import HistoryView, SimulationResult, read_events
+from .system_history import SystemHistory
 from .termination import Termination, read_termination
 
 logger = logging.getLogger("syssimx.system")
