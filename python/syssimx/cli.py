@@ -19,8 +19,10 @@ from __future__ import annotations
 import argparse
 import itertools
 import math
+import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
@@ -315,8 +317,9 @@ def _run_config(args: argparse.Namespace, out: TextIO) -> None:
     from .system.loader import run_from_config
 
     bar = not args.quiet and sys.stdout.isatty() and sys.stderr.isatty()
-    result = run_from_config(args.config, t0=args.t0, tf=args.tf, dt=args.dt,
-                             progress=True if bar else None)
+    with _working_directory_importable():
+        result = run_from_config(args.config, t0=args.t0, tf=args.tf, dt=args.dt,
+                                 progress=True if bar else None)
     out.write(f"Completed '{result.system_name}': t in [{result.t0}, {result.tf}] s, "
               f"dt = {result.dt} s, algorithm = {result.algorithm}, "
               f"wall time = {result.wall_time:.3f} s\n")
@@ -331,11 +334,24 @@ def _run_config(args: argparse.Namespace, out: TextIO) -> None:
 def _describe_config(args: argparse.Namespace, out: TextIO) -> None:
     from .system.loader import build_system, load_config
 
-    system = build_system(args.config)
+    with _working_directory_importable():
+        system = build_system(args.config)
     if args.initialize:
         run = load_config(args.config).get("run") or {}
         system.initialize(float(run.get("t0", 0.0)) if isinstance(run, dict) else 0.0)
     out.write(system.describe() + "\n")
+
+
+@contextmanager
+def _working_directory_importable() -> Iterator[None]:
+    """Component classes ("module:Class") are also found in the working directory, as with
+    SysSimX's command line: a console script's sys.path does not have it."""
+    saved = list(sys.path)
+    sys.path.insert(0, os.getcwd())
+    try:
+        yield
+    finally:
+        sys.path[:] = saved
 
 
 def _experiment(args: argparse.Namespace, experiment: Any) -> tuple[float, float, float]:

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import csv
 import re
+import sys
 from pathlib import Path
 
 import coupled_pendulums
@@ -87,6 +88,24 @@ def test_run_without_output_writes_no_file(tmp_path: Path, monkeypatch: pytest.M
     lines = capsys.readouterr().out.splitlines()
     assert len(lines) == 1 and lines[0].startswith("Completed 'QuickstartSystem': t in [0.0, 5.0]")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_component_classes_are_found_in_the_working_directory(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]):
+    """As with SysSimX's command line: the module beside neither the description nor on
+    sys.path, but in the directory the command runs in."""
+    work, configs = tmp_path / "work", tmp_path / "configs"
+    work.mkdir()
+    configs.mkdir()
+    (work / "my_blocks.py").write_text((EXAMPLES / "quickstart.py").read_text())
+    config = configs / "system.yaml"
+    config.write_text((EXAMPLES / "quickstart.yaml").read_text()
+                      .replace('"quickstart:', '"my_blocks:'))
+    monkeypatch.chdir(work)
+    monkeypatch.setattr(sys, "path", [p for p in sys.path if p not in ("", str(work))])
+    assert main(["run", str(config), "--quiet"]) == 0
+    assert capsys.readouterr().out.startswith("Completed 'QuickstartSystem'")
+    assert str(work) not in sys.path  # only while the command runs
 
 
 def test_describe_prints_the_structural_report(capsys: pytest.CaptureFixture[str]):
