@@ -120,7 +120,7 @@ def test_true_shows_no_bar_for_a_run_shorter_than_a_second(capsys: pytest.Captur
 
 def test_the_bar_shows_simulated_time():
     stream = io.StringIO()
-    bar = ProgressBar(0.0, 5.0, stream=stream, delay=0.0)
+    bar = ProgressBar(0.0, stream=stream, delay=0.0)
     bar(2.5, 5.0)
     bar(5.0, 5.0)
     bar.close()

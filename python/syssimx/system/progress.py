@@ -21,9 +21,9 @@ class ProgressBar:
     """A live bar over simulated time on `stream` (stderr by default), as a progress callback.
     tqdm is imported when the first report arrives."""
 
-    def __init__(self, t0: float, tf: float, stream: TextIO | None = None,
-                 delay: float = BAR_DELAY) -> None:
-        self.t0, self.tf, self.delay = t0, tf, delay
+    def __init__(self, t0: float, stream: TextIO | None = None, delay: float = BAR_DELAY
+                 ) -> None:
+        self.t0, self.delay = t0, delay
         self.stream = stream
         self._bar: Any = None
 
@@ -78,7 +78,7 @@ def run_progress(progress: bool | ProgressCallback | None, system: str, t0: floa
     if progress is None or progress is False:
         return None
     if progress is True:
-        return RunProgress(ProgressBar(t0, tf), tf)
+        return RunProgress(ProgressBar(t0), tf)
     if not callable(progress):
         raise ConfigurationError(f"{system}: progress must be True, False, None or a callable "
                                  f"progress(t, tf), got {progress!r}")
