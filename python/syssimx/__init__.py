@@ -42,6 +42,7 @@ from .system import (
 )
 
 __version__ = "0.1.0"
+__version_info__ = tuple(int(part) for part in __version__.split("."))
 
 __all__ = [
     "AlgebraicLoopError",
@@ -71,11 +72,22 @@ __all__ = [
     "SwitchRegions",
     "SysSimXError",
     "System",
+    "SystemGraphVisualizer",
     "TableSource",
     "Termination",
     "ZenoError",
     "__version__",
+    "__version_info__",
     "algorithms",
 ]
+
+
+def __getattr__(name: str) -> object:
+    """SystemGraphVisualizer is imported on first use: it needs the optional graphviz."""
+    if name == "SystemGraphVisualizer":
+        from .viz.system_graph_visualizer import SystemGraphVisualizer
+
+        return SystemGraphVisualizer
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 logging.getLogger(__name__).addHandler(logging.NullHandler())

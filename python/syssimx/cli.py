@@ -1,10 +1,13 @@
-"""The ``syssimx`` command line: inspect an FMU, list the bundled FMUs, simulate one FMU.
+"""The ``syssimx`` command line: inspect an FMU, list the bundled FMUs, simulate one FMU, run
+or describe a system description (YAML or JSON).
 
     syssimx info pendulum_cvode
     syssimx fmus
     syssimx simulate pendulum_euler --stop-time 1 --step-size 0.05 --set theta0=0.5 \\
         --event theta:-1 --output results.csv --plot results.png
     syssimx simulate Feedthrough.fmu --input signals.csv --tolerance 1e-8
+    syssimx run system.yaml --tf 10 --dt 0.01 -o results.csv
+    syssimx describe system.yaml
     syssimx --version
 
 An FMU argument is a path to a .fmu file or the name of a bundled FMU. Bad usage exits with
@@ -14,11 +17,12 @@ code 2, a failure while running with code 1; both print one clear line on stderr
 from __future__ import annotations
 
 import argparse
-import csv
 import itertools
 import math
+import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TextIO
 
@@ -27,6 +31,7 @@ import numpy as np
 from . import __version__, fmus
 from .core.port import PortType
 from .graph.analysis import feedthrough_from_model_description
+from .system.csv_export import write_wide
 
 if TYPE_CHECKING:
     from .components.table_source import TableSource
@@ -117,6 +122,26 @@ def _parser() -> argparse.ArgumentParser:
     simulate.add_argument("--plot", type=Path, default=None, metavar="PNG",
                           help="plot the real outputs to this PNG file")
     simulate.set_defaults(run=_simulate)
+
+    run = commands.add_parser("run", help="build, initialize and run a system description")
+    run.add_argument("config", help="a YAML or JSON system description")
+    run.add_argument("--t0", type=float, default=None, help="start time in s (default: the "
+                     "description's run.t0)")
+    run.add_argument("--tf", type=float, default=None, help="end time in s (default: run.tf)")
+    run.add_argument("--dt", type=float, default=None, help="macro step in s (default: run.dt)")
+    run.add_argument("--output", "-o", type=Path, default=None, metavar="CSV",
+                     help="write the results to this CSV file (long: component, port, time, "
+                          "value, unit)")
+    run.add_argument("--quiet", action="store_true",
+                     help="no progress bar (there is none either when not on a terminal)")
+    run.set_defaults(run=_run_config)
+
+    describe = commands.add_parser("describe", help="print the structure of a system "
+                                   "description: components, connections, order, loops")
+    describe.add_argument("config", help="a YAML or JSON system description")
+    describe.add_argument("--initialize", action="store_true",
+                          help="initialize the system first (at run.t0, else 0)")
+    describe.set_defaults(run=_describe_config)
     return parser
 
 
@@ -266,7 +291,7 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
     columns = {name: values[name] for name, spec in component.output_specs.items()
                if name in values and str(getattr(spec.type, "value", spec.type)) != "event"}
     if args.output is not None:
-        _write_csv(args.output, t, columns)
+        write_wide(args.output, t, columns, result.units[component.name])
         out.write(f"wrote {len(t)} samples of {len(columns)} outputs to {args.output}\n")
     if args.plot is not None:
         from .viz.plot import plot_result
@@ -285,6 +310,48 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
     if args.output is None:
         for name, series in columns.items():
             out.write(f"{name} = {series[-1]:.12g} at t = {t[-1]:.12g}\n")
+
+
+# ---------------------------------------------------------------------------------- run
+def _run_config(args: argparse.Namespace, out: TextIO) -> None:
+    from .system.loader import run_from_config
+
+    bar = not args.quiet and sys.stdout.isatty() and sys.stderr.isatty()
+    with _working_directory_importable():
+        result = run_from_config(args.config, t0=args.t0, tf=args.tf, dt=args.dt,
+                                 progress=True if bar else None)
+    out.write(f"Completed '{result.system_name}': t in [{result.t0}, {result.tf}] s, "
+              f"dt = {result.dt} s, algorithm = {result.algorithm}, "
+              f"wall time = {result.wall_time:.3f} s\n")
+    termination = result.termination
+    if termination is not None:  # a component asked to stop: the end of the run, not a failure
+        out.write(f"{termination}\n")
+    if args.output is not None:
+        out.write(f"Results written to {result.to_csv(args.output)}\n")
+
+
+# ---------------------------------------------------------------------------------- describe
+def _describe_config(args: argparse.Namespace, out: TextIO) -> None:
+    from .system.loader import build_system, load_config
+
+    with _working_directory_importable():
+        system = build_system(args.config)
+    if args.initialize:
+        run = load_config(args.config).get("run") or {}
+        system.initialize(float(run.get("t0", 0.0)) if isinstance(run, dict) else 0.0)
+    out.write(system.describe() + "\n")
+
+
+@contextmanager
+def _working_directory_importable() -> Iterator[None]:
+    """Component classes ("module:Class") are also found in the working directory, as with
+    SysSimX's command line: a console script's sys.path does not have it."""
+    saved = list(sys.path)
+    sys.path.insert(0, os.getcwd())
+    try:
+        yield
+    finally:
+        sys.path[:] = saved
 
 
 def _experiment(args: argparse.Namespace, experiment: Any) -> tuple[float, float, float]:
@@ -387,14 +454,6 @@ def _choose(given: float | None, default: Any, fallback: float) -> float:
 
 def _event_name(variable: str) -> str:
     return f"{variable}_crossing"
-
-
-def _write_csv(path: Path, t: Any, columns: dict[str, Any]) -> None:
-    with path.open("w", newline="") as stream:
-        writer = csv.writer(stream)
-        writer.writerow(["time", *columns])
-        for row, time in enumerate(t):
-            writer.writerow([repr(float(time)), *(repr(float(v[row])) for v in columns.values())])
 
 
 if __name__ == "__main__":

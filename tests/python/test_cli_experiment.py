@@ -16,9 +16,11 @@ from syssimx.cli import main
 
 
 def read_columns(path: Path) -> dict[str, np.ndarray]:
+    """The columns by port name (the header is "time", then "port [unit]")."""
     with path.open(newline="") as stream:
         rows = list(csv.reader(stream))
-    return dict(zip(rows[0], np.array(rows[1:], dtype=float).T, strict=True))
+    names = (name.split(" [")[0] for name in rows[0])
+    return dict(zip(names, np.array(rows[1:], dtype=float).T, strict=True))
 
 
 def simulate(tmp_path: Path, fmu: str, *options: str) -> dict[str, np.ndarray]:

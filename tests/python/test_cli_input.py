@@ -18,9 +18,11 @@ SIGNALS = "time,torque,brake\n0,0,1\n0.4,2,1\n0.4,-1,0\n1,3,0\n"
 
 
 def read_columns(path: Path) -> dict[str, np.ndarray]:
+    """The columns by port name (the header is "time", then "port [unit]")."""
     with path.open(newline="") as stream:
         rows = list(csv.reader(stream))
-    return dict(zip(rows[0], np.array(rows[1:], dtype=float).T, strict=True))
+    names = (name.split(" [")[0] for name in rows[0])
+    return dict(zip(names, np.array(rows[1:], dtype=float).T, strict=True))
 
 
 def test_input_columns_drive_the_inputs_as_in_fmpy(tmp_path: Path,

@@ -19,10 +19,11 @@ EXACT_WALL_TIME = 0.46507759431173046
 
 
 def read_csv(path: Path) -> dict[str, np.ndarray]:
+    """The columns by port name (the header is "time", then "port [unit]")."""
     with path.open(newline="") as stream:
         rows = list(csv.reader(stream))
     columns = np.array(rows[1:], dtype=float).T
-    return dict(zip(rows[0], columns, strict=True))
+    return dict(zip((name.split(" [")[0] for name in rows[0]), columns, strict=True))
 
 
 def test_csv_equals_fmpy_on_the_same_grid(tmp_path: Path, capsys: pytest.CaptureFixture[str]):
@@ -36,6 +37,8 @@ def test_csv_equals_fmpy_on_the_same_grid(tmp_path: Path, capsys: pytest.Capture
         f"wrote 151 samples of 3 outputs to {csv_path}",
         f"wrote the plot to {png_path}",
     ]
+    # the wide layout of result.to_csv(path, component): units in the headers, no micro column
+    assert csv_path.read_text().splitlines()[0] == "time,theta [rad],omega [rad/s],alpha [rad/s2]"
     ours = read_csv(csv_path)
     reference = simulate_fmu(fmus.path("pendulum_euler"), start_time=0.0, stop_time=1.5,
                              output_interval=0.01,
@@ -61,6 +64,22 @@ def test_event_is_located_at_the_exact_quarter_period(capsys: pytest.CaptureFixt
     # Without --output the final values are printed; theta after the swing through zero.
     final_theta = re.search(r"^theta = (\S+) at t = 1$", out, re.MULTILINE)
     assert final_theta is not None and float(final_theta.group(1)) < 0
+
+
+def test_csv_of_a_run_with_an_event_repeats_the_event_time(tmp_path: Path,
+                                                          capsys: pytest.CaptureFixture[str]):
+    """The wide layout of result.to_csv: no micro column, the event instant is two rows (before
+    and after handling), as in SysSimX's CSV."""
+    out = tmp_path / "out.csv"
+    argv = ["simulate", "pendulum_cvode", "--stop-time", "1", "--step-size", "0.05",
+            "--set", "theta0=0.5", "--set", "cvode_relative_tolerance=1e-10",
+            "--event", "theta:falling", "--output", str(out)]
+    assert main(argv) == 0
+    event_time = float(re.search(r"at t = (\S+)", capsys.readouterr().out).group(1))
+    assert out.read_text().splitlines()[0] == "time,theta [rad],omega [rad/s],alpha [rad/s2]"
+    times = read_csv(out)["time"]
+    assert len(times) == 21 + 2
+    assert times.tolist().count(event_time) == 2
 
 
 @pytest.mark.parametrize(

@@ -155,17 +155,22 @@ def test_record_internal_steps_adds_the_localization_trials():
     assert result.statistics.localization_iterations >= 20
 
 
-def test_result_table_of_a_hybrid_run(tmp_path):
+def test_result_tables_of_a_hybrid_run(tmp_path):
     system, _ = clock_system({"a": crossing(0.25)})
     result = system.run(0.0, 0.5, 0.1)
-    frame = result.to_dataframe()
-    assert list(frame.columns) == ["time", "micro", "C.x", "C.a"]
-    assert len(frame) == 6 + 2
-    assert frame["micro"].tolist().count(1) == 1  # the sample after handling
-    # the EVENT output is true on exactly that sample
-    assert frame.loc[frame["C.a"], ["time", "micro"]].values.tolist() == [[0.25, 1.0]]
-    path = result.to_csv(tmp_path / "run.csv")
-    assert path.read_text().splitlines()[0] == "time,micro,C.x,C.a"
+    wide = result.to_dataframe("C")
+    assert list(wide.columns) == ["time", "x", "a"]
+    assert len(wide) == 6 + 2
+    # the event instant has two rows, before and after handling; the EVENT output is true after
+    assert wide["time"].tolist().count(0.25) == 2
+    assert wide.loc[wide["a"], "time"].tolist() == [0.25]
+    assert result.micro[wide.index[wide["a"]]].tolist() == [1]
+    long = result.to_dataframe()
+    assert list(long.columns) == ["component", "port", "time", "value", "unit"]
+    assert long["port"].tolist() == ["x"] * 8 + ["a"] * 8
+    lines = result.to_csv(tmp_path / "run.csv").read_text().splitlines()
+    assert lines[0] == "component,port,time,value,unit" and len(lines) == 1 + 16
+    assert lines[-8:].count("C,a,0.25,True,") == 1
 
 
 def test_keyboard_interrupt_in_a_handler_stays_an_interrupt():

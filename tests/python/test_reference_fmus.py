@@ -59,12 +59,13 @@ def read_result(path: Path) -> dict[str, np.ndarray]:
     text columns are left out."""
     with path.open(newline="") as stream:
         rows = list(csv.reader(stream))
-    header = [name.strip('"') for name in rows[0]]
+    # ours heads a column "name [unit]" and writes booleans True/False
+    header = [name.strip('"').split(" [")[0] for name in rows[0]]
     numbers = {"true": 1.0, "false": 0.0}
     columns = {}
     for j, name in enumerate(header):
         try:
-            columns[name] = np.array([numbers.get(row[j], None) if row[j] in numbers
+            columns[name] = np.array([numbers[row[j].lower()] if row[j].lower() in numbers
                                       else float(row[j]) for row in rows[1:]])
         except ValueError:
             continue

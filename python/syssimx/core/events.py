@@ -17,6 +17,10 @@ class DenseTime:
     def __str__(self) -> str:
         return f"({self.t:.8f}, {self.micro})"
 
+    def to_float(self) -> float:
+        """The real time (the micro step dropped)."""
+        return self.t
+
 
 @dataclass(frozen=True)
 class EventIndicator:

@@ -24,6 +24,7 @@ from ..core.port import PortType
 from ..engine import ffi, lib
 from ..errors import ConfigurationError, SimulationTimeoutError
 from .history_arrays import HistoryArrays
+from .progress import RunProgress
 
 _ENGINE_TYPE = {PortType.REAL: 0, PortType.INT: 1, PortType.BOOL: 2}
 
@@ -71,6 +72,7 @@ class EnginePlan:
         self.name = name
         self.deadline: float | None = None  # time.monotonic() at which the run times out
         self.timeout: float | None = None
+        self.progress: RunProgress | None = None  # the run's progress reports, if asked for
         self._watch()
         self.components = dict(components)
         self.index = {name: i for i, name in enumerate(components)}
@@ -112,6 +114,8 @@ class EnginePlan:
                     f"system {self.name!r}: the run exceeded timeout={self.timeout} s of wall "
                     f"time and stopped at t={t:.12g}; the samples up to there are in "
                     "get_history()", time=t)
+            if self.progress is not None:
+                self.progress.report(t)
             return 0
 
         lib().ssx_set_monitor(self.sys, self.callback("int(void *, double)", monitor, 1, stop),

@@ -12,11 +12,14 @@ import numpy as np
 
 from ..core.events import DenseTime
 from ..engine import ffi, lib
+from ..errors import ConfigurationError
+from . import csv_export
 from .event_log import EventLog
 from .termination import Termination
 
 if TYPE_CHECKING:
     from .plan import EnginePlan
+    from .system import System
 
 
 @dataclass(frozen=True)
@@ -176,31 +179,27 @@ class HistoryView:
         return iter(self._data)
 
 
-class SystemHistory:
-    """Event history of a system (SysSimX's `system.history`)."""
-
-    def __init__(self, events: Sequence[EventRecord] = ()) -> None:
-        self.events = list(events)
-
-    def get_event_history(self, component: str, event: str) -> list[DenseTime]:
-        return [e.time for e in self.events if (e.component, e.event) == (component, event)]
-
-    def get_all_event_histories(self) -> dict[tuple[str, str], list[DenseTime]]:
-        histories: dict[tuple[str, str], list[DenseTime]] = {}
-        for e in self.events:
-            histories.setdefault((e.component, e.event), []).append(e.time)
-        return histories
+def recorded_units(plan: EnginePlan, components: dict[str, Any]
+                   ) -> dict[str, dict[str, str | None]]:
+    """{component: {port: unit or None}} of every recorded port (outputs and event columns)."""
+    return {n: {p: c.output_specs[p].unit for p in [*plan.outputs[n], *c.event_indicators]}
+            for n, c in components.items()}
 
 
 class SimulationResult:
     """`result["Comp"]` -> (t, {port: ndarray}); `.events`, `.statistics`, tables and plots.
     `.termination` is None, or which component asked to stop and when (the samples then end at
-    the last communication point the whole system completed)."""
+    the last communication point the whole system completed). `system_name`, `algorithm` (the
+    algorithm's class name), `histories` ({component: (t, {port: values})}) and `units`
+    ({component: {port: unit or None}}) are SysSimX's."""
 
-    def __init__(self, history: HistoryView, events: Sequence[EventRecord],
-                 statistics: Statistics, units: dict[str, dict[str, str | None]],
-                 t0: float, tf: float, dt: float, wall_time: float,
-                 mode_switches: dict[str, tuple[Any, ...]] | None = None) -> None:
+    def __init__(self, system_name: str, algorithm: str, history: HistoryView,
+                 events: Sequence[EventRecord], statistics: Statistics,
+                 units: dict[str, dict[str, str | None]], t0: float, tf: float, dt: float,
+                 wall_time: float, mode_switches: dict[str, tuple[Any, ...]] | None = None
+                 ) -> None:
+        self.system_name = system_name
+        self.algorithm = algorithm
         self._history = history
         self.events = EventLog(events)
         # {component: (ModeSwitchEvent, ...)} of the MultiComponents that switched
@@ -210,9 +209,26 @@ class SimulationResult:
         self.units = units
         self.t0, self.tf, self.dt, self.wall_time = t0, tf, dt, wall_time
 
+    @classmethod
+    def from_system(cls, system: System, t0: float, tf: float, dt: float,
+                    wall_time: float = math.nan) -> SimulationResult:
+        """The result of what `system` recorded since its initialize (also after a failed run)."""
+        plan = system._plan
+        if plan is None:
+            raise ConfigurationError(f"{system.name}: nothing recorded yet; call initialize")
+        events = system.history.events
+        return cls(system.name, type(system.algorithm).__name__, HistoryView(plan, events),
+                   events, read_statistics(plan, events, system.termination),
+                   recorded_units(plan, system.components), t0, tf, dt, wall_time,
+                   system._mode_switches())
+
     @property
     def component_names(self) -> list[str]:
         return list(self._history)
+
+    @property
+    def histories(self) -> dict[str, tuple[np.ndarray, dict[str, np.ndarray]]]:
+        return {name: self._history[name] for name in self._history}
 
     def __getitem__(self, component: str) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         return self._history[component]
@@ -221,8 +237,9 @@ class SimulationResult:
         return component in self.component_names
 
     def __repr__(self) -> str:
-        return (f"SimulationResult(t=[{self.t0}, {self.tf}], dt={self.dt}, "
-                f"components={self.component_names}, events={len(self.events)})")
+        return (f"SimulationResult({self.system_name!r}, t=[{self.t0}, {self.tf}], "
+                f"dt={self.dt}, algorithm={self.algorithm}, components={self.component_names}, "
+                f"events={len(self.events)})")
 
     @property
     def micro(self) -> np.ndarray:
@@ -230,21 +247,32 @@ class SimulationResult:
         return self._history.micro
 
     def to_dataframe(self, component: str | None = None) -> Any:
-        """Wide table: columns time, micro and "<component>.<port>" (needs pandas)."""
+        """SysSimX's tables (needs pandas). Without `component`: the tidy long table, columns
+        component, port, time, value, unit. With it: that component's wide table, a time
+        column and one column per port, `attrs["units"]` = {port: unit or None}. An event
+        instant has two rows, the samples before and after handling (see `micro`)."""
         import pandas as pd
 
-        names = [component] if component is not None else self.component_names
-        t = self[names[0]][0] if names else np.empty(0)
-        columns: dict[str, np.ndarray] = {"time": t, "micro": self.micro}
-        for name in names:
-            for port, values in self[name][1].items():
-                columns[f"{name}.{port}"] = values
-        return pd.DataFrame(columns)
+        if component is not None:
+            t, ports = self[component]
+            frame = pd.DataFrame({"time": t, **ports})
+            frame.attrs["units"] = dict(self.units[component])
+            return frame
+        frames = [pd.DataFrame({"component": name, "port": port, "time": t, "value": values,
+                                "unit": self.units[name][port]})
+                  for name, (t, ports) in self.histories.items()
+                  for port, values in ports.items()]
+        if not frames:
+            return pd.DataFrame(columns=list(csv_export.LONG_HEADER))
+        return pd.concat(frames, ignore_index=True)
 
     def to_csv(self, path: str | Path, component: str | None = None) -> Path:
-        target = Path(path)
-        self.to_dataframe(component).to_csv(target, index=False)
-        return target
+        """Write to_dataframe's table (no pandas needed): long, or with `component` wide with
+        "port [unit]" headers. Returns the path."""
+        if component is not None:
+            t, ports = self[component]
+            return csv_export.write_wide(path, t, ports, self.units[component])
+        return csv_export.write_long(path, self.histories, self.units)
 
     def plot(self, signals: Sequence[str] | None = None, path: str | Path | None = None,
              **options: Any) -> Any:

@@ -24,7 +24,9 @@ from .algorithms.hybrid import locator_methods, log_events
 from .connection import Connection, EventConnection
 from .failure import raise_failure
 from .plan import EnginePlan
-from .results import HistoryView, SimulationResult, SystemHistory, read_events, read_statistics
+from .progress import ProgressCallback, run_progress
+from .results import HistoryView, SimulationResult, read_events
+from .system_history import SystemHistory
 from .termination import Termination, read_termination
 
 logger = logging.getLogger("syssimx.system")
@@ -41,7 +43,7 @@ class System:
         self.components: dict[str, CoSimComponent] = {}
         self.connections: list[Connection] = []
         self.event_connections: list[EventConnection] = []
-        self.history = SystemHistory()
+        self.history = SystemHistory(system=self)
         self.t = 0.0
         self.is_initialized = False
         self.termination: Termination | None = None  # set when a component ended the run
@@ -227,7 +229,7 @@ class System:
             component._start(t0, tolerance)
         if lib().ssx_initialize(plan.sys, t0) < 0:
             raise_failure(plan)
-        self.history = SystemHistory()
+        self.history = SystemHistory(system=self)
         self.t = t0
         self.is_initialized = True
 
@@ -238,16 +240,19 @@ class System:
             raise ConfigurationError(f"{self.name}: call initialize(t0) first")
         if lib().ssx_initialize(self._plan.sys, t) < 0:
             raise_failure(self._plan)
-        self.history = SystemHistory()
+        self.history = SystemHistory(system=self)
         self.t = t
 
-    def run(self, t0: float, tf: float, dt: float, timeout: float | None = None
+    def run(self, t0: float, tf: float, dt: float,
+            progress: bool | ProgressCallback | None = None, timeout: float | None = None
             ) -> SimulationResult:
         """Simulate on the grid t0 + k*dt (the last point exactly tf) plus event instants.
 
-        Ctrl-C stops a run within about 0.1 s with KeyboardInterrupt, and `timeout` (seconds
-        of wall time) with SimulationTimeoutError; the samples recorded up to the last
-        completed step stay readable through get_history()."""
+        progress: SysSimX's callback progress(t, tf), called with the time reached about every
+        50 ms of wall time and once at the end of the run; or True for a terminal bar that
+        appears after a second. Ctrl-C stops a run within about 0.1 s with KeyboardInterrupt,
+        and `timeout` (seconds of wall time) with SimulationTimeoutError; the samples recorded
+        up to the last completed step stay readable through get_history()."""
         if not self.is_initialized or self._plan is None:
             raise ConfigurationError(f"{self.name}: call initialize(t0) before run()")
         t0, tf, dt = (_time_value(self.name, label, value)
@@ -262,6 +267,7 @@ class System:
         if not math.isclose(t0, self.t, rel_tol=0.0, abs_tol=1e-12 * max(1.0, abs(t0))):
             raise ConfigurationError(f"{self.name}: run starts at t0={t0} but the system is at "
                                      f"t={self.t}")
+        reports = run_progress(progress, self.name, t0, tf)
         plan = self._plan
         for component in self.components.values():
             if component._binding is None or component._binding.plan is not plan:
@@ -273,13 +279,21 @@ class System:
         start = timeit.default_timer()
         plan.timeout = timeout
         plan.deadline = time.monotonic() + timeout if timeout is not None else None
-        status = lib().ssx_run(plan.sys, t0, tf, dt)
+        plan.progress = reports
+        try:
+            status = lib().ssx_run(plan.sys, t0, tf, dt)
+        finally:
+            plan.progress = None
         wall = timeit.default_timer() - start
         events = read_events(plan)
-        self.history = SystemHistory(events)
+        self.history = SystemHistory(events, self)
         self.t = float(lib().ssx_time(plan.sys))
         if status < 0:
+            if reports is not None:
+                reports.close()
             raise_failure(plan)
+        if reports is not None:
+            reports.finish(self.t)
         self.termination = read_termination(plan)
         if self.termination is not None:
             plan.failure = None  # what a hook raised because the component stopped
@@ -290,11 +304,7 @@ class System:
         if isinstance(algorithm, HybridAlgorithm):
             log_events([e for e in events if e.t >= t0], algorithm.method)
         logger.info("Simulation completed in %.2f seconds", wall)
-        units = {n: {p: c.output_specs[p].unit for p in [*plan.outputs[n], *c.event_indicators]}
-                 for n, c in self.components.items()}
-        return SimulationResult(HistoryView(plan, events), events,
-                                read_statistics(plan, events, self.termination), units, t0, tf,
-                                dt, wall, self._mode_switches())
+        return SimulationResult.from_system(self, t0, tf, dt, wall)
 
     def _mode_switches(self) -> dict[str, tuple[Any, ...]]:
         """{component: (ModeSwitchEvent, ...)} of the components that switched models."""
@@ -333,7 +343,7 @@ class System:
         """Drop the engine system; components keep their parameters."""
         self._plan = None
         self.is_initialized = False
-        self.history = SystemHistory()
+        self.history = SystemHistory(system=self)
         self.termination = None
         for component in self.components.values():
             component.reset()

@@ -37,14 +37,19 @@ class SystemGraphVisualizer:
         """The Graphviz description of the system (not rendered)."""
         return _SystemDrawing(self.system, analyze_system(self.system)).draw()
 
-    def visualize(self, filename: str | None = None, format: str = "svg") -> graphviz.Digraph:
-        """Build the picture; with ``filename``, also render it to ``filename.<format>``.
+    def visualize(self, filename: str | Path | None = None, format: str = "svg"
+                  ) -> graphviz.Digraph:
+        """Build the picture; with ``filename``, also write it as SysSimX does: a suffix of
+        ``filename`` is dropped, the picture goes to ``<stem>.<format>`` and the Graphviz source
+        to ``<stem>`` (``visualize("out/graph.svg")`` writes out/graph.svg and out/graph).
 
         The returned object shows itself in Jupyter.
         """
         drawing = self.graph()
         if filename is not None:
-            _render(drawing, Path(filename), format)
+            stem = Path(filename)
+            _render(drawing, stem.with_suffix("") if stem.suffix else stem, format,
+                    keep_source=True)
         return drawing
 
     def save(self, path: str | Path) -> Path:
@@ -72,10 +77,11 @@ def system_svg(system: Any) -> str:
 _NO_DOT = "drawing a system needs Graphviz's 'dot' program on PATH (e.g. apt install graphviz)"
 
 
-def _render(drawing: graphviz.Digraph, stem: Path, format: str) -> Path:
+def _render(drawing: graphviz.Digraph, stem: Path, format: str, keep_source: bool = False
+            ) -> Path:
     try:
         rendered = drawing.render(filename=stem.name, directory=stem.parent or ".",
-                                  format=format, cleanup=True)
+                                  format=format, cleanup=not keep_source)
     except graphviz.ExecutableNotFound as error:
         raise RuntimeError(_NO_DOT) from error
     return Path(rendered)

@@ -1,0 +1,120 @@
+"""The one CSV writer of results, used by the API and by every command of the command line.
+
+Three layouts, SysSimX's:
+
+- long (tidy): ``component,port,time,value,unit``, one row per sample of each port;
+- wide: ``time`` then one column per port, headed ``port [unit]`` (``port`` without a unit);
+- wide with a unit row (``SystemHistory.save_csv``): ``time,Comp.port,...`` then
+  ``s,unit,...`` (``-`` without a unit), then the samples.
+
+Numbers are written so that they read back exactly (Python's shortest round-trip form); an event
+instant appears twice, as the samples before and after its handling (there is no micro column).
+"""
+
+from __future__ import annotations
+
+import csv
+from collections.abc import Iterable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+LONG_HEADER = ("component", "port", "time", "value", "unit")
+NO_UNIT = "-"  # the unit row's mark for a port without a unit
+
+# {component: (t, {port: values})} and {component: {port: unit or None}}
+Histories = Mapping[str, tuple[np.ndarray, Mapping[str, np.ndarray]]]
+Units = Mapping[str, Mapping[str, str | None]]
+
+
+def write_long(path: str | Path, histories: Histories, units: Units) -> Path:
+    """Every port of every component in the tidy long layout."""
+    def rows() -> Iterable[Sequence[Any]]:
+        for component, (t, ports) in histories.items():
+            times = _cells(t)
+            for port, values in ports.items():
+                unit = units.get(component, {}).get(port) or ""
+                for time, value in zip(times, _cells(values), strict=True):
+                    yield component, port, time, value, unit
+    return _write(path, [LONG_HEADER], rows())
+
+
+def write_wide(path: str | Path, t: np.ndarray, ports: Mapping[str, np.ndarray],
+               units: Mapping[str, str | None]) -> Path:
+    """One component: time, then a ``port [unit]`` column per port."""
+    header = ["time", *(f"{p} [{units[p]}]" if units.get(p) else p for p in ports)]
+    return _write(path, [header], zip(_cells(t), *(_cells(v) for v in ports.values()), strict=True))
+
+
+def write_wide_with_units(path: str | Path, t: np.ndarray, signals: Mapping[str, np.ndarray],
+                          units: Mapping[str, str | None]) -> Path:
+    """Signals named ``component.port`` on one time axis, with a row of units under the names."""
+    header = [["time", *signals], ["s", *(units.get(s) or NO_UNIT for s in signals)]]
+    return _write(path, header, zip(_cells(t), *(_cells(v) for v in signals.values()),
+                                                 strict=True))
+
+
+def _cells(values: np.ndarray) -> list[Any]:
+    """Python numbers: csv writes a float as its shortest form that reads back exactly, a
+    boolean as True/False."""
+    return np.asarray(values).tolist()
+
+
+def _write(path: str | Path, header: Sequence[Sequence[str]], rows: Iterable[Sequence[Any]]
+           ) -> Path:
+    target = Path(path)
+    with target.open("w", newline="") as stream:
+        writer = csv.writer(stream, lineterminator="\n")
+        writer.writerows(header)
+        writer.writerows(rows)
+    return target
+
+
+def read_samples(path: Path) -> dict[str, dict[str, dict[str, Any]]]:
+    """A file in the long layout or the wide layout with a unit row, as
+    {component: {port: {"time": ndarray, "values": ndarray, "unit": str | None}}}."""
+    if not path.is_file():
+        raise FileNotFoundError(f"no results file {str(path)!r}")
+    with path.open(newline="") as stream:
+        rows = list(csv.reader(stream))
+    if rows and tuple(rows[0]) == LONG_HEADER:
+        return _read_long(rows[1:])
+    if len(rows) >= 2 and rows[0][:1] == ["time"] and rows[1][:1] == ["s"]:
+        return _read_wide_with_units(rows)
+    raise ValueError(f"{path}: neither the long layout (header {','.join(LONG_HEADER)}) nor "
+                     "the wide layout with a unit row (time,Comp.port,... then s,unit,...)")
+
+
+def _read_long(rows: list[list[str]]) -> dict[str, dict[str, dict[str, Any]]]:
+    cells: dict[tuple[str, str], tuple[list[str], list[str], str]] = {}
+    for component, port, time, value, unit in rows:
+        times, values, _ = cells.setdefault((component, port), ([], [], unit))
+        times.append(time)
+        values.append(value)
+    data: dict[str, dict[str, dict[str, Any]]] = {}
+    for (component, port), (times, values, unit) in cells.items():
+        data.setdefault(component, {})[port] = {
+            "time": np.array(times, dtype=float), "values": _column(values),
+            "unit": unit or None}
+    return data
+
+
+def _read_wide_with_units(rows: list[list[str]]) -> dict[str, dict[str, dict[str, Any]]]:
+    names, units, samples = rows[0], rows[1], rows[2:]
+    columns = list(zip(*samples, strict=True)) if samples else [()] * len(names)
+    time = np.array(columns[0], dtype=float)
+    data: dict[str, dict[str, dict[str, Any]]] = {}
+    for name, unit, values in zip(names[1:], units[1:], columns[1:], strict=True):
+        component, _, port = name.partition(".")
+        data.setdefault(component, {})[port] = {
+            "time": time, "values": _column(list(values)),
+            "unit": None if unit == NO_UNIT else unit}
+    return data
+
+
+def _column(cells: list[str]) -> np.ndarray:
+    """Booleans where every cell is True or False, else numbers."""
+    if cells and all(cell in ("True", "False") for cell in cells):
+        return np.array([cell == "True" for cell in cells])
+    return np.array(cells, dtype=float)
