@@ -1,10 +1,12 @@
-"""The ``syssimx`` command line: inspect an FMU, list the bundled FMUs, simulate one FMU.
+"""The ``syssimx`` command line: inspect an FMU, list the bundled FMUs, simulate one FMU, sweep
+a system over parameters.
 
     syssimx info pendulum_cvode
     syssimx fmus
     syssimx simulate pendulum_euler --stop-time 1 --step-size 0.05 --set theta0=0.5 \\
         --event theta:-1 --output results.csv --plot results.png
     syssimx simulate Feedthrough.fmu --input signals.csv --tolerance 1e-8
+    syssimx sweep system.yaml --param P.theta0=0.1:0.5:50 --param P.L=0.5,0.6 -o out.nc
     syssimx --version
 
 An FMU argument is a path to a .fmu file or the name of a bundled FMU. Bad usage exits with
@@ -117,6 +119,35 @@ def _parser() -> argparse.ArgumentParser:
     simulate.add_argument("--plot", type=Path, default=None, metavar="PNG",
                           help="plot the real outputs to this PNG file")
     simulate.set_defaults(run=_simulate)
+
+    sweep = commands.add_parser("sweep", help="run a system once per parameter set, in "
+                                "parallel worker processes (Dask)")
+    sweep.add_argument("system", metavar="SYSTEM",
+                       help="a system file (YAML/JSON), or MODULE:FUNCTION or "
+                            "FILE.py:FUNCTION returning a System")
+    sweep.add_argument("--param", action="append", required=True, type=_parameter_values,
+                       metavar="C.P=VALUES", dest="parameters",
+                       help="values of Component.parameter: START:STOP:COUNT, A,B,C or one "
+                            "value (repeatable)")
+    sweep.add_argument("--mode", choices=("grid", "zip"), default="grid",
+                       help="every combination of the values (grid) or their i-th values "
+                            "together (zip)")
+    sweep.add_argument("--start-time", type=float, default=None, metavar="T0")
+    sweep.add_argument("--stop-time", type=float, default=None, metavar="TF")
+    sweep.add_argument("--step-size", type=float, default=None, metavar="DT",
+                       help="(T0, TF, DT default to the system file's run entry)")
+    where = sweep.add_mutually_exclusive_group()
+    where.add_argument("--workers", type=int, default=None, metavar="N",
+                       help="worker processes of the embedded cluster (default: one per core)")
+    where.add_argument("--scheduler", default=None, metavar="ADDR",
+                       help="run on the Dask cluster of this scheduler, e.g. tcp://host:8786")
+    sweep.add_argument("--member-timeout", type=float, default=None, metavar="S",
+                       help="fail a member whose run takes longer than S seconds")
+    sweep.add_argument("--output", "-o", type=Path, default=None, metavar="FILE",
+                       help="write the results: .csv or .parquet (one row per member and "
+                            "sample) or .nc (the xarray dataset)")
+    sweep.add_argument("--no-progress", action="store_true", help="no progress bar")
+    sweep.set_defaults(run=_sweep)
     return parser
 
 
@@ -227,6 +258,19 @@ def _list_fmus(args: argparse.Namespace, out: TextIO) -> None:
     width = max(len(name) for name in names)
     for name in names:
         out.write(f"{name.ljust(width)}  {fmus.path(name)}\n")
+
+
+# ---------------------------------------------------------------------------------- sweep
+def _parameter_values(text: str) -> tuple[str, list[bool | int | float | str]]:
+    from .ensemble.command import parameter_values
+
+    return parameter_values(text)
+
+
+def _sweep(args: argparse.Namespace, out: TextIO) -> None:
+    from .ensemble.command import run_sweep
+
+    run_sweep(args, out)
 
 
 # ---------------------------------------------------------------------------------- simulate

@@ -1,0 +1,54 @@
+"""The Dask client an ensemble runs on: the caller's, a scheduler's address, or an embedded
+LocalCluster of worker processes (one per core, one member at a time each) started for the
+ensemble and closed after it."""
+
+from __future__ import annotations
+
+import logging
+import os
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import Any
+
+# The embedded cluster reports a member whose worker died at once instead of retrying it on
+# another worker (it would crash that one too), and gives each worker exactly one member at a
+# time, so a member's start is when it really starts.
+EMBEDDED_SCHEDULER_CONFIG = {
+    "distributed.scheduler.allowed-failures": 0,
+    "distributed.scheduler.worker-saturation": 1.0,
+}
+
+
+def cores() -> int:
+    """The cores this process may run on."""
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") \
+        else os.cpu_count() or 1
+
+
+@contextmanager
+def ensemble_client(client: Any = None, scheduler: str | None = None,
+                    workers: int | None = None) -> Iterator[Any]:
+    """`client` as given; else a Client of `scheduler` (e.g. "tcp://host:8786"); else an
+    embedded LocalCluster of `workers` processes (default: one per core)."""
+    if client is not None:
+        yield client
+        return
+    import dask
+    from distributed import Client, LocalCluster
+
+    if scheduler is not None:
+        with Client(scheduler) as remote:
+            yield remote
+        return
+    count = cores() if workers is None else workers
+    if isinstance(count, bool) or not isinstance(count, int) or count < 1:
+        from ..errors import ConfigurationError
+
+        raise ConfigurationError(f"workers must be a positive integer, got {workers!r}")
+    # The workers' stream handlers are silenced; their nannies still keep the INFO lines
+    # (how a worker died) that a crashed member's reason is read from.
+    with dask.config.set(EMBEDDED_SCHEDULER_CONFIG), \
+            LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
+                         dashboard_address=None, silence_logs=logging.CRITICAL) as cluster, \
+            Client(cluster) as local:
+        yield local
