@@ -49,6 +49,6 @@ def ensemble_client(client: Any = None, scheduler: str | None = None,
     # (how a worker died) that a crashed member's reason is read from.
     with dask.config.set(EMBEDDED_SCHEDULER_CONFIG), \
             LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
-                         dashboard_address=None, silence_logs=logging.CRITICAL) as cluster, \
+                         dashboard_address=":0", silence_logs=logging.CRITICAL) as cluster, \
             Client(cluster) as local:
         yield local
