@@ -16,11 +16,11 @@ import pytest
 
 pytest.importorskip("distributed")
 pytest.importorskip("xarray")
-import pendulum_wall  # noqa: E402
-from syssimx import FMUComponent, System, fmus  # noqa: E402
-from syssimx.ensemble import sweep  # noqa: E402
-from syssimx.ensemble.cluster import ensemble_client  # noqa: E402
-from test_isolation import hostile_fmu  # noqa: E402
+import pendulum_wall
+from syssimx import FMUComponent, System, fmus
+from syssimx.ensemble import sweep
+from syssimx.ensemble.cluster import ensemble_client
+from test_isolation import hostile_fmu
 
 BEHAVE, SEGFAULT, ENDLESS_LOOP = 0, 1, 4
 

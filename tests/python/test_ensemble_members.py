@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 pytest.importorskip("xarray")
-from scipy import stats  # noqa: E402
-from syssimx import ConfigurationError  # noqa: E402
-from syssimx.ensemble import (  # noqa: E402
+from scipy import stats
+from syssimx import ConfigurationError
+from syssimx.ensemble import (
     EnsembleResult,
     MemberResult,
     MemberTask,
@@ -17,7 +17,7 @@ from syssimx.ensemble import (  # noqa: E402
     parse_values,
     run_member,
 )
-from syssimx.ensemble.sampling import draw  # noqa: E402
+from syssimx.ensemble.sampling import draw
 
 
 def test_grid_is_every_combination_first_parameter_slowest() -> None:
@@ -71,10 +71,10 @@ def test_monte_carlo_draws_in_order_from_one_seeded_generator() -> None:
     assert [s["P.theta0"] for s in sets] == list(theta0)
     assert [s["P.L"] for s in sets] == list(length)
     assert draw(distributions, 4, seed=7) == sets
-    with pytest.raises(ConfigurationError, match="P.x: a distribution is a frozen scipy.stats "
+    with pytest.raises(ConfigurationError, match=r"P\.x: a distribution is a frozen scipy.stats "
                                                  "distribution or a function"):
         draw({"P.x": 3.0}, 2, seed=0)
-    with pytest.raises(ConfigurationError, match="P.x: the distribution gave 3 values for 2 "
+    with pytest.raises(ConfigurationError, match=r"P\.x: the distribution gave 3 values for 2 "
                                                  "samples"):
         draw({"P.x": lambda generator, n: [1.0, 2.0, 3.0]}, 2, seed=0)
 

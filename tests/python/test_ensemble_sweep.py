@@ -12,14 +12,14 @@ import pytest
 
 pytest.importorskip("distributed")
 pytest.importorskip("xarray")
-import pendulum_wall  # noqa: E402
-import xarray as xr  # noqa: E402
-from scipy import stats  # noqa: E402
-from scipy.special import ellipk  # noqa: E402
-from syssimx import Connection, FMUComponent, JacobiAlgorithm, System, fmus  # noqa: E402
-from syssimx.ensemble import EnsembleResult, monte_carlo, sweep  # noqa: E402
-from syssimx.ensemble.cluster import ensemble_client  # noqa: E402
-from syssimx.ensemble.loaded_fmus import loaded_fmus  # noqa: E402
+import pendulum_wall
+import xarray as xr
+from scipy import stats
+from scipy.special import ellipk
+from syssimx import Connection, FMUComponent, JacobiAlgorithm, System, fmus
+from syssimx.ensemble import EnsembleResult, monte_carlo, sweep
+from syssimx.ensemble.cluster import ensemble_client
+from syssimx.ensemble.loaded_fmus import loaded_fmus
 
 M, L, G, INERTIA = 40.0, 0.6, 9.81, 20.0
 THETA0S = [0.2, 0.35, 0.5, 0.65]

@@ -12,7 +12,7 @@ from typing import Any, TextIO
 from ..errors import ConfigurationError, SimulationError
 from .api import sweep
 from .members import Scalar, parse_values
-from .system_source import SYSTEM_FILE_SUFFIXES
+from .system_source import SYSTEM_FILE_SUFFIXES, ShippedFunction
 
 
 def parameter_values(text: str) -> tuple[str, list[Scalar]]:
@@ -54,19 +54,17 @@ def resolve_system(text: str) -> Any:
         suffixes = ", ".join(SYSTEM_FILE_SUFFIXES)
         raise ConfigurationError(f"{text!r} is neither a system file ({suffixes}) nor "
                                  "MODULE:FUNCTION or FILE.py:FUNCTION")
-    module = _load_file(Path(module_name)) if module_name.endswith(".py") \
+    from_file = module_name.endswith(".py")
+    module = _load_file(Path(module_name)) if from_file \
         else importlib.import_module(module_name)
     function = getattr(module, function_name, None)
     if not callable(function):
         raise ConfigurationError(f"{text}: {module_name} has no function {function_name!r}")
-    return function
+    # the workers need not have the file: the function travels by value
+    return ShippedFunction.of(function) if from_file else function
 
 
 def _load_file(path: Path) -> Any:
-    """Import a Python file; its functions travel to the workers by value (the workers need
-    not have the file)."""
-    import cloudpickle
-
     if not path.is_file():
         raise ConfigurationError(f"{path}: no such Python file")
     name = f"syssimx_sweep_{path.stem}"
@@ -75,5 +73,4 @@ def _load_file(path: Path) -> Any:
     module = importlib.util.module_from_spec(spec)
     sys.modules[name] = module
     spec.loader.exec_module(module)
-    cloudpickle.register_pickle_by_value(module)
     return module

@@ -124,9 +124,9 @@ def _record(result: MemberResult, system: System, outputs: tuple[str, ...] | Non
         history = system.get_history()
     except ConfigurationError:  # it failed before initialize recorded anything
         return
-    events = history.pop("Events")
     columns: dict[str, np.ndarray] = {}
-    for component, (t, values) in history.items():
+    for component in system.components:
+        t, values = history[component]
         if result.time.size == 0:
             result.time = np.array(t, dtype=np.float64)
         for port, series in values.items():
@@ -142,5 +142,5 @@ def _record(result: MemberResult, system: System, outputs: tuple[str, ...] | Non
         columns = {name: columns[name] for name in outputs if name in columns}
     result.outputs = columns
     result.events = tuple(sorted((instant.t, instant.micro, f"{component}.{event}")
-                                 for (component, event), instants in events.items()
+                                 for (component, event), instants in history["Events"].items()
                                  for instant in instants))

@@ -189,9 +189,13 @@ class EnsembleResult:
         return target
 
     def _netcdf_dataset(self) -> Any:
-        """netCDF holds fixed-width strings, not Python objects."""
+        """netCDF holds fixed-width strings, not Python objects; scipy's netCDF reader fails
+        on a variable of an empty dimension, so without events the event variables are left
+        out."""
         dataset = self.dataset.copy()
-        for name in ("status", "error", "worker", "event_source"):
+        if dataset.sizes["event"] == 0:
+            dataset = dataset.drop_vars(["event_time", "event_micro", "event_source"])
+        for name in ("status", "error", "worker", *dataset.data_vars.keys() & {"event_source"}):
             dataset[name] = dataset[name].astype(str)
         for name in self.parameters:
             if dataset[name].dtype == object:

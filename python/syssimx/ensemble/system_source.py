@@ -39,6 +39,30 @@ class SystemFile:
         return {key: value for key, value in run.items() if key in ("t0", "tf", "dt")}
 
 
+@dataclass(frozen=True)
+class ShippedFunction:
+    """A system function sent by value (cloudpickle), for one defined in a file the workers
+    cannot import: Dask pickles an importable-here function by reference."""
+
+    payload: bytes
+
+    @classmethod
+    def of(cls, function: SystemSource) -> ShippedFunction:
+        import cloudpickle
+
+        module = __import__(function.__module__)
+        cloudpickle.register_pickle_by_value(module)
+        try:
+            return cls(cloudpickle.dumps(function))
+        finally:
+            cloudpickle.unregister_pickle_by_value(module)
+
+    def __call__(self) -> System:
+        import cloudpickle
+
+        return cloudpickle.loads(self.payload)()
+
+
 def system_source(system: Any) -> SystemSource:
     """A system file path (str or Path ending in .yaml, .yml or .json) or a callable."""
     if isinstance(system, str | Path):
