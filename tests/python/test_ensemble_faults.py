@@ -127,7 +127,8 @@ def test_a_segfault_fails_its_member_with_the_signal_and_the_sweep_finishes(clie
     build = functools.partial(hostile_system, hostile_fmu())
     result = sweep(build, {"H.mode": [BEHAVE, SEGFAULT, BEHAVE, BEHAVE, BEHAVE]}, t0=0.0,
                    tf=0.2, dt=0.01, client=client, progress=False)
-    assert [m.status for m in result.members] == ["ok", "failed", "ok", "ok", "ok"]
+    assert [m.status for m in result.members] == ["ok", "failed", "ok", "ok", "ok"], [
+        m.error for m in result.members]
     crashed = result.members[1]
     assert crashed.error_type == "WorkerDied"
     assert crashed.error.startswith("WorkerDied: the worker process ")

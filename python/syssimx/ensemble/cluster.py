@@ -10,12 +10,14 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any
 
-# The embedded cluster reports a member whose worker died at once instead of retrying it on
-# another worker (it would crash that one too), and gives each worker exactly one member at a
-# time, so a member's start is when it really starts.
+# The embedded cluster fails the tasks of a worker that died at once instead of retrying them
+# on another worker (a crashing member would crash that one too; runner.py sorts the crashed
+# member from the innocent ones), and keeps one member queued on each worker besides the one
+# it runs: the next starts without waiting for the scheduler, and a crash takes at most one
+# innocent member with it.
 EMBEDDED_SCHEDULER_CONFIG = {
     "distributed.scheduler.allowed-failures": 0,
-    "distributed.scheduler.worker-saturation": 1.0,
+    "distributed.scheduler.worker-saturation": 2.0,
 }
 
 

@@ -4,8 +4,11 @@ A member's own failures come back as its result (member.py). Two faults need the
 - a member still running `member_timeout` (+ KILL_GRACE) seconds after it started is stuck
   where its run's own timeout cannot reach (inside an FMU call): its task is cancelled and its
   worker process restarted (the worker's nanny starts a fresh one);
-- a worker process that dies while running a member (a segfault in an FMU, an abort, the
-  out-of-memory killer) fails that member with how the process died, read from its nanny.
+- a worker process that dies (a segfault in an FMU, an abort, the out-of-memory killer) takes
+  down the member it was running and the members queued on it. The member that had announced
+  its start there is reported with how the process died (read from its nanny). The others,
+  and the one that crashed too fast to announce itself, are suspects: each runs again alone
+  on the cluster after the batch, where a worker death can only be its own.
 Every other member's result is kept and the ensemble finishes.
 """
 
@@ -46,85 +49,124 @@ class _Starts:
             return self._starts.get(member)
 
 
+class _Ensemble:
+    """The members' tasks on one client, their starts, and the results so far."""
+
+    def __init__(self, client: Any, build: SystemSource, member_timeout: float | None,
+                 bar: ProgressBar) -> None:
+        self.client, self.build, self.member_timeout, self.bar = client, build, \
+            member_timeout, bar
+        self.topic = f"syssimx-ensemble-{uuid.uuid4().hex}"
+        self.starts = _Starts()
+        self.results: dict[int, MemberResult] = {}
+        self._attempt = 0
+
+    def run(self, tasks: Sequence[MemberTask], alone: bool) -> list[MemberTask]:
+        """Run `tasks` as one batch; returns the suspects (see the module's description).
+        `alone`: the batch is one member, so a worker death is that member's."""
+        from distributed import as_completed
+
+        self._attempt += 1
+        # a task per member, so a crash takes no finished member with it
+        futures = self.client.map(
+            run_member, [self.build] * len(tasks),
+            [replace(task, topic=self.topic) for task in tasks],
+            key=[f"syssimx-member-{t.index}-{self.topic[-8:]}-{self._attempt}" for t in tasks],
+            pure=False)
+        by_key = {future.key: task for future, task in zip(futures, tasks, strict=True)}
+        watchdog = _Watchdog(self.client, futures, by_key, self.starts, self.member_timeout) \
+            if self.member_timeout is not None else None
+        suspects = []
+        try:
+            for future, outcome in as_completed(futures, with_results=True, raise_errors=False):
+                task = by_key[future.key]
+                stopped = watchdog.stopped.get(task.index) if watchdog is not None else None
+                result = stopped or self._outcome(future, outcome, task, alone)
+                if result is None:
+                    suspects.append(task)
+                    continue
+                self.results[task.index] = result
+                self.bar.advance(not result.ok)
+        finally:
+            if watchdog is not None:
+                watchdog.close()
+            self.client.cancel([future for future in futures if not future.done()])
+        return suspects
+
+    def _outcome(self, future: Any, outcome: Any, task: MemberTask, alone: bool
+                 ) -> MemberResult | None:
+        """The member's result; None for a suspect."""
+        if future.status == "finished":
+            return outcome
+        from distributed.scheduler import KilledWorker
+
+        error = future.exception()
+        if not isinstance(error, KilledWorker):
+            # the task failed before the member's code ran (e.g. its function did not unpickle)
+            return MemberResult(task.index, task.parameters, "failed",
+                                f"{type(error).__name__}: {error}", type(error).__name__)
+        dead = error.last_worker
+        start = self.starts.get(task.index)
+        if not alone and (start is None or start[2] != dead.pid):
+            return None
+        reason = (f"WorkerDied: the worker process {dead.pid} ({dead.address}) died while "
+                  f"running this member{_death(self.client, dead.pid)}")
+        return MemberResult(task.index, task.parameters, "failed", reason, "WorkerDied")
+
+
 def run_members(client: Any, build: SystemSource, tasks: Sequence[MemberTask],
                 member_timeout: float | None, progress: bool) -> list[MemberResult]:
     """Every member's result, in member order."""
-    from distributed import wait
-
-    topic = f"syssimx-ensemble-{uuid.uuid4().hex}"
-    starts = _Starts()
-    client.subscribe_topic(topic, starts.record)
-    futures = {client.submit(run_member, build, replace(task, topic=topic),
-                             key=f"syssimx-member-{task.index}-{topic[-8:]}", pure=False): task
-               for task in tasks}
-    results: dict[int, MemberResult] = {}
     bar = ProgressBar(len(tasks), progress)
-    pending = set(futures)
+    ensemble = _Ensemble(client, build, member_timeout, bar)
+    client.subscribe_topic(ensemble.topic, ensemble.starts.record)
     try:
-        while pending:
-            try:
-                done, pending = wait(pending, timeout=POLL if member_timeout else None,
-                                     return_when="FIRST_COMPLETED")
-            except TimeoutError:
-                done = set()
-            for future in done:
-                task = futures[future]
-                results[task.index] = _outcome(client, future, task, starts)
-                bar.advance(not results[task.index].ok)
-            for future in _stuck(pending, futures, starts, member_timeout):
-                pending.discard(future)
-                task = futures[future]
-                results[task.index] = _stop_stuck(client, future, task, starts, member_timeout)
-                bar.advance(True)
+        for suspect in ensemble.run(tasks, alone=False):
+            ensemble.run([suspect], alone=True)
     finally:
         bar.close()
-        client.unsubscribe_topic(topic)
-        client.cancel(list(pending))
-    return [results[task.index] for task in tasks]
+        client.unsubscribe_topic(ensemble.topic)
+    return [ensemble.results[task.index] for task in tasks]
 
 
-def _outcome(client: Any, future: Any, task: MemberTask, starts: _Starts) -> MemberResult:
-    if future.status == "finished":
-        return future.result()
-    from distributed.scheduler import KilledWorker
+class _Watchdog(threading.Thread):
+    """Stops members running past member_timeout + KILL_GRACE: cancels the task (so it is not
+    run again) and restarts its worker process."""
 
-    error = future.exception()
-    if isinstance(error, KilledWorker):
-        start = starts.get(task.index)
-        pid = start[2] if start is not None else error.last_worker.pid
-        reason = (f"WorkerDied: the worker process {pid} ({error.last_worker.address}) died "
-                  f"while running this member{_death(client, pid)}")
-        return MemberResult(task.index, task.parameters, "failed", reason, "WorkerDied")
-    # the task failed before the member's code ran (e.g. the system function did not unpickle)
-    return MemberResult(task.index, task.parameters, "failed",
-                        f"{type(error).__name__}: {error}", type(error).__name__)
+    def __init__(self, client: Any, futures: Sequence[Any], by_key: dict[Any, MemberTask],
+                 starts: _Starts, member_timeout: float) -> None:
+        super().__init__(name="syssimx-ensemble-watchdog", daemon=True)
+        self.client, self.futures, self.by_key = client, futures, by_key
+        self.starts, self.member_timeout = starts, member_timeout
+        self.stopped: dict[int, MemberResult] = {}
+        self._closing = threading.Event()
+        self.start()
 
+    def run(self) -> None:
+        while not self._closing.wait(POLL):
+            now = time.monotonic()
+            for future in self.futures:
+                task = self.by_key[future.key]
+                start = self.starts.get(task.index)
+                if start is None or future.done() or task.index in self.stopped or \
+                        now - start[0] <= self.member_timeout + KILL_GRACE:
+                    continue
+                self._stop_member(future, task, start[1], start[2])
 
-def _stuck(pending: set[Any], futures: dict[Any, MemberTask], starts: _Starts,
-           member_timeout: float | None) -> list[Any]:
-    if member_timeout is None:
-        return []
-    now = time.monotonic()
-    stuck = []
-    for future in pending:
-        start = starts.get(futures[future].index)
-        if start is not None and now - start[0] > member_timeout + KILL_GRACE:
-            stuck.append(future)
-    return stuck
+    def _stop_member(self, future: Any, task: MemberTask, worker: str, pid: int) -> None:
+        # recorded first: the cancelled future completes as soon as it is cancelled
+        self.stopped[task.index] = MemberResult(
+            task.index, task.parameters, "failed",
+            f"MemberTimeout: still running {self.member_timeout + KILL_GRACE:g} s after it "
+            f"started (member_timeout={self.member_timeout:g} s), stuck where the run's "
+            f"timeout cannot stop it; its worker process {pid} ({worker}) was restarted",
+            "MemberTimeout")
+        self.client.cancel([future])
+        self.client.restart_workers([worker], raise_for_error=False)
 
-
-def _stop_stuck(client: Any, future: Any, task: MemberTask, starts: _Starts,
-                member_timeout: float) -> MemberResult:
-    start = starts.get(task.index)
-    assert start is not None  # only started members are stuck
-    _, worker, pid = start
-    client.cancel([future])
-    client.restart_workers([worker], raise_for_error=False)
-    return MemberResult(task.index, task.parameters, "failed",
-                        f"MemberTimeout: still running {member_timeout + KILL_GRACE:g} s after "
-                        f"it started (member_timeout={member_timeout:g} s), stuck where the "
-                        f"run's timeout cannot stop it; its worker process {pid} ({worker}) "
-                        "was restarted", "MemberTimeout")
+    def close(self) -> None:
+        self._closing.set()
+        self.join()
 
 
 def _death(client: Any, pid: int) -> str:
