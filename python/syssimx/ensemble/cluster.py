@@ -12,12 +12,14 @@ from typing import Any
 
 # The embedded cluster fails the tasks of a worker that died at once instead of retrying them
 # on another worker (a crashing member would crash that one too; runner.py sorts the crashed
-# member from the innocent ones), and keeps one member queued on each worker besides the one
-# it runs: the next starts without waiting for the scheduler, and a crash takes at most one
-# innocent member with it.
+# member from the innocent ones), and keeps one task queued on each worker besides the one it
+# runs: the next starts without waiting for the scheduler, and a crash takes at most one
+# innocent task with it. The workers' statistical profiler is off: it samples the running
+# thread every 10 ms and made Python-heavy members (building a System) about twice as slow.
 EMBEDDED_SCHEDULER_CONFIG = {
     "distributed.scheduler.allowed-failures": 0,
     "distributed.scheduler.worker-saturation": 2.0,
+    "distributed.worker.profile.enabled": False,
 }
 
 

@@ -92,6 +92,11 @@ def run_member(build: SystemSource, task: MemberTask) -> MemberResult:
     return result
 
 
+def run_chunk(build: SystemSource, tasks: list[MemberTask]) -> list[MemberResult]:
+    """Run members one after another here (one Dask task for several short members)."""
+    return [run_member(build, task) for task in tasks]
+
+
 def _announce(task: MemberTask) -> None:
     """Tell the client this member started, and where (it times the member from here)."""
     if task.topic is None:

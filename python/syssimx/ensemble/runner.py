@@ -1,14 +1,16 @@
 """Running members as Dask tasks and turning every outcome into a MemberResult.
 
-A member's own failures come back as its result (member.py). Two faults need the client:
+Short members share a task (chunk_size), so the scheduler's cost per task is paid once for
+several. A member's own failures come back as its result (member.py). Two faults need the
+client:
 - a member still running `member_timeout` (+ KILL_GRACE) seconds after it started is stuck
   where its run's own timeout cannot reach (inside an FMU call): its task is cancelled and its
   worker process restarted (the worker's nanny starts a fresh one);
 - a worker process that dies (a segfault in an FMU, an abort, the out-of-memory killer) takes
-  down the member it was running and the members queued on it. The member that had announced
-  its start there is reported with how the process died (read from its nanny). The others,
-  and the one that crashed too fast to announce itself, are suspects: each runs again alone
-  on the cluster after the batch, where a worker death can only be its own.
+  down the task it was running and the task queued on it. A task of one member that had
+  announced its start on that process is that member's crash, reported with how the process
+  died (read from its nanny). Every other member of those tasks is a suspect: each runs again
+  alone on the cluster after the batch, where a worker death can only be its own.
 Every other member's result is kept and the ensemble finishes.
 """
 
@@ -22,13 +24,15 @@ from collections.abc import Sequence
 from dataclasses import replace
 from typing import Any
 
-from .member import MemberResult, MemberTask, run_member
+from .member import MemberResult, MemberTask, run_chunk
 from .progress import ProgressBar
 from .system_source import SystemSource
 
 KILL_GRACE = 1.0  # seconds past member_timeout: the run's own timeout reports first if it can
 POLL = 0.1  # seconds between checks for stuck members
 DEATH_LOG_WAIT = 3.0  # seconds to wait for a nanny to log how its worker died
+MAX_CHUNK = 16  # members per task at most
+CHUNKS_PER_WORKER = 4  # tasks per worker at least, for the balance
 
 
 class _Starts:
@@ -49,6 +53,13 @@ class _Starts:
             return self._starts.get(member)
 
 
+def chunk_size(members: int, workers: int) -> int:
+    """Members per Dask task: short members share a task, so the per-task cost of the
+    scheduler is paid once for several; at least CHUNKS_PER_WORKER tasks per worker keep the
+    load balanced."""
+    return max(1, min(MAX_CHUNK, members // (CHUNKS_PER_WORKER * max(workers, 1))))
+
+
 class _Ensemble:
     """The members' tasks on one client, their starts, and the results so far."""
 
@@ -61,57 +72,70 @@ class _Ensemble:
         self.results: dict[int, MemberResult] = {}
         self._attempt = 0
 
-    def run(self, tasks: Sequence[MemberTask], alone: bool) -> list[MemberTask]:
-        """Run `tasks` as one batch; returns the suspects (see the module's description).
-        `alone`: the batch is one member, so a worker death is that member's."""
+    def run(self, tasks: Sequence[MemberTask], size: int) -> list[MemberTask]:
+        """Run `tasks` in chunks of `size` members; returns the suspects (see the module's
+        description). A chunk of one member alone on the cluster (size 0 here: `tasks` is one
+        member run alone) makes a worker death that member's."""
         from distributed import as_completed
 
+        alone = size == 0
         self._attempt += 1
-        # a task per member, so a crash takes no finished member with it
+        announced = [replace(task, topic=self.topic) for task in tasks]
+        chunks = [announced[i:i + max(size, 1)] for i in range(0, len(announced),
+                                                                max(size, 1))]
         futures = self.client.map(
-            run_member, [self.build] * len(tasks),
-            [replace(task, topic=self.topic) for task in tasks],
-            key=[f"syssimx-member-{t.index}-{self.topic[-8:]}-{self._attempt}" for t in tasks],
-            pure=False)
-        by_key = {future.key: task for future, task in zip(futures, tasks, strict=True)}
+            run_chunk, [self.build] * len(chunks), chunks,
+            key=[f"syssimx-members-{c[0].index}-{self.topic[-8:]}-{self._attempt}"
+                 for c in chunks], pure=False)
+        by_key = {future.key: chunk for future, chunk in zip(futures, chunks, strict=True)}
         watchdog = _Watchdog(self.client, futures, by_key, self.starts, self.member_timeout) \
             if self.member_timeout is not None else None
-        suspects = []
+        suspects: list[MemberTask] = []
         try:
             for future, outcome in as_completed(futures, with_results=True, raise_errors=False):
-                task = by_key[future.key]
-                stopped = watchdog.stopped.get(task.index) if watchdog is not None else None
-                result = stopped or self._outcome(future, outcome, task, alone)
-                if result is None:
-                    suspects.append(task)
-                    continue
-                self.results[task.index] = result
-                self.bar.advance(not result.ok)
+                chunk = by_key[future.key]
+                if future.status == "finished":
+                    self._keep(outcome)
+                elif future.status == "cancelled":  # the watchdog stopped one of its members
+                    assert watchdog is not None
+                    self._keep([watchdog.stopped[t.index] for t in chunk
+                                if t.index in watchdog.stopped])
+                    suspects += [t for t in chunk if t.index not in watchdog.stopped]
+                else:
+                    suspects += self._failed(future.exception(), chunk, alone)
         finally:
             if watchdog is not None:
                 watchdog.close()
             self.client.cancel([future for future in futures if not future.done()])
         return suspects
 
-    def _outcome(self, future: Any, outcome: Any, task: MemberTask, alone: bool
-                 ) -> MemberResult | None:
-        """The member's result; None for a suspect."""
-        if future.status == "finished":
-            return outcome
+    def _keep(self, results: Sequence[MemberResult]) -> None:
+        for result in results:
+            self.results[result.index] = result
+            self.bar.advance(not result.ok)
+
+    def _failed(self, error: BaseException, chunk: list[MemberTask], alone: bool
+                ) -> list[MemberTask]:
+        """Results for a chunk whose task failed; returns its suspects."""
         from distributed.scheduler import KilledWorker
 
-        error = future.exception()
         if not isinstance(error, KilledWorker):
-            # the task failed before the member's code ran (e.g. its function did not unpickle)
-            return MemberResult(task.index, task.parameters, "failed",
-                                f"{type(error).__name__}: {error}", type(error).__name__)
+            # the task failed before the members' code ran (e.g. the function did not unpickle)
+            self._keep([MemberResult(t.index, t.parameters, "failed",
+                                     f"{type(error).__name__}: {error}", type(error).__name__)
+                        for t in chunk])
+            return []
         dead = error.last_worker
-        start = self.starts.get(task.index)
-        if not alone and (start is None or start[2] != dead.pid):
-            return None
-        reason = (f"WorkerDied: the worker process {dead.pid} ({dead.address}) died while "
-                  f"running this member{_death(self.client, dead.pid)}")
-        return MemberResult(task.index, task.parameters, "failed", reason, "WorkerDied")
+        start = self.starts.get(chunk[0].index)
+        # one member that announced its start on the dead process: nobody else was running
+        if alone or (len(chunk) == 1 and start is not None and start[2] == dead.pid):
+            task = chunk[0]
+            reason = (f"WorkerDied: the worker process {dead.pid} ({dead.address}) died while "
+                      f"running this member{_death(self.client, dead.pid)}")
+            self._keep([MemberResult(task.index, task.parameters, "failed", reason,
+                                     "WorkerDied")])
+            return []
+        return list(chunk)
 
 
 def run_members(client: Any, build: SystemSource, tasks: Sequence[MemberTask],
@@ -121,8 +145,9 @@ def run_members(client: Any, build: SystemSource, tasks: Sequence[MemberTask],
     ensemble = _Ensemble(client, build, member_timeout, bar)
     client.subscribe_topic(ensemble.topic, ensemble.starts.record)
     try:
-        for suspect in ensemble.run(tasks, alone=False):
-            ensemble.run([suspect], alone=True)
+        workers = sum(client.nthreads().values())
+        for suspect in ensemble.run(tasks, chunk_size(len(tasks), workers)):
+            ensemble.run([suspect], 0)
     finally:
         bar.close()
         client.unsubscribe_topic(ensemble.topic)
@@ -130,11 +155,12 @@ def run_members(client: Any, build: SystemSource, tasks: Sequence[MemberTask],
 
 
 class _Watchdog(threading.Thread):
-    """Stops members running past member_timeout + KILL_GRACE: cancels the task (so it is not
-    run again) and restarts its worker process."""
+    """Stops members running past member_timeout + KILL_GRACE: cancels their task (so it is
+    not run again) and restarts its worker process."""
 
-    def __init__(self, client: Any, futures: Sequence[Any], by_key: dict[Any, MemberTask],
-                 starts: _Starts, member_timeout: float) -> None:
+    def __init__(self, client: Any, futures: Sequence[Any],
+                 by_key: dict[Any, list[MemberTask]], starts: _Starts,
+                 member_timeout: float) -> None:
         super().__init__(name="syssimx-ensemble-watchdog", daemon=True)
         self.client, self.futures, self.by_key = client, futures, by_key
         self.starts, self.member_timeout = starts, member_timeout
@@ -144,16 +170,23 @@ class _Watchdog(threading.Thread):
 
     def run(self) -> None:
         while not self._closing.wait(POLL):
-            now = time.monotonic()
             for future in self.futures:
-                task = self.by_key[future.key]
-                start = self.starts.get(task.index)
-                if start is None or future.done() or task.index in self.stopped or \
-                        now - start[0] <= self.member_timeout + KILL_GRACE:
+                if future.done():
                     continue
-                self._stop_member(future, task, start[1], start[2])
+                for task in self.by_key[future.key]:
+                    if self._stuck(task):
+                        self._stop_member(future, task)
+                        break
 
-    def _stop_member(self, future: Any, task: MemberTask, worker: str, pid: int) -> None:
+    def _stuck(self, task: MemberTask) -> bool:
+        start = self.starts.get(task.index)
+        return start is not None and task.index not in self.stopped and \
+            time.monotonic() - start[0] > self.member_timeout + KILL_GRACE
+
+    def _stop_member(self, future: Any, task: MemberTask) -> None:
+        start = self.starts.get(task.index)
+        assert start is not None
+        _, worker, pid = start
         # recorded first: the cancelled future completes as soon as it is cancelled
         self.stopped[task.index] = MemberResult(
             task.index, task.parameters, "failed",
