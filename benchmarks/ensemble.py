@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import functools
+import os
 import sys
 import time
 from collections.abc import Callable
@@ -65,11 +66,12 @@ def sequential(build: Callable[[], System], name: str, values: np.ndarray, tf: f
 
 
 def on_cluster(client: object, build: Callable[[], System], name: str, values: np.ndarray,
-               tf: float, dt: float) -> float:
+               tf: float, dt: float) -> tuple[float, float]:
+    """The sweep's wall time, and the mean wall time of one member inside its worker."""
     start = time.perf_counter()
     result = sweep(build, {name: values}, t0=0.0, tf=tf, dt=dt, client=client, progress=False)
     assert not result.failed, result.failed[0].error
-    return time.perf_counter() - start
+    return time.perf_counter() - start, float(np.mean([m.wall_time for m in result.members]))
 
 
 def main() -> None:
@@ -81,6 +83,7 @@ def main() -> None:
     counts = [int(n) for n in args.members.split(",")]
     workers = args.workers
 
+    load_before = os.getloadavg()[0]
     start = time.perf_counter()
     with ensemble_client(workers=workers) as client:
         started = time.perf_counter() - start
@@ -92,24 +95,27 @@ def main() -> None:
             for count in member_counts:
                 values = np.linspace(0.2, 0.6, count)
                 alone = sequential(build, name, values, tf, dt)
-                parallel = on_cluster(client, build, name, values, tf, dt)
-                rows.append((scenario, count, alone, parallel))
+                parallel, in_worker = on_cluster(client, build, name, values, tf, dt)
+                rows.append((scenario, count, alone, parallel, in_worker))
         rss_end = client.run(resident_size)
         closing = time.perf_counter()
     closed = time.perf_counter() - closing
 
+    print(f"{cores()} cores, load average {load_before:.1f} before, {os.getloadavg()[0]:.1f} "
+          "after (other processes share the cores)")
     print(f"embedded cluster, {workers} workers: start {started:.2f} s, close {closed:.2f} s")
     print(f"{'scenario':<9}{'members':>8}{'sequential':>12}{'cluster':>10}{'speed-up':>10}"
-          f"{'per member':>12}{'overhead':>10}{'embedded':>10}")
-    for scenario, count, alone, parallel in rows:
+          f"{'per member':>12}{'in worker':>11}{'overhead':>10}{'embedded':>10}")
+    for scenario, count, alone, parallel, in_worker in rows:
         per_member = alone / count
         overhead = parallel * workers / count - per_member
         embedded = started + parallel + closed
         print(f"{scenario:<9}{count:>8}{alone:>11.2f}s{parallel:>9.2f}s{alone / parallel:>9.2f}x"
-              f"{per_member * 1e3:>10.2f}ms{overhead * 1e3:>8.2f}ms"
+              f"{per_member * 1e3:>10.2f}ms{in_worker * 1e3:>9.2f}ms{overhead * 1e3:>8.2f}ms"
               f"{alone / embedded:>9.2f}x")
-    print("(per member: sequential wall / members; overhead: cluster wall x workers / members "
-          "minus that; embedded: sequential wall / (start + cluster + close))")
+    print("(per member: sequential wall / members; in worker: a member's own wall time in its "
+          "worker; overhead: cluster wall x workers / members minus per member; embedded: "
+          "sequential wall / (start + cluster + close))")
     for address in rss_start:
         print(f"worker {address}: resident {rss_start[address] / MB:.0f} MB after start, "
               f"{rss_end[address] / MB:.0f} MB after all sweeps")
