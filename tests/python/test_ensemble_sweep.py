@@ -16,7 +16,14 @@ import pendulum_wall
 import xarray as xr
 from scipy import stats
 from scipy.special import ellipk
-from syssimx import Connection, FMUComponent, JacobiAlgorithm, System, fmus
+from syssimx import (
+    ConfigurationError,
+    Connection,
+    FMUComponent,
+    JacobiAlgorithm,
+    System,
+    fmus,
+)
 from syssimx.ensemble import EnsembleResult, monte_carlo, sweep
 from syssimx.ensemble.cluster import ensemble_client
 from syssimx.ensemble.loaded_fmus import loaded_fmus
@@ -155,3 +162,18 @@ def test_embedded_cluster_without_a_client_with_a_progress_bar(capsys) -> None:
     assert isinstance(result, EnsembleResult) and not result.failed
     assert "2/2 members" in capsys.readouterr().err
     assert abs(result.members[1].events[0][0] - quarter_period(0.5)) < 1e-9
+
+
+def test_a_scheduler_address_runs_there_and_threaded_workers_are_refused(client) -> None:
+    result = sweep(seed_pendulum, {"P.theta0": [0.5]}, t0=0.0, tf=0.6, dt=0.05,
+                   scheduler=client.scheduler.address, progress=False)
+    assert abs(result.members[0].events[0][0] - quarter_period(0.5)) < 1e-9
+    from distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=1, threads_per_worker=2, dashboard_address=":0") as threaded, \
+            Client(threaded) as threaded_client, pytest.raises(
+                ConfigurationError, match=r"ensemble workers must run one thread each \(start "
+                                          r"them with 'dask worker ADDRESS --nthreads 1'\); "
+                                          r"threads per worker: \{'tcp://"):
+        sweep(seed_pendulum, {"P.theta0": [0.5]}, t0=0.0, tf=0.6, dt=0.05,
+              client=threaded_client, progress=False)

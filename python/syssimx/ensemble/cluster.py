@@ -10,6 +10,8 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any
 
+from ..errors import ConfigurationError
+
 # The embedded cluster fails the tasks of a worker that died at once instead of retrying them
 # on another worker (a crashing member would crash that one too; runner.py sorts the crashed
 # member from the innocent ones), and keeps one task queued on each worker besides the one it
@@ -29,6 +31,16 @@ def cores() -> int:
         else os.cpu_count() or 1
 
 
+def check_processes(client: Any) -> None:
+    """Members run in processes, never side by side in threads of one process (FMU binaries
+    are native code, and many are not thread-safe): every worker must have one thread."""
+    threaded = {worker: n for worker, n in client.nthreads().items() if n != 1}
+    if threaded:
+        raise ConfigurationError(f"ensemble workers must run one thread each (start them with "
+                                 f"'dask worker ADDRESS --nthreads 1'); threads per worker: "
+                                 f"{threaded}")
+
+
 @contextmanager
 def ensemble_client(client: Any = None, scheduler: str | None = None,
                     workers: int | None = None) -> Iterator[Any]:
@@ -46,8 +58,6 @@ def ensemble_client(client: Any = None, scheduler: str | None = None,
         return
     count = cores() if workers is None else workers
     if isinstance(count, bool) or not isinstance(count, int) or count < 1:
-        from ..errors import ConfigurationError
-
         raise ConfigurationError(f"workers must be a positive integer, got {workers!r}")
     # The workers' stream handlers are silenced; their nannies still keep the INFO lines
     # (how a worker died) that a crashed member's reason is read from.

@@ -24,6 +24,7 @@ from collections.abc import Sequence
 from dataclasses import replace
 from typing import Any
 
+from .cluster import check_processes
 from .member import MemberResult, MemberTask, run_chunk
 from .progress import ProgressBar
 from .system_source import SystemSource
@@ -141,6 +142,7 @@ class _Ensemble:
 def run_members(client: Any, build: SystemSource, tasks: Sequence[MemberTask],
                 member_timeout: float | None, progress: bool) -> list[MemberResult]:
     """Every member's result, in member order."""
+    check_processes(client)
     bar = ProgressBar(len(tasks), progress)
     ensemble = _Ensemble(client, build, member_timeout, bar)
     client.subscribe_topic(ensemble.topic, ensemble.starts.record)

@@ -6,6 +6,7 @@ worker never receives a System object (FMU instances are native and cannot be pi
 
 from __future__ import annotations
 
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -50,7 +51,7 @@ class ShippedFunction:
     def of(cls, function: SystemSource) -> ShippedFunction:
         import cloudpickle
 
-        module = __import__(function.__module__)
+        module = sys.modules[function.__module__]
         cloudpickle.register_pickle_by_value(module)
         try:
             return cls(cloudpickle.dumps(function))
