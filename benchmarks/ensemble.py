@@ -10,8 +10,10 @@ build the System, set the parameters, initialize, run, copy the samples out). Th
 the embedded LocalCluster of one worker process per core. Printed, in one run:
 - the fixed cost of the embedded cluster: start (scheduler and workers up) and close;
 - per scenario and member count: sequential wall, the sweep's wall on the started cluster,
-  the speed-up, and the per-member overhead (cluster wall x workers / members minus the
-  sequential time per member); the embedded total (start + sweep + close) for 200 members;
+  the speed-up, a member's own time alone and inside a worker (the difference is the cores
+  the workers did not get), Dask's cost per member (cluster wall x workers / members minus a
+  member's time in its worker), and the speed-up counting the embedded cluster's start and
+  close;
 - memory: each worker's resident size after start and after all sweeps.
 
     python benchmarks/ensemble.py [--members 50,200,800] [--workers N]
@@ -105,16 +107,17 @@ def main() -> None:
           "after (other processes share the cores)")
     print(f"embedded cluster, {workers} workers: start {started:.2f} s, close {closed:.2f} s")
     print(f"{'scenario':<9}{'members':>8}{'sequential':>12}{'cluster':>10}{'speed-up':>10}"
-          f"{'per member':>12}{'in worker':>11}{'overhead':>10}{'embedded':>10}")
+          f"{'per member':>12}{'in worker':>11}{'scheduling':>12}{'embedded':>10}")
     for scenario, count, alone, parallel, in_worker in rows:
         per_member = alone / count
-        overhead = parallel * workers / count - per_member
+        scheduling = parallel * workers / count - in_worker
         embedded = started + parallel + closed
         print(f"{scenario:<9}{count:>8}{alone:>11.2f}s{parallel:>9.2f}s{alone / parallel:>9.2f}x"
-              f"{per_member * 1e3:>10.2f}ms{in_worker * 1e3:>9.2f}ms{overhead * 1e3:>8.2f}ms"
+              f"{per_member * 1e3:>10.2f}ms{in_worker * 1e3:>9.2f}ms{scheduling * 1e3:>10.2f}ms"
               f"{alone / embedded:>9.2f}x")
-    print("(per member: sequential wall / members; in worker: a member's own wall time in its "
-          "worker; overhead: cluster wall x workers / members minus per member; embedded: "
+    print("(per member: sequential wall / members; in worker: a member's own wall time inside "
+          "its worker, above per member when the workers do not get a core each; scheduling: "
+          "cluster wall x workers / members minus in worker, Dask's cost per member; embedded: "
           "sequential wall / (start + cluster + close))")
     for address in rss_start:
         print(f"worker {address}: resident {rss_start[address] / MB:.0f} MB after start, "
