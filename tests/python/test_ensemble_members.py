@@ -147,3 +147,37 @@ def test_parquet_without_an_engine_says_what_to_install(tmp_path) -> None:
     result = EnsembleResult(synthetic_members(), ["P.k"], 0.0, 1.0, 0.5, 0.0)
     with pytest.raises(ConfigurationError, match="writing parquet needs pyarrow or fastparquet"):
         result.write(tmp_path / "out.parquet")
+
+
+def test_an_ensemble_without_its_run_or_with_a_system_object_fails_before_starting() -> None:
+    from syssimx import System
+    from syssimx.ensemble import sweep
+
+    with pytest.raises(ConfigurationError, match=r"the ensemble's run needs tf, dt \(given as "
+                                                 r"arguments, or in the system file's 'run' "
+                                                 r"entry\)"):
+        sweep(refuse, {"P.theta0": [0.1]}, t0=0.0)
+    with pytest.raises(ConfigurationError, match="an ensemble needs a function that builds the "
+                                                 "System"):
+        sweep(System("built"), {"P.theta0": [0.1]}, t0=0.0, tf=1.0, dt=0.1)
+    with pytest.raises(ConfigurationError, match="member_timeout must be a positive number of "
+                                                 "seconds, got 0"):
+        sweep(refuse, {"P.theta0": [0.1]}, t0=0.0, tf=1.0, dt=0.1, member_timeout=0)
+
+
+def terminating_system():
+    from syssimx import FMUComponent, System, fmus
+
+    ramp = FMUComponent("R", fmus.path("terminating"))
+    system = System("ramp")
+    system.add_component(ramp)
+    return system
+
+
+def test_a_member_whose_fmu_asks_to_stop_is_ok_and_says_so() -> None:
+    member = run_member(terminating_system, MemberTask(0, {"R.stop_time": 0.3}, 0.0, 1.0, 0.1))
+    assert member.ok and member.error == ""
+    assert member.termination == "component 'R' asked to stop at t = 0.3"
+    assert member.time[-1] == pytest.approx(0.3)
+    result = EnsembleResult([member], ["R.stop_time"], 0.0, 1.0, 0.1, 0.0)
+    assert list(result.dataset["termination"].values) == [member.termination]

@@ -54,7 +54,10 @@ class EnsembleResult:
     # ------------------------------------------------------------------ xarray
     @property
     def dataset(self) -> Any:
-        """member x sample: each member's own time axis (see the module's description)."""
+        """member x sample: each member's own time axis (see the module's description), the
+        parameters as member coordinates, the events as member x event variables, and per
+        member its status, error, termination, worker, wall time and run statistics (-1 for
+        a member whose run did not complete)."""
         if self._dataset is None:
             self._dataset = self._build_dataset()
         return self._dataset
@@ -83,6 +86,8 @@ class EnsembleResult:
         member_vars: dict[str, Any] = {
             "status": ("member", np.array([m.status for m in self.members], dtype=object)),
             "error": ("member", np.array([m.error for m in self.members], dtype=object)),
+            "termination": ("member", np.array([m.termination for m in self.members],
+                                               dtype=object)),
             "worker": ("member", np.array([m.worker for m in self.members], dtype=object)),
             "wall_time": ("member", np.array([m.wall_time for m in self.members])),
             "samples": ("member", np.array([m.time.size for m in self.members])),
@@ -195,7 +200,8 @@ class EnsembleResult:
         dataset = self.dataset.copy()
         if dataset.sizes["event"] == 0:
             dataset = dataset.drop_vars(["event_time", "event_micro", "event_source"])
-        for name in ("status", "error", "worker", *dataset.data_vars.keys() & {"event_source"}):
+        for name in ("status", "error", "termination", "worker",
+                     *dataset.data_vars.keys() & {"event_source"}):
             dataset[name] = dataset[name].astype(str)
         for name in self.parameters:
             if dataset[name].dtype == object:
