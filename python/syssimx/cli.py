@@ -1,5 +1,5 @@
 """The ``syssimx`` command line: inspect an FMU, list the bundled FMUs, simulate one FMU, run
-or describe a system description (YAML or JSON).
+or describe a system description (YAML or JSON), sweep a system over parameters.
 
     syssimx info pendulum_cvode
     syssimx fmus
@@ -8,6 +8,7 @@ or describe a system description (YAML or JSON).
     syssimx simulate Feedthrough.fmu --input signals.csv --tolerance 1e-8
     syssimx run system.yaml --tf 10 --dt 0.01 -o results.csv
     syssimx describe system.yaml
+    syssimx sweep system.yaml --param P.theta0=0.1:0.5:50 --param P.L=0.5,0.6 -o out.nc
     syssimx --version
 
 An FMU argument is a path to a .fmu file or the name of a bundled FMU. Bad usage exits with
@@ -142,6 +143,39 @@ def _parser() -> argparse.ArgumentParser:
     describe.add_argument("--initialize", action="store_true",
                           help="initialize the system first (at run.t0, else 0)")
     describe.set_defaults(run=_describe_config)
+
+    sweep = commands.add_parser("sweep", help="run a system once per parameter set, in "
+                                "parallel worker processes (Dask)")
+    sweep.add_argument("system", metavar="SYSTEM",
+                       help="a system file (YAML/JSON), or MODULE:FUNCTION or "
+                            "FILE.py:FUNCTION returning a System")
+    sweep.add_argument("--param", action="append", required=True, type=_parameter_values,
+                       metavar="C.P=VALUES", dest="parameters",
+                       help="values of Component.parameter: START:STOP:COUNT, A,B,C or one "
+                            "value (repeatable)")
+    sweep.add_argument("--mode", choices=("grid", "zip"), default="grid",
+                       help="every combination of the values (grid) or their i-th values "
+                            "together (zip)")
+    # the time options of `run`: a sweep runs the same system descriptions
+    sweep.add_argument("--t0", type=float, default=None, dest="start_time",
+                       help="start time in s (default: the system file's run.t0)")
+    sweep.add_argument("--tf", type=float, default=None, dest="stop_time",
+                       help="end time in s (default: run.tf)")
+    sweep.add_argument("--dt", type=float, default=None, dest="step_size",
+                       help="macro step in s (default: run.dt)")
+    where = sweep.add_mutually_exclusive_group()
+    where.add_argument("--workers", type=int, default=None, metavar="N",
+                       help="worker processes of the embedded cluster (default: one per core)")
+    where.add_argument("--scheduler", default=None, metavar="ADDR",
+                       help="run on the Dask cluster of this scheduler, e.g. tcp://host:8786")
+    sweep.add_argument("--member-timeout", type=float, default=None, metavar="S",
+                       help="fail a member whose run takes longer than S seconds")
+    sweep.add_argument("--output", "-o", type=Path, default=None, metavar="FILE",
+                       help="write the results: .csv or .parquet (one row per member and "
+                            "sample) or .nc (the xarray dataset)")
+    sweep.add_argument("--quiet", action="store_true", dest="no_progress",
+                       help="no progress bar")
+    sweep.set_defaults(run=_sweep)
     return parser
 
 
@@ -252,6 +286,19 @@ def _list_fmus(args: argparse.Namespace, out: TextIO) -> None:
     width = max(len(name) for name in names)
     for name in names:
         out.write(f"{name.ljust(width)}  {fmus.path(name)}\n")
+
+
+# ---------------------------------------------------------------------------------- sweep
+def _parameter_values(text: str) -> tuple[str, list[bool | int | float | str]]:
+    from .ensemble.command import parameter_values
+
+    return parameter_values(text)
+
+
+def _sweep(args: argparse.Namespace, out: TextIO) -> None:
+    from .ensemble.command import run_sweep
+
+    run_sweep(args, out)
 
 
 # ---------------------------------------------------------------------------------- simulate

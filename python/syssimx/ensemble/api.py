@@ -1,0 +1,74 @@
+"""sweep and monte_carlo: many runs of one system, each member in a Dask worker process."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Iterable, Mapping, Sequence
+from typing import Any
+
+from ..errors import ConfigurationError
+from .cluster import ensemble_client
+from .member import MemberTask
+from .members import ParameterSet, parameter_sets
+from .result import EnsembleResult
+from .runner import run_members
+from .sampling import draw
+from .system_source import SystemFile, system_source
+
+
+def sweep(system: Any, parameters: Mapping[str, Iterable[Any]], *, mode: str = "grid",
+          t0: float | None = None, tf: float | None = None, dt: float | None = None,
+          outputs: Sequence[str] | None = None, client: Any = None,
+          scheduler: str | None = None, workers: int | None = None,
+          member_timeout: float | None = None, progress: bool = True) -> EnsembleResult:
+    """Run `system` once per parameter set, in Dask worker processes.
+
+    system: a YAML/JSON system file, or a picklable function returning a System (built anew
+    in the worker for each member). parameters: {"Component.parameter": values}; an input's
+    name holds that input at the value. mode: "grid" (every combination) or "zip" (the i-th
+    values together). t0, tf, dt: the run (a system file's `run` entry gives the ones not
+    given). outputs: the "Component.port" names to keep (default: all). client: a
+    distributed.Client to run on; else scheduler: an address ("tcp://host:8786"); else an
+    embedded LocalCluster of `workers` processes (default one per core). member_timeout:
+    seconds of wall time a member's run may take (see runner.py for a hang inside an FMU).
+    progress: a progress bar on stderr."""
+    return _run(system, parameter_sets(parameters, mode), t0, tf, dt, outputs, client,
+                scheduler, workers, member_timeout, progress)
+
+
+def monte_carlo(system: Any, distributions: Mapping[str, Any], samples: int,
+                seed: int | None = None, *, t0: float | None = None, tf: float | None = None,
+                dt: float | None = None, outputs: Sequence[str] | None = None,
+                client: Any = None, scheduler: str | None = None, workers: int | None = None,
+                member_timeout: float | None = None, progress: bool = True) -> EnsembleResult:
+    """Run `system` `samples` times with parameters drawn from `distributions`
+    ({"Component.parameter": a frozen scipy.stats distribution or a function (numpy
+    Generator, count) -> values}) by one generator seeded with `seed`. The other arguments
+    are sweep's."""
+    return _run(system, draw(distributions, samples, seed), t0, tf, dt, outputs, client,
+                scheduler, workers, member_timeout, progress)
+
+
+def _run(system: Any, sets: list[ParameterSet], t0: float | None, tf: float | None,
+         dt: float | None, outputs: Sequence[str] | None, client: Any, scheduler: str | None,
+         workers: int | None, member_timeout: float | None, progress: bool) -> EnsembleResult:
+    build = system_source(system)
+    settings = build.run_settings() if isinstance(build, SystemFile) else {}
+    given = {"t0": t0, "tf": tf, "dt": dt}
+    settings.update({key: value for key, value in given.items() if value is not None})
+    missing = [key for key in given if key not in settings]
+    if missing:
+        raise ConfigurationError(f"the ensemble's run needs {', '.join(missing)} (given as "
+                                 "arguments, or in the system file's 'run' entry)")
+    if member_timeout is not None and not (isinstance(member_timeout, int | float)
+                                           and member_timeout > 0):
+        raise ConfigurationError(f"member_timeout must be a positive number of seconds, got "
+                                 f"{member_timeout!r}")
+    kept = tuple(outputs) if outputs is not None else None
+    tasks = [MemberTask(index, values, settings["t0"], settings["tf"], settings["dt"], kept,
+                        member_timeout) for index, values in enumerate(sets)]
+    start = time.perf_counter()
+    with ensemble_client(client, scheduler, workers) as running_on:
+        members = run_members(running_on, build, tasks, member_timeout, progress)
+    return EnsembleResult(members, list(sets[0]), settings["t0"], settings["tf"],
+                          settings["dt"], time.perf_counter() - start)

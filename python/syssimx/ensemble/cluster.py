@@ -1,0 +1,68 @@
+"""The Dask client an ensemble runs on: the caller's, a scheduler's address, or an embedded
+LocalCluster of worker processes (one per core, one member at a time each) started for the
+ensemble and closed after it."""
+
+from __future__ import annotations
+
+import logging
+import os
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import Any
+
+from ..errors import ConfigurationError
+
+# The embedded cluster fails the tasks of a worker that died at once instead of retrying them
+# on another worker (a crashing member would crash that one too; runner.py sorts the crashed
+# member from the innocent ones), and keeps one task queued on each worker besides the one it
+# runs: the next starts without waiting for the scheduler, and a crash takes at most one
+# innocent task with it. The workers' statistical profiler is off: it samples the running
+# thread every 10 ms and made Python-heavy members (building a System) about twice as slow.
+EMBEDDED_SCHEDULER_CONFIG = {
+    "distributed.scheduler.allowed-failures": 0,
+    "distributed.scheduler.worker-saturation": 2.0,
+    "distributed.worker.profile.enabled": False,
+}
+
+
+def cores() -> int:
+    """The cores this process may run on."""
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") \
+        else os.cpu_count() or 1
+
+
+def check_processes(client: Any) -> None:
+    """Members run in processes, never side by side in threads of one process (FMU binaries
+    are native code, and many are not thread-safe): every worker must have one thread."""
+    threaded = {worker: n for worker, n in client.nthreads().items() if n != 1}
+    if threaded:
+        raise ConfigurationError(f"ensemble workers must run one thread each (start them with "
+                                 f"'dask worker ADDRESS --nthreads 1'); threads per worker: "
+                                 f"{threaded}")
+
+
+@contextmanager
+def ensemble_client(client: Any = None, scheduler: str | None = None,
+                    workers: int | None = None) -> Iterator[Any]:
+    """`client` as given; else a Client of `scheduler` (e.g. "tcp://host:8786"); else an
+    embedded LocalCluster of `workers` processes (default: one per core)."""
+    if client is not None:
+        yield client
+        return
+    import dask
+    from distributed import Client, LocalCluster
+
+    if scheduler is not None:
+        with Client(scheduler) as remote:
+            yield remote
+        return
+    count = cores() if workers is None else workers
+    if isinstance(count, bool) or not isinstance(count, int) or count < 1:
+        raise ConfigurationError(f"workers must be a positive integer, got {workers!r}")
+    # The workers' stream handlers are silenced; their nannies still keep the INFO lines
+    # (how a worker died) that a crashed member's reason is read from.
+    with dask.config.set(EMBEDDED_SCHEDULER_CONFIG), \
+            LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
+                         dashboard_address=":0", silence_logs=logging.CRITICAL) as cluster, \
+            Client(cluster) as local:
+        yield local

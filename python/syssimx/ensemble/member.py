@@ -1,0 +1,151 @@
+"""One member of an ensemble, run where it is scheduled (a worker process, or in process).
+
+A member builds its System, sets its parameters, initializes and runs it. Whatever goes wrong
+inside (a failing FMU, an exception in the builder or a handler, a run past its timeout)
+becomes the member's result: status "failed" with the error, and the samples recorded before
+the failure. Only a crash of the process itself is left to the caller to report.
+"""
+
+from __future__ import annotations
+
+import os
+import socket
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import ConfigurationError
+from ..system.system import System
+from .loaded_fmus import loaded_fmus
+from .members import ParameterSet, split_name
+from .system_source import SystemSource
+
+STATISTICS = ("macro_steps", "do_step_calls", "state_saves", "state_restores", "events",
+              "localization_iterations")
+
+
+@dataclass(frozen=True)
+class MemberTask:
+    """What a member runs: its index, parameter values and the experiment. `timeout` is the
+    wall time its run may take; `topic` names the event stream its start is announced on."""
+
+    index: int
+    parameters: ParameterSet
+    t0: float
+    tf: float
+    dt: float
+    outputs: tuple[str, ...] | None = None
+    timeout: float | None = None
+    topic: str | None = None
+
+
+@dataclass
+class MemberResult:
+    """A member's outcome. `time`, `micro` and `outputs` ("Component.port" -> values) are the
+    member's own samples (the grid plus its event instants); `events` are (t, micro,
+    "Component.event"). A failed member keeps what it recorded before the failure."""
+
+    index: int
+    parameters: ParameterSet
+    status: str  # "ok" or "failed"
+    error: str = ""
+    error_type: str = ""
+    time: np.ndarray = field(default_factory=lambda: np.empty(0))
+    micro: np.ndarray = field(default_factory=lambda: np.empty(0, dtype=np.int64))
+    outputs: dict[str, np.ndarray] = field(default_factory=dict)
+    events: tuple[tuple[float, int, str], ...] = ()
+    statistics: dict[str, int] = field(default_factory=dict)
+    termination: str = ""
+    wall_time: float = float("nan")
+    worker: str = ""
+
+    @property
+    def ok(self) -> bool:
+        return self.status == "ok"
+
+
+def run_member(build: SystemSource, task: MemberTask) -> MemberResult:
+    """Run one member here and return its result; never raises for a member's own failure."""
+    _announce(task)
+    start = time.perf_counter()
+    worker = f"{socket.gethostname()}:{os.getpid()}"
+    system: System | None = None
+    result = MemberResult(task.index, task.parameters, "ok", worker=worker)
+    try:
+        system = build()
+        if not isinstance(system, System):
+            raise ConfigurationError(f"the system function returned {type(system).__name__}, "
+                                     "not a System")
+        loaded_fmus.keep(system)
+        _set_parameters(system, task.parameters)
+        system.initialize(task.t0)
+        run = system.run(task.t0, task.tf, task.dt, timeout=task.timeout)
+        result.statistics = {name: int(getattr(run.statistics, name)) for name in STATISTICS}
+        result.termination = str(run.termination) if run.termination is not None else ""
+    except Exception as error:  # the member's failure is its result; other members go on
+        result.status, result.error_type = "failed", type(error).__name__
+        result.error = f"{type(error).__name__}: {error}"
+    if system is not None:
+        _record(result, system, task.outputs)
+    result.wall_time = time.perf_counter() - start
+    return result
+
+
+def run_chunk(build: SystemSource, tasks: list[MemberTask]) -> list[MemberResult]:
+    """Run members one after another here (one Dask task for several short members)."""
+    return [run_member(build, task) for task in tasks]
+
+
+def _announce(task: MemberTask) -> None:
+    """Tell the client this member started, and where (it times the member from here)."""
+    if task.topic is None:
+        return
+    from distributed import get_worker
+
+    worker = get_worker()
+    worker.log_event(task.topic, {"member": task.index, "worker": worker.address,
+                                  "pid": os.getpid()})
+
+
+def _set_parameters(system: System, parameters: ParameterSet) -> None:
+    """"Component.name" -> value: a parameter, or an input held at that value."""
+    for name, value in parameters.items():
+        component_name, variable = split_name(name)
+        component = system.components.get(component_name)
+        if component is None:
+            raise ConfigurationError(f"{name}: the system {system.name!r} has no component "
+                                     f"{component_name!r}; components: "
+                                     f"{sorted(system.components)}")
+        if variable in component.input_specs:
+            component.set_inputs({variable: value})
+        else:
+            component.set_parameters(**{variable: value})
+
+
+def _record(result: MemberResult, system: System, outputs: tuple[str, ...] | None) -> None:
+    """Copy the member's samples and events out of its engine (the System dies here)."""
+    try:
+        history = system.get_history()
+    except ConfigurationError:  # it failed before initialize recorded anything
+        return
+    columns: dict[str, np.ndarray] = {}
+    for component in system.components:
+        t, values = history[component]
+        if result.time.size == 0:
+            result.time = np.array(t, dtype=np.float64)
+        for port, series in values.items():
+            columns[f"{component}.{port}"] = np.array(series)
+    if result.time.size:
+        result.micro = np.array(system._plan.history().micro(), dtype=np.int64)
+    if outputs is not None:
+        unknown = [name for name in outputs if name not in columns]
+        if unknown and result.ok:
+            result.status, result.error_type = "failed", "ConfigurationError"
+            result.error = (f"ConfigurationError: unknown output(s) {unknown}; outputs: "
+                            f"{sorted(columns)}")
+        columns = {name: columns[name] for name in outputs if name in columns}
+    result.outputs = columns
+    result.events = tuple(sorted((instant.t, instant.micro, f"{component}.{event}")
+                                 for (component, event), instants in history["Events"].items()
+                                 for instant in instants))

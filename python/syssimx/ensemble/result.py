@@ -1,0 +1,225 @@
+"""An ensemble's results: per-member outcomes, an xarray Dataset, a tidy table, files.
+
+Members of a hybrid system have samples at their own event instants (two per event: before
+and after handling), so members rarely share one time axis. `dataset` keeps every member's own
+samples: dimensions member x sample, with `time` and `micro` as (member, sample) coordinates
+(shorter members padded with NaN and micro -1). `grid()` gives the member x time view on the
+common grid t0 + k*dt (tf last), the sample taken at each grid time before any event there;
+event instants between grid points are left out of that view only.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import ConfigurationError
+from .member import STATISTICS, MemberResult
+
+WRITERS = (".csv", ".parquet", ".nc")
+
+
+class EnsembleResult:
+    """`members` in member order; `dataset`, `grid()`, `events`, `to_dataframe()`, `write()`."""
+
+    def __init__(self, members: Sequence[MemberResult], parameters: Sequence[str], t0: float,
+                 tf: float, dt: float, wall_time: float) -> None:
+        self.members = list(members)
+        self.parameters = list(parameters)
+        self.t0, self.tf, self.dt, self.wall_time = t0, tf, dt, wall_time
+        self._dataset: Any = None
+
+    def __repr__(self) -> str:
+        return (f"EnsembleResult({len(self.members)} members, {len(self.failed)} failed, "
+                f"parameters={self.parameters}, wall_time={self.wall_time:.3g} s)")
+
+    def __len__(self) -> int:
+        return len(self.members)
+
+    def __getitem__(self, index: int) -> MemberResult:
+        return self.members[index]
+
+    @property
+    def failed(self) -> list[MemberResult]:
+        return [member for member in self.members if not member.ok]
+
+    @property
+    def output_names(self) -> list[str]:
+        """Every "Component.port" recorded by some member, in first-seen order."""
+        return list(dict.fromkeys(name for m in self.members for name in m.outputs))
+
+    # ------------------------------------------------------------------ xarray
+    @property
+    def dataset(self) -> Any:
+        """member x sample: each member's own time axis (see the module's description), the
+        parameters as member coordinates, the events as member x event variables, and per
+        member its status, error, termination, worker, wall time and run statistics (-1 for
+        a member whose run did not complete)."""
+        if self._dataset is None:
+            self._dataset = self._build_dataset()
+        return self._dataset
+
+    def _build_dataset(self) -> Any:
+        import xarray as xr
+
+        count = len(self.members)
+        samples = max((m.time.size for m in self.members), default=0)
+        time = np.full((count, samples), np.nan)
+        micro = np.full((count, samples), -1, dtype=np.int64)
+        outputs = {name: np.full((count, samples), np.nan) for name in self.output_names}
+        for row, member in enumerate(self.members):
+            n = member.time.size
+            time[row, :n], micro[row, :n] = member.time, member.micro
+            for name, values in member.outputs.items():
+                outputs[name][row, :n] = values
+        most_events = max((len(m.events) for m in self.members), default=0)
+        event_time = np.full((count, most_events), np.nan)
+        event_micro = np.full((count, most_events), -1, dtype=np.int64)
+        event_source = np.full((count, most_events), "", dtype=object)
+        for row, member in enumerate(self.members):
+            for column, (t, step, source) in enumerate(member.events):
+                event_time[row, column], event_micro[row, column] = t, step
+                event_source[row, column] = source
+        member_vars: dict[str, Any] = {
+            "status": ("member", np.array([m.status for m in self.members], dtype=object)),
+            "error": ("member", np.array([m.error for m in self.members], dtype=object)),
+            "termination": ("member", np.array([m.termination for m in self.members],
+                                               dtype=object)),
+            "worker": ("member", np.array([m.worker for m in self.members], dtype=object)),
+            "wall_time": ("member", np.array([m.wall_time for m in self.members])),
+            "samples": ("member", np.array([m.time.size for m in self.members])),
+        }
+        for statistic in STATISTICS:
+            member_vars[statistic] = ("member", np.array(
+                [m.statistics.get(statistic, -1) for m in self.members], dtype=np.int64))
+        coords: dict[str, Any] = {
+            "member": np.arange(count),
+            "time": (("member", "sample"), time),
+            "micro": (("member", "sample"), micro),
+            **{name: ("member", _column(self.members, name)) for name in self.parameters},
+        }
+        return xr.Dataset(
+            {**{name: (("member", "sample"), values) for name, values in outputs.items()},
+             "event_time": (("member", "event"), event_time),
+             "event_micro": (("member", "event"), event_micro),
+             "event_source": (("member", "event"), event_source),
+             **member_vars},
+            coords=coords,
+            attrs={"t0": self.t0, "tf": self.tf, "dt": self.dt})
+
+    def grid(self) -> Any:
+        """member x time on the common grid t0 + k*dt (tf last): at each grid time the first
+        sample a member recorded there (before an event handled at that instant); NaN where a
+        member has no sample (it failed or stopped earlier)."""
+        import xarray as xr
+
+        grid = _grid(self.t0, self.tf, self.dt)
+        tolerance = 1e-9 * self.dt
+        values = {name: np.full((len(self.members), grid.size), np.nan)
+                  for name in self.output_names}
+        for row, member in enumerate(self.members):
+            if member.time.size == 0:
+                continue
+            position = np.clip(np.searchsorted(grid, member.time), 1, grid.size - 1)
+            nearest = np.where(np.abs(grid[position - 1] - member.time)
+                               <= np.abs(grid[position] - member.time), position - 1, position)
+            on_grid = np.abs(grid[nearest] - member.time) <= tolerance
+            # the first sample at each grid time: the one recorded before an event there
+            columns, first = np.unique(nearest[on_grid], return_index=True)
+            rows = np.flatnonzero(on_grid)[first]
+            for name, series in member.outputs.items():
+                values[name][row, columns] = series[rows]
+        parameters = {name: ("member", _column(self.members, name)) for name in self.parameters}
+        return xr.Dataset({name: (("member", "time"), data) for name, data in values.items()},
+                          coords={"member": np.arange(len(self.members)), "time": grid,
+                                  **parameters})
+
+    # ------------------------------------------------------------------ tables
+    def to_dataframe(self) -> Any:
+        """The tidy table: one row per member and sample; columns member, the parameters,
+        status, time, micro and one per output. A member that recorded nothing has one row
+        (its status and error) with NaN samples."""
+        import pandas as pd
+
+        frames = []
+        for member in self.members:
+            rows = max(member.time.size, 1)
+            columns: dict[str, Any] = {"member": np.full(rows, member.index)}
+            for name in self.parameters:
+                columns[name] = [member.parameters[name]] * rows
+            columns["status"] = [member.status] * rows
+            columns["error"] = [member.error] * rows
+            columns["time"] = member.time if member.time.size else [np.nan]
+            columns["micro"] = member.micro if member.time.size else [-1]
+            for name in self.output_names:
+                series = member.outputs.get(name)
+                columns[name] = series if series is not None and series.size == rows \
+                    else np.full(rows, np.nan)
+            frames.append(pd.DataFrame(columns))
+        return pd.concat(frames, ignore_index=True)
+
+    @property
+    def events(self) -> Any:
+        """One row per member and event: member, the parameters, time, micro, source."""
+        import pandas as pd
+
+        rows = [{"member": m.index, **{n: m.parameters[n] for n in self.parameters},
+                 "time": t, "micro": micro, "source": source}
+                for m in self.members for t, micro, source in m.events]
+        return pd.DataFrame(rows, columns=["member", *self.parameters, "time", "micro",
+                                           "source"])
+
+    def write(self, path: str | Path) -> Path:
+        """Write by suffix: .csv and .parquet the tidy table (parquet needs pyarrow or
+        fastparquet), .nc the dataset (netCDF; scipy writes it when netCDF4 is absent)."""
+        target = Path(path)
+        suffix = target.suffix.lower()
+        if suffix == ".csv":
+            self.to_dataframe().to_csv(target, index=False)
+        elif suffix == ".parquet":
+            try:
+                self.to_dataframe().to_parquet(target, index=False)
+            except ImportError as error:
+                raise ConfigurationError(f"{target}: writing parquet needs pyarrow or "
+                                         f"fastparquet ({error}); write .csv or .nc "
+                                         "instead") from error
+        elif suffix == ".nc":
+            self._netcdf_dataset().to_netcdf(target)
+        else:
+            raise ConfigurationError(f"{target}: unknown result format {suffix!r}; use one of "
+                                     f"{', '.join(WRITERS)}")
+        return target
+
+    def _netcdf_dataset(self) -> Any:
+        """netCDF holds fixed-width strings, not Python objects; scipy's netCDF reader fails
+        on a variable of an empty dimension, so without events the event variables are left
+        out."""
+        dataset = self.dataset.copy()
+        if dataset.sizes["event"] == 0:
+            dataset = dataset.drop_vars(["event_time", "event_micro", "event_source"])
+        for name in ("status", "error", "termination", "worker",
+                     *dataset.data_vars.keys() & {"event_source"}):
+            dataset[name] = dataset[name].astype(str)
+        for name in self.parameters:
+            if dataset[name].dtype == object:
+                dataset[name] = dataset[name].astype(str)
+        return dataset
+
+
+def _column(members: Sequence[MemberResult], name: str) -> np.ndarray:
+    values = [member.parameters[name] for member in members]
+    array = np.array(values)
+    return array if array.dtype.kind in "biuf" else np.array(values, dtype=object)
+
+
+def _grid(t0: float, tf: float, dt: float) -> np.ndarray:
+    """t0 + k*dt up to tf, tf itself last (a point within 1e-9 dt of tf is tf)."""
+    steps = int(np.floor((tf - t0) / dt + 1e-9))
+    points = t0 + dt * np.arange(steps + 1)
+    if tf - points[-1] > 1e-9 * dt:
+        points = np.append(points, tf)
+    points[-1] = tf
+    return points

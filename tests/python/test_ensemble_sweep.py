@@ -1,0 +1,179 @@
+"""Sweeps and Monte Carlo runs on a real LocalCluster of 2 worker processes: the seed pendulum's
+event times against the exact quarter period for every member, members bit-identical to the
+same System run in this process, each FMU file loaded once per worker, the embedded cluster."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterator
+
+import numpy as np
+import pytest
+
+pytest.importorskip("distributed")
+pytest.importorskip("xarray")
+import pendulum_wall
+import xarray as xr
+from scipy import stats
+from scipy.special import ellipk
+from syssimx import (
+    ConfigurationError,
+    Connection,
+    FMUComponent,
+    JacobiAlgorithm,
+    System,
+    fmus,
+)
+from syssimx.ensemble import EnsembleResult, monte_carlo, sweep
+from syssimx.ensemble.cluster import ensemble_client
+from syssimx.ensemble.loaded_fmus import loaded_fmus
+
+M, L, G, INERTIA = 40.0, 0.6, 9.81, 20.0
+THETA0S = [0.2, 0.35, 0.5, 0.65]
+
+
+def quarter_period(theta0: float) -> float:
+    """First wall hit of the pendulum released from rest at theta0 (elliptic integral)."""
+    return float(ellipk(np.sin(theta0 / 2) ** 2) / np.sqrt(M * G * L / INERTIA))
+
+
+@pytest.fixture(scope="module")
+def client() -> Iterator[object]:
+    with ensemble_client(workers=2) as running:
+        yield running
+
+
+def seed_pendulum() -> System:
+    """The seed scenario, CVODE at rtol 1e-10, events located to 1e-9 (examples/pendulum_wall)."""
+    return pendulum_wall.build("cvode")[0]
+
+
+def coupled_pendulums() -> System:
+    """Two CVODE pendulums and the torsion spring, Jacobi (examples/coupled_pendulums)."""
+    system = System("coupled pendulums")
+    for name, theta0 in (("P1", 0.5), ("P2", 0.0)):
+        pendulum = FMUComponent(name, fmus.path("pendulum_cvode"))
+        pendulum.set_parameters(theta0=theta0, cvode_relative_tolerance=1e-8)
+        system.add_component(pendulum)
+    spring = FMUComponent("Spring", fmus.path("torsion_spring"))
+    spring.set_parameters(k=100.0, d=1.0)
+    system.add_component(spring)
+    for i in ("1", "2"):
+        system.add_connection(Connection(f"P{i}", "theta", "Spring", f"theta{i}"))
+        system.add_connection(Connection(f"P{i}", "omega", "Spring", f"omega{i}"))
+        system.add_connection(Connection("Spring", f"tau{i}", f"P{i}", "torque"))
+    system.set_algorithm(JacobiAlgorithm())
+    return system
+
+
+def in_process(build, parameters: dict[str, float], tf: float, dt: float):
+    """The same function's System, parameters set and run here, the usual way."""
+    system = build()
+    for name, value in parameters.items():
+        component, parameter = name.split(".", 1)
+        system.components[component].set_parameters(**{parameter: value})
+    system.initialize(0.0)
+    return system.run(0.0, tf, dt)
+
+
+def test_seed_pendulum_sweep_hits_the_wall_at_the_exact_quarter_period(client) -> None:
+    result = sweep(seed_pendulum, {"P.theta0": THETA0S}, t0=0.0, tf=1.0, dt=0.05,
+                   client=client, progress=False)
+    assert [m.status for m in result.members] == ["ok"] * 4
+    for member, theta0 in zip(result.members, THETA0S, strict=True):
+        assert member.parameters == {"P.theta0": theta0}
+        (t, micro, source), = member.events
+        assert (micro, source) == (0, "P.wall_hit")
+        assert abs(t - quarter_period(theta0)) < 1e-9, (theta0, t - quarter_period(theta0))
+    assert list(result.dataset["P.theta0"].values) == THETA0S
+    assert list(result.dataset["event_source"].values[:, 0]) == ["P.wall_hit"] * 4
+    # the member's own axis keeps the event instant twice (before and after handling)
+    assert (result.dataset["samples"].values == 21 + 2).all()
+
+
+def test_members_are_bit_identical_to_the_same_system_run_in_process(client) -> None:
+    result = sweep(seed_pendulum, {"P.theta0": [0.3, 0.5]}, t0=0.0, tf=1.0, dt=0.05,
+                   client=client, progress=False)
+    for member in result.members:
+        here = in_process(seed_pendulum, member.parameters, 1.0, 0.05)
+        t, values = here["P"]
+        assert np.array_equal(member.time, t)
+        assert np.array_equal(member.micro, here.micro)
+        for port, series in values.items():
+            assert np.array_equal(member.outputs[f"P.{port}"], series), port
+        assert member.events == tuple((e.t, e.micro, f"{e.component}.{e.event}")
+                                      for e in here.events)
+        assert member.statistics["do_step_calls"] == here.statistics.do_step_calls
+        assert member.worker.split(":")[1] != str(os.getpid())  # it ran in another process
+
+
+def test_monte_carlo_of_the_coupled_pendulums_matches_in_process_runs(client) -> None:
+    distributions = {"P1.theta0": stats.uniform(0.2, 0.3), "Spring.k": stats.norm(100, 5)}
+    result = monte_carlo(coupled_pendulums, distributions, 3, seed=11, t0=0.0, tf=0.5,
+                         dt=0.01, outputs=["P1.theta", "P2.theta"], client=client,
+                         progress=False)
+    again = monte_carlo(coupled_pendulums, distributions, 3, seed=11, t0=0.0, tf=0.5,
+                        dt=0.01, outputs=["P1.theta", "P2.theta"], client=client,
+                        progress=False)
+    assert [m.parameters for m in result.members] == [m.parameters for m in again.members]
+    assert list(result.dataset.data_vars)[:2] == ["P1.theta", "P2.theta"]
+    for member in result.members:
+        here = in_process(coupled_pendulums, member.parameters, 0.5, 0.01)
+        assert np.array_equal(member.outputs["P2.theta"], here["P2"][1]["theta"])
+        assert member.outputs.keys() == {"P1.theta", "P2.theta"}
+    assert np.array_equal(result.grid()["P2.theta"].values, again.grid()["P2.theta"].values)
+
+
+def worker_fmus() -> dict[str, tuple[int, int]]:
+    """Run in a worker: {FMU file: (members that used it, extractions)} of that process."""
+    return loaded_fmus.summary()
+
+
+def test_each_worker_extracts_each_fmu_file_once(client) -> None:
+    before = client.run(worker_fmus)
+    sweep(seed_pendulum, {"P.theta0": np.linspace(0.2, 0.6, 6)}, t0=0.0, tf=0.2, dt=0.05,
+          client=client, progress=False)
+    after = client.run(worker_fmus)
+    path = str(fmus.path("pendulum_cvode"))
+    assert sum(report.get(path, (0, 0))[0] for report in after.values()) - sum(
+        report.get(path, (0, 0))[0] for report in before.values()) == 6, after
+    assert all(report[path][1] == 1 for report in after.values() if path in report)
+
+
+def test_outputs_written_as_netcdf_and_csv_read_back_equal(client, tmp_path) -> None:
+    result = sweep(seed_pendulum, {"P.theta0": [0.3, 0.5]}, t0=0.0, tf=0.6, dt=0.1,
+                   outputs=["P.theta"], client=client, progress=False)
+    assert list(result.output_names) == ["P.theta"]
+    netcdf = xr.open_dataset(result.write(tmp_path / "out.nc"))
+    np.testing.assert_array_equal(netcdf["P.theta"].values, result.dataset["P.theta"].values)
+    np.testing.assert_array_equal(netcdf["time"].values, result.dataset["time"].values)
+    assert list(netcdf["status"].values) == ["ok", "ok"]
+    import pandas as pd
+
+    table = pd.read_csv(result.write(tmp_path / "out.csv"))
+    assert len(table) == sum(m.time.size for m in result.members)
+    assert table[table.member == 1]["P.theta"].tolist() == result.members[1].outputs[
+        "P.theta"].tolist()
+
+
+def test_embedded_cluster_without_a_client_with_a_progress_bar(capsys) -> None:
+    result = sweep(seed_pendulum, {"P.theta0": [0.4, 0.5]}, t0=0.0, tf=0.6, dt=0.05,
+                   workers=2)
+    assert isinstance(result, EnsembleResult) and not result.failed
+    assert "2/2 members" in capsys.readouterr().err
+    assert abs(result.members[1].events[0][0] - quarter_period(0.5)) < 1e-9
+
+
+def test_a_scheduler_address_runs_there_and_threaded_workers_are_refused(client) -> None:
+    result = sweep(seed_pendulum, {"P.theta0": [0.5]}, t0=0.0, tf=0.6, dt=0.05,
+                   scheduler=client.scheduler.address, progress=False)
+    assert abs(result.members[0].events[0][0] - quarter_period(0.5)) < 1e-9
+    from distributed import Client, LocalCluster
+
+    with LocalCluster(n_workers=1, threads_per_worker=2, dashboard_address=":0") as threaded, \
+            Client(threaded) as threaded_client, pytest.raises(
+                ConfigurationError, match=r"ensemble workers must run one thread each \(start "
+                                          r"them with 'dask worker ADDRESS --nthreads 1'\); "
+                                          r"threads per worker: \{'tcp://"):
+        sweep(seed_pendulum, {"P.theta0": [0.5]}, t0=0.0, tf=0.6, dt=0.05,
+              client=threaded_client, progress=False)
