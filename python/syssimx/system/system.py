@@ -11,8 +11,10 @@ from typing import Any
 
 import pint
 
+from ..bridge.failure import raise_failure
+from ..bridge.plan import EnginePlan
+from ..bridge.standalone import register_system_class
 from ..components.base import CoSimComponent
-from ..components.table_source import start_tables
 from ..core.port import PortType
 from ..engine import ffi, lib
 from ..errors import ConfigurationError
@@ -22,9 +24,8 @@ from .algorithms import Algorithm, GaussSeidelAlgorithm, HybridAlgorithm, Jacobi
 from .algorithms.coupling import LOOP_JACOBIANS
 from .algorithms.hybrid import locator_methods, log_events
 from .connection import Connection, EventConnection
-from .failure import raise_failure
-from .plan import EnginePlan
 from .results import HistoryView, SimulationResult, SystemHistory, read_events, read_statistics
+from .table_starts import start_tables
 from .termination import Termination, read_termination
 
 logger = logging.getLogger("syssimx.system")
@@ -345,3 +346,6 @@ def _time_value(system: str, label: str, value: object) -> float:
             or not math.isfinite(value):
         raise ConfigurationError(f"{system}: {label} must be a finite number, got {value!r}")
     return float(value)
+
+
+register_system_class(System)
