@@ -20,9 +20,9 @@ from ..engine import ffi, lib
 from ..errors import ConfigurationError
 from ..graph.analysis import analyze
 from ..units import conversion
-from .algorithms import Algorithm, GaussSeidelAlgorithm, HybridAlgorithm, JacobiAlgorithm
-from .algorithms.coupling import LOOP_JACOBIANS
-from .algorithms.hybrid import locator_methods, log_events
+from .algorithms import Algorithm, HybridAlgorithm, JacobiAlgorithm
+from .algorithms.coupling import default_coupling, loop_jacobians
+from .algorithms.hybrid import log_events
 from .connection import Connection, EventConnection
 from .results import HistoryView, SimulationResult, SystemHistory, read_events, read_statistics
 from .table_starts import start_tables
@@ -46,7 +46,7 @@ class System:
         self.t = 0.0
         self.is_initialized = False
         self.termination: Termination | None = None  # set when a component ended the run
-        self._algorithm: Algorithm = GaussSeidelAlgorithm()
+        self._algorithm: Algorithm = default_coupling()
         self._algorithm_chosen = False
         self._plan: EnginePlan | None = None
 
@@ -57,7 +57,7 @@ class System:
     @property
     def algorithm(self) -> Algorithm:
         if not isinstance(self._algorithm, HybridAlgorithm) and self._has_indicators():
-            chosen = self._algorithm if self._algorithm_chosen else GaussSeidelAlgorithm()
+            chosen = self._algorithm if self._algorithm_chosen else default_coupling()
             assert isinstance(chosen, JacobiAlgorithm)
             self._algorithm = HybridAlgorithm(coupling=chosen)
             logger.debug("%s: event indicators present, using the hybrid algorithm", self.name)
@@ -191,17 +191,16 @@ class System:
         algorithm = self.algorithm
         algorithm.validate()
         coupling = algorithm.coupling if isinstance(algorithm, HybridAlgorithm) else algorithm
-        plan.check(lib().ssx_set_coupling(
-            plan.sys, 0 if isinstance(coupling, GaussSeidelAlgorithm) else 1), "coupling")
+        plan.check(lib().ssx_set_coupling(plan.sys, coupling.coupling_value()), "coupling")
         plan.check(lib().ssx_set_loop_options(plan.sys, coupling.tolerance, coupling.max_iter,
                                               coupling.damping), "loop options")
         plan.check(lib().ssx_set_loop_jacobian(
-            plan.sys, LOOP_JACOBIANS.index(coupling.loop_jacobian)), "loop Jacobian")
+            plan.sys, loop_jacobians()[coupling.loop_jacobian]), "loop Jacobian")
         if isinstance(algorithm, HybridAlgorithm):
             plan.check(lib().ssx_set_hybrid_options(
                 plan.sys, algorithm.tol_time, algorithm.tol_value, algorithm.max_iter,
                 algorithm.max_microsteps, int(algorithm.record_internal_steps),
-                locator_methods()[algorithm.method], algorithm.zeno_min_interval),
+                algorithm.locator(), algorithm.zeno_min_interval),
                 "hybrid options")
 
     # ------------------------------------------------------------------ running

@@ -104,7 +104,7 @@ static void failing_fmu_call(void)
     CHECK_MESSAGE(sys, "t=1");
     CHECK_MESSAGE(sys, "fmi2Error");
     CHECK_MESSAGE(sys, "fail_time"); /* the FMU's own log message */
-    CHECK(e->component == c && e->fmi_status == 3 && e->time == 1.0 && e->in_callback == 0);
+    CHECK(e->component == c && e->fmi_status == 3 && e->time == 1.0 && e->kind == SSX_ERROR_FMI);
     /* the samples recorded before the failure stay readable */
     CHECK(ssx_history_length(sys) == 5);
     CHECK(ssx_history_time(sys)[4] == 1.0);
@@ -138,7 +138,7 @@ static void failing_hook(void)
     CHECK_OK(sys, ssx_set_hooks(sys, c, &hooks));
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
     CHECK(ssx_run(sys, 0.0, 1.0, 0.5) == -1);
-    CHECK(ssx_last_error(sys)->in_callback == 1);
+    CHECK(ssx_last_error(sys)->kind == SSX_ERROR_CALLBACK);
     CHECK_MESSAGE(sys, "component 'Scripted': the Python do_step hook failed at t=0");
 
     /* an indicator on a component that cannot roll back is refused before anything runs */
