@@ -6,7 +6,13 @@ import math
 from typing import TYPE_CHECKING, NoReturn
 
 from ..engine import ffi, lib, status_name
-from ..errors import AlgebraicLoopError, SimulationError, SimulationTimeoutError, ZenoError
+from ..errors import (
+    AlgebraicLoopError,
+    ConfigurationError,
+    SimulationError,
+    SimulationTimeoutError,
+    ZenoError,
+)
 
 if TYPE_CHECKING:
     from .plan import EnginePlan
@@ -18,7 +24,11 @@ _EXCEPTIONS: dict[str, type[SimulationError]] = {"SSX_ERROR_ZENO": ZenoError,
 
 def raise_failure(plan: EnginePlan, default_component: str | None = None) -> NoReturn:
     """Raise the plan's last failure. An interrupt (KeyboardInterrupt, SystemExit) raised in a
-    callback and a timeout are raised as they are; anything else becomes a SimulationError."""
+    callback and a timeout are raised as they are, arguments the engine refused (a step that is
+    not positive, ...) as ConfigurationError; anything else becomes a SimulationError."""
+    error = lib().ssx_last_error(plan.sys)
+    if error.kind == lib().SSX_ERROR_CONFIG:
+        raise ConfigurationError(ffi.string(error.message).decode(errors="replace"))
     failure = plan.failure
     if failure is not None and (not isinstance(failure.error, Exception)
                                 or isinstance(failure.error, SimulationTimeoutError)):

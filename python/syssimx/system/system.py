@@ -252,10 +252,6 @@ class System:
             raise ConfigurationError(f"{self.name}: call initialize(t0) before run()")
         t0, tf, dt = (_time_value(self.name, label, value)
                       for label, value in (("t0", t0), ("tf", tf), ("dt", dt)))
-        if not dt > 0:
-            raise ConfigurationError(f"{self.name}: dt must be positive, got {dt}")
-        if tf < t0:
-            raise ConfigurationError(f"{self.name}: tf={tf} is before t0={t0}")
         if timeout is not None and not (isinstance(timeout, int | float) and timeout > 0):
             raise ConfigurationError(f"{self.name}: timeout must be a positive number of "
                                      f"seconds or None, got {timeout!r}")
