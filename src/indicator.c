@@ -22,8 +22,8 @@ int indicators_evaluate(ssx_system *sys, double t)
         }
         if (!isfinite(value)) {
             return fail_kind(sys, SSX_ERROR_NON_FINITE, ind->component, i, t,
-                        "component '%s': indicator %d is not finite (%g) at t=%.17g", c->name, i,
-                        value, t);
+                             "component '%s': indicator %d is not finite (%g) at t=%.17g", c->name,
+                             i, value, t);
         }
         sys->indicator_states[i].value = value;
     }

@@ -36,7 +36,7 @@ typedef struct {
     ssx_loop_jacobian loop_jacobian;
     double tol_time;
     double tol_value;
-    int max_iterations;      /* localization iterations per event */
+    int max_iterations; /* localization iterations per event */
     int max_microsteps;
     ssx_locator locator;
     double zeno_min_interval; /* 0: the rule of ssx_set_hybrid_options */
