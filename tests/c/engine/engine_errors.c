@@ -38,6 +38,7 @@ static void bad_input(void)
     CHECK(ssx_last_error(sys)->component == b);
     CHECK(ssx_connect(sys, a, 3, b, 0, 1.0, 0.0) == -1);
     CHECK_MESSAGE(sys, "component 'first' has no output 3");
+    CHECK(ssx_last_error(sys)->kind == SSX_ERROR_CONFIG);
 
     CHECK(ssx_run(sys, 0.0, 1.0, 0.1) == -1);
     CHECK_MESSAGE(sys, "not initialized");
@@ -45,6 +46,7 @@ static void bad_input(void)
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
     CHECK(ssx_run(sys, 0.0, 1.0, 0.0) == -1);
     CHECK_MESSAGE(sys, "dt must be positive");
+    CHECK(ssx_last_error(sys)->kind == SSX_ERROR_CONFIG);
     CHECK(ssx_run(sys, 0.0, 1.0, -0.1) == -1);
     CHECK_MESSAGE(sys, "dt must be positive");
     CHECK(ssx_run(sys, 0.0, 1.0, NAN) == -1);
@@ -149,8 +151,29 @@ static void failing_hook(void)
     ssx_system_free(sys);
 }
 
+/* The defaults are one set of values the setters accept (Python's option classes read them). */
+static void defaults_are_valid_options(void)
+{
+    ssx_defaults d;
+    ssx_get_defaults(&d);
+    CHECK(d.loop_max_iterations == 100 && d.max_iterations == 100 && d.output_interval == 1);
+    ssx_system *sys = ssx_system_new("defaults");
+    CHECK_OK(sys, ssx_set_coupling(sys, d.coupling));
+    CHECK_OK(sys, ssx_set_loop_options(sys, d.loop_tolerance, d.loop_max_iterations,
+                                       d.loop_damping));
+    CHECK_OK(sys, ssx_set_loop_jacobian(sys, d.loop_jacobian));
+    CHECK_OK(sys, ssx_set_hybrid_options(sys, d.tol_time, d.tol_value, d.max_iterations,
+                                         d.max_microsteps, 0, d.locator, d.zeno_min_interval));
+    CHECK_OK(sys, ssx_set_output_interval(sys, d.output_interval));
+    CHECK(ssx_set_hybrid_options(sys, -1.0, d.tol_value, d.max_iterations, d.max_microsteps, 0,
+                                 d.locator, d.zeno_min_interval) == -1);
+    CHECK(ssx_last_error(sys)->kind == SSX_ERROR_CONFIG);
+    ssx_system_free(sys);
+}
+
 int main(void)
 {
+    defaults_are_valid_options();
     bad_input();
     failing_fmu_call();
     failing_hook();
