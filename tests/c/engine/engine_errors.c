@@ -159,8 +159,8 @@ static void defaults_are_valid_options(void)
     CHECK(d.loop_max_iterations == 100 && d.max_iterations == 100 && d.output_interval == 1);
     ssx_system *sys = ssx_system_new("defaults");
     CHECK_OK(sys, ssx_set_coupling(sys, d.coupling));
-    CHECK_OK(sys, ssx_set_loop_options(sys, d.loop_tolerance, d.loop_max_iterations,
-                                       d.loop_damping));
+    CHECK_OK(sys,
+             ssx_set_loop_options(sys, d.loop_tolerance, d.loop_max_iterations, d.loop_damping));
     CHECK_OK(sys, ssx_set_loop_jacobian(sys, d.loop_jacobian));
     CHECK_OK(sys, ssx_set_hybrid_options(sys, d.tol_time, d.tol_value, d.max_iterations,
                                          d.max_microsteps, 0, d.locator, d.zeno_min_interval));
