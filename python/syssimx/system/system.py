@@ -205,14 +205,16 @@ class System:
 
     # ------------------------------------------------------------------ running
     def initialize(self, t0: float = 0.0, tolerance: float | None = None, *,
-                   allow_non_finite: bool | None = None, output_interval: int = 1) -> None:
+                   allow_non_finite: bool | None = None, output_interval: int | None = None
+                   ) -> None:
         """Build the engine system, initialize every component at t0, record the first sample.
 
         tolerance: the relative tolerance of FMUs given none of their own (default: each FMU's
         DefaultExperiment tolerance). allow_non_finite: record NaN and infinite outputs instead
         of stopping the run at the first one (None keeps the engine's default: stop).
         output_interval: record every output_interval-th communication point (from t0), the
-        last point of each run and every event instant; 1 records every point."""
+        last point of each run and every event instant; 1 records every point (None keeps the
+        engine's default, every point)."""
         t0 = _time_value(self.name, "t0", t0)
         plan = self._compile()
         self._plan = plan
@@ -220,7 +222,9 @@ class System:
         if allow_non_finite is not None:
             plan.check(lib().ssx_set_allow_non_finite(plan.sys, int(bool(allow_non_finite))),
                        "allow_non_finite")
-        plan.check(lib().ssx_set_output_interval(plan.sys, output_interval), "output_interval")
+        if output_interval is not None:
+            plan.check(lib().ssx_set_output_interval(plan.sys, output_interval),
+                       "output_interval")
         self.termination = None
         start_tables(self.components, self.connections, plan, t0)
         for component in self.components.values():
