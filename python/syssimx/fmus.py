@@ -11,10 +11,9 @@ from ._paths import fmu_dir
 
 
 def available() -> list[str]:
-    """Names of the bundled FMUs (file names without .fmu), sorted: the list the build writes
-    beside them (fmus.txt, from models/meson.build)."""
-    listing = fmu_dir() / "fmus.txt"
-    return sorted(listing.read_text().split()) if listing.is_file() else []
+    """Names of the bundled FMUs (file names without .fmu), sorted."""
+    directory = fmu_dir()
+    return sorted(p.stem for p in directory.glob("*.fmu")) if directory.is_dir() else []
 
 
 def path(name: str) -> str:
