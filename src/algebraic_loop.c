@@ -324,11 +324,12 @@ static int report_failure(loop_work *w, double residual_norm)
                                c->name);
         used += written > 0 ? (size_t)written : 0;
     }
-    return fail(sys, sys->order[w->group->first], -1, w->t,
-                "the algebraic loop of components %s did not converge at t=%.17g: residual norm "
-                "%.3g after %d Newton and %d fixed-point iterations (tolerance %.3g)",
-                names, w->t, residual_norm, sys->loop.max_iterations, sys->loop.max_iterations,
-                sys->loop.tolerance);
+    return fail_kind(
+        sys, SSX_ERROR_LOOP, sys->order[w->group->first], -1, w->t,
+        "the algebraic loop of components %s did not converge at t=%.17g: residual norm "
+        "%.3g after %d Newton and %d fixed-point iterations (tolerance %.3g)",
+        names, w->t, residual_norm, sys->loop.max_iterations, sys->loop.max_iterations,
+        sys->loop.tolerance);
 }
 
 int loop_solve(ssx_system *sys, const ssx_group *group, double t)

@@ -8,17 +8,16 @@
 
 #include "fmu_binding.h"
 
-static int vfail(ssx_system *sys, int component, int indicator, double t, const char *format,
-                 va_list args)
+static int vfail(ssx_system *sys, ssx_error_kind kind, int component, int indicator, double t,
+                 const char *format, va_list args)
 {
     ssx_error *e = &sys->error;
+    e->kind = kind;
     e->component = component;
     e->indicator = indicator;
     e->output = -1;
     e->time = t;
     e->fmi_status = -1;
-    e->in_callback = 0;
-    e->zeno = 0;
     vsnprintf(e->message, sizeof e->message, format, args);
     return -1;
 }
@@ -27,7 +26,26 @@ int fail(ssx_system *sys, int component, int indicator, double t, const char *fo
 {
     va_list args;
     va_start(args, format);
-    vfail(sys, component, indicator, t, format, args);
+    vfail(sys, SSX_ERROR_SIMULATION, component, indicator, t, format, args);
+    va_end(args);
+    return -1;
+}
+
+int fail_config(ssx_system *sys, int component, int indicator, double t, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    vfail(sys, SSX_ERROR_CONFIG, component, indicator, t, format, args);
+    va_end(args);
+    return -1;
+}
+
+int fail_kind(ssx_system *sys, ssx_error_kind kind, int component, int indicator, double t,
+              const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    vfail(sys, kind, component, indicator, t, format, args);
     va_end(args);
     return -1;
 }
@@ -36,9 +54,8 @@ int fail_zeno(ssx_system *sys, int component, int indicator, double t, const cha
 {
     va_list args;
     va_start(args, format);
-    vfail(sys, component, indicator, t, format, args);
+    vfail(sys, SSX_ERROR_ZENO, component, indicator, t, format, args);
     va_end(args);
-    sys->error.zeno = 1;
     return -1;
 }
 
@@ -48,6 +65,7 @@ int fail_fmi(ssx_system *sys, const ssx_component *c, double t, int status, cons
     fail(sys, c->index, -1, t, "component '%s': %s failed at t=%.17g with status %s%s%s%s",
          c->name, call, t, ssx_fmi2_status_name(status), log[0] ? " (FMU log: " : "", log,
          log[0] ? ")" : " (the FMU logged no message)");
+    sys->error.kind = SSX_ERROR_FMI;
     sys->error.fmi_status = status;
     return -1;
 }
@@ -58,6 +76,7 @@ int fail_non_finite(ssx_system *sys, const ssx_component *c, int output, double 
          "component '%s': output %d is %g at t=%.17g (non-finite values stop the run unless they "
          "are allowed)",
          c->name, output, c->outputs[output], t);
+    sys->error.kind = SSX_ERROR_NON_FINITE;
     sys->error.output = output;
     return -1;
 }
@@ -66,7 +85,7 @@ int fail_hook(ssx_system *sys, const ssx_component *c, double t, const char *hoo
 {
     fail(sys, c->index, -1, t, "component '%s': the Python %s hook failed at t=%.17g", c->name,
          hook, t);
-    sys->error.in_callback = 1;
+    sys->error.kind = SSX_ERROR_CALLBACK;
     return -1;
 }
 

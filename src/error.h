@@ -11,16 +11,23 @@
 #define SSX_PRINTF(fmt, args)
 #endif
 
-/* A failure of the engine or of bad input; component/indicator may be -1, t may be NAN. */
+/* A failure while running (SSX_ERROR_SIMULATION); component/indicator may be -1, t may be
+ * NAN. The fail_* below name other kinds. */
 int fail(ssx_system *sys, int component, int indicator, double t, const char *format, ...)
     SSX_PRINTF(5, 6);
+/* Bad input: a call's arguments, or a call the system's state does not allow. */
+int fail_config(ssx_system *sys, int component, int indicator, double t, const char *format, ...)
+    SSX_PRINTF(5, 6);
+/* A failure of kind `kind` other than the ones above and below. */
+int fail_kind(ssx_system *sys, ssx_error_kind kind, int component, int indicator, double t,
+              const char *format, ...) SSX_PRINTF(6, 7);
 /* An fmi2 call of component c returned `status` (or the binding failed, status -1). */
 int fail_fmi(ssx_system *sys, const ssx_component *c, double t, int status, const char *call);
 /* Output `output` of component c holds a NaN or an infinity at time t. */
 int fail_non_finite(ssx_system *sys, const ssx_component *c, int output, double t);
 /* A Python hook of component c reported failure; Python keeps the exception. */
 int fail_hook(ssx_system *sys, const ssx_component *c, double t, const char *hook);
-/* Marks the current error as chattering / too many micro steps. */
+/* Chattering / too many micro steps. */
 int fail_zeno(ssx_system *sys, int component, int indicator, double t, const char *format, ...)
     SSX_PRINTF(5, 6);
 void clear_error(ssx_system *sys);

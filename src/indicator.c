@@ -15,16 +15,15 @@ int indicators_evaluate(ssx_system *sys, double t)
         if (ind->output >= 0) {
             value = c->outputs[ind->output];
         } else if (ind->evaluate(ind->user, t, &value) != 0) {
-            fail(sys, ind->component, i, t,
-                 "component '%s': the Python function of indicator %d failed at t=%.17g", c->name,
-                 i, t);
-            sys->error.in_callback = 1;
-            return -1;
+            return fail_kind(sys, SSX_ERROR_CALLBACK, ind->component, i, t,
+                             "component '%s': the Python function of indicator %d failed at "
+                             "t=%.17g",
+                             c->name, i, t);
         }
         if (!isfinite(value)) {
-            return fail(sys, ind->component, i, t,
-                        "component '%s': indicator %d is not finite (%g) at t=%.17g", c->name, i,
-                        value, t);
+            return fail_kind(sys, SSX_ERROR_NON_FINITE, ind->component, i, t,
+                             "component '%s': indicator %d is not finite (%g) at t=%.17g", c->name,
+                             i, value, t);
         }
         sys->indicator_states[i].value = value;
     }

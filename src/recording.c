@@ -132,14 +132,14 @@ static const ssx_observer_ops RECORD_HOOKS_OPS = {.step_complete = record_hooks_
 
 /* ---------------------------------------------------------------- the recording */
 
-void recording_init(ssx_recording *r)
+void recording_init(ssx_recording *r, int output_interval)
 {
     memset(r, 0, sizeof *r);
     r->history.base.ops = &HISTORY_OPS;
     r->decimator.base.ops = &DECIMATOR_OPS;
     r->decimator.next = &r->history.base;
     r->record_hooks.ops = &RECORD_HOOKS_OPS;
-    r->output_interval = 1;
+    r->output_interval = output_interval;
 }
 
 void recording_free(ssx_recording *r)

@@ -41,7 +41,7 @@ typedef struct {
     size_t events_capacity;
 } ssx_recording;
 
-void recording_init(ssx_recording *r);
+void recording_init(ssx_recording *r, int output_interval);
 void recording_free(ssx_recording *r);
 /* ssx_initialize: drops the last run's events, chooses the observers and starts them. */
 int recording_start(ssx_system *sys);

@@ -47,7 +47,8 @@ int ssx_initialize(ssx_system *sys, double t0)
     clear_error(sys);
     sys->initialized = 0;
     if (!isfinite(t0)) {
-        return fail(sys, -1, -1, t0, "system '%s': the start time must be finite", sys->name);
+        return fail_config(sys, -1, -1, t0, "system '%s': the start time must be finite",
+                           sys->name);
     }
     sys->time = t0;
     sys->termination.component = -1;
@@ -85,10 +86,8 @@ int ssx_initialize(ssx_system *sys, double t0)
 
 static int stopped_by_monitor(ssx_system *sys, double t)
 {
-    fail(sys, -1, -1, t, "system '%s': the run was stopped by its monitor at t=%.17g", sys->name,
-         t);
-    sys->error.in_callback = 1;
-    return -1;
+    return fail_kind(sys, SSX_ERROR_CALLBACK, -1, -1, t,
+                     "system '%s': the run was stopped by its monitor at t=%.17g", sys->name, t);
 }
 
 static int run_grid(ssx_system *sys, double t0, double tf, double dt, long n_steps)
@@ -119,37 +118,40 @@ int ssx_run(ssx_system *sys, double t0, double tf, double dt)
 {
     clear_error(sys);
     if (!sys->initialized) {
-        return fail(sys, -1, -1, t0,
-                    "system '%s' is not initialized (call ssx_initialize after changing it)",
-                    sys->name);
+        return fail_config(sys, -1, -1, t0,
+                           "system '%s' is not initialized (call ssx_initialize after changing it)",
+                           sys->name);
     }
     if (sys->termination.component >= 0) {
-        return fail(sys, sys->termination.component, -1, t0,
-                    "system '%s' ended at t=%.17g: component '%s' asked to stop at t=%.17g; "
-                    "initialize the system again to start a new run",
-                    sys->name, sys->time, sys->components[sys->termination.component]->name,
-                    sys->termination.time);
+        return fail_kind(sys, SSX_ERROR_TERMINATED, sys->termination.component, -1, t0,
+                         "system '%s' ended at t=%.17g: component '%s' asked to stop at t=%.17g; "
+                         "initialize the system again to start a new run",
+                         sys->name, sys->time, sys->components[sys->termination.component]->name,
+                         sys->termination.time);
     }
     if (!isfinite(t0) || !isfinite(tf) || !isfinite(dt)) {
-        return fail(sys, -1, -1, t0, "system '%s': t0, tf and dt must be finite (got %g, %g, %g)",
-                    sys->name, t0, tf, dt);
+        return fail_config(sys, -1, -1, t0,
+                           "system '%s': t0, tf and dt must be finite (got %g, %g, %g)", sys->name,
+                           t0, tf, dt);
     }
     if (!(dt > 0.0)) {
-        return fail(sys, -1, -1, t0, "system '%s': the step dt must be positive (got %g)",
-                    sys->name, dt);
+        return fail_config(sys, -1, -1, t0, "system '%s': the step dt must be positive (got %g)",
+                           sys->name, dt);
     }
     if (tf < t0) {
-        return fail(sys, -1, -1, t0, "system '%s': tf=%.17g lies before t0=%.17g", sys->name, tf,
-                    t0);
+        return fail_config(sys, -1, -1, t0, "system '%s': tf=%.17g lies before t0=%.17g", sys->name,
+                           tf, t0);
     }
     if (fabs(t0 - sys->time) > 1e-12 * fmax(1.0, fabs(t0))) {
-        return fail(sys, -1, -1, t0, "system '%s' is at t=%.17g; a run must start there, not at "
-                    "t0=%.17g", sys->name, sys->time, t0);
+        return fail_config(sys, -1, -1, t0,
+                           "system '%s' is at t=%.17g; a run must start there, not at "
+                           "t0=%.17g",
+                           sys->name, sys->time, t0);
     }
     double ratio = (tf - t0) / dt;
     if (ratio > SSX_MAX_GRID_STEPS) {
-        return fail(sys, -1, -1, t0, "system '%s': %.3g steps of dt=%g are too many", sys->name,
-                    ratio, dt);
+        return fail_config(sys, -1, -1, t0, "system '%s': %.3g steps of dt=%g are too many",
+                           sys->name, ratio, dt);
     }
     /* A remainder below 1e-9 steps joins the last step instead of making a sliver step. */
     long n_steps = tf > t0 ? (long)ceil(ratio - 1e-9) : 0;

@@ -26,6 +26,24 @@ typedef enum { SSX_GAUSS_SEIDEL = 0, SSX_JACOBI = 1 } ssx_coupling;
 typedef enum { SSX_ILLINOIS = 0, SSX_BISECTION = 1, SSX_ILLINOIS_UNGUARDED = 2 } ssx_locator;
 typedef enum { SSX_JACOBIAN_AUTO = 0, SSX_JACOBIAN_FINITE_DIFFERENCES = 1 } ssx_loop_jacobian;
 
+/* The options a new system starts with: the one definition of every default, read by Python
+ * (ssx_get_defaults) for its algorithm classes. */
+typedef struct {
+    ssx_coupling coupling;
+    double loop_tolerance;
+    int loop_max_iterations;
+    double loop_damping;
+    ssx_loop_jacobian loop_jacobian;
+    double tol_time;
+    double tol_value;
+    int max_iterations; /* localization iterations per event */
+    int max_microsteps;
+    ssx_locator locator;
+    double zeno_min_interval; /* 0: the rule of ssx_set_hybrid_options */
+    int output_interval;
+} ssx_defaults;
+void ssx_get_defaults(ssx_defaults *out);
+
 /* ------------------------------------------------------------------------------------------
  * One loaded FMU binary with (at most) one live instance. Owned by the Python FMUComponent,
  * borrowed by every system it is added to.
@@ -127,14 +145,28 @@ void ssx_fmu_get_counters(const ssx_fmu *fmu, ssx_fmu_counters *out);
  * ------------------------------------------------------------------------------------------ */
 typedef struct ssx_system ssx_system;
 
+/* What kind of failure an ssx_error describes, so that a caller picks its exception without
+ * reading the message. */
+typedef enum {
+    SSX_ERROR_NONE = 0,
+    SSX_ERROR_CONFIG,     /* a call's arguments or the system's description were refused */
+    SSX_ERROR_FMI,        /* an fmi2 call failed (fmi_status says how) */
+    SSX_ERROR_CALLBACK,   /* a Python callback or the monitor reported failure (Python keeps the
+                             exception) */
+    SSX_ERROR_ZENO,       /* chattering (Zeno) or too many micro steps */
+    SSX_ERROR_LOOP,       /* an algebraic loop did not converge */
+    SSX_ERROR_TERMINATED, /* a component ended the run; initialize again before running */
+    SSX_ERROR_NON_FINITE, /* an output or indicator is NaN or infinite */
+    SSX_ERROR_SIMULATION  /* any other failure while running (out of memory, localization) */
+} ssx_error_kind;
+
 typedef struct {
+    ssx_error_kind kind;
     int component;   /* index of the component involved, or -1 */
     int indicator;   /* index of the indicator involved, or -1 */
     int output;      /* index of the component's output involved, or -1 */
     double time;     /* simulation time of the failure */
     int fmi_status;  /* fmi2Status of the failing call, or -1 */
-    int in_callback; /* 1 when a Python callback reported the failure (Python keeps the exception) */
-    int zeno;        /* 1 when the failure is chattering (Zeno) or too many micro steps */
     char message[2048]; /* human-readable: what failed, where, and the FMU's last log message */
 } ssx_error;
 
@@ -284,7 +316,7 @@ double ssx_time(const ssx_system *sys);
 
 /* A watch over ssx_run: between macro steps, about every SSX_MONITOR_INTERVAL_MS of wall
  * time, monitor(user, t) is called with the time reached; nonzero stops the run, which then
- * fails at t with in_callback set (the monitor keeps its reason). The clock is read only
+ * fails at t with kind SSX_ERROR_CALLBACK (the monitor keeps its reason). The clock is read only
  * every few steps, as many as take about a tenth of the interval. Python runs its signal
  * handlers there, so Ctrl-C and timeouts stop a run. NULL removes the monitor. */
 enum { SSX_MONITOR_INTERVAL_MS = 50 };

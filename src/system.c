@@ -12,6 +12,22 @@
 #include "coupling.h"
 #include "error.h"
 
+void ssx_get_defaults(ssx_defaults *out)
+{
+    *out = (ssx_defaults){.coupling = SSX_GAUSS_SEIDEL,
+                          .loop_tolerance = 1e-10,
+                          .loop_max_iterations = 100,
+                          .loop_damping = 1.0,
+                          .loop_jacobian = SSX_JACOBIAN_AUTO,
+                          .tol_time = 1e-9,
+                          .tol_value = 1e-9,
+                          .max_iterations = 100,
+                          .max_microsteps = 10,
+                          .locator = SSX_ILLINOIS,
+                          .zeno_min_interval = 0.0,
+                          .output_interval = 1};
+}
+
 ssx_system *ssx_system_new(const char *name)
 {
     ssx_system *sys = calloc(1, sizeof *sys);
@@ -23,20 +39,22 @@ ssx_system *ssx_system_new(const char *name)
         free(sys);
         return NULL;
     }
-    sys->coupling = SSX_GAUSS_SEIDEL;
-    sys->loop = (ssx_loop_options){.tolerance = 1e-10,
-                                   .max_iterations = 50,
-                                   .damping = 1.0,
-                                   .jacobian = SSX_JACOBIAN_AUTO};
-    sys->hybrid = (ssx_hybrid_options){.tol_time = 1e-9,
-                                       .tol_value = 1e-9,
-                                       .max_iterations = 100,
-                                       .max_microsteps = 10,
+    ssx_defaults d;
+    ssx_get_defaults(&d);
+    sys->coupling = d.coupling;
+    sys->loop = (ssx_loop_options){.tolerance = d.loop_tolerance,
+                                   .max_iterations = d.loop_max_iterations,
+                                   .damping = d.loop_damping,
+                                   .jacobian = d.loop_jacobian};
+    sys->hybrid = (ssx_hybrid_options){.tol_time = d.tol_time,
+                                       .tol_value = d.tol_value,
+                                       .max_iterations = d.max_iterations,
+                                       .max_microsteps = d.max_microsteps,
                                        .record_internal_steps = 0,
-                                       .locator = SSX_ILLINOIS,
-                                       .zeno_min_interval = 0.0};
+                                       .locator = d.locator,
+                                       .zeno_min_interval = d.zeno_min_interval};
     sys->termination.component = -1;
-    recording_init(&sys->recording);
+    recording_init(&sys->recording, d.output_interval);
     clear_error(sys);
     return sys;
 }
@@ -71,8 +89,9 @@ const ssx_error *ssx_last_error(const ssx_system *sys)
 ssx_component *system_component(ssx_system *sys, int index)
 {
     if (index < 0 || index >= sys->n_components) {
-        fail(sys, -1, -1, sys->time, "unknown component index %d (system '%s' has %d components)",
-             index, sys->name, sys->n_components);
+        fail_config(sys, -1, -1, sys->time,
+                    "unknown component index %d (system '%s' has %d components)", index, sys->name,
+                    sys->n_components);
         return NULL;
     }
     return sys->components[index];
@@ -93,23 +112,23 @@ int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int ca
                          const ssx_component_ops *ops)
 {
     if (name == NULL || name[0] == '\0') {
-        return fail(sys, -1, -1, NAN, "system '%s': a component needs a non-empty name",
-                    sys->name);
+        return fail_config(sys, -1, -1, NAN, "system '%s': a component needs a non-empty name",
+                           sys->name);
     }
     for (int i = 0; i < sys->n_components; ++i) {
         if (strcmp(sys->components[i]->name, name) == 0) {
-            return fail(sys, i, -1, NAN, "system '%s' already has a component named '%s'",
-                        sys->name, name);
+            return fail_config(sys, i, -1, NAN, "system '%s' already has a component named '%s'",
+                               sys->name, name);
         }
     }
     if (array_reserve((void **)&sys->components, &sys->components_capacity,
                       (size_t)sys->n_components + 1, sizeof *sys->components, 8) != 0) {
-        return fail(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
+        return fail_config(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
     }
     ssx_component *c = calloc(1, sizeof *c);
     if (c == NULL || (c->name = strdup(name)) == NULL) {
         free(c);
-        return fail(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
+        return fail_config(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
     }
     c->index = sys->n_components;
     c->ops = ops;
@@ -126,7 +145,7 @@ int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int ca
 int ssx_add_fmu_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_get_set_state)
 {
     if (fmu == NULL) {
-        return fail(sys, -1, -1, NAN, "component '%s': no FMU given", name ? name : "?");
+        return fail_config(sys, -1, -1, NAN, "component '%s': no FMU given", name ? name : "?");
     }
     return system_add_component(sys, name, fmu, can_get_set_state, &ssx_fmu_component_ops);
 }
@@ -163,8 +182,8 @@ int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned
         return -1;
     }
     if (!valid_type(type)) {
-        return fail(sys, component, -1, NAN, "component '%s': unknown value type %d", c->name,
-                    (int)type);
+        return fail_config(sys, component, -1, NAN, "component '%s': unknown value type %d",
+                           c->name, (int)type);
     }
     size_t n = (size_t)c->n_outputs + 1;
     ssx_port *ports = realloc(c->output_ports, n * sizeof *ports);
@@ -176,7 +195,8 @@ int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned
         c->outputs = values;
     }
     if (ports == NULL || values == NULL) {
-        return fail(sys, component, -1, NAN, "out of memory adding an output to '%s'", c->name);
+        return fail_config(sys, component, -1, NAN, "out of memory adding an output to '%s'",
+                           c->name);
     }
     c->output_ports[c->n_outputs] = (ssx_port){.type = type, .vr = vr};
     c->outputs[c->n_outputs] = 0.0;
@@ -192,13 +212,14 @@ int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned 
         return -1;
     }
     if (!valid_type(type)) {
-        return fail(sys, component, -1, NAN, "component '%s': unknown value type %d", c->name,
-                    (int)type);
+        return fail_config(sys, component, -1, NAN, "component '%s': unknown value type %d",
+                           c->name, (int)type);
     }
     if (isinf(start) || (isnan(start) && c->fmu == NULL)) {
-        return fail(sys, component, -1, NAN, "component '%s': the start value of an input must "
-                    "be finite (NaN, the FMU's own value, exists for FMU components only)",
-                    c->name);
+        return fail_config(sys, component, -1, NAN,
+                           "component '%s': the start value of an input must "
+                           "be finite (NaN, the FMU's own value, exists for FMU components only)",
+                           c->name);
     }
     size_t n = (size_t)c->n_inputs + 1;
     ssx_port *ports = realloc(c->input_ports, n * sizeof *ports);
@@ -218,7 +239,8 @@ int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned 
         c->input_driver = drivers;
     }
     if (ports == NULL || values == NULL || starts == NULL || drivers == NULL) {
-        return fail(sys, component, -1, NAN, "out of memory adding an input to '%s'", c->name);
+        return fail_config(sys, component, -1, NAN, "out of memory adding an input to '%s'",
+                           c->name);
     }
     c->input_ports[c->n_inputs] = (ssx_port){.type = type, .vr = vr};
     c->inputs[c->n_inputs] = start;
@@ -249,30 +271,32 @@ int ssx_connect(ssx_system *sys, int src_component, int src_output, int dst_comp
         return -1;
     }
     if (src_output < 0 || src_output >= src->n_outputs) {
-        return fail(sys, src_component, -1, NAN, "component '%s' has no output %d (it has %d)",
-                    src->name, src_output, src->n_outputs);
+        return fail_config(sys, src_component, -1, NAN,
+                           "component '%s' has no output %d (it has %d)", src->name, src_output,
+                           src->n_outputs);
     }
     if (dst_input < 0 || dst_input >= dst->n_inputs) {
-        return fail(sys, dst_component, -1, NAN, "component '%s' has no input %d (it has %d)",
-                    dst->name, dst_input, dst->n_inputs);
+        return fail_config(sys, dst_component, -1, NAN,
+                           "component '%s' has no input %d (it has %d)", dst->name, dst_input,
+                           dst->n_inputs);
     }
     if (!isfinite(scale) || !isfinite(offset)) {
-        return fail(sys, dst_component, -1, NAN,
-                    "connection %s.out[%d] -> %s.in[%d]: scale and offset must be finite",
-                    src->name, src_output, dst->name, dst_input);
+        return fail_config(sys, dst_component, -1, NAN,
+                           "connection %s.out[%d] -> %s.in[%d]: scale and offset must be finite",
+                           src->name, src_output, dst->name, dst_input);
     }
     int driver = dst->input_driver[dst_input];
     if (driver >= 0) {
         const ssx_connection *existing = &sys->connections[driver];
-        return fail(sys, dst_component, -1, NAN,
-                    "input %d of component '%s' is already driven by output %d of component "
-                    "'%s': an input takes exactly one driver",
-                    dst_input, dst->name, existing->src_output,
-                    sys->components[existing->src_component]->name);
+        return fail_config(sys, dst_component, -1, NAN,
+                           "input %d of component '%s' is already driven by output %d of component "
+                           "'%s': an input takes exactly one driver",
+                           dst_input, dst->name, existing->src_output,
+                           sys->components[existing->src_component]->name);
     }
     if (array_reserve((void **)&sys->connections, &sys->connections_capacity,
                       (size_t)sys->n_connections + 1, sizeof *sys->connections, 8) != 0) {
-        return fail(sys, -1, -1, NAN, "out of memory adding a connection");
+        return fail_config(sys, -1, -1, NAN, "out of memory adding a connection");
     }
     sys->connections[sys->n_connections] = (ssx_connection){
         .src_component = src_component,
@@ -290,13 +314,13 @@ int ssx_connect(ssx_system *sys, int src_component, int src_output, int dst_comp
 static int add_indicator(ssx_system *sys, ssx_indicator indicator)
 {
     if (indicator.direction < -1 || indicator.direction > 1) {
-        return fail(sys, indicator.component, -1, NAN,
-                    "component '%s': indicator direction must be -1, 0 or +1, not %d",
-                    sys->components[indicator.component]->name, indicator.direction);
+        return fail_config(sys, indicator.component, -1, NAN,
+                           "component '%s': indicator direction must be -1, 0 or +1, not %d",
+                           sys->components[indicator.component]->name, indicator.direction);
     }
     if (array_reserve((void **)&sys->indicators, &sys->indicators_capacity,
                       (size_t)sys->n_indicators + 1, sizeof *sys->indicators, 8) != 0) {
-        return fail(sys, -1, -1, NAN, "out of memory adding an indicator");
+        return fail_config(sys, -1, -1, NAN, "out of memory adding an indicator");
     }
     sys->indicators[sys->n_indicators] = indicator;
     structure_changed(sys);
@@ -310,8 +334,8 @@ int ssx_add_indicator_output(ssx_system *sys, int component, int output, int dir
         return -1;
     }
     if (output < 0 || output >= c->n_outputs) {
-        return fail(sys, component, -1, NAN, "component '%s' has no output %d (it has %d)",
-                    c->name, output, c->n_outputs);
+        return fail_config(sys, component, -1, NAN, "component '%s' has no output %d (it has %d)",
+                           c->name, output, c->n_outputs);
     }
     return add_indicator(sys, (ssx_indicator){.component = component,
                                               .output = output,
@@ -327,8 +351,10 @@ int ssx_add_indicator_callback(ssx_system *sys, int component,
         return -1;
     }
     if (evaluate == NULL) {
-        return fail(sys, component, -1, NAN, "component '%s': a callback indicator needs an "
-                    "evaluate function", c->name);
+        return fail_config(sys, component, -1, NAN,
+                           "component '%s': a callback indicator needs an "
+                           "evaluate function",
+                           c->name);
     }
     return add_indicator(sys, (ssx_indicator){.component = component,
                                               .output = -1,
@@ -340,8 +366,9 @@ int ssx_add_indicator_callback(ssx_system *sys, int component,
 int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_component)
 {
     if (indicator < 0 || indicator >= sys->n_indicators) {
-        return fail(sys, -1, indicator, NAN, "unknown indicator index %d (system '%s' has %d)",
-                    indicator, sys->name, sys->n_indicators);
+        return fail_config(sys, -1, indicator, NAN,
+                           "unknown indicator index %d (system '%s' has %d)", indicator, sys->name,
+                           sys->n_indicators);
     }
     if (system_component(sys, listener_component) == NULL) {
         return -1;
@@ -354,7 +381,7 @@ int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_compon
     }
     if (array_reserve((void **)&sys->event_links, &sys->event_links_capacity,
                       (size_t)sys->n_event_links + 1, sizeof *sys->event_links, 8) != 0) {
-        return fail(sys, -1, -1, NAN, "out of memory adding an event connection");
+        return fail_config(sys, -1, -1, NAN, "out of memory adding an event connection");
     }
     sys->event_links[sys->n_event_links++] =
         (ssx_event_link){.indicator = indicator, .listener = listener_component};
@@ -366,20 +393,21 @@ int ssx_set_schedule(ssx_system *sys, const int *order, const int *group_sizes,
 {
     int n = sys->n_components;
     if (order == NULL || group_sizes == NULL || n_groups < 1) {
-        return fail(sys, -1, -1, NAN, "system '%s': a schedule needs an order and groups",
-                    sys->name);
+        return fail_config(sys, -1, -1, NAN, "system '%s': a schedule needs an order and groups",
+                           sys->name);
     }
     int total = 0;
     for (int g = 0; g < n_groups; ++g) {
         if (group_sizes[g] < 1) {
-            return fail(sys, -1, -1, NAN, "system '%s': schedule group %d is empty", sys->name, g);
+            return fail_config(sys, -1, -1, NAN, "system '%s': schedule group %d is empty",
+                               sys->name, g);
         }
         total += group_sizes[g];
     }
     if (total != n) {
-        return fail(sys, -1, -1, NAN,
-                    "system '%s': the schedule lists %d components, the system has %d", sys->name,
-                    total, n);
+        return fail_config(sys, -1, -1, NAN,
+                           "system '%s': the schedule lists %d components, the system has %d",
+                           sys->name, total, n);
     }
     int *seen = calloc((size_t)n + 1, sizeof *seen);
     int *new_order = malloc(((size_t)n + 1) * sizeof *new_order);
@@ -388,17 +416,17 @@ int ssx_set_schedule(ssx_system *sys, const int *order, const int *group_sizes,
         free(seen);
         free(new_order);
         free(groups);
-        return fail(sys, -1, -1, NAN, "out of memory setting the schedule");
+        return fail_config(sys, -1, -1, NAN, "out of memory setting the schedule");
     }
     for (int i = 0; i < n; ++i) {
         if (order[i] < 0 || order[i] >= n || seen[order[i]]) {
             free(seen);
             free(new_order);
             free(groups);
-            return fail(sys, order[i] >= 0 && order[i] < n ? order[i] : -1, -1, NAN,
-                        "system '%s': the schedule must list every component exactly once "
-                        "(entry %d is %d)",
-                        sys->name, i, order[i]);
+            return fail_config(sys, order[i] >= 0 && order[i] < n ? order[i] : -1, -1, NAN,
+                               "system '%s': the schedule must list every component exactly once "
+                               "(entry %d is %d)",
+                               sys->name, i, order[i]);
         }
         seen[order[i]] = 1;
         new_order[i] = order[i];
@@ -422,8 +450,8 @@ int ssx_set_schedule(ssx_system *sys, const int *order, const int *group_sizes,
 int ssx_set_coupling(ssx_system *sys, ssx_coupling coupling)
 {
     if (!coupling_known((int)coupling)) {
-        return fail(sys, -1, -1, NAN, "unknown coupling %d (0 Gauss-Seidel, 1 Jacobi)",
-                    (int)coupling);
+        return fail_config(sys, -1, -1, NAN, "unknown coupling %d (0 Gauss-Seidel, 1 Jacobi)",
+                           (int)coupling);
     }
     sys->coupling = coupling;
     return 0;
@@ -433,10 +461,11 @@ int ssx_set_loop_options(ssx_system *sys, double tolerance, int max_iterations, 
 {
     if (!(tolerance > 0.0) || !isfinite(tolerance) || max_iterations < 1 || !(damping > 0.0) ||
         !(damping <= 1.0)) {
-        return fail(sys, -1, -1, NAN,
-                    "loop options: need tolerance > 0, max_iterations >= 1 and 0 < damping <= 1 "
-                    "(got %g, %d, %g)",
-                    tolerance, max_iterations, damping);
+        return fail_config(
+            sys, -1, -1, NAN,
+            "loop options: need tolerance > 0, max_iterations >= 1 and 0 < damping <= 1 "
+            "(got %g, %d, %g)",
+            tolerance, max_iterations, damping);
     }
     sys->loop.tolerance = tolerance;
     sys->loop.max_iterations = max_iterations;
@@ -451,9 +480,9 @@ int ssx_set_directional_derivatives(ssx_system *sys, int component, int provided
         return -1;
     }
     if (c->fmu == NULL && provided) {
-        return fail(sys, component, -1, NAN,
-                    "component '%s' is not an FMU component: it has no directional derivatives",
-                    c->name);
+        return fail_config(
+            sys, component, -1, NAN,
+            "component '%s' is not an FMU component: it has no directional derivatives", c->name);
     }
     c->provides_directional_derivatives = provided != 0;
     return 0;
@@ -462,7 +491,7 @@ int ssx_set_directional_derivatives(ssx_system *sys, int component, int provided
 int ssx_set_loop_jacobian(ssx_system *sys, ssx_loop_jacobian jacobian)
 {
     if (jacobian != SSX_JACOBIAN_AUTO && jacobian != SSX_JACOBIAN_FINITE_DIFFERENCES) {
-        return fail(sys, -1, -1, NAN, "loop Jacobian: unknown mode %d", (int)jacobian);
+        return fail_config(sys, -1, -1, NAN, "loop Jacobian: unknown mode %d", (int)jacobian);
     }
     sys->loop.jacobian = jacobian;
     return 0;
@@ -475,11 +504,12 @@ int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, i
     if (!(tol_time > 0.0) || !isfinite(tol_time) || !(tol_value >= 0.0) || !isfinite(tol_value) ||
         max_iterations < 1 || max_microsteps < 1 || !isfinite(zeno_min_interval) ||
         !locator_known((int)locator)) {
-        return fail(sys, -1, -1, NAN,
-                    "hybrid options: need tol_time > 0, tol_value >= 0, max_iterations >= 1, "
-                    "max_microsteps >= 1, a finite zeno_min_interval and a known locator (an "
-                    "ssx_locator), got locator %d",
-                    (int)locator);
+        return fail_config(
+            sys, -1, -1, NAN,
+            "hybrid options: need tol_time > 0, tol_value >= 0, max_iterations >= 1, "
+            "max_microsteps >= 1, a finite zeno_min_interval and a known locator (an "
+            "ssx_locator), got locator %d",
+            (int)locator);
     }
     sys->hybrid = (ssx_hybrid_options){.tol_time = tol_time,
                                        .tol_value = tol_value,
@@ -501,9 +531,10 @@ int ssx_set_monitor(ssx_system *sys, int (*monitor)(void *user, double t), void 
 int ssx_set_output_interval(ssx_system *sys, int grid_steps)
 {
     if (grid_steps < 1) {
-        return fail(sys, -1, -1, NAN,
-                    "system '%s': the output interval is a number of grid steps >= 1, not %d",
-                    sys->name, grid_steps);
+        return fail_config(
+            sys, -1, -1, NAN,
+            "system '%s': the output interval is a number of grid steps >= 1, not %d", sys->name,
+            grid_steps);
     }
     sys->recording.output_interval = grid_steps;
     return 0;

@@ -158,22 +158,26 @@ int ssx_add_table_component(ssx_system *sys, const char *name, const double *tim
 {
     const char *label = name != NULL ? name : "?";
     if (time == NULL || n_rows == 0) {
-        return fail(sys, -1, -1, NAN, "table '%s': the table has no rows", label);
+        return fail_config(sys, -1, -1, NAN, "table '%s': the table has no rows", label);
     }
     for (size_t row = 0; row < n_rows; ++row) {
         if (!isfinite(time[row])) {
-            return fail(sys, -1, -1, NAN, "table '%s': the time in row %zu is %g, not a finite "
-                        "number", label, row, time[row]);
+            return fail_config(sys, -1, -1, NAN,
+                               "table '%s': the time in row %zu is %g, not a finite "
+                               "number",
+                               label, row, time[row]);
         }
         if (row > 0 && time[row] < time[row - 1]) {
-            return fail(sys, -1, -1, NAN, "table '%s': the time goes back from %.17g to %.17g in "
-                        "row %zu; times must not decrease", label, time[row - 1], time[row], row);
+            return fail_config(sys, -1, -1, NAN,
+                               "table '%s': the time goes back from %.17g to %.17g in "
+                               "row %zu; times must not decrease",
+                               label, time[row - 1], time[row], row);
         }
     }
     ssx_table *table = calloc(1, sizeof *table);
     if (table == NULL || (table->time = malloc(n_rows * sizeof *table->time)) == NULL) {
         table_free(table);
-        return fail(sys, -1, -1, NAN, "out of memory adding table '%s'", label);
+        return fail_config(sys, -1, -1, NAN, "out of memory adding table '%s'", label);
     }
     memcpy(table->time, time, n_rows * sizeof *table->time);
     table->n_rows = n_rows;
@@ -195,13 +199,17 @@ int ssx_add_table_column(ssx_system *sys, int component, ssx_value_type type, in
     }
     ssx_table *table = c->data;
     if (c->ops != &ssx_table_component_ops || table->n_columns != c->n_outputs) {
-        return fail(sys, component, -1, NAN, "component '%s' is not a table source of its own "
-                    "columns", c->name);
+        return fail_config(sys, component, -1, NAN,
+                           "component '%s' is not a table source of its own "
+                           "columns",
+                           c->name);
     }
     for (size_t row = 0; row < table->n_rows; ++row) {
         if (!isfinite(values[row])) {
-            return fail(sys, component, -1, NAN, "table '%s': column %d holds %g in row %zu; "
-                        "values must be finite", c->name, table->n_columns, values[row], row);
+            return fail_config(sys, component, -1, NAN,
+                               "table '%s': column %d holds %g in row %zu; "
+                               "values must be finite",
+                               c->name, table->n_columns, values[row], row);
         }
     }
     size_t n = table->n_rows;
@@ -215,8 +223,8 @@ int ssx_add_table_column(ssx_system *sys, int component, ssx_value_type type, in
         table->hold = holds;
     }
     if (grown == NULL || holds == NULL) {
-        return fail(sys, component, -1, NAN, "out of memory adding a column to table '%s'",
-                    c->name);
+        return fail_config(sys, component, -1, NAN, "out of memory adding a column to table '%s'",
+                           c->name);
     }
     int output = ssx_add_output(sys, component, type, 0);
     if (output < 0) {
@@ -236,7 +244,7 @@ int ssx_table_values(ssx_system *sys, int component, double t, int after_event, 
         return -1;
     }
     if (c->ops != &ssx_table_component_ops) {
-        return fail(sys, component, -1, t, "component '%s' is not a table source", c->name);
+        return fail_config(sys, component, -1, t, "component '%s' is not a table source", c->name);
     }
     table_values(c->data, t, after_event, values);
     return 0;

@@ -40,3 +40,23 @@ def status_name(status: int) -> str:
     for -1); the number itself for any other."""
     name = lib().ssx_status_name(status)
     return str(status) if name == ffi.NULL else ffi.string(name).decode()
+
+
+def enum_values(ctype: str, prefix: str) -> dict[str, int]:
+    """An enum of the header by lower-case name without its prefix, in value order:
+    enum_values("ssx_locator", "SSX_") maps "illinois" to SSX_ILLINOIS."""
+    return {name.removeprefix(prefix).lower(): value
+            for value, name in sorted(ffi.typeof(ctype).elements.items())}
+
+
+def enum_name(ctype: str, prefix: str, value: int) -> str:
+    """The lower-case name of an enum value, without its prefix (the inverse of enum_values)."""
+    return ffi.typeof(ctype).elements[value].removeprefix(prefix).lower()
+
+
+@lru_cache(maxsize=1)
+def defaults() -> Any:
+    """The engine's ssx_defaults: the one definition of every option's default."""
+    out = ffi.new("ssx_defaults *")
+    lib().ssx_get_defaults(out)
+    return out

@@ -15,13 +15,13 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..bridge.standalone import StandaloneSystem, standalone_system
 from ..core.events import EventIndicator
 from ..core.port import Port, PortSpec, PortType
 from ..errors import ConfigurationError
 
 if TYPE_CHECKING:
-    from ..system.plan import EnginePlan
-    from ..system.system import System
+    from ..bridge.plan import Binding, EnginePlan
     from .history import ComponentHistory
 
 EventHandler = Callable[[Any, list[str], float], None]
@@ -41,14 +41,6 @@ class ComponentCheckpoint:
     outputs: dict[str, Any]
     parameters: dict[str, Any]
     metadata: Any = None
-
-
-@dataclass(frozen=True)
-class Binding:
-    """Where a component lives in an engine system: the plan and its component index."""
-
-    plan: EnginePlan
-    index: int
 
 
 class CoSimComponent:
@@ -76,7 +68,7 @@ class CoSimComponent:
         self._event_routes: dict[str, set[str]] = {}
         self.t: float = 0.0
         self._binding: Binding | None = None
-        self._private_system: System | None = None
+        self._private_system: StandaloneSystem | None = None
         self._parameter_defaults: dict[str, Any] | None = None  # see get_default_parameters
 
     def __repr__(self) -> str:
@@ -350,6 +342,30 @@ class CoSimComponent:
         EventConnection (a MultiComponent's region boundaries)."""
         return []
 
+    # ---------------------------------------------------------------- the engine plan
+    def _add_to_plan(self, plan: EnginePlan) -> None:
+        """Add the component to the engine system being built: a Python component, stepped
+        through its hooks."""
+        plan.add_python_component(self, self._python_hooks(engine_steps=False))
+
+    def _python_hooks(self, engine_steps: bool) -> set[str]:
+        """The engine hooks (bridge.plan.HOOKS) this component runs in Python. engine_steps:
+        the engine steps the component itself (an FMU), so only what the class overrides."""
+        hooks = set()
+        if not engine_steps or _overrides(self, "_do_step_internal") \
+                or _overrides(self, "_update_output_states"):
+            hooks.add("do_step")
+        if not engine_steps or _overrides(self, "evaluate_outputs"):
+            hooks.add("evaluate_outputs")
+        if (_overrides(self, "snapshot_state") or _overrides(self, "restore_state")) \
+                and self.can_rollback():
+            hooks.update(("snapshot", "restore"))
+        if self.has_event_handling():
+            hooks.add("handle_events")
+        if _overrides(self, "_record_outputs"):
+            hooks.add("record")
+        return hooks
+
     # Called by the System (or the private system) once the engine plan exists, with the
     # tolerance given to System.initialize (used by FMU components).
     def _start(self, t0: float, tolerance: float | None = None) -> None:
@@ -362,12 +378,9 @@ class CoSimComponent:
             self._binding.plan.push_outputs(self)
 
     # ---------------------------------------------------------------- standalone use
-    def _standalone(self) -> System:
+    def _standalone(self) -> StandaloneSystem:
         if self._private_system is None:
-            from ..system.system import System
-
-            self._private_system = System(f"{self.name} (standalone)")
-            self._private_system.add_component(self)
+            self._private_system = standalone_system(self)
         return self._private_system
 
     def initialize(self, t0: float = 0.0) -> None:

@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 import weakref
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import pint
 
@@ -33,6 +33,9 @@ from .base import CoSimComponent
 from .extraction import extractions
 from .fmu_instance import FMUInstance
 from .model_description import FMUInfo, Parameter, read_fmu, start_value, variable_unit
+
+if TYPE_CHECKING:
+    from ..bridge.plan import EnginePlan
 
 
 class FMUComponent(CoSimComponent):
@@ -240,6 +243,13 @@ class FMUComponent(CoSimComponent):
         self.t = t
         if self._binding is not None:
             self._binding.plan.read_outputs(self)
+
+    def _add_to_plan(self, plan: EnginePlan) -> None:
+        """The engine steps the FMU itself; only what a subclass overrides runs in Python."""
+        plan.add_fmu_component(
+            self, self._fmu, self.can_get_set_state,
+            bool(self.info.description.coSimulation.providesDirectionalDerivative),
+            self.value_reference, self._python_hooks(engine_steps=True))
 
     # ---------------------------------------------------------------- hooks (engine built-ins)
     def _do_step_internal(self, t: float, dt: float) -> None:

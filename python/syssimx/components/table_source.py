@@ -18,7 +18,7 @@ FMPy also steps to each jump between its grid points (`event_times()`), as
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Iterable, Mapping
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -29,8 +29,7 @@ from .base import CoSimComponent
 from .time_table import TimeTable, read_time_table
 
 if TYPE_CHECKING:
-    from ..system.connection import Connection
-    from ..system.plan import EnginePlan
+    from ..bridge.plan import EnginePlan
 
 
 class TableSource(CoSimComponent):
@@ -88,26 +87,10 @@ class TableSource(CoSimComponent):
     def can_rollback(self) -> bool:
         return True  # no state: the engine restores the outputs of every component
 
+    def _add_to_plan(self, plan: EnginePlan) -> None:
+        plan.add_table(self, self.table.time,
+                       {n: self.column_values(n) for n in self.engine_outputs()}, set(self.hold))
+
     def _start(self, t0: float, tolerance: float | None = None) -> None:
         self._sync_ports()  # a table has no solver: the tolerance is not its business
         self.t = t0  # the engine evaluates the table at t0 itself
-
-
-def start_tables(components: Mapping[str, CoSimComponent], connections: Sequence[Connection],
-                 plan: EnginePlan, t0: float) -> None:
-    """Before any component initializes: each table's outputs at t0, and every input a table
-    drives starting at that value, so an FMU has it before it leaves initialization mode (as
-    FMPy sets its inputs)."""
-    from ..system.plan import _typed  # an engine double as the port's type
-    from ..units import conversion
-
-    starts = {name: plan.start_table(table, t0) for name, table in components.items()
-              if isinstance(table, TableSource)}
-    for connection in connections:
-        if connection.src_comp not in starts:
-            continue
-        value = starts[connection.src_comp][connection.src_port]
-        source, target = components[connection.src_comp], components[connection.dst_comp]
-        spec = target.input_specs[connection.dst_port]
-        scale, offset = conversion(source.output_specs[connection.src_port].unit, spec.unit)
-        target.set_inputs({connection.dst_port: _typed(spec.type, scale * value + offset)})

@@ -18,7 +18,7 @@ from .event_log import EventLog
 from .termination import Termination
 
 if TYPE_CHECKING:
-    from .plan import EnginePlan
+    from ..bridge.plan import EnginePlan
     from .system import System
 
 

@@ -11,22 +11,23 @@ from typing import Any
 
 import pint
 
+from ..bridge.failure import raise_failure
+from ..bridge.plan import EnginePlan
+from ..bridge.standalone import register_system_class
 from ..components.base import CoSimComponent
-from ..components.table_source import start_tables
 from ..core.port import PortType
 from ..engine import ffi, lib
 from ..errors import ConfigurationError
 from ..graph.analysis import analyze
 from ..units import conversion
-from .algorithms import Algorithm, GaussSeidelAlgorithm, HybridAlgorithm, JacobiAlgorithm
-from .algorithms.coupling import LOOP_JACOBIANS
-from .algorithms.hybrid import locator_methods, log_events
+from .algorithms import Algorithm, HybridAlgorithm, JacobiAlgorithm
+from .algorithms.coupling import default_coupling, loop_jacobians
+from .algorithms.hybrid import log_events
 from .connection import Connection, EventConnection
-from .failure import raise_failure
-from .plan import EnginePlan
 from .progress import ProgressCallback, run_progress
 from .results import HistoryView, SimulationResult, read_events
 from .system_history import SystemHistory
+from .table_starts import start_tables
 from .termination import Termination, read_termination
 
 logger = logging.getLogger("syssimx.system")
@@ -47,7 +48,7 @@ class System:
         self.t = 0.0
         self.is_initialized = False
         self.termination: Termination | None = None  # set when a component ended the run
-        self._algorithm: Algorithm = GaussSeidelAlgorithm()
+        self._algorithm: Algorithm = default_coupling()
         self._algorithm_chosen = False
         self._plan: EnginePlan | None = None
 
@@ -58,7 +59,7 @@ class System:
     @property
     def algorithm(self) -> Algorithm:
         if not isinstance(self._algorithm, HybridAlgorithm) and self._has_indicators():
-            chosen = self._algorithm if self._algorithm_chosen else GaussSeidelAlgorithm()
+            chosen = self._algorithm if self._algorithm_chosen else default_coupling()
             assert isinstance(chosen, JacobiAlgorithm)
             self._algorithm = HybridAlgorithm(coupling=chosen)
             logger.debug("%s: event indicators present, using the hybrid algorithm", self.name)
@@ -192,29 +193,30 @@ class System:
         algorithm = self.algorithm
         algorithm.validate()
         coupling = algorithm.coupling if isinstance(algorithm, HybridAlgorithm) else algorithm
-        plan.check(lib().ssx_set_coupling(
-            plan.sys, 0 if isinstance(coupling, GaussSeidelAlgorithm) else 1), "coupling")
+        plan.check(lib().ssx_set_coupling(plan.sys, coupling.coupling_value()), "coupling")
         plan.check(lib().ssx_set_loop_options(plan.sys, coupling.tolerance, coupling.max_iter,
                                               coupling.damping), "loop options")
         plan.check(lib().ssx_set_loop_jacobian(
-            plan.sys, LOOP_JACOBIANS.index(coupling.loop_jacobian)), "loop Jacobian")
+            plan.sys, loop_jacobians()[coupling.loop_jacobian]), "loop Jacobian")
         if isinstance(algorithm, HybridAlgorithm):
             plan.check(lib().ssx_set_hybrid_options(
                 plan.sys, algorithm.tol_time, algorithm.tol_value, algorithm.max_iter,
                 algorithm.max_microsteps, int(algorithm.record_internal_steps),
-                locator_methods()[algorithm.method], algorithm.zeno_min_interval),
+                algorithm.locator(), algorithm.zeno_min_interval),
                 "hybrid options")
 
     # ------------------------------------------------------------------ running
     def initialize(self, t0: float = 0.0, tolerance: float | None = None, *,
-                   allow_non_finite: bool | None = None, output_interval: int = 1) -> None:
+                   allow_non_finite: bool | None = None, output_interval: int | None = None
+                   ) -> None:
         """Build the engine system, initialize every component at t0, record the first sample.
 
         tolerance: the relative tolerance of FMUs given none of their own (default: each FMU's
         DefaultExperiment tolerance). allow_non_finite: record NaN and infinite outputs instead
         of stopping the run at the first one (None keeps the engine's default: stop).
         output_interval: record every output_interval-th communication point (from t0), the
-        last point of each run and every event instant; 1 records every point."""
+        last point of each run and every event instant; 1 records every point (None keeps the
+        engine's default, every point)."""
         t0 = _time_value(self.name, "t0", t0)
         plan = self._compile()
         self._plan = plan
@@ -222,7 +224,9 @@ class System:
         if allow_non_finite is not None:
             plan.check(lib().ssx_set_allow_non_finite(plan.sys, int(bool(allow_non_finite))),
                        "allow_non_finite")
-        plan.check(lib().ssx_set_output_interval(plan.sys, output_interval), "output_interval")
+        if output_interval is not None:
+            plan.check(lib().ssx_set_output_interval(plan.sys, output_interval),
+                       "output_interval")
         self.termination = None
         start_tables(self.components, self.connections, plan, t0)
         for component in self.components.values():
@@ -257,10 +261,6 @@ class System:
             raise ConfigurationError(f"{self.name}: call initialize(t0) before run()")
         t0, tf, dt = (_time_value(self.name, label, value)
                       for label, value in (("t0", t0), ("tf", tf), ("dt", dt)))
-        if not dt > 0:
-            raise ConfigurationError(f"{self.name}: dt must be positive, got {dt}")
-        if tf < t0:
-            raise ConfigurationError(f"{self.name}: tf={tf} is before t0={t0}")
         if timeout is not None and not (isinstance(timeout, int | float) and timeout > 0):
             raise ConfigurationError(f"{self.name}: timeout must be a positive number of "
                                      f"seconds or None, got {timeout!r}")
@@ -279,7 +279,7 @@ class System:
         start = timeit.default_timer()
         plan.timeout = timeout
         plan.deadline = time.monotonic() + timeout if timeout is not None else None
-        plan.progress = reports
+        plan.progress = reports.report if reports is not None else None
         try:
             status = lib().ssx_run(plan.sys, t0, tf, dt)
         finally:
@@ -355,3 +355,6 @@ def _time_value(system: str, label: str, value: object) -> float:
             or not math.isfinite(value):
         raise ConfigurationError(f"{system}: {label} must be a finite number, got {value!r}")
     return float(value)
+
+
+register_system_class(System)

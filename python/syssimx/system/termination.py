@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 from ..engine import ffi, lib
 
 if TYPE_CHECKING:
-    from .plan import EnginePlan
+    from ..bridge.plan import EnginePlan
 
 
 @dataclass(frozen=True)

@@ -38,6 +38,7 @@ static void bad_input(void)
     CHECK(ssx_last_error(sys)->component == b);
     CHECK(ssx_connect(sys, a, 3, b, 0, 1.0, 0.0) == -1);
     CHECK_MESSAGE(sys, "component 'first' has no output 3");
+    CHECK(ssx_last_error(sys)->kind == SSX_ERROR_CONFIG);
 
     CHECK(ssx_run(sys, 0.0, 1.0, 0.1) == -1);
     CHECK_MESSAGE(sys, "not initialized");
@@ -45,6 +46,7 @@ static void bad_input(void)
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
     CHECK(ssx_run(sys, 0.0, 1.0, 0.0) == -1);
     CHECK_MESSAGE(sys, "dt must be positive");
+    CHECK(ssx_last_error(sys)->kind == SSX_ERROR_CONFIG);
     CHECK(ssx_run(sys, 0.0, 1.0, -0.1) == -1);
     CHECK_MESSAGE(sys, "dt must be positive");
     CHECK(ssx_run(sys, 0.0, 1.0, NAN) == -1);
@@ -104,7 +106,7 @@ static void failing_fmu_call(void)
     CHECK_MESSAGE(sys, "t=1");
     CHECK_MESSAGE(sys, "fmi2Error");
     CHECK_MESSAGE(sys, "fail_time"); /* the FMU's own log message */
-    CHECK(e->component == c && e->fmi_status == 3 && e->time == 1.0 && e->in_callback == 0);
+    CHECK(e->component == c && e->fmi_status == 3 && e->time == 1.0 && e->kind == SSX_ERROR_FMI);
     /* the samples recorded before the failure stay readable */
     CHECK(ssx_history_length(sys) == 5);
     CHECK(ssx_history_time(sys)[4] == 1.0);
@@ -138,7 +140,7 @@ static void failing_hook(void)
     CHECK_OK(sys, ssx_set_hooks(sys, c, &hooks));
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
     CHECK(ssx_run(sys, 0.0, 1.0, 0.5) == -1);
-    CHECK(ssx_last_error(sys)->in_callback == 1);
+    CHECK(ssx_last_error(sys)->kind == SSX_ERROR_CALLBACK);
     CHECK_MESSAGE(sys, "component 'Scripted': the Python do_step hook failed at t=0");
 
     /* an indicator on a component that cannot roll back is refused before anything runs */
@@ -149,8 +151,29 @@ static void failing_hook(void)
     ssx_system_free(sys);
 }
 
+/* The defaults are one set of values the setters accept (Python's option classes read them). */
+static void defaults_are_valid_options(void)
+{
+    ssx_defaults d;
+    ssx_get_defaults(&d);
+    CHECK(d.loop_max_iterations == 100 && d.max_iterations == 100 && d.output_interval == 1);
+    ssx_system *sys = ssx_system_new("defaults");
+    CHECK_OK(sys, ssx_set_coupling(sys, d.coupling));
+    CHECK_OK(sys,
+             ssx_set_loop_options(sys, d.loop_tolerance, d.loop_max_iterations, d.loop_damping));
+    CHECK_OK(sys, ssx_set_loop_jacobian(sys, d.loop_jacobian));
+    CHECK_OK(sys, ssx_set_hybrid_options(sys, d.tol_time, d.tol_value, d.max_iterations,
+                                         d.max_microsteps, 0, d.locator, d.zeno_min_interval));
+    CHECK_OK(sys, ssx_set_output_interval(sys, d.output_interval));
+    CHECK(ssx_set_hybrid_options(sys, -1.0, d.tol_value, d.max_iterations, d.max_microsteps, 0,
+                                 d.locator, d.zeno_min_interval) == -1);
+    CHECK(ssx_last_error(sys)->kind == SSX_ERROR_CONFIG);
+    ssx_system_free(sys);
+}
+
 int main(void)
 {
+    defaults_are_valid_options();
     bad_input();
     failing_fmu_call();
     failing_hook();

@@ -120,7 +120,7 @@ static void test_monitor_stops_the_run(void)
     CHECK(ssx_run(sys, 0.0, 1.0, 1e-9) == -1);
     const ssx_error *error = ssx_last_error(sys);
     CHECK(state.calls == 2);
-    CHECK(error->in_callback == 1 && error->time == state.last_t);
+    CHECK(error->kind == SSX_ERROR_CALLBACK && error->time == state.last_t);
     CHECK(strstr(error->message, "stopped by its monitor") != NULL);
     size_t n = ssx_history_length(sys);
     CHECK(ssx_time(sys) == state.last_t && ssx_history_time(sys)[n - 1] == state.last_t);

@@ -145,7 +145,7 @@ static void zeno_at_the_accumulation_point(void)
     double t_inf = bounce_time(1) * (1.0 + RESTITUTION) / (1.0 - RESTITUTION);
     CHECK(ssx_run(sys, 0.0, t_inf + 1.0, 0.01) == -1);
     const ssx_error *e = ssx_last_error(sys);
-    CHECK(e->zeno == 1 && e->component == b.component && e->indicator == 0);
+    CHECK(e->kind == SSX_ERROR_ZENO && e->component == b.component && e->indicator == 0);
     CHECK(e->time < t_inf && e->time > t_inf - 1e-3);
     const double *values = ssx_history_values(sys, b.component);
     size_t n = ssx_history_length(sys);

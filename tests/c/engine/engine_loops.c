@@ -114,6 +114,7 @@ static void loop_without_solution(void)
     CHECK(strstr(message, "algebraic loop of components 'A', 'B' did not converge at t=0") !=
           NULL);
     CHECK(strstr(message, "residual norm 1") != NULL);
+    CHECK(ssx_last_error(sys)->kind == SSX_ERROR_LOOP);
     ssx_system_free(sys);
 }
 

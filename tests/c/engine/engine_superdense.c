@@ -129,7 +129,7 @@ static void endless_cascade(void)
     ssx_system *sys = clock_system(&c, 0, 1);
     CHECK(ssx_run(sys, 0.0, 1.0, 0.1) == -1);
     const ssx_error *e = ssx_last_error(sys);
-    CHECK(e->zeno == 1 && e->indicator == 1 && e->component == c.component);
+    CHECK(e->kind == SSX_ERROR_ZENO && e->indicator == 1 && e->component == c.component);
     CHECK(strstr(e->message, "more than 5 micro steps") != NULL);
     CHECK(fabs(e->time - 0.5) <= TOL_TIME);
     ssx_system_free(sys);

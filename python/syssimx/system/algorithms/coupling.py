@@ -1,10 +1,21 @@
-"""Coupling algorithms for continuous systems and their algebraic-loop options."""
+"""Coupling algorithms for continuous systems and their algebraic-loop options.
+
+Every default is the engine's (ssx_get_defaults), and the engine judges the values."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import ClassVar
 
-LOOP_JACOBIANS = ("auto", "finite_differences")
+from ...bridge.options import engine_refusal
+from ...engine import defaults, enum_name, enum_values, ffi, lib
+
+JACOBIAN_PREFIX = "SSX_JACOBIAN_"
+
+
+def loop_jacobians() -> dict[str, int]:
+    """The engine's ways to build a loop's Jacobian by name: SSX_JACOBIAN_AUTO is "auto"."""
+    return enum_values("ssx_loop_jacobian", JACOBIAN_PREFIX)
 
 
 @dataclass
@@ -16,17 +27,24 @@ class JacobiAlgorithm:
     fmi2GetDirectionalDerivative for the inputs of FMUs that provide it and from finite
     differences elsewhere; "finite_differences" uses finite differences throughout."""
 
-    tolerance: float = 1e-10
-    max_iter: int = 100
-    damping: float = 1.0
+    tolerance: float = field(default_factory=lambda: defaults().loop_tolerance)
+    max_iter: int = field(default_factory=lambda: defaults().loop_max_iterations)
+    damping: float = field(default_factory=lambda: defaults().loop_damping)
     name: str = "Jacobi"
-    loop_jacobian: str = "auto"
+    loop_jacobian: str = field(default_factory=lambda: enum_name(
+        "ssx_loop_jacobian", JACOBIAN_PREFIX, defaults().loop_jacobian))
+    engine_coupling: ClassVar[str] = "SSX_JACOBI"  # the ssx_coupling it runs as
+
+    def coupling_value(self) -> int:
+        return int(getattr(lib(), self.engine_coupling))
 
     def validate(self) -> None:
-        if self.loop_jacobian not in LOOP_JACOBIANS:
-            raise ValueError(f"{self.name}: loop_jacobian must be one of {LOOP_JACOBIANS}, "
+        jacobians = tuple(loop_jacobians())
+        if self.loop_jacobian not in jacobians:
+            raise ValueError(f"{self.name}: loop_jacobian must be one of {jacobians}, "
                              f"got {self.loop_jacobian!r}")
-        if not self.tolerance > 0 or self.max_iter < 1 or not 0 < self.damping <= 1:
+        if engine_refusal(lambda system: lib().ssx_set_loop_options(
+                system, self.tolerance, self.max_iter, self.damping)) is not None:
             raise ValueError(f"{self.name}: tolerance > 0, max_iter >= 1 and 0 < damping <= 1 "
                              f"are required (got {self.tolerance}, {self.max_iter}, "
                              f"{self.damping})")
@@ -38,3 +56,10 @@ class GaussSeidelAlgorithm(JacobiAlgorithm):
     the value of the same communication point (the default)."""
 
     name: str = "Gauss-Seidel"
+    engine_coupling: ClassVar[str] = "SSX_GAUSS_SEIDEL"
+
+
+def default_coupling() -> JacobiAlgorithm:
+    """A coupling algorithm of the engine's default ssx_coupling."""
+    kinds = {kind.engine_coupling: kind for kind in (JacobiAlgorithm, GaussSeidelAlgorithm)}
+    return kinds[ffi.typeof("ssx_coupling").elements[defaults().coupling]]()

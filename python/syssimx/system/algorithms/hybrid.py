@@ -12,8 +12,9 @@ from collections.abc import Sequence
 from dataclasses import InitVar, dataclass, field
 from typing import TYPE_CHECKING
 
-from ...engine import ffi
-from .coupling import GaussSeidelAlgorithm, JacobiAlgorithm
+from ...bridge.options import engine_refusal
+from ...engine import defaults, enum_name, enum_values, lib
+from .coupling import JacobiAlgorithm, default_coupling
 
 if TYPE_CHECKING:
     from ..results import EventRecord
@@ -21,11 +22,9 @@ if TYPE_CHECKING:
 logger = logging.getLogger("syssimx.hybrid")
 
 
-
 def locator_methods() -> dict[str, int]:
     """The engine's localization methods by name: ssx_locator's SSX_ILLINOIS is "illinois"."""
-    return {name.removeprefix("SSX_").lower(): value
-            for value, name in sorted(ffi.typeof("ssx_locator").elements.items())}
+    return enum_values("ssx_locator", "SSX_")
 
 
 @dataclass
@@ -52,14 +51,15 @@ class HybridAlgorithm:
     gauss_seidel_algorithm: SysSimX's name of `coupling`.
     """
 
-    tol_time: float = 1e-9
-    tol_value: float = 1e-9
-    max_iter: int = 100
-    max_microsteps: int = 10
+    tol_time: float = field(default_factory=lambda: defaults().tol_time)
+    tol_value: float = field(default_factory=lambda: defaults().tol_value)
+    max_iter: int = field(default_factory=lambda: defaults().max_iterations)
+    max_microsteps: int = field(default_factory=lambda: defaults().max_microsteps)
     record_internal_steps: bool = False
-    method: str = "illinois"
-    zeno_min_interval: float = 0.0
-    coupling: JacobiAlgorithm = field(default_factory=GaussSeidelAlgorithm)
+    method: str = field(default_factory=lambda: enum_name("ssx_locator", "SSX_",
+                                                          defaults().locator))
+    zeno_min_interval: float = field(default_factory=lambda: defaults().zeno_min_interval)
+    coupling: JacobiAlgorithm = field(default_factory=default_coupling)
     name: str = "Hybrid"
     sign_tolerance: float = 1e-10
     max_deferrals: int = 50
@@ -71,15 +71,23 @@ class HybridAlgorithm:
         if gauss_seidel_algorithm is not None:
             self.coupling = gauss_seidel_algorithm
 
+    def locator(self) -> int:
+        """The ssx_locator of `method` (checked by validate)."""
+        return locator_methods()[self.method]
+
     def validate(self) -> None:
         methods = tuple(locator_methods())
         if self.method not in methods:
             raise ValueError(f"HybridAlgorithm.method must be one of {methods}, "
                              f"got {self.method!r}")
-        if not (self.tol_time > 0 and self.tol_value >= 0 and self.max_iter >= 1
-                and self.max_microsteps >= 1 and self.zeno_min_interval >= 0):
-            raise ValueError("HybridAlgorithm: tol_time > 0, tol_value >= 0, max_iter >= 1, "
-                             "max_microsteps >= 1 and zeno_min_interval >= 0 are required")
+        refusal = engine_refusal(lambda system: lib().ssx_set_hybrid_options(
+            system, self.tol_time, self.tol_value, self.max_iter, self.max_microsteps,
+            int(self.record_internal_steps), self.locator(), self.zeno_min_interval))
+        if refusal is not None:
+            raise ValueError(f"HybridAlgorithm: the engine refuses tol_time={self.tol_time}, "
+                             f"tol_value={self.tol_value}, max_iter={self.max_iter}, "
+                             f"max_microsteps={self.max_microsteps}, zeno_min_interval="
+                             f"{self.zeno_min_interval}: {refusal}")
         if not (math.isfinite(self.sign_tolerance) and self.sign_tolerance >= 0):
             raise ValueError(f"HybridAlgorithm: sign_tolerance must be a finite number >= 0, "
                              f"got {self.sign_tolerance}")

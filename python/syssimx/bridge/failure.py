@@ -6,15 +6,29 @@ import math
 from typing import TYPE_CHECKING, NoReturn
 
 from ..engine import ffi, lib, status_name
-from ..errors import AlgebraicLoopError, SimulationError, SimulationTimeoutError, ZenoError
+from ..errors import (
+    AlgebraicLoopError,
+    ConfigurationError,
+    SimulationError,
+    SimulationTimeoutError,
+    ZenoError,
+)
 
 if TYPE_CHECKING:
     from .plan import EnginePlan
 
+# The exception of each kind of engine failure (ssx_error_kind) that has one of its own.
+_EXCEPTIONS: dict[str, type[SimulationError]] = {"SSX_ERROR_ZENO": ZenoError,
+                                                 "SSX_ERROR_LOOP": AlgebraicLoopError}
+
 
 def raise_failure(plan: EnginePlan, default_component: str | None = None) -> NoReturn:
     """Raise the plan's last failure. An interrupt (KeyboardInterrupt, SystemExit) raised in a
-    callback and a timeout are raised as they are; anything else becomes a SimulationError."""
+    callback and a timeout are raised as they are, arguments the engine refused (a step that is
+    not positive, ...) as ConfigurationError; anything else becomes a SimulationError."""
+    error = lib().ssx_last_error(plan.sys)
+    if error.kind == lib().SSX_ERROR_CONFIG:
+        raise ConfigurationError(ffi.string(error.message).decode(errors="replace"))
     failure = plan.failure
     if failure is not None and (not isinstance(failure.error, Exception)
                                 or isinstance(failure.error, SimulationTimeoutError)):
@@ -34,7 +48,7 @@ def simulation_error(plan: EnginePlan, default_component: str | None = None) -> 
         plan.indicators) else None
     time = None if math.isnan(error.time) else float(error.time)
     failure, plan.failure = plan.failure, None
-    if error.in_callback and failure is not None:
+    if error.kind == lib().SSX_ERROR_CALLBACK and failure is not None:
         text = (f"{failure.component}: {failure.where} raised "
                 f"{type(failure.error).__name__}: {failure.error} at t={failure.time:.12g}")
         exc = SimulationError(text, component=failure.component, time=failure.time,
@@ -42,8 +56,8 @@ def simulation_error(plan: EnginePlan, default_component: str | None = None) -> 
         exc.__cause__ = failure.error
         return exc
     status = int(error.fmi_status) if error.fmi_status >= 0 else None
-    kind = ZenoError if error.zeno else (
-        AlgebraicLoopError if "loop" in message.lower() and status is None else SimulationError)
+    kind = _EXCEPTIONS.get(ffi.string(ffi.cast("ssx_error_kind", error.kind)),
+                           SimulationError)
     fmu_message = ""
     if component is not None and component in plan.components:
         instance = getattr(plan.components[component], "instance", None)

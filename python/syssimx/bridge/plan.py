@@ -1,10 +1,12 @@
 """EnginePlan: a System compiled into an engine system, and the Python side of its callbacks.
 
-The plan owns the ssx_system (freed when the plan is collected, before the FMUs it borrows),
-knows each component's engine index and port order, and owns the cffi callbacks: the engine
-calls none of them while the system is freed, so a collected cycle of plan, callbacks and
-components may free them in any order. A Python exception raised inside a callback is kept
-here and re-raised by the System.
+The plan knows no component class: each component kind adds itself (its `_add_to_plan` calls
+add_python_component, add_fmu_component or add_table), so components/ and system/ both build
+on this module and never on each other. The plan owns the ssx_system (freed when the plan is
+collected, before the FMUs it borrows), knows each component's engine index and port order,
+and owns the cffi callbacks: the engine calls none of them while the system is freed, so a
+collected cycle of plan, callbacks and components may free them in any order. A Python
+exception raised inside a callback is kept here and re-raised by the System.
 """
 
 from __future__ import annotations
@@ -17,16 +19,17 @@ from typing import Any
 
 import numpy as np
 
-from ..components.base import Binding, CoSimComponent, _overrides
-from ..components.fmu import FMUComponent
-from ..components.table_source import TableSource
 from ..core.port import PortType
 from ..engine import ffi, lib
 from ..errors import ConfigurationError, SimulationTimeoutError
 from .history_arrays import HistoryArrays
-from .progress import RunProgress
 
-_ENGINE_TYPE = {PortType.REAL: 0, PortType.INT: 1, PortType.BOOL: 2}
+# A component of syssimx.components (Component or a subclass); typed loosely because
+# the components build on this module.
+Component = Any
+
+# The hooks a component may run in Python (fields of ssx_hooks), in the order they are set.
+HOOKS = ("do_step", "evaluate_outputs", "snapshot", "restore", "handle_events", "record")
 
 
 # The FMUs a system borrows, by system address, until the system is freed. Held here rather
@@ -44,6 +47,23 @@ def _free_system(release: Callable[[Any], None], address: int, pointer: Any) -> 
     _BORROWED_FMUS.pop(address, None)
 
 
+def engine_type(kind: PortType) -> int:
+    """The ssx_value_type of a port type (the header's SSX_REAL, SSX_INTEGER, SSX_BOOLEAN)."""
+    return int(getattr(lib(), _ENGINE_TYPE_NAMES[kind]))
+
+
+_ENGINE_TYPE_NAMES = {PortType.REAL: "SSX_REAL", PortType.INT: "SSX_INTEGER",
+                      PortType.BOOL: "SSX_BOOLEAN"}
+
+
+@dataclass(frozen=True)
+class Binding:
+    """Where a component lives in an engine system: the plan and its component index."""
+
+    plan: EnginePlan
+    index: int
+
+
 @dataclass
 class CallbackFailure:
     """A Python exception raised in a callback from the engine."""
@@ -57,13 +77,13 @@ class CallbackFailure:
 class EnginePlan:
     """The engine system of one System; rebuilt by every System.initialize."""
 
-    def __init__(self, name: str, components: Mapping[str, CoSimComponent]) -> None:
+    def __init__(self, name: str, components: Mapping[str, Component]) -> None:
         raw = lib().ssx_system_new(name.encode())
         if raw == ffi.NULL:
             raise MemoryError("ssx_system_new failed")
         address = _address(raw)
-        _BORROWED_FMUS[address] = [
-            c._fmu for c in components.values() if isinstance(c, FMUComponent)]
+        self._borrowed_fmus: list[Any] = []
+        _BORROWED_FMUS[address] = self._borrowed_fmus
         # What destructors call is looked up now: a collection may run them while cffi holds
         # the lock that a first lookup of a library function would wait for.
         self.sys = ffi.gc(raw, functools.partial(_free_system, lib().ssx_system_free, address))
@@ -72,7 +92,8 @@ class EnginePlan:
         self.name = name
         self.deadline: float | None = None  # time.monotonic() at which the run times out
         self.timeout: float | None = None
-        self.progress: RunProgress | None = None  # the run's progress reports, if asked for
+        # the run's progress reporter (called with the time at each monitor call), if asked for
+        self.progress: Callable[[float], None] | None = None
         self._watch()
         self.components = dict(components)
         self.index = {name: i for i, name in enumerate(components)}
@@ -82,8 +103,8 @@ class EnginePlan:
         self.indicator_index: dict[tuple[str, str], int] = {}
         self.failure: CallbackFailure | None = None
         self._do_step = lib().ssx_component_do_step
-        for name, component in components.items():
-            self._add_component(name, component)
+        for component in components.values():
+            component._add_to_plan(self)
 
     # ------------------------------------------------------------------ callbacks
     def callback(self, signature: str, body: Callable[..., int], error: int,
@@ -115,7 +136,7 @@ class EnginePlan:
                     f"time and stopped at t={t:.12g}; the samples up to there are in "
                     "get_history()", time=t)
             if self.progress is not None:
-                self.progress.report(t)
+                self.progress(t)
             return 0
 
         lib().ssx_set_monitor(self.sys, self.callback("int(void *, double)", monitor, 1, stop),
@@ -128,50 +149,65 @@ class EnginePlan:
             raise ConfigurationError(f"{what}: {message}")
         return result
 
-    def _add_component(self, name: str, component: CoSimComponent) -> None:
-        index = self.index[name]
-        if isinstance(component, TableSource):
-            self._add_table(name, index, component)
-            return
-        if isinstance(component, FMUComponent):
-            self.check(lib().ssx_add_fmu_component(self.sys, name.encode(), component._fmu,
-                                                   int(component.can_get_set_state)), name)
-            provided = component.info.description.coSimulation.providesDirectionalDerivative
-            self.check(lib().ssx_set_directional_derivatives(self.sys, index, int(bool(provided))),
-                       f"{name}: directional derivatives")
-            vr = component.value_reference
-        else:
-            self.check(lib().ssx_add_python_component(self.sys, name.encode(),
-                                                      int(component.can_rollback())), name)
-            vr = None
+    def add_python_component(self, component: Component, hooks: set[str]) -> None:
+        """A component stepped by Python: the engine calls its `hooks` (do_step and
+        evaluate_outputs at least) and keeps its port values in step with its ports."""
+        self.check(lib().ssx_add_python_component(self.sys, component.name.encode(),
+                                                  int(component.can_rollback())), component.name)
+        self._add_ports(component, None)
+        self._bind(component, hooks, is_fmu=False)
+
+    def add_fmu_component(self, component: Component, fmu: Any, can_get_set_state: bool,
+                          provides_directional_derivative: bool,
+                          value_reference: Callable[[str], int], hooks: set[str]) -> None:
+        """An FMU the engine steps itself; `hooks` lists what the component's Python
+        overrides (none for a plain FMUComponent). The system borrows the loaded FMU."""
+        name, index = component.name, self.index[component.name]
+        self._borrowed_fmus.append(fmu)
+        self.check(lib().ssx_add_fmu_component(self.sys, name.encode(), fmu,
+                                               int(can_get_set_state)), name)
+        self.check(lib().ssx_set_directional_derivatives(
+            self.sys, index, int(provides_directional_derivative)),
+            f"{name}: directional derivatives")
+        self._add_ports(component, value_reference)
+        self._bind(component, hooks, is_fmu=True)
+
+    def _add_ports(self, component: Component, vr: Callable[[str], int] | None) -> None:
+        name, index = component.name, self.index[component.name]
         for port in self.outputs[name]:
             spec = component.output_specs[port]
-            self.check(lib().ssx_add_output(self.sys, index, _ENGINE_TYPE[spec.type],
+            self.check(lib().ssx_add_output(self.sys, index, engine_type(spec.type),
                                             vr(port) if vr else 0), f"{name}.{port}")
         for port in self.inputs[name]:
             spec = component.input_specs[port]
             start = component.input_start(port)
-            self.check(lib().ssx_add_input(self.sys, index, _ENGINE_TYPE[spec.type],
+            self.check(lib().ssx_add_input(self.sys, index, engine_type(spec.type),
                                            vr(port) if vr else 0, start), f"{name}.{port}")
-        component._binding = Binding(self, index)
-        hooks = _HookBuilder(self, component).build()
-        if hooks is not None:  # the engine copies the struct; the callbacks are kept above
-            self.check(lib().ssx_set_hooks(self.sys, index, hooks), f"{name}: hooks")
 
-    def _add_table(self, name: str, index: int, table: TableSource) -> None:
-        """A table source is evaluated in C: its table is copied into the engine, no hooks."""
-        time = np.ascontiguousarray(table.table.time, dtype=np.float64)
+    def _bind(self, component: Component, hooks: set[str], is_fmu: bool) -> None:
+        index = self.index[component.name]
+        component._binding = Binding(self, index)
+        struct = _HookBuilder(self, component, is_fmu).build(hooks)
+        if struct is not None:  # the engine copies the struct; the callbacks are kept above
+            self.check(lib().ssx_set_hooks(self.sys, index, struct), f"{component.name}: hooks")
+
+    def add_table(self, component: Component, time: np.ndarray,
+                  columns: Mapping[str, np.ndarray], hold: set[str]) -> None:
+        """A table source is evaluated in C: its table is copied into the engine, no hooks.
+        columns: the values of each output (in the order of engine_outputs)."""
+        name, index = component.name, self.index[component.name]
+        time = np.ascontiguousarray(time, dtype=np.float64)
         self.check(lib().ssx_add_table_component(self.sys, name.encode(),
                                                  ffi.from_buffer("double[]", time), len(time)),
                    name)
         for port in self.outputs[name]:
-            values = np.ascontiguousarray(table.column_values(port), dtype=np.float64)
+            values = np.ascontiguousarray(columns[port], dtype=np.float64)
             self.check(lib().ssx_add_table_column(
-                self.sys, index, _ENGINE_TYPE[table.output_specs[port].type],
-                int(port in table.hold), ffi.from_buffer("double[]", values)), f"{name}.{port}")
-        table._binding = Binding(self, index)
+                self.sys, index, engine_type(component.output_specs[port].type),
+                int(port in hold), ffi.from_buffer("double[]", values)), f"{name}.{port}")
+        component._binding = Binding(self, index)
 
-    def start_table(self, table: TableSource, t0: float) -> dict[str, float]:
+    def start_table(self, table: Component, t0: float) -> dict[str, float]:
         """The table's outputs at t0 (the value on the left of a jump), written before any
         component initializes, so every component, whatever its place in the schedule, starts
         from them; returned by output name."""
@@ -186,7 +222,7 @@ class EnginePlan:
                                      self.index[dst], self.inputs[dst].index(dst_port), scale,
                                      offset), f"connection {src}.{src_port} -> {dst}.{dst_port}")
 
-    def add_indicator(self, component: CoSimComponent, event: str) -> None:
+    def add_indicator(self, component: Component, event: str) -> None:
         indicator = component.event_indicators[event]
         index = self.index[component.name]
         if indicator.variable is not None:
@@ -206,7 +242,7 @@ class EnginePlan:
         self.indicators.append((component.name, event))
         self.indicator_index[(component.name, event)] = number
 
-    def _indicator_callback(self, component: CoSimComponent, event: str
+    def _indicator_callback(self, component: Component, event: str
                             ) -> Callable[[Any, float, Any], int]:
         func = component.event_indicators[event].func
         assert func is not None
@@ -224,20 +260,20 @@ class EnginePlan:
         self.check(lib().ssx_add_event_connection(self.sys, self.indicator_index[(src, event)],
                                                   self.index[dst]), f"{src}.{event} -> {dst}")
 
-    def fail(self, component: CoSimComponent, where: str, t: float, exc: BaseException) -> None:
+    def fail(self, component: Component, where: str, t: float, exc: BaseException) -> None:
         if self.failure is None:
             self.failure = CallbackFailure(component.name, where, t, exc)
 
     # ------------------------------------------------------------------ port values
-    def _array(self, component: CoSimComponent, direction: str) -> Any:
+    def _array(self, component: Component, direction: str) -> Any:
         index = self.index[component.name]
         return (lib().ssx_outputs if direction == "out" else lib().ssx_inputs)(self.sys, index)
 
-    def port_value(self, component: CoSimComponent, direction: str, port: str) -> float:
+    def port_value(self, component: Component, direction: str, port: str) -> float:
         names = self.outputs if direction == "out" else self.inputs
         return float(self._array(component, direction)[names[component.name].index(port)])
 
-    def write_inputs(self, component: CoSimComponent,
+    def write_inputs(self, component: Component,
                      values: Mapping[str, Any] | None = None) -> None:
         """Copy input values (the component's ports, or `values`) into the engine."""
         array = self._array(component, "in")
@@ -247,20 +283,20 @@ class EnginePlan:
             elif name in values:
                 array[i] = float(component.input_specs[name].coerce(values[name]))
 
-    def pull_inputs(self, component: CoSimComponent) -> None:
+    def pull_inputs(self, component: Component) -> None:
         """Engine inputs -> the component's input ports (Python components)."""
         array = self._array(component, "in")
         for i, name in enumerate(self.inputs[component.name]):
             port = component.inputs[name]
-            port._raw = _typed(port.spec.type, array[i])
+            port._raw = typed(port.spec.type, array[i])
 
-    def push_outputs(self, component: CoSimComponent) -> None:
+    def push_outputs(self, component: Component) -> None:
         """The component's output ports -> engine outputs (Python components)."""
         array = self._array(component, "out")
         for i, name in enumerate(self.outputs[component.name]):
             array[i] = float(component.outputs[name].raw())
 
-    def read_outputs(self, component: CoSimComponent) -> None:
+    def read_outputs(self, component: Component) -> None:
         index = self.index[component.name]
         self.raise_for(lib().ssx_component_read_outputs(self.sys, index), component)
 
@@ -269,7 +305,7 @@ class EnginePlan:
         if self._do_step(self.sys, index, t, dt) < 0:
             self.raise_for(-1, self.components[list(self.index)[index]])
 
-    def raise_for(self, result: int, component: CoSimComponent) -> None:
+    def raise_for(self, result: int, component: Component) -> None:
         if result < 0:
             from .failure import raise_failure
 
@@ -280,7 +316,7 @@ class EnginePlan:
         """The samples recorded so far, as arrays that stay valid and unchanged for their life."""
         return HistoryArrays(self.sys, self._release_history)
 
-    def component_history(self, component: CoSimComponent, arrays: HistoryArrays | None = None
+    def component_history(self, component: Component, arrays: HistoryArrays | None = None
                           ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         """(time, {output: values}) of one component, without a copy (Real outputs)."""
         arrays = arrays if arrays is not None else self.history()
@@ -296,7 +332,7 @@ class EnginePlan:
         return t, columns
 
 
-def _typed(kind: PortType, value: float) -> float | int | bool:
+def typed(kind: PortType, value: float) -> float | int | bool:
     if kind == PortType.INT:
         return round(value)
     if kind == PortType.BOOL:
@@ -307,10 +343,10 @@ def _typed(kind: PortType, value: float) -> float | int | bool:
 class _HookBuilder:
     """The ssx_hooks of one component: only the hooks its Python code needs."""
 
-    def __init__(self, plan: EnginePlan, component: CoSimComponent) -> None:
+    def __init__(self, plan: EnginePlan, component: Component, is_fmu: bool) -> None:
         self.plan = plan
         self.component = component
-        self.is_fmu = isinstance(component, FMUComponent)
+        self.is_fmu = is_fmu  # the engine owns the ports and steps the FMU itself
         self.snapshots: dict[int, Any] = {}
         self.where: str | None = None  # a more precise place, set while a hook runs
 
@@ -332,38 +368,33 @@ class _HookBuilder:
                 self.where = None
         return hook
 
-    def build(self) -> Any:
+    def build(self, hooks: set[str]) -> Any:
+        """The ssx_hooks with the callbacks of `hooks` (names of HOOKS), None for none."""
+        if not hooks:
+            return None
         c, plan = self.component, self.plan
-        hooks = ffi.new("ssx_hooks *")
-        needed = False
-        fmu = self.is_fmu
-
+        struct = ffi.new("ssx_hooks *")
         engine_time = lib().ssx_time
-
-        def add(field: str, signature: str, where: str, body: Callable[..., None],
-                time_arg: int | None = -1) -> None:
-            nonlocal needed
+        callbacks = {
+            "do_step": ("int(void *, double, double)", "do_step", self._do_step, 0),
+            "evaluate_outputs": ("int(void *, double)", "evaluate_outputs",
+                                 self._evaluate_outputs, -1),
+            "snapshot": ("int(void *, int)", "snapshot_state", self._snapshot, None),
+            "restore": ("int(void *, int, double)", "restore_state", self._restore, -1),
+            "handle_events": ("int(void *, int *, int, double)", "event handler",
+                              self._handle_events, -1),
+            "record": ("int(void *, double)", "_record_outputs", c._record_outputs, -1),
+        }
+        for field in HOOKS:
+            if field not in hooks:
+                continue
+            signature, where, body, time_arg = callbacks[field]
             callback = plan.callback(
                 signature, self._guard(where, body, time_arg), -1,
-                lambda exc: plan.fail(c, self.where or where, float(engine_time(plan.sys)), exc))
-            setattr(hooks[0], field, callback)
-            needed = True
-
-        if not fmu or _overrides(c, "_do_step_internal") or _overrides(c, "_update_output_states"):
-            add("do_step", "int(void *, double, double)", "do_step", self._do_step, 0)
-        if not fmu or _overrides(c, "evaluate_outputs"):
-            add("evaluate_outputs", "int(void *, double)", "evaluate_outputs",
-                self._evaluate_outputs)
-        if (_overrides(c, "snapshot_state") or _overrides(c, "restore_state")) \
-                and c.can_rollback():
-            add("snapshot", "int(void *, int)", "snapshot_state", self._snapshot, None)
-            add("restore", "int(void *, int, double)", "restore_state", self._restore)
-        if c.has_event_handling():
-            add("handle_events", "int(void *, int *, int, double)", "event handler",
-                self._handle_events)
-        if _overrides(c, "_record_outputs"):
-            add("record", "int(void *, double)", "_record_outputs", c._record_outputs)
-        return hooks if needed else None
+                lambda exc, where=where: plan.fail(c, self.where or where,
+                                                   float(engine_time(plan.sys)), exc))
+            setattr(struct[0], field, callback)
+        return struct
 
     def _do_step(self, t: float, dt: float) -> None:
         c = self.component
