@@ -24,8 +24,7 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
                                         size_t nKnown, const fmi2Real dvKnown[],
                                         fmi2Real dvUnknown[])
 {
-    fmu_instance *inst = fmu_checked(c, FUNCTION,
-                                     PHASE_BIT(PHASE_INITIALIZATION) | PHASE_BIT(PHASE_STEP));
+    fmu_instance *inst = fmu_checked(c, FUNCTION, PHASES_INITIALIZED);
     if (inst == NULL)
         return fmi2Error;
     const model_definition *model = inst->model;

@@ -8,10 +8,6 @@
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
-#define ANY_PHASE                                                                            \
-    (PHASE_BIT(PHASE_INSTANTIATED) | PHASE_BIT(PHASE_INITIALIZATION) | PHASE_BIT(PHASE_STEP) | \
-     PHASE_BIT(PHASE_TERMINATED))
-
 const char *fmi2GetTypesPlatform(void)
 {
     return fmi2TypesPlatform;
@@ -25,7 +21,7 @@ const char *fmi2GetVersion(void)
 fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nCategories,
                                const fmi2String categories[])
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2SetDebugLogging", ANY_PHASE);
+    fmu_instance *inst = fmu_checked(c, "fmi2SetDebugLogging", PHASES_ANY);
     if (inst == NULL)
         return fmi2Error;
     unsigned selected = 0;
@@ -187,8 +183,7 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component c)
 
 fmi2Status fmi2Terminate(fmi2Component c)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2Terminate",
-                                     PHASE_BIT(PHASE_INITIALIZATION) | PHASE_BIT(PHASE_STEP));
+    fmu_instance *inst = fmu_checked(c, "fmi2Terminate", PHASES_INITIALIZED);
     if (inst == NULL)
         return fmi2Error;
     inst->phase = PHASE_TERMINATED;
@@ -197,7 +192,7 @@ fmi2Status fmi2Terminate(fmi2Component c)
 
 fmi2Status fmi2Reset(fmi2Component c)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2Reset", ANY_PHASE);
+    fmu_instance *inst = fmu_checked(c, "fmi2Reset", PHASES_ANY);
     if (inst == NULL)
         return fmi2Error;
     inst->phase = PHASE_INSTANTIATED;

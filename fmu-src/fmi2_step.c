@@ -92,11 +92,10 @@ fmi2Status fmi2CancelStep(fmi2Component c)
     return fmu_error(inst, "fmi2CancelStep: steps are never asynchronous in this FMU");
 }
 
-#define STATUS_PHASES (PHASE_BIT(PHASE_STEP) | PHASE_BIT(PHASE_TERMINATED))
 
 fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *value)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2GetStatus", STATUS_PHASES);
+    fmu_instance *inst = fmu_checked(c, "fmi2GetStatus", PHASES_STATUS);
     if (inst == NULL)
         return fmi2Error;
     if (s != fmi2DoStepStatus || value == NULL)
@@ -107,7 +106,7 @@ fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *va
 
 fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real *value)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2GetRealStatus", STATUS_PHASES);
+    fmu_instance *inst = fmu_checked(c, "fmi2GetRealStatus", PHASES_STATUS);
     if (inst == NULL)
         return fmi2Error;
     if (s != fmi2LastSuccessfulTime || value == NULL)
@@ -120,7 +119,7 @@ fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Int
 {
     (void)s;
     (void)value;
-    fmu_instance *inst = fmu_checked(c, "fmi2GetIntegerStatus", STATUS_PHASES);
+    fmu_instance *inst = fmu_checked(c, "fmi2GetIntegerStatus", PHASES_STATUS);
     if (inst == NULL)
         return fmi2Error;
     return fmu_error(inst, "fmi2GetIntegerStatus: no integer status is defined");
@@ -128,7 +127,7 @@ fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Int
 
 fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boolean *value)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2GetBooleanStatus", STATUS_PHASES);
+    fmu_instance *inst = fmu_checked(c, "fmi2GetBooleanStatus", PHASES_STATUS);
     if (inst == NULL)
         return fmi2Error;
     if (s != fmi2Terminated || value == NULL)
@@ -141,7 +140,7 @@ fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind s, fmi2Stri
 {
     (void)s;
     (void)value;
-    fmu_instance *inst = fmu_checked(c, "fmi2GetStringStatus", STATUS_PHASES);
+    fmu_instance *inst = fmu_checked(c, "fmi2GetStringStatus", PHASES_STATUS);
     if (inst == NULL)
         return fmi2Error;
     return fmu_error(inst, "fmi2GetStringStatus: no string status is defined");

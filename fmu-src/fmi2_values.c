@@ -6,11 +6,6 @@
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
-#define ANY_PHASE                                                                            \
-    (PHASE_BIT(PHASE_INSTANTIATED) | PHASE_BIT(PHASE_INITIALIZATION) | PHASE_BIT(PHASE_STEP) | \
-     PHASE_BIT(PHASE_TERMINATED))
-#define SETTABLE_PHASES \
-    (PHASE_BIT(PHASE_INSTANTIATED) | PHASE_BIT(PHASE_INITIALIZATION) | PHASE_BIT(PHASE_STEP))
 
 static const char *const type_names[] = {"Real", "Integer", "Boolean"};
 
@@ -46,7 +41,7 @@ static fmu_instance *prepare_get(fmi2Component c, const char *function,
                                  const fmi2ValueReference vr[], size_t nvr, const void *value,
                                  variable_type type)
 {
-    fmu_instance *inst = fmu_checked(c, function, ANY_PHASE);
+    fmu_instance *inst = fmu_checked(c, function, PHASES_ANY);
     if (inst == NULL)
         return NULL;
     if (check_references(inst, function, vr, nvr, type) != fmi2OK)
@@ -104,7 +99,7 @@ fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
                          fmi2String value[])
 {
     (void)value;
-    fmu_instance *inst = fmu_checked(c, "fmi2GetString", ANY_PHASE);
+    fmu_instance *inst = fmu_checked(c, "fmi2GetString", PHASES_ANY);
     if (inst == NULL)
         return fmi2Error;
     if (nvr == 0)
@@ -139,7 +134,7 @@ static fmu_instance *prepare_set(fmi2Component c, const char *function,
                                  const fmi2ValueReference vr[], size_t nvr, const void *value,
                                  variable_type type)
 {
-    fmu_instance *inst = fmu_checked(c, function, SETTABLE_PHASES);
+    fmu_instance *inst = fmu_checked(c, function, PHASES_SETTABLE);
     if (inst == NULL)
         return NULL;
     if (check_references(inst, function, vr, nvr, type) != fmi2OK)
@@ -218,7 +213,7 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
                          const fmi2String value[])
 {
     (void)value;
-    fmu_instance *inst = fmu_checked(c, "fmi2SetString", SETTABLE_PHASES);
+    fmu_instance *inst = fmu_checked(c, "fmi2SetString", PHASES_SETTABLE);
     if (inst == NULL)
         return fmi2Error;
     if (nvr == 0)

@@ -16,6 +16,16 @@ typedef enum {
 
 #define PHASE_BIT(phase) (1u << (phase))
 
+/* Where each kind of fmi2 call is allowed (FMI 2.0 co-simulation state machine), one table for
+ * every entry point; PHASE_FATAL is in none of them. */
+#define PHASES_ANY                                                                           \
+    (PHASE_BIT(PHASE_INSTANTIATED) | PHASE_BIT(PHASE_INITIALIZATION) | PHASE_BIT(PHASE_STEP) | \
+     PHASE_BIT(PHASE_TERMINATED))
+#define PHASES_SETTABLE \
+    (PHASE_BIT(PHASE_INSTANTIATED) | PHASE_BIT(PHASE_INITIALIZATION) | PHASE_BIT(PHASE_STEP))
+#define PHASES_INITIALIZED (PHASE_BIT(PHASE_INITIALIZATION) | PHASE_BIT(PHASE_STEP))
+#define PHASES_STATUS (PHASE_BIT(PHASE_STEP) | PHASE_BIT(PHASE_TERMINATED))
+
 typedef struct {
     fmi2CallbackLogger logger;
     fmi2ComponentEnvironment environment;

@@ -8,10 +8,6 @@
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
-#define ANY_PHASE                                                                            \
-    (PHASE_BIT(PHASE_INSTANTIATED) | PHASE_BIT(PHASE_INITIALIZATION) | PHASE_BIT(PHASE_STEP) | \
-     PHASE_BIT(PHASE_TERMINATED))
-
 /* The header is also the serialized form's header; the GUID rejects another model's bytes. */
 typedef struct {
     char guid[40];
@@ -52,7 +48,7 @@ static void capture(const fmu_instance *inst, fmu_snapshot *snapshot)
 
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2GetFMUstate", ANY_PHASE);
+    fmu_instance *inst = fmu_checked(c, "fmi2GetFMUstate", PHASES_ANY);
     if (inst == NULL)
         return fmi2Error;
     if (FMUstate == NULL)
@@ -75,7 +71,7 @@ fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
 
 fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2SetFMUstate", ANY_PHASE);
+    fmu_instance *inst = fmu_checked(c, "fmi2SetFMUstate", PHASES_ANY);
     if (inst == NULL)
         return fmi2Error;
     const fmu_snapshot *snapshot = FMUstate;
@@ -92,7 +88,7 @@ fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate)
 
 fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2FreeFMUstate", ANY_PHASE);
+    fmu_instance *inst = fmu_checked(c, "fmi2FreeFMUstate", PHASES_ANY);
     if (inst == NULL)
         return fmi2Error;
     if (FMUstate == NULL)
@@ -104,7 +100,7 @@ fmi2Status fmi2FreeFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
 
 fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate FMUstate, size_t *size)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2SerializedFMUstateSize", ANY_PHASE);
+    fmu_instance *inst = fmu_checked(c, "fmi2SerializedFMUstateSize", PHASES_ANY);
     if (inst == NULL)
         return fmi2Error;
     const fmu_snapshot *snapshot = FMUstate;
@@ -117,7 +113,7 @@ fmi2Status fmi2SerializedFMUstateSize(fmi2Component c, fmi2FMUstate FMUstate, si
 fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate FMUstate, fmi2Byte serializedState[],
                                  size_t size)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2SerializeFMUstate", ANY_PHASE);
+    fmu_instance *inst = fmu_checked(c, "fmi2SerializeFMUstate", PHASES_ANY);
     if (inst == NULL)
         return fmi2Error;
     const fmu_snapshot *snapshot = FMUstate;
@@ -136,7 +132,7 @@ fmi2Status fmi2SerializeFMUstate(fmi2Component c, fmi2FMUstate FMUstate, fmi2Byt
 fmi2Status fmi2DeSerializeFMUstate(fmi2Component c, const fmi2Byte serializedState[], size_t size,
                                    fmi2FMUstate *FMUstate)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2DeSerializeFMUstate", ANY_PHASE);
+    fmu_instance *inst = fmu_checked(c, "fmi2DeSerializeFMUstate", PHASES_ANY);
     if (inst == NULL)
         return fmi2Error;
     size_t needed = sizeof(state_header) + data_count(inst) * sizeof(double);
