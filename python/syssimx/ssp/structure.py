@@ -83,7 +83,7 @@ def read_structure(package: Package, unsupported: Unsupported) -> Structure:
     system = root.find("ssd:System", NS)
     walk.system(system, "", 0)
     _warn_annotations(root, unsupported)
-    for parameters, owner, depth in sorted(walk.bindings, key=lambda b: -b[2]):
+    for parameters, owner, _ in sorted(walk.bindings, key=lambda b: -b[2]):
         walk.assign(parameters, owner)  # outer systems last: their values win
     return Structure(root.get("name") or system.get("name"), walk.components,
                      walk.connections(), _experiment(root, package), read_units(root))
