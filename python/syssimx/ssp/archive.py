@@ -27,6 +27,13 @@ class Package:
     ssd: Path
     base: Path
     temporary: Path | None
+    origin: Path  # the file the user gave
+
+    def shown(self, path: Path) -> str:
+        """How an error names a file: inside an archive as archive:member."""
+        if self.temporary is None:
+            return str(path)
+        return f"{self.origin}:{path.relative_to(self.temporary).as_posix()}"
 
 
 def open_package(path: str | Path) -> Package:
@@ -35,7 +42,7 @@ def open_package(path: str | Path) -> Package:
     if not path.is_file():
         raise SSPError(f"{path}: file not found")
     if path.suffix.lower() != ".ssp":
-        return Package(path, path.parent, None)
+        return Package(path, path.parent, None, path)
     folder = Path(tempfile.mkdtemp(prefix="syssimx-ssp-"))
     try:
         extract(path, folder)
@@ -46,19 +53,19 @@ def open_package(path: str | Path) -> Package:
     if not ssd.is_file():
         shutil.rmtree(folder, ignore_errors=True)
         raise SSPError(f"{path}: the archive has no {SSD_NAME} at its root")
-    return Package(ssd, folder, folder)
+    return Package(ssd, folder, folder, path)
 
 
 def resolve(package: Package, reference: str, where: str) -> Path:
     """The file a relative reference (an FMU, .ssv or .ssm `source`) names, inside the
     package's folder; `where` names the referring element for the error."""
     if ":" in reference.split("/")[0]:
-        raise SSPError(f"{package.ssd}: {where}: source {reference!r} is not a relative "
+        raise SSPError(f"{package.shown(package.ssd)}: {where}: source {reference!r} is not a relative "
                        "reference (the only kind syssimx reads)")
     target = (package.base / reference).resolve()
     if package.temporary is not None and not target.is_relative_to(package.base.resolve()):
-        raise SSPError(f"{package.ssd}: {where}: source {reference!r} lies outside the archive")
+        raise SSPError(f"{package.shown(package.ssd)}: {where}: source {reference!r} lies outside the archive")
     if not target.is_file():
-        raise SSPError(f"{package.ssd}: {where}: source {reference!r} not found"
+        raise SSPError(f"{package.shown(package.ssd)}: {where}: source {reference!r} not found"
                        + (" in the archive" if package.temporary is not None else ""))
     return target

@@ -35,7 +35,7 @@ def read_bindings(element: Any, package: Package,
     """The values of every ParameterBinding of `element`, in document order."""
     values: list[ParameterValue] = []
     for binding in element.iterfind("ssd:ParameterBindings/ssd:ParameterBinding", NS):
-        where = f"{package.ssd}: {element_label(binding)}"
+        where = f"{package.shown(package.ssd)}: {element_label(binding)}"
         if binding.get("type", "application/x-ssp-parameter-set") \
                 != "application/x-ssp-parameter-set":
             unsupported.warn(f"parameter binding type {binding.get('type')!r}", where)
@@ -43,7 +43,7 @@ def read_bindings(element: Any, package: Package,
         source = binding.get("source")
         if source is not None:
             path = resolve(package, source, element_label(binding))
-            sets = [(parse(path, "ssv"), f"{path}")]
+            sets = [(parse(path, "ssv", package.shown(path)), package.shown(path))]
         else:
             sets = [(s, where) for s in binding.iterfind("ssd:ParameterValues/ssv:ParameterSet",
                                                          NS)]
@@ -92,7 +92,8 @@ def _mapping(binding: Any, package: Package,
     for element in binding.iterfind("ssd:ParameterMapping", NS):
         source = element.get("source")
         if source is not None:
-            root = parse(resolve(package, source, element_label(element)), "ssm")
+            path = resolve(package, source, element_label(element))
+            root = parse(path, "ssm", package.shown(path))
         else:
             root = element.find("ssm:ParameterMapping", NS)
             if root is None:

@@ -78,7 +78,7 @@ class _Link:
 def read_structure(package: Package, unsupported: Unsupported) -> Structure:
     from .units import read_units
 
-    root = parse(package.ssd, "ssd")
+    root = parse(package.ssd, "ssd", package.shown(package.ssd))
     walk = _Walk(package, unsupported)
     system = root.find("ssd:System", NS)
     walk.system(system, "", 0)
@@ -99,15 +99,15 @@ class _Walk:
         self.dictionaries: dict[str, str] = {}  # reference element path -> dictionary key
 
     def where(self, element: Any) -> str:
-        return f"{self.package.ssd}: {element_label(element)}"
+        return f"{self.package.shown(self.package.ssd)}: {element_label(element)}"
 
     def system(self, system: Any, path: str, depth: int) -> None:
         self.bindings.append((read_bindings(system, self.package, self.unsupported), path,
                               depth))
         for dictionary in system.iterfind("ssd:SignalDictionaries/ssd:SignalDictionary", NS):
             if dictionary.get("source") is not None:
-                parse(resolve(self.package, dictionary.get("source"),
-                              element_label(dictionary)), "ssb")
+                path = resolve(self.package, dictionary.get("source"), element_label(dictionary))
+                parse(path, "ssb", self.package.shown(path))
         for element in system.iterfind("ssd:Elements/*", NS):
             name = element.get("name")
             child = f"{path}.{name}" if path else name
@@ -214,7 +214,7 @@ def _experiment(root: Any, package: Package) -> Experiment:
                 try:
                     step = float(element.get("baseStepSize"))
                 except ValueError as exc:
-                    raise SSPError(f"{package.ssd}: {element_label(element)}: baseStepSize "
+                    raise SSPError(f"{package.shown(package.ssd)}: {element_label(element)}: baseStepSize "
                                    f"{element.get('baseStepSize')!r} is not a number") from exc
     start, stop = experiment.get("startTime"), experiment.get("stopTime")
     return Experiment(float(start) if start is not None else None,

@@ -35,21 +35,22 @@ def local_name(element: Any) -> str:
     return str(element.tag).rpartition("}")[2]
 
 
-def parse(path: Path, kind: str) -> Any:
+def parse(path: Path, kind: str, shown: str) -> Any:
     """The root element of the XML file at `path` (an .ssd, .ssv, .ssm or .ssb: `kind`),
-    validated against its schema. No entities are resolved and nothing is fetched."""
+    validated against its schema; errors name it as `shown`. No entities are resolved and
+    nothing is fetched."""
     from lxml import etree
 
     if not path.is_file():
-        raise SSPError(f"{path}: file not found")
+        raise SSPError(f"{shown}: file not found")
     parser = etree.XMLParser(resolve_entities=False, no_network=True, huge_tree=False)
     try:
         root = etree.parse(str(path), parser).getroot()
     except (etree.XMLSyntaxError, OSError) as exc:
-        raise SSPError(f"{path}: malformed XML: {exc}") from exc
+        raise SSPError(f"{shown}: malformed XML: {exc}") from exc
     if not validate(root, kind):
         errors = "; ".join(f"line {e.line}: {e.message}" for e in list(_schema(kind).error_log)[:3])
-        raise SSPError(f"{path}: not a valid {kind.upper()} file (SSP 1.0 schema): {errors}")
+        raise SSPError(f"{shown}: not a valid {kind.upper()} file (SSP 1.0 schema): {errors}")
     return root
 
 
