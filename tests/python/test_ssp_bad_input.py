@@ -11,9 +11,8 @@ import zipfile
 from pathlib import Path
 
 import pytest
-from syssimx.ssp import SSPError, SSPWarning, load
-
 from ssp_archive import ssd, write_ssp
+from syssimx.ssp import SSPError, SSPWarning, load
 
 MASS = """<ssd:Component name="Mass" source="resources/sliding_mass.fmu">
   <ssd:Connectors>{connectors}</ssd:Connectors>
@@ -177,6 +176,17 @@ def test_each_unsupported_element_warns_once_naming_it(tmp_path: Path, kind: str
         warnings.simplefilter("always")
         load(path)
     messages = [str(w.message) for w in caught if issubclass(w.category, SSPWarning)]
-    assert messages == [m for m in messages if m.startswith(f"{path}: {kind} is not supported "
-                                                             "and is ignored (")]
+    assert messages == [m for m in messages if m.startswith(
+        f"{kind} is not supported and is ignored: {path}:SystemStructure.ssd: <")]
     assert len(messages) == 1
+
+
+@pytest.mark.parametrize("source", ["../outside.fmu", "/etc/hostname", "resources/../../x.fmu"])
+def test_a_source_outside_the_archive_is_refused(tmp_path: Path, source: str) -> None:
+    system = (f'<ssd:System name="s"><ssd:Elements><ssd:Component name="Far" '
+              f'source="{source}"/></ssd:Elements></ssd:System>')
+    path = write_ssp(tmp_path / "s.ssp", ssd(system))
+    with pytest.raises(SSPError, match=re.escape(f"{path}:SystemStructure.ssd: <Component "
+                                                 f"'Far'> (line 3): source {source!r} lies "
+                                                 "outside the archive")):
+        load(path)

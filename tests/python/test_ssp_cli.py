@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 from syssimx import GaussSeidelAlgorithm, JacobiAlgorithm
 from syssimx.cli import main
-
 from test_ssp_round_trip import coupled_pendulums
 
 

@@ -11,10 +11,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from ssp_archive import reference_fmu, ssd, write_ssp
 from syssimx import Connection, FMUComponent, System, fmus
 from syssimx.ssp import read
-
-from ssp_archive import reference_fmu, ssd, write_ssp
 
 PLANT = """
 <ssd:System name="Plant">
@@ -235,7 +234,7 @@ def test_reference_fmus_run_from_an_ssp_as_fmpy_runs_them(tmp_path: Path,
     system = read(path).system
     system.initialize(0.0)
     result = system.run(0.0, 1.0, 0.01)
-    t, values = result[reference]
+    _, values = result[reference]
     expected = simulate_fmu(str(fmu), stop_time=1.0, output_interval=0.01)
     first = expected.dtype.names[1]
     assert np.abs(values[first] - expected[first]).max() == 0.0

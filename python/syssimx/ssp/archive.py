@@ -59,13 +59,14 @@ def open_package(path: str | Path) -> Package:
 def resolve(package: Package, reference: str, where: str) -> Path:
     """The file a relative reference (an FMU, .ssv or .ssm `source`) names, inside the
     package's folder; `where` names the referring element for the error."""
+    where = f"{package.shown(package.ssd)}: {where}"
     if ":" in reference.split("/")[0]:
-        raise SSPError(f"{package.shown(package.ssd)}: {where}: source {reference!r} is not a relative "
+        raise SSPError(f"{where}: source {reference!r} is not a relative "
                        "reference (the only kind syssimx reads)")
     target = (package.base / reference).resolve()
     if package.temporary is not None and not target.is_relative_to(package.base.resolve()):
-        raise SSPError(f"{package.shown(package.ssd)}: {where}: source {reference!r} lies outside the archive")
+        raise SSPError(f"{where}: source {reference!r} lies outside the archive")
     if not target.is_file():
-        raise SSPError(f"{package.shown(package.ssd)}: {where}: source {reference!r} not found"
+        raise SSPError(f"{where}: source {reference!r} not found"
                        + (" in the archive" if package.temporary is not None else ""))
     return target

@@ -33,7 +33,7 @@ def read(path: str | Path) -> Imported:
     """The system and the default experiment (start, stop, fixed step) of an .ssp or .ssd."""
     package = open_package(path)
     try:
-        structure = read_structure(package, Unsupported(Path(path)))
+        structure = read_structure(package, Unsupported())
         system = build(structure)
     except BaseException:
         if package.temporary is not None:

@@ -91,9 +91,11 @@ def _mapping(binding: Any, package: Package,
     mapping: dict[str, _Entry] = {}
     for element in binding.iterfind("ssd:ParameterMapping", NS):
         source = element.get("source")
+        shown = package.shown(package.ssd)
         if source is not None:
             path = resolve(package, source, element_label(element))
-            root = parse(path, "ssm", package.shown(path))
+            shown = package.shown(path)
+            root = parse(path, "ssm", shown)
         else:
             root = element.find("ssm:ParameterMapping", NS)
             if root is None:
@@ -102,7 +104,7 @@ def _mapping(binding: Any, package: Package,
             linear = entry.find("ssc:LinearTransformation", NS)
             for name in _MAP_TRANSFORMATIONS:
                 if entry.find(f"ssc:{name}", NS) is not None:
-                    unsupported.warn(f"ssc:{name}", f"mapping entry {entry.get('source')!r}")
+                    unsupported.warn(f"ssc:{name}", f"{shown}: {element_label(entry)}")
             mapping[entry.get("source")] = _Entry(
                 entry.get("target"),
                 float(linear.get("factor", 1.0)) if linear is not None else 1.0,

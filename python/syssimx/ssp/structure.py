@@ -82,7 +82,7 @@ def read_structure(package: Package, unsupported: Unsupported) -> Structure:
     walk = _Walk(package, unsupported)
     system = root.find("ssd:System", NS)
     walk.system(system, "", 0)
-    _warn_annotations(root, unsupported)
+    _warn_annotations(root, package, unsupported)
     for parameters, owner, _ in sorted(walk.bindings, key=lambda b: -b[2]):
         walk.assign(parameters, owner)  # outer systems last: their values win
     return Structure(root.get("name") or system.get("name"), walk.components,
@@ -127,7 +127,7 @@ class _Walk:
     def component(self, element: Any, path: str, depth: int) -> None:
         if element.get("implementation") == "ModelExchange":
             self.unsupported.warn("implementation 'ModelExchange'",
-                                  f"{self.where(element)} runs as Co-Simulation")
+                                  f"{self.where(element)}, run as Co-Simulation")
         source = resolve(self.package, element.get("source"), element_label(element))
         connectors = {}
         for connector in element.iterfind("ssd:Connectors/ssd:Connector", NS):
@@ -183,7 +183,7 @@ class _Walk:
                 entries.append(ConnectionEntry(start, end, factor, offset, convert, link.label))
                 continue
             self.unsupported.warn("a connection from an unconnected system input",
-                                  f"{link.label} leaves {'.'.join(end)} at its start value")
+                                  f"{link.label}, {'.'.join(end)} keeps its start value")
         return entries
 
     def assign(self, parameters: list[ParameterValue], owner: str | None) -> None:
@@ -214,16 +214,17 @@ def _experiment(root: Any, package: Package) -> Experiment:
                 try:
                     step = float(element.get("baseStepSize"))
                 except ValueError as exc:
-                    raise SSPError(f"{package.shown(package.ssd)}: {element_label(element)}: baseStepSize "
-                                   f"{element.get('baseStepSize')!r} is not a number") from exc
+                    raise SSPError(f"{package.shown(package.ssd)}: {element_label(element)}: "
+                                   f"baseStepSize {element.get('baseStepSize')!r} is not a "
+                                   "number") from exc
     start, stop = experiment.get("startTime"), experiment.get("stopTime")
     return Experiment(float(start) if start is not None else None,
                       float(stop) if stop is not None else None, step)
 
 
-def _warn_annotations(root: Any, unsupported: Unsupported) -> None:
+def _warn_annotations(root: Any, package: Package, unsupported: Unsupported) -> None:
     for annotation in root.iter(f"{{{NS['ssc']}}}Annotation"):
         known = any(local_name(e) == OSP_STEP for e in annotation.iter())
         if not known:
             unsupported.warn(f"annotation type {annotation.get('type')!r}",
-                             f"{element_label(annotation)}")
+                             f"{package.shown(package.ssd)}: {element_label(annotation)}")

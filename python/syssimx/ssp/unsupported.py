@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import warnings
-from pathlib import Path
 
 from .errors import SSPWarning
 
@@ -11,13 +10,13 @@ from .errors import SSPWarning
 class Unsupported:
     """Collects what a file uses that syssimx leaves out; warns once per kind."""
 
-    def __init__(self, path: Path) -> None:
-        self.path = path
+    def __init__(self) -> None:
         self.seen: set[str] = set()
 
-    def warn(self, kind: str, detail: str) -> None:
+    def warn(self, kind: str, where: str) -> None:
+        """`where`: the file and the element of the first occurrence."""
         if kind in self.seen:
             return
         self.seen.add(kind)
-        warnings.warn(f"{self.path}: {kind} is not supported and is ignored ({detail})",
-                      SSPWarning, stacklevel=4)
+        warnings.warn(f"{kind} is not supported and is ignored: {where}", SSPWarning,
+                      stacklevel=4)
