@@ -29,7 +29,9 @@ def write_ssp(system: System, path: str | Path, experiment: Experiment | None = 
 
     path = Path(path)
     fmus = _fmu_files(system)
-    root = etree.Element(tag("ssd", "SystemStructureDescription"), nsmap=NS,
+    # osp declared at the root: libcosim reads an attribute on osp:Algorithm as an algorithm
+    namespaces = {**NS, "osp": OSP_NAMESPACE} if experiment and experiment.step_size else NS
+    root = etree.Element(tag("ssd", "SystemStructureDescription"), nsmap=namespaces,
                          version="1.0", name=system.name)
     element = etree.SubElement(root, tag("ssd", "System"), name=system.name)
     elements = etree.SubElement(element, tag("ssd", "Elements"))
@@ -122,6 +124,6 @@ def _experiment(root: Any, experiment: Experiment) -> None:
     if experiment.step_size is not None:
         annotations = etree.SubElement(element, tag("ssd", "Annotations"))
         annotation = etree.SubElement(annotations, tag("ssc", "Annotation"), type=OSP_TYPE)
-        etree.SubElement(annotation, f"{{{OSP_NAMESPACE}}}FixedStepAlgorithm",
-                         nsmap={"osp": OSP_NAMESPACE},
+        algorithm = etree.SubElement(annotation, f"{{{OSP_NAMESPACE}}}Algorithm")
+        etree.SubElement(algorithm, f"{{{OSP_NAMESPACE}}}FixedStepAlgorithm",
                          baseStepSize=repr(float(experiment.step_size)))
