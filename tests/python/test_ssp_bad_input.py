@@ -159,6 +159,14 @@ UNSUPPORTED = [
      {"experiment": '<ssd:DefaultExperiment><ssd:Annotations><ssc:Annotation '
                     'type="org.example.tool"><x/></ssc:Annotation></ssd:Annotations>'
                     '</ssd:DefaultExperiment>'}),
+    ("connector kind 'calculatedParameter' on a component",
+     {"connectors": X_OUTPUT + '<ssd:Connector name="e" kind="calculatedParameter">'
+                               '<ssc:Real/></ssd:Connector>'}),
+    ("a connection to a parameter connector",
+     {"connectors": X_OUTPUT + '<ssd:Connector name="mu" kind="parameter"><ssc:Real/>'
+                               '</ssd:Connector>',
+      "connections": '<ssd:Connections><ssd:Connection startElement="Mass" startConnector="x" '
+                     'endElement="Mass" endConnector="mu"/></ssd:Connections>'}),
     ("a connection from an unconnected system input",
      {"extra_elements": '<ssd:Component name="Gain" source="resources/gain.fmu"/>',
       "connections": '<ssd:Connections><ssd:Connection startConnector="outside" '

@@ -131,6 +131,10 @@ class _Walk:
         source = resolve(self.package, element.get("source"), element_label(element))
         connectors = {}
         for connector in element.iterfind("ssd:Connectors/ssd:Connector", NS):
+            if connector.get("kind") not in ("input", "output", "parameter"):
+                self.unsupported.warn(f"connector kind {connector.get('kind')!r} on a "
+                                      "component", self.where(connector))
+                continue
             typed = next(iter(connector.iterfind("ssc:*", NS)), None)
             connectors[connector.get("name")] = Connector(
                 connector.get("name"), connector.get("kind"),
@@ -170,21 +174,30 @@ class _Walk:
         for end, link in self.links.items():
             if end[0] not in self.components:
                 continue
-            factor, offset, convert, start = link.factor, link.offset, link.convert_units, \
-                link.start
-            while start[0] not in self.components:
-                if start not in self.links:
-                    break  # an input of the root system or an undriven entry: not a signal
-                outer = self.links[start]
-                factor, offset = factor * outer.factor, factor * outer.offset + offset
-                convert = convert and outer.convert_units
-                start = outer.start
-            else:
-                entries.append(ConnectionEntry(start, end, factor, offset, convert, link.label))
+            connector = self.components[end[0]].connectors.get(end[1])
+            if connector is not None and connector.kind == "parameter":
+                self.unsupported.warn("a connection to a parameter connector", link.label)
                 continue
-            self.unsupported.warn("a connection from an unconnected system input",
-                                  f"{link.label}, {'.'.join(end)} keeps its start value")
+            driver = self.driver(link)
+            if driver is None:
+                self.unsupported.warn("a connection from an unconnected system input",
+                                      f"{link.label}, {'.'.join(end)} keeps its start value")
+                continue
+            entries.append(ConnectionEntry(driver.start, end, driver.factor, driver.offset,
+                                           driver.convert_units, link.label))
         return entries
+
+    def driver(self, link: _Link) -> _Link | None:
+        """`link` followed back to a component connector, the transformations composed;
+        None when the chain starts at an input of the root system or an undriven entry."""
+        while link.start[0] not in self.components:
+            outer = self.links.get(link.start)
+            if outer is None:
+                return None
+            link = _Link(outer.start, link.factor * outer.factor,
+                         link.factor * outer.offset + link.offset,
+                         link.convert_units and outer.convert_units, link.label)
+        return link
 
     def assign(self, parameters: list[ParameterValue], owner: str | None) -> None:
         """Values bound at a component are its own; values bound at a system name a component
