@@ -11,9 +11,9 @@ from dataclasses import dataclass
 from typing import Any
 
 from .archive import Package, resolve
+from .documents import NS, element_label, local_name, parse
 from .errors import SSPError
 from .unsupported import Unsupported
-from .xml import NS, element_label, local_name, parse
 
 _TYPES = ("Real", "Integer", "Boolean", "String", "Enumeration")
 _MAP_TRANSFORMATIONS = ("BooleanMappingTransformation", "IntegerMappingTransformation",

@@ -14,11 +14,11 @@ from pathlib import Path
 from typing import Any
 
 from .archive import Package, resolve
+from .documents import NS, element_label, local_name, parse
 from .errors import SSPError
 from .experiment import Experiment
 from .parameters import ParameterValue, read_bindings
 from .unsupported import Unsupported
-from .xml import NS, element_label, local_name, parse
 
 FMU_TYPE = "application/x-fmu-sharedlibrary"
 OSP_STEP = "FixedStepAlgorithm"  # the Open Simulation Platform's annotation for a fixed step

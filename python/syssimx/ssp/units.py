@@ -7,7 +7,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from .xml import NS
+from .documents import NS
 
 _EXPONENTS = ("kg", "m", "s", "A", "K", "mol", "cd", "rad")
 

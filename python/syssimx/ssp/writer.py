@@ -13,9 +13,9 @@ from ..components.fmu import FMUComponent
 from ..core.port import PortType
 from ..system.system import System
 from .archive import SSD_NAME
+from .documents import NS, tag, validate
 from .errors import SSPError
 from .experiment import Experiment
-from .xml import NS, tag, validate
 
 OSP_NAMESPACE = "http://opensimulationplatform.com/SSP/OSPAnnotations"
 OSP_TYPE = "com.opensimulationplatform"
