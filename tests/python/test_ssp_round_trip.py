@@ -103,3 +103,13 @@ def test_a_system_with_a_python_component_is_refused(tmp_path: Path) -> None:
                                        "components only"):
         system.to_ssp(tmp_path / "x.ssp")
     assert not (tmp_path / "x.ssp").exists()
+
+
+def test_events_are_named_when_left_out(tmp_path: Path) -> None:
+    from syssimx.ssp import SSPWarning
+
+    system = coupled_pendulums(JacobiAlgorithm())
+    system.components["P1"].add_event_indicator("upright", variable="theta", direction=1)
+    with pytest.warns(SSPWarning, match=r"SSP 1.0 has no events; not written: event "
+                                        r"indicator P1.upright$"):
+        system.to_ssp(tmp_path / "x.ssp")

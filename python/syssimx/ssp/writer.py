@@ -5,6 +5,7 @@ FixedStepAlgorithm annotation. The written structure is validated against the sc
 
 from __future__ import annotations
 
+import warnings
 import zipfile
 from pathlib import Path
 from typing import Any
@@ -14,7 +15,7 @@ from ..core.port import PortType
 from ..system.system import System
 from .archive import SSD_NAME
 from .documents import NS, tag, validate
-from .errors import SSPError
+from .errors import SSPError, SSPWarning
 from .experiment import Experiment
 
 OSP_NAMESPACE = "http://opensimulationplatform.com/SSP/OSPAnnotations"
@@ -29,6 +30,7 @@ def write_ssp(system: System, path: str | Path, experiment: Experiment | None = 
 
     path = Path(path)
     fmus = _fmu_files(system)
+    _warn_events(system, path)
     # osp declared at the root: libcosim reads an attribute on osp:Algorithm as an algorithm
     namespaces = {**NS, "osp": OSP_NAMESPACE} if experiment and experiment.step_size else NS
     root = etree.Element(tag("ssd", "SystemStructureDescription"), nsmap=namespaces,
@@ -59,6 +61,17 @@ def write_ssp(system: System, path: str | Path, experiment: Experiment | None = 
         for source, name in fmus.items():
             archive.write(source, name)
     return path
+
+
+def _warn_events(system: System, path: Path) -> None:
+    """SSP 1.0 has no events: what the system has of them is named, not written."""
+    left_out = [f"event indicator {c.name}.{e}" for c in system.components.values()
+                for e in c.event_indicators]
+    left_out += ["event connection {}.{} -> {}.{}".format(*c.key())
+                 for c in system.event_connections]
+    if left_out:
+        warnings.warn(f"{path}: SSP 1.0 has no events; not written: {', '.join(left_out)}",
+                      SSPWarning, stacklevel=3)
 
 
 def _fmu_files(system: System) -> dict[str, str]:
