@@ -1,5 +1,6 @@
 """The ``syssimx`` command line: inspect an FMU, list the bundled FMUs, simulate one FMU, run
-or describe a system description (YAML or JSON), sweep a system over parameters.
+or describe a system description (YAML or JSON) or an SSP (.ssp archive or .ssd file), sweep
+a system over parameters.
 
     syssimx info pendulum_cvode
     syssimx fmus
@@ -8,6 +9,7 @@ or describe a system description (YAML or JSON), sweep a system over parameters.
     syssimx simulate Feedthrough.fmu --input signals.csv --tolerance 1e-8
     syssimx run system.yaml --tf 10 --dt 0.01 -o results.csv
     syssimx describe system.yaml
+    syssimx run system.ssp --algorithm jacobi
     syssimx sweep system.yaml --param P.theta0=0.1:0.5:50 --param P.L=0.5,0.6 -o out.nc
     syssimx --version
 
@@ -37,6 +39,8 @@ from .system.csv_export import write_wide
 if TYPE_CHECKING:
     from .components.table_source import TableSource
 
+ALGORITHMS = ("jacobi", "gauss_seidel", "hybrid")
+SSP_SUFFIXES = (".ssp", ".ssd")
 DIRECTIONS = {"-1": -1, "falling": -1, "0": 0, "both": 0, "1": 1, "+1": 1, "rising": 1}
 CAPABILITIES = (
     "canGetAndSetFMUstate",
@@ -125,7 +129,8 @@ def _parser() -> argparse.ArgumentParser:
     simulate.set_defaults(run=_simulate)
 
     run = commands.add_parser("run", help="build, initialize and run a system description")
-    run.add_argument("config", help="a YAML or JSON system description")
+    run.add_argument("config", help="a YAML or JSON system description, or an SSP (.ssp "
+                     "archive or .ssd file)")
     run.add_argument("--t0", type=float, default=None, help="start time in s (default: the "
                      "description's run.t0)")
     run.add_argument("--tf", type=float, default=None, help="end time in s (default: run.tf)")
@@ -133,13 +138,17 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--output", "-o", type=Path, default=None, metavar="CSV",
                      help="write the results to this CSV file (long: component, port, time, "
                           "value, unit)")
+    run.add_argument("--algorithm", choices=ALGORITHMS, default=None,
+                     help="the master algorithm (default: the description's; for an SSP "
+                          "gauss_seidel)")
     run.add_argument("--quiet", action="store_true",
                      help="no progress bar (there is none either when not on a terminal)")
     run.set_defaults(run=_run_config)
 
     describe = commands.add_parser("describe", help="print the structure of a system "
                                    "description: components, connections, order, loops")
-    describe.add_argument("config", help="a YAML or JSON system description")
+    describe.add_argument("config", help="a YAML or JSON system description, or an SSP "
+                          "(.ssp archive or .ssd file)")
     describe.add_argument("--initialize", action="store_true",
                           help="initialize the system first (at run.t0, else 0)")
     describe.set_defaults(run=_describe_config)
@@ -361,12 +370,25 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
 
 # ---------------------------------------------------------------------------------- run
 def _run_config(args: argparse.Namespace, out: TextIO) -> None:
-    from .system.loader import run_from_config
-
     bar = not args.quiet and sys.stdout.isatty() and sys.stderr.isatty()
-    with _working_directory_importable():
-        result = run_from_config(args.config, t0=args.t0, tf=args.tf, dt=args.dt,
-                                 progress=True if bar else None)
+    options = {"progress": True} if bar else {}
+    if _is_ssp(args.config):
+        result = _run_ssp(args, options)
+    else:
+        from .system.config_source import Source, read_file
+        from .system.loader import build_system, run_from_config, run_settings
+
+        with _working_directory_importable():
+            if args.algorithm is None:
+                result = run_from_config(args.config, t0=args.t0, tf=args.tf, dt=args.dt,
+                                         progress=options.get("progress"))
+            else:
+                settings = run_settings(Source(Path(args.config)), read_file(args.config),
+                                        {"t0": args.t0, "tf": args.tf, "dt": args.dt})
+                system = build_system(args.config)
+                system.set_algorithm(_algorithm(args.algorithm))
+                system.initialize(settings["t0"])
+                result = system.run(settings["t0"], settings["tf"], settings["dt"], **options)
     out.write(f"Completed '{result.system_name}': t in [{result.t0}, {result.tf}] s, "
               f"dt = {result.dt} s, algorithm = {result.algorithm}, "
               f"wall time = {result.wall_time:.3f} s\n")
@@ -381,12 +403,52 @@ def _run_config(args: argparse.Namespace, out: TextIO) -> None:
 def _describe_config(args: argparse.Namespace, out: TextIO) -> None:
     from .system.loader import build_system, load_config
 
+    if _is_ssp(args.config):
+        from .ssp import read
+
+        imported = read(args.config)
+        if args.initialize:
+            imported.system.initialize(_choose(None, imported.experiment.start_time, 0.0))
+        out.write(imported.system.describe() + "\n")
+        return
     with _working_directory_importable():
         system = build_system(args.config)
     if args.initialize:
         run = load_config(args.config).get("run") or {}
         system.initialize(float(run.get("t0", 0.0)) if isinstance(run, dict) else 0.0)
     out.write(system.describe() + "\n")
+
+
+def _is_ssp(path: str) -> bool:
+    return Path(path).suffix.lower() in SSP_SUFFIXES
+
+
+def _algorithm(name: str) -> Any:
+    from . import GaussSeidelAlgorithm, HybridAlgorithm, JacobiAlgorithm
+
+    return {"jacobi": JacobiAlgorithm, "gauss_seidel": GaussSeidelAlgorithm,
+            "hybrid": HybridAlgorithm}[name]()
+
+
+def _run_ssp(args: argparse.Namespace, options: dict[str, Any]) -> Any:
+    """An SSP's system over its default experiment (start 0 when it has none); the stop time
+    and the step come from the experiment, the OSP fixed-step annotation, or the options."""
+    from .ssp import read
+
+    imported = read(args.config)
+    experiment = imported.experiment
+    t0 = _choose(args.t0, experiment.start_time, 0.0)
+    tf = args.tf if args.tf is not None else experiment.stop_time
+    dt = args.dt if args.dt is not None else experiment.step_size
+    if tf is None or dt is None:
+        missing = " and ".join(o for o, v in (("--tf", tf), ("--dt", dt)) if v is None)
+        raise CommandError(f"{args.config}: give {missing}: the SSP has no "
+                           + ("stop time in its DefaultExperiment" if tf is None else
+                              "step size (an OSP FixedStepAlgorithm baseStepSize annotation)"))
+    if args.algorithm is not None:
+        imported.system.set_algorithm(_algorithm(args.algorithm))
+    imported.system.initialize(t0)
+    return imported.system.run(t0, float(tf), float(dt), **options)
 
 
 @contextmanager

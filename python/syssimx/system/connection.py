@@ -7,12 +7,20 @@ from dataclasses import dataclass
 
 @dataclass(frozen=True)
 class Connection:
-    """src_comp.src_port (an output) drives dst_comp.dst_port (an input); units are converted."""
+    """src_comp.src_port (an output) drives dst_comp.dst_port (an input); units are converted.
+
+    `factor` and `offset` transform the value after the unit conversion (in the input's unit):
+    dst = factor * converted(src) + offset, an SSP LinearTransformation. With
+    `convert_units=False` only the transformation applies (SSP's suppressUnitConversion).
+    """
 
     src_comp: str
     src_port: str
     dst_comp: str
     dst_port: str
+    factor: float = 1.0
+    offset: float = 0.0
+    convert_units: bool = True
 
     def key(self) -> tuple[str, str, str, str]:
         return (self.src_comp, self.src_port, self.dst_comp, self.dst_port)

@@ -7,6 +7,7 @@ import math
 import numbers
 import time
 import timeit
+from pathlib import Path
 from typing import Any
 
 import pint
@@ -118,7 +119,8 @@ class System:
             raise ConfigurationError(f"{where}: a {src_spec.type.name} output cannot drive a "
                                      f"{dst_spec.type.name} input")
         try:
-            conversion(src_spec.unit, dst_spec.unit)
+            if connection.convert_units:
+                conversion(src_spec.unit, dst_spec.unit)
         except pint.DimensionalityError as exc:
             raise ConfigurationError(f"{where}: incompatible units {src_spec.unit!r} and "
                                      f"{dst_spec.unit!r}") from exc
@@ -170,7 +172,9 @@ class System:
         for c in self.connections:
             src_spec = self.components[c.src_comp].output_specs[c.src_port]
             dst_spec = self.components[c.dst_comp].input_specs[c.dst_port]
-            plan.connect(*c.key(), *conversion(src_spec.unit, dst_spec.unit))
+            scale, offset = conversion(src_spec.unit, dst_spec.unit) if c.convert_units \
+                else (1.0, 0.0)
+            plan.connect(*c.key(), c.factor * scale, c.factor * offset + c.offset)
         for component in self.components.values():
             for event in component.event_indicators:
                 plan.add_indicator(component, event)
@@ -327,6 +331,14 @@ class System:
     def history_bytes(self) -> int:
         """Memory the engine holds for the recorded history."""
         return int(lib().ssx_history_bytes(self._plan.sys)) if self._plan is not None else 0
+
+    def to_ssp(self, path: str | Path, start_time: float | None = None,
+               stop_time: float | None = None, step_size: float | None = None) -> Path:
+        """Write the system (FMU components only) as an SSP 1.0 archive; the times become its
+        default experiment, the step the Open Simulation Platform's fixed step annotation."""
+        from ..ssp import Experiment, write_ssp
+
+        return write_ssp(self, path, Experiment(start_time, stop_time, step_size))
 
     def describe(self) -> str:
         from ..graph.describe import describe_system

@@ -1,0 +1,94 @@
+"""A System from a flattened SSP structure: FMU components with their parameters, the
+connections with their transformations and unit conversions, each checked against the FMU."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..components.fmu import FMUComponent
+from ..core.port import PortType
+from ..errors import ConfigurationError
+from ..system.connection import Connection
+from ..system.system import System
+from ..units import DIMENSIONLESS_SPELLINGS, Quantity, to_unit
+from .errors import SSPError
+from .structure import ComponentEntry, Connector, Structure
+from .units import defined_conversion
+
+# the SSP connector types each FMU variable type may be declared as
+_SSP_TYPES = {PortType.REAL: {"Real"}, PortType.INT: {"Integer", "Enumeration"},
+              PortType.BOOL: {"Boolean"}, PortType.STRING: {"String"}}
+
+
+def build(structure: Structure) -> System:
+    system = System(structure.name)
+    for entry in structure.components.values():
+        try:
+            component = FMUComponent(entry.path, entry.source)
+        except ConfigurationError as exc:
+            raise SSPError(f"{entry.label}: {exc}") from exc
+        for connector in entry.connectors.values():
+            _check_connector(component, connector)
+        _set_parameters(component, entry)
+        system.add_component(component)
+    for c in structure.connections:
+        src_spec = system.components[c.src[0]].output_specs.get(c.src[1])
+        dst_spec = system.components[c.dst[0]].input_specs.get(c.dst[1])
+        factor, offset, convert = c.factor, c.offset, c.convert_units
+        try:
+            if convert and src_spec is not None and dst_spec is not None:
+                units = _connector_unit(structure, c.src), _connector_unit(structure, c.dst)
+                defined = defined_conversion(structure.units, *units)
+                if defined is not None:  # the SSD's own definitions, not pint's
+                    factor, offset, convert = factor * defined[0], \
+                        factor * defined[1] + offset, False
+            system.add_connection(Connection(c.src[0], c.src[1], c.dst[0], c.dst[1],
+                                             factor, offset, convert))
+        except (ConfigurationError, ValueError) as exc:
+            raise SSPError(f"{c.label}: {exc}") from exc
+    return system
+
+
+def _connector_unit(structure: Structure, endpoint: tuple[str, str]) -> str | None:
+    connector = structure.components[endpoint[0]].connectors.get(endpoint[1])
+    return connector.unit if connector is not None else None
+
+
+def _check_connector(component: FMUComponent, connector: Connector) -> None:
+    """The connector names a variable of the FMU of the same kind, type and unit."""
+    specs = {"input": component.input_specs, "output": component.output_specs}.get(
+        connector.kind, {})
+    parameter = component.info.parameters.get(connector.name)
+    spec = specs.get(connector.name)
+    kind = spec.type if spec is not None else parameter.type if parameter is not None else None
+    if kind is None:
+        raise SSPError(f"{connector.label}: {component.name!r} ({component.fmu_path}) has no "
+                       f"{connector.kind} {connector.name!r}")
+    if connector.type is not None and connector.type not in _SSP_TYPES.get(kind, set()):
+        raise SSPError(f"{connector.label}: type {connector.type} does not match the FMU's "
+                       f"{kind.name} variable {connector.name!r} of {component.name!r}")
+    unit = spec.unit if spec is not None else parameter.unit  # type: ignore[union-attr]
+    if connector.unit and unit and _differ(connector.unit, unit):
+        raise SSPError(f"{connector.label}: unit {connector.unit!r} does not match the FMU's "
+                       f"unit {unit!r} of {component.name}.{connector.name}")
+
+
+def _differ(a: str, b: str) -> bool:
+    if a.strip() in DIMENSIONLESS_SPELLINGS and b.strip() in DIMENSIONLESS_SPELLINGS:
+        return False
+    try:
+        return to_unit(a) != to_unit(b)
+    except ValueError:
+        return a != b
+
+
+def _set_parameters(component: FMUComponent, entry: ComponentEntry) -> None:
+    for value in entry.parameters:
+        number: Any = value.value
+        if value.unit and isinstance(number, float) \
+                and value.unit.strip() not in DIMENSIONLESS_SPELLINGS:
+            number = Quantity(number, to_unit(value.unit))
+        try:
+            component.set_parameters(**{value.name: number})
+        except (ConfigurationError, ValueError) as exc:
+            raise SSPError(f"{value.where}: {exc}") from exc

@@ -1,0 +1,44 @@
+"""syssimx.ssp.load: a System from an .ssp archive or an .ssd file."""
+
+from __future__ import annotations
+
+import shutil
+import weakref
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..system.system import System
+from .archive import open_package
+from .build import build
+from .experiment import Experiment
+from .structure import read_structure
+from .unsupported import Unsupported
+
+
+@dataclass(frozen=True)
+class Imported:
+    """A system read from an SSP and the experiment it proposes."""
+
+    system: System
+    experiment: Experiment
+
+
+def load(path: str | Path) -> System:
+    """The System an .ssp or .ssd file describes, not initialized. Each unsupported element
+    gives one SSPWarning naming it; a problem is an SSPError naming the file and the element."""
+    return read(path).system
+
+
+def read(path: str | Path) -> Imported:
+    """The system and the default experiment (start, stop, fixed step) of an .ssp or .ssd."""
+    package = open_package(path)
+    try:
+        structure = read_structure(package, Unsupported())
+        system = build(structure)
+    except BaseException:
+        if package.temporary is not None:
+            shutil.rmtree(package.temporary, ignore_errors=True)
+        raise
+    if package.temporary is not None:  # the FMUs stay readable (to_ssp) while the system lives
+        weakref.finalize(system, shutil.rmtree, package.temporary, True)
+    return Imported(system, structure.experiment)
