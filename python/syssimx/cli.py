@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING, Any, TextIO
 import numpy as np
 
 from . import __version__, fmus
+from .core.literal import literal
 from .core.port import PortType
 from .graph.analysis import feedthrough_from_model_description
 from .system.csv_export import write_wide
@@ -192,18 +193,8 @@ def _assignment(text: str) -> tuple[str, bool | int | float | str]:
     name, equals, value = text.partition("=")
     if not equals or not name.strip():
         raise argparse.ArgumentTypeError(f"expected NAME=VALUE, got {text!r}")
-    return name.strip(), _literal(value.strip())
+    return name.strip(), literal(value.strip())
 
-
-def _literal(text: str) -> bool | int | float | str:
-    if text.lower() in ("true", "false"):
-        return text.lower() == "true"
-    for convert in (int, float):
-        try:
-            return convert(text)
-        except ValueError:
-            pass
-    return text
 
 
 def _event(text: str) -> tuple[str, int]:

@@ -9,6 +9,7 @@ from typing import Any
 
 import numpy as np
 
+from ..core.literal import literal
 from ..errors import ConfigurationError
 
 MODES = ("grid", "zip")
@@ -59,7 +60,7 @@ def parse_values(text: str) -> list[Scalar]:
         if number < 1:
             raise ConfigurationError(f"{text!r}: the count must be at least 1")
         return [float(v) for v in np.linspace(first, last, number)]
-    values = [_literal(part.strip()) for part in text.split(",")]
+    values = [literal(part.strip()) for part in text.split(",")]
     if any(part == "" for part in values):
         raise ConfigurationError(f"empty value in {text!r}")
     return values
@@ -90,13 +91,3 @@ def _scalar(name: str, value: Any) -> Scalar:
                                  f"{type(value).__name__} {value!r}")
     return value
 
-
-def _literal(text: str) -> Scalar:
-    if text.lower() in ("true", "false"):
-        return text.lower() == "true"
-    for convert in (int, float):
-        try:
-            return convert(text)
-        except ValueError:
-            pass
-    return text
