@@ -1,14 +1,52 @@
-"""Physical units: one pint registry for the package and the translation of FMI unit strings."""
+"""Physical units: one pint registry for the package and the translation of FMI unit strings.
+
+pint and its registry cost more than the rest of `import syssimx` together, so they are loaded on
+the first unit operation: `ureg`, `Quantity` and `DimensionalityError` are module attributes
+resolved on first access, and `is_quantity` answers without importing pint at all.
+"""
 
 from __future__ import annotations
 
 import re
-from functools import lru_cache
+import sys
+from functools import cache, lru_cache
+from typing import TYPE_CHECKING, Any
 
-import pint
+if TYPE_CHECKING:
+    import pint
 
-ureg = pint.UnitRegistry()
-Quantity = ureg.Quantity
+
+@cache
+def registry() -> pint.UnitRegistry:
+    """The package's one pint registry, built on first use."""
+    import pint
+
+    return pint.UnitRegistry()
+
+
+def __getattr__(name: str) -> Any:
+    """`ureg`, `Quantity` and `DimensionalityError` on first access (see the module docstring)."""
+    if name == "ureg":
+        return registry()
+    if name == "Quantity":
+        return registry().Quantity
+    if name == "DimensionalityError":
+        import pint
+
+        return pint.DimensionalityError
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def is_quantity(value: object) -> bool:
+    """Whether `value` is a pint quantity; nothing can be one before pint is imported."""
+    pint = sys.modules.get("pint")
+    return pint is not None and isinstance(value, pint.Quantity)
+
+
+def quantity(magnitude: float, unit: str) -> pint.Quantity:
+    """`magnitude` in the FMI or pint unit `unit`."""
+    return registry().Quantity(magnitude, to_unit(unit))
+
 
 # FMI writes products with '.' and powers as trailing integers ("kg.m2", "m/s2", "s-1").
 _PRODUCT = re.compile(r"(?<=[A-Za-z0-9])\.(?=[A-Za-z])")
@@ -33,9 +71,9 @@ def to_unit(unit: str) -> pint.Unit:
     kinds, some without a message, e.g. an AssertionError for "m/s/").
     """
     if unit.strip() in DIMENSIONLESS_SPELLINGS:
-        return ureg.dimensionless
+        return registry().dimensionless
     try:
-        return ureg.Unit(pint_expression(unit))
+        return registry().Unit(pint_expression(unit))
     except Exception as exc:  # whatever pint raises, the unit is unreadable
         reason = str(exc) or type(exc).__name__
         raise ValueError(f"unit {unit!r} is unknown to pint ({reason})") from exc
@@ -49,15 +87,15 @@ def conversion(src_unit: str | None, dst_unit: str | None) -> tuple[float, float
     if not src_unit or not dst_unit:
         return 1.0, 0.0
     src, dst = to_unit(src_unit), to_unit(dst_unit)
-    zero = Quantity(0.0, src).to(dst).magnitude
-    one = Quantity(1.0, src).to(dst).magnitude
+    zero = registry().Quantity(0.0, src).to(dst).magnitude
+    one = registry().Quantity(1.0, src).to(dst).magnitude
     return float(one - zero), float(zero)
 
 
 def magnitude_in(value: object, unit: str | None) -> float:
     """A number or a pint quantity as a float in `unit` (a plain number is taken as in `unit`)."""
-    if isinstance(value, pint.Quantity):
+    if is_quantity(value):
         if unit is None:
-            return float(value.to(ureg.dimensionless).magnitude)
-        return float(value.to(to_unit(unit)).magnitude)
+            return float(value.to(registry().dimensionless).magnitude)  # type: ignore[attr-defined]
+        return float(value.to(to_unit(unit)).magnitude)  # type: ignore[attr-defined]
     return float(value)  # type: ignore[arg-type]

@@ -83,7 +83,9 @@ class CoSimComponent:
         self._remember_default_parameters()
         for specs, ports in ((self.input_specs, self.inputs), (self.output_specs, self.outputs)):
             for name, spec in specs.items():
-                if name not in ports or ports[name].spec != spec:
+                port = ports.get(name)
+                # identity first: comparing every field of every spec made add_connection slow
+                if port is None or (port.spec is not spec and port.spec != spec):
                     ports[name] = self._make_port(spec)
 
     def engine_outputs(self) -> list[str]:

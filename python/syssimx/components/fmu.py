@@ -22,17 +22,16 @@ import weakref
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import pint
-
+from .. import units
 from .._paths import fmu_host
 from ..core.port import Port, PortSpec, PortType
 from ..engine import ffi, lib
 from ..errors import ConfigurationError, FMUFileError
-from ..units import magnitude_in
+from ..units import is_quantity, magnitude_in
 from .base import CoSimComponent
 from .extraction import extractions
 from .fmu_instance import FMUInstance
-from .model_description import FMUInfo, Parameter, read_fmu, start_value, variable_unit
+from .model_description import FMUInfo, Parameter, read_fmu, variable_unit
 
 if TYPE_CHECKING:
     from ..bridge.plan import EnginePlan
@@ -68,7 +67,7 @@ class FMUComponent(CoSimComponent):
         self.parameters = {n: p.start for n, p in self.info.parameters.items()}
         self._declared_parameters = dict(self.parameters)
         self._parameters_set: set[str] = set()  # named in set_parameters: written even if equal
-        self._input_starts = {n: _start(self.info, n) for n in self.info.input_specs}
+        self._input_starts = dict(self.info.input_starts)  # set_inputs changes the copy
         self._inputs_set: set[str] = set()
         fmu, self._unzip_dir, extraction_key = _load(self.info, name, isolated, step_timeout)
         self.instance = FMUInstance(fmu, name)
@@ -312,14 +311,6 @@ class FMUComponent(CoSimComponent):
         self._finalizer()
 
 
-def _start(info: FMUInfo, name: str) -> float | int | bool:
-    value = start_value(info, name)
-    kind = info.input_specs[name].type
-    if value is None:
-        return {PortType.REAL: 0.0, PortType.INT: 0}.get(kind, False)
-    return value  # type: ignore[return-value]
-
-
 def _typed_input(kind: PortType, value: float) -> float | int | bool:
     if kind == PortType.INT:
         return round(value)
@@ -344,10 +335,10 @@ def _first_given(*values: float | None) -> float | None:
 def _coerce_parameter(component: str, parameter: Parameter, value: Any) -> Any:
     where = f"{component}.{parameter.name}"
     if parameter.type == PortType.REAL:
-        if isinstance(value, pint.Quantity):
+        if is_quantity(value):
             try:
                 return magnitude_in(value, parameter.unit)
-            except pint.DimensionalityError as exc:
+            except units.DimensionalityError as exc:
                 raise ConfigurationError(f"{where}: {value} is not convertible to "
                                          f"{parameter.unit or 'a plain number'}") from exc
         if isinstance(value, bool) or not isinstance(value, int | float):

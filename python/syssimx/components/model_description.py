@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import logging
 import math
+import os
 import sys
 import zipfile
 import zlib
@@ -59,6 +60,7 @@ class FMUInfo:
     input_specs: dict[str, PortSpec] = field(default_factory=dict)
     output_specs: dict[str, PortSpec] = field(default_factory=dict)
     parameters: dict[str, Parameter] = field(default_factory=dict)
+    input_starts: dict[str, float | int | bool] = field(default_factory=dict)  # 0 if none given
     feedthrough: dict[str, set[str]] = field(default_factory=dict)
 
     def binary_name(self) -> str:
@@ -99,9 +101,39 @@ def _start_value(variable: ScalarVariable, kind: PortType) -> float | int | bool
     return str(start)
 
 
+class _FileStamp(NamedTuple):
+    """What tells a changed file: rewritten in place or replaced, its size or mtime differs."""
+
+    size: int
+    mtime_ns: int
+
+
+# absolute path -> the stamp it was read at and what was read; one entry per FMU file, replaced
+# when the file changes. Components copy what they change, so the FMUInfo is shared as is.
+_read_cache: dict[str, tuple[_FileStamp, FMUInfo]] = {}
+
+
 def read_fmu(fmu_path: str | Path) -> FMUInfo:
-    """Validate the archive and read its model description (no extraction, no loading)."""
-    path = Path(fmu_path).resolve()
+    """Validate the archive and read its model description (no extraction, no loading).
+
+    Each file is read once per process: a later call for an unchanged file (same size and
+    mtime) returns the same FMUInfo, which callers must not modify.
+    """
+    key = os.path.abspath(fmu_path)  # resolving symlinks costs more than the rest of a hit
+    try:
+        status = os.stat(key)
+    except OSError:
+        return _read_fmu(Path(key).resolve())  # open_archive names what is wrong with the path
+    stamp = _FileStamp(status.st_size, status.st_mtime_ns)
+    cached = _read_cache.get(key)
+    if cached is not None and cached[0] == stamp:
+        return cached[1]
+    info = _read_fmu(Path(key).resolve())
+    _read_cache[key] = (stamp, info)
+    return info
+
+
+def _read_fmu(path: Path) -> FMUInfo:
     with open_archive(path) as archive:
         names = set(archive.namelist())
         if "modelDescription.xml" not in names:
@@ -160,6 +192,7 @@ def _model_identifier(identifier: str | None, path: Path) -> str:
 
 
 _PORT_CAUSALITIES = ("input", "output", "parameter")  # locals are no ports
+_INPUT_DEFAULTS = {PortType.REAL: 0.0, PortType.INT: 0, PortType.BOOL: False}
 
 
 def _collect_ports_and_parameters(info: FMUInfo, ports: list[ScalarVariable]) -> None:
@@ -181,6 +214,10 @@ def _collect_ports_and_parameters(info: FMUInfo, ports: list[ScalarVariable]) ->
                             unit, variable.description)
             specs = info.input_specs if spec.direction == "in" else info.output_specs
             specs[variable.name] = spec
+            if spec.direction == "in":
+                start = _start_value(variable, kind)
+                info.input_starts[variable.name] = _INPUT_DEFAULTS[kind] if start is None \
+                    else start  # type: ignore[assignment]
         elif variable.causality == "parameter":
             info.parameters[variable.name] = Parameter(
                 variable.name, variable.valueReference, kind, unit,
@@ -201,7 +238,3 @@ def _collect_feedthrough(info: FMUInfo, inputs_and_outputs: list[ScalarVariable]
     info.feedthrough = {name: declared[name] & set(info.input_specs)
                         for name in info.output_specs}
 
-
-def start_value(info: FMUInfo, name: str) -> float | int | bool | str | None:
-    variable = info.variables[name]
-    return _start_value(variable, _PORT_TYPES.get(variable.type, PortType.STRING))

@@ -19,8 +19,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-import pint
-
+from .. import units
 from ..core.port import PortType
 from ..errors import ConfigurationError
 from ..units import conversion
@@ -116,7 +115,7 @@ class MultiComponent(CoSimComponent):
                             self._to_model[mode][port] = conversion(spec.unit, other.unit)
                         else:
                             self._from_model[mode][port] = conversion(other.unit, spec.unit)
-                    except pint.DimensionalityError as exc:
+                    except units.DimensionalityError as exc:
                         raise ConfigurationError(
                             f"{self.name}: {kind} {port!r} of model {mode!r} has unit "
                             f"{other.unit!r}, not convertible to {spec.unit!r}") from exc

@@ -8,9 +8,8 @@ from enum import StrEnum
 from typing import Any, Literal
 
 import numpy as np
-import pint
 
-from ..units import Quantity, magnitude_in, to_unit
+from ..units import is_quantity, magnitude_in, quantity, to_unit
 
 
 class PortType(StrEnum):
@@ -47,7 +46,7 @@ class PortSpec:
     def coerce(self, value: Any) -> float | int | bool | str:
         """The plain value stored for `value` (REAL in this port's unit); TypeError if wrong."""
         if self.type == PortType.REAL:
-            if isinstance(value, pint.Quantity):
+            if is_quantity(value):
                 return magnitude_in(value, self.unit)
             if isinstance(value, bool) or not isinstance(value, int | float | np.integer
                                                           | np.floating):
@@ -68,7 +67,7 @@ class PortSpec:
     def present(self, raw: float | int | bool | str) -> Any:
         """The user-facing value: a pint Quantity for a REAL port with a unit."""
         if self.type == PortType.REAL and self.unit:
-            return Quantity(float(raw), to_unit(str(self.unit)))
+            return quantity(float(raw), str(self.unit))
         return raw
 
 
@@ -101,7 +100,7 @@ class Port:
 
     def get(self, as_unit: str | None = None) -> Any:
         value = self.spec.present(self.raw())
-        if as_unit is not None and isinstance(value, pint.Quantity):
+        if as_unit is not None and is_quantity(value):
             return value.to(to_unit(as_unit))
         return value
 

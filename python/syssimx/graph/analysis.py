@@ -18,9 +18,10 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import networkx as nx
+if TYPE_CHECKING:
+    import networkx as nx
 
 ConnectionKey = tuple[str, str, str, str]
 """(src_comp, src_port, dst_comp, dst_port)"""
@@ -95,6 +96,8 @@ def analyze(
                     f"{name!r}; components: {known}"
                 )
 
+    import networkx as nx  # on first analysis: it costs as much as the rest of the package
+
     graph = _zero_delay_graph(components, connections)
     added = {name: i for i, name in enumerate(names)}
     sccs = sorted(
@@ -166,6 +169,8 @@ def feedthrough_from_model_description(model_description: Any) -> dict[str, set[
 def _zero_delay_graph(
     components: Mapping[str, FeedthroughMap], connections: Sequence[ConnectionKey]
 ) -> nx.DiGraph:
+    import networkx as nx
+
     connected_outputs = {(src, port) for src, port, _, _ in connections}
     graph = nx.DiGraph()
     graph.add_nodes_from(components)
@@ -189,6 +194,8 @@ def _generations(
     """Topological generations of the condensation, each ordered so that a consumer runs before
     its delayed producer, and otherwise in the order the components were added (``sccs`` is
     sorted that way, so an SCC's index is its rank)."""
+    import networkx as nx
+
     condensed = nx.condensation(graph, scc=[set(scc) for scc in sccs])
     scc_of = condensed.graph["mapping"]
     generations = []

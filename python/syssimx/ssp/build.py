@@ -10,7 +10,7 @@ from ..core.port import PortType
 from ..errors import ConfigurationError
 from ..system.connection import Connection
 from ..system.system import System
-from ..units import DIMENSIONLESS_SPELLINGS, Quantity, to_unit
+from ..units import DIMENSIONLESS_SPELLINGS, quantity, to_unit
 from .errors import SSPError
 from .structure import ComponentEntry, Connector, Structure
 from .units import defined_conversion
@@ -87,7 +87,7 @@ def _set_parameters(component: FMUComponent, entry: ComponentEntry) -> None:
         number: Any = value.value
         if value.unit and isinstance(number, float) \
                 and value.unit.strip() not in DIMENSIONLESS_SPELLINGS:
-            number = Quantity(number, to_unit(value.unit))
+            number = quantity(number, value.unit)
         try:
             component.set_parameters(**{value.name: number})
         except (ConfigurationError, ValueError) as exc:

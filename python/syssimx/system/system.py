@@ -10,8 +10,7 @@ import timeit
 from pathlib import Path
 from typing import Any
 
-import pint
-
+from .. import units
 from ..bridge.failure import raise_failure
 from ..bridge.plan import EnginePlan
 from ..bridge.standalone import register_system_class
@@ -44,6 +43,7 @@ class System:
         self.name = name
         self.components: dict[str, CoSimComponent] = {}
         self.connections: list[Connection] = []
+        self._drivers: dict[tuple[str, str], Connection] = {}  # (component, input) -> its driver
         self.event_connections: list[EventConnection] = []
         self.history = SystemHistory(system=self)
         self.t = 0.0
@@ -121,14 +121,15 @@ class System:
         try:
             if connection.convert_units:
                 conversion(src_spec.unit, dst_spec.unit)
-        except pint.DimensionalityError as exc:
+        except units.DimensionalityError as exc:
             raise ConfigurationError(f"{where}: incompatible units {src_spec.unit!r} and "
                                      f"{dst_spec.unit!r}") from exc
-        for existing in self.connections:
-            if (existing.dst_comp, existing.dst_port) == (dst.name, connection.dst_port):
-                raise ConfigurationError(f"{where}: input {dst.name}.{connection.dst_port} is "
-                                         f"already driven by {existing.src_comp}."
-                                         f"{existing.src_port}")
+        existing = self._drivers.get((dst.name, connection.dst_port))
+        if existing is not None:
+            raise ConfigurationError(f"{where}: input {dst.name}.{connection.dst_port} is "
+                                     f"already driven by {existing.src_comp}."
+                                     f"{existing.src_port}")
+        self._drivers[dst.name, connection.dst_port] = connection
         self.connections.append(connection)
         self.is_initialized = False
 

@@ -1,0 +1,60 @@
+"""`import syssimx` loads no heavy optional library; units and graph analysis load theirs on use."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+# pint (its registry alone costs more than the rest of syssimx), networkx, and the libraries only
+# results, plots and ensembles need
+HEAVY = ("pint", "networkx", "pandas", "matplotlib", "scipy", "xarray", "dask")
+
+PYTHON_DIR = Path(__file__).resolve().parents[2] / "python"
+
+
+def loaded_after(code: str) -> list[str]:
+    """Which of HEAVY a fresh interpreter has imported after running `code`."""
+    probe = (f"{code}\nimport json, sys\n"
+             f"print(json.dumps([m for m in {HEAVY!r} if m in sys.modules]))")
+    environment = dict(os.environ)
+    environment["PYTHONPATH"] = os.pathsep.join(
+        [str(PYTHON_DIR), *filter(None, [environment.get("PYTHONPATH")])])
+    output = subprocess.run([sys.executable, "-c", probe], env=environment, check=True,
+                            capture_output=True, text=True).stdout
+    return json.loads(output.splitlines()[-1])
+
+
+def test_import_syssimx_loads_no_heavy_library():
+    assert loaded_after("import syssimx") == []
+
+
+def test_a_unit_conversion_loads_pint_and_no_networkx():
+    code = ("import syssimx\nfrom syssimx.units import conversion\n"
+            "assert conversion('m', 'cm') == (100.0, 0.0)")
+    loaded = loaded_after(code)
+    assert "pint" in loaded
+    assert "networkx" not in loaded
+
+
+def test_a_graph_analysis_loads_networkx_and_no_pint():
+    code = ("import syssimx\nfrom syssimx.graph.analysis import analyze\n"
+            "components = {'a': {'y': set()}, 'b': {'y': {'u'}}}\n"
+            "assert analyze(components, [('a', 'y', 'b', 'u')]).order == ['b', 'a']")
+    assert loaded_after(code) == ["networkx"]
+
+
+def test_unit_names_resolve_on_first_use():
+    from syssimx import units
+
+    length = units.Quantity(2.0, "m")
+    assert units.is_quantity(length)
+    assert not units.is_quantity(2.0)
+    assert units.quantity(3.0, "kg.m2") == units.ureg.Quantity(3.0, "kg*m**2")
+    with pytest.raises(units.DimensionalityError):
+        units.conversion("m", "s")
+    assert units.magnitude_in(length, "cm") == 200.0
