@@ -81,9 +81,7 @@ class _Ensemble:
 
         alone = size == 0
         self._attempt += 1
-        announced = [replace(task, topic=self.topic) for task in tasks]
-        chunks = [announced[i:i + max(size, 1)] for i in range(0, len(announced),
-                                                                max(size, 1))]
+        chunks = self._chunks(tasks, max(size, 1))
         futures = self.client.map(
             run_chunk, [self.build] * len(chunks), chunks,
             key=[f"syssimx-members-{c[0].index}-{self.topic[-8:]}-{self._attempt}"
@@ -109,6 +107,16 @@ class _Ensemble:
                 watchdog.close()
             self.client.cancel([future for future in futures if not future.done()])
         return suspects
+
+    def _chunks(self, tasks: Sequence[MemberTask], size: int) -> list[list[MemberTask]]:
+        """`tasks` in chunks of `size`, with the members that announce their start: every
+        member when the watchdog times members, else only a chunk's first (a worker death is
+        pinned on a chunk of one member only, and each announcement costs the scheduler and
+        this client a message)."""
+        watched = self.member_timeout is not None
+        return [[replace(task, topic=self.topic) if watched or offset == 0 else task
+                 for offset, task in enumerate(tasks[first:first + size])]
+                for first in range(0, len(tasks), size)]
 
     def _keep(self, results: Sequence[MemberResult]) -> None:
         for result in results:
