@@ -14,7 +14,9 @@ the embedded LocalCluster of one worker process per core. Printed, in one run:
   the workers did not get), Dask's cost per member (cluster wall x workers / members minus a
   member's time in its worker), and the speed-up counting the embedded cluster's start and
   close;
-- memory: each worker's resident size after start and after all sweeps.
+- memory: each worker's resident size after start and after all sweeps;
+- how much of a seed member is reading its FMUs' model descriptions (read_fmu, once per
+  FMUComponent a member builds).
 
     python benchmarks/ensemble.py [--members 50,200,800] [--workers N]
 """
@@ -34,7 +36,8 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples"))
 import coupled_pendulums
 import pendulum_wall
-from syssimx import GaussSeidelAlgorithm, System
+from syssimx import FMUComponent, GaussSeidelAlgorithm, System
+from syssimx.components.model_description import read_fmu
 from syssimx.ensemble import MemberTask, run_member, sweep
 from syssimx.ensemble.cluster import cores, ensemble_client
 
@@ -76,6 +79,22 @@ def on_cluster(client: object, build: Callable[[], System], name: str, values: n
     return time.perf_counter() - start, float(np.mean([m.wall_time for m in result.members]))
 
 
+def description_share(repeats: int = 50) -> tuple[float, float]:
+    """A seed member's mean wall time in this process, and the part of it spent in read_fmu
+    for the FMUs its System builds."""
+    build, name, tf, dt = SCENARIOS["seed"]
+    paths = [c.fmu_path for c in build().components.values() if isinstance(c, FMUComponent)]
+    start = time.perf_counter()
+    for _ in range(repeats):
+        for path in paths:
+            read_fmu(path)
+    reading = (time.perf_counter() - start) / repeats
+    start = time.perf_counter()
+    for index in range(repeats):
+        run_member(build, MemberTask(index, {name: 0.3}, 0.0, tf, dt))
+    return (time.perf_counter() - start) / repeats, reading
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--members", default="50,200,800",
@@ -85,6 +104,7 @@ def main() -> None:
     counts = [int(n) for n in args.members.split(",")]
     workers = args.workers
 
+    member, reading = description_share()
     load_before = os.getloadavg()[0]
     start = time.perf_counter()
     with ensemble_client(workers=workers) as client:
@@ -122,6 +142,8 @@ def main() -> None:
     for address in rss_start:
         print(f"worker {address}: resident {rss_start[address] / MB:.0f} MB after start, "
               f"{rss_end[address] / MB:.0f} MB after all sweeps")
+    print(f"a seed member in this process: {member * 1e3:.2f} ms, of which read_fmu (model "
+          f"descriptions) {reading * 1e3:.2f} ms ({reading / member:.0%})")
     print(f"this process (sequential runs, the client and the scheduler): "
           f"{resident_size() / MB:.0f} MB")
 

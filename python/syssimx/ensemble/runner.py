@@ -16,6 +16,7 @@ Every other member's result is kept and the ensemble finishes.
 
 from __future__ import annotations
 
+import itertools
 import signal
 import threading
 import time
@@ -61,6 +62,21 @@ def chunk_size(members: int, workers: int) -> int:
     return max(1, min(MAX_CHUNK, members // (CHUNKS_PER_WORKER * max(workers, 1))))
 
 
+def split(tasks: Sequence[MemberTask], size: int, workers: int, topic: str,
+          every_member: bool) -> list[list[MemberTask]]:
+    """`tasks` in chunks of `size` at most, as many chunks as a multiple of `workers` and of
+    sizes differing by one at most, so no worker is left with a last chunk alone. The members
+    that announce their start on `topic`: all when `every_member` (the watchdog times each
+    member), else only each chunk's first (a worker death is pinned on a chunk of one member
+    only, and each announcement costs the scheduler and the client a message)."""
+    count = -(-len(tasks) // size)
+    count = min(len(tasks), -(-count // workers) * workers)
+    bounds = [len(tasks) * k // count for k in range(count + 1)]
+    return [[replace(task, topic=topic) if every_member or offset == 0 else task
+             for offset, task in enumerate(tasks[first:last])]
+            for first, last in itertools.pairwise(bounds)]
+
+
 class _Ensemble:
     """The members' tasks on one client, their starts, and the results so far."""
 
@@ -68,6 +84,7 @@ class _Ensemble:
                  bar: ProgressBar) -> None:
         self.client, self.build, self.member_timeout, self.bar = client, build, \
             member_timeout, bar
+        self.workers = max(1, len(client.nthreads()))
         self.topic = f"syssimx-ensemble-{uuid.uuid4().hex}"
         self.starts = _Starts()
         self.results: dict[int, MemberResult] = {}
@@ -81,9 +98,8 @@ class _Ensemble:
 
         alone = size == 0
         self._attempt += 1
-        announced = [replace(task, topic=self.topic) for task in tasks]
-        chunks = [announced[i:i + max(size, 1)] for i in range(0, len(announced),
-                                                                max(size, 1))]
+        chunks = split(tasks, max(size, 1), self.workers, self.topic,
+                       every_member=self.member_timeout is not None)
         futures = self.client.map(
             run_chunk, [self.build] * len(chunks), chunks,
             key=[f"syssimx-members-{c[0].index}-{self.topic[-8:]}-{self._attempt}"
@@ -147,8 +163,7 @@ def run_members(client: Any, build: SystemSource, tasks: Sequence[MemberTask],
     ensemble = _Ensemble(client, build, member_timeout, bar)
     client.subscribe_topic(ensemble.topic, ensemble.starts.record)
     try:
-        workers = sum(client.nthreads().values())
-        for suspect in ensemble.run(tasks, chunk_size(len(tasks), workers)):
+        for suspect in ensemble.run(tasks, chunk_size(len(tasks), ensemble.workers)):
             ensemble.run([suspect], 0)
     finally:
         bar.close()
