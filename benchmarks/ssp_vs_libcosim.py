@@ -16,12 +16,16 @@ import argparse
 import json
 import os
 import subprocess
+import sys
 import tempfile
 import zipfile
 from pathlib import Path
 
 import numpy as np
-from syssimx import Connection, FMUComponent, JacobiAlgorithm, System, fmus
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples"))
+import coupled_pendulums as coupled_pendulums_example
+from syssimx import JacobiAlgorithm, System
 from syssimx.ssp import read
 
 STOP, STEP = 2.0, 0.01
@@ -52,20 +56,9 @@ with open(sys.argv[4], "w") as out:
 
 
 def coupled_pendulums() -> System:
-    system = System("coupled pendulums")
-    for name, theta0 in (("P1", 0.5), ("P2", 0.0)):
-        pendulum = FMUComponent(name, fmus.path("pendulum_cvode"))
-        pendulum.set_parameters(theta0=theta0, cvode_relative_tolerance=1e-11)
-        system.add_component(pendulum)
-    spring = FMUComponent("Spring", fmus.path("torsion_spring"))
-    spring.set_parameters(k=100.0, d=1.0)
-    system.add_component(spring)
-    for i in ("1", "2"):
-        system.add_connection(Connection(f"P{i}", "theta", "Spring", f"theta{i}"))
-        system.add_connection(Connection(f"P{i}", "omega", "Spring", f"omega{i}"))
-    system.add_connection(Connection("Spring", "tau1", "P1", "torque"))
-    system.add_connection(Connection("Spring", "tau2", "P2", "torque", factor=0.5, offset=0.1))
-    return system
+    """examples/coupled_pendulums, the spring's torque into P2 as 0.5 * tau2 + 0.1, Jacobi."""
+    return coupled_pendulums_example.build(JacobiAlgorithm(), torque2_factor=0.5,
+                                           torque2_offset=0.1)
 
 
 def main() -> None:

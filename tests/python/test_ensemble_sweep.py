@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 from collections.abc import Iterator
 
+import coupled_pendulums as coupled_pendulums_example
 import numpy as np
 import pytest
 
@@ -18,8 +19,6 @@ from scipy import stats
 from scipy.special import ellipk
 from syssimx import (
     ConfigurationError,
-    Connection,
-    FMUComponent,
     JacobiAlgorithm,
     System,
     fmus,
@@ -50,20 +49,7 @@ def seed_pendulum() -> System:
 
 def coupled_pendulums() -> System:
     """Two CVODE pendulums and the torsion spring, Jacobi (examples/coupled_pendulums)."""
-    system = System("coupled pendulums")
-    for name, theta0 in (("P1", 0.5), ("P2", 0.0)):
-        pendulum = FMUComponent(name, fmus.path("pendulum_cvode"))
-        pendulum.set_parameters(theta0=theta0, cvode_relative_tolerance=1e-8)
-        system.add_component(pendulum)
-    spring = FMUComponent("Spring", fmus.path("torsion_spring"))
-    spring.set_parameters(k=100.0, d=1.0)
-    system.add_component(spring)
-    for i in ("1", "2"):
-        system.add_connection(Connection(f"P{i}", "theta", "Spring", f"theta{i}"))
-        system.add_connection(Connection(f"P{i}", "omega", "Spring", f"omega{i}"))
-        system.add_connection(Connection("Spring", f"tau{i}", f"P{i}", "torque"))
-    system.set_algorithm(JacobiAlgorithm())
-    return system
+    return coupled_pendulums_example.build(JacobiAlgorithm(), rtol=1e-8)
 
 
 def in_process(build, parameters: dict[str, float], tf: float, dt: float):

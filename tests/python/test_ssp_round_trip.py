@@ -6,17 +6,15 @@ from __future__ import annotations
 import zipfile
 from pathlib import Path
 
+import coupled_pendulums as coupled_pendulums_example
 import numpy as np
 import pytest
 from fmpy.ssp import ssd as fmpy_ssd
 from lxml import etree
 from syssimx import (
-    Connection,
-    FMUComponent,
     GaussSeidelAlgorithm,
     JacobiAlgorithm,
     System,
-    fmus,
 )
 from syssimx.ssp import SSPError, load, read
 
@@ -24,22 +22,8 @@ TF, DT = 2.0, 0.01
 
 
 def coupled_pendulums(algorithm: JacobiAlgorithm) -> System:
-    """Two pendulums and the torsion spring, the spring's torque into P2 scaled by 0.5."""
-    system = System("coupled pendulums")
-    for name, theta0 in (("P1", 0.5), ("P2", 0.0)):
-        pendulum = FMUComponent(name, fmus.path("pendulum_cvode"))
-        pendulum.set_parameters(theta0=theta0, cvode_relative_tolerance=1e-11)
-        system.add_component(pendulum)
-    spring = FMUComponent("Spring", fmus.path("torsion_spring"))
-    spring.set_parameters(k=100.0, d=1.0)
-    system.add_component(spring)
-    for i in ("1", "2"):
-        system.add_connection(Connection(f"P{i}", "theta", "Spring", f"theta{i}"))
-        system.add_connection(Connection(f"P{i}", "omega", "Spring", f"omega{i}"))
-    system.add_connection(Connection("Spring", "tau1", "P1", "torque"))
-    system.add_connection(Connection("Spring", "tau2", "P2", "torque", factor=0.5, offset=0.1))
-    system.set_algorithm(algorithm)
-    return system
+    """examples/coupled_pendulums, the spring's torque into P2 as 0.5 * tau2 + 0.1."""
+    return coupled_pendulums_example.build(algorithm, torque2_factor=0.5, torque2_offset=0.1)
 
 
 def thetas(system: System) -> np.ndarray:
