@@ -566,20 +566,27 @@ static bool read_attribute_value(reader *r, slice name, slice *value)
     return true;
 }
 
-static bool read_comment(reader *r)
+/* Skips checked XML characters from p to the first `close` and past it. `forbidden` (or NULL)
+ * may not stand before the close ("--" inside a comment). `what` names the construct begun at
+ * `line` for the error. */
+static bool skip_to_close(reader *r, const char *p, size_t line, const char *close,
+                          const char *forbidden, const char *what)
 {
-    size_t line = r->line;
-    const char *p = r->at + 4;
+    size_t close_length = strlen(close);
+    size_t forbidden_length = forbidden != NULL ? strlen(forbidden) : 0;
     for (;;) {
         if (p == r->end) {
-            return fail_xml(r, line, "a comment is not closed");
+            return fail_xml(r, line, "%s is not closed", what);
         }
-        if (*p == '-' && r->end - p >= 2 && p[1] == '-') {
-            if (r->end - p >= 3 && p[2] == '>') {
-                r->at = p + 3;
-                return true;
-            }
-            return fail_xml(r, r->line, "'--' inside a comment");
+        if (*p == close[0] && (size_t)(r->end - p) >= close_length &&
+            memcmp(p, close, close_length) == 0) {
+            r->at = p + close_length;
+            return true;
+        }
+        if (forbidden != NULL && *p == forbidden[0] &&
+            (size_t)(r->end - p) >= forbidden_length &&
+            memcmp(p, forbidden, forbidden_length) == 0) {
+            return fail_xml(r, r->line, "'%s' inside %s", forbidden, what);
         }
         unsigned char c = (unsigned char)*p;
         if (c >= 0x20 && c < 0x80) {
@@ -588,6 +595,11 @@ static bool read_comment(reader *r)
             return false;
         }
     }
+}
+
+static bool read_comment(reader *r)
+{
+    return skip_to_close(r, r->at + 4, r->line, "-->", "--", "a comment");
 }
 
 static bool read_processing_instruction(reader *r)
@@ -606,42 +618,12 @@ static bool read_processing_instruction(reader *r)
     if (p < r->end && !starts_with(r, "?>") && strchr(" \t\r\n", *p) == NULL) {
         return fail_xml(r, line, "expected a space after '<?%.*s'", shown(target), target.at);
     }
-    for (;;) {
-        if (p == r->end) {
-            return fail_xml(r, line, "a processing instruction is not closed");
-        }
-        if (*p == '?' && r->end - p >= 2 && p[1] == '>') {
-            r->at = p + 2;
-            return true;
-        }
-        unsigned char c = (unsigned char)*p;
-        if (c >= 0x20 && c < 0x80) {
-            ++p;
-        } else if (!character(r, &p)) {
-            return false;
-        }
-    }
+    return skip_to_close(r, p, line, "?>", NULL, "a processing instruction");
 }
 
 static bool read_cdata(reader *r)
 {
-    size_t line = r->line;
-    const char *p = r->at + 9;
-    for (;;) {
-        if (p == r->end) {
-            return fail_xml(r, line, "a CDATA section is not closed");
-        }
-        if (*p == ']' && r->end - p >= 3 && memcmp(p, "]]>", 3) == 0) {
-            r->at = p + 3;
-            return true;
-        }
-        unsigned char c = (unsigned char)*p;
-        if (c >= 0x20 && c < 0x80) {
-            ++p;
-        } else if (!character(r, &p)) {
-            return false;
-        }
-    }
+    return skip_to_close(r, r->at + 9, r->line, "]]>", NULL, "a CDATA section");
 }
 
 static bool name_start(unsigned char c)
