@@ -21,15 +21,22 @@ def bounce(ball: FMUComponent, event_names: list[str], t: float) -> None:
     ball.reinitialize(t, h0=outputs["h"].magnitude, v0=-RESTITUTION * outputs["v"].magnitude)
 
 
-def main() -> None:
-    ball = FMUComponent("Ball", fmus.path("bouncing_ball_continuous_cvode"))
-    ball.set_parameters(h0=H0, v0=0.0, g=G, cvode_relative_tolerance=1e-12)
-    ball.add_event_indicator("floor", variable="h", direction=-1)
+def build(fmu: str = "bouncing_ball_continuous_cvode", direction: int = -1,
+          **parameters: float) -> System:
+    """The ball dropped from H0 at rest, its floor indicator on h and the bounce handler
+    (not initialized: choose the algorithm first)."""
+    ball = FMUComponent("Ball", fmus.path(fmu))
+    ball.set_parameters(h0=H0, v0=0.0, g=G, **parameters)
+    ball.add_event_indicator("floor", variable="h", direction=direction)
     ball.add_event_handler("bounce", bounce)
-
     system = System("bouncing ball")
     system.add_component(ball)
     system.add_event_connection(EventConnection("Ball", "floor", "Ball", "bounce"))
+    return system
+
+
+def main() -> None:
+    system = build(cvode_relative_tolerance=1e-12)
     # flights shorter than 0.1 ms count as chattering
     system.set_algorithm(HybridAlgorithm(tol_time=1e-10, zeno_min_interval=1e-4))
     system.initialize(0.0)

@@ -7,9 +7,10 @@ bounces accumulate at t_inf = t1 (1 + e) / (1 - e) (Zeno).
 
 from __future__ import annotations
 
+import bouncing_ball
 import numpy as np
 import pytest
-from syssimx import EventConnection, FMUComponent, SimulationError, System, ZenoError, fmus
+from syssimx import SimulationError, System, ZenoError
 
 E, G, H0 = 0.8, 9.81, 1.0
 T1 = np.sqrt(2 * H0 / G)
@@ -19,18 +20,7 @@ T_INF = T1 * (1 + E) / (1 - E)
 
 
 def ball_system(direction: int) -> System:
-    ball = FMUComponent("Ball", fmus.path("bouncing_ball_continuous_cvode"))
-    ball.set_parameters(h0=H0, v0=0.0, g=G, cvode_relative_tolerance=1e-12)
-    ball.add_event_indicator("floor", variable="h", direction=direction)
-
-    def bounce(component: FMUComponent, event_names: list[str], t: float) -> None:
-        outputs = component.get_outputs()
-        component.reinitialize(t, h0=outputs["h"].magnitude, v0=-E * outputs["v"].magnitude)
-
-    ball.add_event_handler("bounce", bounce)
-    system = System("bouncing ball")
-    system.add_component(ball)
-    system.add_event_connection(EventConnection("Ball", "floor", "Ball", "bounce"))
+    system = bouncing_ball.build(direction=direction, cvode_relative_tolerance=1e-12)
     system.initialize(0.0)
     return system
 

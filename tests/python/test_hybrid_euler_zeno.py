@@ -11,27 +11,17 @@ past the accumulation point of the exact ball, like the CVODE ball.
 
 from __future__ import annotations
 
+import bouncing_ball
 import numpy as np
 import pytest
-from syssimx import EventConnection, FMUComponent, System, ZenoError, fmus
+from syssimx import System, ZenoError
 
 E, G, H0 = 0.8, 9.81, 1.0
 T_INF = np.sqrt(2 * H0 / G) * (1 + E) / (1 - E)  # the exact ball's accumulation point
 
 
 def euler_ball(direction: int) -> System:
-    ball = FMUComponent("Ball", fmus.path("bouncing_ball_continuous_euler"))
-    ball.set_parameters(h0=H0, v0=0.0, g=G)
-    ball.add_event_indicator("floor", variable="h", direction=direction)
-
-    def bounce(component: FMUComponent, event_names: list[str], t: float) -> None:
-        outputs = component.get_outputs()
-        component.reinitialize(t, h0=outputs["h"].magnitude, v0=-E * outputs["v"].magnitude)
-
-    ball.add_event_handler("bounce", bounce)
-    system = System("Euler ball")
-    system.add_component(ball)
-    system.add_event_connection(EventConnection("Ball", "floor", "Ball", "bounce"))
+    system = bouncing_ball.build("bouncing_ball_continuous_euler", direction)
     system.initialize(0.0)
     return system
 
