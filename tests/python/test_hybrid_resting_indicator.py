@@ -10,7 +10,8 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import pytest
-from syssimx import CoSimComponent, EventConnection, FMUComponent, PortSpec, PortType, System, fmus
+from syssimx import EventConnection, FMUComponent, System, fmus
+from test_hybrid_events import Clock
 
 MU, G, V0 = 0.3, 9.81, 2.0
 STOP = V0 / (MU * G)  # the sliding mass stops here, v exactly 0 from then on
@@ -41,28 +42,6 @@ def test_velocity_resting_on_zero_fires_once_at_the_stop(direction: int, events:
     _, data = result["M"]
     assert data["v"][-1] == 0.0
 
-
-class Clock(CoSimComponent):
-    """x' = 1, with snapshots: indicators given as functions of x are exact in time."""
-
-    def __init__(self) -> None:
-        super().__init__("C")
-        self.output_specs["x"] = PortSpec("x", PortType.REAL, "out", "s")
-
-    def _initialize_component(self, t0: float) -> None:
-        self.x = t0
-
-    def _do_step_internal(self, t: float, dt: float) -> None:
-        self.x += dt
-
-    def _update_output_states(self, t=None, event_names=None) -> None:
-        self.outputs["x"].set(self.x, t)
-
-    def snapshot_state(self) -> float:
-        return self.x
-
-    def restore_state(self, snapshot: float, t: float) -> None:
-        self.x = snapshot
 
 
 def clock_events(indicator: Callable[[float], float], direction: int) -> list[float]:

@@ -4,15 +4,6 @@
 
 #include "test_support.h"
 
-#define CHECK_MESSAGE(sys, text) do { \
-        const char *message_ = ssx_last_error(sys)->message; \
-        if (strstr(message_, (text)) == NULL) { \
-            fprintf(stderr, "%s:%d: error message \"%s\" lacks \"%s\"\n", __FILE__, __LINE__, \
-                    message_, (text)); \
-            exit(1); \
-        } \
-    } while (0)
-
 static void bad_input(void)
 {
     ssx_fmu *fmu = load_fmu("pendulum_euler");

@@ -6,15 +6,6 @@
 
 #include "test_support.h"
 
-#define CHECK_MESSAGE(sys, text) do { \
-        const char *message_ = ssx_last_error(sys)->message; \
-        if (strstr(message_, (text)) == NULL) { \
-            fprintf(stderr, "%s:%d: error message \"%s\" lacks \"%s\"\n", __FILE__, __LINE__, \
-                    message_, (text)); \
-            exit(1); \
-        } \
-    } while (0)
-
 /* Value references: models/Terminating, models/Failing, models/Gain. */
 enum { TERMINATING_Y = 0, TERMINATING_Y0 = 1, TERMINATING_SLOPE = 2, TERMINATING_STOP = 3 };
 enum { FAILING_Y = 0, FAILING_U = 1, FAILING_TIME = 2, FAILING_MODE = 3 };

@@ -5,6 +5,7 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "syssimx_engine.h"
 
@@ -30,6 +31,16 @@
         if ((call) != 0) { \
             fprintf(stderr, "%s:%d: %s failed: %s\n", __FILE__, __LINE__, #call, \
                     ssx_last_error(sys)->message); \
+            exit(1); \
+        } \
+    } while (0)
+
+/* The system's last error message contains text. */
+#define CHECK_MESSAGE(sys, text) do { \
+        const char *message_ = ssx_last_error(sys)->message; \
+        if (strstr(message_, (text)) == NULL) { \
+            fprintf(stderr, "%s:%d: error message \"%s\" lacks \"%s\"\n", __FILE__, __LINE__, \
+                    message_, (text)); \
             exit(1); \
         } \
     } while (0)
