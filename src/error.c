@@ -63,7 +63,7 @@ int fail_fmi(ssx_system *sys, const ssx_component *c, double t, int status, cons
 {
     const char *log = ssx_fmu_last_message(c->fmu);
     fail(sys, c->index, -1, t, "component '%s': %s failed at t=%.17g with status %s%s%s%s",
-         c->name, call, t, ssx_fmi2_status_name(status), log[0] ? " (FMU log: " : "", log,
+         c->name, call, t, ssx_fmu_status_text(c->fmu, status), log[0] ? " (FMU log: " : "", log,
          log[0] ? ")" : " (the FMU logged no message)");
     sys->error.kind = SSX_ERROR_FMI;
     sys->error.fmi_status = status;

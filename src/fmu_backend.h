@@ -1,13 +1,14 @@
 /* What an FMI version adds to the FMU binding. The binding (fmu_binding.c) is version-neutral:
  * it loads the binary, resolves the back-end's function table, keeps the instance, its states
- * and counters, and checks every call in one place. A back-end (fmu_fmi2.c; an FMI 3.0 one is
- * another file like it) names its standard's functions and calls them with their own types. */
+ * and counters, and checks every call in one place. A back-end (fmu_fmi2.c, fmu_fmi3.c) names
+ * its standard's functions and calls them with their own types. */
 #ifndef SSX_FMU_BACKEND_H
 #define SSX_FMU_BACKEND_H
 
 #include <stdarg.h>
 #include <stddef.h>
 
+#include "fmu_binding.h"
 #include "syssimx_engine.h"
 
 /* The operations of the interface: a back-end resolves one function of its standard into each
@@ -36,6 +37,31 @@ typedef enum {
     SLOT_DIRECTIONAL_DERIVATIVE,
     SLOT_GET_TERMINATED,
     SLOT_GET_LAST_SUCCESSFUL_TIME,
+    /* FMI 3.0: the value types beyond the engine's three port types (Float64, Int32 and
+     * Boolean fill the slots above), strings and binaries, event mode */
+    SLOT_GET_FLOAT32,
+    SLOT_GET_INT8,
+    SLOT_GET_UINT8,
+    SLOT_GET_INT16,
+    SLOT_GET_UINT16,
+    SLOT_GET_UINT32,
+    SLOT_GET_INT64,
+    SLOT_GET_UINT64,
+    SLOT_SET_FLOAT32,
+    SLOT_SET_INT8,
+    SLOT_SET_UINT8,
+    SLOT_SET_INT16,
+    SLOT_SET_UINT16,
+    SLOT_SET_UINT32,
+    SLOT_SET_INT64,
+    SLOT_SET_UINT64,
+    SLOT_GET_STRING,
+    SLOT_SET_STRING,
+    SLOT_GET_BINARY,
+    SLOT_SET_BINARY,
+    SLOT_ENTER_EVENT_MODE,
+    SLOT_UPDATE_DISCRETE_STATES,
+    SLOT_ENTER_STEP_MODE,
     SLOT_COUNT
 } ssx_fmu_slot;
 
@@ -110,9 +136,33 @@ typedef struct {
                                   const double *dv_known, double *dv_unknown);
     int (*get_terminated)(const ssx_fmu_function *fn, void *instance, int *terminated);
     int (*get_last_successful_time)(const ssx_fmu_function *fn, void *instance, double *time);
+    /* FMI 3.0 (NULL in a back-end without them) */
+    int (*get_string)(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                      size_t n, const char **values);
+    int (*set_string)(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                      size_t n, const char *const *values);
+    int (*get_binary)(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                      size_t n, size_t *sizes, const unsigned char **values);
+    int (*set_binary)(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                      size_t n, const size_t *sizes, const unsigned char *const *values);
+    int (*enter_event_mode)(const ssx_fmu_function *fn, void *instance);
+    int (*update_discrete_states)(const ssx_fmu_function *fn, void *instance,
+                                  ssx_discrete_update *update);
+    int (*enter_step_mode)(const ssx_fmu_function *fn, void *instance);
+    /* what the last doStep said besides its status; NULL: only the status (FMI 2.0) */
+    void (*step_outcome)(void *instance, ssx_step_outcome *outcome);
+    /* frees what the back-end put into its context at load; NULL: nothing */
+    void (*release_context)(void *context);
 } ssx_fmu_backend;
 
 extern const ssx_fmu_backend ssx_fmi2_backend;
+extern const ssx_fmu_backend ssx_fmi3_backend;
+
+/* The FMI 3.0 back-end's load-time facts, into its zeroed context: the type of every value
+ * reference the engine gets or sets (copied) and how the FMU is instantiated. Fails (-1, the
+ * reason in error) when out of memory or when a type is not an ssx_fmi3_type. */
+int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *error,
+                     size_t error_size);
 
 /* For a back-end's logger: what the FMU logged, a printf format with its arguments. */
 void ssx_fmu_log(ssx_fmu *fmu, const char *format, va_list args);

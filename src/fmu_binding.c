@@ -180,6 +180,21 @@ ssx_fmu *ssx_fmu_load(const char *binary_path, const char *model_identifier, con
                 instance_name, logging_on, error, error_size);
 }
 
+ssx_fmu *ssx_fmu_load_fmi3(const char *binary_path, const char *model_identifier,
+                           const char *instantiation_token, const char *resource_path,
+                           const char *instance_name, int logging_on,
+                           const ssx_fmi3_variables *variables, char *error, size_t error_size)
+{
+    ssx_fmu *fmu = load(&ssx_fmi3_backend, NULL, 0.0, binary_path, model_identifier,
+                        instantiation_token, resource_path, instance_name, logging_on, error,
+                        error_size);
+    if (fmu != NULL && ssx_fmi3_prepare(fmu->context, variables, error, error_size) != 0) {
+        ssx_fmu_free(fmu);
+        return NULL;
+    }
+    return fmu;
+}
+
 ssx_fmu *ssx_fmu_load_isolated(const char *host_path, double step_timeout,
                                const char *binary_path, const char *model_identifier,
                                const char *guid, const char *resource_uri,
@@ -215,6 +230,10 @@ static const struct {
     [SLOT_SET_STATE] = {COUNTED(set_state), 1},
     [SLOT_DIRECTIONAL_DERIVATIVE] = {COUNTED(directional_derivative), 0},
     [SLOT_RESET] = {0, 1},
+    [SLOT_GET_STRING] = {COUNTED(get_values), 0},
+    [SLOT_GET_BINARY] = {COUNTED(get_values), 0},
+    [SLOT_SET_STRING] = {COUNTED(set_values), 1},
+    [SLOT_SET_BINARY] = {COUNTED(set_values), 1},
 };
 
 static void refuse_after_fatal(ssx_fmu *fmu, const char *call)
@@ -229,6 +248,11 @@ static void refuse_after_fatal(ssx_fmu *fmu, const char *call)
 static int refuse(ssx_fmu *fmu, ssx_fmu_slot call)
 {
     const char *name = fmu->names[call];
+    if (name == NULL) {
+        snprintf(fmu->last_message, sizeof fmu->last_message,
+                 "this call is not part of %s", fmu->backend->standard);
+        return 0;
+    }
     if (fmu->fatal_call != NULL) {
         refuse_after_fatal(fmu, name);
     } else if (fmu->instance == NULL) {
@@ -248,7 +272,7 @@ static inline int begin(ssx_fmu *fmu, ssx_fmu_slot call)
     if (fmu == NULL) {
         return 0;
     }
-    fmu->last_call = fmu->names[call];
+    fmu->last_call = fmu->names[call] != NULL ? fmu->names[call] : "";
     if (fmu->instance == NULL || fmu->fn[call] == NULL) {
         return refuse(fmu, call);
     }
@@ -353,6 +377,9 @@ void ssx_fmu_free(ssx_fmu *fmu)
     }
     (void)ssx_fmu_free_instance(fmu);
     free(fmu->states);
+    if (fmu->context != NULL && fmu->backend->release_context != NULL) {
+        fmu->backend->release_context(fmu->context);
+    }
     free(fmu->context);
     free(fmu->guid);
     free(fmu->resource_uri);
@@ -486,6 +513,53 @@ int ssx_fmu_get_last_successful_time(ssx_fmu *fmu, double *time)
     return CHECKED(fmu, SLOT_GET_LAST_SUCCESSFUL_TIME, get_last_successful_time, time);
 }
 
+int ssx_fmu_get_string(ssx_fmu *fmu, const unsigned int *vr, size_t n, const char **values)
+{
+    return CHECKED(fmu, SLOT_GET_STRING, get_string, vr, n, values);
+}
+
+int ssx_fmu_set_string(ssx_fmu *fmu, const unsigned int *vr, size_t n, const char *const *values)
+{
+    return CHECKED(fmu, SLOT_SET_STRING, set_string, vr, n, values);
+}
+
+int ssx_fmu_get_binary(ssx_fmu *fmu, const unsigned int *vr, size_t n, size_t *sizes,
+                       const unsigned char **values)
+{
+    return CHECKED(fmu, SLOT_GET_BINARY, get_binary, vr, n, sizes, values);
+}
+
+int ssx_fmu_set_binary(ssx_fmu *fmu, const unsigned int *vr, size_t n, const size_t *sizes,
+                       const unsigned char *const *values)
+{
+    return CHECKED(fmu, SLOT_SET_BINARY, set_binary, vr, n, sizes, values);
+}
+
+/* ------------------------------------------------------------------ events (FMI 3.0) */
+
+void ssx_fmu_step_outcome(const ssx_fmu *fmu, ssx_step_outcome *outcome)
+{
+    *outcome = (ssx_step_outcome){0};
+    if (fmu != NULL && fmu->instance != NULL && fmu->backend->step_outcome != NULL) {
+        fmu->backend->step_outcome(fmu->instance, outcome);
+    }
+}
+
+int ssx_fmu_enter_event_mode(ssx_fmu *fmu)
+{
+    return CHECKED0(fmu, SLOT_ENTER_EVENT_MODE, enter_event_mode);
+}
+
+int ssx_fmu_update_discrete_states(ssx_fmu *fmu, ssx_discrete_update *update)
+{
+    return CHECKED(fmu, SLOT_UPDATE_DISCRETE_STATES, update_discrete_states, update);
+}
+
+int ssx_fmu_enter_step_mode(ssx_fmu *fmu)
+{
+    return CHECKED0(fmu, SLOT_ENTER_STEP_MODE, enter_step_mode);
+}
+
 /* ------------------------------------------------------------------ states */
 
 int ssx_fmu_get_state(ssx_fmu *fmu, void **state)
@@ -599,6 +673,25 @@ void ssx_fmu_get_counters(const ssx_fmu *fmu, ssx_fmu_counters *out)
     if (fmu != NULL && out != NULL) {
         *out = fmu->counters;
     }
+}
+
+const char *ssx_fmu_status_text(const ssx_fmu *fmu, int status)
+{
+    if (fmu == NULL || fmu->backend == &ssx_fmi2_backend) {
+        return ssx_fmi2_status_name(status);
+    }
+    if (status >= 0 && status <= SSX_STATUS_FATAL + 1) {
+        return fmu->backend->status_names[status];
+    }
+    return "no status (the engine failed)";
+}
+
+const char *ssx_fmu_function_name(const ssx_fmu *fmu, int slot)
+{
+    if (fmu == NULL || slot < 0 || slot >= SLOT_COUNT || fmu->names[slot] == NULL) {
+        return "";
+    }
+    return fmu->names[slot];
 }
 
 long ssx_fmu_generation(const ssx_fmu *fmu)

@@ -18,6 +18,38 @@ int ssx_fmu_get_terminated(ssx_fmu *fmu, int *terminated);
 int ssx_fmu_get_last_successful_time(ssx_fmu *fmu, double *time);
 /* "fmi2OK" ... "fmi2Pending"; for -1 (no status: the engine failed) it says so. */
 const char *ssx_fmi2_status_name(int status);
+/* The standard's name of a status of this FMU's calls ("fmi3Discard"), as
+ * ssx_fmi2_status_name. */
+const char *ssx_fmu_status_text(const ssx_fmu *fmu, int status);
+/* The standard's name of the call in `slot` (an ssx_fmu_slot: "fmi3DoStep"), "" when the FMU
+ * has none. */
+const char *ssx_fmu_function_name(const ssx_fmu *fmu, int slot);
+
+/* What an FMI 3.0 doStep returns besides its status. `reported` is 0 when the standard says
+ * nothing more than the status (FMI 2.0); event_handling_needed is 1 only for an instance made
+ * with eventModeUsed. */
+typedef struct {
+    int reported;
+    int event_handling_needed;
+    int terminate_simulation;
+    int early_return;
+    double last_successful_time;
+} ssx_step_outcome;
+/* The last doStep's out-arguments (all 0 before a step). */
+void ssx_fmu_step_outcome(const ssx_fmu *fmu, ssx_step_outcome *outcome);
+
+/* fmi3UpdateDiscreteStates' out-arguments. */
+typedef struct {
+    int discrete_states_need_update;
+    int terminate_simulation;
+    int next_event_time_defined;
+    double next_event_time;
+} ssx_discrete_update;
+/* Event mode of an FMI 3.0 instance made with eventModeUsed; each returns the status, or -1. */
+int ssx_fmu_enter_event_mode(ssx_fmu *fmu);
+int ssx_fmu_update_discrete_states(ssx_fmu *fmu, ssx_discrete_update *update);
+int ssx_fmu_enter_step_mode(ssx_fmu *fmu);
+
 /* The host process of an isolated FMU, NULL for one loaded into this process. */
 struct ssx_remote;
 struct ssx_remote *ssx_fmu_remote(const ssx_fmu *fmu);

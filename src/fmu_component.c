@@ -1,16 +1,24 @@
-/* Built-in behaviour of an FMU component: its fmi2 calls, batched by value type, and what the
- * statuses of a step mean. */
+/* Built-in behaviour of an FMU component: its FMI calls, batched by value type, what the
+ * statuses of a step mean, and the events an FMI 3.0 FMU handles in its own step. */
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "fmi2Functions.h"
-
 #include "component.h"
 #include "error.h"
+#include "fmu_backend.h"
 #include "fmu_binding.h"
 #include "system.h"
+
+/* The status every standard gives a step it could not complete (fmi2Discard, fmi3Discard). */
+enum { STATUS_DISCARD = 2 };
+
+/* The standard's name of the call in `slot` of c's FMU, for messages. */
+static const char *call_name(const ssx_component *c, ssx_fmu_slot slot)
+{
+    return ssx_fmu_function_name(c->fmu, (int)slot);
+}
 
 /* Reads every output; a failure is reported at t, the time the FMU is at. */
 static int read_outputs_at(ssx_system *sys, ssx_component *c, double t)
@@ -22,7 +30,7 @@ static int read_outputs_at(ssx_system *sys, ssx_component *c, double t)
     if (real->n > 0) {
         int status = ssx_fmu_get_real(c->fmu, real->vr, real->n, c->real_scratch);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, t, status, "fmi2GetReal");
+            return fail_fmi(sys, c, t, status, call_name(c, SLOT_GET_REAL));
         }
         for (size_t i = 0; i < real->n; ++i) {
             double value = c->real_scratch[i];
@@ -40,7 +48,7 @@ static int read_outputs_at(ssx_system *sys, ssx_component *c, double t)
                          : ssx_fmu_get_boolean(c->fmu, b->vr, b->n, c->int_scratch);
         if (!fmi_ok(status)) {
             return fail_fmi(sys, c, t, status,
-                            type == SSX_INTEGER ? "fmi2GetInteger" : "fmi2GetBoolean");
+                            call_name(c, type == SSX_INTEGER ? SLOT_GET_INTEGER : SLOT_GET_BOOLEAN));
         }
         for (size_t i = 0; i < b->n; ++i) {
             int value = c->int_scratch[i];
@@ -82,7 +90,7 @@ static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
         }
         int status = ssx_fmu_set_real(c->fmu, real->vr, real->n, c->real_scratch);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, sys->time, status, "fmi2SetReal");
+            return fail_fmi(sys, c, sys->time, status, call_name(c, SLOT_SET_REAL));
         }
     }
     for (int type = SSX_INTEGER; type <= SSX_BOOLEAN; ++type) {
@@ -101,7 +109,7 @@ static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
                          : ssx_fmu_set_boolean(c->fmu, b->vr, b->n, c->int_scratch);
         if (!fmi_ok(status)) {
             return fail_fmi(sys, c, sys->time, status,
-                            type == SSX_INTEGER ? "fmi2SetInteger" : "fmi2SetBoolean");
+                            call_name(c, type == SSX_INTEGER ? SLOT_SET_INTEGER : SLOT_SET_BOOLEAN));
         }
     }
     if (c->n_inputs > 0) {
@@ -111,13 +119,30 @@ static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
     return 0;
 }
 
-/* fmi2Discard means one of two things. The FMU asks to end the simulation (fmi2Terminated):
- * the request is kept for the run to end cleanly, and the step counts as done when the FMU
- * reached its end. Otherwise the FMU could not complete the step: a failure that says how far
- * it got (fmi2LastSuccessfulTime). */
-static int discarded_step(ssx_system *sys, ssx_component *c, double t, double dt)
+/* The FMU asked to end the simulation at `reached` during the step from t to t_end: the request
+ * is kept for the run to end cleanly, and the step counts as done when the FMU reached its end. */
+static int stop_requested(ssx_system *sys, ssx_component *c, double t, double t_end,
+                          double reached, const char *log)
 {
-    double t_end = t + dt;
+    if (sys->termination.component < 0) {
+        sys->termination.component = c->index;
+        sys->termination.time = isnan(reached) ? t : reached;
+        snprintf(sys->termination.message, sizeof sys->termination.message, "%s", log);
+    }
+    /* the grid's own rounding: a remainder below 1e-9 steps is the step's end */
+    if (reached >= t_end - 1e-9 * (t_end - t)) {
+        return read_outputs_at(sys, c, t_end);
+    }
+    return fail(sys, c->index, -1, t,
+                "component '%s' asked to stop at t=%.17g, inside the step from %.17g to %.17g",
+                c->name, sys->termination.time, t, t_end);
+}
+
+/* A discarded step means one of two things. The FMU asks to end the simulation (FMI 2.0's
+ * fmi2Terminated, FMI 3.0's terminateSimulation): see stop_requested. Otherwise the FMU could
+ * not complete the step: a failure that says how far it got (its last successful time). */
+static int discarded_step(ssx_system *sys, ssx_component *c, double t, double t_end)
+{
     char log[sizeof sys->termination.message];
     snprintf(log, sizeof log, "%s", ssx_fmu_last_message(c->fmu)); /* before queries overwrite it */
     int terminated = 0;
@@ -127,41 +152,129 @@ static int discarded_step(ssx_system *sys, ssx_component *c, double t, double dt
         reached = NAN;
     }
     if (!fmi_ok(asked) || !terminated) {
+        ssx_step_outcome outcome;
+        ssx_fmu_step_outcome(c->fmu, &outcome);
+        /* FMI 2.0 asks a status function; FMI 3.0's doStep says it itself */
+        const char *reached_name = outcome.reported ? "lastSuccessfulTime"
+                                                    : "fmi2LastSuccessfulTime";
         char got_to[96] = "fmi2GetRealStatus(fmi2LastSuccessfulTime) failed";
         if (!isnan(reached)) {
-            snprintf(got_to, sizeof got_to, "fmi2LastSuccessfulTime=%.17g", reached);
+            snprintf(got_to, sizeof got_to, "%s=%.17g", reached_name, reached);
         }
         fail(sys, c->index, -1, isnan(reached) ? t : reached,
-             "component '%s': fmi2DoStep from t=%.17g to %.17g returned fmi2Discard without "
-             "asking to terminate: the FMU completed the step only up to %s%s%s%s",
-             c->name, t, t_end, got_to, log[0] ? " (FMU log: " : "", log,
-             log[0] ? ")" : " (the FMU logged no message)");
-        sys->error.fmi_status = fmi2Discard;
+             "component '%s': %s from t=%.17g to %.17g returned %s without asking to "
+             "terminate: the FMU completed the step only up to %s%s%s%s",
+             c->name, call_name(c, SLOT_DO_STEP), t, t_end,
+             ssx_fmu_status_text(c->fmu, STATUS_DISCARD), got_to, log[0] ? " (FMU log: " : "",
+             log, log[0] ? ")" : " (the FMU logged no message)");
+        sys->error.fmi_status = STATUS_DISCARD;
         return -1;
     }
-    if (sys->termination.component < 0) {
-        sys->termination.component = c->index;
-        sys->termination.time = isnan(reached) ? t : reached;
-        snprintf(sys->termination.message, sizeof sys->termination.message, "%s", log);
+    return stop_requested(sys, c, t, t_end, reached, log);
+}
+
+/* One doStep from t to t_end and what its status means; the outcome of a completed call is
+ * left in *outcome. 1: the call completed; 0: the step is over (the FMU asked to stop, or the
+ * call failed: the return of `done` says which). */
+static int step_call(ssx_system *sys, ssx_component *c, double t, double t_end,
+                     ssx_step_outcome *outcome, int *done)
+{
+    /* In hybrid mode the engine may set an earlier state again, so it must not promise not to. */
+    int status = ssx_fmu_do_step(c->fmu, t, t_end - t, !sys->stepping_hybrid);
+    if (status == STATUS_DISCARD) {
+        *done = discarded_step(sys, c, t, t_end);
+        return 0;
     }
-    /* the grid's own rounding: a remainder below 1e-9 steps is the step's end */
-    if (reached >= t_end - 1e-9 * dt) {
-        return read_outputs_at(sys, c, t_end);
+    if (!fmi_ok(status)) {
+        *done = fail_fmi(sys, c, t, status, call_name(c, SLOT_DO_STEP));
+        return 0;
     }
-    return fail(sys, c->index, -1, t,
-                "component '%s' asked to stop at t=%.17g, inside the step from %.17g to %.17g",
-                c->name, sys->termination.time, t, t_end);
+    ssx_fmu_step_outcome(c->fmu, outcome);
+    return 1;
+}
+
+/* An event the FMU found at t_e and handled in event mode: its discrete states are updated
+ * until they settle (more rounds than max_microsteps is chattering), then it steps again.
+ * *terminate is set when the FMU asks to end the simulation there. */
+static int handle_own_event(ssx_system *sys, ssx_component *c, double t_e, int *terminate)
+{
+    int status = ssx_fmu_enter_event_mode(c->fmu);
+    if (!fmi_ok(status)) {
+        return fail_fmi(sys, c, t_e, status, call_name(c, SLOT_ENTER_EVENT_MODE));
+    }
+    ssx_discrete_update update = {.discrete_states_need_update = 1};
+    for (int round = 0; update.discrete_states_need_update && !update.terminate_simulation;
+         ++round) {
+        if (round == sys->hybrid.max_microsteps) {
+            return fail_zeno(sys, c->index, -1, t_e,
+                             "component '%s': %s still asked for another round after %d rounds "
+                             "at t=%.17g (chattering; max_microsteps=%d)",
+                             c->name, call_name(c, SLOT_UPDATE_DISCRETE_STATES), round, t_e,
+                             sys->hybrid.max_microsteps);
+        }
+        status = ssx_fmu_update_discrete_states(c->fmu, &update);
+        if (!fmi_ok(status)) {
+            return fail_fmi(sys, c, t_e, status, call_name(c, SLOT_UPDATE_DISCRETE_STATES));
+        }
+    }
+    *terminate = update.terminate_simulation;
+    if (!*terminate) {
+        status = ssx_fmu_enter_step_mode(c->fmu);
+        if (!fmi_ok(status)) {
+            return fail_fmi(sys, c, t_e, status, call_name(c, SLOT_ENTER_STEP_MODE));
+        }
+    }
+    return own_event_report(sys, c, SSX_OWN_FMU_EVENT, t_e);
+}
+
+/* The rest of an FMI 3.0 step that returned early, needs its events handled or asks to stop:
+ * each event is handled at the time the FMU returned (or at the step's end) and reported as the
+ * component's own, and the FMU steps on from there until the step's end. No rollback: the FMU
+ * knows the time of its events. */
+static int step_on(ssx_system *sys, ssx_component *c, double t, double t_end,
+                   ssx_step_outcome outcome)
+{
+    double close = 1e-9 * (t_end - t); /* the grid's own rounding */
+    double from = t;
+    int stuck = 0; /* returns in a row that did not advance */
+    for (;;) {
+        double reached = outcome.early_return ? outcome.last_successful_time : t_end;
+        int terminate = outcome.terminate_simulation;
+        if (!terminate && outcome.event_handling_needed &&
+            handle_own_event(sys, c, reached, &terminate) != 0) {
+            return -1;
+        }
+        if (terminate) {
+            return stop_requested(sys, c, t, t_end, reached, ssx_fmu_last_message(c->fmu));
+        }
+        if (reached >= t_end - close) {
+            return read_outputs_at(sys, c, t_end);
+        }
+        stuck = reached > from ? 0 : stuck + 1;
+        if (stuck > sys->hybrid.max_microsteps) {
+            return fail_zeno(sys, c->index, -1, reached,
+                             "component '%s' returned early from %s %d times in a row at "
+                             "t=%.17g without advancing (chattering; max_microsteps=%d)",
+                             c->name, call_name(c, SLOT_DO_STEP), stuck, reached,
+                             sys->hybrid.max_microsteps);
+        }
+        from = reached;
+        int done = 0;
+        if (!step_call(sys, c, from, t_end, &outcome, &done)) {
+            return done;
+        }
+    }
 }
 
 static int fmu_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
 {
-    /* In hybrid mode the engine may set an earlier state again, so it must not promise not to. */
-    int status = ssx_fmu_do_step(c->fmu, t, dt, !sys->stepping_hybrid);
-    if (status == fmi2Discard) {
-        return discarded_step(sys, c, t, dt);
+    ssx_step_outcome outcome;
+    int done = 0;
+    if (!step_call(sys, c, t, t + dt, &outcome, &done)) {
+        return done;
     }
-    if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, t, status, "fmi2DoStep");
+    if (outcome.early_return || outcome.event_handling_needed || outcome.terminate_simulation) {
+        return step_on(sys, c, t, t + dt, outcome);
     }
     return read_outputs_at(sys, c, t + dt);
 }
@@ -186,7 +299,7 @@ static int fmu_snapshot(ssx_system *sys, ssx_component *c, int slot)
     }
     int status = ssx_fmu_get_state(c->fmu, &c->fmu_state[slot]);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, sys->time, status, "fmi2GetFMUstate");
+        return fail_fmi(sys, c, sys->time, status, call_name(c, SLOT_GET_STATE));
     }
     return 0;
 }
@@ -208,7 +321,7 @@ static int fmu_restore(ssx_system *sys, ssx_component *c, int slot, double t)
     }
     int status = ssx_fmu_set_state(c->fmu, c->fmu_state[slot]);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, t, status, "fmi2SetFMUstate");
+        return fail_fmi(sys, c, t, status, call_name(c, SLOT_SET_STATE));
     }
     return 0;
 }
@@ -231,9 +344,9 @@ int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0)
                                            : ssx_fmu_get_boolean(c->fmu, &vr, 1, &integer);
         if (!fmi_ok(status)) {
             return fail_fmi(sys, c, t0, status,
-                            type == SSX_REAL      ? "fmi2GetReal"
-                            : type == SSX_INTEGER ? "fmi2GetInteger"
-                                                  : "fmi2GetBoolean");
+                            call_name(c, type == SSX_REAL      ? SLOT_GET_REAL
+                                         : type == SSX_INTEGER ? SLOT_GET_INTEGER
+                                                               : SLOT_GET_BOOLEAN));
         }
         c->inputs[k] = type == SSX_REAL ? real : type == SSX_BOOLEAN ? (integer != 0) : integer;
     }

@@ -68,6 +68,45 @@ ssx_fmu *ssx_fmu_load(const char *binary_path, const char *model_identifier, con
                       char *error, size_t error_size);
 void ssx_fmu_free(ssx_fmu *fmu); /* terminates/frees a live instance, then dlclose */
 
+/* FMI 3.0 Co-Simulation. The engine keeps its three port types: Float64 and Float32 variables
+ * are Real ports, Int8 ... UInt64 Integer ports (a value outside the int range fails the call
+ * that meets it, naming the variable), Boolean ones Boolean ports. The back-end batches each
+ * engine call into one fmi3Get/Set call per FMI 3.0 type, by the table given at load. */
+typedef enum {
+    SSX_FMI3_FLOAT64 = 0, SSX_FMI3_FLOAT32, SSX_FMI3_INT8, SSX_FMI3_UINT8, SSX_FMI3_INT16,
+    SSX_FMI3_UINT16, SSX_FMI3_INT32, SSX_FMI3_UINT32, SSX_FMI3_INT64, SSX_FMI3_UINT64,
+    SSX_FMI3_BOOLEAN, SSX_FMI3_TYPE_COUNT
+} ssx_fmi3_type;
+
+/* Every scalar variable the engine may get or set: value reference, ssx_fmi3_type and name
+ * (for messages), n of each; and how the instance is made: eventModeUsed (the FMU declares
+ * hasEventMode) and earlyReturnAllowed (it declares canReturnEarlyAfterIntermediateUpdate or
+ * mightReturnEarlyFromDoStep). */
+typedef struct {
+    const unsigned int *vr;
+    const unsigned char *type;
+    const char *const *name;
+    size_t n;
+    int event_mode_used;
+    int early_return_allowed;
+} ssx_fmi3_variables;
+
+/* Like ssx_fmu_load for an FMI 3.0 Co-Simulation binary: resolves the fmi3 functions; the
+ * instantiation token and resource path (a directory ending in '/') as FMI 3.0 defines them.
+ * The variables are copied. */
+ssx_fmu *ssx_fmu_load_fmi3(const char *binary_path, const char *model_identifier,
+                           const char *instantiation_token, const char *resource_path,
+                           const char *instance_name, int logging_on,
+                           const ssx_fmi3_variables *variables, char *error, size_t error_size);
+/* fmi3Get/SetString and fmi3Get/SetBinary (FMI 3.0 only: other FMUs refuse them). The texts
+ * and bytes read stay valid until the next call on the FMU. */
+int ssx_fmu_get_string(ssx_fmu *fmu, const unsigned int *vr, size_t n, const char **values);
+int ssx_fmu_set_string(ssx_fmu *fmu, const unsigned int *vr, size_t n, const char *const *values);
+int ssx_fmu_get_binary(ssx_fmu *fmu, const unsigned int *vr, size_t n, size_t *sizes,
+                       const unsigned char **values);
+int ssx_fmu_set_binary(ssx_fmu *fmu, const unsigned int *vr, size_t n, const size_t *sizes,
+                       const unsigned char *const *values);
+
 /* The name of a status an ssx_fmu_* call returned, without its standard's prefix: "OK",
  * "Warning", "Discard", "Error", "Fatal", "Pending", and "failed" for -1; NULL for any other. */
 const char *ssx_status_name(int status);

@@ -1,0 +1,840 @@
+/* The FMI 3.0 Co-Simulation back-end of the FMU binding: the fmi3 functions, which of them a
+ * binary must export, and adapters that call each with its fmi3 type.
+ *
+ * The engine speaks in three port types; FMI 3.0 has eleven numeric ones. The back-end keeps
+ * the type of every value reference (given at load) and turns one engine call into one fmi3
+ * call per FMI 3.0 type met, converting each value and refusing one that does not fit.
+ *
+ * FMI 3.0 passes the experiment to fmi3EnterInitializationMode and returns doStep's news in
+ * out-arguments: the instance the binding holds is this back-end's context, which keeps both
+ * beside the FMU's own instance. */
+#include "fmu_backend.h"
+
+#include <limits.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fmi3Functions.h"
+
+static const ssx_fmu_function_row fmi3_functions[] = {
+    {"fmi3InstantiateCoSimulation", SLOT_INSTANTIATE, 1},
+    {"fmi3FreeInstance", SLOT_FREE_INSTANCE, 1},
+    /* the experiment is kept until fmi3EnterInitializationMode, which takes it */
+    {"fmi3EnterInitializationMode", SLOT_SETUP_EXPERIMENT, 1},
+    {"fmi3EnterInitializationMode", SLOT_ENTER_INITIALIZATION_MODE, 1},
+    {"fmi3ExitInitializationMode", SLOT_EXIT_INITIALIZATION_MODE, 1},
+    {"fmi3Terminate", SLOT_TERMINATE, 1},
+    {"fmi3Reset", SLOT_RESET, 1},
+    {"fmi3GetFloat64", SLOT_GET_REAL, 1},
+    {"fmi3GetInt32", SLOT_GET_INTEGER, 1},
+    {"fmi3GetBoolean", SLOT_GET_BOOLEAN, 1},
+    {"fmi3SetFloat64", SLOT_SET_REAL, 1},
+    {"fmi3SetInt32", SLOT_SET_INTEGER, 1},
+    {"fmi3SetBoolean", SLOT_SET_BOOLEAN, 1},
+    {"fmi3DoStep", SLOT_DO_STEP, 1},
+    /* doStep's out-arguments say what FMI 2.0 asks status functions for */
+    {"fmi3DoStep", SLOT_GET_TERMINATED, 1},
+    {"fmi3DoStep", SLOT_GET_LAST_SUCCESSFUL_TIME, 1},
+    {"fmi3GetFloat32", SLOT_GET_FLOAT32, 1},
+    {"fmi3GetInt8", SLOT_GET_INT8, 1},
+    {"fmi3GetUInt8", SLOT_GET_UINT8, 1},
+    {"fmi3GetInt16", SLOT_GET_INT16, 1},
+    {"fmi3GetUInt16", SLOT_GET_UINT16, 1},
+    {"fmi3GetUInt32", SLOT_GET_UINT32, 1},
+    {"fmi3GetInt64", SLOT_GET_INT64, 1},
+    {"fmi3GetUInt64", SLOT_GET_UINT64, 1},
+    {"fmi3SetFloat32", SLOT_SET_FLOAT32, 1},
+    {"fmi3SetInt8", SLOT_SET_INT8, 1},
+    {"fmi3SetUInt8", SLOT_SET_UINT8, 1},
+    {"fmi3SetInt16", SLOT_SET_INT16, 1},
+    {"fmi3SetUInt16", SLOT_SET_UINT16, 1},
+    {"fmi3SetUInt32", SLOT_SET_UINT32, 1},
+    {"fmi3SetInt64", SLOT_SET_INT64, 1},
+    {"fmi3SetUInt64", SLOT_SET_UINT64, 1},
+    {"fmi3GetString", SLOT_GET_STRING, 1},
+    {"fmi3SetString", SLOT_SET_STRING, 1},
+    {"fmi3GetBinary", SLOT_GET_BINARY, 1},
+    {"fmi3SetBinary", SLOT_SET_BINARY, 1},
+    {"fmi3EnterEventMode", SLOT_ENTER_EVENT_MODE, 1},
+    {"fmi3UpdateDiscreteStates", SLOT_UPDATE_DISCRETE_STATES, 1},
+    {"fmi3EnterStepMode", SLOT_ENTER_STEP_MODE, 1},
+    /* capabilities an FMU may lack (FMI 3.0 has every binary export them; be lenient) */
+    {"fmi3GetFMUState", SLOT_GET_STATE, 0},
+    {"fmi3SetFMUState", SLOT_SET_STATE, 0},
+    {"fmi3FreeFMUState", SLOT_FREE_STATE, 0},
+    {"fmi3SerializedFMUStateSize", SLOT_SERIALIZED_STATE_SIZE, 0},
+    {"fmi3SerializeFMUState", SLOT_SERIALIZE_STATE, 0},
+    {"fmi3DeserializeFMUState", SLOT_DESERIALIZE_STATE, 0},
+    {"fmi3GetDirectionalDerivative", SLOT_DIRECTIONAL_DERIVATIVE, 0},
+};
+
+#define FMI3_NAME(name) "fmi3" #name,
+static const char *const fmi3_status_names[] = {SSX_STATUS_NAMES(FMI3_NAME)};
+
+/* Rounds of fmi3UpdateDiscreteStates after initialization before it counts as chattering. */
+enum { INITIAL_UPDATE_ROUNDS = 1000 };
+
+static const char *const type_names[SSX_FMI3_TYPE_COUNT] = {
+    "Float64", "Float32", "Int8", "UInt8", "Int16", "UInt16",
+    "Int32", "UInt32", "Int64", "UInt64", "Boolean"};
+
+/* The slot of each type's getter and setter. */
+static const ssx_fmu_slot getter[SSX_FMI3_TYPE_COUNT] = {
+    SLOT_GET_REAL, SLOT_GET_FLOAT32, SLOT_GET_INT8, SLOT_GET_UINT8, SLOT_GET_INT16,
+    SLOT_GET_UINT16, SLOT_GET_INTEGER, SLOT_GET_UINT32, SLOT_GET_INT64, SLOT_GET_UINT64,
+    SLOT_GET_BOOLEAN};
+static const ssx_fmu_slot setter[SSX_FMI3_TYPE_COUNT] = {
+    SLOT_SET_REAL, SLOT_SET_FLOAT32, SLOT_SET_INT8, SLOT_SET_UINT8, SLOT_SET_INT16,
+    SLOT_SET_UINT16, SLOT_SET_INTEGER, SLOT_SET_UINT32, SLOT_SET_INT64, SLOT_SET_UINT64,
+    SLOT_SET_BOOLEAN};
+
+/* The engine port type each FMI 3.0 type is exchanged as. */
+static ssx_value_type port_type(ssx_fmi3_type type)
+{
+    return type <= SSX_FMI3_FLOAT32   ? SSX_REAL
+           : type == SSX_FMI3_BOOLEAN ? SSX_BOOLEAN
+                                      : SSX_INTEGER;
+}
+
+typedef struct {
+    unsigned int vr;
+    unsigned char type;
+    const char *name; /* into the context's name pool */
+} variable;
+
+typedef struct {
+    fmi3Instance instance; /* the FMU's; NULL until instantiated */
+    ssx_fmu *fmu;          /* the environment of log messages */
+    variable *variables;   /* sorted by value reference */
+    size_t n_variables;
+    char *names;
+    int event_mode_used;
+    int early_return_allowed;
+    /* the experiment, kept for fmi3EnterInitializationMode */
+    int tolerance_defined;
+    double tolerance;
+    double start_time;
+    int stop_time_defined;
+    double stop_time;
+    ssx_step_outcome outcome;
+    /* one type's part of a batch: value references, positions in the engine's call, values */
+    unsigned int *part_vr;
+    size_t *part_at;
+    uint64_t *part_values; /* 8 bytes per value hold any numeric type */
+    size_t part_capacity;
+} fmi3_context;
+
+/* The function in `slot` with its fmi3 type (ISO C converts between function pointer types). */
+#define FMI3(fn, slot, type) ((type *)(fn)[slot])
+
+/* ------------------------------------------------------------------ load */
+
+static int by_value_reference(const void *a, const void *b)
+{
+    unsigned int x = ((const variable *)a)->vr, y = ((const variable *)b)->vr;
+    return (x > y) - (x < y);
+}
+
+int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *error,
+                     size_t error_size)
+{
+    fmi3_context *ctx = context;
+    size_t n = variables != NULL ? variables->n : 0;
+    size_t pool = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (variables->type[i] >= SSX_FMI3_TYPE_COUNT) {
+            snprintf(error, error_size, "value reference %u: FMI 3.0 type code %d is not an "
+                     "ssx_fmi3_type", variables->vr[i], variables->type[i]);
+            return -1;
+        }
+        pool += strlen(variables->name[i] != NULL ? variables->name[i] : "") + 1;
+    }
+    ctx->variables = calloc(n > 0 ? n : 1, sizeof *ctx->variables);
+    ctx->names = malloc(pool > 0 ? pool : 1);
+    if (ctx->variables == NULL || ctx->names == NULL) {
+        snprintf(error, error_size, "out of memory keeping the FMU's %zu variables", n);
+        return -1;
+    }
+    char *at = ctx->names;
+    for (size_t i = 0; i < n; ++i) {
+        const char *name = variables->name[i] != NULL ? variables->name[i] : "";
+        size_t length = strlen(name) + 1;
+        memcpy(at, name, length);
+        ctx->variables[i] = (variable){variables->vr[i], variables->type[i], at};
+        at += length;
+    }
+    qsort(ctx->variables, n, sizeof *ctx->variables, by_value_reference);
+    ctx->n_variables = n;
+    if (variables != NULL) {
+        ctx->event_mode_used = variables->event_mode_used != 0;
+        ctx->early_return_allowed = variables->early_return_allowed != 0;
+    }
+    return 0;
+}
+
+static void release_context(void *context)
+{
+    fmi3_context *ctx = context;
+    free(ctx->variables);
+    free(ctx->names);
+    free(ctx->part_vr);
+    free(ctx->part_at);
+    free(ctx->part_values);
+}
+
+/* ------------------------------------------------------------------ messages */
+
+static void say(fmi3_context *ctx, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    ssx_fmu_log(ctx->fmu, format, args);
+    va_end(args);
+}
+
+static void logger(fmi3InstanceEnvironment environment, fmi3Status status, fmi3String category,
+                   fmi3String message)
+{
+    (void)status;
+    (void)category;
+    if (environment != NULL && message != NULL) {
+        say(environment, "%s", message);
+    }
+}
+
+/* ------------------------------------------------------------------ life cycle */
+
+static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
+                         const char *instance_name, const char *token, const char *resource_path,
+                         int logging_on)
+{
+    fmi3_context *ctx = context;
+    ctx->fmu = fmu;
+    ctx->outcome = (ssx_step_outcome){0};
+    /* the logger's environment is the context, whose first use is to reach the fmu */
+    ctx->instance = FMI3(fn, SLOT_INSTANTIATE, fmi3InstantiateCoSimulationTYPE)(
+        instance_name, token, resource_path, fmi3False, logging_on ? fmi3True : fmi3False,
+        ctx->event_mode_used ? fmi3True : fmi3False,
+        ctx->early_return_allowed ? fmi3True : fmi3False, NULL, 0, ctx,
+        (fmi3LogMessageCallback)logger, NULL);
+    return ctx->instance != NULL ? ctx : NULL;
+}
+
+static void free_instance(const ssx_fmu_function *fn, void *instance)
+{
+    fmi3_context *ctx = instance;
+    FMI3(fn, SLOT_FREE_INSTANCE, fmi3FreeInstanceTYPE)(ctx->instance);
+    ctx->instance = NULL;
+}
+
+static int setup_experiment(const ssx_fmu_function *fn, void *instance, int tolerance_defined,
+                            double tolerance, double start_time, int stop_time_defined,
+                            double stop_time)
+{
+    (void)fn;
+    fmi3_context *ctx = instance;
+    ctx->tolerance_defined = tolerance_defined;
+    ctx->tolerance = tolerance;
+    ctx->start_time = start_time;
+    ctx->stop_time_defined = stop_time_defined;
+    ctx->stop_time = stop_time;
+    return fmi3OK;
+}
+
+static int enter_initialization_mode(const ssx_fmu_function *fn, void *instance)
+{
+    fmi3_context *ctx = instance;
+    return (int)FMI3(fn, SLOT_ENTER_INITIALIZATION_MODE, fmi3EnterInitializationModeTYPE)(
+        ctx->instance, ctx->tolerance_defined ? fmi3True : fmi3False, ctx->tolerance,
+        ctx->start_time, ctx->stop_time_defined ? fmi3True : fmi3False, ctx->stop_time);
+}
+
+static int worse(int a, int b)
+{
+    return a > b ? a : b;
+}
+
+/* With eventModeUsed the instance leaves initialization in event mode: its discrete states are
+ * settled at the start time before stepping begins, as part of initializing it. */
+static int exit_initialization_mode(const ssx_fmu_function *fn, void *instance)
+{
+    fmi3_context *ctx = instance;
+    int status = (int)FMI3(fn, SLOT_EXIT_INITIALIZATION_MODE,
+                           fmi3ExitInitializationModeTYPE)(ctx->instance);
+    if (!ctx->event_mode_used || status > fmi3Warning) {
+        return status;
+    }
+    fmi3Boolean again = fmi3True;
+    for (int round = 0; again; ++round) {
+        if (round == INITIAL_UPDATE_ROUNDS) {
+            say(ctx, "fmi3UpdateDiscreteStates still asked for another round after %d rounds "
+                "at the start time %.17g (chattering)", INITIAL_UPDATE_ROUNDS, ctx->start_time);
+            return fmi3Error;
+        }
+        fmi3Boolean terminate = fmi3False, nominals = fmi3False, values = fmi3False;
+        fmi3Boolean next_defined = fmi3False;
+        fmi3Float64 next = 0.0;
+        status = worse(status, (int)FMI3(fn, SLOT_UPDATE_DISCRETE_STATES,
+                                         fmi3UpdateDiscreteStatesTYPE)(
+                                   ctx->instance, &again, &terminate, &nominals, &values,
+                                   &next_defined, &next));
+        if (status > fmi3Warning) {
+            return status;
+        }
+        if (terminate) {
+            say(ctx, "the FMU asked to terminate the simulation during initialization "
+                "(fmi3UpdateDiscreteStates at t=%.17g)", ctx->start_time);
+            return fmi3Error;
+        }
+    }
+    return worse(status,
+                 (int)FMI3(fn, SLOT_ENTER_STEP_MODE, fmi3EnterStepModeTYPE)(ctx->instance));
+}
+
+static int terminate(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI3(fn, SLOT_TERMINATE, fmi3TerminateTYPE)(((fmi3_context *)instance)->instance);
+}
+
+static int reset(const ssx_fmu_function *fn, void *instance)
+{
+    fmi3_context *ctx = instance;
+    ctx->outcome = (ssx_step_outcome){0};
+    return (int)FMI3(fn, SLOT_RESET, fmi3ResetTYPE)(ctx->instance);
+}
+
+/* ------------------------------------------------------------------ values */
+
+static const variable *find(const fmi3_context *ctx, unsigned int vr)
+{
+    size_t lo = 0, hi = ctx->n_variables;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (ctx->variables[mid].vr < vr) {
+            lo = mid + 1;
+        } else {
+            hi = mid;
+        }
+    }
+    return lo < ctx->n_variables && ctx->variables[lo].vr == vr ? &ctx->variables[lo] : NULL;
+}
+
+static int reserve_parts(fmi3_context *ctx, size_t n)
+{
+    if (n <= ctx->part_capacity) {
+        return 0;
+    }
+    unsigned int *vr = realloc(ctx->part_vr, n * sizeof *vr);
+    if (vr != NULL) {
+        ctx->part_vr = vr;
+    }
+    size_t *at = realloc(ctx->part_at, n * sizeof *at);
+    if (at != NULL) {
+        ctx->part_at = at;
+    }
+    uint64_t *values = realloc(ctx->part_values, n * sizeof *values);
+    if (values != NULL) {
+        ctx->part_values = values;
+    }
+    if (vr == NULL || at == NULL || values == NULL) {
+        say(ctx, "out of memory batching %zu values", n);
+        return -1;
+    }
+    ctx->part_capacity = n;
+    return 0;
+}
+
+/* The types of vr[0..n) are all of `port`'s family; every one is known. Returns the type when
+ * all are the same, SSX_FMI3_TYPE_COUNT when they differ, -1 for an unknown or foreign one. */
+static int common_type(fmi3_context *ctx, ssx_value_type port, const unsigned int *vr, size_t n)
+{
+    int common = -1;
+    for (size_t i = 0; i < n; ++i) {
+        const variable *v = find(ctx, vr[i]);
+        if (v == NULL) {
+            say(ctx, "value reference %u is not among the variables the FMU was loaded with",
+                vr[i]);
+            return -1;
+        }
+        if (port_type(v->type) != port) {
+            say(ctx, "variable '%s' (%s) is not exchanged as this port type", v->name,
+                type_names[v->type]);
+            return -1;
+        }
+        common = common < 0 || common == v->type ? v->type : SSX_FMI3_TYPE_COUNT;
+    }
+    return common;
+}
+
+/* Gathers the entries of type `type` into the parts; returns how many. */
+static size_t gather(fmi3_context *ctx, ssx_fmi3_type type, const unsigned int *vr, size_t n)
+{
+    size_t k = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (find(ctx, vr[i])->type == type) {
+            ctx->part_vr[k] = vr[i];
+            ctx->part_at[k++] = i;
+        }
+    }
+    return k;
+}
+
+/* One fmi3GetX call of `type` into `values` (an array of that type). */
+static int get_typed(const ssx_fmu_function *fn, fmi3Instance instance, ssx_fmi3_type type,
+                     const unsigned int *vr, size_t n, void *values)
+{
+    ssx_fmu_function f = fn[getter[type]];
+    switch (type) {
+    case SSX_FMI3_FLOAT64: return (int)((fmi3GetFloat64TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_FLOAT32: return (int)((fmi3GetFloat32TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT8: return (int)((fmi3GetInt8TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT8: return (int)((fmi3GetUInt8TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT16: return (int)((fmi3GetInt16TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT16: return (int)((fmi3GetUInt16TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT32: return (int)((fmi3GetInt32TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT32: return (int)((fmi3GetUInt32TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT64: return (int)((fmi3GetInt64TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT64: return (int)((fmi3GetUInt64TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_BOOLEAN: return (int)((fmi3GetBooleanTYPE *)f)(instance, vr, n, values, n);
+    default: return fmi3Error;
+    }
+}
+
+static int set_typed(const ssx_fmu_function *fn, fmi3Instance instance, ssx_fmi3_type type,
+                     const unsigned int *vr, size_t n, const void *values)
+{
+    ssx_fmu_function f = fn[setter[type]];
+    switch (type) {
+    case SSX_FMI3_FLOAT64: return (int)((fmi3SetFloat64TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_FLOAT32: return (int)((fmi3SetFloat32TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT8: return (int)((fmi3SetInt8TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT8: return (int)((fmi3SetUInt8TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT16: return (int)((fmi3SetInt16TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT16: return (int)((fmi3SetUInt16TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT32: return (int)((fmi3SetInt32TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT32: return (int)((fmi3SetUInt32TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT64: return (int)((fmi3SetInt64TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT64: return (int)((fmi3SetUInt64TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_BOOLEAN: return (int)((fmi3SetBooleanTYPE *)f)(instance, vr, n, values, n);
+    default: return fmi3Error;
+    }
+}
+
+/* Element k of an array of integer `type`, widened; unsigned ones above INT64_MAX clamp there
+ * (they do not fit an int either way). */
+static long long integer_at(ssx_fmi3_type type, const void *values, size_t k)
+{
+    switch (type) {
+    case SSX_FMI3_INT8: return ((const int8_t *)values)[k];
+    case SSX_FMI3_UINT8: return ((const uint8_t *)values)[k];
+    case SSX_FMI3_INT16: return ((const int16_t *)values)[k];
+    case SSX_FMI3_UINT16: return ((const uint16_t *)values)[k];
+    case SSX_FMI3_INT32: return ((const int32_t *)values)[k];
+    case SSX_FMI3_UINT32: return ((const uint32_t *)values)[k];
+    case SSX_FMI3_INT64: return ((const int64_t *)values)[k];
+    case SSX_FMI3_UINT64: {
+        uint64_t u = ((const uint64_t *)values)[k];
+        return u > (uint64_t)LLONG_MAX ? LLONG_MAX : (long long)u;
+    }
+    default: return 0;
+    }
+}
+
+/* The range of integer `type`, within long long. */
+static void integer_range(ssx_fmi3_type type, long long *lo, long long *hi)
+{
+    static const long long bounds[][2] = {
+        [SSX_FMI3_INT8] = {INT8_MIN, INT8_MAX},    [SSX_FMI3_UINT8] = {0, UINT8_MAX},
+        [SSX_FMI3_INT16] = {INT16_MIN, INT16_MAX}, [SSX_FMI3_UINT16] = {0, UINT16_MAX},
+        [SSX_FMI3_INT32] = {INT32_MIN, INT32_MAX}, [SSX_FMI3_UINT32] = {0, UINT32_MAX},
+        [SSX_FMI3_INT64] = {INT64_MIN, INT64_MAX}, [SSX_FMI3_UINT64] = {0, LLONG_MAX},
+    };
+    *lo = bounds[type][0];
+    *hi = bounds[type][1];
+}
+
+static void put_integer(ssx_fmi3_type type, void *values, size_t k, long long value)
+{
+    switch (type) {
+    case SSX_FMI3_INT8: ((int8_t *)values)[k] = (int8_t)value; break;
+    case SSX_FMI3_UINT8: ((uint8_t *)values)[k] = (uint8_t)value; break;
+    case SSX_FMI3_INT16: ((int16_t *)values)[k] = (int16_t)value; break;
+    case SSX_FMI3_UINT16: ((uint16_t *)values)[k] = (uint16_t)value; break;
+    case SSX_FMI3_INT32: ((int32_t *)values)[k] = (int32_t)value; break;
+    case SSX_FMI3_UINT32: ((uint32_t *)values)[k] = (uint32_t)value; break;
+    case SSX_FMI3_INT64: ((int64_t *)values)[k] = (int64_t)value; break;
+    case SSX_FMI3_UINT64: ((uint64_t *)values)[k] = (uint64_t)value; break;
+    default: break;
+    }
+}
+
+/* Converts part k of `type` (read into the part values) into the engine's array `out` of port
+ * type `port`; 0, or -1 when the value does not fit. */
+static int take(fmi3_context *ctx, ssx_fmi3_type type, size_t k, ssx_value_type port, void *out)
+{
+    const void *values = ctx->part_values;
+    size_t at = ctx->part_at[k];
+    if (port == SSX_REAL) {
+        ((double *)out)[at] = type == SSX_FMI3_FLOAT64 ? ((const double *)values)[k]
+                                                       : (double)((const float *)values)[k];
+        return 0;
+    }
+    if (port == SSX_BOOLEAN) {
+        ((int *)out)[at] = ((const bool *)values)[k] ? 1 : 0;
+        return 0;
+    }
+    long long value = integer_at(type, values, k);
+    if (value < INT_MIN || value > INT_MAX) {
+        const variable *v = find(ctx, ctx->part_vr[k]);
+        if (type == SSX_FMI3_UINT64) {
+            say(ctx, "variable '%s' (UInt64) holds %llu, outside the range of the engine's "
+                "Integer ports (%d..%d)", v->name,
+                (unsigned long long)((const uint64_t *)values)[k], INT_MIN, INT_MAX);
+        } else {
+            say(ctx, "variable '%s' (%s) holds %lld, outside the range of the engine's Integer "
+                "ports (%d..%d)", v->name, type_names[type], value, INT_MIN, INT_MAX);
+        }
+        return -1;
+    }
+    ((int *)out)[at] = (int)value;
+    return 0;
+}
+
+/* Converts the engine's value at the part's position into part k of `type`; -1 when it does
+ * not fit the type. */
+static int give(fmi3_context *ctx, ssx_fmi3_type type, size_t k, ssx_value_type port,
+                const void *in)
+{
+    void *values = ctx->part_values;
+    size_t at = ctx->part_at[k];
+    if (port == SSX_REAL) {
+        double value = ((const double *)in)[at];
+        if (type == SSX_FMI3_FLOAT64) {
+            ((double *)values)[k] = value;
+        } else {
+            ((float *)values)[k] = (float)value;
+        }
+        return 0;
+    }
+    int value = ((const int *)in)[at];
+    if (port == SSX_BOOLEAN) {
+        ((bool *)values)[k] = value != 0;
+        return 0;
+    }
+    long long lo, hi;
+    integer_range(type, &lo, &hi);
+    if (value < lo || value > hi) {
+        say(ctx, "variable '%s' (%s) cannot take %d: outside %lld..%lld",
+            find(ctx, ctx->part_vr[k])->name, type_names[type], value, lo, hi);
+        return -1;
+    }
+    put_integer(type, values, k, value);
+    return 0;
+}
+
+/* The engine's get of `port` type: one fmi3 call per FMI 3.0 type among vr. */
+static int get_values(const ssx_fmu_function *fn, fmi3_context *ctx, ssx_value_type port,
+                      const unsigned int *vr, size_t n, void *out)
+{
+    int common = common_type(ctx, port, vr, n);
+    if (common < 0) {
+        return -1;
+    }
+    /* the usual case: nothing to convert */
+    if (common == SSX_FMI3_FLOAT64 || common == SSX_FMI3_INT32) {
+        return get_typed(fn, ctx->instance, (ssx_fmi3_type)common, vr, n, out);
+    }
+    if (reserve_parts(ctx, n) != 0) {
+        return -1;
+    }
+    int worst = fmi3OK;
+    for (int type = 0; type < SSX_FMI3_TYPE_COUNT; ++type) {
+        if (port_type((ssx_fmi3_type)type) != port) {
+            continue;
+        }
+        size_t m = gather(ctx, (ssx_fmi3_type)type, vr, n);
+        if (m == 0) {
+            continue;
+        }
+        int status = get_typed(fn, ctx->instance, (ssx_fmi3_type)type, ctx->part_vr, m,
+                               ctx->part_values);
+        worst = worse(worst, status);
+        if (status > fmi3Warning) {
+            return status;
+        }
+        for (size_t k = 0; k < m; ++k) {
+            if (take(ctx, (ssx_fmi3_type)type, k, port, out) != 0) {
+                return -1;
+            }
+        }
+    }
+    return worst;
+}
+
+static int set_values(const ssx_fmu_function *fn, fmi3_context *ctx, ssx_value_type port,
+                      const unsigned int *vr, size_t n, const void *in)
+{
+    int common = common_type(ctx, port, vr, n);
+    if (common < 0) {
+        return -1;
+    }
+    if (common == SSX_FMI3_FLOAT64 || common == SSX_FMI3_INT32) {
+        return set_typed(fn, ctx->instance, (ssx_fmi3_type)common, vr, n, in);
+    }
+    if (reserve_parts(ctx, n) != 0) {
+        return -1;
+    }
+    int worst = fmi3OK;
+    for (int type = 0; type < SSX_FMI3_TYPE_COUNT; ++type) {
+        if (port_type((ssx_fmi3_type)type) != port) {
+            continue;
+        }
+        size_t m = gather(ctx, (ssx_fmi3_type)type, vr, n);
+        if (m == 0) {
+            continue;
+        }
+        for (size_t k = 0; k < m; ++k) {
+            if (give(ctx, (ssx_fmi3_type)type, k, port, in) != 0) {
+                return -1;
+            }
+        }
+        int status = set_typed(fn, ctx->instance, (ssx_fmi3_type)type, ctx->part_vr, m,
+                               ctx->part_values);
+        worst = worse(worst, status);
+        if (status > fmi3Warning) {
+            return status;
+        }
+    }
+    return worst;
+}
+
+static int get_real(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                    double *values)
+{
+    return get_values(fn, instance, SSX_REAL, vr, n, values);
+}
+
+static int get_integer(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                       size_t n, int *values)
+{
+    return get_values(fn, instance, SSX_INTEGER, vr, n, values);
+}
+
+static int get_boolean(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                       size_t n, int *values)
+{
+    return get_values(fn, instance, SSX_BOOLEAN, vr, n, values);
+}
+
+static int set_real(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                    const double *values)
+{
+    return set_values(fn, instance, SSX_REAL, vr, n, values);
+}
+
+static int set_integer(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                       size_t n, const int *values)
+{
+    return set_values(fn, instance, SSX_INTEGER, vr, n, values);
+}
+
+static int set_boolean(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                       size_t n, const int *values)
+{
+    return set_values(fn, instance, SSX_BOOLEAN, vr, n, values);
+}
+
+static int get_string(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                      size_t n, const char **values)
+{
+    return (int)FMI3(fn, SLOT_GET_STRING, fmi3GetStringTYPE)(
+        ((fmi3_context *)instance)->instance, vr, n, values, n);
+}
+
+static int set_string(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                      size_t n, const char *const *values)
+{
+    return (int)FMI3(fn, SLOT_SET_STRING, fmi3SetStringTYPE)(
+        ((fmi3_context *)instance)->instance, vr, n, values, n);
+}
+
+static int get_binary(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                      size_t n, size_t *sizes, const unsigned char **values)
+{
+    return (int)FMI3(fn, SLOT_GET_BINARY, fmi3GetBinaryTYPE)(
+        ((fmi3_context *)instance)->instance, vr, n, sizes, values, n);
+}
+
+static int set_binary(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                      size_t n, const size_t *sizes, const unsigned char *const *values)
+{
+    return (int)FMI3(fn, SLOT_SET_BINARY, fmi3SetBinaryTYPE)(
+        ((fmi3_context *)instance)->instance, vr, n, sizes, values, n);
+}
+
+/* ------------------------------------------------------------------ stepping and events */
+
+static int do_step(const ssx_fmu_function *fn, void *instance, double t, double h,
+                   int no_set_state_prior)
+{
+    fmi3_context *ctx = instance;
+    fmi3Boolean event = fmi3False, terminate = fmi3False, early = fmi3False;
+    fmi3Float64 reached = t;
+    int status = (int)FMI3(fn, SLOT_DO_STEP, fmi3DoStepTYPE)(
+        ctx->instance, t, h, no_set_state_prior ? fmi3True : fmi3False, &event, &terminate,
+        &early, &reached);
+    ctx->outcome = (ssx_step_outcome){
+        .reported = 1,
+        .event_handling_needed = ctx->event_mode_used && event,
+        .terminate_simulation = terminate != fmi3False,
+        .early_return = ctx->early_return_allowed && early,
+        .last_successful_time = reached,
+    };
+    return status;
+}
+
+static void step_outcome(void *instance, ssx_step_outcome *outcome)
+{
+    *outcome = ((const fmi3_context *)instance)->outcome;
+}
+
+static int get_terminated(const ssx_fmu_function *fn, void *instance, int *terminated)
+{
+    (void)fn;
+    *terminated = ((const fmi3_context *)instance)->outcome.terminate_simulation;
+    return fmi3OK;
+}
+
+static int get_last_successful_time(const ssx_fmu_function *fn, void *instance, double *time)
+{
+    (void)fn;
+    *time = ((const fmi3_context *)instance)->outcome.last_successful_time;
+    return fmi3OK;
+}
+
+static int enter_event_mode(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI3(fn, SLOT_ENTER_EVENT_MODE, fmi3EnterEventModeTYPE)(
+        ((fmi3_context *)instance)->instance);
+}
+
+static int update_discrete_states(const ssx_fmu_function *fn, void *instance,
+                                  ssx_discrete_update *update)
+{
+    fmi3Boolean again = fmi3False, terminate = fmi3False, nominals = fmi3False;
+    fmi3Boolean values = fmi3False, next_defined = fmi3False;
+    fmi3Float64 next = 0.0;
+    int status = (int)FMI3(fn, SLOT_UPDATE_DISCRETE_STATES, fmi3UpdateDiscreteStatesTYPE)(
+        ((fmi3_context *)instance)->instance, &again, &terminate, &nominals, &values,
+        &next_defined, &next);
+    *update = (ssx_discrete_update){
+        .discrete_states_need_update = again != fmi3False,
+        .terminate_simulation = terminate != fmi3False,
+        .next_event_time_defined = next_defined != fmi3False,
+        .next_event_time = next,
+    };
+    return status;
+}
+
+static int enter_step_mode(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI3(fn, SLOT_ENTER_STEP_MODE, fmi3EnterStepModeTYPE)(
+        ((fmi3_context *)instance)->instance);
+}
+
+/* ------------------------------------------------------------------ states and derivatives */
+
+static int get_state(const ssx_fmu_function *fn, void *instance, void **state)
+{
+    return (int)FMI3(fn, SLOT_GET_STATE, fmi3GetFMUStateTYPE)(
+        ((fmi3_context *)instance)->instance, state);
+}
+
+static int set_state(const ssx_fmu_function *fn, void *instance, void *state)
+{
+    fmi3_context *ctx = instance;
+    /* the restored instance has not stepped yet: no step's news apply to it */
+    ctx->outcome = (ssx_step_outcome){0};
+    return (int)FMI3(fn, SLOT_SET_STATE, fmi3SetFMUStateTYPE)(ctx->instance, state);
+}
+
+static int free_state(const ssx_fmu_function *fn, void *instance, void **state)
+{
+    return (int)FMI3(fn, SLOT_FREE_STATE, fmi3FreeFMUStateTYPE)(
+        ((fmi3_context *)instance)->instance, state);
+}
+
+static int serialized_state_size(const ssx_fmu_function *fn, void *instance, void *state,
+                                 size_t *size)
+{
+    return (int)FMI3(fn, SLOT_SERIALIZED_STATE_SIZE, fmi3SerializedFMUStateSizeTYPE)(
+        ((fmi3_context *)instance)->instance, state, size);
+}
+
+static int serialize_state(const ssx_fmu_function *fn, void *instance, void *state, char *bytes,
+                           size_t size)
+{
+    return (int)FMI3(fn, SLOT_SERIALIZE_STATE, fmi3SerializeFMUStateTYPE)(
+        ((fmi3_context *)instance)->instance, state, (fmi3Byte *)bytes, size);
+}
+
+static int deserialize_state(const ssx_fmu_function *fn, void *instance, const char *bytes,
+                             size_t size, void **state)
+{
+    return (int)FMI3(fn, SLOT_DESERIALIZE_STATE, fmi3DeserializeFMUStateTYPE)(
+        ((fmi3_context *)instance)->instance, (const fmi3Byte *)bytes, size, state);
+}
+
+static int directional_derivative(const ssx_fmu_function *fn, void *instance,
+                                  const unsigned int *unknowns, size_t n_unknowns,
+                                  const unsigned int *knowns, size_t n_knowns,
+                                  const double *dv_known, double *dv_unknown)
+{
+    return (int)FMI3(fn, SLOT_DIRECTIONAL_DERIVATIVE, fmi3GetDirectionalDerivativeTYPE)(
+        ((fmi3_context *)instance)->instance, unknowns, n_unknowns, knowns, n_knowns, dv_known,
+        n_knowns, dv_unknown, n_unknowns);
+}
+
+const ssx_fmu_backend ssx_fmi3_backend = {
+    .standard = "FMI 3.0 Co-Simulation",
+    .version = "FMI 3.0",
+    .status_names = fmi3_status_names,
+    .functions = fmi3_functions,
+    .n_functions = sizeof fmi3_functions / sizeof fmi3_functions[0],
+    .context_size = sizeof(fmi3_context),
+    .instantiate = instantiate,
+    .free_instance = free_instance,
+    .setup_experiment = setup_experiment,
+    .enter_initialization_mode = enter_initialization_mode,
+    .exit_initialization_mode = exit_initialization_mode,
+    .terminate = terminate,
+    .reset = reset,
+    .get_real = get_real,
+    .get_integer = get_integer,
+    .get_boolean = get_boolean,
+    .set_real = set_real,
+    .set_integer = set_integer,
+    .set_boolean = set_boolean,
+    .do_step = do_step,
+    .get_state = get_state,
+    .set_state = set_state,
+    .free_state = free_state,
+    .serialized_state_size = serialized_state_size,
+    .serialize_state = serialize_state,
+    .deserialize_state = deserialize_state,
+    .directional_derivative = directional_derivative,
+    .get_terminated = get_terminated,
+    .get_last_successful_time = get_last_successful_time,
+    .get_string = get_string,
+    .set_string = set_string,
+    .get_binary = get_binary,
+    .set_binary = set_binary,
+    .enter_event_mode = enter_event_mode,
+    .update_discrete_states = update_discrete_states,
+    .enter_step_mode = enter_step_mode,
+    .step_outcome = step_outcome,
+    .release_context = release_context,
+};
