@@ -220,6 +220,16 @@ static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu
         ctx->event_mode_used ? fmi3True : fmi3False,
         ctx->early_return_allowed ? fmi3True : fmi3False, NULL, 0, ctx,
         (fmi3LogMessageCallback)logger, NULL);
+    if (ctx->instance == NULL && ctx->event_mode_used) {
+        /* Some FMUs declare hasEventMode and then refuse it (the Reference FMUs' Roberts):
+         * without event mode the FMU handles its events inside doStep, which FMI 3.0 allows
+         * any importer to choose. */
+        ctx->event_mode_used = 0;
+        ctx->instance = FMI3(fn, SLOT_INSTANTIATE, fmi3InstantiateCoSimulationTYPE)(
+            instance_name, token, resource_path, fmi3False, logging_on ? fmi3True : fmi3False,
+            fmi3False, ctx->early_return_allowed ? fmi3True : fmi3False, NULL, 0, ctx,
+            (fmi3LogMessageCallback)logger, NULL);
+    }
     return ctx->instance != NULL ? ctx : NULL;
 }
 

@@ -11,10 +11,10 @@ variability "continuous", `initial` from FMI's table), so code written against f
 reads these unchanged.
 
 It reads FMI 2.0 in UTF-8 only (anything else is refused at the root element or the XML
-declaration). It also refuses, as FMPy's validation does, what would make syssimx exchange
-wrong data: two variables of one name, a value reference outside 0..2**32-1, a start that is
-not a value of the variable's type, an undefined declaredType, a ModelStructure index that
-names no variable.
+declaration); an FMI 3.0 description is handed to description_fmi3.py. It also refuses, as
+FMPy's validation does, what would make syssimx exchange wrong data: two variables of one
+name, a value reference outside 0..2**32-1, a start that is not a value of the variable's type,
+an undefined declaredType, a ModelStructure index that names no variable.
 """
 
 from __future__ import annotations
@@ -36,6 +36,7 @@ from fmpy.model_description import (
 
 from ..engine import ffi, lib
 from ..errors import FMUFileError
+from .description_fmi3 import is_fmi3, read_fmi3_description
 from .variable_table import VariableTable, words
 
 MAX_VALUE_REFERENCE = 2**32 - 1  # fmi2ValueReference is an unsigned int, as the engine reads it
@@ -52,6 +53,7 @@ _CHUNK = 2**20
 
 def read_description(stream: IO[bytes], where: str | Path) -> ModelDescription:
     """Read modelDescription.xml from `stream`; FMUFileError naming `where` if it is unusable.
+    An FMI 3.0 description is read from the archive `where` by description_fmi3.
 
     No entity but XML's five predefined ones is resolved, no DTD accepted and nothing fetched
     from the network.
@@ -65,6 +67,8 @@ def read_description(stream: IO[bytes], where: str | Path) -> ModelDescription:
     if md == ffi.NULL:
         raise MemoryError(f"{where}: no memory to read modelDescription.xml")
     md = ffi.gc(md, engine.ssx_md_free)
+    if md.error.problem == engine.SSX_MD_NOT_FMI2 and is_fmi3(_optional(md.error.text)):
+        return read_fmi3_description(Path(where))
     if md.error.problem != engine.SSX_MD_OK:
         raise FMUFileError(_message(md.error, str(where)))
     return _description(md)
@@ -131,7 +135,7 @@ def _message(error: Any, where: str) -> str:
     kind = ffi.string(ffi.cast("ssx_md_problem", error.problem))
     if kind == "SSX_MD_NOT_FMI2":
         return (f"{where}: FMI version {problem.text} is not supported (syssimx runs FMI 2.0 "
-                "Co-Simulation FMUs)")
+                "and FMI 3.0 Co-Simulation FMUs)")
     return f"{where}: modelDescription.xml: {_MESSAGES[kind](problem)}"
 
 

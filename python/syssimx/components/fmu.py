@@ -1,4 +1,4 @@
-"""FMUComponent: an FMI 2.0 Co-Simulation FMU stepped by the engine.
+"""FMUComponent: an FMI 2.0 or FMI 3.0 Co-Simulation FMU stepped by the engine.
 
 Plain use costs no Python per step: the engine calls the FMU directly, rolls it back with
 fmi2Get/SetFMUstate for event localization and evaluates variable indicators in C. Overriding
@@ -13,6 +13,12 @@ Like FMPy, syssimx writes to the FMU only the values the user set (parameters, i
 FMU keeps its own defaults otherwise, even where the modelDescription declares a rounded copy
 of them. fmi2SetupExperiment gets the tolerance the user gave (to the component, else to
 System.initialize), else the DefaultExperiment's.
+
+An FMI 3.0 FMU is instantiated with event mode when it declares hasEventMode, and with early
+return when it can return early: it then handles its own events inside the engine's step, at
+their time, without rollback (they appear in the result's events as its own). Its Float32 and
+integer types travel as Real and Integer ports; String and Binary variables are set with
+set_parameters (inputs too) and read with get_state, never connected.
 """
 
 from __future__ import annotations
@@ -31,14 +37,15 @@ from ..units import is_quantity, magnitude_in
 from .base import CoSimComponent
 from .extraction import extractions
 from .fmu_instance import FMUInstance
-from .model_description import FMUInfo, Parameter, read_fmu, variable_unit
+from .model_description import PORT_TYPES, FMUInfo, Parameter, read_fmu, variable_unit
 
 if TYPE_CHECKING:
     from ..bridge.plan import EnginePlan
 
 
 class FMUComponent(CoSimComponent):
-    """An FMI 2.0 Co-Simulation FMU (linux64 binary) as a component."""
+    """An FMI 2.0 (linux64 binary) or FMI 3.0 (x86_64-linux) Co-Simulation FMU as a
+    component."""
 
     def __init__(self, name: str, fmu_path: str | Path, group: str | None = None,
                  tolerance: float | None = None, *, isolated: bool = False,
@@ -57,6 +64,10 @@ class FMUComponent(CoSimComponent):
         self.step_timeout = step_timeout
         self.info: FMUInfo = read_fmu(fmu_path)
         self.fmu_path = str(self.info.path)
+        if isolated and self.info.is_fmi3:
+            raise ConfigurationError(f"component {name!r}: isolated=True is not supported for "
+                                     f"FMI 3.0 FMUs ({self.fmu_path}): the FMU host process "
+                                     "speaks FMI 2.0 only")
         # the relative tolerance for fmi2SetupExperiment; None: System.initialize's, else the
         # DefaultExperiment's
         self.tolerance = _checked_tolerance(tolerance, f"{name}: tolerance")
@@ -70,7 +81,7 @@ class FMUComponent(CoSimComponent):
         self._input_starts = dict(self.info.input_starts)  # set_inputs changes the copy
         self._inputs_set: set[str] = set()
         fmu, self._unzip_dir, extraction_key = _load(self.info, name, isolated, step_timeout)
-        self.instance = FMUInstance(fmu, name)
+        self.instance = FMUInstance(fmu, name, fmi3=self.info.is_fmi3)
         # resolved now: a finalizer must not be the first to look up a library function
         self._finalizer = weakref.finalize(self, _release, lib().ssx_fmu_free, self.instance,
                                            self._unzip_dir, extraction_key)
@@ -136,13 +147,25 @@ class FMUComponent(CoSimComponent):
                    PortType.BOOL: self.instance.setBoolean}
         for kind, (refs, vals) in self._by_type(values).items():
             setters[kind](refs, vals)
+        self._write_texts(values)
+
+    def _write_texts(self, values: dict[str, Any]) -> None:
+        """The FMI 3.0 String and Binary parameters among `values`."""
+        setters = {"String": self.instance.setString, "Binary": self.instance.setBinary}
+        for name, value in values.items():
+            parameter = self.info.parameters.get(name)
+            if parameter is not None and parameter.fmi_type in setters:
+                setters[parameter.fmi_type]([parameter.value_reference], [value])
 
     def _by_type(self, values: dict[str, Any]) -> dict[PortType, tuple[list[int], list[Any]]]:
-        """Value references and values of parameters and inputs, grouped by value type."""
+        """Value references and values of parameters and inputs, grouped by value type (FMI
+        3.0 String and Binary ones are written by _write_texts)."""
         by_type: dict[PortType, tuple[list[int], list[Any]]] = {}
         for name, value in values.items():
             kind = self.input_specs[name].type if name in self.input_specs \
                 else self.info.parameters[name].type
+            if kind == PortType.STRING:
+                continue
             refs, vals = by_type.setdefault(kind, ([], []))
             refs.append(self.value_reference(name))
             vals.append(value)
@@ -236,7 +259,12 @@ class FMUComponent(CoSimComponent):
             else:
                 starts = {**self._parameter_starts(step_mode=False),
                           **self._input_starts_to_write()}
-                self.instance.initialize(t, self._experiment_tolerance, self._by_type(starts))
+                texts = {n: v for n, v in starts.items()
+                         if n in self.info.parameters
+                         and self.info.parameters[n].type == PortType.STRING}
+                self.instance.initialize(
+                    t, self._experiment_tolerance, self._by_type(starts),
+                    in_initialization_mode=(lambda: self._write_texts(texts)) if texts else None)
         finally:
             self.parameters, self._parameters_set = saved, saved_set
         self.t = t
@@ -277,13 +305,17 @@ class FMUComponent(CoSimComponent):
     def get_state(self) -> dict[str, dict[str, Any]]:
         """Outputs, parameters and the other non-fixed, non-local variables, read from the FMU
         (one fmi2Get call per value type)."""
-        getters = {"Real": self.instance.getReal, "Integer": self.instance.getInteger,
-                   "Enumeration": self.instance.getInteger, "Boolean": self.instance.getBoolean}
+        getters = {PortType.REAL: self.instance.getReal, PortType.INT: self.instance.getInteger,
+                   PortType.BOOL: self.instance.getBoolean}
+        if self.info.is_fmi3:
+            getters.update({"String": self.instance.getString,
+                            "Binary": self.instance.getBinary})
         by_type: dict[str, list[Any]] = {}
         for variable in self.info.description.modelVariables:
+            kind = PORT_TYPES.get(variable.type, variable.type)
             if (variable.variability != "fixed" and variable.causality != "local"
-                    and variable.type in getters):
-                by_type.setdefault(variable.type, []).append(variable)
+                    and kind in getters and not getattr(variable, "dimensions", None)):
+                by_type.setdefault(kind, []).append(variable)
         state: dict[str, dict[str, Any]] = {}
         for kind, variables in by_type.items():
             values = getters[kind]([v.valueReference for v in variables])
@@ -334,6 +366,10 @@ def _first_given(*values: float | None) -> float | None:
 
 def _coerce_parameter(component: str, parameter: Parameter, value: Any) -> Any:
     where = f"{component}.{parameter.name}"
+    if parameter.fmi_type == "Binary":
+        if not isinstance(value, bytes | bytearray):
+            raise ConfigurationError(f"{where} is Binary; got {type(value).__name__} {value!r}")
+        return bytes(value)
     if parameter.type == PortType.REAL:
         if is_quantity(value):
             try:
@@ -366,18 +402,49 @@ def _load(info: FMUInfo, name: str, isolated: bool, step_timeout: float | None
         raise FMUFileError(f"{info.path}: {info.binary_name()} is not a file inside the "
                            "extracted archive; refused to load it")
     error = ffi.new("char[1024]")
-    arguments = (str(binary).encode(), info.model_identifier.encode(),
-                 info.description.guid.encode(), (unzip_dir / "resources").as_uri().encode(),
-                 name.encode(), 0, error, 1024)
-    if host is not None:
-        handle = lib().ssx_fmu_load_isolated(host, step_timeout or 0.0, *arguments)
+    if info.is_fmi3:
+        handle = _load_fmi3(info, binary, unzip_dir, name, error)
+    elif host is not None:
+        handle = lib().ssx_fmu_load_isolated(host, step_timeout or 0.0, *_arguments(
+            info, binary, unzip_dir, name, error))
     else:
-        handle = lib().ssx_fmu_load(*arguments)
+        handle = lib().ssx_fmu_load(*_arguments(info, binary, unzip_dir, name, error))
     if handle == ffi.NULL:
         extractions.release(unzip_dir, key)
         raise FMUFileError(f"{info.path}: cannot load {info.binary_name()}: "
                            f"{ffi.string(error).decode(errors='replace')}")
     return handle, unzip_dir, key
+
+
+def _arguments(info: FMUInfo, binary: Path, unzip_dir: Path, name: str, error: Any
+               ) -> tuple[Any, ...]:
+    """ssx_fmu_load's arguments after the host's: FMI 2.0 gives the resources as a URI."""
+    return (str(binary).encode(), info.model_identifier.encode(),
+            info.description.guid.encode(), (unzip_dir / "resources").as_uri().encode(),
+            name.encode(), 0, error, 1024)
+
+
+def _load_fmi3(info: FMUInfo, binary: Path, unzip_dir: Path, name: str, error: Any) -> Any:
+    """ssx_fmu_load_fmi3 with the FMU's type table. Event mode when the FMU has it, early
+    return when it may return early: its events are then handled at their time."""
+    cosimulation = info.description.coSimulation
+    rows = info.fmi3_variables
+    # the struct does not keep what it points at alive: these locals do, until the engine
+    # copied them
+    texts = [ffi.new("char[]", n.encode()) for _, _, n in rows]
+    refs = ffi.new("unsigned int[]", [vr for vr, _, _ in rows])
+    codes = ffi.new("unsigned char[]", [code for _, code, _ in rows])
+    names = ffi.new("const char *[]", texts)
+    variables = ffi.new("ssx_fmi3_variables *", {
+        "vr": refs, "type": codes, "name": names, "n": len(rows),
+        "event_mode_used": bool(cosimulation.hasEventMode),
+        "early_return_allowed": bool(cosimulation.canReturnEarlyAfterIntermediateUpdate
+                                     or cosimulation.mightReturnEarlyFromDoStep)})
+    # FMI 3.0 gives the resources as a directory path ending in a separator
+    resources = f"{unzip_dir / 'resources'}/"
+    return lib().ssx_fmu_load_fmi3(
+        str(binary).encode(), info.model_identifier.encode(), info.description.guid.encode(),
+        resources.encode(), name.encode(), 0, variables, error, 1024)
 
 
 def _release(free_fmu: Any, instance: FMUInstance, unzip_dir: Path,

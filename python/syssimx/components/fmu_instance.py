@@ -46,9 +46,10 @@ def _free_state(free_state: Any, instance: FMUInstance, generation: int, handle:
 class FMUInstance:
     """Proxy with FMU2Slave's methods; `mode` is "none", "instantiated", "init" or "step"."""
 
-    def __init__(self, fmu: Any, component_name: str) -> None:
+    def __init__(self, fmu: Any, component_name: str, fmi3: bool = False) -> None:
         self._fmu = fmu
         self.component_name = component_name
+        self.fmi3 = fmi3  # the engine names each call by its standard: messages use its name
         self.mode = "none"
         self.generation = 0  # bumped whenever the live instance is freed or replaced
         self._free_state_function = lib().ssx_fmu_free_state
@@ -88,6 +89,8 @@ class FMUInstance:
 
     def _check(self, status: int, call: str) -> int:
         if status > 1 or status < 0:
+            if self.fmi3:
+                call = string(lib().ssx_fmu_last_call(self.fmu)) or call
             message = string(lib().ssx_fmu_last_message(self.fmu))
             raise FMUError(f"{self.component_name}: {call} returned {status_name(status)}"
                            + (f": {message}" if message else ""),
@@ -212,6 +215,35 @@ class FMUInstance:
         self._check(lib().ssx_fmu_set_boolean(self.fmu, refs, n,
                                               ffi.new("int[]", [int(bool(v)) for v in values])),
                     "fmi2SetBoolean")
+
+    # FMI 3.0's texts and bytes (other FMUs refuse them)
+    def getString(self, vr: Sequence[int]) -> list[str]:  # noqa: N802
+        refs, n = self._vrs(vr)
+        values = ffi.new("const char *[]", n)
+        self._check(lib().ssx_fmu_get_string(self.fmu, refs, n, values), "fmi3GetString")
+        return [string(v) for v in values]
+
+    def setString(self, vr: Sequence[int], values: Sequence[str]) -> None:  # noqa: N802
+        refs, n = self._vrs(vr)
+        texts = [ffi.new("char[]", str(v).encode()) for v in values]
+        self._check(lib().ssx_fmu_set_string(self.fmu, refs, n,
+                                             ffi.new("const char *[]", texts)), "fmi3SetString")
+
+    def getBinary(self, vr: Sequence[int]) -> list[bytes]:  # noqa: N802
+        refs, n = self._vrs(vr)
+        sizes = ffi.new("size_t[]", n)
+        values = ffi.new("const unsigned char *[]", n)
+        self._check(lib().ssx_fmu_get_binary(self.fmu, refs, n, sizes, values),
+                    "fmi3GetBinary")
+        return [ffi.buffer(values[k], sizes[k])[:] for k in range(n)]
+
+    def setBinary(self, vr: Sequence[int], values: Sequence[bytes]) -> None:  # noqa: N802
+        refs, n = self._vrs(vr)
+        arrays = [ffi.new("unsigned char[]", bytes(v)) for v in values]
+        sizes = ffi.new("size_t[]", [len(v) for v in values])
+        self._check(lib().ssx_fmu_set_binary(self.fmu, refs, n, sizes,
+                                             ffi.new("const unsigned char *[]", arrays)),
+                    "fmi3SetBinary")
 
     # ------------------------------------------------------------ states
     def getFMUstate(self, state: FMUState | None = None) -> FMUState:  # noqa: N802

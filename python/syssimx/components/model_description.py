@@ -24,27 +24,38 @@ from ..errors import FMUFileError
 from ..graph.analysis import feedthrough_from_model_description
 from ..units import to_unit
 from .archive import open_archive
+from .description_fmi3 import FMI3_TYPE_CODES, is_fmi3
 from .description_reader import read_description
-from .variable_table import ScalarVariable, VariableTable
+from .variable_table import ScalarVariable
 
 logger = logging.getLogger("syssimx.fmu")
 
-_PORT_TYPES = {"Real": PortType.REAL, "Integer": PortType.INT, "Enumeration": PortType.INT,
-               "Boolean": PortType.BOOL}
+# the engine's port type of each FMI 2.0 and FMI 3.0 value type
+PORT_TYPES = {"Real": PortType.REAL, "Integer": PortType.INT, "Enumeration": PortType.INT,
+               "Boolean": PortType.BOOL, "Float64": PortType.REAL, "Float32": PortType.REAL,
+               **dict.fromkeys(("Int8", "UInt8", "Int16", "UInt16", "Int32", "UInt32", "Int64",
+                                "UInt64"), PortType.INT)}
+# FMI 3.0 values that are no port: settable as parameters, readable, never connected
+TEXT_TYPES = ("String", "Binary")
 
 PLATFORM = "linux64" if sys.platform.startswith("linux") else sys.platform
+# FMI 3.0 names the platform by architecture and system
+PLATFORM_FMI3 = "x86_64-linux" if sys.platform.startswith("linux") else sys.platform
 
 
 class Parameter(NamedTuple):
-    """A settable FMU parameter (causality "parameter"). Immutable; a tuple because a large
-    model has 10**5 of them and a tuple is made in half the time of a frozen dataclass."""
+    """A settable FMU parameter (causality "parameter"; for FMI 3.0 also a String or Binary
+    input, which no port carries). Immutable; a tuple because a large model has 10**5 of them
+    and a tuple is made in half the time of a frozen dataclass. `fmi_type` is the variable's
+    type element ("Real", "Float32", "String", "Binary", ...)."""
 
     name: str
     value_reference: int
     type: PortType
     unit: str | None
     tunable: bool
-    start: float | int | bool | str | None
+    start: float | int | bool | str | bytes | None
+    fmi_type: str = ""
 
 
 @dataclass
@@ -62,9 +73,19 @@ class FMUInfo:
     parameters: dict[str, Parameter] = field(default_factory=dict)
     input_starts: dict[str, float | int | bool] = field(default_factory=dict)  # 0 if none given
     feedthrough: dict[str, set[str]] = field(default_factory=dict)
+    fmi_version: str = "2.0"
+    # FMI 3.0: (value reference, ssx_fmi3_type code, name) of every scalar the engine may get
+    # or set, and the String and Binary outputs, which no port carries
+    fmi3_variables: list[tuple[int, int, str]] = field(default_factory=list)
+    text_outputs: dict[str, ScalarVariable] = field(default_factory=dict)
+
+    @property
+    def is_fmi3(self) -> bool:
+        return is_fmi3(self.fmi_version)
 
     def binary_name(self) -> str:
-        return f"binaries/{PLATFORM}/{self.model_identifier}.so"
+        platform = PLATFORM_FMI3 if self.is_fmi3 else PLATFORM
+        return f"binaries/{platform}/{self.model_identifier}.so"
 
 
 def variable_unit(variable: ScalarVariable) -> str | None:
@@ -87,10 +108,13 @@ def _pint_unit(unit: str) -> str | None:
     return None
 
 
-def _start_value(variable: ScalarVariable, kind: PortType) -> float | int | bool | str | None:
+def _start_value(variable: ScalarVariable, kind: PortType
+                 ) -> float | int | bool | str | bytes | None:
     start: Any = variable.start
     if start is None:
         return None
+    if variable.type == "Binary":
+        return bytes.fromhex(start.strip())
     text = start.strip()
     if kind == PortType.REAL:
         return float(text)
@@ -143,15 +167,21 @@ def _read_fmu(path: Path) -> FMUInfo:
             raise FMUFileError(f"{path} is a Model-Exchange-only FMU; syssimx needs "
                                "Co-Simulation")
         identifier = _model_identifier(description.coSimulation.modelIdentifier, path)
-        table: VariableTable = description.modelVariables
+        fmi3 = is_fmi3(description.fmiVersion)
+        table = description.modelVariables
         info = FMUInfo(path=path, description=description, model_identifier=identifier,
                        can_get_set_state=bool(description.coSimulation.canGetAndSetFMUstate),
-                       variables=table.by_name(),
-                       default_tolerance=_default_tolerance(description, path))
+                       variables=({v.name: v for v in table} if fmi3 else table.by_name()),
+                       default_tolerance=_default_tolerance(description, path),
+                       fmi_version=description.fmiVersion)
         if info.binary_name() not in names:
-            raise FMUFileError(f"{path} has no {PLATFORM} binary ({info.binary_name()} missing)")
+            raise FMUFileError(f"{path} has no {PLATFORM_FMI3 if fmi3 else PLATFORM} binary "
+                               f"({info.binary_name()} missing)")
     # only these become objects: a large model's locals stay in the reader's arrays
-    ports = table.with_causality(*_PORT_CAUSALITIES)
+    ports = ([v for v in table if v.causality in _PORT_CAUSALITIES] if fmi3
+             else table.with_causality(*_PORT_CAUSALITIES))
+    if fmi3:
+        info.fmi3_variables = _fmi3_variables(table)
     _collect_ports_and_parameters(info, ports)
     _collect_feedthrough(info, [v for v in ports if v.causality in ("input", "output")])
     return info
@@ -199,9 +229,11 @@ def _collect_ports_and_parameters(info: FMUInfo, ports: list[ScalarVariable]) ->
     unreadable: dict[str, list[str]] = {}  # unit pint cannot read -> the variables using it
     readable: dict[str, str | None] = {}  # the FMI unit -> what pint reads (a large FMU
     for variable in ports:  # repeats a few units many times)
-        kind = _PORT_TYPES.get(variable.type)
+        kind = PORT_TYPES.get(variable.type)
         if kind is None:
-            continue  # String variables have no place among doubles
+            if info.is_fmi3 and variable.type in TEXT_TYPES:
+                _collect_text(info, variable)
+            continue  # FMI 2.0 String variables have no place among doubles
         unit = variable_unit(variable) if kind == PortType.REAL else None
         if unit:
             if unit not in readable:
@@ -221,11 +253,37 @@ def _collect_ports_and_parameters(info: FMUInfo, ports: list[ScalarVariable]) ->
         elif variable.causality == "parameter":
             info.parameters[variable.name] = Parameter(
                 variable.name, variable.valueReference, kind, unit,
-                variable.variability == "tunable", _start_value(variable, kind))
+                variable.variability == "tunable", _start_value(variable, kind), variable.type)
     for unit, names in unreadable.items():
         others = f" and {len(names) - 1} more" if len(names) > 1 else ""
         logger.warning("%s: unit %r of variable %r%s is unknown to pint; dropped (those ports "
                        "carry no unit)", info.path.name, unit, names[0], others)
+
+
+def _collect_text(info: FMUInfo, variable: ScalarVariable) -> None:
+    """An FMI 3.0 String or Binary variable: an output is readable, a parameter or an input is
+    set like a parameter."""
+    if variable.causality == "output":
+        info.text_outputs[variable.name] = variable
+        return
+    start = variable.start
+    if variable.type == "Binary" and start is not None:
+        start = bytes.fromhex(start.strip())
+    info.parameters[variable.name] = Parameter(
+        variable.name, variable.valueReference, PortType.STRING, None,
+        variable.causality == "input" or variable.variability == "tunable", start, variable.type)
+
+
+def _fmi3_variables(variables: Any) -> list[tuple[int, int, str]]:
+    """The engine's FMI 3.0 type table: each numeric or Boolean scalar once per value
+    reference (an alias shares its variable's)."""
+    table: dict[int, tuple[int, int, str]] = {}
+    for variable in variables:
+        code = FMI3_TYPE_CODES.get(variable.type)
+        if code is not None and not variable.dimensions:
+            table.setdefault(variable.valueReference,
+                             (variable.valueReference, code, variable.name))
+    return list(table.values())
 
 
 def _collect_feedthrough(info: FMUInfo, inputs_and_outputs: list[ScalarVariable]) -> None:

@@ -1,0 +1,65 @@
+"""FMI 3.0 modelDescription.xml, read with FMPy's reader and checked for what syssimx runs.
+
+The engine's one-pass reader (description_reader.py) is FMI 2.0's: FMI 3.0 names a variable by
+its type element (`<Float64>`, `<Int8>`, ...), gives it dimensions, clocks and aliases, and
+states ModelStructure by value reference. FMPy reads all of that into the same objects (fmpy's
+attribute names), so the rest of syssimx reads an FMI 3.0 description like an FMI 2.0 one.
+
+syssimx steps FMI 3.0 Co-Simulation FMUs. It refuses, naming the file and the element:
+Model Exchange only, scheduled execution, any Clock variable (clocked partitions need a
+scheduler syssimx does not have), and arrays among the inputs, outputs and parameters (the
+engine's ports are scalars).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from fmpy.model_description import ModelDescription
+
+from ..errors import FMUFileError
+
+# the FMI 3.0 types syssimx exchanges, by the engine's ssx_fmi3_type code
+FMI3_TYPE_CODES = {"Float64": 0, "Float32": 1, "Int8": 2, "UInt8": 3, "Int16": 4, "UInt16": 5,
+                   "Int32": 6, "UInt32": 7, "Int64": 8, "UInt64": 9, "Boolean": 10,
+                   "Enumeration": 8}  # FMI 3.0 enumerations are exchanged as Int64
+_PORT_CAUSALITIES = ("input", "output", "parameter")
+
+
+def is_fmi3(version: str | None) -> bool:
+    return version is not None and version.startswith("3.")
+
+
+def read_fmi3_description(path: Path) -> ModelDescription:
+    """The FMI 3.0 description of the FMU archive at `path`; FMUFileError naming the file and
+    the element when syssimx cannot run it."""
+    from fmpy import read_model_description
+
+    try:
+        description = read_model_description(str(path), validate=False)
+    except Exception as exc:  # fmpy raises many kinds for a broken description
+        raise FMUFileError(f"{path}: modelDescription.xml: {exc or type(exc).__name__}") from exc
+    if description.coSimulation is None:
+        if description.modelExchange is not None:
+            raise FMUFileError(f"{path}: FMI 3.0 Model Exchange is not supported yet (syssimx "
+                               "runs FMI 3.0 Co-Simulation FMUs)")
+        if description.scheduledExecution is not None:
+            raise FMUFileError(f"{path}: FMI 3.0 Scheduled Execution is not supported (syssimx "
+                               "runs FMI 3.0 Co-Simulation FMUs without clocks)")
+        raise FMUFileError(f"{path}: the FMI 3.0 description declares no CoSimulation interface")
+    for variable in description.modelVariables:
+        _check_variable(variable, path)
+    # fmpy keeps FMI 3.0's token under both names; syssimx passes it where FMI 2.0 has the guid
+    description.guid = description.instantiationToken
+    return description
+
+
+def _check_variable(variable: Any, path: Path) -> None:
+    if variable.type == "Clock":
+        raise FMUFileError(f"{path}: variable {variable.name!r} is a Clock: clocked FMI 3.0 FMUs "
+                           "(clocks, model partitions) are not supported")
+    if variable.dimensions and variable.causality in _PORT_CAUSALITIES:
+        raise FMUFileError(f"{path}: variable {variable.name!r} is an array "
+                           f"({variable.causality}, {len(variable.dimensions)} dimension(s)): "
+                           "array inputs, outputs and parameters are not supported")
