@@ -151,6 +151,8 @@ typedef struct {
     int (*enter_step_mode)(const ssx_fmu_function *fn, void *instance);
     /* what the last doStep said besides its status; NULL: only the status (FMI 2.0) */
     void (*step_outcome)(void *instance, ssx_step_outcome *outcome);
+    /* the name of the variable vr, NULL when unknown; NULL: the back-end keeps no names */
+    const char *(*variable_name)(const void *context, unsigned int vr);
     /* frees what the back-end put into its context at load; NULL: nothing */
     void (*release_context)(void *context);
 } ssx_fmu_backend;

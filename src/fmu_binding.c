@@ -686,6 +686,15 @@ const char *ssx_fmu_status_text(const ssx_fmu *fmu, int status)
     return "no status (the engine failed)";
 }
 
+const char *ssx_fmu_variable_name(const ssx_fmu *fmu, unsigned int vr)
+{
+    const char *name = NULL;
+    if (fmu != NULL && fmu->context != NULL && fmu->backend->variable_name != NULL) {
+        name = fmu->backend->variable_name(fmu->context, vr);
+    }
+    return name != NULL ? name : "";
+}
+
 const char *ssx_fmu_function_name(const ssx_fmu *fmu, int slot)
 {
     if (fmu == NULL || slot < 0 || slot >= SLOT_COUNT || fmu->names[slot] == NULL) {

@@ -25,6 +25,10 @@ const char *ssx_fmu_status_text(const ssx_fmu *fmu, int status);
  * has none. */
 const char *ssx_fmu_function_name(const ssx_fmu *fmu, int slot);
 
+/* The name of the variable with value reference vr when the FMU was loaded with its names
+ * (FMI 3.0), else "". */
+const char *ssx_fmu_variable_name(const ssx_fmu *fmu, unsigned int vr);
+
 /* What an FMI 3.0 doStep returns besides its status. `reported` is 0 when the standard says
  * nothing more than the status (FMI 2.0); event_handling_needed is 1 only for an instance made
  * with eventModeUsed. */

@@ -1,5 +1,6 @@
 /* Built-in behaviour of an FMU component: its FMI calls, batched by value type, what the
  * statuses of a step mean, and the events an FMI 3.0 FMU handles in its own step. */
+#include <limits.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -78,6 +79,17 @@ static int inputs_unchanged(const ssx_component *c)
     return 1;
 }
 
+/* An Integer input's value is an int at the FMU boundary; one beyond it cannot be written. */
+static int integer_out_of_range(ssx_system *sys, ssx_component *c, unsigned int vr, double value)
+{
+    const char *name = ssx_fmu_variable_name(c->fmu, vr);
+    return fail(sys, c->index, -1, sys->time,
+                "component '%s': input %s%s%s(value reference %u) receives %.17g at t=%.17g, "
+                "outside the range of the engine's Integer ports (%d..%d)",
+                c->name, name[0] ? "'" : "", name, name[0] ? "' " : "", vr, value, sys->time,
+                INT_MIN, INT_MAX);
+}
+
 static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
 {
     if (inputs_unchanged(c)) {
@@ -100,6 +112,9 @@ static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
         }
         for (size_t i = 0; i < b->n; ++i) {
             double value = c->inputs[b->port[i]];
+            if (type == SSX_INTEGER && !(value > INT_MIN - 0.5 && value < INT_MAX + 0.5)) {
+                return integer_out_of_range(sys, c, b->vr[i], value);
+            }
             /* integers round to nearest: a scaled connection may land a hair off an integer */
             c->int_scratch[i] = type == SSX_BOOLEAN ? (value != 0.0)
                                                     : (int)(value < 0 ? value - 0.5 : value + 0.5);

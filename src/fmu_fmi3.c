@@ -685,6 +685,12 @@ static int set_binary(const ssx_fmu_function *fn, void *instance, const unsigned
         ((fmi3_context *)instance)->instance, vr, n, sizes, values, n);
 }
 
+static const char *variable_name(const void *context, unsigned int vr)
+{
+    const variable *v = find(context, vr);
+    return v != NULL ? v->name : NULL;
+}
+
 /* ------------------------------------------------------------------ stepping and events */
 
 static int do_step(const ssx_fmu_function *fn, void *instance, double t, double h,
@@ -846,5 +852,6 @@ const ssx_fmu_backend ssx_fmi3_backend = {
     .update_discrete_states = update_discrete_states,
     .enter_step_mode = enter_step_mode,
     .step_outcome = step_outcome,
+    .variable_name = variable_name,
     .release_context = release_context,
 };

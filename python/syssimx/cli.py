@@ -51,6 +51,9 @@ CAPABILITIES = (
     "canInterpolateInputs",
     "needsExecutionTool",
 )
+# what an FMI 3.0 Co-Simulation FMU adds: whether it handles its own events at their time
+CAPABILITIES_FMI3 = ("hasEventMode", "mightReturnEarlyFromDoStep",
+                     "canReturnEarlyAfterIntermediateUpdate")
 
 
 # the numpy type FMPy casts an input column to, by the input's type
@@ -250,7 +253,8 @@ def _info(args: argparse.Namespace, out: TextIO) -> None:
         out.write(f"Default experiment: {', '.join(settings) or 'none'}\n")
     if md.coSimulation is not None:
         out.write(f"\nCo-Simulation (model identifier {md.coSimulation.modelIdentifier}):\n")
-        for capability in CAPABILITIES:
+        fmi3 = md.fmiVersion.startswith("3.")
+        for capability in CAPABILITIES + (CAPABILITIES_FMI3 if fmi3 else ()):
             value = getattr(md.coSimulation, capability)
             out.write(f"  {capability:<40} {'yes' if value else 'no'}\n")
     rows = [
@@ -268,7 +272,11 @@ def _info(args: argparse.Namespace, out: TextIO) -> None:
 
 
 def _unit(variable: Any) -> str:
-    return variable.unit or getattr(variable.declaredType, "unit", None) or ""
+    """The unit, and the display unit where FMI 3.0 gives one ("m (display ft)")."""
+    unit = variable.unit or getattr(variable.declaredType, "unit", None) or ""
+    display = getattr(variable, "displayUnit", None) \
+        or getattr(variable.declaredType, "displayUnit", None)
+    return f"{unit} (display {display})" if display and display != unit else unit
 
 
 def _write_table(out: TextIO, header: Sequence[str], rows: Sequence[Sequence[str]]) -> None:
@@ -535,6 +543,8 @@ def _connect_input(system: Any, component: Any, csv_path: Path) -> TableSource |
         if kind == PortType.REAL:
             signals[name] = values
         else:  # FMPy casts the column to the input's C int (truncating); a boolean is non-zero
+            if kind == PortType.INT:
+                _check_integer_column(csv_path, name, table.time, values)
             truncated = values.astype(np.int32)
             signals[name] = truncated if kind == PortType.INT else truncated != 0
     hold = [n for n in used if inputs[n].type == PortType.REAL
@@ -544,6 +554,19 @@ def _connect_input(system: Any, component: Any, csv_path: Path) -> TableSource |
     for name in used:
         system.add_connection(Connection(source.name, name, component.name, name))
     return source
+
+
+def _check_integer_column(csv_path: Path, name: str, time: np.ndarray, values: np.ndarray
+                          ) -> None:
+    """An Integer input takes C ints (an FMI 3.0 UInt32 or 64-bit input too): a value beyond
+    them is refused, not wrapped."""
+    limits = np.iinfo(np.int32)
+    outside = np.flatnonzero((values < limits.min) | (values > limits.max))
+    if len(outside):
+        k = int(outside[0])
+        raise CommandError(f"--input {csv_path}: column {name!r} holds {values[k]:.17g} at "
+                           f"t = {float(time[k])!r}, outside the range of syssimx's Integer ports "
+                           f"({limits.min}..{limits.max})")
 
 
 def _choose(given: float | None, default: Any, fallback: float) -> float:
