@@ -315,7 +315,8 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
 
     path = _resolve_fmu(args.fmu)
     md = _read_description(path)
-    t0, tf, dt = _experiment(args, md.defaultExperiment)
+    t0, tf, dt = _experiment(args, md.defaultExperiment,
+                             getattr(md.coSimulation, "fixedInternalStepSize", None))
     options = {} if args.tolerance is None else {"tolerance": args.tolerance}
     component = FMUComponent(md.modelName or path.stem, str(path), **options)
     assignments = dict(args.assignments)
@@ -462,16 +463,18 @@ def _working_directory_importable() -> Iterator[None]:
         sys.path[:] = saved
 
 
-def _experiment(args: argparse.Namespace, experiment: Any) -> tuple[float, float, float]:
-    """Start, stop and step: given, else from the default experiment, else FMPy's defaults."""
+def _experiment(args: argparse.Namespace, experiment: Any, fixed_step: str | None = None
+                ) -> tuple[float, float, float]:
+    """Start, stop and step: given, else from the default experiment, else FMPy's defaults.
+    FMPy steps an FMI 3.0 FMU with a fixedInternalStepSize by that step first."""
     t0 = _choose(args.start_time, getattr(experiment, "startTime", None), 0.0)
     tf = _choose(args.stop_time, getattr(experiment, "stopTime", None), t0 + 1.0)
     if not tf > t0:
         raise CommandError(f"need stop time > start time; got start {t0}, stop {tf}")
     if args.step_size is not None:
         dt = float(args.step_size)
-    elif getattr(experiment, "stepSize", None) is not None:
-        dt = float(experiment.stepSize)
+    elif fixed_step is not None or getattr(experiment, "stepSize", None) is not None:
+        dt = float(fixed_step if fixed_step is not None else experiment.stepSize)
         while dt > 0 and (tf - t0) / dt > 1000:  # FMPy's output interval for a long experiment
             dt *= 2
     else:

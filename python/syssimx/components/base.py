@@ -95,6 +95,10 @@ class CoSimComponent:
     def engine_inputs(self) -> list[str]:
         return [n for n, s in self.input_specs.items() if s.type in ENGINE_TYPES]
 
+    def why_no_port(self, name: str) -> str:
+        """Why `name` is no port although the component knows it ("" when it does not)."""
+        return ""
+
     def input_start(self, name: str) -> float:
         """The value an input holds until a connection drives it."""
         return float(self.inputs[name].raw())

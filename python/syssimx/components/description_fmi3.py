@@ -40,6 +40,8 @@ def read_fmi3_description(path: Path) -> ModelDescription:
         description = read_model_description(str(path), validate=False)
     except Exception as exc:  # fmpy raises many kinds for a broken description
         raise FMUFileError(f"{path}: modelDescription.xml: {exc or type(exc).__name__}") from exc
+    for variable in description.modelVariables:
+        _check_variable(variable, path)
     if description.coSimulation is None:
         if description.modelExchange is not None:
             raise FMUFileError(f"{path}: FMI 3.0 Model Exchange is not supported yet (syssimx "
@@ -48,8 +50,6 @@ def read_fmi3_description(path: Path) -> ModelDescription:
             raise FMUFileError(f"{path}: FMI 3.0 Scheduled Execution is not supported (syssimx "
                                "runs FMI 3.0 Co-Simulation FMUs without clocks)")
         raise FMUFileError(f"{path}: the FMI 3.0 description declares no CoSimulation interface")
-    for variable in description.modelVariables:
-        _check_variable(variable, path)
     # fmpy keeps FMI 3.0's token under both names; syssimx passes it where FMI 2.0 has the guid
     description.guid = description.instantiationToken
     return description

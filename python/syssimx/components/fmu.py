@@ -122,6 +122,17 @@ class FMUComponent(CoSimComponent):
         return int(value) if kind == PortType.INT else bool(value) if kind == PortType.BOOL \
             else value
 
+    def why_no_port(self, name: str) -> str:
+        """FMI 3.0 String and Binary variables are values, never ports."""
+        variable = self.info.text_outputs.get(name)
+        parameter = self.info.parameters.get(name)
+        kind = variable.type if variable is not None else \
+            parameter.fmi_type if parameter is not None else ""
+        if kind not in ("String", "Binary"):
+            return ""
+        return (f" (it is an FMI 3.0 {kind} variable: set it with set_parameters, read it with "
+                "get_state; it cannot be connected)")
+
     def input_start(self, name: str) -> float:
         """What set_inputs gave, else NaN: the engine then keeps the FMU's own value."""
         return float(self._input_starts[name]) if name in self._inputs_set else math.nan

@@ -106,11 +106,12 @@ class System:
         where = "{}.{} -> {}.{}".format(*connection.key())
         if connection.src_port not in src.output_specs:
             raise ConfigurationError(f"{where}: {src.name!r} has no output "
-                                     f"{connection.src_port!r}; "
-                                     f"outputs: {sorted(src.output_specs)}")
+                                     f"{connection.src_port!r}{src.why_no_port(connection.src_port)}"
+                                     f"; outputs: {sorted(src.output_specs)}")
         if connection.dst_port not in dst.input_specs:
             raise ConfigurationError(f"{where}: {dst.name!r} has no input "
-                                     f"{connection.dst_port!r}; inputs: {sorted(dst.input_specs)}")
+                                     f"{connection.dst_port!r}{dst.why_no_port(connection.dst_port)}"
+                                     f"; inputs: {sorted(dst.input_specs)}")
         src_spec = src.output_specs[connection.src_port]
         dst_spec = dst.input_specs[connection.dst_port]
         if PortType.EVENT in (src_spec.type, dst_spec.type):
