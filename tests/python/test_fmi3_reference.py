@@ -137,6 +137,7 @@ def test_cli_equals_fmpy_with_the_default_experiment(model: str, tmp_path: Path,
                           else [])
 
 
+@pytest.mark.filterwarnings("ignore:invalid value encountered in cast:RuntimeWarning")  # FMPy's
 def test_feedthrough_refuses_the_collections_input_file_by_column(
         capsys: pytest.CaptureFixture[str]):
     """Feedthrough_in.csv drives each integer input to its type's extremes: UInt32 4294967295

@@ -177,6 +177,9 @@ class FMUComponent(CoSimComponent):
                 else self.info.parameters[name].type
             if kind == PortType.STRING:
                 continue
+            if kind == PortType.INT and not INT_MIN <= value <= INT_MAX:
+                raise ConfigurationError(f"{self.name}.{name}: {value} is outside the range of "
+                                         f"the engine's Integer ports ({INT_MIN}..{INT_MAX})")
             refs, vals = by_type.setdefault(kind, ([], []))
             refs.append(self.value_reference(name))
             vals.append(value)
@@ -352,6 +355,10 @@ class FMUComponent(CoSimComponent):
         FMUError."""
         self.reset()
         self._finalizer()
+
+
+# Integer values cross the FMI boundary as C ints (an FMI 3.0 UInt32 or 64-bit one too)
+INT_MIN, INT_MAX = -(2**31), 2**31 - 1
 
 
 def _typed_input(kind: PortType, value: float) -> float | int | bool:

@@ -1,0 +1,235 @@
+"""FMI 3.0 Co-Simulation import: events an FMU handles itself (early return, event mode), state
+rollback, types, String and Binary values, units, and the clear errors for what syssimx does
+not run (Model Exchange only, arrays, isolation, connecting a String).
+
+The FMUs are the Reference FMUs built for FMI 3.0 (SYSSIMX_REFERENCE_FMUS or
+<repository>/../shared/reference-fmus), and copies of them with an edited modelDescription.
+"""
+
+from __future__ import annotations
+
+import os
+import zipfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+from fmpy import simulate_fmu
+from syssimx import Connection, FMUComponent, System, TableSource
+from syssimx.errors import ConfigurationError, FMUFileError, SimulationError
+
+
+def _reference_root() -> Path:
+    given = os.environ.get("SYSSIMX_REFERENCE_FMUS")
+    if given:
+        return Path(given)
+    return Path(__file__).resolve().parents[2].parent / "shared" / "reference-fmus"
+
+
+FOLDER = _reference_root() / "fmi3"
+if not FOLDER.is_dir():
+    pytest.skip(f"the FMI 3.0 Reference FMUs are absent (no folder {FOLDER}): set "
+                "SYSSIMX_REFERENCE_FMUS to the folder holding fmi3/", allow_module_level=True)
+
+BALL = str(FOLDER / "BouncingBall.fmu")
+FEEDTHROUGH = str(FOLDER / "Feedthrough.fmu")
+
+
+def edited(tmp_path: Path, source: str, *replacements: tuple[str, str]) -> str:
+    """A copy of the FMU at `source` whose modelDescription has each (old, new) replaced."""
+    target = tmp_path / Path(source).name
+    with zipfile.ZipFile(source) as original, zipfile.ZipFile(target, "w") as copy:
+        for item in original.infolist():
+            data = original.read(item.filename)
+            if item.filename == "modelDescription.xml":
+                text = data.decode()
+                for old, new in replacements:
+                    assert old in text
+                    text = text.replace(old, new)
+                data = text.encode()
+            copy.writestr(item, data)
+    return str(target)
+
+
+# ------------------------------------------------------------------------------ events
+def fmpy_early_returns() -> list[float]:
+    """The times FMPy's FMI 3.0 loop returns early at (event mode, early return allowed): its
+    samples off the 0.01 grid."""
+    result = simulate_fmu(BALL, stop_time=3.0, output_interval=0.01, use_event_mode=True,
+                          early_return_allowed=True, output=["h"])
+    times = result["time"]
+    # FMPy samples an early return twice: before and after its event mode
+    return times[np.flatnonzero(np.diff(times) == 0)].tolist()
+
+
+def ball_system(indicator: bool = False) -> tuple[System, FMUComponent]:
+    system = System("ball")
+    ball = FMUComponent("Ball", BALL)
+    if indicator:  # the apex (v falls through 0): located by rollback
+        ball.add_event_indicator("apex", variable="v", direction=-1)
+    system.add_component(ball)
+    system.initialize(0.0)
+    return system, ball
+
+
+def test_the_ball_handles_its_bounces_itself_at_fmpys_times_without_rollback():
+    system, ball = ball_system()
+    result = system.run(0.0, 3.0, 0.01)
+    own = [e.t for e in result.events]
+    assert {(e.component, e.event, e.own) for e in result.events} == {("Ball", "fmu_event",
+                                                                       True)}
+    assert own == fmpy_early_returns()
+    # The FMU's Euler step of 1e-3 finds each bounce; after its event update it reports the
+    # indicator's return from below zero one step later (an event that changes nothing).
+    assert own[:4] == [0.453, 0.454, 1.089, 1.09]
+    statistics = result.statistics
+    assert (statistics.own_events, statistics.events) == (24, 0)
+    assert (statistics.state_saves, statistics.state_restores) == (0, 0)
+    # one doStep per macro step, one more after each early return inside it (1.09 is on the
+    # grid: the step ends there, nothing is left to step)
+    inside = [t for t in own if abs(t / 0.01 - round(t / 0.01)) > 1e-9]
+    assert len(inside) == 23 and 1.09 not in inside
+    assert ball.instance.counters()["do_step"] == 300 + 23
+    t, values = result["Ball"]
+    assert t.tolist() == pytest.approx(np.linspace(0.0, 3.0, 301).tolist(), abs=1e-12)
+    theirs = simulate_fmu(BALL, stop_time=3.0, output_interval=0.01, output=["h", "v"])
+    np.testing.assert_array_equal(values["h"], theirs["h"])
+
+
+def test_own_events_are_recorded_once_while_an_indicator_forces_rollbacks():
+    """The apex indicator makes the master restore and re-step the ball around every apex;
+    localization trials that cross a bounce report it again, and the restore drops it: each
+    bounce is recorded once, at the same times as without the indicator."""
+    system, _ = ball_system(indicator=True)
+    system.algorithm.tol_time = 1e-9
+    result = system.run(0.0, 3.0, 0.01)
+    own = [e.t for e in result.events if e.own]
+    assert own == fmpy_early_returns()
+    apexes = [e.t for e in result.events if e.event == "apex"]
+    assert len(apexes) == 12 and apexes[0] == 0.0  # v starts at 0 and falls
+    assert result.statistics.state_restores > 100
+    # the apex of the first bounce: v = 0 between the bounce at 0.454 and the next
+    assert 0.454 < apexes[1] < 1.089
+
+
+def test_fmu_state_serializes_and_restores_the_ball():
+    """A state taken at 0.2 and serialized brings the ball back there; one doStep of 0.2 from
+    it reaches the h the system's twenty steps reached (the same internal Euler steps)."""
+    system, ball = ball_system()
+    system.run(0.0, 0.2, 0.01)
+    frozen = ball.instance.serializeFMUstate(ball.instance.getFMUstate())
+    h = ball.value_reference("h")
+    at_04 = system.run(0.2, 0.4, 0.01)["Ball"][1]["h"][-1]
+    ball.instance.setFMUstate(ball.instance.deserializeFMUstate(frozen))
+    assert ball.instance.getReal([h])[0] == system.get_history()["Ball"][1]["h"][20]
+    ball.instance.doStep(0.2, 0.2)
+    assert ball.instance.getReal([h])[0] == at_04 == pytest.approx(1 - 9.81 * 0.4**2 / 2,
+                                                                    abs=3e-3)
+
+
+# ------------------------------------------------------------------------------ values
+def test_units_come_from_the_unit_definitions():
+    ball = FMUComponent("Ball", BALL)
+    assert (ball.output_specs["h"].unit, ball.output_specs["v"].unit) == ("m", "m/s")
+    assert ball.info.parameters["g"].unit == "m/s2"
+    assert ball.info.parameters["e"].unit is None
+
+
+def test_model_structure_gives_the_direct_feedthrough():
+    feedthrough = FMUComponent("F", FEEDTHROUGH)
+    assert feedthrough.direct_feedthrough["Float32_continuous_output"] == {
+        "Float32_continuous_input"}
+    assert feedthrough.direct_feedthrough["Int64_output"] == {"Int64_input"}
+    assert FMUComponent("Ball", BALL).direct_feedthrough == {"h": set(), "v": set(),
+                                                             "h_ft": set()}
+
+
+def test_strings_and_binaries_are_set_as_parameters_and_read_back():
+    system = System("texts")
+    feedthrough = FMUComponent("F", FEEDTHROUGH)
+    system.add_component(feedthrough)
+    assert feedthrough.parameters["String_input"] == "Set me!"
+    assert feedthrough.parameters["Binary_input"] == b"foo"
+    feedthrough.set_parameters(String_input="grüße", Binary_input=b"\x00\xff")
+    system.initialize(0.0)
+    system.run(0.0, 0.2, 0.1)
+    state = feedthrough.get_state()
+    assert state["String_output"]["value"] == "grüße"
+    assert state["Binary_output"]["value"] == b"\x00\xff"
+    with pytest.raises(ConfigurationError) as info:
+        feedthrough.set_parameters(Binary_input="00ff")
+    assert str(info.value) == "F.Binary_input is Binary; got str '00ff'"
+
+
+def test_a_string_cannot_be_connected():
+    system = System("texts")
+    system.add_component(FMUComponent("A", FEEDTHROUGH))
+    system.add_component(FMUComponent("B", FEEDTHROUGH))
+    with pytest.raises(ConfigurationError) as info:
+        system.add_connection(Connection("A", "String_output", "B", "String_input"))
+    assert str(info.value).startswith(
+        "A.String_output -> B.String_input: 'A' has no output 'String_output' (it is an FMI "
+        "3.0 String variable: set it with set_parameters, read it with get_state; it cannot "
+        "be connected); outputs: [")
+
+
+def driven(column: str, value: int) -> System:
+    """The Feedthrough with `column` driven to 0, then to `value` from t = 0.5."""
+    signals = np.array([(0.0, 0), (0.5, value)], dtype=[("time", np.float64),
+                                                        (column, np.int64)])
+    system = System("driven")
+    system.add_component(FMUComponent("F", FEEDTHROUGH))
+    system.add_component(TableSource("u", signals))
+    system.add_connection(Connection("u", column, "F", column))
+    system.initialize(0.0)
+    return system
+
+
+def test_an_integer_beyond_the_variables_type_names_the_variable():
+    system = driven("UInt8_input", -1)
+    with pytest.raises(SimulationError) as info:
+        system.run(0.0, 1.0, 0.1)
+    assert "variable 'UInt8_input' (UInt8) cannot take -1: outside 0..255" in str(info.value)
+    assert system.get_history()["F"][0][-1] == pytest.approx(0.5)  # the samples before stay
+
+
+def test_an_integer_beyond_the_engines_ports_names_the_input():
+    with pytest.raises(SimulationError) as info:
+        driven("Int64_input", 2**40).run(0.0, 1.0, 0.1)
+    assert str(info.value).startswith(
+        "component 'F': input 'Int64_input' (value reference 23) receives 1099511627776 at "
+        "t=0.5, outside the range of the engine's Integer ports (-2147483648..2147483647)")
+    feedthrough = FMUComponent("G", FEEDTHROUGH)
+    feedthrough.set_inputs({"UInt32_input": 2**32 - 1})
+    with pytest.raises(ConfigurationError) as python_side:
+        feedthrough._start(0.0)
+    assert str(python_side.value) == ("G.UInt32_input: 4294967295 is outside the range of the "
+                                      "engine's Integer ports (-2147483648..2147483647)")
+
+
+# ------------------------------------------------------------------------------ refusals
+def test_model_exchange_only_is_refused_naming_the_file(tmp_path: Path):
+    path = edited(tmp_path, BALL, ("<CoSimulation", "<!--CoSimulation"),
+                  ('hasEventMode="true"/>', 'hasEventMode="true"-->'))
+    with pytest.raises(FMUFileError) as info:
+        FMUComponent("Ball", path)
+    assert str(info.value) == (f"{path}: FMI 3.0 Model Exchange is not supported yet (syssimx "
+                               "runs FMI 3.0 Co-Simulation FMUs)")
+
+
+def test_an_array_port_is_refused_naming_the_variable(tmp_path: Path):
+    path = edited(tmp_path, BALL, ('start="0.7" min="0.5" max="1" description="Coefficient of '
+                                   'restitution"/>',
+                                   'start="0.7 0.7" description="Coefficient of restitution">'
+                                   '<Dimension start="2"/></Float64>'))
+    with pytest.raises(FMUFileError) as info:
+        FMUComponent("Ball", path)
+    assert str(info.value) == (f"{path}: variable 'e' is an array (parameter, 1 dimension(s)): "
+                               "array inputs, outputs and parameters are not supported")
+
+
+def test_isolation_is_refused_for_fmi3():
+    with pytest.raises(ConfigurationError) as info:
+        FMUComponent("Ball", BALL, isolated=True)
+    assert str(info.value) == (f"component 'Ball': isolated=True is not supported for FMI 3.0 "
+                               f"FMUs ({BALL}): the FMU host process speaks FMI 2.0 only")
