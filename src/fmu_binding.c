@@ -335,6 +335,18 @@ static int knows_state(const ssx_fmu *fmu, const void *state)
     return 0;
 }
 
+/* An FMU may reallocate a state it is asked to overwrite (the Reference FMUs do): the binding
+ * follows it to its new place. */
+static void moved_state(ssx_fmu *fmu, const void *from, void *to)
+{
+    for (size_t i = 0; i < fmu->n_states; ++i) {
+        if (fmu->states[i] == from) {
+            fmu->states[i] = to;
+            return;
+        }
+    }
+}
+
 static int remember_state(ssx_fmu *fmu, void *state)
 {
     if (array_reserve((void **)&fmu->states, &fmu->states_capacity, fmu->n_states + 1,
@@ -572,9 +584,13 @@ int ssx_fmu_get_state(ssx_fmu *fmu, void **state)
                  "%s: the state to reuse does not belong to the live instance", fmu->last_call);
         return -1;
     }
+    void *reused = *state;
     int fresh = *state == NULL;
     int status =
         finish(fmu, SLOT_GET_STATE, fmu->backend->get_state(fmu->fn, fmu->instance, state));
+    if (!fresh && *state != reused) {
+        moved_state(fmu, reused, *state);
+    }
     if (fresh && *state != NULL && remember_state(fmu, *state) != 0) {
         if (fmu->fn[SLOT_FREE_STATE] != NULL) {
             fmu->backend->free_state(fmu->fn, fmu->instance, state);
@@ -635,10 +651,14 @@ int ssx_fmu_deserialize_state(ssx_fmu *fmu, const char *bytes, size_t size, void
                  "%s: the state to reuse does not belong to the live instance", fmu->last_call);
         return -1;
     }
+    void *reused = *state;
     int fresh = *state == NULL;
     int status = finish(fmu, SLOT_DESERIALIZE_STATE,
                         fmu->backend->deserialize_state(fmu->fn, fmu->instance, bytes, size,
                                                         state));
+    if (!fresh && *state != reused) {
+        moved_state(fmu, reused, *state);
+    }
     if (fresh && *state != NULL && remember_state(fmu, *state) != 0) {
         note(fmu, "out of memory tracking FMU states");
         return -1;
