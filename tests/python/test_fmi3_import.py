@@ -2,21 +2,32 @@
 rollback, types, String and Binary values, units, and the clear errors for what syssimx does
 not run (Model Exchange only, arrays, isolation, connecting a String).
 
-The FMUs are the Reference FMUs built for FMI 3.0 (SYSSIMX_REFERENCE_FMUS or
-<repository>/../shared/reference-fmus), and copies of them with an edited modelDescription.
+The FMUs are our own FMI 3.0 builds (`<stem>_fmi3`, the same models as the FMI 2.0 ones), the
+Reference FMUs built for FMI 3.0 (SYSSIMX_REFERENCE_FMUS or <repository>/../shared/
+reference-fmus; those tests are skipped without them), and copies of them with an edited
+modelDescription.
 """
 
 from __future__ import annotations
 
+import itertools
+import math
 import os
 import zipfile
 from pathlib import Path
 
+import bouncing_ball
 import numpy as np
+import pendulum_wall
 import pytest
 from fmpy import simulate_fmu
-from syssimx import Connection, FMUComponent, System, TableSource
+from scipy.special import ellipk
+from syssimx import Connection, FMUComponent, System, TableSource, fmus
 from syssimx.errors import ConfigurationError, FMUFileError, SimulationError
+
+# the seed's pendulum: the quarter period from rest at 0.5 rad (tests/python/
+# test_hybrid_pendulum.py derives it)
+EXACT = ellipk(math.sin(0.5 / 2) ** 2) / math.sqrt(40.0 * 9.81 * 0.6 / 20.0)
 
 
 def _reference_root() -> Path:
@@ -27,9 +38,9 @@ def _reference_root() -> Path:
 
 
 FOLDER = _reference_root() / "fmi3"
-if not FOLDER.is_dir():
-    pytest.skip(f"the FMI 3.0 Reference FMUs are absent (no folder {FOLDER}): set "
-                "SYSSIMX_REFERENCE_FMUS to the folder holding fmi3/", allow_module_level=True)
+reference = pytest.mark.skipif(not FOLDER.is_dir(), reason=(
+    f"the FMI 3.0 Reference FMUs are absent (no folder {FOLDER}): set SYSSIMX_REFERENCE_FMUS "
+    "to the folder holding fmi3/"))
 
 BALL = str(FOLDER / "BouncingBall.fmu")
 FEEDTHROUGH = str(FOLDER / "Feedthrough.fmu")
@@ -62,9 +73,11 @@ def fmpy_early_returns() -> list[float]:
     return times[np.flatnonzero(np.diff(times) == 0)].tolist()
 
 
-def ball_system(indicator: bool = False) -> tuple[System, FMUComponent]:
+def ball_system(indicator: bool = False, fmu: str = BALL, **parameters: float
+                ) -> tuple[System, FMUComponent]:
     system = System("ball")
-    ball = FMUComponent("Ball", BALL)
+    ball = FMUComponent("Ball", fmu)
+    ball.set_parameters(**parameters)
     if indicator:  # the apex (v falls through 0): located by rollback
         ball.add_event_indicator("apex", variable="v", direction=-1)
     system.add_component(ball)
@@ -72,7 +85,8 @@ def ball_system(indicator: bool = False) -> tuple[System, FMUComponent]:
     return system, ball
 
 
-def test_the_ball_handles_its_bounces_itself_at_fmpys_times_without_rollback():
+@reference
+def test_the_reference_ball_handles_its_bounces_itself_at_fmpys_times_without_rollback():
     system, ball = ball_system()
     result = system.run(0.0, 3.0, 0.01)
     own = [e.t for e in result.events]
@@ -96,7 +110,8 @@ def test_the_ball_handles_its_bounces_itself_at_fmpys_times_without_rollback():
     np.testing.assert_array_equal(values["h"], theirs["h"])
 
 
-def test_own_events_are_recorded_once_while_an_indicator_forces_rollbacks():
+@reference
+def test_the_reference_balls_own_events_are_recorded_once_under_rollbacks():
     """The apex indicator makes the master restore and re-step the ball around every apex;
     localization trials that cross a bounce report it again, and the restore drops it: each
     bounce is recorded once, at the same times as without the indicator."""
@@ -112,7 +127,8 @@ def test_own_events_are_recorded_once_while_an_indicator_forces_rollbacks():
     assert 0.454 < apexes[1] < 1.089
 
 
-def test_fmu_state_serializes_and_restores_the_ball():
+@reference
+def test_fmu_state_serializes_and_restores_the_reference_ball():
     """A state taken at 0.2 and serialized brings the ball back there; one doStep of 0.2 from
     it reaches the h the system's twenty steps reached (the same internal Euler steps)."""
     system, ball = ball_system()
@@ -127,7 +143,77 @@ def test_fmu_state_serializes_and_restores_the_ball():
                                                                     abs=3e-3)
 
 
+def closed_form_bounces(count: int) -> list[float]:
+    """Bounce times of a ball dropped from H0 at rest, restitution e: t1, then flights of
+    2 v1 e**k / g."""
+    t1 = math.sqrt(2 * bouncing_ball.H0 / bouncing_ball.G)
+    e = bouncing_ball.RESTITUTION
+    return [t1 * (1 + 2 * sum(e**k for k in range(1, n))) for n in range(1, count + 1)]
+
+
+def our_ball(indicator: bool = False) -> tuple[System, FMUComponent]:
+    return ball_system(indicator, fmus.path("bouncing_ball_cvode_fmi3"), h0=bouncing_ball.H0,
+                       v0=0.0, g=bouncing_ball.G, e=bouncing_ball.RESTITUTION,
+                       cvode_relative_tolerance=1e-12)
+
+
+def test_our_ball_bounces_at_the_closed_form_times_without_rollback():
+    """CVODE's root finder stops the FMI 3.0 ball at the floor, it returns early, syssimx
+    handles the bounce in event mode: the closed-form times within 1e-8, no state saved or
+    restored (the hybrid algorithm is not even chosen: there is no indicator)."""
+    system, ball = our_ball()
+    result = system.run(0.0, 3.5, 0.01)
+    times = [e.t for e in result.events]
+    assert len(times) == 9
+    np.testing.assert_allclose(times, closed_form_bounces(9), rtol=0, atol=1e-8)
+    assert {(e.component, e.event, e.own) for e in result.events} == {("Ball", "fmu_event",
+                                                                       True)}
+    statistics = result.statistics
+    assert (statistics.own_events, statistics.events) == (9, 0)
+    assert (statistics.state_saves, statistics.state_restores) == (0, 0)
+    assert ball.instance.counters()["do_step"] == 350 + 9  # one more doStep per bounce
+    assert np.all(result["Ball"][1]["h"] >= -1e-9)
+
+
+def test_our_balls_bounces_are_recorded_once_under_rollbacks():
+    """An apex indicator (v falling through 0) on the same ball makes the master roll it back
+    and re-step it around every apex, through trials that cross bounces: each bounce is still
+    recorded once, at its closed-form time (CVODE restarted at other points finds it within
+    1e-10 of where it found it without the indicator)."""
+    alone = [e.t for e in our_ball()[0].run(0.0, 3.5, 0.01).events]
+    system, _ = our_ball(indicator=True)
+    result = system.run(0.0, 3.5, 0.01)
+    own = [e.t for e in result.events if e.own]
+    np.testing.assert_allclose(own, alone, rtol=0, atol=1e-10)
+    np.testing.assert_allclose(own, closed_form_bounces(9), rtol=0, atol=1e-8)
+    assert result.statistics.own_events == 9
+    apexes = [e.t for e in result.events if e.event == "apex"]
+    assert len(apexes) == 9 and result.statistics.state_restores > len(apexes)
+    # each apex lies halfway between two bounces (a symmetric flight)
+    bounces = closed_form_bounces(9)
+    np.testing.assert_allclose(apexes[1:], [(a + b) / 2 for a, b in itertools.pairwise(
+        bounces)], rtol=0, atol=1e-8)
+
+
+def test_the_seed_scenario_with_the_fmi3_pendulum_finds_the_fmi2_event_time():
+    """The seed's pendulum against a wall (plain component, indicator in C, reinitializing
+    handler) with pendulum_cvode_fmi3: the FMI 2.0 build's event time within tol_time, and the
+    same trajectory."""
+    fmi2, _ = pendulum_wall.build("cvode")
+    fmi3, pendulum = pendulum_wall.build("cvode_fmi3")
+    pendulum.set_parameters(cvode_relative_tolerance=1e-10)  # build() sets it for "cvode" only
+    fmi3.initialize(0.0)
+    ours, theirs = fmi3.run(0.0, 1.0, 0.05), fmi2.run(0.0, 1.0, 0.05)
+    assert [e.event for e in ours.events] == ["wall_hit"]
+    assert abs(ours.events[0].t - theirs.events[0].t) <= fmi3.algorithm.tol_time
+    assert abs(ours.events[0].t - EXACT) < 1e-8
+    np.testing.assert_allclose(ours["P"][1]["theta"], theirs["P"][1]["theta"], rtol=0,
+                               atol=1e-12)
+    assert ours.statistics.state_restores == theirs.statistics.state_restores > 0
+
+
 # ------------------------------------------------------------------------------ values
+@reference
 def test_units_come_from_the_unit_definitions():
     ball = FMUComponent("Ball", BALL)
     assert (ball.output_specs["h"].unit, ball.output_specs["v"].unit) == ("m", "m/s")
@@ -135,6 +221,7 @@ def test_units_come_from_the_unit_definitions():
     assert ball.info.parameters["e"].unit is None
 
 
+@reference
 def test_model_structure_gives_the_direct_feedthrough():
     feedthrough = FMUComponent("F", FEEDTHROUGH)
     assert feedthrough.direct_feedthrough["Float32_continuous_output"] == {
@@ -144,6 +231,7 @@ def test_model_structure_gives_the_direct_feedthrough():
                                                              "h_ft": set()}
 
 
+@reference
 def test_strings_and_binaries_are_set_as_parameters_and_read_back():
     system = System("texts")
     feedthrough = FMUComponent("F", FEEDTHROUGH)
@@ -161,6 +249,7 @@ def test_strings_and_binaries_are_set_as_parameters_and_read_back():
     assert str(info.value) == "F.Binary_input is Binary; got str '00ff'"
 
 
+@reference
 def test_a_string_cannot_be_connected():
     system = System("texts")
     system.add_component(FMUComponent("A", FEEDTHROUGH))
@@ -185,6 +274,7 @@ def driven(column: str, value: int) -> System:
     return system
 
 
+@reference
 def test_an_integer_beyond_the_variables_type_names_the_variable():
     system = driven("UInt8_input", -1)
     with pytest.raises(SimulationError) as info:
@@ -193,6 +283,7 @@ def test_an_integer_beyond_the_variables_type_names_the_variable():
     assert system.get_history()["F"][0][-1] == pytest.approx(0.5)  # the samples before stay
 
 
+@reference
 def test_an_integer_beyond_the_engines_ports_names_the_input():
     with pytest.raises(SimulationError) as info:
         driven("Int64_input", 2**40).run(0.0, 1.0, 0.1)
@@ -208,6 +299,7 @@ def test_an_integer_beyond_the_engines_ports_names_the_input():
 
 
 # ------------------------------------------------------------------------------ refusals
+@reference
 def test_model_exchange_only_is_refused_naming_the_file(tmp_path: Path):
     path = edited(tmp_path, BALL, ("<CoSimulation", "<!--CoSimulation"),
                   ('hasEventMode="true"/>', 'hasEventMode="true"-->'))
@@ -217,6 +309,7 @@ def test_model_exchange_only_is_refused_naming_the_file(tmp_path: Path):
                                "runs FMI 3.0 Co-Simulation FMUs)")
 
 
+@reference
 def test_an_array_port_is_refused_naming_the_variable(tmp_path: Path):
     path = edited(tmp_path, BALL, ('start="0.7" min="0.5" max="1" description="Coefficient of '
                                    'restitution"/>',
@@ -228,6 +321,7 @@ def test_an_array_port_is_refused_naming_the_variable(tmp_path: Path):
                                "array inputs, outputs and parameters are not supported")
 
 
+@reference
 def test_isolation_is_refused_for_fmi3():
     with pytest.raises(ConfigurationError) as info:
         FMUComponent("Ball", BALL, isolated=True)
