@@ -212,6 +212,35 @@ def test_the_seed_scenario_with_the_fmi3_pendulum_finds_the_fmi2_event_time():
     assert ours.statistics.state_restores == theirs.statistics.state_restores > 0
 
 
+def test_an_fmi3_loop_is_solved_with_fmi3_directional_derivatives():
+    """The gain/sum loop of test_loop_jacobian.py (y = a u in m, y = b - c u with u in cm)
+    with the FMI 3.0 builds: Newton's columns come from fmi3GetDirectionalDerivative, and
+    every sample satisfies the loop like the FMI 2.0 builds' does."""
+    a, b, c = 1.5, 2.0, 0.02
+    results = {}
+    for suffix in ("", "_fmi3"):
+        gain = FMUComponent("Gain", fmus.path(f"gain{suffix}"))
+        gain.set_parameters(k=a)
+        summer = FMUComponent("Sum", fmus.path(f"sum{suffix}"))
+        summer.set_parameters(b=b, c=c)
+        system = System("loop")
+        system.add_component(gain)
+        system.add_component(summer)
+        system.add_connection(Connection("Gain", "y", "Sum", "u"))
+        system.add_connection(Connection("Sum", "y", "Gain", "u"))
+        system.initialize(0.0)
+        results[suffix] = (system.run(0.0, 1.0, 0.1), gain.instance.counters())
+    result, counters = results["_fmi3"]
+    np.testing.assert_allclose(result["Sum"][1]["y"], b / (1 + 100 * a * c), rtol=0,
+                               atol=1e-10)
+    statistics = result.statistics
+    assert statistics.directional_derivatives == 2 * statistics.loop_iterations >= 2
+    assert counters["directional_derivative"] == statistics.loop_iterations
+    fmi2 = results[""][0]
+    assert statistics.loop_iterations == fmi2.statistics.loop_iterations
+    np.testing.assert_array_equal(result["Gain"][1]["y"], fmi2["Gain"][1]["y"])
+
+
 # ------------------------------------------------------------------------------ values
 @reference
 def test_units_come_from_the_unit_definitions():

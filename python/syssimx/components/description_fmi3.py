@@ -52,7 +52,22 @@ def read_fmi3_description(path: Path) -> ModelDescription:
         raise FMUFileError(f"{path}: the FMI 3.0 description declares no CoSimulation interface")
     # fmpy keeps FMI 3.0's token under both names; syssimx passes it where FMI 2.0 has the guid
     description.guid = description.instantiationToken
+    # FMI 3.0 spells it providesDirectionalDerivatives, which fmpy 0.3 does not read
+    description.coSimulation.providesDirectionalDerivative = \
+        _cosimulation_attribute(path, "providesDirectionalDerivatives") in ("true", "1")
     return description
+
+
+def _cosimulation_attribute(path: Path, name: str) -> str | None:
+    import zipfile
+
+    from lxml import etree
+
+    parser = etree.XMLParser(resolve_entities=False, no_network=True)
+    with zipfile.ZipFile(path) as archive:
+        root = etree.fromstring(archive.read("modelDescription.xml"), parser)
+    element = root.find("CoSimulation")
+    return element.get(name) if element is not None else None
 
 
 def _check_variable(variable: Any, path: Path) -> None:
