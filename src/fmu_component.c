@@ -48,8 +48,8 @@ static int read_outputs_at(ssx_system *sys, ssx_component *c, double t)
                          ? ssx_fmu_get_integer(c->fmu, b->vr, b->n, c->int_scratch)
                          : ssx_fmu_get_boolean(c->fmu, b->vr, b->n, c->int_scratch);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, t, status,
-                            call_name(c, type == SSX_INTEGER ? SLOT_GET_INTEGER : SLOT_GET_BOOLEAN));
+            ssx_fmu_slot slot = type == SSX_INTEGER ? SLOT_GET_INTEGER : SLOT_GET_BOOLEAN;
+            return fail_fmi(sys, c, t, status, call_name(c, slot));
         }
         for (size_t i = 0; i < b->n; ++i) {
             int value = c->int_scratch[i];
@@ -123,8 +123,8 @@ static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
                          ? ssx_fmu_set_integer(c->fmu, b->vr, b->n, c->int_scratch)
                          : ssx_fmu_set_boolean(c->fmu, b->vr, b->n, c->int_scratch);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, sys->time, status,
-                            call_name(c, type == SSX_INTEGER ? SLOT_SET_INTEGER : SLOT_SET_BOOLEAN));
+            ssx_fmu_slot slot = type == SSX_INTEGER ? SLOT_SET_INTEGER : SLOT_SET_BOOLEAN;
+            return fail_fmi(sys, c, sys->time, status, call_name(c, slot));
         }
     }
     if (c->n_inputs > 0) {

@@ -78,18 +78,18 @@ static const char *const fmi3_status_names[] = {SSX_STATUS_NAMES(FMI3_NAME)};
 enum { INITIAL_UPDATE_ROUNDS = 1000 };
 
 static const char *const type_names[SSX_FMI3_TYPE_COUNT] = {
-    "Float64", "Float32", "Int8", "UInt8", "Int16", "UInt16",
-    "Int32", "UInt32", "Int64", "UInt64", "Boolean"};
+    "Float64", "Float32", "Int8",  "UInt8",  "Int16",  "UInt16",
+    "Int32",   "UInt32",  "Int64", "UInt64", "Boolean"};
 
 /* The slot of each type's getter and setter. */
 static const ssx_fmu_slot getter[SSX_FMI3_TYPE_COUNT] = {
-    SLOT_GET_REAL, SLOT_GET_FLOAT32, SLOT_GET_INT8, SLOT_GET_UINT8, SLOT_GET_INT16,
-    SLOT_GET_UINT16, SLOT_GET_INTEGER, SLOT_GET_UINT32, SLOT_GET_INT64, SLOT_GET_UINT64,
-    SLOT_GET_BOOLEAN};
+    SLOT_GET_REAL,  SLOT_GET_FLOAT32, SLOT_GET_INT8,    SLOT_GET_UINT8,
+    SLOT_GET_INT16, SLOT_GET_UINT16,  SLOT_GET_INTEGER, SLOT_GET_UINT32,
+    SLOT_GET_INT64, SLOT_GET_UINT64,  SLOT_GET_BOOLEAN};
 static const ssx_fmu_slot setter[SSX_FMI3_TYPE_COUNT] = {
-    SLOT_SET_REAL, SLOT_SET_FLOAT32, SLOT_SET_INT8, SLOT_SET_UINT8, SLOT_SET_INT16,
-    SLOT_SET_UINT16, SLOT_SET_INTEGER, SLOT_SET_UINT32, SLOT_SET_INT64, SLOT_SET_UINT64,
-    SLOT_SET_BOOLEAN};
+    SLOT_SET_REAL,  SLOT_SET_FLOAT32, SLOT_SET_INT8,    SLOT_SET_UINT8,
+    SLOT_SET_INT16, SLOT_SET_UINT16,  SLOT_SET_INTEGER, SLOT_SET_UINT32,
+    SLOT_SET_INT64, SLOT_SET_UINT64,  SLOT_SET_BOOLEAN};
 
 /* The engine port type each FMI 3.0 type is exchanged as. */
 static ssx_value_type port_type(ssx_fmi3_type type)
@@ -146,8 +146,10 @@ int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *e
     size_t pool = 0;
     for (size_t i = 0; i < n; ++i) {
         if (variables->type[i] >= SSX_FMI3_TYPE_COUNT) {
-            snprintf(error, error_size, "value reference %u: FMI 3.0 type code %d is not an "
-                     "ssx_fmi3_type", variables->vr[i], variables->type[i]);
+            snprintf(error, error_size,
+                     "value reference %u: FMI 3.0 type code %d is not an "
+                     "ssx_fmi3_type",
+                     variables->vr[i], variables->type[i]);
             return -1;
         }
         pool += strlen(variables->name[i] != NULL ? variables->name[i] : "") + 1;
@@ -272,36 +274,39 @@ static int worse(int a, int b)
 static int exit_initialization_mode(const ssx_fmu_function *fn, void *instance)
 {
     fmi3_context *ctx = instance;
-    int status = (int)FMI3(fn, SLOT_EXIT_INITIALIZATION_MODE,
-                           fmi3ExitInitializationModeTYPE)(ctx->instance);
+    int status =
+        (int)FMI3(fn, SLOT_EXIT_INITIALIZATION_MODE, fmi3ExitInitializationModeTYPE)(ctx->instance);
     if (!ctx->event_mode_used || status > fmi3Warning) {
         return status;
     }
     fmi3Boolean again = fmi3True;
     for (int round = 0; again; ++round) {
         if (round == INITIAL_UPDATE_ROUNDS) {
-            say(ctx, "fmi3UpdateDiscreteStates still asked for another round after %d rounds "
-                "at the start time %.17g (chattering)", INITIAL_UPDATE_ROUNDS, ctx->start_time);
+            say(ctx,
+                "fmi3UpdateDiscreteStates still asked for another round after %d rounds "
+                "at the start time %.17g (chattering)",
+                INITIAL_UPDATE_ROUNDS, ctx->start_time);
             return fmi3Error;
         }
         fmi3Boolean terminate = fmi3False, nominals = fmi3False, values = fmi3False;
         fmi3Boolean next_defined = fmi3False;
         fmi3Float64 next = 0.0;
-        status = worse(status, (int)FMI3(fn, SLOT_UPDATE_DISCRETE_STATES,
-                                         fmi3UpdateDiscreteStatesTYPE)(
-                                   ctx->instance, &again, &terminate, &nominals, &values,
-                                   &next_defined, &next));
+        status =
+            worse(status,
+                  (int)FMI3(fn, SLOT_UPDATE_DISCRETE_STATES, fmi3UpdateDiscreteStatesTYPE)(
+                      ctx->instance, &again, &terminate, &nominals, &values, &next_defined, &next));
         if (status > fmi3Warning) {
             return status;
         }
         if (terminate) {
-            say(ctx, "the FMU asked to terminate the simulation during initialization "
-                "(fmi3UpdateDiscreteStates at t=%.17g)", ctx->start_time);
+            say(ctx,
+                "the FMU asked to terminate the simulation during initialization "
+                "(fmi3UpdateDiscreteStates at t=%.17g)",
+                ctx->start_time);
             return fmi3Error;
         }
     }
-    return worse(status,
-                 (int)FMI3(fn, SLOT_ENTER_STEP_MODE, fmi3EnterStepModeTYPE)(ctx->instance));
+    return worse(status, (int)FMI3(fn, SLOT_ENTER_STEP_MODE, fmi3EnterStepModeTYPE)(ctx->instance));
 }
 
 static int terminate(const ssx_fmu_function *fn, void *instance)
@@ -398,18 +403,30 @@ static int get_typed(const ssx_fmu_function *fn, fmi3Instance instance, ssx_fmi3
 {
     ssx_fmu_function f = fn[getter[type]];
     switch (type) {
-    case SSX_FMI3_FLOAT64: return (int)((fmi3GetFloat64TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_FLOAT32: return (int)((fmi3GetFloat32TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_INT8: return (int)((fmi3GetInt8TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_UINT8: return (int)((fmi3GetUInt8TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_INT16: return (int)((fmi3GetInt16TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_UINT16: return (int)((fmi3GetUInt16TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_INT32: return (int)((fmi3GetInt32TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_UINT32: return (int)((fmi3GetUInt32TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_INT64: return (int)((fmi3GetInt64TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_UINT64: return (int)((fmi3GetUInt64TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_BOOLEAN: return (int)((fmi3GetBooleanTYPE *)f)(instance, vr, n, values, n);
-    default: return fmi3Error;
+    case SSX_FMI3_FLOAT64:
+        return (int)((fmi3GetFloat64TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_FLOAT32:
+        return (int)((fmi3GetFloat32TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT8:
+        return (int)((fmi3GetInt8TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT8:
+        return (int)((fmi3GetUInt8TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT16:
+        return (int)((fmi3GetInt16TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT16:
+        return (int)((fmi3GetUInt16TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT32:
+        return (int)((fmi3GetInt32TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT32:
+        return (int)((fmi3GetUInt32TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT64:
+        return (int)((fmi3GetInt64TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT64:
+        return (int)((fmi3GetUInt64TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_BOOLEAN:
+        return (int)((fmi3GetBooleanTYPE *)f)(instance, vr, n, values, n);
+    default:
+        return fmi3Error;
     }
 }
 
@@ -418,18 +435,30 @@ static int set_typed(const ssx_fmu_function *fn, fmi3Instance instance, ssx_fmi3
 {
     ssx_fmu_function f = fn[setter[type]];
     switch (type) {
-    case SSX_FMI3_FLOAT64: return (int)((fmi3SetFloat64TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_FLOAT32: return (int)((fmi3SetFloat32TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_INT8: return (int)((fmi3SetInt8TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_UINT8: return (int)((fmi3SetUInt8TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_INT16: return (int)((fmi3SetInt16TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_UINT16: return (int)((fmi3SetUInt16TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_INT32: return (int)((fmi3SetInt32TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_UINT32: return (int)((fmi3SetUInt32TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_INT64: return (int)((fmi3SetInt64TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_UINT64: return (int)((fmi3SetUInt64TYPE *)f)(instance, vr, n, values, n);
-    case SSX_FMI3_BOOLEAN: return (int)((fmi3SetBooleanTYPE *)f)(instance, vr, n, values, n);
-    default: return fmi3Error;
+    case SSX_FMI3_FLOAT64:
+        return (int)((fmi3SetFloat64TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_FLOAT32:
+        return (int)((fmi3SetFloat32TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT8:
+        return (int)((fmi3SetInt8TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT8:
+        return (int)((fmi3SetUInt8TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT16:
+        return (int)((fmi3SetInt16TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT16:
+        return (int)((fmi3SetUInt16TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT32:
+        return (int)((fmi3SetInt32TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT32:
+        return (int)((fmi3SetUInt32TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_INT64:
+        return (int)((fmi3SetInt64TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_UINT64:
+        return (int)((fmi3SetUInt64TYPE *)f)(instance, vr, n, values, n);
+    case SSX_FMI3_BOOLEAN:
+        return (int)((fmi3SetBooleanTYPE *)f)(instance, vr, n, values, n);
+    default:
+        return fmi3Error;
     }
 }
 
@@ -438,18 +467,26 @@ static int set_typed(const ssx_fmu_function *fn, fmi3Instance instance, ssx_fmi3
 static long long integer_at(ssx_fmi3_type type, const void *values, size_t k)
 {
     switch (type) {
-    case SSX_FMI3_INT8: return ((const int8_t *)values)[k];
-    case SSX_FMI3_UINT8: return ((const uint8_t *)values)[k];
-    case SSX_FMI3_INT16: return ((const int16_t *)values)[k];
-    case SSX_FMI3_UINT16: return ((const uint16_t *)values)[k];
-    case SSX_FMI3_INT32: return ((const int32_t *)values)[k];
-    case SSX_FMI3_UINT32: return ((const uint32_t *)values)[k];
-    case SSX_FMI3_INT64: return ((const int64_t *)values)[k];
+    case SSX_FMI3_INT8:
+        return ((const int8_t *)values)[k];
+    case SSX_FMI3_UINT8:
+        return ((const uint8_t *)values)[k];
+    case SSX_FMI3_INT16:
+        return ((const int16_t *)values)[k];
+    case SSX_FMI3_UINT16:
+        return ((const uint16_t *)values)[k];
+    case SSX_FMI3_INT32:
+        return ((const int32_t *)values)[k];
+    case SSX_FMI3_UINT32:
+        return ((const uint32_t *)values)[k];
+    case SSX_FMI3_INT64:
+        return ((const int64_t *)values)[k];
     case SSX_FMI3_UINT64: {
         uint64_t u = ((const uint64_t *)values)[k];
         return u > (uint64_t)LLONG_MAX ? LLONG_MAX : (long long)u;
     }
-    default: return 0;
+    default:
+        return 0;
     }
 }
 
@@ -469,15 +506,32 @@ static void integer_range(ssx_fmi3_type type, long long *lo, long long *hi)
 static void put_integer(ssx_fmi3_type type, void *values, size_t k, long long value)
 {
     switch (type) {
-    case SSX_FMI3_INT8: ((int8_t *)values)[k] = (int8_t)value; break;
-    case SSX_FMI3_UINT8: ((uint8_t *)values)[k] = (uint8_t)value; break;
-    case SSX_FMI3_INT16: ((int16_t *)values)[k] = (int16_t)value; break;
-    case SSX_FMI3_UINT16: ((uint16_t *)values)[k] = (uint16_t)value; break;
-    case SSX_FMI3_INT32: ((int32_t *)values)[k] = (int32_t)value; break;
-    case SSX_FMI3_UINT32: ((uint32_t *)values)[k] = (uint32_t)value; break;
-    case SSX_FMI3_INT64: ((int64_t *)values)[k] = (int64_t)value; break;
-    case SSX_FMI3_UINT64: ((uint64_t *)values)[k] = (uint64_t)value; break;
-    default: break;
+    case SSX_FMI3_INT8:
+        ((int8_t *)values)[k] = (int8_t)value;
+        break;
+    case SSX_FMI3_UINT8:
+        ((uint8_t *)values)[k] = (uint8_t)value;
+        break;
+    case SSX_FMI3_INT16:
+        ((int16_t *)values)[k] = (int16_t)value;
+        break;
+    case SSX_FMI3_UINT16:
+        ((uint16_t *)values)[k] = (uint16_t)value;
+        break;
+    case SSX_FMI3_INT32:
+        ((int32_t *)values)[k] = (int32_t)value;
+        break;
+    case SSX_FMI3_UINT32:
+        ((uint32_t *)values)[k] = (uint32_t)value;
+        break;
+    case SSX_FMI3_INT64:
+        ((int64_t *)values)[k] = (int64_t)value;
+        break;
+    case SSX_FMI3_UINT64:
+        ((uint64_t *)values)[k] = (uint64_t)value;
+        break;
+    default:
+        break;
     }
 }
 
@@ -500,12 +554,15 @@ static int take(fmi3_context *ctx, ssx_fmi3_type type, size_t k, ssx_value_type 
     if (value < INT_MIN || value > INT_MAX) {
         const variable *v = find(ctx, ctx->part_vr[k]);
         if (type == SSX_FMI3_UINT64) {
-            say(ctx, "variable '%s' (UInt64) holds %llu, outside the range of the engine's "
-                "Integer ports (%d..%d)", v->name,
-                (unsigned long long)((const uint64_t *)values)[k], INT_MIN, INT_MAX);
+            say(ctx,
+                "variable '%s' (UInt64) holds %llu, outside the range of the engine's "
+                "Integer ports (%d..%d)",
+                v->name, (unsigned long long)((const uint64_t *)values)[k], INT_MIN, INT_MAX);
         } else {
-            say(ctx, "variable '%s' (%s) holds %lld, outside the range of the engine's Integer "
-                "ports (%d..%d)", v->name, type_names[type], value, INT_MIN, INT_MAX);
+            say(ctx,
+                "variable '%s' (%s) holds %lld, outside the range of the engine's Integer "
+                "ports (%d..%d)",
+                v->name, type_names[type], value, INT_MIN, INT_MAX);
         }
         return -1;
     }
@@ -569,8 +626,8 @@ static int get_values(const ssx_fmu_function *fn, fmi3_context *ctx, ssx_value_t
         if (m == 0) {
             continue;
         }
-        int status = get_typed(fn, ctx->instance, (ssx_fmi3_type)type, ctx->part_vr, m,
-                               ctx->part_values);
+        int status =
+            get_typed(fn, ctx->instance, (ssx_fmi3_type)type, ctx->part_vr, m, ctx->part_values);
         worst = worse(worst, status);
         if (status > fmi3Warning) {
             return status;
@@ -611,8 +668,8 @@ static int set_values(const ssx_fmu_function *fn, fmi3_context *ctx, ssx_value_t
                 return -1;
             }
         }
-        int status = set_typed(fn, ctx->instance, (ssx_fmi3_type)type, ctx->part_vr, m,
-                               ctx->part_values);
+        int status =
+            set_typed(fn, ctx->instance, (ssx_fmi3_type)type, ctx->part_vr, m, ctx->part_values);
         worst = worse(worst, status);
         if (status > fmi3Warning) {
             return status;
@@ -627,14 +684,14 @@ static int get_real(const ssx_fmu_function *fn, void *instance, const unsigned i
     return get_values(fn, instance, SSX_REAL, vr, n, values);
 }
 
-static int get_integer(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
-                       size_t n, int *values)
+static int get_integer(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                       int *values)
 {
     return get_values(fn, instance, SSX_INTEGER, vr, n, values);
 }
 
-static int get_boolean(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
-                       size_t n, int *values)
+static int get_boolean(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                       int *values)
 {
     return get_values(fn, instance, SSX_BOOLEAN, vr, n, values);
 }
@@ -645,44 +702,44 @@ static int set_real(const ssx_fmu_function *fn, void *instance, const unsigned i
     return set_values(fn, instance, SSX_REAL, vr, n, values);
 }
 
-static int set_integer(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
-                       size_t n, const int *values)
+static int set_integer(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                       const int *values)
 {
     return set_values(fn, instance, SSX_INTEGER, vr, n, values);
 }
 
-static int set_boolean(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
-                       size_t n, const int *values)
+static int set_boolean(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                       const int *values)
 {
     return set_values(fn, instance, SSX_BOOLEAN, vr, n, values);
 }
 
-static int get_string(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
-                      size_t n, const char **values)
+static int get_string(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                      const char **values)
 {
-    return (int)FMI3(fn, SLOT_GET_STRING, fmi3GetStringTYPE)(
-        ((fmi3_context *)instance)->instance, vr, n, values, n);
+    return (int)FMI3(fn, SLOT_GET_STRING, fmi3GetStringTYPE)(((fmi3_context *)instance)->instance,
+                                                             vr, n, values, n);
 }
 
-static int set_string(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
-                      size_t n, const char *const *values)
+static int set_string(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                      const char *const *values)
 {
-    return (int)FMI3(fn, SLOT_SET_STRING, fmi3SetStringTYPE)(
-        ((fmi3_context *)instance)->instance, vr, n, values, n);
+    return (int)FMI3(fn, SLOT_SET_STRING, fmi3SetStringTYPE)(((fmi3_context *)instance)->instance,
+                                                             vr, n, values, n);
 }
 
-static int get_binary(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
-                      size_t n, size_t *sizes, const unsigned char **values)
+static int get_binary(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                      size_t *sizes, const unsigned char **values)
 {
-    return (int)FMI3(fn, SLOT_GET_BINARY, fmi3GetBinaryTYPE)(
-        ((fmi3_context *)instance)->instance, vr, n, sizes, values, n);
+    return (int)FMI3(fn, SLOT_GET_BINARY, fmi3GetBinaryTYPE)(((fmi3_context *)instance)->instance,
+                                                             vr, n, sizes, values, n);
 }
 
-static int set_binary(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
-                      size_t n, const size_t *sizes, const unsigned char *const *values)
+static int set_binary(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                      const size_t *sizes, const unsigned char *const *values)
 {
-    return (int)FMI3(fn, SLOT_SET_BINARY, fmi3SetBinaryTYPE)(
-        ((fmi3_context *)instance)->instance, vr, n, sizes, values, n);
+    return (int)FMI3(fn, SLOT_SET_BINARY, fmi3SetBinaryTYPE)(((fmi3_context *)instance)->instance,
+                                                             vr, n, sizes, values, n);
 }
 
 static const char *variable_name(const void *context, unsigned int vr)
@@ -700,8 +757,8 @@ static int do_step(const ssx_fmu_function *fn, void *instance, double t, double 
     fmi3Boolean event = fmi3False, terminate = fmi3False, early = fmi3False;
     fmi3Float64 reached = t;
     int status = (int)FMI3(fn, SLOT_DO_STEP, fmi3DoStepTYPE)(
-        ctx->instance, t, h, no_set_state_prior ? fmi3True : fmi3False, &event, &terminate,
-        &early, &reached);
+        ctx->instance, t, h, no_set_state_prior ? fmi3True : fmi3False, &event, &terminate, &early,
+        &reached);
     ctx->outcome = (ssx_step_outcome){
         .reported = 1,
         .event_handling_needed = ctx->event_mode_used && event,
@@ -733,8 +790,8 @@ static int get_last_successful_time(const ssx_fmu_function *fn, void *instance, 
 
 static int enter_event_mode(const ssx_fmu_function *fn, void *instance)
 {
-    return (int)FMI3(fn, SLOT_ENTER_EVENT_MODE, fmi3EnterEventModeTYPE)(
-        ((fmi3_context *)instance)->instance);
+    return (int)FMI3(fn, SLOT_ENTER_EVENT_MODE,
+                     fmi3EnterEventModeTYPE)(((fmi3_context *)instance)->instance);
 }
 
 static int update_discrete_states(const ssx_fmu_function *fn, void *instance,
@@ -744,8 +801,8 @@ static int update_discrete_states(const ssx_fmu_function *fn, void *instance,
     fmi3Boolean values = fmi3False, next_defined = fmi3False;
     fmi3Float64 next = 0.0;
     int status = (int)FMI3(fn, SLOT_UPDATE_DISCRETE_STATES, fmi3UpdateDiscreteStatesTYPE)(
-        ((fmi3_context *)instance)->instance, &again, &terminate, &nominals, &values,
-        &next_defined, &next);
+        ((fmi3_context *)instance)->instance, &again, &terminate, &nominals, &values, &next_defined,
+        &next);
     *update = (ssx_discrete_update){
         .discrete_states_need_update = again != fmi3False,
         .terminate_simulation = terminate != fmi3False,
@@ -757,16 +814,16 @@ static int update_discrete_states(const ssx_fmu_function *fn, void *instance,
 
 static int enter_step_mode(const ssx_fmu_function *fn, void *instance)
 {
-    return (int)FMI3(fn, SLOT_ENTER_STEP_MODE, fmi3EnterStepModeTYPE)(
-        ((fmi3_context *)instance)->instance);
+    return (int)FMI3(fn, SLOT_ENTER_STEP_MODE,
+                     fmi3EnterStepModeTYPE)(((fmi3_context *)instance)->instance);
 }
 
 /* ------------------------------------------------------------------ states and derivatives */
 
 static int get_state(const ssx_fmu_function *fn, void *instance, void **state)
 {
-    return (int)FMI3(fn, SLOT_GET_STATE, fmi3GetFMUStateTYPE)(
-        ((fmi3_context *)instance)->instance, state);
+    return (int)FMI3(fn, SLOT_GET_STATE, fmi3GetFMUStateTYPE)(((fmi3_context *)instance)->instance,
+                                                              state);
 }
 
 static int set_state(const ssx_fmu_function *fn, void *instance, void *state)
@@ -779,8 +836,8 @@ static int set_state(const ssx_fmu_function *fn, void *instance, void *state)
 
 static int free_state(const ssx_fmu_function *fn, void *instance, void **state)
 {
-    return (int)FMI3(fn, SLOT_FREE_STATE, fmi3FreeFMUStateTYPE)(
-        ((fmi3_context *)instance)->instance, state);
+    return (int)FMI3(fn, SLOT_FREE_STATE,
+                     fmi3FreeFMUStateTYPE)(((fmi3_context *)instance)->instance, state);
 }
 
 static int serialized_state_size(const ssx_fmu_function *fn, void *instance, void *state,
