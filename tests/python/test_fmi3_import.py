@@ -23,6 +23,7 @@ import pytest
 from fmpy import simulate_fmu
 from scipy.special import ellipk
 from syssimx import Connection, FMUComponent, System, TableSource, fmus
+from syssimx.cli import main
 from syssimx.errors import ConfigurationError, FMUFileError, SimulationError
 
 # the seed's pendulum: the quarter period from rest at 0.5 rad (tests/python/
@@ -325,6 +326,17 @@ def test_an_integer_beyond_the_engines_ports_names_the_input():
         feedthrough._start(0.0)
     assert str(python_side.value) == ("G.UInt32_input: 4294967295 is outside the range of the "
                                       "engine's Integer ports (-2147483648..2147483647)")
+
+
+@reference
+def test_info_shows_fmi3_capabilities_and_display_units(capsys: pytest.CaptureFixture[str]):
+    assert main(["info", BALL]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert "FMI version:      3.0" in lines
+    assert "  hasEventMode                             yes" in lines
+    assert "  canReturnEarlyAfterIntermediateUpdate    yes" in lines
+    alias = next(line for line in lines if line.split()[:1] == ["h_ft"])
+    assert alias.split()[1:6] == ["output", "continuous", "Float64", "m", "(display"]
 
 
 # ------------------------------------------------------------------------------ refusals

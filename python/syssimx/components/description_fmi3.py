@@ -52,13 +52,13 @@ def read_fmi3_description(path: Path) -> ModelDescription:
         raise FMUFileError(f"{path}: the FMI 3.0 description declares no CoSimulation interface")
     # fmpy keeps FMI 3.0's token under both names; syssimx passes it where FMI 2.0 has the guid
     description.guid = description.instantiationToken
-    # FMI 3.0 spells it providesDirectionalDerivatives, which fmpy 0.3 does not read
     description.coSimulation.providesDirectionalDerivative = \
-        _cosimulation_attribute(path, "providesDirectionalDerivatives") in ("true", "1")
+        provides_directional_derivatives(path)
     return description
 
 
-def _cosimulation_attribute(path: Path, name: str) -> str | None:
+def provides_directional_derivatives(path: Path) -> bool:
+    """FMI 3.0 spells the flag providesDirectionalDerivatives, which FMPy 0.3 does not read."""
     import zipfile
 
     from lxml import etree
@@ -67,7 +67,8 @@ def _cosimulation_attribute(path: Path, name: str) -> str | None:
     with zipfile.ZipFile(path) as archive:
         root = etree.fromstring(archive.read("modelDescription.xml"), parser)
     element = root.find("CoSimulation")
-    return element.get(name) if element is not None else None
+    return element is not None and element.get("providesDirectionalDerivatives") in ("true",
+                                                                                     "1")
 
 
 def _check_variable(variable: Any, path: Path) -> None:
