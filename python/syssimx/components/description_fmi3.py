@@ -39,7 +39,9 @@ def read_fmi3_description(path: Path) -> ModelDescription:
     try:
         description = read_model_description(str(path), validate=False)
     except Exception as exc:  # fmpy raises many kinds for a broken description
-        raise FMUFileError(f"{path}: modelDescription.xml: {exc or type(exc).__name__}") from exc
+        raise FMUFileError(f"{path}: modelDescription.xml declares FMI 3.0 but is not a "
+                           f"readable FMI 3.0 description ({type(exc).__name__}: {exc})"
+                           ) from exc
     for variable in description.modelVariables:
         _check_variable(variable, path)
     if description.coSimulation is None:
