@@ -60,7 +60,7 @@ typedef enum {
     SLOT_GET_BINARY,
     SLOT_SET_BINARY,
     SLOT_ENTER_EVENT_MODE,
-    SLOT_UPDATE_DISCRETE_STATES,
+    SLOT_NEW_DISCRETE_STATES,
     SLOT_ENTER_STEP_MODE,
     SLOT_COUNT
 } ssx_fmu_slot;
@@ -146,8 +146,8 @@ typedef struct {
     int (*set_binary)(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
                       size_t n, const size_t *sizes, const unsigned char *const *values);
     int (*enter_event_mode)(const ssx_fmu_function *fn, void *instance);
-    int (*update_discrete_states)(const ssx_fmu_function *fn, void *instance,
-                                  ssx_discrete_update *update);
+    int (*new_discrete_states)(const ssx_fmu_function *fn, void *instance,
+                               ssx_fmu_event_info *info);
     int (*enter_step_mode)(const ssx_fmu_function *fn, void *instance);
     /* what the last doStep said besides its status; NULL: only the status (FMI 2.0) */
     void (*step_outcome)(void *instance, ssx_step_outcome *outcome);

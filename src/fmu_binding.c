@@ -562,9 +562,9 @@ int ssx_fmu_enter_event_mode(ssx_fmu *fmu)
     return CHECKED0(fmu, SLOT_ENTER_EVENT_MODE, enter_event_mode);
 }
 
-int ssx_fmu_update_discrete_states(ssx_fmu *fmu, ssx_discrete_update *update)
+int ssx_fmu_new_discrete_states(ssx_fmu *fmu, ssx_fmu_event_info *info)
 {
-    return CHECKED(fmu, SLOT_UPDATE_DISCRETE_STATES, update_discrete_states, update);
+    return CHECKED(fmu, SLOT_NEW_DISCRETE_STATES, new_discrete_states, info);
 }
 
 int ssx_fmu_enter_step_mode(ssx_fmu *fmu)

@@ -42,16 +42,18 @@ typedef struct {
 /* The last doStep's out-arguments (all 0 before a step). */
 void ssx_fmu_step_outcome(const ssx_fmu *fmu, ssx_step_outcome *outcome);
 
-/* fmi3UpdateDiscreteStates' out-arguments. */
+/* What fmi2NewDiscreteStates (fmi2EventInfo) and fmi3UpdateDiscreteStates tell. */
 typedef struct {
-    int discrete_states_need_update;
+    int new_discrete_states_needed;
     int terminate_simulation;
+    int nominals_changed;
+    int values_changed;
     int next_event_time_defined;
     double next_event_time;
-} ssx_discrete_update;
-/* Event mode of an FMI 3.0 instance made with eventModeUsed; each returns the status, or -1. */
+} ssx_fmu_event_info;
+/* Event mode (an FMI 3.0 instance made with eventModeUsed); each returns the status, or -1. */
 int ssx_fmu_enter_event_mode(ssx_fmu *fmu);
-int ssx_fmu_update_discrete_states(ssx_fmu *fmu, ssx_discrete_update *update);
+int ssx_fmu_new_discrete_states(ssx_fmu *fmu, ssx_fmu_event_info *info);
 int ssx_fmu_enter_step_mode(ssx_fmu *fmu);
 
 /* The host process of an isolated FMU, NULL for one loaded into this process. */

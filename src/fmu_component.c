@@ -217,19 +217,19 @@ static int handle_own_event(ssx_system *sys, ssx_component *c, double t_e, int *
     if (!fmi_ok(status)) {
         return fail_fmi(sys, c, t_e, status, call_name(c, SLOT_ENTER_EVENT_MODE));
     }
-    ssx_discrete_update update = {.discrete_states_need_update = 1};
-    for (int round = 0; update.discrete_states_need_update && !update.terminate_simulation;
+    ssx_fmu_event_info update = {.new_discrete_states_needed = 1};
+    for (int round = 0; update.new_discrete_states_needed && !update.terminate_simulation;
          ++round) {
         if (round == sys->hybrid.max_microsteps) {
             return fail_zeno(sys, c->index, -1, t_e,
                              "component '%s': %s still asked for another round after %d rounds "
                              "at t=%.17g (chattering; max_microsteps=%d)",
-                             c->name, call_name(c, SLOT_UPDATE_DISCRETE_STATES), round, t_e,
+                             c->name, call_name(c, SLOT_NEW_DISCRETE_STATES), round, t_e,
                              sys->hybrid.max_microsteps);
         }
-        status = ssx_fmu_update_discrete_states(c->fmu, &update);
+        status = ssx_fmu_new_discrete_states(c->fmu, &update);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, t_e, status, call_name(c, SLOT_UPDATE_DISCRETE_STATES));
+            return fail_fmi(sys, c, t_e, status, call_name(c, SLOT_NEW_DISCRETE_STATES));
         }
     }
     *terminate = update.terminate_simulation;

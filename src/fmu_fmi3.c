@@ -59,7 +59,7 @@ static const ssx_fmu_function_row fmi3_functions[] = {
     {"fmi3GetBinary", SLOT_GET_BINARY, 1},
     {"fmi3SetBinary", SLOT_SET_BINARY, 1},
     {"fmi3EnterEventMode", SLOT_ENTER_EVENT_MODE, 1},
-    {"fmi3UpdateDiscreteStates", SLOT_UPDATE_DISCRETE_STATES, 1},
+    {"fmi3UpdateDiscreteStates", SLOT_NEW_DISCRETE_STATES, 1},
     {"fmi3EnterStepMode", SLOT_ENTER_STEP_MODE, 1},
     /* capabilities an FMU may lack (FMI 3.0 has every binary export them; be lenient) */
     {"fmi3GetFMUState", SLOT_GET_STATE, 0},
@@ -293,7 +293,7 @@ static int exit_initialization_mode(const ssx_fmu_function *fn, void *instance)
         fmi3Float64 next = 0.0;
         status =
             worse(status,
-                  (int)FMI3(fn, SLOT_UPDATE_DISCRETE_STATES, fmi3UpdateDiscreteStatesTYPE)(
+                  (int)FMI3(fn, SLOT_NEW_DISCRETE_STATES, fmi3UpdateDiscreteStatesTYPE)(
                       ctx->instance, &again, &terminate, &nominals, &values, &next_defined, &next));
         if (status > fmi3Warning) {
             return status;
@@ -794,18 +794,19 @@ static int enter_event_mode(const ssx_fmu_function *fn, void *instance)
                      fmi3EnterEventModeTYPE)(((fmi3_context *)instance)->instance);
 }
 
-static int update_discrete_states(const ssx_fmu_function *fn, void *instance,
-                                  ssx_discrete_update *update)
+static int new_discrete_states(const ssx_fmu_function *fn, void *instance, ssx_fmu_event_info *info)
 {
     fmi3Boolean again = fmi3False, terminate = fmi3False, nominals = fmi3False;
     fmi3Boolean values = fmi3False, next_defined = fmi3False;
     fmi3Float64 next = 0.0;
-    int status = (int)FMI3(fn, SLOT_UPDATE_DISCRETE_STATES, fmi3UpdateDiscreteStatesTYPE)(
+    int status = (int)FMI3(fn, SLOT_NEW_DISCRETE_STATES, fmi3UpdateDiscreteStatesTYPE)(
         ((fmi3_context *)instance)->instance, &again, &terminate, &nominals, &values, &next_defined,
         &next);
-    *update = (ssx_discrete_update){
-        .discrete_states_need_update = again != fmi3False,
+    *info = (ssx_fmu_event_info){
+        .new_discrete_states_needed = again != fmi3False,
         .terminate_simulation = terminate != fmi3False,
+        .nominals_changed = nominals != fmi3False,
+        .values_changed = values != fmi3False,
         .next_event_time_defined = next_defined != fmi3False,
         .next_event_time = next,
     };
@@ -906,7 +907,7 @@ const ssx_fmu_backend ssx_fmi3_backend = {
     .get_binary = get_binary,
     .set_binary = set_binary,
     .enter_event_mode = enter_event_mode,
-    .update_discrete_states = update_discrete_states,
+    .new_discrete_states = new_discrete_states,
     .enter_step_mode = enter_step_mode,
     .step_outcome = step_outcome,
     .variable_name = variable_name,

@@ -32,7 +32,7 @@ def test_engine_exports_only_the_functions_of_its_header() -> None:
     assert not exported & {"ssx_fmu_generation", "ssx_fmu_values_epoch", "ssx_fmu_remote",
                            "ssx_component_count", "fail_fmi", "history_append",
                            "ssx_fmi3_prepare", "ssx_fmu_step_outcome",
-                           "ssx_fmu_enter_event_mode", "ssx_fmu_update_discrete_states"}
+                           "ssx_fmu_enter_event_mode", "ssx_fmu_new_discrete_states"}
     # FMI 3.0 adds its loader and its String and Binary values to the interface
     assert {"ssx_fmu_load_fmi3", "ssx_fmu_get_string", "ssx_fmu_set_string",
             "ssx_fmu_get_binary", "ssx_fmu_set_binary"} <= exported
