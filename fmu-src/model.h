@@ -91,6 +91,10 @@ typedef struct {
      * end the simulation (INFINITY: not now). fmi2DoStep stops there and returns fmi2Discard;
      * fmi2GetBooleanStatus(fmi2Terminated) then answers true. */
     double (*termination_time)(const double *v);
+    /* NULL when the model has no time events; otherwise the first time after t at which its
+     * discrete variables change (INFINITY: none). Model Exchange reports it as nextEventTime;
+     * the time events are instants where an importer must stop and enter event mode. */
+    double (*next_time_event)(const double *v, double t);
     /* NULL when values can always be read; otherwise a reason to refuse fmi2Get* at time t */
     const char *(*read_refusal)(const double *v, double t);
     /* NULL when not provided; otherwise d output / d input at the current point with the states

@@ -96,6 +96,8 @@ def oversized(tmp_path: Path) -> Path:
 
 Build = Callable[[Path], Path]
 VARIABLE_U = '<ScalarVariable name="u" valueReference="1"'
+# the description names the binary in its ModelExchange element too; syssimx reads CoSimulation's
+CO_SIMULATION_ID = '<CoSimulation modelIdentifier="gain"'
 
 # name -> (archive builder, what the message says besides the file)
 CASES: dict[str, tuple[Build, str]] = {
@@ -125,12 +127,12 @@ CASES: dict[str, tuple[Build, str]] = {
     "Model Exchange only": (lambda tmp: edited(tmp, "<CoSimulation ", "<ModelExchange "),
                             "Model-Exchange-only"),
     "modelIdentifier with ../": (
-        lambda tmp: edited(tmp, 'modelIdentifier="gain"', 'modelIdentifier="../../evil"'),
+        lambda tmp: edited(tmp, CO_SIMULATION_ID, '<CoSimulation modelIdentifier="../../evil"'),
         "modelIdentifier '../../evil' is not a file name"),
     "modelIdentifier with /": (
-        lambda tmp: edited(tmp, 'modelIdentifier="gain"', 'modelIdentifier="/tmp/evil"'),
+        lambda tmp: edited(tmp, CO_SIMULATION_ID, '<CoSimulation modelIdentifier="/tmp/evil"'),
         "modelIdentifier '/tmp/evil' is not a file name"),
-    "no modelIdentifier": (lambda tmp: edited(tmp, 'modelIdentifier="gain"', ""),
+    "no modelIdentifier": (lambda tmp: edited(tmp, CO_SIMULATION_ID, "<CoSimulation"),
                            "no modelIdentifier"),
     "duplicate name": (lambda tmp: edited(tmp, 'name="u"', 'name="y"'),
                        "variable 'y': the name is not unique"),
