@@ -227,7 +227,8 @@ static int write_description(FILE *out, const char *model_identifier)
     fprintf(out,
             "  <ModelExchange modelIdentifier=\"%s\" completedIntegratorStepNotNeeded=\"true\"\n"
             "    canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\"\n"
-            "    canNotUseMemoryManagementFunctions=\"true\" providesDirectionalDerivative=\"%s\"/>\n",
+            "    canNotUseMemoryManagementFunctions=\"true\"\n"
+            "    providesDirectionalDerivative=\"%s\"/>\n",
             model_identifier, directional);
     fprintf(out,
             "  <CoSimulation modelIdentifier=\"%s\" canHandleVariableCommunicationStepSize=\"true\"\n"

@@ -110,7 +110,8 @@ fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
 
 /* Whether the variable may be written now, per FMI 2.0 (causality, variability, phase).
  * Masters re-apply all parameters after fmi2SetFMUstate (SysSimX does): a fixed parameter set
- * after initialization to the value it already has changes nothing and is accepted; a new value is not. */
+ * after initialization to the value it already has changes nothing and is accepted; a new value
+ * is not. */
 static fmi2Status check_settable(const fmu_instance *inst, const char *function,
                                  fmi2ValueReference vr, double value)
 {

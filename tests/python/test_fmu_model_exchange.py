@@ -44,10 +44,22 @@ def test_model_exchange_is_declared_beside_co_simulation(name: str) -> None:
     assert me.canGetAndSetFMUstate and me.canSerializeFMUstate
     assert me.providesDirectionalDerivative == cs.providesDirectionalDerivative
     assert not me.needsCompletedIntegratorStep
-    # every state has its derivative in ModelStructure, in state order, with its dependencies
-    for unknown in description.derivatives:
-        assert unknown.variable.derivative is not None
-        assert unknown.dependencies is not None
+    # every derivative variable is in ModelStructure's Derivatives, with its dependencies
+    declared = {v.name for v in description.modelVariables if v.derivative is not None}
+    assert {u.variable.name for u in description.derivatives} == declared
+    assert all(u.dependencies is not None for u in description.derivatives)
+
+
+@pytest.mark.parametrize(("name", "states"), [
+    ("pendulum_cvode", ["theta", "omega"]),
+    ("pendulum_contact_euler", ["theta", "omega"]),
+    ("pi_controller", ["integral"]),
+    ("sliding_mass", ["x", "v"]),
+    ("sample_hold", []),
+])
+def test_the_state_vector_is_the_models(name: str, states: list[str]) -> None:
+    description = read_model_description(fmus.path(name))
+    assert [u.variable.derivative.name for u in description.derivatives] == states
 
 
 def test_bouncing_ball_structure_for_model_exchange() -> None:
