@@ -113,8 +113,12 @@ static void write_co_simulation(FILE *out, const char *model_identifier)
             model_identifier);
     if (fmu_model.partial_derivative != NULL)
         fputs(" providesDirectionalDerivatives=\"true\"", out);
+    /* With event mode the FMU returns early at each internal event of its own accord
+     * (mightReturnEarlyFromDoStep). It calls no intermediate update (providesIntermediateUpdate
+     * stays false), so canReturnEarlyAfterIntermediateUpdate promises nothing beyond that; it
+     * is declared for importers that look for it next to hasEventMode. */
     if (has_events)
-        fputs("\n    hasEventMode=\"true\"", out);
+        fputs("\n    hasEventMode=\"true\" canReturnEarlyAfterIntermediateUpdate=\"true\"", out);
     if (returns_early)
         fputs(" mightReturnEarlyFromDoStep=\"true\"", out);
     fputs("/>\n", out);

@@ -157,6 +157,9 @@ def test_internal_events_declare_event_mode_and_early_return() -> None:
         flags = co_simulation_attributes(stem)
         events = stem in with_events
         assert flags.get("hasEventMode", "false") == str(events).lower(), stem
+        assert flags.get("canReturnEarlyAfterIntermediateUpdate", "false") == \
+            str(events).lower(), stem
+        assert "providesIntermediateUpdate" not in flags
         assert len(description.eventIndicators) == int(events), stem
         assert flags.get("mightReturnEarlyFromDoStep", "false") == \
             str(events or stem == "terminating").lower(), stem
