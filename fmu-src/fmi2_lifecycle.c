@@ -45,8 +45,11 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
         fmu_error(&reporter, "fmi2Instantiate: the instance name is missing");
         return NULL;
     }
-    if (fmuType != fmi2CoSimulation) {
-        fmu_error(&reporter, "fmi2Instantiate: this FMU supports Co-Simulation only");
+    if (fmuType != fmi2CoSimulation && fmuType != fmi2ModelExchange) {
+        fmu_error(&reporter,
+                  "fmi2Instantiate: fmuType %d is neither fmi2ModelExchange (%d) nor "
+                  "fmi2CoSimulation (%d)",
+                  (int)fmuType, (int)fmi2ModelExchange, (int)fmi2CoSimulation);
         return NULL;
     }
     char guid[FMU_GUID_LENGTH];
@@ -57,7 +60,11 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
         return NULL;
     }
 
-    return fmu_instance_create(&reporter, sizeof(fmu_instance), "fmi2Instantiate");
+    fmu_instance *inst = fmu_instance_create(&reporter, sizeof(fmu_instance), "fmi2Instantiate");
+    /* Model Exchange starts in event mode: the importer handles the initial events */
+    if (inst != NULL && fmuType == fmi2ModelExchange)
+        inst->running_phase = PHASE_EVENT;
+    return inst;
 }
 
 void fmi2FreeInstance(fmi2Component c)

@@ -17,6 +17,8 @@ fmi3_mode fmi3_mode_of(const fmu_instance *inst)
     case PHASE_INITIALIZATION: return MODE_INITIALIZATION;
     case PHASE_STEP: return inst->in_event_mode ? MODE_EVENT : MODE_STEP;
     case PHASE_TERMINATED: return MODE_TERMINATED;
+    case PHASE_EVENT:
+    case PHASE_CONTINUOUS_TIME: /* FMI 2.0 Model Exchange only */
     case PHASE_FATAL: break;
     }
     return MODE_FATAL;

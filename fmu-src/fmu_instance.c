@@ -8,8 +8,10 @@
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
-static const char *const phase_names[] = {"instantiated", "initialization mode", "step mode",
-                                          "terminated", "the fatal state (after fmi2Fatal)"};
+static const char *const phase_names[] = {
+    "instantiated", "initialization mode",  "step mode",
+    "event mode",   "continuous-time mode", "terminated",
+    "the fatal state (after fmi2Fatal)"};
 
 const char *fmu_phase_name(fmu_phase phase)
 {
@@ -56,6 +58,20 @@ void fmu_handle_events(fmu_instance *inst, double t, double *x)
     inst->model->handle_events(inst->values, t, x, inst->fired);
 }
 
+void fmu_event_indicators(const fmu_instance *inst, double *z)
+{
+    if (inst->model->n_event_indicators > 0)
+        inst->model->event_indicators(inst->values, inst->time, inst->x, z);
+}
+
+fmi2Status fmu_refusal_status(fmu_instance *inst, step_refusal_kind kind)
+{
+    static const fmi2Status statuses[] = {fmi2Error, fmi2Discard, fmi2Fatal};
+    if (statuses[kind] == fmi2Fatal)
+        inst->phase = PHASE_FATAL;
+    return statuses[kind];
+}
+
 int fmu_apply_pending_events(fmu_instance *inst)
 {
     if (!inst->event_pending)
@@ -85,6 +101,7 @@ void fmu_instance_free(fmu_instance *inst)
     free(inst->z_before);
     free(inst->z_after);
     free(inst->fired);
+    free(inst->z_previous);
     free(inst->name);
     free(inst);
 }
@@ -100,7 +117,9 @@ static int allocate_arrays(fmu_instance *inst)
     inst->z_before = calloc(n_indicators + 1, sizeof(double));
     inst->z_after = calloc(n_indicators + 1, sizeof(double));
     inst->fired = calloc(n_indicators + 1, sizeof(int));
-    return inst->values && inst->x && inst->dx && inst->z_before && inst->z_after && inst->fired;
+    inst->z_previous = calloc(n_indicators + 1, sizeof(double));
+    return inst->values && inst->x && inst->dx && inst->z_before && inst->z_after && inst->fired &&
+           inst->z_previous;
 }
 
 fmu_instance *fmu_instance_create(const fmu_instance *reporter, size_t size, const char *function)
@@ -117,6 +136,7 @@ fmu_instance *fmu_instance_create(const fmu_instance *reporter, size_t size, con
     inst->solver_variables = fmu_solver_variables;
     inst->n_variables = fmu_model.n_variables + fmu_solver_variable_count;
     inst->phase = PHASE_INSTANTIATED;
+    inst->running_phase = PHASE_STEP;
     inst->name = malloc(strlen(reporter->name) + 1);
     if (inst->name == NULL || !allocate_arrays(inst)) {
         fmu_error(reporter, "%s: out of memory", function);
@@ -155,9 +175,11 @@ fmi2Status fmu_setup_experiment(fmu_instance *inst, const char *function, int to
 void fmu_exit_initialization(fmu_instance *inst)
 {
     fmu_refresh_outputs(inst); /* states from the final start values */
-    inst->phase = PHASE_STEP;
+    inst->phase = inst->running_phase;
     fmu_refresh_outputs(inst);
     fmu_solver_invalidate(inst);
+    /* Model Exchange: the first event mode compares the indicators with their initial values */
+    fmu_event_indicators(inst, inst->z_previous);
 }
 
 void fmu_reset(fmu_instance *inst)

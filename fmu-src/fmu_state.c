@@ -1,6 +1,7 @@
 /* FMU states for every interface's get/set/free/serialize/deserialize calls. A state is the
- * time, the phase, the event mode, every variable value, the continuous states and the event a
- * step stopped at, if any; a back-end restarts its integration after a set. */
+ * time, the phase, the event mode, every variable value, the continuous states, the event
+ * indicators Model Exchange compares with and the event a step stopped at, if any; a back-end
+ * restarts its integration after a set. */
 #include "fmu_state.h"
 
 #include <stdint.h>
@@ -23,21 +24,27 @@ typedef struct {
 
 typedef struct {
     state_header header;
-    /* n_values variable values, n_states states, then n_event_indicators flags: the event
-     * pending */
+    /* n_values variable values, n_states states, then per event indicator its previous value
+     * (Model Exchange) and whether its event is pending */
     double data[];
 } fmu_snapshot;
 
 static size_t data_count(const fmu_instance *inst)
 {
-    return inst->n_variables + inst->model->n_states + inst->model->n_event_indicators;
+    return inst->n_variables + inst->model->n_states + 2 * inst->model->n_event_indicators;
 }
 
 static int matches(const fmu_instance *inst, const state_header *header)
 {
+    if (!(header->phase >= PHASE_INSTANTIATED && header->phase <= PHASE_TERMINATED))
+        return 0;
+    /* a state taken while running belongs to the interface (step or event mode) it ran in */
+    fmu_phase phase = (fmu_phase)header->phase;
+    int running = (PHASE_BIT(phase) & PHASES_RUNNING) != 0;
+    if (running && (phase == PHASE_STEP) != (inst->running_phase == PHASE_STEP))
+        return 0;
     return strncmp(header->guid, inst->guid, sizeof header->guid) == 0 &&
-           header->n_values == inst->n_variables && header->n_states == inst->model->n_states &&
-           header->phase >= PHASE_INSTANTIATED && header->phase <= PHASE_TERMINATED;
+           header->n_values == inst->n_variables && header->n_states == inst->model->n_states;
 }
 
 static void capture(const fmu_instance *inst, fmu_snapshot *snapshot)
@@ -53,7 +60,9 @@ static void capture(const fmu_instance *inst, fmu_snapshot *snapshot)
     memcpy(snapshot->data, inst->values, inst->n_variables * sizeof(double));
     double *x = snapshot->data + inst->n_variables;
     memcpy(x, inst->x, inst->model->n_states * sizeof(double));
-    double *fired = x + inst->model->n_states;
+    double *z_previous = x + inst->model->n_states;
+    memcpy(z_previous, inst->z_previous, inst->model->n_event_indicators * sizeof(double));
+    double *fired = z_previous + inst->model->n_event_indicators;
     for (size_t i = 0; i < inst->model->n_event_indicators; ++i)
         fired[i] = inst->fired[i];
 }
@@ -90,7 +99,9 @@ fmi2Status fmu_state_set(fmu_instance *inst, const char *function, const void *F
     memcpy(inst->values, snapshot->data, inst->n_variables * sizeof(double));
     const double *x = snapshot->data + inst->n_variables;
     memcpy(inst->x, x, inst->model->n_states * sizeof(double));
-    const double *fired = x + inst->model->n_states;
+    const double *z_previous = x + inst->model->n_states;
+    memcpy(inst->z_previous, z_previous, inst->model->n_event_indicators * sizeof(double));
+    const double *fired = z_previous + inst->model->n_event_indicators;
     for (size_t i = 0; i < inst->model->n_event_indicators; ++i)
         inst->fired[i] = fired[i] != 0.0;
     inst->outputs_stale = 1;

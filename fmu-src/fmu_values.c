@@ -52,8 +52,9 @@ fmi2Status fmu_prepare_read(fmu_instance *inst, const char *function)
 }
 
 /* Whether the variable may be written now (causality, variability, phase). Masters re-apply
- * all parameters after a state restore (SysSimX does): a fixed parameter set in step mode to
- * the value it already has changes nothing and is accepted; a new value is not. */
+ * all parameters after a state restore (SysSimX does): a fixed parameter set after
+ * initialization to the value it already has changes nothing and is accepted; a new value is
+ * not. */
 static fmi2Status check_settable(const fmu_instance *inst, const char *function,
                                  fmi2ValueReference vr, double value)
 {
@@ -61,13 +62,14 @@ static fmi2Status check_settable(const fmu_instance *inst, const char *function,
     if (var->causality == CAUSALITY_INPUT)
         return fmi2OK;
     if (var->causality == CAUSALITY_PARAMETER) {
-        if (inst->phase != PHASE_STEP || var->variability == VARIABILITY_TUNABLE ||
-            inst->values[vr] == value)
+        if ((PHASE_BIT(inst->phase) & PHASES_RUNNING) == 0 ||
+            var->variability == VARIABILITY_TUNABLE || inst->values[vr] == value)
             return fmi2OK;
+        /* the hint names the calls of the caller's interface: fmi2... or fmi3... */
         return fmu_error(inst,
-                         "%s: %s is a fixed parameter and cannot be changed in step mode "
-                         "(set it before initialization ends, or reset the instance)",
-                         function, var->name);
+                         "%s: %s is a fixed parameter and cannot be changed in %s "
+                         "(set it before %.4sExitInitializationMode, or use %.4sReset)",
+                         function, var->name, fmu_phase_name(inst->phase), function, function);
     }
     return fmu_error(inst, "%s: %s is an output or local variable and cannot be set", function,
                      var->name);

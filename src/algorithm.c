@@ -8,7 +8,7 @@
 /* No events: one coupled step per communication step. */
 static int plain_step(ssx_system *sys, double t, double t_next)
 {
-    if (coupling_step(sys, t, t_next - t) != 0) {
+    if (coupling_step(sys, t, t_next - t) != 0 || own_events_commit(sys, t_next) != 0) {
         return -1;
     }
     sys->stats.macro_steps++;

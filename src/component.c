@@ -79,6 +79,7 @@ int component_restore(ssx_system *sys, ssx_component *c, int slot, double t)
     if (c->n_inputs > 0) {
         memcpy(c->inputs, c->saved_inputs[slot], (size_t)c->n_inputs * sizeof(double));
     }
+    own_events_drop_after(c, t);
     return 0;
 }
 
@@ -230,6 +231,7 @@ void component_free(ssx_component *c)
         c->ops->release(c);
     }
     free_prepared(c);
+    own_event_list_free(&c->own_events);
     free(c->name);
     free(c->output_ports);
     free(c->outputs);

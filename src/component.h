@@ -4,6 +4,7 @@
 #ifndef SSX_COMPONENT_H
 #define SSX_COMPONENT_H
 
+#include "own_events.h"
 #include "syssimx_engine.h"
 
 /* Slot 0 holds the macro-step snapshot, slot 1 the short probe after an event. */
@@ -67,6 +68,8 @@ struct ssx_component {
     /* engine-side port values saved with each snapshot, so a restore brings them back too */
     double *saved_outputs[SSX_SNAPSHOT_SLOTS];
     double *saved_inputs[SSX_SNAPSHOT_SLOTS];
+    /* events handled inside its steps, until the master accepts them (own_events.h) */
+    ssx_own_event_list own_events;
 };
 
 extern const ssx_component_ops ssx_fmu_component_ops;

@@ -605,9 +605,9 @@ int hybrid_step(ssx_system *sys, double t, double t_next)
                 indicator_follow(&sys->indicator_states[i], sys->indicator_states[i].value);
             }
             sys->time = t_next;
-            return record_grid_point(sys, t_next);
+            return own_events_commit(sys, t_next) != 0 ? -1 : record_grid_point(sys, t_next);
         }
-        if (locate(sys, &br) != 0) {
+        if (locate(sys, &br) != 0 || own_events_commit(sys, br.b) != 0) {
             return -1;
         }
         sys->time = br.b;

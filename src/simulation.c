@@ -54,6 +54,7 @@ int ssx_initialize(ssx_system *sys, double t0)
     sys->termination.component = -1;
     memset(&sys->stats, 0, sizeof sys->stats);
     localization_log_clear(&sys->localization);
+    own_events_clear(sys);
     sys->stepping_hybrid = system_is_hybrid(sys);
     if (check_components(sys) != 0 || coupling_prepare(sys) != 0 ||
         master_algorithm_choose(sys) != 0) {

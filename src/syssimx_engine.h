@@ -180,13 +180,25 @@ typedef struct {
     long loop_iterations;        /* Newton/fixed-point iterations of algebraic loops */
     long loop_solves;
     long directional_derivatives; /* fmi2GetDirectionalDerivative calls for loop Jacobians */
+    long own_events;             /* events components handled inside their own steps */
 } ssx_statistics;
+
+/* Who found an event: the master, by an indicator's crossing (located by rollback), or a
+ * component inside its own step, at a time it knows without rollback. */
+typedef enum {
+    SSX_MASTER_EVENT = 0,  /* an indicator crossed */
+    SSX_OWN_FMU_EVENT,     /* an FMI 3.0 FMU's event, handled in event mode after it returned */
+    SSX_OWN_STATE_EVENT,   /* a Model Exchange FMU's event indicator crossed */
+    SSX_OWN_TIME_EVENT,    /* a Model Exchange FMU's time event (nextEventTime) */
+    SSX_OWN_STEP_EVENT     /* a Model Exchange FMU asked for event mode after a completed step */
+} ssx_own_event_kind;
 
 typedef struct {
     double t;
     int micro;          /* superdense index of the handling round */
-    int indicator;      /* which indicator fired */
-    int component;      /* the component that owns the indicator */
+    int indicator;      /* which indicator fired; -1 for a component's own event */
+    int component;      /* the component that owns the indicator or handled its own event */
+    ssx_own_event_kind own; /* SSX_MASTER_EVENT, or the kind of the component's own event */
     int iterations;     /* localization iterations spent on the instant (0 for cascades) */
     int rollbacks;      /* restores spent on the instant */
     long do_steps;      /* doStep calls spent on the instant */

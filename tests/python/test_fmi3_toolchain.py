@@ -379,7 +379,8 @@ def test_calls_in_the_wrong_state_are_refused_with_a_message(open_fmu3) -> None:
     assert fmu.refused(fmu.slave.updateDiscreteStates) == \
         "fmi3UpdateDiscreteStates is not allowed in Step Mode"
     assert fmu.refused(fmu.set, "m", 50.0).startswith(
-        "fmi3SetFloat64: m is a fixed parameter and cannot be changed in step mode")
+        "fmi3SetFloat64: m is a fixed parameter and cannot be changed in step mode (set it "
+        "before fmi3ExitInitializationMode, or use fmi3Reset)")
     fmu.slave.terminate()
     assert fmu.refused(fmu.slave.doStep, 0.0, 0.1) == "fmi3DoStep is not allowed in Terminated"
 

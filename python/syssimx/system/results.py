@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..core.events import DenseTime
-from ..engine import ffi, lib
+from ..engine import enum_name, ffi, lib
 from ..errors import ConfigurationError
 from . import csv_export
 from .event_log import EventLog
@@ -38,6 +38,12 @@ class LocalizationTrial:
 class EventRecord:
     """One handled event: instant (t, micro), source and the localization cost.
 
+    An event a component handled inside its own step (an FMI 3.0 FMU in event mode after an
+    early return, a Model Exchange FMU's state, time or step event) is named by its kind:
+    "fmu_event", "state_event", "time_event" or "step_event"; it has no localization (0
+    iterations, no trials, NaN bracket) and no sample of its own: the other components were
+    not at its time.
+
     For an event located by rollback (micro 0), t_left and t_right are the initial bracket
     (the macro step, or its part after an earlier event, in which the indicator crossed),
     value_left and value_right the indicator there, and trials the localization trials in
@@ -58,6 +64,7 @@ class EventRecord:
     value_left: float = math.nan
     value_right: float = math.nan
     trials: tuple[LocalizationTrial, ...] = ()
+    own: bool = False  # handled by its component inside its own step
 
     @property
     def time(self) -> DenseTime:
@@ -90,6 +97,7 @@ class Statistics:
     loop_solves: int
     iterations_per_event: tuple[int, ...]
     directional_derivatives: int  # fmi2GetDirectionalDerivative calls for loop Jacobians
+    own_events: int = 0  # events components handled inside their own steps (no rollback)
     termination: Termination | None = None
 
     def __str__(self) -> str:
@@ -98,6 +106,7 @@ class Statistics:
                  f"state saves: {self.state_saves}, restores: {self.state_restores}",
                  f"events: {self.events}, localization iterations: "
                  f"{self.localization_iterations} {list(self.iterations_per_event)}",
+                 f"events handled by components themselves: {self.own_events}",
                  f"loop solves: {self.loop_solves}, iterations: {self.loop_iterations}, "
                  f"directional derivatives: {self.directional_derivatives}"]
         if self.termination is not None:
@@ -120,12 +129,17 @@ def read_events(plan: EnginePlan) -> list[EventRecord]:
     events = []
     for i in range(int(lib().ssx_event_count(plan.sys))):
         if lib().ssx_event_get(plan.sys, i, record) == 0:
-            component, event = plan.indicators[record.indicator]
+            if record.indicator >= 0:
+                component, event = plan.indicators[record.indicator]
+            else:
+                component = list(plan.index)[record.component]
+                event = enum_name("ssx_own_event_kind", "SSX_OWN_", record.own)
             events.append(EventRecord(
                 float(record.t), int(record.micro), component, event, int(record.iterations),
                 int(record.rollbacks), int(record.do_steps), float(record.t_left),
                 float(record.t_right), float(record.value_left), float(record.value_right),
-                read_trials(plan, int(record.first_trial), int(record.n_trials))))
+                read_trials(plan, int(record.first_trial), int(record.n_trials)),
+                record.indicator < 0))
     return events
 
 
@@ -136,8 +150,9 @@ def read_statistics(plan: EnginePlan, events: Sequence[EventRecord],
     return Statistics(int(raw.macro_steps), int(raw.do_step_calls), int(raw.state_saves),
                       int(raw.state_restores), int(raw.events),
                       int(raw.localization_iterations), int(raw.loop_iterations),
-                      int(raw.loop_solves), tuple(e.iterations for e in events),
-                      int(raw.directional_derivatives), termination)
+                      int(raw.loop_solves),
+                      tuple(e.iterations for e in events if not e.own),
+                      int(raw.directional_derivatives), int(raw.own_events), termination)
 
 
 class HistoryView:

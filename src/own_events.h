@@ -1,0 +1,39 @@
+/* Events a component handles inside its own step: an FMI 3.0 FMU's events, handled in event mode
+ * after it returned early, and a Model Exchange FMU's state, time and step events, handled by the
+ * engine's integrator. No rollback finds them: the component knows their time. A step may still
+ * be undone (the master's localization trials, rollbacks and probes), so a reported event stays
+ * pending with its component until the master accepts the step it belongs to; a restore drops
+ * the component's events after the restored time. The pending list is per component, so a
+ * component stepped on a worker thread reports without sharing anything. */
+#ifndef SSX_OWN_EVENTS_H
+#define SSX_OWN_EVENTS_H
+
+#include <stddef.h>
+
+#include "syssimx_engine.h"
+
+typedef struct {
+    double t;
+    ssx_own_event_kind kind;
+} ssx_own_event;
+
+typedef struct {
+    ssx_own_event *pending; /* in time order */
+    size_t n;
+    size_t capacity;
+} ssx_own_event_list;
+
+typedef struct ssx_component ssx_component;
+
+/* The component handled an event of its own at t during the step it is taking. */
+int own_event_report(ssx_system *sys, ssx_component *c, ssx_own_event_kind kind, double t);
+/* The component's state is back at t: its events after t did not happen. */
+void own_events_drop_after(ssx_component *c, double t);
+/* The master accepted the system's state at t: every component's pending events up to t become
+ * event records, in time order (component order within one time), at micro step 0. */
+int own_events_commit(ssx_system *sys, double t);
+/* ssx_initialize: nothing is pending. */
+void own_events_clear(ssx_system *sys);
+void own_event_list_free(ssx_own_event_list *list);
+
+#endif
