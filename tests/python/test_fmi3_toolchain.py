@@ -264,7 +264,8 @@ def test_cvode_returns_early_at_each_bounce(open_fmu3) -> None:
         assert before < 0.0
 
 
-def test_early_return_times_are_the_fmi2_builds_internal_event_times(open_fmu) -> None:
+def test_early_return_times_are_the_fmi2_builds_internal_event_times(open_fmu,
+                                                                    open_fmu3) -> None:
     """The FMI 2.0 build logs each internal event it handles; the FMI 3.0 build returns at
     exactly those times: CVODE at the root it found, Euler at the point it located by linear
     interpolation inside the Euler substep where the height crossed zero."""
@@ -274,25 +275,8 @@ def test_early_return_times_are_the_fmi2_builds_internal_event_times(open_fmu) -
             fmi2.slave.doStep(k * 0.01, 0.01)
         logged = [float(m.split("t = ")[1]) for _, m in fmi2.messages if "internal event" in m]
         assert len(logged) == 6, stem
-        fmi3 = _open_fresh(stem)
-        events = run_with_event_mode(fmi3, 3.0, 0.01)
+        events = run_with_event_mode(open_fmu3(stem, tolerance=1e-10, event_mode=True), 3.0, 0.01)
         assert [t for t, _, _ in events] == logged, stem
-        fmi3.slave.freeInstance()
-
-
-def _open_fresh(stem: str) -> OpenFMU3:
-    path = fmus.path(stem + "_fmi3")
-    description = read_model_description(path)
-    slave = FMU3Slave(guid=description.guid, unzipDirectory=extract(path),
-                      modelIdentifier=description.coSimulation.modelIdentifier,
-                      instanceName=stem)
-    fmu = OpenFMU3(slave, {v.name: v for v in description.modelVariables})
-    slave.instantiate(eventModeUsed=True, earlyReturnAllowed=True)
-    slave.enterInitializationMode(tolerance=1e-10, startTime=0.0)
-    slave.exitInitializationMode()
-    slave.updateDiscreteStates()
-    slave.enterStepMode()
-    return fmu
 
 
 def test_euler_stops_at_the_located_crossing(open_fmu3) -> None:
