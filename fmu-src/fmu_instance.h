@@ -72,6 +72,16 @@ typedef struct fmu_instance {
      * trajectory since; part of the FMU state */
     double *z_previous;
 
+    /* Internal events left to the importer (FMI 3.0 event mode with early return): a step
+     * stops at the first one, which `fired` marks and event_pending keeps until the importer
+     * applies it with fmu_apply_pending_events. in_event_mode: the importer entered FMI 3.0
+     * Co-Simulation's Event Mode, during which the phase stays PHASE_STEP (a state taken there
+     * belongs to a Co-Simulation instance; PHASE_EVENT is Model Exchange's). Both are part of
+     * the FMU state; importer_handles_events is fixed at instantiation. */
+    int importer_handles_events;
+    int event_pending;
+    int in_event_mode;
+
     void *solver;            /* back-end data */
 } fmu_instance;
 
@@ -91,6 +101,20 @@ static inline fmu_instance *fmu_checked(fmi2Component c, const char *function, u
 }
 
 const char *fmu_phase_name(fmu_phase phase);
+
+/* A new instance of `size` bytes (at least sizeof(fmu_instance): an interface may extend it)
+ * named and logging like `reporter`, at its start values with its back-end created; NULL after
+ * reporting the failure through `reporter`. `function` names the call in messages. */
+fmu_instance *fmu_instance_create(const fmu_instance *reporter, size_t size,
+                                  const char *function);
+void fmu_instance_free(fmu_instance *inst);
+
+/* The lifecycle steps every interface shares; `function` names the call in messages. */
+fmi2Status fmu_setup_experiment(fmu_instance *inst, const char *function, int tolerance_defined,
+                                double tolerance, double start_time, int stop_time_defined,
+                                double stop_time);
+void fmu_exit_initialization(fmu_instance *inst);
+void fmu_reset(fmu_instance *inst);
 
 /* The table row of a value reference, or NULL when the FMU has no such variable. Inline: every
  * fmi2Get and fmi2Set checks each of its value references with it. */
@@ -121,5 +145,9 @@ fmi2Status fmu_refusal_status(fmu_instance *inst, step_refusal_kind kind);
 
 /* Apply the internal events the back-end marked in inst->fired at time t (changes x), and log them. */
 void fmu_handle_events(fmu_instance *inst, double t, double *x);
+
+/* Apply the event a step stopped at (event_pending) at the instance's time; restarts the
+ * integration there. Returns whether a continuous state changed. */
+int fmu_apply_pending_events(fmu_instance *inst);
 
 #endif
