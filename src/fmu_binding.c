@@ -95,6 +95,9 @@ static int resolve_functions(ssx_fmu *fmu, const char *binary_path,
                              const char *model_identifier, char *error, size_t error_size)
 {
     const ssx_fmu_backend *backend = fmu->backend;
+    for (int slot = 0; slot < SLOT_COUNT; ++slot) {
+        fmu->names[slot] = "a function outside the FMU's interface"; /* for messages */
+    }
     for (size_t i = 0; i < backend->n_functions; ++i) {
         const ssx_fmu_function_row *row = &backend->functions[i];
         void *symbol = fmu->remote != NULL ? ssx_remote_function(fmu->remote, row->name)
@@ -178,6 +181,15 @@ ssx_fmu *ssx_fmu_load(const char *binary_path, const char *model_identifier, con
 {
     return load(&ssx_fmi2_backend, NULL, 0.0, binary_path, model_identifier, guid, resource_uri,
                 instance_name, logging_on, error, error_size);
+}
+
+ssx_fmu *ssx_fmu_load_model_exchange(const char *binary_path, const char *model_identifier,
+                                     const char *guid, const char *resource_uri,
+                                     const char *instance_name, int logging_on, char *error,
+                                     size_t error_size)
+{
+    return load(&ssx_fmi2_model_exchange_backend, NULL, 0.0, binary_path, model_identifier, guid,
+                resource_uri, instance_name, logging_on, error, error_size);
 }
 
 ssx_fmu *ssx_fmu_load_isolated(const char *host_path, double step_timeout,
@@ -484,6 +496,66 @@ int ssx_fmu_get_last_successful_time(ssx_fmu *fmu, double *time)
         return -1;
     }
     return CHECKED(fmu, SLOT_GET_LAST_SUCCESSFUL_TIME, get_last_successful_time, time);
+}
+
+/* ------------------------------------------------------------------ Model Exchange */
+
+int ssx_fmu_set_time(ssx_fmu *fmu, double time)
+{
+    return CHECKED(fmu, SLOT_SET_TIME, set_time, time);
+}
+
+int ssx_fmu_set_continuous_states(ssx_fmu *fmu, const double *x, size_t nx)
+{
+    return CHECKED(fmu, SLOT_SET_CONTINUOUS_STATES, set_continuous_states, x, nx);
+}
+
+int ssx_fmu_get_continuous_states(ssx_fmu *fmu, double *x, size_t nx)
+{
+    return CHECKED(fmu, SLOT_GET_CONTINUOUS_STATES, get_continuous_states, x, nx);
+}
+
+int ssx_fmu_get_derivatives(ssx_fmu *fmu, double *dx, size_t nx)
+{
+    return CHECKED(fmu, SLOT_GET_DERIVATIVES, get_derivatives, dx, nx);
+}
+
+int ssx_fmu_get_event_indicators(ssx_fmu *fmu, double *z, size_t nz)
+{
+    return CHECKED(fmu, SLOT_GET_EVENT_INDICATORS, get_event_indicators, z, nz);
+}
+
+int ssx_fmu_get_nominals_of_continuous_states(ssx_fmu *fmu, double *nominals, size_t nx)
+{
+    return CHECKED(fmu, SLOT_GET_NOMINALS_OF_CONTINUOUS_STATES,
+                   get_nominals_of_continuous_states, nominals, nx);
+}
+
+int ssx_fmu_enter_event_mode(ssx_fmu *fmu)
+{
+    return CHECKED0(fmu, SLOT_ENTER_EVENT_MODE, enter_event_mode);
+}
+
+int ssx_fmu_new_discrete_states(ssx_fmu *fmu, ssx_fmu_event_info *info)
+{
+    return CHECKED(fmu, SLOT_NEW_DISCRETE_STATES, new_discrete_states, info);
+}
+
+int ssx_fmu_enter_continuous_time_mode(ssx_fmu *fmu)
+{
+    return CHECKED0(fmu, SLOT_ENTER_CONTINUOUS_TIME_MODE, enter_continuous_time_mode);
+}
+
+int ssx_fmu_completed_integrator_step(ssx_fmu *fmu, int no_set_state_prior,
+                                      int *enter_event_mode, int *terminate_simulation)
+{
+    return CHECKED(fmu, SLOT_COMPLETED_INTEGRATOR_STEP, completed_integrator_step,
+                   no_set_state_prior, enter_event_mode, terminate_simulation);
+}
+
+int ssx_fmu_is_model_exchange(const ssx_fmu *fmu)
+{
+    return fmu != NULL && fmu->backend == &ssx_fmi2_model_exchange_backend;
 }
 
 /* ------------------------------------------------------------------ states */
