@@ -122,8 +122,8 @@ CASES: dict[str, tuple[Build, str]] = {
                 "FMI version 1.0 is not supported"),
     "FMI 3.0": (lambda tmp: edited(tmp, 'fmiVersion="2.0"', 'fmiVersion="3.0"'),
                 "FMI version 3.0 is not supported"),
-    "Model Exchange only": (lambda tmp: edited(tmp, "<CoSimulation ", "<ModelExchange "),
-                            "Model-Exchange-only"),
+    "no interface": (lambda tmp: edited(tmp, "<CoSimulation ", "<Simulation "),
+                     "declares neither CoSimulation nor ModelExchange"),
     "modelIdentifier with ../": (
         lambda tmp: edited(tmp, 'modelIdentifier="gain"', 'modelIdentifier="../../evil"'),
         "modelIdentifier '../../evil' is not a file name"),
