@@ -56,7 +56,7 @@ static int fmu_read_outputs(ssx_system *sys, ssx_component *c)
 
 /* Whether the FMU already holds every input value: nothing set it since the engine's last write
  * (connected inputs change each step; unconnected ones only when Python writes them). */
-static int inputs_unchanged(const ssx_component *c)
+int fmu_component_inputs_unchanged(const ssx_component *c)
 {
     if (c->inputs_written_epoch != ssx_fmu_values_epoch(c->fmu)) {
         return 0;
@@ -71,7 +71,7 @@ static int inputs_unchanged(const ssx_component *c)
 
 static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
 {
-    if (inputs_unchanged(c)) {
+    if (fmu_component_inputs_unchanged(c)) {
         return 0;
     }
     const ssx_port_batch *real = &c->input_batch[SSX_REAL];

@@ -145,8 +145,8 @@ static int fail_cvode(ssx_system *sys, ssx_component *c, me_data *me, double t, 
 }
 
 /* The FMU asked to end the simulation at t: the engine's termination path (see
- * ssx_termination). Reaching the step's end, the step counts as done. */
-static int terminated(ssx_system *sys, ssx_component *c, double t, double t_end, double dt)
+ * ssx_termination). */
+static void note_termination(ssx_system *sys, ssx_component *c, double t)
 {
     if (sys->termination.component < 0) {
         sys->termination.component = c->index;
@@ -154,6 +154,12 @@ static int terminated(ssx_system *sys, ssx_component *c, double t, double t_end,
         snprintf(sys->termination.message, sizeof sys->termination.message, "%s",
                  ssx_fmu_last_message(c->fmu));
     }
+}
+
+/* ... inside a step: reaching the step's end, the step counts as done. */
+static int terminated(ssx_system *sys, ssx_component *c, double t, double t_end, double dt)
+{
+    note_termination(sys, c, t);
     if (t >= t_end - 1e-9 * dt) {
         return fmu_component_read_outputs_at(sys, c, t_end);
     }
@@ -256,10 +262,8 @@ static int handle_event(ssx_system *sys, ssx_component *c, me_data *me, double t
     if (iterate_discrete_states(sys, c, me, t) != 0) {
         return -1;
     }
-    if (me->now.event.terminate_simulation) {
-        return 0; /* the caller ends the run: no continuous-time mode after terminate */
-    }
-    if (leave_event_mode(sys, c, me, t, 0) != 0) {
+    /* after a request to terminate the caller ends the run: no continuous-time mode */
+    if (!me->now.event.terminate_simulation && leave_event_mode(sys, c, me, t, 0) != 0) {
         return -1;
     }
     return own_event_report(sys, c, kind, t);
@@ -406,9 +410,34 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
 
 /* ------------------------------------------------------------------ ports and snapshots */
 
+/* New input values are an event of the environment: FMI 2.0 lets discrete inputs change only
+ * in event mode, and what the FMU computes from them is settled by its event iteration. Held
+ * over the step, they are a discontinuity CVODE starts afresh after anyway. */
 static int me_write_inputs(ssx_system *sys, ssx_component *c)
 {
-    return ssx_fmu_component_ops.write_inputs(sys, c);
+    me_data *me = c->data;
+    double t = sys->time;
+    if (fmu_component_inputs_unchanged(c)) {
+        return 0;
+    }
+    if (start_instance(sys, c, me, t) != 0) {
+        return -1;
+    }
+    int status = ssx_fmu_enter_event_mode(c->fmu);
+    if (!fmi_ok(status)) {
+        return fail_fmi(sys, c, t, status, "fmi2EnterEventMode");
+    }
+    if (ssx_fmu_component_ops.write_inputs(sys, c) != 0 ||
+        iterate_discrete_states(sys, c, me, t) != 0) {
+        return -1;
+    }
+    if (me->now.event.terminate_simulation) {
+        note_termination(sys, c, t);
+        return fail(sys, c->index, -1, t,
+                    "component '%s' asked to stop at t=%.17g when its inputs changed", c->name,
+                    t);
+    }
+    return leave_event_mode(sys, c, me, t, 0);
 }
 
 static int me_read_outputs(ssx_system *sys, ssx_component *c)
@@ -421,10 +450,10 @@ static int me_read_outputs(ssx_system *sys, ssx_component *c)
 
 static int me_evaluate_outputs(ssx_system *sys, ssx_component *c, double t)
 {
-    if (start_instance(sys, c, c->data, t) != 0) {
+    if (start_instance(sys, c, c->data, t) != 0 || me_write_inputs(sys, c) != 0) {
         return -1;
     }
-    return ssx_fmu_component_ops.evaluate_outputs(sys, c, t);
+    return fmu_component_read_outputs_at(sys, c, t);
 }
 
 static int me_snapshot(ssx_system *sys, ssx_component *c, int slot)

@@ -137,7 +137,7 @@ class FMUComponent(CoSimComponent):
         return int(self.info.variables[name].valueReference)
 
     def set_inputs(self, signals: dict[str, Any], t: float | None = None) -> None:
-        """Set inputs; they go to the FMU at once when it is instantiated."""
+        """Set inputs; they go to a Co-Simulation FMU at once when it is instantiated."""
         for name, value in signals.items():
             if name not in self.input_specs:
                 raise ConfigurationError(f"component {self.name!r} has no input {name!r}; "
@@ -146,7 +146,9 @@ class FMUComponent(CoSimComponent):
             self._inputs_set.add(name)
         if self._binding is not None:
             self._binding.plan.write_inputs(self, signals)
-        if self.instance.alive():
+        # the engine writes a Model Exchange FMU's inputs in event mode, where discrete ones
+        # may change, before its next step
+        if self.instance.alive() and not self.model_exchange:
             self._write_to_fmu({n: self._input_starts[n] for n in signals})
 
     def _write_to_fmu(self, values: dict[str, Any]) -> None:
