@@ -5,12 +5,12 @@ accurate solution, and with the model's `_out.csv`.
 
 Tolerances, with RTOL = 1e-8 given to both:
 - Models with continuous states (BouncingBall, Dahlquist, VanDerPol): the states lie within
-  10 * RTOL (relative to the state's scale: its largest magnitude, at least its nominal 1) of an accurate solution (the
-  closed form; VanDerPol: scipy's DOP853 at 1e-13; BouncingBall up to its third bounce) and no
-  farther from it than FMPy's, over the whole run. CVODE
-  controls the local error only, so over VanDerPol's 20 s FMPy's own global error reaches
-  3.4e-6 (340 * RTOL; ours 6.3e-8): "within 10 * RTOL of FMPy" cannot hold there, while "as
-  close to the solution as FMPy, and within 10 * RTOL of it" does, for every model.
+  10 * RTOL of an accurate solution (relative to the state's scale: its largest magnitude, at
+  least its nominal 1; the closed form; VanDerPol: scipy's DOP853 at 1e-13; BouncingBall up to
+  its third bounce) and no farther from it than FMPy's, over the whole run. CVODE controls the
+  local error only, so over VanDerPol's 20 s FMPy's own global error reaches 3.4e-6 (340 *
+  RTOL; ours 6.3e-8): "within 10 * RTOL of FMPy" cannot hold there, while "as close to the
+  solution as FMPy, and within 10 * RTOL of it" does, for every model.
 - Models without states (Feedthrough, Resource, Stair): exactly FMPy's numbers (1e-12).
 - `_out.csv` comes from the Reference FMUs' simulator with a fixed-step explicit Euler: a model
   with states differs from it by Euler's global error, which the exact solution shows. Ours is
