@@ -570,10 +570,14 @@ int ssx_fmu_get_state(ssx_fmu *fmu, void **state)
                  "%s: the state to reuse does not belong to the live instance", fmu->last_call);
         return -1;
     }
-    int fresh = *state == NULL;
+    void *reused = *state;
     int status =
         finish(fmu, SLOT_GET_STATE, fmu->backend->get_state(fmu->fn, fmu->instance, state));
-    if (fresh && *state != NULL && remember_state(fmu, *state) != 0) {
+    if (reused != NULL && *state != reused) {
+        /* the FMU may move a state it updates (the Reference FMUs realloc it) */
+        (void)forget_state(fmu, reused);
+    }
+    if (*state != reused && *state != NULL && remember_state(fmu, *state) != 0) {
         if (fmu->fn[SLOT_FREE_STATE] != NULL) {
             fmu->backend->free_state(fmu->fn, fmu->instance, state);
         }
