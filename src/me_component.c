@@ -192,6 +192,17 @@ static int iterate_discrete_states(ssx_system *sys, ssx_component *c, me_data *m
     }
 }
 
+/* The FMU's continuous states into the engine's copy: what a Python hook that restored or
+ * re-initialized the FMU left there, too. */
+static int read_states(ssx_system *sys, ssx_component *c, me_data *me, double t)
+{
+    if (me->nx == 0) {
+        return 0;
+    }
+    int status = ssx_fmu_get_continuous_states(c->fmu, me->now.x, me->nx);
+    return fmi_ok(status) ? 0 : fail_fmi(sys, c, t, status, "fmi2GetContinuousStates");
+}
+
 /* Back to continuous-time mode after event mode: the states the event left and, when they
  * changed, their nominals (the absolute tolerances). */
 static int leave_event_mode(ssx_system *sys, ssx_component *c, me_data *me, double t,
@@ -201,14 +212,10 @@ static int leave_event_mode(ssx_system *sys, ssx_component *c, me_data *me, doub
     if (!fmi_ok(status)) {
         return fail_fmi(sys, c, t, status, "fmi2EnterContinuousTimeMode");
     }
-    if (me->nx == 0) {
-        return 0;
+    if (read_states(sys, c, me, t) != 0) {
+        return -1;
     }
-    status = ssx_fmu_get_continuous_states(c->fmu, me->now.x, me->nx);
-    if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, t, status, "fmi2GetContinuousStates");
-    }
-    if (read_nominals || me->now.event.nominals_changed) {
+    if (me->nx > 0 && (read_nominals || me->now.event.nominals_changed)) {
         status = ssx_fmu_get_nominals_of_continuous_states(c->fmu, me->nominals, me->nx);
         if (!fmi_ok(status)) {
             return fail_fmi(sys, c, t, status, "fmi2GetNominalsOfContinuousStates");
@@ -361,7 +368,8 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
     double reach = t_end + 1e-9 * dt;
     int warm = me->warm_at == t && me->warm_epoch == ssx_fmu_values_epoch(c->fmu);
     me->warm_at = NAN;
-    if (me->cvode != NULL && !warm && restart_cvode(sys, c, me, t) != 0) {
+    if (me->cvode != NULL && !warm &&
+        (read_states(sys, c, me, t) != 0 || restart_cvode(sys, c, me, t) != 0)) {
         return -1;
     }
     int event_at_end = 0;
