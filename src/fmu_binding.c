@@ -89,6 +89,9 @@ static void *resolve(void *library, const char *model_identifier, const char *na
     return symbol;
 }
 
+/* The name of a slot the back-end's table lacks (a Model Exchange FMU's fmi2DoStep). */
+static const char OUTSIDE_THE_INTERFACE[] = "a function outside the FMU's interface";
+
 /* Fills the slots from the back-end's table: from the library, or the forwarders of an
  * isolated FMU's host. A required function that is missing is the error. */
 static int resolve_functions(ssx_fmu *fmu, const char *binary_path,
@@ -96,7 +99,7 @@ static int resolve_functions(ssx_fmu *fmu, const char *binary_path,
 {
     const ssx_fmu_backend *backend = fmu->backend;
     for (int slot = 0; slot < SLOT_COUNT; ++slot) {
-        fmu->names[slot] = "a function outside the FMU's interface"; /* for messages */
+        fmu->names[slot] = OUTSIDE_THE_INTERFACE;
     }
     for (size_t i = 0; i < backend->n_functions; ++i) {
         const ssx_fmu_function_row *row = &backend->functions[i];
@@ -243,6 +246,9 @@ static int refuse(ssx_fmu *fmu, ssx_fmu_slot call)
     const char *name = fmu->names[call];
     if (fmu->fatal_call != NULL) {
         refuse_after_fatal(fmu, name);
+    } else if (name == OUTSIDE_THE_INTERFACE) {
+        snprintf(fmu->last_message, sizeof fmu->last_message,
+                 "the FMU runs as %s, which has no such function", fmu->backend->standard);
     } else if (fmu->instance == NULL) {
         snprintf(fmu->last_message, sizeof fmu->last_message,
                  "%s called without a live instance (call instantiate first)", name);

@@ -16,6 +16,7 @@ import pytest
 from syssimx import (
     ConfigurationError,
     Connection,
+    FMUError,
     FMUComponent,
     GaussSeidelAlgorithm,
     JacobiAlgorithm,
@@ -133,6 +134,13 @@ def test_interface_choice_and_its_errors(tmp_path: Path):
     with pytest.raises(ConfigurationError, match=r"component 'C': interface='me' is not one of "
                        r"'auto', 'co-simulation', 'model-exchange'"):
         FMUComponent("C", ball, interface="me")
+    model_exchange = FMUComponent("E", ball, interface="model-exchange")
+    system = System("one")
+    system.add_component(model_exchange)
+    system.initialize(0.0)
+    with pytest.raises(FMUError, match=r"^E: fmi2DoStep returned failed: the FMU runs as FMI 2\.0 "
+                       r"Model Exchange, which has no such function$"):
+        model_exchange.instance.doStep(0.0, 0.1)
     with pytest.raises(ConfigurationError, match=r"component 'D': isolated=True runs an FMU's "
                        r"Co-Simulation interface only, and BouncingBall\.fmu runs as Model "
                        r"Exchange here .* drop isolated=True or pass "
