@@ -16,8 +16,8 @@ import pytest
 from syssimx import (
     ConfigurationError,
     Connection,
-    FMUError,
     FMUComponent,
+    FMUError,
     GaussSeidelAlgorithm,
     JacobiAlgorithm,
     System,
