@@ -9,6 +9,8 @@ found as in test_reference_fmus.py.
 
 from __future__ import annotations
 
+import re
+import zipfile
 from pathlib import Path
 
 import numpy as np
@@ -23,9 +25,11 @@ from syssimx import (
     System,
     fmus,
 )
-from syssimx.engine import lib
+from syssimx.cli import main
+from syssimx.engine import ffi, lib
 from syssimx.system.loader import build_system
 from test_model_exchange_reference import G, bounce_times, fmu
+from test_reference_fmus import read_result
 
 DT = 0.1
 
@@ -159,3 +163,39 @@ def test_the_loader_reads_interface(tmp_path: Path):
     with pytest.raises(ConfigurationError, match="'interface' chooses an FMU's interface: it "
                        "needs 'fmu'"):
         build_system(config)
+
+
+def model_exchange_only(tmp_path: Path) -> Path:
+    """The Reference BouncingBall without its CoSimulation element: a Model-Exchange-only FMU."""
+    path = tmp_path / "BouncingBallME.fmu"
+    with zipfile.ZipFile(fmu("BouncingBall")) as source, \
+            zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as target:
+        for item in source.infolist():
+            data = source.read(item)
+            if item.filename == "modelDescription.xml":
+                data = re.sub(rb"<CoSimulation.*?</CoSimulation>", b"", data, flags=re.S)
+            target.writestr(item, data)
+    return path
+
+
+def test_a_model_exchange_only_fmu_runs_by_default(tmp_path: Path):
+    """"auto" takes Model Exchange when the FMU has no Co-Simulation: from Python and from the
+    command line without --interface, with the same numbers; asking for Co-Simulation fails."""
+    path = model_exchange_only(tmp_path)
+    ball = FMUComponent("B", path)
+    assert ball.model_exchange is True
+    system = System("ball")
+    system.add_component(ball)
+    system.initialize(0.0)
+    t, values = system.run(0.0, 1.0, 0.01)["B"]
+    # no tolerance given anywhere: the engine's default relative tolerance (FMPy's 1e-5)
+    defaults = ffi.new("ssx_defaults *")
+    lib().ssx_get_defaults(defaults)
+    assert defaults.model_exchange_tolerance == 1e-5
+    fall = t < bounce_times()[0]
+    assert np.max(np.abs(values["h"][fall] - (1 - G * t[fall] ** 2 / 2))) < 1e-5
+    out = tmp_path / "out.csv"
+    assert main(["simulate", str(path), "--stop-time", "1", "--step-size", "0.01",
+                 "--output", str(out)]) == 0
+    np.testing.assert_array_equal(read_result(out)["h"], values["h"])
+    assert main(["simulate", str(path), "--interface", "co-simulation"]) != 0
