@@ -194,7 +194,7 @@ static void write_structure(FILE *out, const variable_list *list)
                     write_unknown(out, vr, list->rows[vr]->depends);
         fputs("    </Derivatives>\n", out);
     }
-    /* Co-Simulation: outputs computed at initialization, plus states and derivatives. */
+    /* outputs computed at initialization, plus states and derivatives (both interfaces) */
     fputs("    <InitialUnknowns>\n", out);
     for (size_t vr = 0; vr < list->count; ++vr) {
         const model_variable *v = list->rows[vr];
@@ -219,14 +219,23 @@ static int write_description(FILE *out, const char *model_identifier)
     fputs("  description=\"", out);
     write_escaped(out, fmu_model.description);
     fprintf(out, " (%s back-end)\"\n", fmu_solver_name);
-    fputs("  generationTool=\"syssimx FMU framework\" variableNamingConvention=\"structured\">\n",
+    fputs("  generationTool=\"syssimx FMU framework\" variableNamingConvention=\"structured\"\n",
           out);
+    fprintf(out, "  numberOfEventIndicators=\"%zu\">\n", fmu_model.n_event_indicators);
+    const char *directional = fmu_model.partial_derivative != NULL ? "true" : "false";
+    /* one binary serves both interfaces; fmi2CompletedIntegratorStep never has anything to do */
+    fprintf(out,
+            "  <ModelExchange modelIdentifier=\"%s\" completedIntegratorStepNotNeeded=\"true\"\n"
+            "    canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\"\n"
+            "    canNotUseMemoryManagementFunctions=\"true\"\n"
+            "    providesDirectionalDerivative=\"%s\"/>\n",
+            model_identifier, directional);
     fprintf(out,
             "  <CoSimulation modelIdentifier=\"%s\" canHandleVariableCommunicationStepSize=\"true\"\n"
             "    canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\"\n"
             "    canNotUseMemoryManagementFunctions=\"true\" canInterpolateInputs=\"false\"\n"
             "    providesDirectionalDerivative=\"%s\"/>\n",
-            model_identifier, fmu_model.partial_derivative != NULL ? "true" : "false");
+            model_identifier, directional);
     write_units(out, &list);
     fputs("  <LogCategories>\n", out);
     for (int i = 0; i < LOG_CATEGORY_COUNT; ++i)

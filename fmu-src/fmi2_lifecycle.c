@@ -48,6 +48,7 @@ static void free_instance(fmu_instance *inst)
     free(inst->z_before);
     free(inst->z_after);
     free(inst->fired);
+    free(inst->z_previous);
     free(inst->name);
     free(inst);
 }
@@ -63,7 +64,9 @@ static int allocate_arrays(fmu_instance *inst)
     inst->z_before = calloc(n_indicators + 1, sizeof(double));
     inst->z_after = calloc(n_indicators + 1, sizeof(double));
     inst->fired = calloc(n_indicators + 1, sizeof(int));
-    return inst->values && inst->x && inst->dx && inst->z_before && inst->z_after && inst->fired;
+    inst->z_previous = calloc(n_indicators + 1, sizeof(double));
+    return inst->values && inst->x && inst->dx && inst->z_before && inst->z_after && inst->fired &&
+           inst->z_previous;
 }
 
 fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
@@ -86,8 +89,11 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
         fmu_error(&reporter, "fmi2Instantiate: the instance name is missing");
         return NULL;
     }
-    if (fmuType != fmi2CoSimulation) {
-        fmu_error(&reporter, "fmi2Instantiate: this FMU supports Co-Simulation only");
+    if (fmuType != fmi2CoSimulation && fmuType != fmi2ModelExchange) {
+        fmu_error(&reporter,
+                  "fmi2Instantiate: fmuType %d is neither fmi2ModelExchange (%d) nor "
+                  "fmi2CoSimulation (%d)",
+                  (int)fmuType, (int)fmi2ModelExchange, (int)fmi2CoSimulation);
         return NULL;
     }
     char guid[FMU_GUID_LENGTH];
@@ -110,6 +116,8 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
     inst->solver_variables = fmu_solver_variables;
     inst->n_variables = fmu_model.n_variables + fmu_solver_variable_count;
     inst->phase = PHASE_INSTANTIATED;
+    /* Model Exchange starts in event mode: the importer handles the initial events */
+    inst->running_phase = fmuType == fmi2ModelExchange ? PHASE_EVENT : PHASE_STEP;
     inst->name = malloc(strlen(instanceName) + 1);
     if (inst->name == NULL || !allocate_arrays(inst)) {
         fmu_error(&reporter, "fmi2Instantiate: out of memory");
@@ -175,9 +183,11 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component c)
     if (inst == NULL)
         return fmi2Error;
     fmu_refresh_outputs(inst); /* states from the final start values */
-    inst->phase = PHASE_STEP;
+    inst->phase = inst->running_phase;
     fmu_refresh_outputs(inst);
     fmu_solver_invalidate(inst);
+    /* Model Exchange: the first event mode compares the indicators with their initial values */
+    fmu_event_indicators(inst, inst->z_previous);
     return fmi2OK;
 }
 

@@ -20,12 +20,9 @@ static double stop_time(const fmu_instance *inst)
 static fmi2Status refuse_step(fmu_instance *inst, double t, double t_end, const char *reason,
                               step_refusal_kind kind)
 {
-    static const fmi2Status statuses[] = {fmi2Error, fmi2Discard, fmi2Fatal};
-    fmi2Status status = statuses[kind];
+    fmi2Status status = fmu_refusal_status(inst, kind);
     fmu_log(inst, status, status == fmi2Discard ? LOG_STATUS_WARNING : LOG_STATUS_ERROR,
             "fmi2DoStep from t = %.17g to %.17g: %s", t, t_end, reason);
-    if (status == fmi2Fatal)
-        inst->phase = PHASE_FATAL;
     return status;
 }
 

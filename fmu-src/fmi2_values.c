@@ -110,7 +110,8 @@ fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
 
 /* Whether the variable may be written now, per FMI 2.0 (causality, variability, phase).
  * Masters re-apply all parameters after fmi2SetFMUstate (SysSimX does): a fixed parameter set
- * in step mode to the value it already has changes nothing and is accepted; a new value is not. */
+ * after initialization to the value it already has changes nothing and is accepted; a new value
+ * is not. */
 static fmi2Status check_settable(const fmu_instance *inst, const char *function,
                                  fmi2ValueReference vr, double value)
 {
@@ -118,13 +119,13 @@ static fmi2Status check_settable(const fmu_instance *inst, const char *function,
     if (var->causality == CAUSALITY_INPUT)
         return fmi2OK;
     if (var->causality == CAUSALITY_PARAMETER) {
-        if (inst->phase != PHASE_STEP || var->variability == VARIABILITY_TUNABLE ||
-            inst->values[vr] == value)
+        if ((PHASE_BIT(inst->phase) & PHASES_RUNNING) == 0 ||
+            var->variability == VARIABILITY_TUNABLE || inst->values[vr] == value)
             return fmi2OK;
         return fmu_error(inst,
-                         "%s: %s is a fixed parameter and cannot be changed in step mode "
+                         "%s: %s is a fixed parameter and cannot be changed in %s "
                          "(set it before fmi2ExitInitializationMode, or use fmi2Reset)",
-                         function, var->name);
+                         function, var->name, fmu_phase_name(inst->phase));
     }
     return fmu_error(inst, "%s: %s is an output or local variable and cannot be set", function,
                      var->name);

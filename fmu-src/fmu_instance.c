@@ -5,8 +5,10 @@
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
-static const char *const phase_names[] = {"instantiated", "initialization mode", "step mode",
-                                          "terminated", "the fatal state (after fmi2Fatal)"};
+static const char *const phase_names[] = {
+    "instantiated", "initialization mode",  "step mode",
+    "event mode",   "continuous-time mode", "terminated",
+    "the fatal state (after fmi2Fatal)"};
 
 const char *fmu_phase_name(fmu_phase phase)
 {
@@ -51,4 +53,18 @@ void fmu_handle_events(fmu_instance *inst, double t, double *x)
         if (inst->fired[i])
             fmu_log(inst, fmi2OK, LOG_EVENTS, "internal event %zu at t = %.17g", i, t);
     inst->model->handle_events(inst->values, t, x, inst->fired);
+}
+
+void fmu_event_indicators(const fmu_instance *inst, double *z)
+{
+    if (inst->model->n_event_indicators > 0)
+        inst->model->event_indicators(inst->values, inst->time, inst->x, z);
+}
+
+fmi2Status fmu_refusal_status(fmu_instance *inst, step_refusal_kind kind)
+{
+    static const fmi2Status statuses[] = {fmi2Error, fmi2Discard, fmi2Fatal};
+    if (statuses[kind] == fmi2Fatal)
+        inst->phase = PHASE_FATAL;
+    return statuses[kind];
 }

@@ -1,5 +1,6 @@
 /* fmi2Get/Set/Free/Serialize/DeSerializeFMUstate. A state is the time, the phase, every
- * variable value and the continuous states; a back-end restarts its integration after a set. */
+ * variable value, the continuous states and the event indicators Model Exchange compares with;
+ * a back-end restarts its integration after a set. */
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,19 +20,25 @@ typedef struct {
 
 typedef struct {
     state_header header;
-    double data[]; /* n_values variable values, then n_states states */
+    double data[]; /* n_values variable values, n_states states, then the previous indicators */
 } fmu_snapshot;
 
 static size_t data_count(const fmu_instance *inst)
 {
-    return inst->n_variables + inst->model->n_states;
+    return inst->n_variables + inst->model->n_states + inst->model->n_event_indicators;
 }
 
 static int matches(const fmu_instance *inst, const state_header *header)
 {
+    if (!(header->phase >= PHASE_INSTANTIATED && header->phase <= PHASE_TERMINATED))
+        return 0;
+    /* a state taken while running belongs to the interface (step or event mode) it ran in */
+    fmu_phase phase = (fmu_phase)header->phase;
+    int running = (PHASE_BIT(phase) & PHASES_RUNNING) != 0;
+    if (running && (phase == PHASE_STEP) != (inst->running_phase == PHASE_STEP))
+        return 0;
     return strncmp(header->guid, inst->guid, sizeof header->guid) == 0 &&
-           header->n_values == inst->n_variables && header->n_states == inst->model->n_states &&
-           header->phase >= PHASE_INSTANTIATED && header->phase <= PHASE_TERMINATED;
+           header->n_values == inst->n_variables && header->n_states == inst->model->n_states;
 }
 
 static void capture(const fmu_instance *inst, fmu_snapshot *snapshot)
@@ -44,6 +51,8 @@ static void capture(const fmu_instance *inst, fmu_snapshot *snapshot)
     snapshot->header.time = inst->time;
     memcpy(snapshot->data, inst->values, inst->n_variables * sizeof(double));
     memcpy(snapshot->data + inst->n_variables, inst->x, inst->model->n_states * sizeof(double));
+    memcpy(snapshot->data + inst->n_variables + inst->model->n_states, inst->z_previous,
+           inst->model->n_event_indicators * sizeof(double));
 }
 
 fmi2Status fmi2GetFMUstate(fmi2Component c, fmi2FMUstate *FMUstate)
@@ -81,6 +90,8 @@ fmi2Status fmi2SetFMUstate(fmi2Component c, fmi2FMUstate FMUstate)
     inst->time = snapshot->header.time;
     memcpy(inst->values, snapshot->data, inst->n_variables * sizeof(double));
     memcpy(inst->x, snapshot->data + inst->n_variables, inst->model->n_states * sizeof(double));
+    memcpy(inst->z_previous, snapshot->data + inst->n_variables + inst->model->n_states,
+           inst->model->n_event_indicators * sizeof(double));
     inst->outputs_stale = 1;
     fmu_solver_invalidate(inst);
     return fmi2OK;
