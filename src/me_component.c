@@ -36,10 +36,12 @@
 #include "system.h"
 
 /* What the engine holds of the component's state besides the FMU state: the continuous
- * states and the pending time event. */
+ * states, the pending time event and when each event indicator last crossed (a restore before
+ * a crossing forgets it, so a step taken again does not see its own event as a repetition). */
 typedef struct {
     double *x;
     ssx_fmu_event_info event;
+    double *last_crossing; /* per event indicator, -INFINITY before any */
 } me_state;
 
 typedef struct {
@@ -50,6 +52,7 @@ typedef struct {
     SUNContext context;
     void *cvode;       /* NULL when there is nothing to integrate (no states, no indicators) */
     int cvode_started; /* CVodeInit done */
+    int *roots_found;  /* CVodeGetRootInfo's answer, per event indicator */
     N_Vector y;
     N_Vector absolute_tolerance;
     SUNMatrix matrix;
@@ -255,6 +258,9 @@ static int start_instance(ssx_system *sys, ssx_component *c, me_data *me, double
     }
     me->generation = generation;
     me->warm_at = NAN;
+    for (size_t i = 0; i < me->nz; ++i) {
+        me->now.last_crossing[i] = -INFINITY;
+    }
     return 0;
 }
 
@@ -340,18 +346,48 @@ static int integrate(ssx_system *sys, ssx_component *c, me_data *me, double stop
     return 0;
 }
 
-/* Events closer together than tol_time, more than max_microsteps in a row: chattering. */
-static int chattering(ssx_system *sys, ssx_component *c, double t, double *last, int *close)
+/* Chattering, by the master's rule for its indicators: an indicator that crosses again
+ * within zeno_min_interval (by default ten times tol_time) of its previous crossing. Near an
+ * accumulation point (a ball whose bounces never end) CVODE would soon miss a crossing and let
+ * the state sink through: the run ends here instead. */
+static int state_event_chatters(ssx_system *sys, ssx_component *c, me_data *me, double t)
 {
-    *close = t - *last <= sys->hybrid.tol_time ? *close + 1 : 0;
+    if (CVodeGetRootInfo(me->cvode, me->roots_found) != CV_SUCCESS) {
+        return fail(sys, c->index, -1, t, "component '%s': CVodeGetRootInfo failed at t=%.17g",
+                    c->name, t);
+    }
+    double minimum = sys->hybrid.zeno_min_interval > 0.0 ? sys->hybrid.zeno_min_interval
+                                                         : 10.0 * sys->hybrid.tol_time;
+    for (size_t i = 0; i < me->nz; ++i) {
+        if (me->roots_found[i] == 0) {
+            continue;
+        }
+        double interval = t - me->now.last_crossing[i];
+        me->now.last_crossing[i] = t;
+        if (interval < minimum) {
+            return fail_zeno(sys, c->index, -1, t,
+                             "component '%s': its event indicator %zu crossed again at t=%.17g, "
+                             "only %.3g after its previous crossing: chattering (Zeno) "
+                             "behaviour; the minimum interval is %.3g",
+                             c->name, i, t, interval, minimum);
+        }
+    }
+    return 0;
+}
+
+/* Time and step events at one instant, more than max_microsteps in a row: the FMU keeps asking
+ * for events without time going on. */
+static int events_stall(ssx_system *sys, ssx_component *c, double t, double *last, int *repeated)
+{
+    *repeated = t == *last ? *repeated + 1 : 0;
     *last = t;
-    if (*close <= sys->hybrid.max_microsteps) {
+    if (*repeated <= sys->hybrid.max_microsteps) {
         return 0;
     }
     return fail_zeno(sys, c->index, -1, t,
-                     "component '%s': %d events of its own within tol_time=%g of each other up "
-                     "to t=%.17g (chattering)",
-                     c->name, *close + 1, sys->hybrid.tol_time, t);
+                     "component '%s' asked for %d events at t=%.17g without time going on "
+                     "(max_microsteps): chattering (Zeno) behaviour",
+                     c->name, *repeated + 1, t);
 }
 
 static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
@@ -363,7 +399,7 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
     double t_end = t + dt;
     double now = t;
     double last_event = -INFINITY;
-    int close_events = 0;
+    int repeated_events = 0;
     /* a time event within the grid's rounding of the step's end belongs to this step */
     double reach = t_end + 1e-9 * dt;
     int warm = me->warm_at == t && me->warm_epoch == ssx_fmu_values_epoch(c->fmu);
@@ -397,7 +433,8 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
         ssx_own_event_kind kind = root         ? SSX_OWN_STATE_EVENT
                                   : time_event ? SSX_OWN_TIME_EVENT
                                                : SSX_OWN_STEP_EVENT;
-        if (chattering(sys, c, now, &last_event, &close_events) != 0 ||
+        if ((root ? state_event_chatters(sys, c, me, now)
+                  : events_stall(sys, c, now, &last_event, &repeated_events)) != 0 ||
             handle_event(sys, c, me, now, kind) != 0) {
             return -1;
         }
@@ -464,6 +501,15 @@ static int me_evaluate_outputs(ssx_system *sys, ssx_component *c, double t)
     return fmu_component_read_outputs_at(sys, c, t);
 }
 
+static void copy_state(const me_data *me, me_state *to, const me_state *from)
+{
+    to->event = from->event;
+    memcpy(to->x, from->x, me->n * sizeof(double));
+    if (me->nz > 0) {
+        memcpy(to->last_crossing, from->last_crossing, me->nz * sizeof(double));
+    }
+}
+
 static int me_snapshot(ssx_system *sys, ssx_component *c, int slot)
 {
     me_data *me = c->data;
@@ -471,11 +517,7 @@ static int me_snapshot(ssx_system *sys, ssx_component *c, int slot)
         return -1;
     }
     me->warm_at = NAN; /* the step from here must be the one a restore here would take */
-    me_state *saved = &me->saved[slot];
-    saved->event = me->now.event;
-    if (me->nx > 0) {
-        memcpy(saved->x, me->now.x, me->nx * sizeof(double));
-    }
+    copy_state(me, &me->saved[slot], &me->now);
     return 0;
 }
 
@@ -486,12 +528,10 @@ static int me_restore(ssx_system *sys, ssx_component *c, int slot, double t)
     if (ssx_fmu_component_ops.restore(sys, c, slot, t) != 0) {
         return -1;
     }
-    const me_state *saved = &me->saved[slot];
-    me->now.event = saved->event;
+    copy_state(me, &me->now, &me->saved[slot]);
     if (me->nx == 0) {
         return 0;
     }
-    memcpy(me->now.x, saved->x, me->nx * sizeof(double));
     /* the engine's copy is the state: the FMU holds it whatever its own state kept */
     int status = ssx_fmu_set_continuous_states(c->fmu, me->now.x, me->nx);
     return fmi_ok(status) ? 0 : fail_fmi(sys, c, t, status, "fmi2SetContinuousStates");
@@ -523,9 +563,12 @@ static void me_free(me_data *me)
         SUNContext_Free(&me->context);
     }
     free(me->nominals);
+    free(me->roots_found);
     free(me->now.x);
+    free(me->now.last_crossing);
     for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
         free(me->saved[slot].x);
+        free(me->saved[slot].last_crossing);
     }
     free(me);
 }
@@ -546,6 +589,19 @@ const ssx_component_ops ssx_model_exchange_component_ops = {
     .release = me_release,
 };
 
+static int state_new(me_state *state, size_t n, size_t nz)
+{
+    state->x = calloc(n, sizeof *state->x);
+    state->last_crossing = malloc((nz + 1) * sizeof *state->last_crossing);
+    if (state->x == NULL || state->last_crossing == NULL) {
+        return -1;
+    }
+    for (size_t i = 0; i < nz; ++i) {
+        state->last_crossing[i] = -INFINITY;
+    }
+    return 0;
+}
+
 /* CVODE with its vectors, dense matrix and linear solver; NULL when out of memory. */
 static me_data *me_new(size_t nx, size_t nz, double relative_tolerance)
 {
@@ -560,10 +616,11 @@ static me_data *me_new(size_t nx, size_t nz, double relative_tolerance)
     me->generation = -1;
     me->warm_at = NAN;
     me->nominals = calloc(me->n, sizeof *me->nominals);
-    me->now.x = calloc(me->n, sizeof *me->now.x);
-    int ok = me->nominals != NULL && me->now.x != NULL;
+    me->roots_found = calloc(nz + 1, sizeof *me->roots_found);
+    int ok = me->nominals != NULL && me->roots_found != NULL &&
+             state_new(&me->now, me->n, nz) == 0;
     for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
-        ok = ok && (me->saved[slot].x = calloc(me->n, sizeof *me->saved[slot].x)) != NULL;
+        ok = ok && state_new(&me->saved[slot], me->n, nz) == 0;
     }
     if (!ok || (nx == 0 && nz == 0)) {
         /* nothing to integrate: time events and step completion only */

@@ -18,6 +18,10 @@ Tolerances, with RTOL = 1e-8 given to both:
   which the reference's bounce times are Euler's. Models without states match it to 1e-12.
 - Feedthrough driven by Feedthrough_in.csv: FMPy's numbers one communication step later (the
   engine holds inputs over each step; FMPy's ME loop applies them at each instant).
+
+In a System: Dahlquist and Feedthrough as Model Exchange coupled through a Co-Simulation gain
+(Jacobi, Gauss-Seidel), and the Reference BouncingBall's own bounces beside an indicator of the
+master located by rollback.
 """
 
 from __future__ import annotations
@@ -29,7 +33,16 @@ import pytest
 from fmpy import simulate_fmu
 from fmpy.util import read_csv
 from scipy.integrate import solve_ivp
-from syssimx import Connection, FMUComponent, SimulationResult, System, TableSource
+from syssimx import (
+    Connection,
+    FMUComponent,
+    GaussSeidelAlgorithm,
+    JacobiAlgorithm,
+    SimulationResult,
+    System,
+    TableSource,
+    fmus,
+)
 from syssimx.cli import main
 from test_reference_fmus import FOLDER, fmu, outputs, read_result, reference_result
 
@@ -205,3 +218,82 @@ def test_bouncing_ball_bounces_at_the_closed_form_times_without_rollback():
     statistics = result.statistics
     assert (statistics.own_events, statistics.state_restores, statistics.events) == (11, 0, 0)
     assert statistics.do_step_calls == 300  # one step per communication step
+
+
+# ------------------------------------------------------------------ in a system
+DT = 0.1
+
+
+def dahlquist_chain(algorithm) -> tuple[System, dict[str, np.ndarray]]:
+    """Dahlquist (ME) -> gain (CS, k = 3) -> Feedthrough (ME): a Model Exchange output drives a
+    Co-Simulation input, whose output drives a Model Exchange input."""
+    system = System("chain")
+    system.add_component(FMUComponent("D", fmu("Dahlquist"), interface="model-exchange",
+                                      tolerance=1e-10))
+    gain = FMUComponent("K", fmus.path("gain"))
+    gain.set_parameters(k=3.0)
+    system.add_component(gain)
+    system.add_component(FMUComponent("F", fmu("Feedthrough"), interface="model-exchange"))
+    system.add_connection(Connection("D", "x", "K", "u"))
+    system.add_connection(Connection("K", "y", "F", "Float64_continuous_input"))
+    system.set_algorithm(algorithm)
+    system.initialize(0.0)
+    result = system.run(0.0, 1.0, DT)
+    t = result["D"][0]
+    return system, {"t": t, "x": result["D"][1]["x"], "y": result["K"][1]["y"],
+                    "out": result["F"][1]["Float64_continuous_output"]}
+
+
+def test_jacobi_holds_each_model_exchange_input_over_the_step():
+    """Jacobi: every input comes from the outputs at the step's start, so the gain lags the
+    integrated state by one step and the Feedthrough by two."""
+    _, v = dahlquist_chain(JacobiAlgorithm())
+    np.testing.assert_allclose(v["x"], np.exp(-v["t"]), rtol=0, atol=1e-9)
+    np.testing.assert_array_equal(v["y"][1:], 3.0 * v["x"][:-1])
+    np.testing.assert_array_equal(v["out"][1:], v["y"][:-1])
+
+
+def test_gauss_seidel_passes_model_exchange_outputs_on_within_the_step():
+    """Gauss-Seidel: the gain's output feeds a direct-feedthrough path, so the gain steps after
+    the Dahlquist FMU and reads the state it just reached; the Feedthrough's output goes
+    nowhere, so it steps first (a consumer before its delayed producer) and lags one step."""
+    _, v = dahlquist_chain(GaussSeidelAlgorithm())
+    np.testing.assert_allclose(v["x"], np.exp(-v["t"]), rtol=0, atol=1e-9)
+    np.testing.assert_array_equal(v["y"], 3.0 * v["x"])
+    np.testing.assert_array_equal(v["out"][1:], v["y"][:-1])
+
+
+def fall_crossings(level: float) -> list[float]:
+    """When the closed-form ball falls through `level` (before it rests)."""
+    times, bounces = [], bounce_times()
+    start, speed = 0.0, 0.0  # flight start (a bounce), upward speed there
+    height = 1.0
+    for land in bounces:
+        # h(s) = height + speed s - G s^2 / 2 reaches level on the way down
+        if height + speed**2 / (2 * G) > level:
+            times.append(start + (speed + np.sqrt(speed**2 + 2 * G * (height - level))) / G)
+        speed, start, height = G * (land - start) * 0.7 - 0.7 * speed, land, 0.0
+    return times
+
+
+def test_external_indicator_is_located_by_rollback_and_own_events_recorded_once():
+    """An indicator of the master on the ball's height (h = 0.2, falling) is located by
+    restoring and re-stepping the ME component; the ball's bounces, its own state events, are
+    handled inside its steps and recorded once each, however often localization repeats the
+    steps they lie in."""
+    ball = FMUComponent("B", fmu("BouncingBall"), interface="model-exchange", tolerance=1e-12)
+    ball.add_event_indicator("low", lambda b: b.get_outputs()["h"].magnitude - 0.2,
+                             direction=-1)
+    system = System("ball")
+    system.add_component(ball)
+    system.initialize(0.0)
+    system.algorithm.tol_time = 1e-10
+    result = system.run(0.0, 3.0, 0.01)
+    own = [e for e in result.events if e.own]
+    master = [e for e in result.events if not e.own]
+    assert [e.event for e in own] == ["state_event"] * 11
+    assert np.max(np.abs(np.array([e.t for e in own]) - bounce_times())) < 1e-8
+    assert result.statistics.own_events == 11
+    assert result.statistics.state_restores > 0
+    assert len(master) == len(fall_crossings(0.2))
+    assert np.max(np.abs(np.array([e.t for e in master]) - fall_crossings(0.2))) < 1e-9
