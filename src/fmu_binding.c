@@ -28,6 +28,10 @@ struct ssx_fmu {
     char *resource_uri;
     char *instance_name;
     int logging_on;
+    /* the tolerance of the last fmi2SetupExperiment, which a Model Exchange FMU's integrator
+     * uses */
+    int tolerance_defined;
+    double tolerance;
     void *instance;
     const char *last_call;     /* the last call made or refused, "" before any */
     /* the call that returned Fatal, or NULL: after it FMI allows no call at all, not even
@@ -418,6 +422,10 @@ int ssx_fmu_instantiate(ssx_fmu *fmu)
 int ssx_fmu_setup_experiment(ssx_fmu *fmu, int tolerance_defined, double tolerance,
                              double start_time, int stop_time_defined, double stop_time)
 {
+    if (fmu != NULL) {
+        fmu->tolerance_defined = tolerance_defined;
+        fmu->tolerance = tolerance;
+    }
     return CHECKED(fmu, SLOT_SETUP_EXPERIMENT, setup_experiment, tolerance_defined, tolerance,
                    start_time, stop_time_defined, stop_time);
 }
@@ -557,6 +565,15 @@ int ssx_fmu_completed_integrator_step(ssx_fmu *fmu, int no_set_state_prior,
 {
     return CHECKED(fmu, SLOT_COMPLETED_INTEGRATOR_STEP, completed_integrator_step,
                    no_set_state_prior, enter_event_mode, terminate_simulation);
+}
+
+int ssx_fmu_experiment_tolerance(const ssx_fmu *fmu, double *tolerance)
+{
+    if (fmu == NULL || !fmu->tolerance_defined) {
+        return 0;
+    }
+    *tolerance = fmu->tolerance;
+    return 1;
 }
 
 int ssx_fmu_is_model_exchange(const ssx_fmu *fmu)

@@ -40,6 +40,9 @@ int ssx_fmu_new_discrete_states(ssx_fmu *fmu, ssx_fmu_event_info *info);
 int ssx_fmu_enter_continuous_time_mode(ssx_fmu *fmu);
 int ssx_fmu_completed_integrator_step(ssx_fmu *fmu, int no_set_state_prior,
                                       int *enter_event_mode, int *terminate_simulation);
+/* The relative tolerance the live instance was set up with (fmi2SetupExperiment): 1 with it
+ * in *tolerance, 0 when none was given. */
+int ssx_fmu_experiment_tolerance(const ssx_fmu *fmu, double *tolerance);
 /* Whether the FMU was loaded for Model Exchange. */
 int ssx_fmu_is_model_exchange(const ssx_fmu *fmu);
 /* The host process of an isolated FMU, NULL for one loaded into this process. */

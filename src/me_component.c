@@ -48,7 +48,7 @@ typedef struct {
     size_t nx;         /* continuous states of the FMU */
     size_t nz;         /* event indicators */
     size_t n;          /* CVODE's states: nx, or one constant dummy when the FMU has none */
-    double relative_tolerance;
+    double relative_tolerance; /* the instance's experiment tolerance, else the default */
     SUNContext context;
     void *cvode;       /* NULL when there is nothing to integrate (no states, no indicators) */
     int cvode_started; /* CVodeInit done */
@@ -245,6 +245,12 @@ static int start_instance(ssx_system *sys, ssx_component *c, me_data *me, double
     long generation = ssx_fmu_generation(c->fmu);
     if (me->generation == generation) {
         return 0;
+    }
+    if (!ssx_fmu_experiment_tolerance(c->fmu, &me->relative_tolerance) ||
+        !(me->relative_tolerance > 0.0)) {
+        ssx_defaults defaults;
+        ssx_get_defaults(&defaults);
+        me->relative_tolerance = defaults.model_exchange_tolerance;
     }
     if (iterate_discrete_states(sys, c, me, t) != 0) {
         return -1;
@@ -603,7 +609,7 @@ static int state_new(me_state *state, size_t n, size_t nz)
 }
 
 /* CVODE with its vectors, dense matrix and linear solver; NULL when out of memory. */
-static me_data *me_new(size_t nx, size_t nz, double relative_tolerance)
+static me_data *me_new(size_t nx, size_t nz)
 {
     me_data *me = calloc(1, sizeof *me);
     if (me == NULL) {
@@ -612,7 +618,6 @@ static me_data *me_new(size_t nx, size_t nz, double relative_tolerance)
     me->nx = nx;
     me->nz = nz;
     me->n = nx > 0 ? nx : 1;
-    me->relative_tolerance = relative_tolerance;
     me->generation = -1;
     me->warm_at = NAN;
     me->nominals = calloc(me->n, sizeof *me->nominals);
@@ -643,7 +648,7 @@ static me_data *me_new(size_t nx, size_t nz, double relative_tolerance)
     }
     /* the dummy state of an FMU without states never changes: any tolerance does */
     N_VConst(1.0, me->y);
-    N_VConst(relative_tolerance, me->absolute_tolerance);
+    N_VConst(1.0, me->absolute_tolerance);
     return me;
 }
 
@@ -659,7 +664,7 @@ static int configure_cvode(me_data *me)
 
 int ssx_add_model_exchange_component(ssx_system *sys, const char *name, ssx_fmu *fmu,
                                      int can_get_set_state, int n_states,
-                                     int n_event_indicators, double relative_tolerance)
+                                     int n_event_indicators)
 {
     const char *label = name != NULL ? name : "?";
     if (fmu == NULL || !ssx_fmu_is_model_exchange(fmu)) {
@@ -675,12 +680,7 @@ int ssx_add_model_exchange_component(ssx_system *sys, const char *name, ssx_fmu 
                            "neither can be negative",
                            label, n_states, n_event_indicators);
     }
-    if (!(relative_tolerance > 0.0)) {
-        ssx_defaults defaults;
-        ssx_get_defaults(&defaults);
-        relative_tolerance = defaults.model_exchange_tolerance;
-    }
-    me_data *me = me_new((size_t)n_states, (size_t)n_event_indicators, relative_tolerance);
+    me_data *me = me_new((size_t)n_states, (size_t)n_event_indicators);
     if (me == NULL || (me->cvode != NULL && configure_cvode(me) != 0)) {
         me_free(me);
         return fail_config(sys, -1, -1, NAN, "component '%s': out of memory creating CVODE",

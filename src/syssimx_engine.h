@@ -41,7 +41,7 @@ typedef struct {
     ssx_locator locator;
     double zeno_min_interval; /* 0: the rule of ssx_set_hybrid_options */
     int output_interval;
-    /* CVODE's relative tolerance for a Model Exchange component given none (FMPy's) */
+    /* CVODE's relative tolerance for a Model Exchange FMU set up without one (FMPy's) */
     double model_exchange_tolerance;
 } ssx_defaults;
 void ssx_get_defaults(ssx_defaults *out);
@@ -268,15 +268,16 @@ int ssx_add_python_component(ssx_system *sys, const char *name, int can_snapshot
 /* A Model Exchange FMU (loaded by ssx_fmu_load_model_exchange, initialized by
  * ssx_fmu_initialize) that the engine integrates with CVODE between communication points:
  * n_states continuous states (ModelStructure/Derivatives), n_event_indicators
- * (numberOfEventIndicators), relative_tolerance <= 0: the default (ssx_defaults); the absolute
- * tolerances are the relative one times the states' nominals. Its state, time and step events
- * are handled inside its steps at their own time and recorded as its own events (ssx_own_event
- * kinds); a request to terminate ends the run as for a Co-Simulation FMU. Its snapshots hold
- * the FMU state (fmi2GetFMUstate, when can_get_set_state) and the engine's copy of the
- * continuous states; ports are added as for any FMU component. */
+ * (numberOfEventIndicators). The relative tolerance is the one the instance was set up with
+ * (ssx_fmu_experiment's), else model_exchange_tolerance of ssx_defaults; the absolute
+ * tolerances are it times the states' nominals. Its state, time and step events are handled
+ * inside its steps at their own time and recorded as its own events (ssx_own_event_kind); a
+ * request to terminate ends the run as for a Co-Simulation FMU. Its snapshots hold the FMU
+ * state (fmi2GetFMUstate, when can_get_set_state) and the engine's copy of the continuous
+ * states; ports are added as for any FMU component. */
 int ssx_add_model_exchange_component(ssx_system *sys, const char *name, ssx_fmu *fmu,
                                      int can_get_set_state, int n_states,
-                                     int n_event_indicators, double relative_tolerance);
+                                     int n_event_indicators);
 int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks);
 
 /* Ports. vr is the FMU value reference (ignored for Python components). start is written to

@@ -105,6 +105,22 @@ def test_bouncing_ball_bounces_at_the_closed_form_times_without_rollback():
         6, 0, 300)
 
 
+@pytest.mark.parametrize(("given", "error_bound"), [
+    ({"component": 1e-10}, 1e-9), ({"system": 1e-10}, 1e-9), ({}, 1e-5)])
+def test_the_integrator_takes_the_tolerance_the_instance_is_set_up_with(given, error_bound):
+    """FMUComponent's tolerance=, else System.initialize's, else the engine's default (FMPy's
+    1e-5; bouncing_ball has no DefaultExperiment tolerance): the fall before the first bounce
+    is as accurate as asked, and no more."""
+    component = FMUComponent("B", fmus.path("bouncing_ball_cvode"), interface="model-exchange",
+                             tolerance=given.get("component"))
+    system = System("ball")
+    system.add_component(component)
+    system.initialize(0.0, tolerance=given.get("system"))
+    t, values = system.run(0.0, 0.45, 0.01)["B"]
+    error = np.max(np.abs(values["h"] - (1 - G * t**2 / 2)))
+    assert error_bound / 1000 < error < error_bound
+
+
 def test_a_ball_that_never_rests_ends_with_a_zeno_error():
     """Without a rest threshold the bounces accumulate at a finite time (sum of the flights:
     4.0637 s). By the master's rule for its own indicators, a crossing within ten times

@@ -265,8 +265,8 @@ class FMUComponent(CoSimComponent):
 
     def _add_to_plan(self, plan: EnginePlan) -> None:
         """The engine steps the FMU itself; only what a subclass overrides runs in Python."""
-        model_exchange = (self.info.number_of_states, self.info.number_of_event_indicators,
-                          self._experiment_tolerance) if self.model_exchange else None
+        model_exchange = (self.info.number_of_states, self.info.number_of_event_indicators) \
+            if self.model_exchange else None
         plan.add_fmu_component(
             self, self._fmu, self.can_get_set_state,
             self.fmu_interface.provides_directional_derivative,
