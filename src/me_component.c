@@ -20,7 +20,6 @@
  * matrix of all, and tie components the master steps, restores and orders one by one. */
 #include <float.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
