@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 
+#include "fmu_binding.h"
 #include "syssimx_engine.h"
 
 /* The operations of the interface: a back-end resolves one function of its standard into each
@@ -36,6 +37,17 @@ typedef enum {
     SLOT_DIRECTIONAL_DERIVATIVE,
     SLOT_GET_TERMINATED,
     SLOT_GET_LAST_SUCCESSFUL_TIME,
+    /* Model Exchange */
+    SLOT_SET_TIME,
+    SLOT_SET_CONTINUOUS_STATES,
+    SLOT_GET_CONTINUOUS_STATES,
+    SLOT_GET_DERIVATIVES,
+    SLOT_GET_EVENT_INDICATORS,
+    SLOT_GET_NOMINALS_OF_CONTINUOUS_STATES,
+    SLOT_ENTER_EVENT_MODE,
+    SLOT_NEW_DISCRETE_STATES,
+    SLOT_ENTER_CONTINUOUS_TIME_MODE,
+    SLOT_COMPLETED_INTEGRATOR_STEP,
     SLOT_COUNT
 } ssx_fmu_slot;
 
@@ -110,9 +122,30 @@ typedef struct {
                                   const double *dv_known, double *dv_unknown);
     int (*get_terminated)(const ssx_fmu_function *fn, void *instance, int *terminated);
     int (*get_last_successful_time)(const ssx_fmu_function *fn, void *instance, double *time);
+    /* Model Exchange (NULL in a back-end without it) */
+    int (*set_time)(const ssx_fmu_function *fn, void *instance, double time);
+    int (*set_continuous_states)(const ssx_fmu_function *fn, void *instance, const double *x,
+                                 size_t nx);
+    int (*get_continuous_states)(const ssx_fmu_function *fn, void *instance, double *x,
+                                 size_t nx);
+    int (*get_derivatives)(const ssx_fmu_function *fn, void *instance, double *dx, size_t nx);
+    int (*get_event_indicators)(const ssx_fmu_function *fn, void *instance, double *z,
+                                size_t nz);
+    int (*get_nominals_of_continuous_states)(const ssx_fmu_function *fn, void *instance,
+                                             double *nominals, size_t nx);
+    int (*enter_event_mode)(const ssx_fmu_function *fn, void *instance);
+    int (*new_discrete_states)(const ssx_fmu_function *fn, void *instance,
+                               ssx_fmu_event_info *info);
+    int (*enter_continuous_time_mode)(const ssx_fmu_function *fn, void *instance);
+    int (*completed_integrator_step)(const ssx_fmu_function *fn, void *instance,
+                                     int no_set_state_prior, int *enter_event_mode,
+                                     int *terminate_simulation);
 } ssx_fmu_backend;
 
 extern const ssx_fmu_backend ssx_fmi2_backend;
+/* The same functions, instantiated as fmi2ModelExchange: a binary without the Model Exchange
+ * functions is refused, one without fmi2DoStep is not. */
+extern const ssx_fmu_backend ssx_fmi2_model_exchange_backend;
 
 /* For a back-end's logger: what the FMU logged, a printf format with its arguments. */
 void ssx_fmu_log(ssx_fmu *fmu, const char *format, va_list args);

@@ -46,11 +46,11 @@ def edited(tmp_path: Path, old: str, new: str) -> Path:
     return write_archive(tmp_path / "edited.fmu", entries)
 
 
-def model_exchange_only(tmp_path: Path) -> Path:
-    """gain.fmu without its CoSimulation element (it also declares ModelExchange)."""
-    element = re.search(r"  <CoSimulation .*?/>\n", description(), re.S)
-    assert element is not None
-    return edited(tmp_path, element.group(0), "")
+def without_interfaces(tmp_path: Path) -> Path:
+    """gain.fmu without its CoSimulation and ModelExchange elements."""
+    text = re.sub(r"  <(CoSimulation|ModelExchange) .*?/>\n", "", description(), flags=re.S)
+    return write_archive(tmp_path / "edited.fmu",
+                         {**gain_entries(), "modelDescription.xml": text.encode()})
 
 
 def with_entry(tmp_path: Path, entry: str | zipfile.ZipInfo, data: bytes = b"x") -> Path:
@@ -132,7 +132,7 @@ CASES: dict[str, tuple[Build, str]] = {
                 "FMI version 1.0 is not supported"),
     "FMI 3.0": (lambda tmp: edited(tmp, 'fmiVersion="2.0"', 'fmiVersion="3.0"'),
                 "FMI version 3.0 is not supported"),
-    "Model Exchange only": (model_exchange_only, "Model-Exchange-only"),
+    "no interface": (without_interfaces, "declares neither CoSimulation nor ModelExchange"),
     "modelIdentifier with ../": (
         lambda tmp: edited(tmp, CO_SIMULATION_ID, '<CoSimulation modelIdentifier="../../evil"'),
         "modelIdentifier '../../evil' is not a file name"),
