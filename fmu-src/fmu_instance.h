@@ -10,21 +10,31 @@ typedef enum {
     PHASE_INSTANTIATED,
     PHASE_INITIALIZATION,
     PHASE_STEP,
+    PHASE_EVENT,           /* Model Exchange: event mode */
+    PHASE_CONTINUOUS_TIME, /* Model Exchange: continuous-time mode */
     PHASE_TERMINATED,
     PHASE_FATAL /* after fmi2Fatal: no call is allowed any more */
 } fmu_phase;
 
 #define PHASE_BIT(phase) (1u << (phase))
 
-/* Where each kind of fmi2 call is allowed (FMI 2.0 co-simulation state machine), one table for
- * every entry point; PHASE_FATAL is in none of them. */
-#define PHASES_ANY                                                                           \
-    (PHASE_BIT(PHASE_INSTANTIATED) | PHASE_BIT(PHASE_INITIALIZATION) | PHASE_BIT(PHASE_STEP) | \
+/* Where each kind of fmi2 call is allowed (FMI 2.0 co-simulation and model exchange state
+ * machines), one table for every entry point; PHASE_FATAL is in none of them. */
+#define PHASES_RUNNING \
+    (PHASE_BIT(PHASE_STEP) | PHASE_BIT(PHASE_EVENT) | PHASE_BIT(PHASE_CONTINUOUS_TIME))
+#define PHASES_ANY                                                                 \
+    (PHASE_BIT(PHASE_INSTANTIATED) | PHASE_BIT(PHASE_INITIALIZATION) | PHASES_RUNNING | \
      PHASE_BIT(PHASE_TERMINATED))
 #define PHASES_SETTABLE \
-    (PHASE_BIT(PHASE_INSTANTIATED) | PHASE_BIT(PHASE_INITIALIZATION) | PHASE_BIT(PHASE_STEP))
-#define PHASES_INITIALIZED (PHASE_BIT(PHASE_INITIALIZATION) | PHASE_BIT(PHASE_STEP))
+    (PHASE_BIT(PHASE_INSTANTIATED) | PHASE_BIT(PHASE_INITIALIZATION) | PHASES_RUNNING)
+#define PHASES_INITIALIZED (PHASE_BIT(PHASE_INITIALIZATION) | PHASES_RUNNING)
 #define PHASES_STATUS (PHASE_BIT(PHASE_STEP) | PHASE_BIT(PHASE_TERMINATED))
+/* Model Exchange */
+#define PHASES_EVENT_OR_CONTINUOUS (PHASE_BIT(PHASE_EVENT) | PHASE_BIT(PHASE_CONTINUOUS_TIME))
+#define PHASES_MODEL_EVALUATION \
+    (PHASE_BIT(PHASE_INITIALIZATION) | PHASES_EVENT_OR_CONTINUOUS | PHASE_BIT(PHASE_TERMINATED))
+#define PHASES_NOMINALS \
+    (PHASE_BIT(PHASE_INSTANTIATED) | PHASES_EVENT_OR_CONTINUOUS | PHASE_BIT(PHASE_TERMINATED))
 
 typedef struct {
     fmi2CallbackLogger logger;
@@ -38,6 +48,7 @@ typedef struct fmu_instance {
     int logging_on;
     unsigned log_categories; /* bit set of enabled categories (fmu_log.h) */
     fmu_phase phase;
+    fmu_phase running_phase; /* entered by fmi2ExitInitializationMode: step or event mode */
 
     const model_definition *model;
     size_t n_variables;      /* model variables followed by the back-end's parameters */
@@ -57,6 +68,19 @@ typedef struct fmu_instance {
     double *z_before;
     double *z_after;
     int *fired;
+    /* Model Exchange: each indicator at the last event mode, or a positive value it took on the
+     * trajectory since; part of the FMU state */
+    double *z_previous;
+
+    /* Internal events left to the importer (FMI 3.0 event mode with early return): a step
+     * stops at the first one, which `fired` marks and event_pending keeps until the importer
+     * applies it with fmu_apply_pending_events. in_event_mode: the importer entered FMI 3.0
+     * Co-Simulation's Event Mode, during which the phase stays PHASE_STEP (a state taken there
+     * belongs to a Co-Simulation instance; PHASE_EVENT is Model Exchange's). Both are part of
+     * the FMU state; importer_handles_events is fixed at instantiation. */
+    int importer_handles_events;
+    int event_pending;
+    int in_event_mode;
 
     void *solver;            /* back-end data */
 } fmu_instance;
@@ -77,6 +101,20 @@ static inline fmu_instance *fmu_checked(fmi2Component c, const char *function, u
 }
 
 const char *fmu_phase_name(fmu_phase phase);
+
+/* A new instance of `size` bytes (at least sizeof(fmu_instance): an interface may extend it)
+ * named and logging like `reporter`, at its start values with its back-end created; NULL after
+ * reporting the failure through `reporter`. `function` names the call in messages. */
+fmu_instance *fmu_instance_create(const fmu_instance *reporter, size_t size,
+                                  const char *function);
+void fmu_instance_free(fmu_instance *inst);
+
+/* The lifecycle steps every interface shares; `function` names the call in messages. */
+fmi2Status fmu_setup_experiment(fmu_instance *inst, const char *function, int tolerance_defined,
+                                double tolerance, double start_time, int stop_time_defined,
+                                double stop_time);
+void fmu_exit_initialization(fmu_instance *inst);
+void fmu_reset(fmu_instance *inst);
 
 /* The table row of a value reference, or NULL when the FMU has no such variable. Inline: every
  * fmi2Get and fmi2Set checks each of its value references with it. */
@@ -99,7 +137,17 @@ double fmu_solver_parameter(const fmu_instance *inst, size_t i);
 /* Recompute outputs and locals from the current state and inputs; clears outputs_stale. */
 void fmu_refresh_outputs(fmu_instance *inst);
 
+/* The model's event indicators at the instance's time and state, into z. */
+void fmu_event_indicators(const fmu_instance *inst, double *z);
+
+/* The status a model's refusal (model.h) returns; after fmi2Fatal no call is allowed any more. */
+fmi2Status fmu_refusal_status(fmu_instance *inst, step_refusal_kind kind);
+
 /* Apply the internal events the back-end marked in inst->fired at time t (changes x), and log them. */
 void fmu_handle_events(fmu_instance *inst, double t, double *x);
+
+/* Apply the event a step stopped at (event_pending) at the instance's time; restarts the
+ * integration there. Returns whether a continuous state changed. */
+int fmu_apply_pending_events(fmu_instance *inst);
 
 #endif

@@ -62,3 +62,19 @@ int fmu_log_category_from_name(const char *name)
             return i;
     return -1;
 }
+
+fmi2Status fmu_set_logging(fmu_instance *inst, const char *function, int logging_on,
+                           size_t n_categories, const char *const categories[])
+{
+    unsigned selected = 0;
+    for (size_t i = 0; i < n_categories; ++i) {
+        int category = fmu_log_category_from_name(categories ? categories[i] : NULL);
+        if (category < 0)
+            return fmu_error(inst, "%s: unknown log category \"%s\"", function,
+                             categories && categories[i] ? categories[i] : "(null)");
+        selected |= 1u << category;
+    }
+    inst->logging_on = logging_on;
+    inst->log_categories = n_categories > 0 ? selected : LOG_ALL_CATEGORIES;
+    return fmi2OK;
+}

@@ -34,4 +34,9 @@ fmi2Status fmu_error(const fmu_instance *inst, const char *format, ...);
 /* Category bit for a name, or -1 when unknown. */
 int fmu_log_category_from_name(const char *name);
 
+/* Switches debug logging and selects the categories (none given: all); `function` names the
+ * call in messages. */
+fmi2Status fmu_set_logging(fmu_instance *inst, const char *function, int logging_on,
+                           size_t n_categories, const char *const categories[]);
+
 #endif

@@ -80,17 +80,24 @@ typedef struct {
     void (*derivatives)(const double *v, double t, const double *x, double *dx);
     /* outputs and locals from the state and the current inputs */
     void (*outputs)(double *v, double t, const double *x);
-    /* indicator i fires when it falls from > 0 to <= 0 */
+    /* indicator i fires when it falls from > 0 to <= 0; Model Exchange serves these values as
+     * its event indicators */
     void (*event_indicators)(const double *v, double t, const double *x, double *z);
     /* apply the events marked in fired[]; may change x and discrete variables in v */
     void (*handle_events)(double *v, double t, double *x, const int *fired);
     /* NULL when the model can always step; otherwise a reason to refuse a step ending at t_end,
-     * and in *kind how the refusal fails (set to STEP_FAILS only when it is not the default) */
+     * and in *kind how the refusal fails (set to STEP_FAILS only when it is not the default).
+     * Model Exchange refuses fmi2SetTime(t_end) the same way. */
     const char *(*step_refusal)(const double *v, double t_end, step_refusal_kind *kind);
     /* NULL when the model never asks to stop; otherwise the time at which it asks the master to
      * end the simulation (INFINITY: not now). fmi2DoStep stops there and returns fmi2Discard;
-     * fmi2GetBooleanStatus(fmi2Terminated) then answers true. */
+     * fmi2GetBooleanStatus(fmi2Terminated) then answers true. Model Exchange reports it as
+     * nextEventTime, and event mode there answers terminateSimulation. */
     double (*termination_time)(const double *v);
+    /* NULL when the model has no time events; otherwise the first time after t at which its
+     * discrete variables change (INFINITY: none). Model Exchange reports it as nextEventTime;
+     * the time events are instants where an importer must stop and enter event mode. */
+    double (*next_time_event)(const double *v, double t);
     /* NULL when values can always be read; otherwise a reason to refuse fmi2Get* at time t */
     const char *(*read_refusal)(const double *v, double t);
     /* NULL when not provided; otherwise d output / d input at the current point with the states

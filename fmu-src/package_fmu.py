@@ -1,5 +1,5 @@
 """Package an FMU: zip the modelDescription.xml written by the model's describe tool with the
-model's shared library.
+model's shared library, in the platform folder of the description's FMI version.
 
 Usage: package_fmu.py <modelDescription.xml> <shared library> <modelIdentifier> <output.fmu>
 """
@@ -7,15 +7,21 @@ Usage: package_fmu.py <modelDescription.xml> <shared library> <modelIdentifier> 
 from __future__ import annotations
 
 import sys
+import xml.etree.ElementTree as ElementTree
 import zipfile
 from pathlib import Path
 
+# FMI 2.0 names the platform "linux64", FMI 3.0 by its platform tuple
+PLATFORM_FOLDERS = {"2.0": "linux64", "3.0": "x86_64-linux"}
+
 
 def package(description: Path, binary: Path, model_identifier: str, output: Path) -> None:
+    version = ElementTree.parse(description).getroot().get("fmiVersion")
+    platform = PLATFORM_FOLDERS[version]
     partial = output.with_suffix(".fmu.partial")
     with zipfile.ZipFile(partial, "w", zipfile.ZIP_DEFLATED) as archive:
         archive.write(description, "modelDescription.xml")
-        archive.write(binary, f"binaries/linux64/{model_identifier}.so")
+        archive.write(binary, f"binaries/{platform}/{model_identifier}.so")
     partial.replace(output)
 
 

@@ -1,6 +1,7 @@
 /* SUNDIALS CVODE: BDF with Newton iteration and a dense linear solver. Integrates exactly to
- * the communication point (stop time), locates the model's internal events by root finding,
- * and restarts (CVodeReInit) only after an event, a changed input or a set state. */
+ * the communication point (stop time), locates the model's internal events by root finding
+ * (and stops at the first one when the importer handles events), and restarts (CVodeReInit)
+ * only after an event, a changed input or a set state. */
 #include <math.h>
 #include <stdlib.h>
 
@@ -194,6 +195,11 @@ fmi2Status fmu_solver_step(fmu_instance *inst, double t_end)
             return fmu_error(inst, "CVODE could not report which event fired");
         for (size_t i = 0; i < inst->model->n_event_indicators; ++i)
             inst->fired[i] = data->roots[i] != 0;
+        if (inst->importer_handles_events) {
+            /* stop at the root; the importer applies the event in event mode */
+            inst->event_pending = 1;
+            return fmi2OK;
+        }
         fmu_handle_events(inst, t_reached, inst->x);
         if (restart(inst, data) != fmi2OK)
             return fmi2Error;

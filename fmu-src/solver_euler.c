@@ -1,7 +1,8 @@
 /* Fixed-step explicit Euler. The communication interval is covered exactly: full substeps of
  * euler_step_size, the last one shortened. An internal event is located inside the substep
  * where an indicator crosses by linear interpolation of the indicator; the Euler step to that
- * point is then taken, the event applied, and stepping resumes from there. */
+ * point is then taken, the event applied, and stepping resumes from there (or, when the
+ * importer handles events, the step ends there with the event pending). */
 #include <math.h>
 #include <stdlib.h>
 
@@ -114,6 +115,12 @@ fmi2Status fmu_solver_step(fmu_instance *inst, double t_end)
         for (size_t i = 0; i < n; ++i)
             inst->x[i] += partial * inst->dx[i];
         t = t_event;
+        if (inst->importer_handles_events) {
+            /* stop at the located point; the importer applies the event in event mode */
+            inst->time = t;
+            inst->event_pending = 1;
+            return fmi2OK;
+        }
         fmu_handle_events(inst, t, inst->x);
         if (++events > MAX_EVENTS_PER_STEP) {
             inst->time = t;

@@ -76,6 +76,14 @@ extern const ssx_component_ops ssx_fmu_component_ops;
 
 /* Unconnected inputs whose start is NaN take the value the initialized FMU holds. */
 int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0);
+/* Whether the FMU already holds every input value: nothing set it since the engine's last
+ * write. */
+int fmu_component_inputs_unchanged(const ssx_component *c);
+/* Reads every output of an FMU component; a failure is reported at t, the time the FMU is at. */
+int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t);
+/* A Model Exchange FMU integrated by the engine (me_component.c); its ports are an FMU
+ * component's. */
+extern const ssx_component_ops ssx_model_exchange_component_ops;
 extern const ssx_component_ops ssx_python_component_ops;
 extern const ssx_component_ops ssx_table_component_ops;
 

@@ -37,8 +37,19 @@ typedef enum {
     SLOT_DIRECTIONAL_DERIVATIVE,
     SLOT_GET_TERMINATED,
     SLOT_GET_LAST_SUCCESSFUL_TIME,
+    /* Model Exchange */
+    SLOT_SET_TIME,
+    SLOT_SET_CONTINUOUS_STATES,
+    SLOT_GET_CONTINUOUS_STATES,
+    SLOT_GET_DERIVATIVES,
+    SLOT_GET_EVENT_INDICATORS,
+    SLOT_GET_NOMINALS_OF_CONTINUOUS_STATES,
+    SLOT_ENTER_EVENT_MODE,
+    SLOT_NEW_DISCRETE_STATES,
+    SLOT_ENTER_CONTINUOUS_TIME_MODE,
+    SLOT_COMPLETED_INTEGRATOR_STEP,
     /* FMI 3.0: the value types beyond the engine's three port types (Float64, Int32 and
-     * Boolean fill the slots above), strings and binaries, event mode */
+     * Boolean fill the slots above), strings and binaries, step mode (event mode is above) */
     SLOT_GET_FLOAT32,
     SLOT_GET_INT8,
     SLOT_GET_UINT8,
@@ -59,8 +70,6 @@ typedef enum {
     SLOT_SET_STRING,
     SLOT_GET_BINARY,
     SLOT_SET_BINARY,
-    SLOT_ENTER_EVENT_MODE,
-    SLOT_NEW_DISCRETE_STATES,
     SLOT_ENTER_STEP_MODE,
     SLOT_COUNT
 } ssx_fmu_slot;
@@ -136,6 +145,25 @@ typedef struct {
                                   const double *dv_known, double *dv_unknown);
     int (*get_terminated)(const ssx_fmu_function *fn, void *instance, int *terminated);
     int (*get_last_successful_time)(const ssx_fmu_function *fn, void *instance, double *time);
+    /* Model Exchange, and event mode for FMI 3.0 Co-Simulation too (NULL in a back-end
+     * without it) */
+    int (*set_time)(const ssx_fmu_function *fn, void *instance, double time);
+    int (*set_continuous_states)(const ssx_fmu_function *fn, void *instance, const double *x,
+                                 size_t nx);
+    int (*get_continuous_states)(const ssx_fmu_function *fn, void *instance, double *x,
+                                 size_t nx);
+    int (*get_derivatives)(const ssx_fmu_function *fn, void *instance, double *dx, size_t nx);
+    int (*get_event_indicators)(const ssx_fmu_function *fn, void *instance, double *z,
+                                size_t nz);
+    int (*get_nominals_of_continuous_states)(const ssx_fmu_function *fn, void *instance,
+                                             double *nominals, size_t nx);
+    int (*enter_event_mode)(const ssx_fmu_function *fn, void *instance);
+    int (*new_discrete_states)(const ssx_fmu_function *fn, void *instance,
+                               ssx_fmu_event_info *info);
+    int (*enter_continuous_time_mode)(const ssx_fmu_function *fn, void *instance);
+    int (*completed_integrator_step)(const ssx_fmu_function *fn, void *instance,
+                                     int no_set_state_prior, int *enter_event_mode,
+                                     int *terminate_simulation);
     /* FMI 3.0 (NULL in a back-end without them) */
     int (*get_string)(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
                       size_t n, const char **values);
@@ -145,9 +173,6 @@ typedef struct {
                       size_t n, size_t *sizes, const unsigned char **values);
     int (*set_binary)(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
                       size_t n, const size_t *sizes, const unsigned char *const *values);
-    int (*enter_event_mode)(const ssx_fmu_function *fn, void *instance);
-    int (*new_discrete_states)(const ssx_fmu_function *fn, void *instance,
-                               ssx_fmu_event_info *info);
     int (*enter_step_mode)(const ssx_fmu_function *fn, void *instance);
     /* what the last doStep said besides its status; NULL: only the status (FMI 2.0) */
     void (*step_outcome)(void *instance, ssx_step_outcome *outcome);
@@ -158,6 +183,9 @@ typedef struct {
 } ssx_fmu_backend;
 
 extern const ssx_fmu_backend ssx_fmi2_backend;
+/* The same functions, instantiated as fmi2ModelExchange: a binary without the Model Exchange
+ * functions is refused, one without fmi2DoStep is not. */
+extern const ssx_fmu_backend ssx_fmi2_model_exchange_backend;
 extern const ssx_fmu_backend ssx_fmi3_backend;
 
 /* The FMI 3.0 back-end's load-time facts, into its zeroed context: the type of every value

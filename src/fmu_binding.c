@@ -28,6 +28,10 @@ struct ssx_fmu {
     char *resource_uri;
     char *instance_name;
     int logging_on;
+    /* the tolerance of the last fmi2SetupExperiment, which a Model Exchange FMU's integrator
+     * uses */
+    int tolerance_defined;
+    double tolerance;
     void *instance;
     const char *last_call;     /* the last call made or refused, "" before any */
     /* the call that returned Fatal, or NULL: after it FMI allows no call at all, not even
@@ -89,12 +93,18 @@ static void *resolve(void *library, const char *model_identifier, const char *na
     return symbol;
 }
 
+/* The name of a slot the back-end's table lacks (a Model Exchange FMU's fmi2DoStep). */
+static const char OUTSIDE_THE_INTERFACE[] = "a function outside the FMU's interface";
+
 /* Fills the slots from the back-end's table: from the library, or the forwarders of an
  * isolated FMU's host. A required function that is missing is the error. */
 static int resolve_functions(ssx_fmu *fmu, const char *binary_path,
                              const char *model_identifier, char *error, size_t error_size)
 {
     const ssx_fmu_backend *backend = fmu->backend;
+    for (int slot = 0; slot < SLOT_COUNT; ++slot) {
+        fmu->names[slot] = OUTSIDE_THE_INTERFACE;
+    }
     for (size_t i = 0; i < backend->n_functions; ++i) {
         const ssx_fmu_function_row *row = &backend->functions[i];
         void *symbol = fmu->remote != NULL ? ssx_remote_function(fmu->remote, row->name)
@@ -180,6 +190,15 @@ ssx_fmu *ssx_fmu_load(const char *binary_path, const char *model_identifier, con
                 instance_name, logging_on, error, error_size);
 }
 
+ssx_fmu *ssx_fmu_load_model_exchange(const char *binary_path, const char *model_identifier,
+                                     const char *guid, const char *resource_uri,
+                                     const char *instance_name, int logging_on, char *error,
+                                     size_t error_size)
+{
+    return load(&ssx_fmi2_model_exchange_backend, NULL, 0.0, binary_path, model_identifier, guid,
+                resource_uri, instance_name, logging_on, error, error_size);
+}
+
 ssx_fmu *ssx_fmu_load_fmi3(const char *binary_path, const char *model_identifier,
                            const char *instantiation_token, const char *resource_path,
                            const char *instance_name, int logging_on,
@@ -248,13 +267,11 @@ static void refuse_after_fatal(ssx_fmu *fmu, const char *call)
 static int refuse(ssx_fmu *fmu, ssx_fmu_slot call)
 {
     const char *name = fmu->names[call];
-    if (name == NULL) {
-        snprintf(fmu->last_message, sizeof fmu->last_message,
-                 "this call is not part of %s", fmu->backend->standard);
-        return 0;
-    }
     if (fmu->fatal_call != NULL) {
         refuse_after_fatal(fmu, name);
+    } else if (name == OUTSIDE_THE_INTERFACE) {
+        snprintf(fmu->last_message, sizeof fmu->last_message,
+                 "the FMU runs as %s, which has no such function", fmu->backend->standard);
     } else if (fmu->instance == NULL) {
         snprintf(fmu->last_message, sizeof fmu->last_message,
                  "%s called without a live instance (call instantiate first)", name);
@@ -272,7 +289,7 @@ static inline int begin(ssx_fmu *fmu, ssx_fmu_slot call)
     if (fmu == NULL) {
         return 0;
     }
-    fmu->last_call = fmu->names[call] != NULL ? fmu->names[call] : "";
+    fmu->last_call = fmu->names[call];
     if (fmu->instance == NULL || fmu->fn[call] == NULL) {
         return refuse(fmu, call);
     }
@@ -333,18 +350,6 @@ static int knows_state(const ssx_fmu *fmu, const void *state)
         }
     }
     return 0;
-}
-
-/* An FMU may reallocate a state it is asked to overwrite (the Reference FMUs do): the binding
- * follows it to its new place. */
-static void moved_state(ssx_fmu *fmu, const void *from, void *to)
-{
-    for (size_t i = 0; i < fmu->n_states; ++i) {
-        if (fmu->states[i] == from) {
-            fmu->states[i] = to;
-            return;
-        }
-    }
 }
 
 static int remember_state(ssx_fmu *fmu, void *state)
@@ -439,6 +444,10 @@ int ssx_fmu_instantiate(ssx_fmu *fmu)
 int ssx_fmu_setup_experiment(ssx_fmu *fmu, int tolerance_defined, double tolerance,
                              double start_time, int stop_time_defined, double stop_time)
 {
+    if (fmu != NULL) {
+        fmu->tolerance_defined = tolerance_defined;
+        fmu->tolerance = tolerance;
+    }
     return CHECKED(fmu, SLOT_SETUP_EXPERIMENT, setup_experiment, tolerance_defined, tolerance,
                    start_time, stop_time_defined, stop_time);
 }
@@ -557,6 +566,39 @@ void ssx_fmu_step_outcome(const ssx_fmu *fmu, ssx_step_outcome *outcome)
     }
 }
 
+/* ------------------------------------------------------------------ Model Exchange */
+
+int ssx_fmu_set_time(ssx_fmu *fmu, double time)
+{
+    return CHECKED(fmu, SLOT_SET_TIME, set_time, time);
+}
+
+int ssx_fmu_set_continuous_states(ssx_fmu *fmu, const double *x, size_t nx)
+{
+    return CHECKED(fmu, SLOT_SET_CONTINUOUS_STATES, set_continuous_states, x, nx);
+}
+
+int ssx_fmu_get_continuous_states(ssx_fmu *fmu, double *x, size_t nx)
+{
+    return CHECKED(fmu, SLOT_GET_CONTINUOUS_STATES, get_continuous_states, x, nx);
+}
+
+int ssx_fmu_get_derivatives(ssx_fmu *fmu, double *dx, size_t nx)
+{
+    return CHECKED(fmu, SLOT_GET_DERIVATIVES, get_derivatives, dx, nx);
+}
+
+int ssx_fmu_get_event_indicators(ssx_fmu *fmu, double *z, size_t nz)
+{
+    return CHECKED(fmu, SLOT_GET_EVENT_INDICATORS, get_event_indicators, z, nz);
+}
+
+int ssx_fmu_get_nominals_of_continuous_states(ssx_fmu *fmu, double *nominals, size_t nx)
+{
+    return CHECKED(fmu, SLOT_GET_NOMINALS_OF_CONTINUOUS_STATES,
+                   get_nominals_of_continuous_states, nominals, nx);
+}
+
 int ssx_fmu_enter_event_mode(ssx_fmu *fmu)
 {
     return CHECKED0(fmu, SLOT_ENTER_EVENT_MODE, enter_event_mode);
@@ -572,6 +614,32 @@ int ssx_fmu_enter_step_mode(ssx_fmu *fmu)
     return CHECKED0(fmu, SLOT_ENTER_STEP_MODE, enter_step_mode);
 }
 
+int ssx_fmu_enter_continuous_time_mode(ssx_fmu *fmu)
+{
+    return CHECKED0(fmu, SLOT_ENTER_CONTINUOUS_TIME_MODE, enter_continuous_time_mode);
+}
+
+int ssx_fmu_completed_integrator_step(ssx_fmu *fmu, int no_set_state_prior,
+                                      int *enter_event_mode, int *terminate_simulation)
+{
+    return CHECKED(fmu, SLOT_COMPLETED_INTEGRATOR_STEP, completed_integrator_step,
+                   no_set_state_prior, enter_event_mode, terminate_simulation);
+}
+
+int ssx_fmu_experiment_tolerance(const ssx_fmu *fmu, double *tolerance)
+{
+    if (fmu == NULL || !fmu->tolerance_defined) {
+        return 0;
+    }
+    *tolerance = fmu->tolerance;
+    return 1;
+}
+
+int ssx_fmu_is_model_exchange(const ssx_fmu *fmu)
+{
+    return fmu != NULL && fmu->backend == &ssx_fmi2_model_exchange_backend;
+}
+
 /* ------------------------------------------------------------------ states */
 
 int ssx_fmu_get_state(ssx_fmu *fmu, void **state)
@@ -585,13 +653,13 @@ int ssx_fmu_get_state(ssx_fmu *fmu, void **state)
         return -1;
     }
     void *reused = *state;
-    int fresh = *state == NULL;
     int status =
         finish(fmu, SLOT_GET_STATE, fmu->backend->get_state(fmu->fn, fmu->instance, state));
-    if (!fresh && *state != reused) {
-        moved_state(fmu, reused, *state);
+    if (reused != NULL && *state != reused) {
+        /* the FMU may move a state it updates (the Reference FMUs realloc it) */
+        (void)forget_state(fmu, reused);
     }
-    if (fresh && *state != NULL && remember_state(fmu, *state) != 0) {
+    if (*state != reused && *state != NULL && remember_state(fmu, *state) != 0) {
         if (fmu->fn[SLOT_FREE_STATE] != NULL) {
             fmu->backend->free_state(fmu->fn, fmu->instance, state);
         }
@@ -652,14 +720,14 @@ int ssx_fmu_deserialize_state(ssx_fmu *fmu, const char *bytes, size_t size, void
         return -1;
     }
     void *reused = *state;
-    int fresh = *state == NULL;
     int status = finish(fmu, SLOT_DESERIALIZE_STATE,
                         fmu->backend->deserialize_state(fmu->fn, fmu->instance, bytes, size,
                                                         state));
-    if (!fresh && *state != reused) {
-        moved_state(fmu, reused, *state);
+    if (reused != NULL && *state != reused) {
+        /* as in ssx_fmu_get_state: the FMU may move a state it overwrites */
+        (void)forget_state(fmu, reused);
     }
-    if (fresh && *state != NULL && remember_state(fmu, *state) != 0) {
+    if (*state != reused && *state != NULL && remember_state(fmu, *state) != 0) {
         note(fmu, "out of memory tracking FMU states");
         return -1;
     }
@@ -717,7 +785,8 @@ const char *ssx_fmu_variable_name(const ssx_fmu *fmu, unsigned int vr)
 
 const char *ssx_fmu_function_name(const ssx_fmu *fmu, int slot)
 {
-    if (fmu == NULL || slot < 0 || slot >= SLOT_COUNT || fmu->names[slot] == NULL) {
+    if (fmu == NULL || slot < 0 || slot >= SLOT_COUNT ||
+        fmu->names[slot] == OUTSIDE_THE_INTERFACE) {
         return "";
     }
     return fmu->names[slot];

@@ -42,7 +42,8 @@ typedef struct {
 /* The last doStep's out-arguments (all 0 before a step). */
 void ssx_fmu_step_outcome(const ssx_fmu *fmu, ssx_step_outcome *outcome);
 
-/* What fmi2NewDiscreteStates (fmi2EventInfo) and fmi3UpdateDiscreteStates tell. */
+/* What fmi2NewDiscreteStates (fmi2EventInfo, Model Exchange) and fmi3UpdateDiscreteStates
+ * (FMI 3.0 Co-Simulation in event mode) tell, version-neutral. */
 typedef struct {
     int new_discrete_states_needed;
     int terminate_simulation;
@@ -51,11 +52,27 @@ typedef struct {
     int next_event_time_defined;
     double next_event_time;
 } ssx_fmu_event_info;
-/* Event mode (an FMI 3.0 instance made with eventModeUsed); each returns the status, or -1. */
+/* The Model Exchange calls of an FMU loaded by ssx_fmu_load_model_exchange, checked like every
+ * other call; each returns the status, or -1. Event mode (enter, new discrete states) serves an
+ * FMI 3.0 Co-Simulation instance made with eventModeUsed too, with fmi3EnterStepMode to leave
+ * it. */
+int ssx_fmu_set_time(ssx_fmu *fmu, double time);
+int ssx_fmu_set_continuous_states(ssx_fmu *fmu, const double *x, size_t nx);
+int ssx_fmu_get_continuous_states(ssx_fmu *fmu, double *x, size_t nx);
+int ssx_fmu_get_derivatives(ssx_fmu *fmu, double *dx, size_t nx);
+int ssx_fmu_get_event_indicators(ssx_fmu *fmu, double *z, size_t nz);
+int ssx_fmu_get_nominals_of_continuous_states(ssx_fmu *fmu, double *nominals, size_t nx);
 int ssx_fmu_enter_event_mode(ssx_fmu *fmu);
 int ssx_fmu_new_discrete_states(ssx_fmu *fmu, ssx_fmu_event_info *info);
 int ssx_fmu_enter_step_mode(ssx_fmu *fmu);
-
+int ssx_fmu_enter_continuous_time_mode(ssx_fmu *fmu);
+int ssx_fmu_completed_integrator_step(ssx_fmu *fmu, int no_set_state_prior,
+                                      int *enter_event_mode, int *terminate_simulation);
+/* The relative tolerance the live instance was set up with (fmi2SetupExperiment): 1 with it
+ * in *tolerance, 0 when none was given. */
+int ssx_fmu_experiment_tolerance(const ssx_fmu *fmu, double *tolerance);
+/* Whether the FMU was loaded for Model Exchange. */
+int ssx_fmu_is_model_exchange(const ssx_fmu *fmu);
 /* The host process of an isolated FMU, NULL for one loaded into this process. */
 struct ssx_remote;
 struct ssx_remote *ssx_fmu_remote(const ssx_fmu *fmu);

@@ -21,8 +21,7 @@ static const char *call_name(const ssx_component *c, ssx_fmu_slot slot)
     return ssx_fmu_function_name(c->fmu, (int)slot);
 }
 
-/* Reads every output; a failure is reported at t, the time the FMU is at. */
-static int read_outputs_at(ssx_system *sys, ssx_component *c, double t)
+int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t)
 {
     /* x - x is 0 for a finite x and NaN for NaN and infinities: one subtraction per value
      * instead of a classification (Integer and Boolean values are always finite) */
@@ -61,12 +60,12 @@ static int read_outputs_at(ssx_system *sys, ssx_component *c, double t)
 
 static int fmu_read_outputs(ssx_system *sys, ssx_component *c)
 {
-    return read_outputs_at(sys, c, sys->time);
+    return fmu_component_read_outputs_at(sys, c, sys->time);
 }
 
 /* Whether the FMU already holds every input value: nothing set it since the engine's last write
  * (connected inputs change each step; unconnected ones only when Python writes them). */
-static int inputs_unchanged(const ssx_component *c)
+int fmu_component_inputs_unchanged(const ssx_component *c)
 {
     if (c->inputs_written_epoch != ssx_fmu_values_epoch(c->fmu)) {
         return 0;
@@ -92,7 +91,7 @@ static int integer_out_of_range(ssx_system *sys, ssx_component *c, unsigned int 
 
 static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
 {
-    if (inputs_unchanged(c)) {
+    if (fmu_component_inputs_unchanged(c)) {
         return 0;
     }
     const ssx_port_batch *real = &c->input_batch[SSX_REAL];
@@ -146,7 +145,7 @@ static int stop_requested(ssx_system *sys, ssx_component *c, double t, double t_
     }
     /* the grid's own rounding: a remainder below 1e-9 steps is the step's end */
     if (reached >= t_end - 1e-9 * (t_end - t)) {
-        return read_outputs_at(sys, c, t_end);
+        return fmu_component_read_outputs_at(sys, c, t_end);
     }
     return fail(sys, c->index, -1, t,
                 "component '%s' asked to stop at t=%.17g, inside the step from %.17g to %.17g",
@@ -263,7 +262,7 @@ static int step_on(ssx_system *sys, ssx_component *c, double t, double t_end,
             return stop_requested(sys, c, t, t_end, reached, ssx_fmu_last_message(c->fmu));
         }
         if (reached >= t_end - close) {
-            return read_outputs_at(sys, c, t_end);
+            return fmu_component_read_outputs_at(sys, c, t_end);
         }
         stuck = reached > from ? 0 : stuck + 1;
         if (stuck > sys->hybrid.max_microsteps) {
@@ -291,7 +290,7 @@ static int fmu_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
     if (outcome.early_return || outcome.event_handling_needed || outcome.terminate_simulation) {
         return step_on(sys, c, t, t + dt, outcome);
     }
-    return read_outputs_at(sys, c, t + dt);
+    return fmu_component_read_outputs_at(sys, c, t + dt);
 }
 
 static int fmu_evaluate_outputs(ssx_system *sys, ssx_component *c, double t)

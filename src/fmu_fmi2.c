@@ -1,5 +1,6 @@
-/* The FMI 2.0 Co-Simulation back-end of the FMU binding: the fmi2 functions, which of them a
- * binary must export, and adapters that call each with its fmi2 type. */
+/* The FMI 2.0 back-ends of the FMU binding, Co-Simulation and Model Exchange: the fmi2
+ * functions, which of them a binary must export for each interface, and adapters that call each
+ * with its fmi2 type. */
 #include "fmu_backend.h"
 
 #include <stdlib.h>
@@ -7,31 +8,53 @@
 #include "fmi2Functions.h"
 #include "fmu_binding.h"
 
-static const ssx_fmu_function_row fmi2_functions[] = {
-    {"fmi2Instantiate", SLOT_INSTANTIATE, 1},
-    {"fmi2FreeInstance", SLOT_FREE_INSTANCE, 1},
-    {"fmi2SetupExperiment", SLOT_SETUP_EXPERIMENT, 1},
-    {"fmi2EnterInitializationMode", SLOT_ENTER_INITIALIZATION_MODE, 1},
-    {"fmi2ExitInitializationMode", SLOT_EXIT_INITIALIZATION_MODE, 1},
-    {"fmi2Terminate", SLOT_TERMINATE, 1},
-    {"fmi2Reset", SLOT_RESET, 1},
-    {"fmi2GetReal", SLOT_GET_REAL, 1},
-    {"fmi2GetInteger", SLOT_GET_INTEGER, 1},
-    {"fmi2GetBoolean", SLOT_GET_BOOLEAN, 1},
-    {"fmi2SetReal", SLOT_SET_REAL, 1},
-    {"fmi2SetInteger", SLOT_SET_INTEGER, 1},
+/* The rows both interfaces share: required, then optional. */
+#define FMI2_COMMON_ROWS                                                                      \
+    {"fmi2Instantiate", SLOT_INSTANTIATE, 1},                                                 \
+    {"fmi2FreeInstance", SLOT_FREE_INSTANCE, 1},                                              \
+    {"fmi2SetupExperiment", SLOT_SETUP_EXPERIMENT, 1},                                        \
+    {"fmi2EnterInitializationMode", SLOT_ENTER_INITIALIZATION_MODE, 1},                       \
+    {"fmi2ExitInitializationMode", SLOT_EXIT_INITIALIZATION_MODE, 1},                         \
+    {"fmi2Terminate", SLOT_TERMINATE, 1},                                                     \
+    {"fmi2Reset", SLOT_RESET, 1},                                                             \
+    {"fmi2GetReal", SLOT_GET_REAL, 1},                                                        \
+    {"fmi2GetInteger", SLOT_GET_INTEGER, 1},                                                  \
+    {"fmi2GetBoolean", SLOT_GET_BOOLEAN, 1},                                                  \
+    {"fmi2SetReal", SLOT_SET_REAL, 1},                                                        \
+    {"fmi2SetInteger", SLOT_SET_INTEGER, 1},                                                  \
     {"fmi2SetBoolean", SLOT_SET_BOOLEAN, 1},
+#define FMI2_OPTIONAL_ROWS                                                                    \
+    {"fmi2GetFMUstate", SLOT_GET_STATE, 0},                                                   \
+    {"fmi2SetFMUstate", SLOT_SET_STATE, 0},                                                   \
+    {"fmi2FreeFMUstate", SLOT_FREE_STATE, 0},                                                 \
+    {"fmi2SerializedFMUstateSize", SLOT_SERIALIZED_STATE_SIZE, 0},                            \
+    {"fmi2SerializeFMUstate", SLOT_SERIALIZE_STATE, 0},                                       \
+    {"fmi2DeSerializeFMUstate", SLOT_DESERIALIZE_STATE, 0},                                   \
+    {"fmi2GetDirectionalDerivative", SLOT_DIRECTIONAL_DERIVATIVE, 0},
+
+static const ssx_fmu_function_row fmi2_functions[] = {
+    FMI2_COMMON_ROWS
     {"fmi2DoStep", SLOT_DO_STEP, 1},
     /* capabilities an FMU may lack */
-    {"fmi2GetFMUstate", SLOT_GET_STATE, 0},
-    {"fmi2SetFMUstate", SLOT_SET_STATE, 0},
-    {"fmi2FreeFMUstate", SLOT_FREE_STATE, 0},
-    {"fmi2SerializedFMUstateSize", SLOT_SERIALIZED_STATE_SIZE, 0},
-    {"fmi2SerializeFMUstate", SLOT_SERIALIZE_STATE, 0},
-    {"fmi2DeSerializeFMUstate", SLOT_DESERIALIZE_STATE, 0},
-    {"fmi2GetDirectionalDerivative", SLOT_DIRECTIONAL_DERIVATIVE, 0},
+    FMI2_OPTIONAL_ROWS
     {"fmi2GetBooleanStatus", SLOT_GET_TERMINATED, 0},
     {"fmi2GetRealStatus", SLOT_GET_LAST_SUCCESSFUL_TIME, 0},
+};
+
+/* Model Exchange: the common functions, the ones of the interface instead of fmi2DoStep. */
+static const ssx_fmu_function_row fmi2_model_exchange_functions[] = {
+    FMI2_COMMON_ROWS
+    {"fmi2SetTime", SLOT_SET_TIME, 1},
+    {"fmi2SetContinuousStates", SLOT_SET_CONTINUOUS_STATES, 1},
+    {"fmi2GetContinuousStates", SLOT_GET_CONTINUOUS_STATES, 1},
+    {"fmi2GetDerivatives", SLOT_GET_DERIVATIVES, 1},
+    {"fmi2GetEventIndicators", SLOT_GET_EVENT_INDICATORS, 1},
+    {"fmi2GetNominalsOfContinuousStates", SLOT_GET_NOMINALS_OF_CONTINUOUS_STATES, 1},
+    {"fmi2EnterEventMode", SLOT_ENTER_EVENT_MODE, 1},
+    {"fmi2NewDiscreteStates", SLOT_NEW_DISCRETE_STATES, 1},
+    {"fmi2EnterContinuousTimeMode", SLOT_ENTER_CONTINUOUS_TIME_MODE, 1},
+    {"fmi2CompletedIntegratorStep", SLOT_COMPLETED_INTEGRATOR_STEP, 1},
+    FMI2_OPTIONAL_ROWS
 };
 
 #define FMI2_NAME(name) "fmi2" #name,
@@ -64,15 +87,31 @@ static void logger(fmi2ComponentEnvironment environment, fmi2String instance_nam
 }
 
 /* The callbacks live in the context: FMI 2.0 lets the instance keep the pointer. */
-static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
-                         const char *instance_name, const char *guid, const char *resource_uri,
-                         int logging_on)
+static void *instantiate_as(fmi2Type type, const ssx_fmu_function *fn, void *context,
+                            ssx_fmu *fmu, const char *instance_name, const char *guid,
+                            const char *resource_uri, int logging_on)
 {
     fmi2CallbackFunctions *callbacks = context;
     *callbacks = (fmi2CallbackFunctions){logger, calloc, free, NULL, fmu};
     return FMI2(fn, SLOT_INSTANTIATE, fmi2InstantiateTYPE)(
-        instance_name, fmi2CoSimulation, guid, resource_uri, callbacks, fmi2False,
+        instance_name, type, guid, resource_uri, callbacks, fmi2False,
         logging_on ? fmi2True : fmi2False);
+}
+
+static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
+                         const char *instance_name, const char *guid, const char *resource_uri,
+                         int logging_on)
+{
+    return instantiate_as(fmi2CoSimulation, fn, context, fmu, instance_name, guid, resource_uri,
+                          logging_on);
+}
+
+static void *instantiate_model_exchange(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
+                                        const char *instance_name, const char *guid,
+                                        const char *resource_uri, int logging_on)
+{
+    return instantiate_as(fmi2ModelExchange, fn, context, fmu, instance_name, guid,
+                          resource_uri, logging_on);
 }
 
 static void free_instance(const ssx_fmu_function *fn, void *instance)
@@ -213,34 +252,124 @@ static int get_last_successful_time(const ssx_fmu_function *fn, void *instance, 
         instance, fmi2LastSuccessfulTime, time);
 }
 
+/* ------------------------------------------------------------------ Model Exchange */
+
+static int set_time(const ssx_fmu_function *fn, void *instance, double time)
+{
+    return (int)FMI2(fn, SLOT_SET_TIME, fmi2SetTimeTYPE)(instance, time);
+}
+
+static int set_continuous_states(const ssx_fmu_function *fn, void *instance, const double *x,
+                                 size_t nx)
+{
+    return (int)FMI2(fn, SLOT_SET_CONTINUOUS_STATES, fmi2SetContinuousStatesTYPE)(instance, x,
+                                                                                 nx);
+}
+
+static int get_continuous_states(const ssx_fmu_function *fn, void *instance, double *x,
+                                 size_t nx)
+{
+    return (int)FMI2(fn, SLOT_GET_CONTINUOUS_STATES, fmi2GetContinuousStatesTYPE)(instance, x,
+                                                                                 nx);
+}
+
+static int get_derivatives(const ssx_fmu_function *fn, void *instance, double *dx, size_t nx)
+{
+    return (int)FMI2(fn, SLOT_GET_DERIVATIVES, fmi2GetDerivativesTYPE)(instance, dx, nx);
+}
+
+static int get_event_indicators(const ssx_fmu_function *fn, void *instance, double *z,
+                                size_t nz)
+{
+    return (int)FMI2(fn, SLOT_GET_EVENT_INDICATORS, fmi2GetEventIndicatorsTYPE)(instance, z, nz);
+}
+
+static int get_nominals_of_continuous_states(const ssx_fmu_function *fn, void *instance,
+                                             double *nominals, size_t nx)
+{
+    return (int)FMI2(fn, SLOT_GET_NOMINALS_OF_CONTINUOUS_STATES,
+                     fmi2GetNominalsOfContinuousStatesTYPE)(instance, nominals, nx);
+}
+
+static int enter_event_mode(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI2(fn, SLOT_ENTER_EVENT_MODE, fmi2EnterEventModeTYPE)(instance);
+}
+
+static int new_discrete_states(const ssx_fmu_function *fn, void *instance,
+                               ssx_fmu_event_info *info)
+{
+    fmi2EventInfo event = {0};
+    int status = (int)FMI2(fn, SLOT_NEW_DISCRETE_STATES, fmi2NewDiscreteStatesTYPE)(instance,
+                                                                                   &event);
+    *info = (ssx_fmu_event_info){
+        .new_discrete_states_needed = event.newDiscreteStatesNeeded != fmi2False,
+        .terminate_simulation = event.terminateSimulation != fmi2False,
+        .nominals_changed = event.nominalsOfContinuousStatesChanged != fmi2False,
+        .values_changed = event.valuesOfContinuousStatesChanged != fmi2False,
+        .next_event_time_defined = event.nextEventTimeDefined != fmi2False,
+        .next_event_time = event.nextEventTime,
+    };
+    return status;
+}
+
+static int enter_continuous_time_mode(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI2(fn, SLOT_ENTER_CONTINUOUS_TIME_MODE, fmi2EnterContinuousTimeModeTYPE)(
+        instance);
+}
+
+static int completed_integrator_step(const ssx_fmu_function *fn, void *instance,
+                                     int no_set_state_prior, int *enter_event_mode,
+                                     int *terminate_simulation)
+{
+    fmi2Boolean enter = fmi2False, terminate = fmi2False;
+    int status = (int)FMI2(fn, SLOT_COMPLETED_INTEGRATOR_STEP, fmi2CompletedIntegratorStepTYPE)(
+        instance, no_set_state_prior ? fmi2True : fmi2False, &enter, &terminate);
+    *enter_event_mode = enter != fmi2False;
+    *terminate_simulation = terminate != fmi2False;
+    return status;
+}
+
+/* The adapters both interfaces share. */
+#define FMI2_ADAPTERS                                                                         \
+    .version = "FMI 2.0", .status_names = fmi2_status_names,                                  \
+    .context_size = sizeof(fmi2CallbackFunctions), .free_instance = free_instance,            \
+    .setup_experiment = setup_experiment,                                                     \
+    .enter_initialization_mode = enter_initialization_mode,                                   \
+    .exit_initialization_mode = exit_initialization_mode, .terminate = terminate,             \
+    .reset = reset, .get_real = get_real, .get_integer = get_integer,                         \
+    .get_boolean = get_boolean, .set_real = set_real, .set_integer = set_integer,             \
+    .set_boolean = set_boolean, .get_state = get_state, .set_state = set_state,               \
+    .free_state = free_state, .serialized_state_size = serialized_state_size,                 \
+    .serialize_state = serialize_state, .deserialize_state = deserialize_state,               \
+    .directional_derivative = directional_derivative
+
+const ssx_fmu_backend ssx_fmi2_model_exchange_backend = {
+    FMI2_ADAPTERS,
+    .standard = "FMI 2.0 Model Exchange",
+    .functions = fmi2_model_exchange_functions,
+    .n_functions = sizeof fmi2_model_exchange_functions / sizeof fmi2_model_exchange_functions[0],
+    .instantiate = instantiate_model_exchange,
+    .set_time = set_time,
+    .set_continuous_states = set_continuous_states,
+    .get_continuous_states = get_continuous_states,
+    .get_derivatives = get_derivatives,
+    .get_event_indicators = get_event_indicators,
+    .get_nominals_of_continuous_states = get_nominals_of_continuous_states,
+    .enter_event_mode = enter_event_mode,
+    .new_discrete_states = new_discrete_states,
+    .enter_continuous_time_mode = enter_continuous_time_mode,
+    .completed_integrator_step = completed_integrator_step,
+};
+
 const ssx_fmu_backend ssx_fmi2_backend = {
+    FMI2_ADAPTERS,
     .standard = "FMI 2.0 Co-Simulation",
-    .version = "FMI 2.0",
-    .status_names = fmi2_status_names,
     .functions = fmi2_functions,
     .n_functions = sizeof fmi2_functions / sizeof fmi2_functions[0],
-    .context_size = sizeof(fmi2CallbackFunctions),
     .instantiate = instantiate,
-    .free_instance = free_instance,
-    .setup_experiment = setup_experiment,
-    .enter_initialization_mode = enter_initialization_mode,
-    .exit_initialization_mode = exit_initialization_mode,
-    .terminate = terminate,
-    .reset = reset,
-    .get_real = get_real,
-    .get_integer = get_integer,
-    .get_boolean = get_boolean,
-    .set_real = set_real,
-    .set_integer = set_integer,
-    .set_boolean = set_boolean,
     .do_step = do_step,
-    .get_state = get_state,
-    .set_state = set_state,
-    .free_state = free_state,
-    .serialized_state_size = serialized_state_size,
-    .serialize_state = serialize_state,
-    .deserialize_state = deserialize_state,
-    .directional_derivative = directional_derivative,
     .get_terminated = get_terminated,
     .get_last_successful_time = get_last_successful_time,
 };

@@ -91,6 +91,7 @@ typedef struct {
     uint32_t *output, *dependencies;
     size_t *first_dependency;
     int64_t *dependency_count;
+    size_t derivative_count;
     ssx_md_names *names;
 } reader;
 
@@ -765,6 +766,10 @@ static bool start_element(reader *r, slice tag, size_t line)
             is(r->section, "ModelStructure")) {
             return read_unknown(r, line); /* syssimx reads the feedthrough of outputs only */
         }
+        if (is(tag, "Unknown") && is(r->subsection, "Derivatives") &&
+            is(r->section, "ModelStructure")) {
+            ++r->derivative_count; /* a Model Exchange FMU's number of continuous states */
+        }
         return true;
     default:
         return true;
@@ -1366,6 +1371,7 @@ static void publish(reader *r)
     md->dependencies = r->dependencies;
     md->dependency_total = r->dependency_total;
     md->names = r->names;
+    md->derivative_count = r->derivative_count;
     free(r->open);
     free(r->attributes);
     names_free(&r->type_index);

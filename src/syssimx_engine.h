@@ -41,6 +41,8 @@ typedef struct {
     ssx_locator locator;
     double zeno_min_interval; /* 0: the rule of ssx_set_hybrid_options */
     int output_interval;
+    /* CVODE's relative tolerance for a Model Exchange FMU set up without one (FMPy's) */
+    double model_exchange_tolerance;
 } ssx_defaults;
 void ssx_get_defaults(ssx_defaults *out);
 
@@ -67,6 +69,14 @@ ssx_fmu *ssx_fmu_load(const char *binary_path, const char *model_identifier, con
                       const char *resource_uri, const char *instance_name, int logging_on,
                       char *error, size_t error_size);
 void ssx_fmu_free(ssx_fmu *fmu); /* terminates/frees a live instance, then dlclose */
+/* Like ssx_fmu_load, for the FMU's Model Exchange interface (model_identifier: the
+ * ModelExchange element's): the instance is an fmi2ModelExchange one, the binary must export
+ * the Model Exchange functions (fmi2DoStep is neither needed nor called). Its component is
+ * added with ssx_add_model_exchange_component. */
+ssx_fmu *ssx_fmu_load_model_exchange(const char *binary_path, const char *model_identifier,
+                                     const char *guid, const char *resource_uri,
+                                     const char *instance_name, int logging_on, char *error,
+                                     size_t error_size);
 
 /* FMI 3.0 Co-Simulation. The engine keeps its three port types: Float64 and Float32 variables
  * are Real ports, Int8 ... UInt64 Integer ports (a value outside the int range fails the call
@@ -294,6 +304,19 @@ const ssx_error *ssx_last_error(const ssx_system *sys);
 
 int ssx_add_fmu_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_get_set_state);
 int ssx_add_python_component(ssx_system *sys, const char *name, int can_snapshot);
+/* A Model Exchange FMU (loaded by ssx_fmu_load_model_exchange, initialized by
+ * ssx_fmu_initialize) that the engine integrates with CVODE between communication points:
+ * n_states continuous states (ModelStructure/Derivatives), n_event_indicators
+ * (numberOfEventIndicators). The relative tolerance is the one the instance was set up with
+ * (ssx_fmu_experiment's), else model_exchange_tolerance of ssx_defaults; the absolute
+ * tolerances are it times the states' nominals. Its state, time and step events are handled
+ * inside its steps at their own time and recorded as its own events (ssx_own_event_kind); a
+ * request to terminate ends the run as for a Co-Simulation FMU. Its snapshots hold the FMU
+ * state (fmi2GetFMUstate, when can_get_set_state) and the engine's copy of the continuous
+ * states; ports are added as for any FMU component. */
+int ssx_add_model_exchange_component(ssx_system *sys, const char *name, ssx_fmu *fmu,
+                                     int can_get_set_state, int n_states,
+                                     int n_event_indicators);
 int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks);
 
 /* Ports. vr is the FMU value reference (ignored for Python components). start is written to
@@ -537,6 +560,8 @@ typedef struct {
     const uint32_t *dependencies;
     size_t dependency_total;
     ssx_md_names *names;
+    /* the Unknowns of ModelStructure/Derivatives: a Model Exchange FMU's continuous states */
+    size_t derivative_count;
 } ssx_md;
 
 /* Reads the modelDescription in xml[0..size). Returns NULL only when out of memory; otherwise

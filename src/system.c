@@ -25,7 +25,8 @@ void ssx_get_defaults(ssx_defaults *out)
                           .max_microsteps = 10,
                           .locator = SSX_ILLINOIS,
                           .zeno_min_interval = 0.0,
-                          .output_interval = 1};
+                          .output_interval = 1,
+                          .model_exchange_tolerance = 1e-5};
 }
 
 ssx_system *ssx_system_new(const char *name)

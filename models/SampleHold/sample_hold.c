@@ -27,6 +27,15 @@ static void outputs(double *v, double t, const double *x)
     v[VR_Y] = v[VR_AMPLITUDE] * cos(2.0 * PI * v[VR_FREQUENCY] * sample);
 }
 
+/* The next sample instant: y changes there. */
+static double next_time_event(const double *v, double t)
+{
+    double h = v[VR_HOLD_STEP];
+    double next = (floor(t / h) + 1.0) * h;
+    /* t / h may round to just below an integer when t is itself a sample instant */
+    return next > t ? next : next + h;
+}
+
 const model_definition fmu_model = {
     .name = "SampleHold",
     .description = "Cosine sampled and held every hold_step (SampleHold.mo)",
@@ -35,4 +44,5 @@ const model_definition fmu_model = {
     .default_stop_time = 1.0,
     .default_step_size = 1e-2,
     .outputs = outputs,
+    .next_time_event = next_time_event,
 };

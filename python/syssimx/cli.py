@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING, Any, TextIO
 import numpy as np
 
 from . import __version__, fmus
+from .components.model_description import INTERFACES
 from .core.literal import literal
 from .core.port import PortType
 from .graph.analysis import feedthrough_from_model_description
@@ -115,6 +116,10 @@ def _parser() -> argparse.ArgumentParser:
     simulate.add_argument("--tolerance", type=float, default=None, metavar="RTOL",
                           help="relative tolerance passed to the FMU (default: the FMU's "
                                "default experiment)")
+    simulate.add_argument("--interface", choices=("auto", *INTERFACES), default="auto",
+                          help="the FMU interface to run: Co-Simulation (fmi2DoStep), or Model "
+                          "Exchange integrated by syssimx with CVODE (default auto: "
+                          "Co-Simulation when the FMU has it, else Model Exchange)")
     simulate.add_argument("--input", type=Path, default=None, metavar="CSV",
                           help="input signals, a CSV file in FMPy's format (a time column, "
                                "then one column per input, matched by name)")
@@ -323,7 +328,8 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
     t0, tf, dt = _experiment(args, md.defaultExperiment,
                              getattr(md.coSimulation, "fixedInternalStepSize", None))
     options = {} if args.tolerance is None else {"tolerance": args.tolerance}
-    component = FMUComponent(md.modelName or path.stem, str(path), **options)
+    component = FMUComponent(md.modelName or path.stem, str(path), interface=args.interface,
+                             **options)
     assignments = dict(args.assignments)
     held_inputs = {n: v for n, v in assignments.items() if n in component.input_specs}
     component.set_parameters(**{n: v for n, v in assignments.items() if n not in held_inputs})
@@ -342,7 +348,9 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
         source = _connect_input(system, component, args.input)
         # FMPy sets the inputs at the start of each step: the Jacobi coupling's timing
         system.set_algorithm(JacobiAlgorithm())
-        if source is not None and md.coSimulation.canHandleVariableCommunicationStepSize:
+        # the engine integrates a Model Exchange FMU: any step is fine
+        if source is not None and (component.model_exchange or
+                                   md.coSimulation.canHandleVariableCommunicationStepSize):
             events = source.event_times().tolist()
     system.initialize(t0)
     result = _run(system, _communication_points(t0, tf, dt, events), dt) if events \

@@ -71,10 +71,15 @@ def test_no_linux64_binary(tmp_path: Path):
 
 
 def test_model_exchange_only(tmp_path: Path):
+    """A Model-Exchange-only FMU is run as Model Exchange ("auto"); asking for Co-Simulation
+    names what the FMU has."""
     path = archive(tmp_path / "me.fmu", {
         "modelDescription.xml": DESCRIPTION.replace("{interface}", MODEL_EXCHANGE),
         "binaries/linux64/fake.so": ""})
-    with pytest.raises(FMUFileError, match="Model-Exchange-only"):
+    with pytest.raises(ConfigurationError, match=r"component 'X': me\.fmu has no co-simulation "
+                       r"interface \(it has model-exchange\)"):
+        FMUComponent("X", path, interface="co-simulation")
+    with pytest.raises(FMUFileError, match=r"cannot load binaries/linux64/fake\.so"):
         FMUComponent("X", path)
 
 

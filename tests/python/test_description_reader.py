@@ -61,7 +61,8 @@ def assert_same(path: Path) -> None:
             (None if fmpys.dependencies is None else [v.name for v in fmpys.dependencies])
 
 
-@pytest.mark.parametrize("name", fmus.available())
+# the FMI 2.0 builds; their FMI 3.0 twins (stem_fmi3) join when the reader reads FMI 3.0
+@pytest.mark.parametrize("name", [n for n in fmus.available() if not n.endswith("_fmi3")])
 def test_our_fmus_read_as_fmpy_reads_them(name: str):
     assert_same(Path(fmus.path(name)))
 

@@ -3,6 +3,7 @@ FMUFileError whose message names the file, and no extraction folder is left behi
 
 from __future__ import annotations
 
+import re
 import stat
 import subprocess
 import sys
@@ -43,6 +44,13 @@ def edited(tmp_path: Path, old: str, new: str) -> Path:
     assert old in text
     entries = {**gain_entries(), "modelDescription.xml": text.replace(old, new, 1).encode()}
     return write_archive(tmp_path / "edited.fmu", entries)
+
+
+def without_interfaces(tmp_path: Path) -> Path:
+    """gain.fmu without its CoSimulation and ModelExchange elements."""
+    text = re.sub(r"  <(CoSimulation|ModelExchange) .*?/>\n", "", description(), flags=re.S)
+    return write_archive(tmp_path / "edited.fmu",
+                         {**gain_entries(), "modelDescription.xml": text.encode()})
 
 
 def with_entry(tmp_path: Path, entry: str | zipfile.ZipInfo, data: bytes = b"x") -> Path:
@@ -96,6 +104,8 @@ def oversized(tmp_path: Path) -> Path:
 
 Build = Callable[[Path], Path]
 VARIABLE_U = '<ScalarVariable name="u" valueReference="1"'
+# the description names the binary in its ModelExchange element too; syssimx reads CoSimulation's
+CO_SIMULATION_ID = '<CoSimulation modelIdentifier="gain"'
 
 # name -> (archive builder, what the message says besides the file)
 CASES: dict[str, tuple[Build, str]] = {
@@ -124,15 +134,14 @@ CASES: dict[str, tuple[Build, str]] = {
     "FMI 3.0": (lambda tmp: edited(tmp, 'fmiVersion="2.0"', 'fmiVersion="3.0"'),
                 "modelDescription.xml declares FMI 3.0 but is not a readable FMI 3.0 "
                 "description (KeyError: 'ScalarVariable')"),
-    "Model Exchange only": (lambda tmp: edited(tmp, "<CoSimulation ", "<ModelExchange "),
-                            "Model-Exchange-only"),
+    "no interface": (without_interfaces, "declares neither CoSimulation nor ModelExchange"),
     "modelIdentifier with ../": (
-        lambda tmp: edited(tmp, 'modelIdentifier="gain"', 'modelIdentifier="../../evil"'),
+        lambda tmp: edited(tmp, CO_SIMULATION_ID, '<CoSimulation modelIdentifier="../../evil"'),
         "modelIdentifier '../../evil' is not a file name"),
     "modelIdentifier with /": (
-        lambda tmp: edited(tmp, 'modelIdentifier="gain"', 'modelIdentifier="/tmp/evil"'),
+        lambda tmp: edited(tmp, CO_SIMULATION_ID, '<CoSimulation modelIdentifier="/tmp/evil"'),
         "modelIdentifier '/tmp/evil' is not a file name"),
-    "no modelIdentifier": (lambda tmp: edited(tmp, 'modelIdentifier="gain"', ""),
+    "no modelIdentifier": (lambda tmp: edited(tmp, CO_SIMULATION_ID, "<CoSimulation"),
                            "no modelIdentifier"),
     "duplicate name": (lambda tmp: edited(tmp, 'name="u"', 'name="y"'),
                        "variable 'y': the name is not unique"),

@@ -41,7 +41,7 @@ BUILD_ERRORS = {
         ", line 2: components[0]: needs a 'name' (a non-empty string)",
     "components:\n  - name: A\n    class: 'quickstart:LinearSource'\n    parameter: {}\n":
         ", line 2: components[0] 'A': unknown key(s) ['parameter']; known: ['name', 'class', "
-        "'fmu', 'args', 'parameters', 'event_indicators', 'event_handlers']",
+        "'fmu', 'interface', 'args', 'parameters', 'event_indicators', 'event_handlers']",
     "components:\n  - name: A\n":
         ", line 2: components[0] 'A': needs 'class' (\"module:Class\") or 'fmu' (a bundled "
         "FMU name or a path to an .fmu file)",

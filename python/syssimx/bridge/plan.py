@@ -159,13 +159,21 @@ class EnginePlan:
 
     def add_fmu_component(self, component: Component, fmu: Any, can_get_set_state: bool,
                           provides_directional_derivative: bool,
-                          value_reference: Callable[[str], int], hooks: set[str]) -> None:
+                          value_reference: Callable[[str], int], hooks: set[str],
+                          model_exchange: tuple[int, int] | None = None) -> None:
         """An FMU the engine steps itself; `hooks` lists what the component's Python
-        overrides (none for a plain FMUComponent). The system borrows the loaded FMU."""
+        overrides (none for a plain FMUComponent). `model_exchange`: the engine integrates it,
+        with (continuous states, event indicators), at the tolerance the instance is set up
+        with. The system borrows the loaded FMU."""
         name, index = component.name, self.index[component.name]
         self._borrowed_fmus.append(fmu)
-        self.check(lib().ssx_add_fmu_component(self.sys, name.encode(), fmu,
-                                               int(can_get_set_state)), name)
+        if model_exchange is None:
+            self.check(lib().ssx_add_fmu_component(self.sys, name.encode(), fmu,
+                                                   int(can_get_set_state)), name)
+        else:
+            states, indicators = model_exchange
+            self.check(lib().ssx_add_model_exchange_component(
+                self.sys, name.encode(), fmu, int(can_get_set_state), states, indicators), name)
         self.check(lib().ssx_set_directional_derivatives(
             self.sys, index, int(provides_directional_derivative)),
             f"{name}: directional derivatives")

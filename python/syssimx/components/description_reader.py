@@ -71,7 +71,7 @@ def read_description(stream: IO[bytes], where: str | Path) -> ModelDescription:
         return read_fmi3_description(Path(where))
     if md.error.problem != engine.SSX_MD_OK:
         raise FMUFileError(_message(md.error, str(where)))
-    return _description(md)
+    return _description(md, str(where))
 
 
 # ------------------------------------------------------------------------------ errors
@@ -140,7 +140,7 @@ def _message(error: Any, where: str) -> str:
 
 
 # ------------------------------------------------------------------------------ the description
-def _description(md: Any) -> ModelDescription:
+def _description(md: Any, where: str) -> ModelDescription:
     def text(offset: int) -> str | None:
         return ffi.string(md.strings + offset).decode() if offset else None
 
@@ -153,6 +153,8 @@ def _description(md: Any) -> ModelDescription:
     for name in _ROOT_TEXT:
         if name in root:
             setattr(description, name, root[name])
+    description.numberOfContinuousStates = int(md.derivative_count)
+    description.numberOfEventIndicators = _count(root.get("numberOfEventIndicators"), where)
     if "CoSimulation" in elements:
         description.coSimulation = _interface(CoSimulation(), elements["CoSimulation"])
     if "ModelExchange" in elements:
@@ -171,6 +173,20 @@ def _description(md: Any) -> ModelDescription:
     description.modelVariables = variables
     description.outputs = _outputs(md, variables)
     return description
+
+
+def _count(text: str | None, where: str) -> int:
+    """numberOfEventIndicators: absent means none (FMI 2.0's default)."""
+    if text is None:
+        return 0
+    try:
+        count = int(text)
+    except ValueError:
+        count = -1
+    if count < 0:
+        raise FMUFileError(f"{where}: modelDescription.xml: numberOfEventIndicators={text!r} is "
+                           "not a non-negative integer")
+    return count
 
 
 def _interface(interface: Any, attributes: dict[str | None, str | None]) -> Any:

@@ -1,4 +1,6 @@
-"""FMUComponent: an FMI 2.0 or FMI 3.0 Co-Simulation FMU stepped by the engine.
+"""FMUComponent: an FMI 2.0 FMU stepped by the engine, through its Co-Simulation interface
+(fmi2DoStep) or its Model Exchange interface (integrated by the engine with CVODE), or an FMI
+3.0 Co-Simulation FMU.
 
 Plain use costs no Python per step: the engine calls the FMU directly, rolls it back with
 fmi2Get/SetFMUstate for event localization and evaluates variable indicators in C. Overriding
@@ -12,7 +14,8 @@ socket), so a crash, an abort or, with `step_timeout`, a hang becomes a Simulati
 Like FMPy, syssimx writes to the FMU only the values the user set (parameters, inputs); the
 FMU keeps its own defaults otherwise, even where the modelDescription declares a rounded copy
 of them. fmi2SetupExperiment gets the tolerance the user gave (to the component, else to
-System.initialize), else the DefaultExperiment's.
+System.initialize), else the DefaultExperiment's; a Model Exchange component integrates with
+that relative tolerance (absolute: times each state's nominal), else the engine's default.
 
 An FMI 3.0 FMU is instantiated with event mode when it declares hasEventMode, and with early
 return when it can return early: it then handles its own events inside the engine's step, at
@@ -37,22 +40,32 @@ from ..units import is_quantity, magnitude_in
 from .base import CoSimComponent
 from .extraction import extractions
 from .fmu_instance import FMUInstance
-from .model_description import PORT_TYPES, FMUInfo, Parameter, read_fmu, variable_unit
+from .model_description import (
+    INTERFACES,
+    PORT_TYPES,
+    FMUInfo,
+    FMUInterface,
+    Parameter,
+    read_fmu,
+    variable_unit,
+)
 
 if TYPE_CHECKING:
     from ..bridge.plan import EnginePlan
 
 
 class FMUComponent(CoSimComponent):
-    """An FMI 2.0 (linux64 binary) or FMI 3.0 (x86_64-linux) Co-Simulation FMU as a
+    """An FMI 2.0 FMU (linux64 binary) or an FMI 3.0 Co-Simulation FMU (x86_64-linux) as a
     component."""
 
     def __init__(self, name: str, fmu_path: str | Path, group: str | None = None,
                  tolerance: float | None = None, *, isolated: bool = False,
-                 step_timeout: float | None = None) -> None:
-        """`tolerance`: the relative tolerance for fmi2SetupExperiment; `isolated`: run the
-        binary in a process of its own; `step_timeout` (seconds, needs isolation): an fmi2 call
-        that takes longer kills that process and fails the run."""
+                 step_timeout: float | None = None, interface: str = "auto") -> None:
+        """`tolerance`: the relative tolerance for fmi2SetupExperiment (and the engine's
+        integrator under Model Exchange); `isolated`: run the binary in a process of its own;
+        `step_timeout` (seconds, needs isolation): an fmi2 call that takes longer kills that
+        process and fails the run; `interface`: "co-simulation", "model-exchange" or "auto"
+        (Co-Simulation when the FMU has it, else Model Exchange)."""
         if step_timeout is not None and not isolated:
             raise ConfigurationError(f"component {name!r}: step_timeout needs isolated=True "
                                      "(a hung FMU inside this process cannot be stopped)")
@@ -64,10 +77,22 @@ class FMUComponent(CoSimComponent):
         self.step_timeout = step_timeout
         self.info: FMUInfo = read_fmu(fmu_path)
         self.fmu_path = str(self.info.path)
+        if self.info.is_fmi3 and interface == "model-exchange":
+            raise ConfigurationError(f"component {name!r}: {self.fmu_path}: FMI 3.0 Model "
+                                     "Exchange is not supported yet (its Co-Simulation "
+                                     "interface is)")
         if isolated and self.info.is_fmi3:
             raise ConfigurationError(f"component {name!r}: isolated=True is not supported for "
                                      f"FMI 3.0 FMUs ({self.fmu_path}): the FMU host process "
                                      "speaks FMI 2.0 only")
+        self.fmu_interface: FMUInterface = _chosen_interface(self.info, name, interface)
+        if isolated and self.model_exchange:
+            raise ConfigurationError(
+                f"component {name!r}: isolated=True runs an FMU's Co-Simulation interface "
+                f"only, and {self.info.path.name} runs as Model Exchange here (the engine "
+                "integrates it in this process); drop isolated=True"
+                + (' or pass interface="co-simulation"'
+                   if "co-simulation" in self.info.interfaces else ""))
         # the relative tolerance for fmi2SetupExperiment; None: System.initialize's, else the
         # DefaultExperiment's
         self.tolerance = _checked_tolerance(tolerance, f"{name}: tolerance")
@@ -80,7 +105,8 @@ class FMUComponent(CoSimComponent):
         self._parameters_set: set[str] = set()  # named in set_parameters: written even if equal
         self._input_starts = dict(self.info.input_starts)  # set_inputs changes the copy
         self._inputs_set: set[str] = set()
-        fmu, self._unzip_dir, extraction_key = _load(self.info, name, isolated, step_timeout)
+        fmu, self._unzip_dir, extraction_key = _load(self.info, self.fmu_interface, name,
+                                                     isolated, step_timeout)
         self.instance = FMUInstance(fmu, name, fmi3=self.info.is_fmi3)
         # resolved now: a finalizer must not be the first to look up a library function
         self._finalizer = weakref.finalize(self, _release, lib().ssx_fmu_free, self.instance,
@@ -99,7 +125,12 @@ class FMUComponent(CoSimComponent):
 
     @property
     def can_get_set_state(self) -> bool:
-        return self.info.can_get_set_state
+        return self.fmu_interface.can_get_set_state
+
+    @property
+    def model_exchange(self) -> bool:
+        """Whether the engine integrates the FMU (its Model Exchange interface)."""
+        return self.fmu_interface.name == "model-exchange"
 
     # ---------------------------------------------------------------- ports
     def _make_port(self, spec: PortSpec) -> Port:
@@ -141,7 +172,7 @@ class FMUComponent(CoSimComponent):
         return int(self.info.variables[name].valueReference)
 
     def set_inputs(self, signals: dict[str, Any], t: float | None = None) -> None:
-        """Set inputs; they go to the FMU at once when it is instantiated."""
+        """Set inputs; they go to a Co-Simulation FMU at once when it is instantiated."""
         for name, value in signals.items():
             if name not in self.input_specs:
                 raise ConfigurationError(f"component {self.name!r} has no input {name!r}; "
@@ -150,7 +181,9 @@ class FMUComponent(CoSimComponent):
             self._inputs_set.add(name)
         if self._binding is not None:
             self._binding.plan.write_inputs(self, signals)
-        if self.instance.alive():
+        # the engine writes a Model Exchange FMU's inputs in event mode, where discrete ones
+        # may change, before its next step
+        if self.instance.alive() and not self.model_exchange:
             self._write_to_fmu({n: self._input_starts[n] for n in signals})
 
     def _write_to_fmu(self, values: dict[str, Any]) -> None:
@@ -287,10 +320,12 @@ class FMUComponent(CoSimComponent):
 
     def _add_to_plan(self, plan: EnginePlan) -> None:
         """The engine steps the FMU itself; only what a subclass overrides runs in Python."""
+        model_exchange = (self.info.number_of_states, self.info.number_of_event_indicators) \
+            if self.model_exchange else None
         plan.add_fmu_component(
             self, self._fmu, self.can_get_set_state,
-            bool(self.info.description.coSimulation.providesDirectionalDerivative),
-            self.value_reference, self._python_hooks(engine_steps=True))
+            self.fmu_interface.provides_directional_derivative,
+            self.value_reference, self._python_hooks(engine_steps=True), model_exchange)
 
     # ---------------------------------------------------------------- hooks (engine built-ins)
     def _do_step_internal(self, t: float, dt: float) -> None:
@@ -405,41 +440,51 @@ def _coerce_parameter(component: str, parameter: Parameter, value: Any) -> Any:
         raise ConfigurationError(f"{where}: {exc}") from exc
 
 
-def _load(info: FMUInfo, name: str, isolated: bool, step_timeout: float | None
-          ) -> tuple[Any, Path, tuple[str, int, int] | None]:
-    """Extract the archive (shared where FMI allows) and load its binary into the engine, or
-    into a host process of its own when isolated (no instance yet)."""
+def _chosen_interface(info: FMUInfo, name: str, interface: str) -> FMUInterface:
+    """The interface `interface` names ("auto": the first of INTERFACES the FMU has)."""
+    if interface == "auto":
+        return next(info.interfaces[n] for n in INTERFACES if n in info.interfaces)
+    if interface not in INTERFACES:
+        raise ConfigurationError(f"component {name!r}: interface={interface!r} is not one of "
+                                 f"'auto', {', '.join(map(repr, INTERFACES))}")
+    if interface not in info.interfaces:
+        raise ConfigurationError(f"component {name!r}: {info.path.name} has no {interface} "
+                                 f"interface (it has {', '.join(info.interfaces)})")
+    return info.interfaces[interface]
+
+
+def _load(info: FMUInfo, interface: FMUInterface, name: str, isolated: bool,
+          step_timeout: float | None) -> tuple[Any, Path, tuple[str, int, int] | None]:
+    """Extract the archive (shared where FMI allows) and load the interface's binary into the
+    engine, or into a host process of its own when isolated (no instance yet)."""
     host = str(fmu_host()).encode() if isolated else None
-    once_per_process = bool(getattr(info.description.coSimulation,
-                                    "canBeInstantiatedOnlyOncePerProcess", False))
+    once_per_process = interface.can_be_instantiated_only_once_per_process
     # every isolated FMU has a process of its own, so it may share the extraction
     unzip_dir, key = extractions.acquire(info.path, shareable=isolated or not once_per_process)
-    binary = (unzip_dir / info.binary_name()).resolve()
+    binary_name = info.binary_name(interface.name)
+    binary = (unzip_dir / binary_name).resolve()
     if not (binary.is_relative_to(unzip_dir.resolve()) and binary.is_file()):
         extractions.release(unzip_dir, key)
-        raise FMUFileError(f"{info.path}: {info.binary_name()} is not a file inside the "
+        raise FMUFileError(f"{info.path}: {binary_name} is not a file inside the "
                            "extracted archive; refused to load it")
     error = ffi.new("char[1024]")
     if info.is_fmi3:
         handle = _load_fmi3(info, binary, unzip_dir, name, error)
-    elif host is not None:
-        handle = lib().ssx_fmu_load_isolated(host, step_timeout or 0.0, *_arguments(
-            info, binary, unzip_dir, name, error))
     else:
-        handle = lib().ssx_fmu_load(*_arguments(info, binary, unzip_dir, name, error))
+        arguments = (str(binary).encode(), interface.model_identifier.encode(),
+                     info.description.guid.encode(), (unzip_dir / "resources").as_uri().encode(),
+                     name.encode(), 0, error, 1024)
+        if host is not None:
+            handle = lib().ssx_fmu_load_isolated(host, step_timeout or 0.0, *arguments)
+        elif interface.name == "model-exchange":
+            handle = lib().ssx_fmu_load_model_exchange(*arguments)
+        else:
+            handle = lib().ssx_fmu_load(*arguments)
     if handle == ffi.NULL:
         extractions.release(unzip_dir, key)
-        raise FMUFileError(f"{info.path}: cannot load {info.binary_name()}: "
+        raise FMUFileError(f"{info.path}: cannot load {binary_name}: "
                            f"{ffi.string(error).decode(errors='replace')}")
     return handle, unzip_dir, key
-
-
-def _arguments(info: FMUInfo, binary: Path, unzip_dir: Path, name: str, error: Any
-               ) -> tuple[Any, ...]:
-    """ssx_fmu_load's arguments after the host's: FMI 2.0 gives the resources as a URI."""
-    return (str(binary).encode(), info.model_identifier.encode(),
-            info.description.guid.encode(), (unzip_dir / "resources").as_uri().encode(),
-            name.encode(), 0, error, 1024)
 
 
 def _load_fmi3(info: FMUInfo, binary: Path, unzip_dir: Path, name: str, error: Any) -> Any:

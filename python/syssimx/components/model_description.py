@@ -58,6 +58,19 @@ class Parameter(NamedTuple):
     fmi_type: str = ""
 
 
+class FMUInterface(NamedTuple):
+    """One interface of the FMU (FMPy's CoSimulation or ModelExchange element)."""
+
+    name: str  # "co-simulation" or "model-exchange"
+    model_identifier: str  # names its binary
+    can_get_set_state: bool
+    provides_directional_derivative: bool
+    can_be_instantiated_only_once_per_process: bool
+
+
+INTERFACES = ("co-simulation", "model-exchange")  # "auto" takes the first the FMU has
+
+
 @dataclass
 class FMUInfo:
     """The facts of one FMU archive syssimx uses."""
@@ -73,6 +86,10 @@ class FMUInfo:
     parameters: dict[str, Parameter] = field(default_factory=dict)
     input_starts: dict[str, float | int | bool] = field(default_factory=dict)  # 0 if none given
     feedthrough: dict[str, set[str]] = field(default_factory=dict)
+    interfaces: dict[str, FMUInterface] = field(default_factory=dict)  # by INTERFACES name
+    # Model Exchange: ModelStructure/Derivatives, numberOfEventIndicators
+    number_of_states: int = 0
+    number_of_event_indicators: int = 0
     fmi_version: str = "2.0"
     # FMI 3.0: (value reference, ssx_fmi3_type code, name) of every scalar the engine may get
     # or set, and the String and Binary outputs, which no port carries
@@ -83,9 +100,12 @@ class FMUInfo:
     def is_fmi3(self) -> bool:
         return is_fmi3(self.fmi_version)
 
-    def binary_name(self) -> str:
+    def binary_name(self, interface: str | None = None) -> str:
+        """The binary of `interface` (None: the one "auto" takes)."""
+        identifier = self.model_identifier if interface is None \
+            else self.interfaces[interface].model_identifier
         platform = PLATFORM_FMI3 if self.is_fmi3 else PLATFORM
-        return f"binaries/{platform}/{self.model_identifier}.so"
+        return f"binaries/{platform}/{identifier}.so"
 
 
 def variable_unit(variable: ScalarVariable) -> str | None:
@@ -163,16 +183,21 @@ def _read_fmu(path: Path) -> FMUInfo:
         if "modelDescription.xml" not in names:
             raise FMUFileError(f"{path} is not an FMU: the archive has no modelDescription.xml")
         description = _read_description(archive, path)
-        if description.coSimulation is None:
-            raise FMUFileError(f"{path} is a Model-Exchange-only FMU; syssimx needs "
-                               "Co-Simulation")
-        identifier = _model_identifier(description.coSimulation.modelIdentifier, path)
         fmi3 = is_fmi3(description.fmiVersion)
+        interfaces = _interfaces(description, path)
+        if fmi3:  # syssimx runs FMI 3.0 Co-Simulation only (its reader checked there is one)
+            interfaces = {"co-simulation": interfaces["co-simulation"]}
+        first = interfaces[next(n for n in INTERFACES if n in interfaces)]
         table = description.modelVariables
-        info = FMUInfo(path=path, description=description, model_identifier=identifier,
-                       can_get_set_state=bool(description.coSimulation.canGetAndSetFMUstate),
+        info = FMUInfo(path=path, description=description,
+                       model_identifier=first.model_identifier,
+                       can_get_set_state=first.can_get_set_state,
                        variables=({v.name: v for v in table} if fmi3 else table.by_name()),
                        default_tolerance=_default_tolerance(description, path),
+                       interfaces=interfaces,
+                       number_of_states=0 if fmi3 else description.numberOfContinuousStates,
+                       number_of_event_indicators=(0 if fmi3
+                                                   else description.numberOfEventIndicators),
                        fmi_version=description.fmiVersion)
         if info.binary_name() not in names:
             raise FMUFileError(f"{path} has no {PLATFORM_FMI3 if fmi3 else PLATFORM} binary "
@@ -211,10 +236,26 @@ def _default_tolerance(description: ModelDescription, path: Path) -> float | Non
     return tolerance
 
 
-def _model_identifier(identifier: str | None, path: Path) -> str:
+def _interfaces(description: ModelDescription, path: Path) -> dict[str, FMUInterface]:
+    """The interfaces the FMU declares; none at all is an error."""
+    interfaces = {}
+    for name, element, part in (("co-simulation", "CoSimulation", description.coSimulation),
+                                ("model-exchange", "ModelExchange", description.modelExchange)):
+        if part is not None:
+            interfaces[name] = FMUInterface(
+                name, _model_identifier(part.modelIdentifier, path, element),
+                bool(part.canGetAndSetFMUstate), bool(part.providesDirectionalDerivative),
+                bool(part.canBeInstantiatedOnlyOncePerProcess))
+    if not interfaces:
+        raise FMUFileError(f"{path}: the modelDescription declares neither CoSimulation nor "
+                           "ModelExchange")
+    return interfaces
+
+
+def _model_identifier(identifier: str | None, path: Path, element: str) -> str:
     """The modelIdentifier, which names the binary: a file name, never a path."""
     if not identifier:
-        raise FMUFileError(f"{path}: the CoSimulation element has no modelIdentifier")
+        raise FMUFileError(f"{path}: the {element} element has no modelIdentifier")
     if any(c in identifier for c in "/\\\0") or ".." in identifier:
         raise FMUFileError(f"{path}: modelIdentifier {identifier!r} is not a file name (it "
                            "contains a path separator, '..' or a NUL); refused")

@@ -15,8 +15,8 @@ from ..errors import ConfigurationError
 from .config_handlers import reinitialize_handler
 from .config_source import Source, kind
 
-COMPONENT_KEYS = ("name", "class", "fmu", "args", "parameters", "event_indicators",
-                  "event_handlers")
+COMPONENT_KEYS = ("name", "class", "fmu", "interface", "args", "parameters",
+                  "event_indicators", "event_handlers")
 INDICATOR_KEYS = ("name", "variable", "direction")
 HANDLER_KEYS = ("input", "reinitialize")
 FMU_CLASS = "syssimx:FMUComponent"
@@ -44,6 +44,14 @@ def build_component(source: Source, index: int, entry: Any) -> CoSimComponent:
             raise source.error(label, "'fmu' and args.fmu_path both name the FMU", entry)
         spec = FMU_CLASS
         args = {"fmu_path": entry["fmu"], **args}
+        if "interface" in entry:
+            if "interface" in args:
+                raise source.error(label, "'interface' and args.interface both choose the "
+                                   "interface", entry)
+            args["interface"] = entry["interface"]
+    elif "interface" in entry:
+        raise source.error(label, "'interface' chooses an FMU's interface: it needs 'fmu' "
+                           "(or args.interface of an FMU class)", entry)
     elif "class" in entry:
         spec = entry["class"]
     else:

@@ -13,13 +13,17 @@ typedef struct {
 
 static const built_fmu built_fmus[] = {ENGINE_TEST_FMUS};
 
-ssx_fmu *load_fmu(const char *stem)
+static ssx_fmu *load_as(const char *stem, int model_exchange)
 {
     for (size_t i = 0; i < sizeof built_fmus / sizeof built_fmus[0]; ++i) {
         if (strcmp(built_fmus[i].stem, stem) == 0) {
             char error[512];
-            ssx_fmu *fmu = ssx_fmu_load(built_fmus[i].binary, stem, built_fmus[i].guid, "", stem,
-                                        0, error, sizeof error);
+            ssx_fmu *fmu =
+                model_exchange
+                    ? ssx_fmu_load_model_exchange(built_fmus[i].binary, stem, built_fmus[i].guid,
+                                                  "", stem, 0, error, sizeof error)
+                    : ssx_fmu_load(built_fmus[i].binary, stem, built_fmus[i].guid, "", stem, 0,
+                                   error, sizeof error);
             if (fmu == NULL) {
                 fprintf(stderr, "cannot load %s: %s\n", stem, error);
                 exit(1);
@@ -29,6 +33,16 @@ ssx_fmu *load_fmu(const char *stem)
     }
     fprintf(stderr, "the FMU %s was not built\n", stem);
     exit(1);
+}
+
+ssx_fmu *load_fmu(const char *stem)
+{
+    return load_as(stem, 0);
+}
+
+ssx_fmu *load_model_exchange_fmu(const char *stem)
+{
+    return load_as(stem, 1);
 }
 
 int start_fmu(ssx_fmu *fmu, double t, double tolerance, const unsigned int *vr,

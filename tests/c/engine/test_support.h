@@ -61,6 +61,8 @@ enum {
 
 /* Loads one of the built FMUs by its stem (e.g. "pendulum_cvode"); exits on failure. */
 ssx_fmu *load_fmu(const char *stem);
+/* The same FMU loaded for its Model Exchange interface. */
+ssx_fmu *load_model_exchange_fmu(const char *stem);
 /* ssx_fmu_initialize at time t with n Real start values (tolerance <= 0 leaves the tolerance
  * undefined). Returns its status: 0 (or 1, a warning) when the FMU is ready to step. */
 int start_fmu(ssx_fmu *fmu, double t, double tolerance, const unsigned int *vr,

@@ -112,6 +112,13 @@ void fmu_open(test_fmu *fmu, const char *binary_path, const char *description_pa
     RESOLVE(serialize, "fmi2SerializeFMUstate");
     RESOLVE(deserialize, "fmi2DeSerializeFMUstate");
     RESOLVE(get_derivatives, "fmi2GetDerivatives");
+    RESOLVE(set_time, "fmi2SetTime");
+    RESOLVE(set_continuous_states, "fmi2SetContinuousStates");
+    RESOLVE(get_continuous_states, "fmi2GetContinuousStates");
+    RESOLVE(get_event_indicators, "fmi2GetEventIndicators");
+    RESOLVE(enter_event_mode, "fmi2EnterEventMode");
+    RESOLVE(new_discrete_states, "fmi2NewDiscreteStates");
+    RESOLVE(enter_continuous_time_mode, "fmi2EnterContinuousTimeMode");
 #undef RESOLVE
 }
 

@@ -41,6 +41,14 @@ typedef struct {
     fmi2SerializeFMUstateTYPE *serialize;
     fmi2DeSerializeFMUstateTYPE *deserialize;
     fmi2GetDerivativesTYPE *get_derivatives;
+    /* Model Exchange */
+    fmi2SetTimeTYPE *set_time;
+    fmi2SetContinuousStatesTYPE *set_continuous_states;
+    fmi2GetContinuousStatesTYPE *get_continuous_states;
+    fmi2GetEventIndicatorsTYPE *get_event_indicators;
+    fmi2EnterEventModeTYPE *enter_event_mode;
+    fmi2NewDiscreteStatesTYPE *new_discrete_states;
+    fmi2EnterContinuousTimeModeTYPE *enter_continuous_time_mode;
 } test_fmu;
 
 /* Exits the test with a message when the binary or the description cannot be used. */

@@ -1,0 +1,80 @@
+/* The FMI 3.0 Co-Simulation instance: the framework's instance plus what FMI 3.0 adds (its
+ * logging callback, event mode and early return), its state machine and its extra variables. */
+#ifndef SYSSIMX_FMI3_INSTANCE_H
+#define SYSSIMX_FMI3_INSTANCE_H
+
+#include "fmi3Functions.h"
+#include "fmu_instance.h"
+
+typedef struct {
+    fmu_instance core; /* first: the framework works on &core */
+    fmi3LogMessageCallback log_message;
+    fmi3InstanceEnvironment environment;
+    int event_mode_used;
+    int early_return_allowed;
+} fmi3_instance;
+
+/* The FMI 3.0 Co-Simulation states this FMU goes through; Event Mode is step mode of the
+ * framework with in_event_mode set. */
+typedef enum {
+    MODE_INSTANTIATED,
+    MODE_INITIALIZATION,
+    MODE_EVENT,
+    MODE_STEP,
+    MODE_TERMINATED,
+    MODE_FATAL
+} fmi3_mode;
+
+#define MODE_BIT(mode) (1u << (mode))
+
+/* Where each kind of call is allowed (FMI 3.0 Co-Simulation state machine), one table for every
+ * entry point; MODE_FATAL is in none of them. */
+#define MODES_ANY                                                                              \
+    (MODE_BIT(MODE_INSTANTIATED) | MODE_BIT(MODE_INITIALIZATION) | MODE_BIT(MODE_EVENT) |       \
+     MODE_BIT(MODE_STEP) | MODE_BIT(MODE_TERMINATED))
+#define MODES_GET                                                                              \
+    (MODE_BIT(MODE_INITIALIZATION) | MODE_BIT(MODE_EVENT) | MODE_BIT(MODE_STEP) |               \
+     MODE_BIT(MODE_TERMINATED))
+#define MODES_SET                                                                              \
+    (MODE_BIT(MODE_INSTANTIATED) | MODE_BIT(MODE_INITIALIZATION) | MODE_BIT(MODE_EVENT) |       \
+     MODE_BIT(MODE_STEP))
+#define MODES_INITIALIZED (MODE_BIT(MODE_EVENT) | MODE_BIT(MODE_STEP))
+
+fmi3_mode fmi3_mode_of(const fmu_instance *inst);
+const char *fmi3_mode_name(fmi3_mode mode);
+
+/* Logs that `function` is not allowed in the instance's state; returns NULL. */
+fmi3_instance *fmi3_refuse_in_mode(fmi3_instance *inst, const char *function);
+
+/* The instance when the call is allowed in one of the modes in `allowed` (a set of MODE_BIT);
+ * otherwise logs why and returns NULL. */
+static inline fmi3_instance *fmi3_checked(fmi3Instance instance, const char *function,
+                                          unsigned allowed)
+{
+    fmi3_instance *inst = instance;
+    if (inst == NULL)
+        return NULL;
+    if ((allowed & MODE_BIT(fmi3_mode_of(&inst->core))) == 0)
+        return fmi3_refuse_in_mode(inst, function);
+    return inst;
+}
+
+/* The framework reports fmi2Status; OK to Fatal have FMI 3.0 twins. */
+fmi3Status fmi3_status(fmi2Status status);
+
+/* Variables FMI 3.0 adds after the framework's table (model then back-end variables, n of
+ * them): the independent variable time, then one Float64 per internal event indicator, which
+ * ModelStructure lists as <EventIndicator>. */
+static inline fmi3ValueReference fmi3_time_vr(size_t n_variables)
+{
+    return (fmi3ValueReference)n_variables;
+}
+
+static inline fmi3ValueReference fmi3_indicator_vr(size_t n_variables, size_t indicator)
+{
+    return (fmi3ValueReference)(n_variables + 1 + indicator);
+}
+
+#define FMI3_INDICATOR_NAME "event_indicator_%zu"
+
+#endif

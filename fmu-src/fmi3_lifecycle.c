@@ -1,0 +1,238 @@
+/* FMI 3.0: creating, initializing, event and step mode, terminating, resetting and freeing. */
+#include <string.h>
+
+#include "fmi3_instance.h"
+#include "fmu_guid.h"
+#include "fmu_log.h"
+#include "fmu_step.h"
+
+static const char *const mode_names[] = {"Instantiated", "Initialization Mode", "Event Mode",
+                                         "Step Mode",    "Terminated",
+                                         "the fatal state (after fmi3Fatal)"};
+
+fmi3_mode fmi3_mode_of(const fmu_instance *inst)
+{
+    switch (inst->phase) {
+    case PHASE_INSTANTIATED: return MODE_INSTANTIATED;
+    case PHASE_INITIALIZATION: return MODE_INITIALIZATION;
+    case PHASE_STEP: return inst->in_event_mode ? MODE_EVENT : MODE_STEP;
+    case PHASE_TERMINATED: return MODE_TERMINATED;
+    case PHASE_EVENT:
+    case PHASE_CONTINUOUS_TIME: /* FMI 2.0 Model Exchange only */
+    case PHASE_FATAL: break;
+    }
+    return MODE_FATAL;
+}
+
+const char *fmi3_mode_name(fmi3_mode mode)
+{
+    return mode_names[mode];
+}
+
+fmi3_instance *fmi3_refuse_in_mode(fmi3_instance *inst, const char *function)
+{
+    fmu_error(&inst->core, "%s is not allowed in %s", function,
+              fmi3_mode_name(fmi3_mode_of(&inst->core)));
+    return NULL;
+}
+
+fmi3Status fmi3_status(fmi2Status status)
+{
+    switch (status) {
+    case fmi2OK: return fmi3OK;
+    case fmi2Warning: return fmi3Warning;
+    case fmi2Discard: return fmi3Discard;
+    case fmi2Fatal: return fmi3Fatal;
+    case fmi2Error:
+    case fmi2Pending: break; /* the framework never returns pending */
+    }
+    return fmi3Error;
+}
+
+/* The framework logs through an FMI 2.0 style callback; this one hands the message to the
+ * FMI 3.0 callback, which takes no instance name. */
+static void forward_log(fmi2ComponentEnvironment environment, fmi2String instance_name,
+                        fmi2Status status, fmi2String category, fmi2String message, ...)
+{
+    (void)instance_name;
+    const fmi3_instance *inst = environment;
+    if (inst->log_message != NULL)
+        inst->log_message(inst->environment, fmi3_status(status), category, message);
+}
+
+const char *fmi3GetVersion(void)
+{
+    return fmi3Version;
+}
+
+fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, size_t nCategories,
+                               const fmi3String categories[])
+{
+    fmi3_instance *inst = fmi3_checked(instance, "fmi3SetDebugLogging", MODES_ANY);
+    if (inst == NULL)
+        return fmi3Error;
+    return fmi3_status(
+        fmu_set_logging(&inst->core, "fmi3SetDebugLogging", loggingOn, nCategories, categories));
+}
+
+/* Why the FMU cannot be instantiated with these arguments, or NULL. */
+static const char *refusal(fmi3String instanceName, fmi3String instantiationToken,
+                           const char *guid, fmi3Boolean eventModeUsed,
+                           size_t nRequiredIntermediateVariables)
+{
+    if (instanceName == NULL || instanceName[0] == '\0')
+        return "the instance name is missing";
+    if (instantiationToken == NULL || strcmp(instantiationToken, guid) != 0)
+        return "the instantiation token does not match this FMU's";
+    if (eventModeUsed && fmu_model.n_event_indicators == 0)
+        return "eventModeUsed is true but this FMU has no event mode (hasEventMode=\"false\": "
+               "the model has no internal events)";
+    if (nRequiredIntermediateVariables > 0)
+        return "no variable of this FMU provides intermediate access";
+    return NULL;
+}
+
+fmi3Instance fmi3InstantiateCoSimulation(
+    fmi3String instanceName, fmi3String instantiationToken, fmi3String resourcePath,
+    fmi3Boolean visible, fmi3Boolean loggingOn, fmi3Boolean eventModeUsed,
+    fmi3Boolean earlyReturnAllowed, const fmi3ValueReference requiredIntermediateVariables[],
+    size_t nRequiredIntermediateVariables, fmi3InstanceEnvironment instanceEnvironment,
+    fmi3LogMessageCallback logMessage, fmi3IntermediateUpdateCallback intermediateUpdate)
+{
+    (void)resourcePath; /* the models need no resources */
+    (void)visible;
+    (void)requiredIntermediateVariables;
+    (void)intermediateUpdate; /* providesIntermediateUpdate="false": never called */
+    /* A stand-in to report failures before the instance exists. */
+    fmi3_instance reporter = {
+        .core = {.name = (char *)(instanceName ? instanceName : "(unnamed)"),
+                 .callbacks = {forward_log, &reporter},
+                 .logging_on = loggingOn,
+                 .log_categories = LOG_ALL_CATEGORIES},
+        .log_message = logMessage,
+        .environment = instanceEnvironment,
+    };
+    char guid[FMU_GUID_LENGTH];
+    fmu_guid(guid);
+    const char *reason = refusal(instanceName, instantiationToken, guid, eventModeUsed,
+                                 nRequiredIntermediateVariables);
+    if (reason != NULL) {
+        fmu_error(&reporter.core, "fmi3InstantiateCoSimulation: %s", reason);
+        return NULL;
+    }
+    fmi3_instance *inst = (fmi3_instance *)fmu_instance_create(
+        &reporter.core, sizeof(fmi3_instance), "fmi3InstantiateCoSimulation");
+    if (inst == NULL)
+        return NULL;
+    inst->log_message = logMessage;
+    inst->environment = instanceEnvironment;
+    inst->core.callbacks.environment = inst;
+    inst->event_mode_used = eventModeUsed;
+    inst->early_return_allowed = earlyReturnAllowed;
+    /* the importer handles internal events only when it can also be told of them early */
+    inst->core.importer_handles_events = eventModeUsed && earlyReturnAllowed;
+    return inst;
+}
+
+void fmi3FreeInstance(fmi3Instance instance)
+{
+    fmi3_instance *inst = instance;
+    fmu_instance_free(inst ? &inst->core : NULL);
+}
+
+fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean toleranceDefined,
+                                       fmi3Float64 tolerance, fmi3Float64 startTime,
+                                       fmi3Boolean stopTimeDefined, fmi3Float64 stopTime)
+{
+    fmi3_instance *inst =
+        fmi3_checked(instance, "fmi3EnterInitializationMode", MODE_BIT(MODE_INSTANTIATED));
+    if (inst == NULL)
+        return fmi3Error;
+    fmi2Status status = fmu_setup_experiment(&inst->core, "fmi3EnterInitializationMode",
+                                             toleranceDefined, tolerance, startTime,
+                                             stopTimeDefined, stopTime);
+    if (status == fmi2OK)
+        inst->core.phase = PHASE_INITIALIZATION;
+    return fmi3_status(status);
+}
+
+fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)
+{
+    fmi3_instance *inst =
+        fmi3_checked(instance, "fmi3ExitInitializationMode", MODE_BIT(MODE_INITIALIZATION));
+    if (inst == NULL)
+        return fmi3Error;
+    fmu_exit_initialization(&inst->core);
+    inst->core.in_event_mode = inst->event_mode_used;
+    return fmi3OK;
+}
+
+fmi3Status fmi3EnterEventMode(fmi3Instance instance)
+{
+    fmi3_instance *inst = fmi3_checked(instance, "fmi3EnterEventMode", MODE_BIT(MODE_STEP));
+    if (inst == NULL)
+        return fmi3Error;
+    if (!inst->event_mode_used)
+        return fmi3_status(fmu_error(&inst->core, "fmi3EnterEventMode: the instance was "
+                                                  "created with eventModeUsed = false"));
+    inst->core.in_event_mode = 1;
+    return fmi3OK;
+}
+
+fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discreteStatesNeedUpdate,
+                                    fmi3Boolean *terminateSimulation,
+                                    fmi3Boolean *nominalsOfContinuousStatesChanged,
+                                    fmi3Boolean *valuesOfContinuousStatesChanged,
+                                    fmi3Boolean *nextEventTimeDefined,
+                                    fmi3Float64 *nextEventTime)
+{
+    fmi3_instance *inst =
+        fmi3_checked(instance, "fmi3UpdateDiscreteStates", MODE_BIT(MODE_EVENT));
+    if (inst == NULL)
+        return fmi3Error;
+    if (!discreteStatesNeedUpdate || !terminateSimulation || !nominalsOfContinuousStatesChanged ||
+        !valuesOfContinuousStatesChanged || !nextEventTimeDefined || !nextEventTime)
+        return fmi3_status(
+            fmu_error(&inst->core, "fmi3UpdateDiscreteStates: an output argument is NULL"));
+    /* the model's events change the state once; nothing else is discrete, so one call settles */
+    *valuesOfContinuousStatesChanged = fmu_apply_pending_events(&inst->core);
+    *discreteStatesNeedUpdate = false;
+    *terminateSimulation = inst->core.time >= fmu_stop_time(&inst->core);
+    *nominalsOfContinuousStatesChanged = false;
+    *nextEventTimeDefined = false;
+    *nextEventTime = 0.0;
+    return fmi3OK;
+}
+
+fmi3Status fmi3EnterStepMode(fmi3Instance instance)
+{
+    fmi3_instance *inst = fmi3_checked(instance, "fmi3EnterStepMode", MODE_BIT(MODE_EVENT));
+    if (inst == NULL)
+        return fmi3Error;
+    if (inst->core.event_pending)
+        return fmi3_status(fmu_error(&inst->core,
+                                     "fmi3EnterStepMode: the internal event at t = %.17g is not "
+                                     "applied yet (call fmi3UpdateDiscreteStates first)",
+                                     inst->core.time));
+    inst->core.in_event_mode = 0;
+    return fmi3OK;
+}
+
+fmi3Status fmi3Terminate(fmi3Instance instance)
+{
+    fmi3_instance *inst = fmi3_checked(instance, "fmi3Terminate", MODES_INITIALIZED);
+    if (inst == NULL)
+        return fmi3Error;
+    inst->core.phase = PHASE_TERMINATED;
+    inst->core.in_event_mode = 0;
+    return fmi3OK;
+}
+
+fmi3Status fmi3Reset(fmi3Instance instance)
+{
+    fmi3_instance *inst = fmi3_checked(instance, "fmi3Reset", MODES_ANY);
+    if (inst == NULL)
+        return fmi3Error;
+    fmu_reset(&inst->core);
+    return fmi3OK;
+}

@@ -1,0 +1,241 @@
+/* FMI 3.0 functions this Co-Simulation FMU exports but does not support: Model Exchange,
+ * Scheduled Execution, clocks, configuration mode, dependencies at run time, adjoint and output
+ * derivatives. Each returns fmi3Error (or NULL) with a message naming the call. */
+#include "fmi3_instance.h"
+#include "fmu_log.h"
+
+static fmi3Status unsupported(fmi3Instance instance, const char *function)
+{
+    fmi3_instance *inst = instance;
+    if (inst == NULL)
+        return fmi3Error;
+    fmu_error(&inst->core, "%s is not supported by this Co-Simulation FMU", function);
+    return fmi3Error;
+}
+
+/* No instance exists to log through: the message goes straight to the importer's callback. */
+static fmi3Instance refuse_interface(fmi3InstanceEnvironment instanceEnvironment,
+                                     fmi3LogMessageCallback logMessage, const char *function)
+{
+    if (logMessage != NULL)
+        logMessage(instanceEnvironment, fmi3Error, fmu_log_category_names[LOG_STATUS_ERROR],
+                   function);
+    return NULL;
+}
+
+fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName,
+                                          fmi3String instantiationToken,
+                                          fmi3String resourcePath, fmi3Boolean visible,
+                                          fmi3Boolean loggingOn,
+                                          fmi3InstanceEnvironment instanceEnvironment,
+                                          fmi3LogMessageCallback logMessage)
+{
+    (void)instanceName, (void)instantiationToken, (void)resourcePath, (void)visible,
+        (void)loggingOn;
+    return refuse_interface(instanceEnvironment, logMessage,
+                            "fmi3InstantiateModelExchange: this FMU supports Co-Simulation only");
+}
+
+fmi3Instance fmi3InstantiateScheduledExecution(
+    fmi3String instanceName, fmi3String instantiationToken, fmi3String resourcePath,
+    fmi3Boolean visible, fmi3Boolean loggingOn, fmi3InstanceEnvironment instanceEnvironment,
+    fmi3LogMessageCallback logMessage, fmi3ClockUpdateCallback clockUpdate,
+    fmi3LockPreemptionCallback lockPreemption, fmi3UnlockPreemptionCallback unlockPreemption)
+{
+    (void)instanceName, (void)instantiationToken, (void)resourcePath, (void)visible,
+        (void)loggingOn, (void)clockUpdate, (void)lockPreemption, (void)unlockPreemption;
+    return refuse_interface(
+        instanceEnvironment, logMessage,
+        "fmi3InstantiateScheduledExecution: this FMU supports Co-Simulation only");
+}
+
+fmi3Status fmi3GetNumberOfVariableDependencies(fmi3Instance instance,
+                                               fmi3ValueReference valueReference,
+                                               size_t *nDependencies)
+{
+    (void)valueReference, (void)nDependencies;
+    return unsupported(instance, "fmi3GetNumberOfVariableDependencies");
+}
+
+fmi3Status fmi3GetVariableDependencies(fmi3Instance instance, fmi3ValueReference dependent,
+                                       size_t elementIndicesOfDependent[],
+                                       fmi3ValueReference independents[],
+                                       size_t elementIndicesOfIndependents[],
+                                       fmi3DependencyKind dependencyKinds[], size_t nDependencies)
+{
+    (void)dependent, (void)elementIndicesOfDependent, (void)independents,
+        (void)elementIndicesOfIndependents, (void)dependencyKinds, (void)nDependencies;
+    return unsupported(instance, "fmi3GetVariableDependencies");
+}
+
+fmi3Status fmi3GetAdjointDerivative(fmi3Instance instance, const fmi3ValueReference unknowns[],
+                                    size_t nUnknowns, const fmi3ValueReference knowns[],
+                                    size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
+                                    fmi3Float64 sensitivity[], size_t nSensitivity)
+{
+    (void)unknowns, (void)nUnknowns, (void)knowns, (void)nKnowns, (void)seed, (void)nSeed,
+        (void)sensitivity, (void)nSensitivity;
+    return unsupported(instance, "fmi3GetAdjointDerivative");
+}
+
+fmi3Status fmi3EnterConfigurationMode(fmi3Instance instance)
+{
+    return unsupported(instance, "fmi3EnterConfigurationMode");
+}
+
+fmi3Status fmi3ExitConfigurationMode(fmi3Instance instance)
+{
+    return unsupported(instance, "fmi3ExitConfigurationMode");
+}
+
+fmi3Status fmi3GetIntervalDecimal(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                                  size_t nValueReferences, fmi3Float64 intervals[],
+                                  fmi3IntervalQualifier qualifiers[])
+{
+    (void)valueReferences, (void)nValueReferences, (void)intervals, (void)qualifiers;
+    return unsupported(instance, "fmi3GetIntervalDecimal");
+}
+
+fmi3Status fmi3GetIntervalFraction(fmi3Instance instance,
+                                   const fmi3ValueReference valueReferences[],
+                                   size_t nValueReferences, fmi3UInt64 counters[],
+                                   fmi3UInt64 resolutions[], fmi3IntervalQualifier qualifiers[])
+{
+    (void)valueReferences, (void)nValueReferences, (void)counters, (void)resolutions,
+        (void)qualifiers;
+    return unsupported(instance, "fmi3GetIntervalFraction");
+}
+
+fmi3Status fmi3GetShiftDecimal(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                               size_t nValueReferences, fmi3Float64 shifts[])
+{
+    (void)valueReferences, (void)nValueReferences, (void)shifts;
+    return unsupported(instance, "fmi3GetShiftDecimal");
+}
+
+fmi3Status fmi3GetShiftFraction(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                                size_t nValueReferences, fmi3UInt64 counters[],
+                                fmi3UInt64 resolutions[])
+{
+    (void)valueReferences, (void)nValueReferences, (void)counters, (void)resolutions;
+    return unsupported(instance, "fmi3GetShiftFraction");
+}
+
+fmi3Status fmi3SetIntervalDecimal(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                                  size_t nValueReferences, const fmi3Float64 intervals[])
+{
+    (void)valueReferences, (void)nValueReferences, (void)intervals;
+    return unsupported(instance, "fmi3SetIntervalDecimal");
+}
+
+fmi3Status fmi3SetIntervalFraction(fmi3Instance instance,
+                                   const fmi3ValueReference valueReferences[],
+                                   size_t nValueReferences, const fmi3UInt64 counters[],
+                                   const fmi3UInt64 resolutions[])
+{
+    (void)valueReferences, (void)nValueReferences, (void)counters, (void)resolutions;
+    return unsupported(instance, "fmi3SetIntervalFraction");
+}
+
+fmi3Status fmi3SetShiftDecimal(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                               size_t nValueReferences, const fmi3Float64 shifts[])
+{
+    (void)valueReferences, (void)nValueReferences, (void)shifts;
+    return unsupported(instance, "fmi3SetShiftDecimal");
+}
+
+fmi3Status fmi3SetShiftFraction(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                                size_t nValueReferences, const fmi3UInt64 counters[],
+                                const fmi3UInt64 resolutions[])
+{
+    (void)valueReferences, (void)nValueReferences, (void)counters, (void)resolutions;
+    return unsupported(instance, "fmi3SetShiftFraction");
+}
+
+fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance instance)
+{
+    return unsupported(instance, "fmi3EvaluateDiscreteStates");
+}
+
+fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance instance)
+{
+    return unsupported(instance, "fmi3EnterContinuousTimeMode");
+}
+
+fmi3Status fmi3CompletedIntegratorStep(fmi3Instance instance,
+                                       fmi3Boolean noSetFMUStatePriorToCurrentPoint,
+                                       fmi3Boolean *enterEventMode,
+                                       fmi3Boolean *terminateSimulation)
+{
+    (void)noSetFMUStatePriorToCurrentPoint, (void)enterEventMode, (void)terminateSimulation;
+    return unsupported(instance, "fmi3CompletedIntegratorStep");
+}
+
+fmi3Status fmi3SetTime(fmi3Instance instance, fmi3Float64 time)
+{
+    (void)time;
+    return unsupported(instance, "fmi3SetTime");
+}
+
+fmi3Status fmi3SetContinuousStates(fmi3Instance instance, const fmi3Float64 continuousStates[],
+                                   size_t nContinuousStates)
+{
+    (void)continuousStates, (void)nContinuousStates;
+    return unsupported(instance, "fmi3SetContinuousStates");
+}
+
+fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance instance, fmi3Float64 derivatives[],
+                                             size_t nContinuousStates)
+{
+    (void)derivatives, (void)nContinuousStates;
+    return unsupported(instance, "fmi3GetContinuousStateDerivatives");
+}
+
+fmi3Status fmi3GetEventIndicators(fmi3Instance instance, fmi3Float64 eventIndicators[],
+                                  size_t nEventIndicators)
+{
+    (void)eventIndicators, (void)nEventIndicators;
+    return unsupported(instance, "fmi3GetEventIndicators");
+}
+
+fmi3Status fmi3GetContinuousStates(fmi3Instance instance, fmi3Float64 continuousStates[],
+                                   size_t nContinuousStates)
+{
+    (void)continuousStates, (void)nContinuousStates;
+    return unsupported(instance, "fmi3GetContinuousStates");
+}
+
+fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance instance, fmi3Float64 nominals[],
+                                             size_t nContinuousStates)
+{
+    (void)nominals, (void)nContinuousStates;
+    return unsupported(instance, "fmi3GetNominalsOfContinuousStates");
+}
+
+fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance instance, size_t *nEventIndicators)
+{
+    (void)nEventIndicators;
+    return unsupported(instance, "fmi3GetNumberOfEventIndicators");
+}
+
+fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance instance, size_t *nContinuousStates)
+{
+    (void)nContinuousStates;
+    return unsupported(instance, "fmi3GetNumberOfContinuousStates");
+}
+
+fmi3Status fmi3GetOutputDerivatives(fmi3Instance instance,
+                                    const fmi3ValueReference valueReferences[],
+                                    size_t nValueReferences, const fmi3Int32 orders[],
+                                    fmi3Float64 values[], size_t nValues)
+{
+    (void)valueReferences, (void)nValueReferences, (void)orders, (void)values, (void)nValues;
+    return unsupported(instance, "fmi3GetOutputDerivatives");
+}
+
+fmi3Status fmi3ActivateModelPartition(fmi3Instance instance, fmi3ValueReference clockReference,
+                                      fmi3Float64 activationTime)
+{
+    (void)clockReference, (void)activationTime;
+    return unsupported(instance, "fmi3ActivateModelPartition");
+}
