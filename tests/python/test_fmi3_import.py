@@ -351,6 +351,17 @@ def test_model_exchange_only_is_refused_naming_the_file(tmp_path: Path):
 
 
 @reference
+def test_fmi3_model_exchange_is_refused_when_asked_for():
+    """The Reference BouncingBall declares both interfaces: "auto" takes Co-Simulation, asking
+    for Model Exchange (which syssimx runs for FMI 2.0 only) is refused by name."""
+    assert FMUComponent("Ball", BALL).fmu_interface.name == "co-simulation"
+    with pytest.raises(ConfigurationError) as info:
+        FMUComponent("Ball", BALL, interface="model-exchange")
+    assert str(info.value) == (f"component 'Ball': {BALL}: FMI 3.0 Model Exchange is not "
+                               "supported yet (its Co-Simulation interface is)")
+
+
+@reference
 def test_an_array_port_is_refused_naming_the_variable(tmp_path: Path):
     path = edited(tmp_path, BALL, ('start="0.7" min="0.5" max="1" description="Coefficient of '
                                    'restitution"/>',
