@@ -1,8 +1,8 @@
 /* syssimx engine: the public C API.
  *
- * Python reads this very file as its cffi cdef (ABI mode): every line that starts with '#' is
- * dropped, so the declarations below must stay plain C that cffi parses (no macros, no inline
- * code, no variadic functions).
+ * The build turns this very file into Python's cffi module (out-of-line ABI mode,
+ * src/engine_ffi.py): every line that starts with '#' is dropped, so the declarations below
+ * must stay plain C that cffi parses (no macros, no inline code, no variadic functions).
  *
  * Conventions
  * - Calls returning int return 0 on success and -1 on failure; the failure is described by
@@ -43,6 +43,10 @@ typedef struct {
     int output_interval;
 } ssx_defaults;
 void ssx_get_defaults(ssx_defaults *out);
+
+/* The SHA-256 (hex) of the header this library was built from; Python's cffi module holds the
+ * digest of the header it was generated from, and refuses a library whose digest differs. */
+const char *ssx_interface_digest(void);
 
 /* ------------------------------------------------------------------------------------------
  * One loaded FMU binary with (at most) one live instance. Owned by the Python FMUComponent,
