@@ -79,10 +79,12 @@ def to_unit(unit: str) -> pint.Unit:
         raise ValueError(f"unit {unit!r} is unknown to pint ({reason})") from exc
 
 
+@lru_cache(maxsize=512)
 def conversion(src_unit: str | None, dst_unit: str | None) -> tuple[float, float]:
     """(scale, offset) with dst = scale * src + offset. A side without unit takes the other's.
 
-    Raises pint.DimensionalityError when the units measure different quantities.
+    Raises pint.DimensionalityError when the units measure different quantities. Cached: a
+    large system connects many ports of a few units.
     """
     if not src_unit or not dst_unit:
         return 1.0, 0.0

@@ -22,21 +22,18 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import IO, Any
+from typing import IO, TYPE_CHECKING, Any
 
 import numpy as np
-from fmpy.model_description import (
-    CoSimulation,
-    DefaultExperiment,
-    ModelDescription,
-    ModelExchange,
-    SimpleType,
-    Unknown,
-)
 
 from ..engine import ffi, lib
 from ..errors import FMUFileError
 from .variable_table import VariableTable, words
+
+# fmpy's classes are imported by the first read, not with syssimx: importing fmpy costs about as
+# much as importing the rest of syssimx.
+if TYPE_CHECKING:
+    from fmpy.model_description import ModelDescription, Unknown
 
 MAX_VALUE_REFERENCE = 2**32 - 1  # fmi2ValueReference is an unsigned int, as the engine reads it
 
@@ -137,6 +134,14 @@ def _message(error: Any, where: str) -> str:
 
 # ------------------------------------------------------------------------------ the description
 def _description(md: Any) -> ModelDescription:
+    from fmpy.model_description import (
+        CoSimulation,
+        DefaultExperiment,
+        ModelDescription,
+        ModelExchange,
+        SimpleType,
+    )
+
     def text(offset: int) -> str | None:
         return ffi.string(md.strings + offset).decode() if offset else None
 
@@ -170,6 +175,8 @@ def _description(md: Any) -> ModelDescription:
 
 
 def _interface(interface: Any, attributes: dict[str | None, str | None]) -> Any:
+    from fmpy.model_description import CoSimulation
+
     interface.modelIdentifier = attributes.get("modelIdentifier")
     cosimulation = isinstance(interface, CoSimulation)
     for name in _INTERFACE_FLAGS + (_COSIMULATION_FLAGS if cosimulation else ()):
@@ -179,6 +186,8 @@ def _interface(interface: Any, attributes: dict[str | None, str | None]) -> Any:
 
 def _outputs(md: Any, variables: VariableTable) -> list[Unknown]:
     """ModelStructure/Outputs; a variable named by several Unknowns is made once."""
+    from fmpy.model_description import Unknown
+
     count = int(md.output_count)
     if count == 0:
         return []

@@ -198,20 +198,41 @@ def _generations(
 
     condensed = nx.condensation(graph, scc=[set(scc) for scc in sccs])
     scc_of = condensed.graph["mapping"]
-    generations = []
-    for generation in nx.topological_generations(condensed):
-        members = set(generation)
-        consumers_first = nx.DiGraph()
-        consumers_first.add_nodes_from(members)
-        for src, _, dst, _ in connections:
-            producer, consumer = scc_of[src], scc_of[dst]
-            if producer == consumer or not {producer, consumer} <= members:
-                continue
-            if not nx.has_path(consumers_first, producer, consumer):
-                consumers_first.add_edge(consumer, producer)
-        ranked = nx.lexicographical_topological_sort(consumers_first, key=int)
-        generations.append([name for scc_id in ranked for name in sccs[scc_id]])
-    return generations
+    generations = [sorted(generation) for generation in nx.topological_generations(condensed)]
+    generation_of = {scc_id: index for index, generation in enumerate(generations)
+                     for scc_id in generation}
+    # (consumer, producer) of the delayed connections inside each generation, in the given order
+    consumers_first: list[list[tuple[int, int]]] = [[] for _ in generations]
+    for src, _, dst, _ in connections:
+        producer, consumer = scc_of[src], scc_of[dst]
+        if producer != consumer and generation_of[producer] == generation_of[consumer]:
+            consumers_first[generation_of[producer]].append((consumer, producer))
+    ordered = []
+    for generation, edges in zip(generations, consumers_first, strict=True):
+        if edges:
+            generation = list(nx.lexicographical_topological_sort(
+                _without_cycles(generation, edges), key=int))
+        ordered.append([name for scc_id in generation for name in sccs[scc_id]])
+    return ordered
+
+
+def _without_cycles(nodes: list[int], edges: list[tuple[int, int]]) -> nx.DiGraph:
+    """The graph of `nodes` and `edges`, each edge left out that would close a cycle with the
+    edges before it (so in a cycle the edge given first decides)."""
+    import networkx as nx
+
+    everything = nx.DiGraph(edges)
+    # an edge between two strongly connected components of all the edges closes no cycle: only
+    # the edges inside one need the search
+    component_of = {node: index for index, component in
+                    enumerate(nx.strongly_connected_components(everything)) for node in component}
+    kept = nx.DiGraph()
+    kept.add_nodes_from(nodes)
+    for consumer, producer in edges:
+        if component_of[consumer] != component_of[producer] \
+                or not nx.has_path(kept, producer, consumer):
+            kept.add_edge(consumer, producer)
+    return kept
 
 
 def _format_connection(connection: ConnectionKey) -> str:
