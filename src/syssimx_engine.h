@@ -339,6 +339,11 @@ size_t ssx_history_bytes(const ssx_system *sys); /* bytes allocated for the hist
  * the last point of each ssx_run and every event instant and trial. 1, the default, keeps
  * every sample. Takes effect at the next ssx_initialize. */
 int ssx_set_output_interval(ssx_system *sys, int grid_steps);
+/* Decimation per run (FMPy's output_interval): every following ssx_run keeps every
+ * grid_steps-th communication point counted from its own start (the 0th), its last point and
+ * every event instant and trial, whatever ssx_set_output_interval says; 0, the default, returns
+ * to the system's interval. */
+int ssx_set_run_output_interval(ssx_system *sys, int grid_steps);
 /* A reference to the buffers the history accessors return now: until it is released, their
  * first ssx_history_length() samples are never written, moved or freed, whatever the system
  * does (record, initialize again, ssx_system_free). This is how Python hands out numpy arrays

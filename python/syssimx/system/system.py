@@ -6,7 +6,6 @@ import logging
 import math
 import numbers
 import time
-import timeit
 from pathlib import Path
 from typing import Any
 
@@ -253,15 +252,18 @@ class System:
         self.t = t
 
     def run(self, t0: float, tf: float, dt: float,
-            progress: bool | ProgressCallback | None = None, timeout: float | None = None
-            ) -> SimulationResult:
+            progress: bool | ProgressCallback | None = None, timeout: float | None = None,
+            output_interval: float | None = None) -> SimulationResult:
         """Simulate on the grid t0 + k*dt (the last point exactly tf) plus event instants.
 
         progress: SysSimX's callback progress(t, tf), called with the time reached about every
         50 ms of wall time and once at the end of the run; or True for a terminal bar that
         appears after a second. Ctrl-C stops a run within about 0.1 s with KeyboardInterrupt,
         and `timeout` (seconds of wall time) with SimulationTimeoutError; the samples recorded
-        up to the last completed step stay readable through get_history()."""
+        up to the last completed step stay readable through get_history().
+        output_interval: a time, a whole multiple of dt (FMPy's meaning): this run records
+        t0 + j*output_interval, its last point and every event instant (None: what initialize's
+        output_interval says)."""
         if not self.is_initialized or self._plan is None:
             raise ConfigurationError(f"{self.name}: call initialize(t0) before run()")
         t0, tf, dt = (_time_value(self.name, label, value)
@@ -269,6 +271,7 @@ class System:
         if timeout is not None and not (isinstance(timeout, int | float) and timeout > 0):
             raise ConfigurationError(f"{self.name}: timeout must be a positive number of "
                                      f"seconds or None, got {timeout!r}")
+        grid_steps = _grid_steps(self.name, output_interval, dt)
         if not math.isclose(t0, self.t, rel_tol=0.0, abs_tol=1e-12 * max(1.0, abs(t0))):
             raise ConfigurationError(f"{self.name}: run starts at t0={t0} but the system is at "
                                      f"t={self.t}")
@@ -280,8 +283,9 @@ class System:
                     f"{self.name}: component {component.name!r} was initialized elsewhere since "
                     "this system's initialize; call initialize again")
         self._push_options(plan)
+        plan.check(lib().ssx_set_run_output_interval(plan.sys, grid_steps), "output_interval")
         logger.info("Starting simulation run from t=%s to t=%s with dt=%s", t0, tf, dt)
-        start = timeit.default_timer()
+        start = time.perf_counter()
         plan.timeout = timeout
         plan.deadline = time.monotonic() + timeout if timeout is not None else None
         plan.progress = reports.report if reports is not None else None
@@ -289,7 +293,7 @@ class System:
             status = lib().ssx_run(plan.sys, t0, tf, dt)
         finally:
             plan.progress = None
-        wall = timeit.default_timer() - start
+        wall = time.perf_counter() - start
         events = read_events(plan)
         self.history = SystemHistory(events, self)
         self.t = float(lib().ssx_time(plan.sys))
@@ -368,6 +372,19 @@ def _time_value(system: str, label: str, value: object) -> float:
             or not math.isfinite(value):
         raise ConfigurationError(f"{system}: {label} must be a finite number, got {value!r}")
     return float(value)
+
+
+def _grid_steps(system: str, output_interval: object, dt: float) -> int:
+    """run()'s output_interval as a number of grid steps (0 for None; for dt <= 0 too, which
+    the engine refuses with its own message)."""
+    if output_interval is None or not dt > 0:
+        return 0
+    interval = _time_value(system, "output_interval", output_interval)
+    steps = round(interval / dt)
+    if steps < 1 or abs(interval / dt - steps) > 1e-9 * steps:
+        raise ConfigurationError(f"{system}: output_interval={interval!r} is not a whole "
+                                 f"multiple of dt={dt!r}")
+    return steps
 
 
 register_system_class(System)
