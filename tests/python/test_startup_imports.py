@@ -41,11 +41,18 @@ def test_a_unit_conversion_loads_pint_and_no_networkx():
     assert "networkx" not in loaded
 
 
-def test_a_graph_analysis_loads_networkx_and_no_pint():
+def test_a_graph_analysis_loads_neither_networkx_nor_pint():
     code = ("import syssimx\nfrom syssimx.graph.analysis import analyze\n"
             "components = {'a': {'y': set()}, 'b': {'y': {'u'}}}\n"
             "assert analyze(components, [('a', 'y', 'b', 'u')]).order == ['b', 'a']")
-    assert loaded_after(code) == ["networkx"]
+    assert loaded_after(code) == []
+
+
+def test_simulating_one_fmu_from_the_command_line_loads_no_heavy_library(tmp_path):
+    code = ("from syssimx import fmus\nfrom syssimx.cli import main\n"
+            "assert main(['simulate', fmus.path('pendulum_euler'), '--stop-time', '0.1', "
+            f"'-o', {str(tmp_path / 'out.csv')!r}]) == 0")
+    assert loaded_after(code) == []
 
 
 def test_unit_names_resolve_on_first_use():

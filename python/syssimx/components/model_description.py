@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 from ..core.port import PortSpec, PortType
 from ..errors import FMUFileError
 from ..graph.analysis import feedthrough_from_model_description
-from ..units import to_unit
+from ..units import plainly_readable, to_unit
 from .archive import open_archive
 from .description_reader import read_description
 from .variable_table import ScalarVariable, VariableTable
@@ -80,6 +80,8 @@ def variable_unit(variable: ScalarVariable) -> str | None:
 def _pint_unit(unit: str) -> str | None:
     """`unit` if pint reads it, else its lower-case spelling (e.g. "Ohm") if pint reads that,
     else None."""
+    if plainly_readable(unit):
+        return unit
     for candidate in (unit, unit.lower()):
         try:
             to_unit(candidate)
