@@ -105,7 +105,7 @@ def conversion(src_unit: str | None, dst_unit: str | None) -> tuple[float, float
     Raises pint.DimensionalityError when the units measure different quantities. Cached: a
     large system connects many ports of a few units.
     """
-    if not src_unit or not dst_unit:
+    if not src_unit or not dst_unit or src_unit == dst_unit:  # no pint needed
         return 1.0, 0.0
     src, dst = to_unit(src_unit), to_unit(dst_unit)
     zero = registry().Quantity(0.0, src).to(dst).magnitude

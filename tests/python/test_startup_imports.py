@@ -55,6 +55,17 @@ def test_simulating_one_fmu_from_the_command_line_loads_no_heavy_library(tmp_pat
     assert loaded_after(code) == []
 
 
+def test_a_coupled_system_of_fmus_with_equal_units_loads_no_heavy_library():
+    code = ("from syssimx import Connection, FMUComponent, System, fmus\n"
+            "system = System('pair')\n"
+            "for name in ('a', 'b', 'c'):\n"
+            "    system.add_component(FMUComponent(name, fmus.path('gain')))\n"
+            "system.add_connection(Connection('a', 'y', 'b', 'u'))\n"
+            "system.add_connection(Connection('b', 'y', 'c', 'u'))\n"
+            "system.initialize(0.0)\nsystem.run(0.0, 0.1, 0.01)")
+    assert loaded_after(code) == []
+
+
 def test_unit_names_resolve_on_first_use():
     from syssimx import units
 

@@ -98,34 +98,36 @@ class System:
         return self.components[name]
 
     def add_connection(self, connection: Connection) -> None:
-        """Check names, types and units now; one driver per input."""
+        """Check names, types and units now; one driver per input. Reads the port specs only
+        (whatever reads ports syncs them first)."""
         src, dst = self._component(connection.src_comp), self._component(connection.dst_comp)
-        src._sync_ports()
-        dst._sync_ports()
-        where = "{}.{} -> {}.{}".format(*connection.key())
+
+        def where() -> str:  # formatted for an error only: a large system adds many
+            return "{}.{} -> {}.{}".format(*connection.key())
+
         if connection.src_port not in src.output_specs:
-            raise ConfigurationError(f"{where}: {src.name!r} has no output "
+            raise ConfigurationError(f"{where()}: {src.name!r} has no output "
                                      f"{connection.src_port!r}; "
                                      f"outputs: {sorted(src.output_specs)}")
         if connection.dst_port not in dst.input_specs:
-            raise ConfigurationError(f"{where}: {dst.name!r} has no input "
+            raise ConfigurationError(f"{where()}: {dst.name!r} has no input "
                                      f"{connection.dst_port!r}; inputs: {sorted(dst.input_specs)}")
         src_spec = src.output_specs[connection.src_port]
         dst_spec = dst.input_specs[connection.dst_port]
         if PortType.EVENT in (src_spec.type, dst_spec.type):
-            raise ConfigurationError(f"{where}: EVENT ports are joined with an EventConnection")
+            raise ConfigurationError(f"{where()}: EVENT ports are joined with an EventConnection")
         if src_spec.type not in _COMPATIBLE.get(dst_spec.type, set()):
-            raise ConfigurationError(f"{where}: a {src_spec.type.name} output cannot drive a "
+            raise ConfigurationError(f"{where()}: a {src_spec.type.name} output cannot drive a "
                                      f"{dst_spec.type.name} input")
         try:
             if connection.convert_units:
                 conversion(src_spec.unit, dst_spec.unit)
         except units.DimensionalityError as exc:
-            raise ConfigurationError(f"{where}: incompatible units {src_spec.unit!r} and "
+            raise ConfigurationError(f"{where()}: incompatible units {src_spec.unit!r} and "
                                      f"{dst_spec.unit!r}") from exc
         existing = self._drivers.get((dst.name, connection.dst_port))
         if existing is not None:
-            raise ConfigurationError(f"{where}: input {dst.name}.{connection.dst_port} is "
+            raise ConfigurationError(f"{where()}: input {dst.name}.{connection.dst_port} is "
                                      f"already driven by {existing.src_comp}."
                                      f"{existing.src_port}")
         self._drivers[dst.name, connection.dst_port] = connection
