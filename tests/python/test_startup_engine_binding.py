@@ -59,7 +59,7 @@ def test_a_library_built_from_another_header_than_its_module_is_refused(tmp_path
 
 
 def test_a_build_without_the_module_names_it(tmp_path: Path):
-    finished = python("import syssimx", SYSSIMX_BUILD_DIR=str(tmp_path))
+    finished = python("import syssimx.engine", SYSSIMX_BUILD_DIR=str(tmp_path))
     assert finished.returncode == 1
     assert finished.stderr.splitlines()[-1] == (
         f"FileNotFoundError: the syssimx engine's cffi module was not found at "

@@ -33,6 +33,22 @@ def test_import_syssimx_loads_no_heavy_library():
     assert loaded_after("import syssimx") == []
 
 
+def test_import_syssimx_loads_none_of_its_parts_until_a_name_is_used():
+    code = ("import sys, syssimx\n"
+            "assert 'numpy' not in sys.modules and 'syssimx.engine' not in sys.modules\n"
+            "assert syssimx.System.__module__ == 'syssimx.system.system'\n"
+            "assert 'syssimx.components.multi' not in sys.modules")
+    assert loaded_after(code) == []
+
+
+def test_a_component_used_on_its_own_finds_the_system_it_runs_in():
+    code = ("from syssimx.components import FMUComponent\nfrom syssimx import fmus\n"
+            "gain = FMUComponent('G', fmus.path('gain'))\ngain.set_inputs({'u': 2.0})\n"
+            "gain.initialize(0.0)\ngain.do_step(0.0, 0.1)\n"
+            "assert gain.get_outputs()['y'].magnitude == 2.0")
+    assert "pint" in loaded_after(code)  # the outputs are quantities
+
+
 def test_a_unit_conversion_loads_pint_and_no_networkx():
     code = ("import syssimx\nfrom syssimx.units import conversion\n"
             "assert conversion('m', 'cm') == (100.0, 0.0)")

@@ -12,7 +12,6 @@ from typing import Any
 from .. import units
 from ..bridge.failure import raise_failure
 from ..bridge.plan import EnginePlan
-from ..bridge.standalone import register_system_class
 from ..components.base import CoSimComponent
 from ..core.port import PortType
 from ..engine import ffi, lib
@@ -388,5 +387,3 @@ def _grid_steps(system: str, output_interval: object, dt: float) -> int:
                                  f"multiple of dt={dt!r}")
     return steps
 
-
-register_system_class(System)
