@@ -1,7 +1,8 @@
 """Start-up costs, this checkout's syssimx against a baseline commit's and FMPy, side by side in
 one run. Every figure comes from fresh processes, best of REPEATS:
 
-- `import syssimx` and `import fmpy` (user + system CPU of the whole interpreter);
+- `import syssimx`, `from syssimx import FMUComponent, System` (what a script needs) and
+  `import fmpy` (user + system CPU of the whole interpreter);
 - `syssimx simulate` and `fmpy simulate` of one FMU on the same grid, as whole processes (CPU
   and wall);
 - 1000 FMUComponents of one FMU built, then initialized in one System (CPU), after a
@@ -177,6 +178,8 @@ def main() -> None:
         simulations = {"fmpy simulate": (_simulations(fmu, work)["fmpy simulate"], None)}
         for side, path in sides.items():
             imports[f"syssimx, {side}"] = (["-c", "import syssimx"], path)
+            imports[f"FMUComponent and System, {side}"] = (
+                ["-c", "from syssimx import FMUComponent, System"], path)
             simulations[f"syssimx simulate, {side}"] = (
                 _simulations(fmu, work)["syssimx simulate"], path)
         processes = {**imports, **simulations}
@@ -197,7 +200,9 @@ def main() -> None:
     fmpy_import = min(cpu for cpu, _ in runs["fmpy"])
     for side in sides:
         ratio = min(cpu for cpu, _ in runs[f"syssimx, {side}"]) / fmpy_import
-        print(f"  import syssimx / import fmpy, {side}: {ratio:.2f}")
+        used = min(cpu for cpu, _ in runs[f"FMUComponent and System, {side}"]) / fmpy_import
+        print(f"  / import fmpy, {side}: import syssimx {ratio:.2f}, FMUComponent and System "
+              f"{used:.2f}")
     print(f"\none FMU ({SIMULATED_FMU}, {STOP_TIME} s, step {STEP}) as a whole process"
           f"\n  {'':40}{'CPU s':>8}{'wall s':>8}")
     for name in simulations:
