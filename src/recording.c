@@ -79,19 +79,26 @@ static int decimator_start(ssx_observer *self, ssx_system *sys)
     return d->next->ops->start(d->next, sys);
 }
 
-/* Room for the points kept, plus the end point: events grow the history as they come. */
+/* The run's start point was recorded before it: the run's first step ends at its 1st point.
+ * Room for the points kept, plus the end point: events grow the history as they come. */
 static int decimator_run_start(ssx_observer *self, ssx_system *sys, size_t n_steps)
 {
     ssx_decimator *d = (ssx_decimator *)self;
-    return d->next->ops->run_start(d->next, sys, n_steps / (size_t)d->interval + 1);
+    d->run_interval = sys->recording.run_output_interval;
+    d->run_points = 1;
+    int every = d->run_interval > 0 ? d->run_interval : d->interval;
+    return d->next->ops->run_start(d->next, sys, n_steps / (size_t)every + 1);
 }
 
 static int decimator_step_complete(ssx_observer *self, ssx_system *sys, const ssx_sample *sample)
 {
     ssx_decimator *d = (ssx_decimator *)self;
     if (sample->on_grid) {
-        int kept = d->grid_points % d->interval == 0 || sample->run_end;
+        int kept = (d->run_interval > 0 ? d->run_points % d->run_interval == 0
+                                        : d->grid_points % d->interval == 0) ||
+                   sample->run_end;
         d->grid_points++;
+        d->run_points++;
         if (!kept) {
             return 0;
         }
@@ -142,6 +149,13 @@ void recording_init(ssx_recording *r, int output_interval)
     r->output_interval = output_interval;
 }
 
+/* The history itself when every point is kept: no decimator call per sample. */
+static ssx_observer *history_or_decimator(ssx_recording *r)
+{
+    return r->output_interval > 1 || r->run_output_interval > 1 ? &r->decimator.base
+                                                                 : &r->history.base;
+}
+
 void recording_free(ssx_recording *r)
 {
     history_free(&r->history.history);
@@ -165,8 +179,8 @@ int recording_start(ssx_system *sys)
     r->n_events = 0;
     r->n_observers = 0;
     r->decimator.interval = r->output_interval;
-    r->observers[r->n_observers++] =
-        r->output_interval > 1 ? &r->decimator.base : &r->history.base;
+    r->decimator.run_interval = 0;
+    r->observers[r->n_observers++] = history_or_decimator(r);
     /* most systems have no record hook: no call for them on every sample */
     if (has_record_hooks(sys)) {
         r->observers[r->n_observers++] = &r->record_hooks;
@@ -185,6 +199,9 @@ int recording_run_start(ssx_system *sys, size_t n_steps, double tf)
 {
     ssx_recording *r = &sys->recording;
     r->run_end_time = tf;
+    /* the run's own interval may call for the decimator (its start only began the history,
+     * which is started already) */
+    r->observers[0] = history_or_decimator(r);
     for (int k = 0; k < r->n_observers; ++k) {
         ssx_observer *o = r->observers[k];
         if (o->ops->run_start != NULL && o->ops->run_start(o, sys, n_steps) != 0) {

@@ -1,6 +1,6 @@
 /* What a run keeps: the observers the time loop reports to (observer.h) and the event records.
- * The history is always observed; with an output interval above 1 a decimator stands in front
- * of it; the components' record hooks are a third observer, present only when one is set. */
+ * The history is always observed; with an output interval above 1 (the system's or the run's)
+ * a decimator stands in front of it; the components' record hooks are a third observer, present only when one is set. */
 #ifndef SSX_RECORDING_H
 #define SSX_RECORDING_H
 
@@ -16,12 +16,14 @@ typedef struct {
 
 /* Passes on every k-th communication point (counted from t0, which is the 0th), the last point
  * of each run, and every sample off the grid (event instants, trials): an event is never
- * decimated away. */
+ * decimated away. A run with an interval of its own counts from its start instead. */
 typedef struct {
     ssx_observer base;
     ssx_observer *next;
     int interval;
+    int run_interval; /* 0: the current run keeps every interval-th point since ssx_initialize */
     long grid_points; /* seen since ssx_initialize */
+    long run_points;  /* seen since the current run's start, which is the 0th */
 } ssx_decimator;
 
 /* the history or its decimator, and the record hooks; a new kind of observer adds one */
@@ -34,7 +36,8 @@ typedef struct {
     ssx_observer *observers[RECORDING_MAX_OBSERVERS];
     int n_observers;
     int output_interval;
-    double run_end_time; /* tf of the current ssx_run */
+    int run_output_interval; /* ssx_set_run_output_interval: 0, or each run's own */
+    double run_end_time;     /* tf of the current ssx_run */
 
     ssx_event_record *events;
     size_t n_events;

@@ -1,8 +1,8 @@
 /* syssimx engine: the public C API.
  *
- * Python reads this very file as its cffi cdef (ABI mode): every line that starts with '#' is
- * dropped, so the declarations below must stay plain C that cffi parses (no macros, no inline
- * code, no variadic functions).
+ * The build turns this very file into Python's cffi module (out-of-line ABI mode,
+ * src/engine_ffi.py): every line that starts with '#' is dropped, so the declarations below
+ * must stay plain C that cffi parses (no macros, no inline code, no variadic functions).
  *
  * Conventions
  * - Calls returning int return 0 on success and -1 on failure; the failure is described by
@@ -45,6 +45,10 @@ typedef struct {
     double model_exchange_tolerance;
 } ssx_defaults;
 void ssx_get_defaults(ssx_defaults *out);
+
+/* The SHA-256 (hex) of the header this library was built from; Python's cffi module holds the
+ * digest of the header it was generated from, and refuses a library whose digest differs. */
+const char *ssx_interface_digest(void);
 
 /* ------------------------------------------------------------------------------------------
  * One loaded FMU binary with (at most) one live instance. Owned by the Python FMUComponent,
@@ -409,6 +413,11 @@ size_t ssx_history_bytes(const ssx_system *sys); /* bytes allocated for the hist
  * the last point of each ssx_run and every event instant and trial. 1, the default, keeps
  * every sample. Takes effect at the next ssx_initialize. */
 int ssx_set_output_interval(ssx_system *sys, int grid_steps);
+/* Decimation per run (FMPy's output_interval): every following ssx_run keeps every
+ * grid_steps-th communication point counted from its own start (the 0th), its last point and
+ * every event instant and trial, whatever ssx_set_output_interval says; 0, the default, returns
+ * to the system's interval. */
+int ssx_set_run_output_interval(ssx_system *sys, int grid_steps);
 /* A reference to the buffers the history accessors return now: until it is released, their
  * first ssx_history_length() samples are never written, moved or freed, whatever the system
  * does (record, initialize again, ssx_system_free). This is how Python hands out numpy arrays

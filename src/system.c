@@ -540,3 +540,15 @@ int ssx_set_output_interval(ssx_system *sys, int grid_steps)
     sys->recording.output_interval = grid_steps;
     return 0;
 }
+
+int ssx_set_run_output_interval(ssx_system *sys, int grid_steps)
+{
+    if (grid_steps < 0) {
+        return fail_config(sys, -1, -1, NAN,
+                           "system '%s': a run's output interval is a number of grid steps >= 1 "
+                           "(or 0 for none), not %d",
+                           sys->name, grid_steps);
+    }
+    sys->recording.run_output_interval = grid_steps;
+    return 0;
+}

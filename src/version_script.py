@@ -11,10 +11,16 @@ import sys
 DECLARED = re.compile(r"\b(ssx_\w+)\s*\(")
 
 
-def main(header: str, output: str) -> None:
+def declarations(header: str) -> str:
+    """The header without its preprocessor lines: the plain C that cffi parses."""
     with open(header, encoding="utf-8") as source:
-        text = "\n".join(line for line in source if not line.lstrip().startswith("#"))
-    text = re.sub(r"/\*.*?\*/", "", text, flags=re.DOTALL)  # comments name functions too
+        return "\n".join(line.rstrip("\n") for line in source
+                         if not line.lstrip().startswith("#"))
+
+
+def main(header: str, output: str) -> None:
+    # comments name functions too
+    text = re.sub(r"/\*.*?\*/", "", declarations(header), flags=re.DOTALL)
     names = sorted(set(DECLARED.findall(text)))
     with open(output, "w", encoding="utf-8") as script:
         script.write("{\n  global:\n")

@@ -2,92 +2,72 @@
 
 Build a System of FMUComponent and CoSimComponent objects, connect them, optionally add event
 indicators and event connections, then initialize and run. The SysSimX API is kept.
+
+Every name below is imported on first use: `import syssimx` loads none of the package, and a
+program pays only for the parts it touches.
 """
 
-import logging
+from __future__ import annotations
 
-from . import algorithms
-from .components import (
-    ComponentCheckpoint,
-    CoSimComponent,
-    FEMComponent,
-    FMUComponent,
-    ModeSwitchEvent,
-    MultiComponent,
-    OpenSimComponent,
-    SwitchRegions,
-    TableSource,
-)
-from .core import DenseTime, Port, PortSpec, PortType
-from .errors import (
-    AlgebraicLoopError,
-    ConfigurationError,
-    FMUError,
-    FMUFileError,
-    SimulationError,
-    SimulationTimeoutError,
-    SysSimXError,
-    ZenoError,
-)
-from .system import (
-    Connection,
-    EventConnection,
-    GaussSeidelAlgorithm,
-    HybridAlgorithm,
-    IJCSAAlgorithm,
-    JacobiAlgorithm,
-    SimulationResult,
-    System,
-    Termination,
-)
+import logging
+from typing import TYPE_CHECKING
+
+from ._lazy import lazy_names
+from .bridge.standalone import register_system_class
+
+if TYPE_CHECKING:
+    from .system.system import System as SystemClass
 
 __version__ = "0.1.0"
 __version_info__ = tuple(int(part) for part in __version__.split("."))
 
-__all__ = [
-    "AlgebraicLoopError",
-    "CoSimComponent",
-    "ComponentCheckpoint",
-    "ConfigurationError",
-    "Connection",
-    "DenseTime",
-    "EventConnection",
-    "FEMComponent",
-    "FMUComponent",
-    "FMUError",
-    "FMUFileError",
-    "GaussSeidelAlgorithm",
-    "HybridAlgorithm",
-    "IJCSAAlgorithm",
-    "JacobiAlgorithm",
-    "ModeSwitchEvent",
-    "MultiComponent",
-    "OpenSimComponent",
-    "Port",
-    "PortSpec",
-    "PortType",
-    "SimulationError",
-    "SimulationResult",
-    "SimulationTimeoutError",
-    "SwitchRegions",
-    "SysSimXError",
-    "System",
-    "SystemGraphVisualizer",
-    "TableSource",
-    "Termination",
-    "ZenoError",
-    "__version__",
-    "__version_info__",
-    "algorithms",
-]
+_MODULES = {
+    "AlgebraicLoopError": ".errors",
+    "CoSimComponent": ".components",
+    "ComponentCheckpoint": ".components",
+    "ConfigurationError": ".errors",
+    "Connection": ".system",
+    "DenseTime": ".core",
+    "EventConnection": ".system",
+    "FEMComponent": ".components",
+    "FMUComponent": ".components",
+    "FMUError": ".errors",
+    "FMUFileError": ".errors",
+    "GaussSeidelAlgorithm": ".system",
+    "HybridAlgorithm": ".system",
+    "IJCSAAlgorithm": ".system",
+    "JacobiAlgorithm": ".system",
+    "ModeSwitchEvent": ".components",
+    "MultiComponent": ".components",
+    "OpenSimComponent": ".components",
+    "Port": ".core",
+    "PortSpec": ".core",
+    "PortType": ".core",
+    "SimulationError": ".errors",
+    "SimulationResult": ".system",
+    "SimulationTimeoutError": ".errors",
+    "SwitchRegions": ".components",
+    "SysSimXError": ".errors",
+    "System": ".system",
+    "SystemGraphVisualizer": ".viz.system_graph_visualizer",  # needs the optional graphviz
+    "TableSource": ".components",
+    "Termination": ".system",
+    "ZenoError": ".errors",
+    "algorithms": ".algorithms",
+}
+
+__all__ = [*_MODULES, "__version__", "__version_info__"]
+
+__getattr__, __dir__ = lazy_names(__name__, _MODULES)
 
 
-def __getattr__(name: str) -> object:
-    """SystemGraphVisualizer is imported on first use: it needs the optional graphviz."""
-    if name == "SystemGraphVisualizer":
-        from .viz.system_graph_visualizer import SystemGraphVisualizer
+def _new_system(name: str) -> SystemClass:
+    """A component used on its own runs in a System: imported only then."""
+    from .system.system import System
 
-        return SystemGraphVisualizer
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    return System(name)
+
+
+register_system_class(_new_system)
 
 logging.getLogger(__name__).addHandler(logging.NullHandler())

@@ -1,5 +1,5 @@
-"""Where the compiled parts of syssimx live: the engine library, its header, the FMU host
-executable and the FMUs.
+"""Where the compiled parts of syssimx live: the engine library, its header and cffi module, the
+FMU host executable and the FMUs.
 
 An installed package carries them inside its own directory. During development, setting
 SYSSIMX_BUILD_DIR to a meson build directory of this repository uses that build instead.
@@ -15,6 +15,7 @@ _SOURCE_ROOT = _PACKAGE_DIR.parent.parent
 
 ENGINE_LIBRARY = "libsyssimx_engine.so"
 ENGINE_HEADER = "syssimx_engine.h"
+ENGINE_FFI_MODULE = "_engine_ffi.py"
 FMU_HOST = "syssimx-fmu-host"
 
 
@@ -29,27 +30,30 @@ def build_dir() -> Path | None:
     return (_IMPORT_DIR / value).resolve() if value else None
 
 
-def engine_library() -> Path:
+def _built(name: str, what: str) -> Path:
+    """A file the meson build makes in src/ and installs beside this package's modules."""
     build = build_dir()
-    candidate = build / "src" / ENGINE_LIBRARY if build else _PACKAGE_DIR / ENGINE_LIBRARY
+    candidate = build / "src" / name if build else _PACKAGE_DIR / name
     if not candidate.is_file():
         raise FileNotFoundError(
-            f"the syssimx engine library was not found at {candidate}; "
-            "build the package (pip install .) or point SYSSIMX_BUILD_DIR at a meson build"
+            f"{what} was not found at {candidate}; build the package (pip install .) or point "
+            "SYSSIMX_BUILD_DIR at a meson build"
         )
     return candidate
+
+
+def engine_library() -> Path:
+    return _built(ENGINE_LIBRARY, "the syssimx engine library")
+
+
+def engine_ffi_module() -> Path:
+    """The cffi module the build generates from the engine header (out-of-line ABI mode)."""
+    return _built(ENGINE_FFI_MODULE, "the syssimx engine's cffi module")
 
 
 def fmu_host() -> Path:
     """The executable an isolated FMU runs in, installed beside the engine library."""
-    build = build_dir()
-    candidate = build / "src" / FMU_HOST if build else _PACKAGE_DIR / FMU_HOST
-    if not candidate.is_file():
-        raise FileNotFoundError(
-            f"the syssimx FMU host {candidate} was not found; build the package (pip install .) "
-            "or point SYSSIMX_BUILD_DIR at a meson build"
-        )
-    return candidate
+    return _built(FMU_HOST, "the syssimx FMU host")
 
 
 def engine_header() -> Path:

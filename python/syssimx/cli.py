@@ -322,9 +322,10 @@ def _sweep(args: argparse.Namespace, out: TextIO) -> None:
 # ---------------------------------------------------------------------------------- simulate
 def _simulate(args: argparse.Namespace, out: TextIO) -> None:
     from . import FMUComponent, JacobiAlgorithm, System
+    from .components.model_description import read_fmu
 
     path = _resolve_fmu(args.fmu)
-    md = _read_description(path)
+    md = read_fmu(path).description  # what the component reads too: read once, by syssimx
     t0, tf, dt = _experiment(args, md.defaultExperiment,
                              getattr(md.coSimulation, "fixedInternalStepSize", None))
     options = {} if args.tolerance is None else {"tolerance": args.tolerance}

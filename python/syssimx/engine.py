@@ -1,33 +1,51 @@
 """The cffi binding of the C engine: the only bridge between Python and C.
 
-ABI mode: the cdef is the engine header with its preprocessor lines removed, and the shared
-library is opened on first use.
+Out-of-line ABI mode: the build generates the `ffi` module from the engine header
+(src/engine_ffi.py), so importing syssimx parses no C; the shared library is opened on first
+use, and refused if it was built from another header than the module.
 """
 
 from __future__ import annotations
 
 from functools import lru_cache
+from importlib.machinery import SourceFileLoader
+from types import ModuleType
 from typing import Any
 
-from cffi import FFI
-
 from . import _paths
+from .errors import EngineMismatchError
 
-ffi = FFI()
-
-
-def _cdef_text() -> str:
-    header = _paths.engine_header().read_text()
-    return "\n".join(line for line in header.splitlines() if not line.lstrip().startswith("#"))
+_MODULE = "syssimx._engine_ffi"
 
 
-ffi.cdef(_cdef_text())
+def _interface() -> ModuleType:
+    path = _paths.engine_ffi_module()
+    module = ModuleType(_MODULE)
+    module.__file__ = str(path)
+    SourceFileLoader(_MODULE, str(path)).exec_module(module)
+    return module
+
+
+_INTERFACE = _interface()
+ffi = _INTERFACE.ffi
 
 
 @lru_cache(maxsize=1)
 def lib() -> Any:
     """The loaded engine library."""
-    return ffi.dlopen(str(_paths.engine_library()))
+    path = _paths.engine_library()
+    library = ffi.dlopen(str(path))
+    try:
+        digest = ffi.string(library.ssx_interface_digest()).decode()
+    except AttributeError:
+        digest = "none (it does not export ssx_interface_digest)"
+    if digest != _INTERFACE.INTERFACE_DIGEST:
+        raise EngineMismatchError(
+            f"the engine library {path} was built from another syssimx_engine.h than its cffi "
+            f"module {_INTERFACE.__file__} (header digest {digest} against "
+            f"{_INTERFACE.INTERFACE_DIGEST}): a stale build; rebuild both (meson compile, or "
+            "pip install .)")
+    return library
 
 
 def string(pointer: Any) -> str:

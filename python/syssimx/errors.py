@@ -57,3 +57,8 @@ class ZenoError(SimulationError):
 
 class AlgebraicLoopError(SimulationError):
     """An algebraic loop did not converge within the loop options."""
+
+
+class EngineMismatchError(SysSimXError, ImportError):
+    """The engine library and its cffi module come from different engine headers (a stale
+    build): calls between them could pass the wrong arguments."""

@@ -62,6 +62,25 @@ def pint_expression(unit: str) -> str:
 # What tools write for "no physical unit" (Parker and Hopsan export "-").
 DIMENSIONLESS_SPELLINGS = frozenset({"", "1", "-"})
 
+# Unit symbols pint reads as written, with the meaning FMI gives them (the tests hold pint to
+# each one's name). A unit made of these alone, joined by '.' and '/' with integer powers, is
+# known to be readable without importing pint, so reading a typical FMU does not import it.
+PLAIN_SYMBOLS = frozenset({
+    "m", "s", "kg", "g", "K", "A", "mol", "cd", "rad", "sr", "Hz", "N", "Pa", "J", "W", "C",
+    "V", "F", "ohm", "S", "Wb", "T", "H", "lm", "lx", "Bq", "Gy", "Sv", "kat", "L", "l", "min",
+    "h", "d", "bar", "deg", "mm", "cm", "km", "ms", "mg", "kN", "kW", "MW", "kJ", "MJ", "kPa",
+    "MPa", "mV", "kV", "mA",
+})
+_FACTOR = re.compile(r"([A-Za-z]+)(?:-?\d+)?")
+
+
+def plainly_readable(unit: str) -> bool:
+    """Whether `unit` is made of PLAIN_SYMBOLS only (then pint reads it as written); False
+    says nothing: pint may still read it."""
+    factors = unit.removeprefix("1/").replace("/", ".").split(".")
+    return all((match := _FACTOR.fullmatch(factor)) is not None
+               and match.group(1) in PLAIN_SYMBOLS for factor in factors)
+
 
 @lru_cache(maxsize=512)
 def to_unit(unit: str) -> pint.Unit:
@@ -79,12 +98,14 @@ def to_unit(unit: str) -> pint.Unit:
         raise ValueError(f"unit {unit!r} is unknown to pint ({reason})") from exc
 
 
+@lru_cache(maxsize=512)
 def conversion(src_unit: str | None, dst_unit: str | None) -> tuple[float, float]:
     """(scale, offset) with dst = scale * src + offset. A side without unit takes the other's.
 
-    Raises pint.DimensionalityError when the units measure different quantities.
+    Raises pint.DimensionalityError when the units measure different quantities. Cached: a
+    large system connects many ports of a few units.
     """
-    if not src_unit or not dst_unit:
+    if not src_unit or not dst_unit or src_unit == dst_unit:  # no pint needed
         return 1.0, 0.0
     src, dst = to_unit(src_unit), to_unit(dst_unit)
     zero = registry().Quantity(0.0, src).to(dst).magnitude

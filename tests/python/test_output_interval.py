@@ -1,6 +1,7 @@
-"""Decimation (System.initialize(output_interval=k)): the history keeps every k-th
-communication point, the end of each run and both samples of every event instant, with the
-values of the full history, and holds only the memory those samples need."""
+"""Decimation: System.initialize(output_interval=k) keeps every k-th communication point since
+t0, System.run(..., output_interval=k*dt) every k-th of that run (FMPy's meaning). Both keep the
+end of each run and both samples of every event instant, with the values of the full history,
+and hold only the memory those samples need."""
 
 from __future__ import annotations
 
@@ -65,3 +66,61 @@ def test_an_output_interval_below_one_is_refused_with_the_engine_message():
     with pytest.raises(ConfigurationError, match=r"^output_interval: system 'wall': the output "
                        r"interval is a number of grid steps >= 1, not 0$"):
         system.initialize(0.0, output_interval=0)
+
+
+def test_a_run_interval_keeps_the_full_runs_samples_at_its_own_grid_from_each_run_start():
+    full = pendulum_against_wall(1)
+    decimated = pendulum_against_wall(1)
+    ends = (1.005, 2.0, 2.004)
+    for t0, tf in zip((0.0, *ends), ends, strict=False):
+        full.run(t0, tf, 1e-3)
+        # FMPy's meaning: a time; the last run keeps every point again
+        decimated.run(t0, tf, 1e-3, output_interval=None if tf == 2.004 else INTERVAL * 1e-3)
+    full_t, full_data = full.get_history()["P"]
+    t, data = decimated.get_history()["P"]
+    event_times = [e.t for e in decimated.history.events]
+    assert len(event_times) == 2
+
+    kept = [0]
+    run = 0
+    steps_into_run = 0
+    for row in range(1, len(full_t)):
+        time = full_t[row]
+        if time in event_times:  # before and after handling
+            kept.append(row)
+            continue
+        steps_into_run += 1
+        if steps_into_run % INTERVAL == 0 or time == ends[run] or run == 2:
+            kept.append(row)
+        if time == ends[run]:
+            run, steps_into_run = run + 1, 0
+    # 0.01, ..., 1.0 and 1.005; 1.015, ..., 1.995 and 2.0; 2.001, ..., 2.004; the events twice
+    assert len(kept) == 1 + 101 + 100 + 4 + 2 * 2
+    # counted from the second run's start, not from t0
+    assert np.isclose(t, 1.015).any() and not np.isclose(t, 1.01).any()
+    np.testing.assert_array_equal(t, full_t[kept])
+    for name in ("theta", "omega", "alpha"):
+        np.testing.assert_array_equal(data[name], full_data[name][kept])
+
+
+def test_a_run_of_a_million_steps_keeping_a_thousand_holds_a_thousandth_of_the_history():
+    systems = {}
+    for interval in (None, 1000 * 1e-6):
+        system = System("ramp")
+        system.add_component(FMUComponent("G", fmus.path("gain")))
+        system.initialize(0.0)
+        result = system.run(0.0, 1.0, 1e-6, output_interval=interval)
+        systems[interval] = (len(result.micro), system.history_bytes())
+    (full_samples, full_bytes), (kept_samples, kept_bytes) = systems.values()
+    assert (full_samples, kept_samples) == (1_000_001, 1_001)
+    assert 900 < full_bytes / kept_bytes < 1100
+
+
+@pytest.mark.parametrize("interval", [0.015, 0.005, 0.0, -0.02])
+def test_an_output_interval_that_is_no_whole_multiple_of_dt_is_refused_before_the_run(interval):
+    system = pendulum_against_wall(1)
+    with pytest.raises(ConfigurationError, match=rf"^wall: output_interval={interval!r} is not a "
+                                                 r"whole multiple of dt=0\.01$"):
+        system.run(0.0, 1.0, 0.01, output_interval=interval)
+    assert system.t == 0.0
+    assert len(system.get_history()["P"][0]) == 1

@@ -1,7 +1,7 @@
 """The private one-component system a component runs in when it is used on its own.
 
-Components reach it here instead of importing syssimx.system, which builds on them: the System
-class registers itself when syssimx.system is imported (importing syssimx does)."""
+Components reach it here instead of importing syssimx.system, which builds on them: the
+package, above both, registers how to make a System when it is imported."""
 
 from __future__ import annotations
 
@@ -27,14 +27,12 @@ _SYSTEM_CLASS: list[Callable[[str], StandaloneSystem]] = []
 
 
 def register_system_class(system_class: Callable[[str], StandaloneSystem]) -> None:
-    """Called once by syssimx.system with its System class."""
+    """Called once by the syssimx package with what makes a System."""
     _SYSTEM_CLASS[:] = [system_class]
 
 
 def standalone_system(component: Any) -> StandaloneSystem:
     """A new System holding only `component`."""
-    if not _SYSTEM_CLASS:
-        raise RuntimeError("syssimx.system is not imported: import syssimx first")
     system = _SYSTEM_CLASS[0](f"{component.name} (standalone)")
     system.add_component(component)
     return system

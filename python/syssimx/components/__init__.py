@@ -1,14 +1,22 @@
 """Components: the base class, pure Python components, FMU components, table sources and
-model switching."""
+model switching (each imported on first use)."""
 
-from .base import ComponentCheckpoint, CoSimComponent
-from .fmu import FMUComponent
-from .fmu_instance import FMUInstance, FMUState
-from .multi import ModeSwitchEvent, MultiComponent
-from .optional import FEMComponent, OpenSimComponent
-from .switch_regions import SwitchRegions
-from .table_source import TableSource
+from .._lazy import lazy_names
 
-__all__ = ["CoSimComponent", "ComponentCheckpoint", "FEMComponent", "FMUComponent",
-           "FMUInstance", "FMUState", "ModeSwitchEvent", "MultiComponent", "OpenSimComponent",
-           "SwitchRegions", "TableSource"]
+_MODULES = {
+    "CoSimComponent": ".base",
+    "ComponentCheckpoint": ".base",
+    "FEMComponent": ".optional",
+    "FMUComponent": ".fmu",
+    "FMUInstance": ".fmu_instance",
+    "FMUState": ".fmu_instance",
+    "ModeSwitchEvent": ".multi",
+    "MultiComponent": ".multi",
+    "OpenSimComponent": ".optional",
+    "SwitchRegions": ".switch_regions",
+    "TableSource": ".table_source",
+}
+
+__all__ = list(_MODULES)
+
+__getattr__, __dir__ = lazy_names(__name__, _MODULES)

@@ -14,11 +14,12 @@ engine's ports are scalars).
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
-
-from fmpy.model_description import ModelDescription
+from typing import TYPE_CHECKING, Any
 
 from ..errors import FMUFileError
+
+if TYPE_CHECKING:  # fmpy is imported by the first read, not with syssimx
+    from fmpy.model_description import ModelDescription
 
 # the FMI 3.0 types syssimx exchanges, by the engine's ssx_fmi3_type code
 FMI3_TYPE_CODES = {"Float64": 0, "Float32": 1, "Int8": 2, "UInt8": 3, "Int16": 4, "UInt16": 5,

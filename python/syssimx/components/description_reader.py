@@ -22,22 +22,19 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import IO, Any
+from typing import IO, TYPE_CHECKING, Any
 
 import numpy as np
-from fmpy.model_description import (
-    CoSimulation,
-    DefaultExperiment,
-    ModelDescription,
-    ModelExchange,
-    SimpleType,
-    Unknown,
-)
 
 from ..engine import ffi, lib
 from ..errors import FMUFileError
 from .description_fmi3 import is_fmi3, read_fmi3_description
 from .variable_table import VariableTable, words
+
+# fmpy's classes are imported by the first read, not with syssimx: importing fmpy costs about as
+# much as importing the rest of syssimx.
+if TYPE_CHECKING:
+    from fmpy.model_description import ModelDescription, Unknown
 
 MAX_VALUE_REFERENCE = 2**32 - 1  # fmi2ValueReference is an unsigned int, as the engine reads it
 
@@ -141,6 +138,14 @@ def _message(error: Any, where: str) -> str:
 
 # ------------------------------------------------------------------------------ the description
 def _description(md: Any, where: str) -> ModelDescription:
+    from fmpy.model_description import (
+        CoSimulation,
+        DefaultExperiment,
+        ModelDescription,
+        ModelExchange,
+        SimpleType,
+    )
+
     def text(offset: int) -> str | None:
         return ffi.string(md.strings + offset).decode() if offset else None
 
@@ -190,6 +195,8 @@ def _count(text: str | None, where: str) -> int:
 
 
 def _interface(interface: Any, attributes: dict[str | None, str | None]) -> Any:
+    from fmpy.model_description import CoSimulation
+
     interface.modelIdentifier = attributes.get("modelIdentifier")
     cosimulation = isinstance(interface, CoSimulation)
     for name in _INTERFACE_FLAGS + (_COSIMULATION_FLAGS if cosimulation else ()):
@@ -199,6 +206,8 @@ def _interface(interface: Any, attributes: dict[str | None, str | None]) -> Any:
 
 def _outputs(md: Any, variables: VariableTable) -> list[Unknown]:
     """ModelStructure/Outputs; a variable named by several Unknowns is made once."""
+    from fmpy.model_description import Unknown
+
     count = int(md.output_count)
     if count == 0:
         return []
@@ -206,7 +215,8 @@ def _outputs(md: Any, variables: VariableTable) -> list[Unknown]:
     firsts = ffi.unpack(md.first_dependency, count)
     lengths = ffi.unpack(md.dependency_count, count)
     dependencies = ffi.unpack(md.dependencies, md.dependency_total) if md.dependency_total else []
-    named = np.unique(np.array(indices + dependencies, dtype=np.int64))
+    # sorted set, not np.unique: that imports numpy.ma on first use, a tenth of a small run
+    named = np.array(sorted(set(indices + dependencies)), dtype=np.int64)
     made = dict(zip(named.tolist(), variables.make(named), strict=True))
     outputs = []
     for index, first, length in zip(indices, firsts, lengths, strict=True):

@@ -34,21 +34,35 @@ class ExtractionCache:
         self._lock = threading.RLock()
         self._entries: dict[tuple[str, int, int], _Extraction] = {}
         self._directories: set[Path] = set()  # every folder not yet removed, private ones too
+        # folder -> member -> its resolved path, checked once per extraction
+        self._binaries: dict[Path, dict[str, Path]] = {}
         atexit.register(self.remove_all)
 
     def acquire(self, archive: Path, shareable: bool) -> tuple[Path, tuple[str, int, int] | None]:
-        """The directory holding `archive` extracted, and the key to release it with (None for
-        a private extraction, which the caller removes itself)."""
+        """The directory holding `archive` (a resolved path) extracted, and the key to release
+        it with (None for a private extraction, which the caller removes itself)."""
         if not shareable:
             return self._extract(archive), None
         stat = archive.stat()
-        key = (str(archive.resolve()), stat.st_mtime_ns, stat.st_size)
+        key = (str(archive), stat.st_mtime_ns, stat.st_size)
         with self._lock:
             entry = self._entries.get(key)
             if entry is None:
                 entry = self._entries[key] = _Extraction(self._extract(archive), 0)
             entry.users += 1
             return entry.directory, key
+
+    def binary(self, directory: Path, member: str) -> Path | None:
+        """The extracted file `member` of `directory` resolved, or None unless it is a file
+        inside the folder (a link cannot lead out of it)."""
+        with self._lock:
+            checked = self._binaries.setdefault(directory, {})
+            if member not in checked:
+                path = (directory / member).resolve()
+                if not (path.is_relative_to(directory.resolve()) and path.is_file()):
+                    return None
+                checked[member] = path
+            return checked[member]
 
     def release(self, directory: Path, key: tuple[str, int, int] | None) -> None:
         """Give back what acquire returned; the last user removes the directory."""
@@ -60,6 +74,7 @@ class ExtractionCache:
                     return
                 del self._entries[key]
         self._directories.discard(directory)
+        self._binaries.pop(directory, None)
         shutil.rmtree(directory, ignore_errors=True)
 
     def _extract(self, archive: Path) -> Path:

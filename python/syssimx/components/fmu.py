@@ -169,7 +169,8 @@ class FMUComponent(CoSimComponent):
         return float(self._input_starts[name]) if name in self._inputs_set else math.nan
 
     def value_reference(self, name: str) -> int:
-        return int(self.info.variables[name].valueReference)
+        known = self.info.value_references.get(name)
+        return int(self.info.variables[name].valueReference) if known is None else known
 
     def set_inputs(self, signals: dict[str, Any], t: float | None = None) -> None:
         """Set inputs; they go to a Co-Simulation FMU at once when it is instantiated."""
@@ -462,8 +463,8 @@ def _load(info: FMUInfo, interface: FMUInterface, name: str, isolated: bool,
     # every isolated FMU has a process of its own, so it may share the extraction
     unzip_dir, key = extractions.acquire(info.path, shareable=isolated or not once_per_process)
     binary_name = info.binary_name(interface.name)
-    binary = (unzip_dir / binary_name).resolve()
-    if not (binary.is_relative_to(unzip_dir.resolve()) and binary.is_file()):
+    binary = extractions.binary(unzip_dir, binary_name)
+    if binary is None:
         extractions.release(unzip_dir, key)
         raise FMUFileError(f"{info.path}: {binary_name} is not a file inside the "
                            "extracted archive; refused to load it")

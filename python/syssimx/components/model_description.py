@@ -15,18 +15,19 @@ import zlib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, NamedTuple
-
-from fmpy.model_description import ModelDescription
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 from ..core.port import PortSpec, PortType
 from ..errors import FMUFileError
 from ..graph.analysis import feedthrough_from_model_description
-from ..units import to_unit
+from ..units import plainly_readable, to_unit
 from .archive import open_archive
 from .description_fmi3 import FMI3_TYPE_CODES, is_fmi3
 from .description_reader import read_description
 from .variable_table import ScalarVariable
+
+if TYPE_CHECKING:
+    from fmpy.model_description import ModelDescription
 
 logger = logging.getLogger("syssimx.fmu")
 
@@ -85,6 +86,7 @@ class FMUInfo:
     output_specs: dict[str, PortSpec] = field(default_factory=dict)
     parameters: dict[str, Parameter] = field(default_factory=dict)
     input_starts: dict[str, float | int | bool] = field(default_factory=dict)  # 0 if none given
+    value_references: dict[str, int] = field(default_factory=dict)  # of ports and parameters
     feedthrough: dict[str, set[str]] = field(default_factory=dict)
     interfaces: dict[str, FMUInterface] = field(default_factory=dict)  # by INTERFACES name
     # Model Exchange: ModelStructure/Derivatives, numberOfEventIndicators
@@ -119,6 +121,8 @@ def variable_unit(variable: ScalarVariable) -> str | None:
 def _pint_unit(unit: str) -> str | None:
     """`unit` if pint reads it, else its lower-case spelling (e.g. "Ohm") if pint reads that,
     else None."""
+    if plainly_readable(unit):
+        return unit
     for candidate in (unit, unit.lower()):
         try:
             to_unit(candidate)
@@ -273,8 +277,10 @@ def _collect_ports_and_parameters(info: FMUInfo, ports: list[ScalarVariable]) ->
         kind = PORT_TYPES.get(variable.type)
         if kind is None:
             if info.is_fmi3 and variable.type in TEXT_TYPES:
+                info.value_references[variable.name] = variable.valueReference
                 _collect_text(info, variable)
             continue  # FMI 2.0 String variables have no place among doubles
+        info.value_references[variable.name] = variable.valueReference
         unit = variable_unit(variable) if kind == PortType.REAL else None
         if unit:
             if unit not in readable:
@@ -329,6 +335,8 @@ def _fmi3_variables(variables: Any) -> list[tuple[int, int, str]]:
 
 def _collect_feedthrough(info: FMUInfo, inputs_and_outputs: list[ScalarVariable]) -> None:
     """Output -> the inputs it depends on directly, from ModelStructure."""
+    from fmpy.model_description import ModelDescription
+
     # The analysis reads inputs, outputs and ModelStructure: hand it those, not every local.
     ports_only = ModelDescription()
     ports_only.modelVariables = inputs_and_outputs

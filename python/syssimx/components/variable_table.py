@@ -9,12 +9,14 @@ from __future__ import annotations
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
-from typing import Any, overload
+from typing import TYPE_CHECKING, Any, overload
 
 import numpy as np
-from fmpy.model_description import SimpleType
 
 from ..engine import ffi, lib
+
+if TYPE_CHECKING:
+    from fmpy.model_description import SimpleType
 
 _BATCH = 4096  # variables made at a time when all are iterated
 

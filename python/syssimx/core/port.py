@@ -9,7 +9,7 @@ from typing import Any, Literal
 
 import numpy as np
 
-from ..units import is_quantity, magnitude_in, quantity, to_unit
+from ..units import is_quantity, magnitude_in, plainly_readable, quantity, to_unit
 
 
 class PortType(StrEnum):
@@ -41,7 +41,8 @@ class PortSpec:
         if self.unit is not None:
             if self.type != PortType.REAL:
                 raise ValueError(f"port {self.name!r}: only REAL ports carry a unit")
-            to_unit(str(self.unit))
+            if not plainly_readable(str(self.unit)):  # needs no pint to know it is fine
+                to_unit(str(self.unit))
 
     def coerce(self, value: Any) -> float | int | bool | str:
         """The plain value stored for `value` (REAL in this port's unit); TypeError if wrong."""

@@ -1,17 +1,15 @@
-"""Structure of a system: data-flow analysis and the text report."""
+"""Structure of a system: data-flow analysis and the text report (each imported on first use)."""
 
-from .analysis import (
-    SystemAnalysis,
-    analyze,
-    analyze_system,
-    feedthrough_from_model_description,
-)
-from .describe import describe_system
+from .._lazy import lazy_names
 
-__all__ = [
-    "SystemAnalysis",
-    "analyze",
-    "analyze_system",
-    "describe_system",
-    "feedthrough_from_model_description",
-]
+_MODULES = {
+    "SystemAnalysis": ".analysis",
+    "analyze": ".analysis",
+    "analyze_system": ".analysis",
+    "describe_system": ".describe",
+    "feedthrough_from_model_description": ".analysis",
+}
+
+__all__ = list(_MODULES)
+
+__getattr__, __dir__ = lazy_names(__name__, _MODULES)

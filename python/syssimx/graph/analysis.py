@@ -20,6 +20,9 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from .digraph import generations as topological_generations
+from .digraph import lexicographic_order, reaches, strongly_connected
+
 if TYPE_CHECKING:
     import networkx as nx
 
@@ -35,8 +38,8 @@ class SystemAnalysis:
     """The structure the engine is scheduled from.
 
     Attributes:
-        graph: components as nodes, one edge per zero-delay dependency; the edge attribute
-            ``connections`` lists the connections behind it.
+        components: every component, in the order added.
+        zero_delay: (src, dst) -> the connections behind that zero-delay dependency.
         generations: Gauss-Seidel execution order in generations (topological generations of the
             zero-delay graph's condensation); the members of one algebraic loop are adjacent,
             and inside a generation consumers precede their delayed producers.
@@ -46,11 +49,24 @@ class SystemAnalysis:
         loop_connections: the zero-delay connections inside the loops (the tear variables).
     """
 
-    graph: nx.DiGraph
+    components: list[str]
+    zero_delay: dict[tuple[str, str], list[ConnectionKey]]
     generations: list[list[str]]
     loops: list[list[str]]
     order: list[str]
     loop_connections: list[ConnectionKey]
+
+    @property
+    def graph(self) -> nx.DiGraph:
+        """Components as nodes, one edge per zero-delay dependency with the edge attribute
+        ``connections`` (networkx is imported here, for whoever wants its graph)."""
+        import networkx as nx
+
+        graph = nx.DiGraph()
+        graph.add_nodes_from(self.components)
+        for (src, dst), connections in self.zero_delay.items():
+            graph.add_edge(src, dst, connections=list(connections))
+        return graph
 
     def schedule(self) -> tuple[list[str], list[int], list[bool]]:
         """(order, group sizes, group is a loop), the arguments of the engine's ssx_set_schedule.
@@ -96,16 +112,17 @@ def analyze(
                     f"{name!r}; components: {known}"
                 )
 
-    import networkx as nx  # on first analysis: it costs as much as the rest of the package
-
-    graph = _zero_delay_graph(components, connections)
+    zero_delay = _zero_delay_edges(components, connections)
+    successors: dict[str, list[str]] = {}
+    for src, dst in zero_delay:
+        successors.setdefault(src, []).append(dst)
     added = {name: i for i, name in enumerate(names)}
     sccs = sorted(
-        (sorted(scc, key=added.__getitem__) for scc in nx.strongly_connected_components(graph)),
+        (sorted(scc, key=added.__getitem__) for scc in strongly_connected(names, successors)),
         key=lambda members: added[members[0]],
     )
-    loops = [scc for scc in sccs if len(scc) > 1 or graph.has_edge(scc[0], scc[0])]
-    generations = _generations(graph, sccs, connections)
+    loops = [scc for scc in sccs if len(scc) > 1 or (scc[0], scc[0]) in zero_delay]
+    generations = _generations(zero_delay, sccs, connections)
     order = [name for generation in generations for name in generation]
     position = {name: index for index, name in enumerate(order)}
     loops.sort(key=lambda loop: position[loop[0]])
@@ -113,13 +130,13 @@ def analyze(
     loop_members = {name: index for index, loop in enumerate(loops) for name in loop}
     loop_connections = [
         connection
-        for src, dst, data in graph.edges(data=True)
+        for (src, dst), behind in zero_delay.items()
         if src in loop_members and loop_members[src] == loop_members.get(dst)
-        for connection in data["connections"]
+        for connection in behind
     ]
     given_order = {connection: i for i, connection in enumerate(connections)}
     loop_connections.sort(key=given_order.__getitem__)
-    return SystemAnalysis(graph, generations, loops, order, loop_connections)
+    return SystemAnalysis(names, zero_delay, generations, loops, order, loop_connections)
 
 
 def analyze_system(system: Any) -> SystemAnalysis:
@@ -166,14 +183,11 @@ def feedthrough_from_model_description(model_description: Any) -> dict[str, set[
     }
 
 
-def _zero_delay_graph(
+def _zero_delay_edges(
     components: Mapping[str, FeedthroughMap], connections: Sequence[ConnectionKey]
-) -> nx.DiGraph:
-    import networkx as nx
-
+) -> dict[tuple[str, str], list[ConnectionKey]]:
     connected_outputs = {(src, port) for src, port, _, _ in connections}
-    graph = nx.DiGraph()
-    graph.add_nodes_from(components)
+    edges: dict[tuple[str, str], list[ConnectionKey]] = {}
     for connection in connections:
         src, _, dst, dst_port = connection
         zero_delay = any(
@@ -181,37 +195,57 @@ def _zero_delay_graph(
             for output, inputs in components[dst].items()
         )
         if zero_delay:
-            if graph.has_edge(src, dst):
-                graph.edges[src, dst]["connections"].append(connection)
-            else:
-                graph.add_edge(src, dst, connections=[connection])
-    return graph
+            edges.setdefault((src, dst), []).append(connection)
+    return edges
 
 
 def _generations(
-    graph: nx.DiGraph, sccs: list[list[str]], connections: Sequence[ConnectionKey]
+    zero_delay: Mapping[tuple[str, str], list[ConnectionKey]], sccs: list[list[str]],
+    connections: Sequence[ConnectionKey]
 ) -> list[list[str]]:
     """Topological generations of the condensation, each ordered so that a consumer runs before
     its delayed producer, and otherwise in the order the components were added (``sccs`` is
     sorted that way, so an SCC's index is its rank)."""
-    import networkx as nx
+    scc_of = {name: index for index, scc in enumerate(sccs) for name in scc}
+    condensed: dict[int, set[int]] = {}
+    for src, dst in zero_delay:
+        if scc_of[src] != scc_of[dst]:
+            condensed.setdefault(scc_of[src], set()).add(scc_of[dst])
+    generations = [sorted(generation)
+                   for generation in topological_generations(len(sccs), condensed)]
+    generation_of = {scc_id: index for index, generation in enumerate(generations)
+                     for scc_id in generation}
+    # (consumer, producer) of the delayed connections inside each generation, in the given order
+    consumers_first: list[list[tuple[int, int]]] = [[] for _ in generations]
+    for src, _, dst, _ in connections:
+        producer, consumer = scc_of[src], scc_of[dst]
+        if producer != consumer and generation_of[producer] == generation_of[consumer]:
+            consumers_first[generation_of[producer]].append((consumer, producer))
+    ordered = []
+    for generation, edges in zip(generations, consumers_first, strict=True):
+        if edges:
+            generation = lexicographic_order(generation, _without_cycles(edges))
+        ordered.append([name for scc_id in generation for name in sccs[scc_id]])
+    return ordered
 
-    condensed = nx.condensation(graph, scc=[set(scc) for scc in sccs])
-    scc_of = condensed.graph["mapping"]
-    generations = []
-    for generation in nx.topological_generations(condensed):
-        members = set(generation)
-        consumers_first = nx.DiGraph()
-        consumers_first.add_nodes_from(members)
-        for src, _, dst, _ in connections:
-            producer, consumer = scc_of[src], scc_of[dst]
-            if producer == consumer or not {producer, consumer} <= members:
-                continue
-            if not nx.has_path(consumers_first, producer, consumer):
-                consumers_first.add_edge(consumer, producer)
-        ranked = nx.lexicographical_topological_sort(consumers_first, key=int)
-        generations.append([name for scc_id in ranked for name in sccs[scc_id]])
-    return generations
+
+def _without_cycles(edges: list[tuple[int, int]]) -> dict[int, list[int]]:
+    """The successors of `edges`, each edge left out that would close a cycle with the edges
+    before it (so in a cycle the edge given first decides)."""
+    everything: dict[int, list[int]] = {}
+    for consumer, producer in edges:
+        everything.setdefault(consumer, []).append(producer)
+    # an edge between two strongly connected components of all the edges closes no cycle: only
+    # the edges inside one need the search
+    component_of = {node: index for index, component in
+                    enumerate(strongly_connected(list(everything), everything))
+                    for node in component}
+    kept: dict[int, list[int]] = {}
+    for consumer, producer in edges:
+        if component_of[consumer] != component_of[producer] \
+                or not reaches(kept, producer, consumer):
+            kept.setdefault(consumer, []).append(producer)
+    return kept
 
 
 def _format_connection(connection: ConnectionKey) -> str:

@@ -1,14 +1,27 @@
-"""Systems of components: connections, algorithms, results."""
+"""Systems of components: connections, algorithms, results (each imported on first use)."""
 
-from .algorithms import GaussSeidelAlgorithm, HybridAlgorithm, IJCSAAlgorithm, JacobiAlgorithm
-from .connection import Connection, EventConnection
-from .loader import ConfigError, build_system, load_config, run_from_config
-from .results import EventRecord, LocalizationTrial, SimulationResult, Statistics
-from .system import System
-from .system_history import SystemHistory
-from .termination import Termination
+from .._lazy import lazy_names
 
-__all__ = ["ConfigError", "Connection", "EventConnection", "EventRecord",
-           "GaussSeidelAlgorithm", "HybridAlgorithm", "IJCSAAlgorithm", "JacobiAlgorithm",
-           "LocalizationTrial", "SimulationResult", "Statistics", "System", "SystemHistory",
-           "Termination", "build_system", "load_config", "run_from_config"]
+_MODULES = {
+    "ConfigError": ".loader",
+    "Connection": ".connection",
+    "EventConnection": ".connection",
+    "EventRecord": ".results",
+    "GaussSeidelAlgorithm": ".algorithms",
+    "HybridAlgorithm": ".algorithms",
+    "IJCSAAlgorithm": ".algorithms",
+    "JacobiAlgorithm": ".algorithms",
+    "LocalizationTrial": ".results",
+    "SimulationResult": ".results",
+    "Statistics": ".results",
+    "System": ".system",
+    "SystemHistory": ".system_history",
+    "Termination": ".termination",
+    "build_system": ".loader",
+    "load_config": ".loader",
+    "run_from_config": ".loader",
+}
+
+__all__ = list(_MODULES)
+
+__getattr__, __dir__ = lazy_names(__name__, _MODULES)

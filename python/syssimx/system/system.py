@@ -6,14 +6,12 @@ import logging
 import math
 import numbers
 import time
-import timeit
 from pathlib import Path
 from typing import Any
 
 from .. import units
 from ..bridge.failure import raise_failure
 from ..bridge.plan import EnginePlan
-from ..bridge.standalone import register_system_class
 from ..components.base import CoSimComponent
 from ..core.port import PortType
 from ..engine import ffi, lib
@@ -99,35 +97,37 @@ class System:
         return self.components[name]
 
     def add_connection(self, connection: Connection) -> None:
-        """Check names, types and units now; one driver per input."""
+        """Check names, types and units now; one driver per input. Reads the port specs only
+        (whatever reads ports syncs them first)."""
         src, dst = self._component(connection.src_comp), self._component(connection.dst_comp)
-        src._sync_ports()
-        dst._sync_ports()
-        where = "{}.{} -> {}.{}".format(*connection.key())
+
+        def where() -> str:  # formatted for an error only: a large system adds many
+            return "{}.{} -> {}.{}".format(*connection.key())
+
         if connection.src_port not in src.output_specs:
-            raise ConfigurationError(f"{where}: {src.name!r} has no output "
+            raise ConfigurationError(f"{where()}: {src.name!r} has no output "
                                      f"{connection.src_port!r}{src.why_no_port(connection.src_port)}"
                                      f"; outputs: {sorted(src.output_specs)}")
         if connection.dst_port not in dst.input_specs:
-            raise ConfigurationError(f"{where}: {dst.name!r} has no input "
+            raise ConfigurationError(f"{where()}: {dst.name!r} has no input "
                                      f"{connection.dst_port!r}{dst.why_no_port(connection.dst_port)}"
                                      f"; inputs: {sorted(dst.input_specs)}")
         src_spec = src.output_specs[connection.src_port]
         dst_spec = dst.input_specs[connection.dst_port]
         if PortType.EVENT in (src_spec.type, dst_spec.type):
-            raise ConfigurationError(f"{where}: EVENT ports are joined with an EventConnection")
+            raise ConfigurationError(f"{where()}: EVENT ports are joined with an EventConnection")
         if src_spec.type not in _COMPATIBLE.get(dst_spec.type, set()):
-            raise ConfigurationError(f"{where}: a {src_spec.type.name} output cannot drive a "
+            raise ConfigurationError(f"{where()}: a {src_spec.type.name} output cannot drive a "
                                      f"{dst_spec.type.name} input")
         try:
             if connection.convert_units:
                 conversion(src_spec.unit, dst_spec.unit)
         except units.DimensionalityError as exc:
-            raise ConfigurationError(f"{where}: incompatible units {src_spec.unit!r} and "
+            raise ConfigurationError(f"{where()}: incompatible units {src_spec.unit!r} and "
                                      f"{dst_spec.unit!r}") from exc
         existing = self._drivers.get((dst.name, connection.dst_port))
         if existing is not None:
-            raise ConfigurationError(f"{where}: input {dst.name}.{connection.dst_port} is "
+            raise ConfigurationError(f"{where()}: input {dst.name}.{connection.dst_port} is "
                                      f"already driven by {existing.src_comp}."
                                      f"{existing.src_port}")
         self._drivers[dst.name, connection.dst_port] = connection
@@ -254,15 +254,18 @@ class System:
         self.t = t
 
     def run(self, t0: float, tf: float, dt: float,
-            progress: bool | ProgressCallback | None = None, timeout: float | None = None
-            ) -> SimulationResult:
+            progress: bool | ProgressCallback | None = None, timeout: float | None = None,
+            output_interval: float | None = None) -> SimulationResult:
         """Simulate on the grid t0 + k*dt (the last point exactly tf) plus event instants.
 
         progress: SysSimX's callback progress(t, tf), called with the time reached about every
         50 ms of wall time and once at the end of the run; or True for a terminal bar that
         appears after a second. Ctrl-C stops a run within about 0.1 s with KeyboardInterrupt,
         and `timeout` (seconds of wall time) with SimulationTimeoutError; the samples recorded
-        up to the last completed step stay readable through get_history()."""
+        up to the last completed step stay readable through get_history().
+        output_interval: a time, a whole multiple of dt (FMPy's meaning): this run records
+        t0 + j*output_interval, its last point and every event instant (None: what initialize's
+        output_interval says)."""
         if not self.is_initialized or self._plan is None:
             raise ConfigurationError(f"{self.name}: call initialize(t0) before run()")
         t0, tf, dt = (_time_value(self.name, label, value)
@@ -270,6 +273,7 @@ class System:
         if timeout is not None and not (isinstance(timeout, int | float) and timeout > 0):
             raise ConfigurationError(f"{self.name}: timeout must be a positive number of "
                                      f"seconds or None, got {timeout!r}")
+        grid_steps = _grid_steps(self.name, output_interval, dt)
         if not math.isclose(t0, self.t, rel_tol=0.0, abs_tol=1e-12 * max(1.0, abs(t0))):
             raise ConfigurationError(f"{self.name}: run starts at t0={t0} but the system is at "
                                      f"t={self.t}")
@@ -281,8 +285,9 @@ class System:
                     f"{self.name}: component {component.name!r} was initialized elsewhere since "
                     "this system's initialize; call initialize again")
         self._push_options(plan)
+        plan.check(lib().ssx_set_run_output_interval(plan.sys, grid_steps), "output_interval")
         logger.info("Starting simulation run from t=%s to t=%s with dt=%s", t0, tf, dt)
-        start = timeit.default_timer()
+        start = time.perf_counter()
         plan.timeout = timeout
         plan.deadline = time.monotonic() + timeout if timeout is not None else None
         plan.progress = reports.report if reports is not None else None
@@ -290,7 +295,7 @@ class System:
             status = lib().ssx_run(plan.sys, t0, tf, dt)
         finally:
             plan.progress = None
-        wall = timeit.default_timer() - start
+        wall = time.perf_counter() - start
         events = read_events(plan)
         self.history = SystemHistory(events, self)
         self.t = float(lib().ssx_time(plan.sys))
@@ -371,4 +376,15 @@ def _time_value(system: str, label: str, value: object) -> float:
     return float(value)
 
 
-register_system_class(System)
+def _grid_steps(system: str, output_interval: object, dt: float) -> int:
+    """run()'s output_interval as a number of grid steps (0 for None; for dt <= 0 too, which
+    the engine refuses with its own message)."""
+    if output_interval is None or not dt > 0:
+        return 0
+    interval = _time_value(system, "output_interval", output_interval)
+    steps = round(interval / dt)
+    if steps < 1 or abs(interval / dt - steps) > 1e-9 * steps:
+        raise ConfigurationError(f"{system}: output_interval={interval!r} is not a whole "
+                                 f"multiple of dt={dt!r}")
+    return steps
+

@@ -1,5 +1,6 @@
-/* Decimation (ssx_set_output_interval): the history keeps every k-th communication point, the
- * end of each run and every event instant, with exactly the values of the full history. */
+/* Decimation (ssx_set_output_interval, ssx_set_run_output_interval): the history keeps every
+ * k-th communication point, the end of each run and every event instant, with exactly the
+ * values of the full history. */
 #include <string.h>
 
 #include "test_support.h"
@@ -90,18 +91,73 @@ static void check_hybrid_runs(void)
     stop_bouncing(&decimated);
 }
 
+/* The same runs with a run interval (ssx_set_run_output_interval) instead: each run counts
+ * from its own start, so the second keeps 0.65, 0.75, ..., 1.05; a third run with 0 keeps
+ * every point again. */
+static void check_run_intervals(void)
+{
+    const double dt = 0.01;
+    bouncing_pendulum full;
+    bouncing_pendulum decimated;
+    start_bouncing(&full, 1);
+    start_bouncing(&decimated, 1);
+    CHECK_OK(decimated.sys, ssx_set_run_output_interval(decimated.sys, INTERVAL));
+    const double ends[] = {0.55, 1.05, 1.1};
+    double t0 = 0.0;
+    for (int r = 0; r < 3; ++r) {
+        if (r == 2) {
+            CHECK_OK(decimated.sys, ssx_set_run_output_interval(decimated.sys, 0));
+        }
+        CHECK_OK(full.sys, ssx_run(full.sys, t0, ends[r], dt));
+        CHECK_OK(decimated.sys, ssx_run(decimated.sys, t0, ends[r], dt));
+        t0 = ends[r];
+    }
+    ssx_event_record event;
+    CHECK(ssx_event_get(decimated.sys, 0, &event) == 0);
+
+    /* t0; 0.1 ... 0.5 and the end 0.55; 0.65 ... 1.05; 1.06 ... 1.1; the event twice */
+    CHECK(ssx_history_length(decimated.sys) == 1 + 6 + 5 + 5 + 2);
+    size_t kept = 0;
+    int run = 0;
+    long run_point = 1;
+    for (size_t row = 1; row < ssx_history_length(full.sys); ++row) {
+        double t = ssx_history_time(full.sys)[row];
+        if (t != event.t) {
+            long k = run_point++;
+            int end = t == ends[run];
+            int skipped = run < 2 && k % INTERVAL != 0 && !end;
+            if (end) {
+                run++;
+                run_point = 1;
+            }
+            if (skipped) {
+                continue;
+            }
+        }
+        check_same_row(full.sys, row, decimated.sys, ++kept);
+    }
+    CHECK(kept + 1 == ssx_history_length(decimated.sys));
+    stop_bouncing(&full);
+    stop_bouncing(&decimated);
+}
+
 static void check_rejected_interval(void)
 {
     ssx_system *sys = ssx_system_new("decimated");
     CHECK(ssx_set_output_interval(sys, 0) == -1);
     CHECK(strcmp(ssx_last_error(sys)->message, "system 'decimated': the output interval is a "
                                                "number of grid steps >= 1, not 0") == 0);
+    CHECK(ssx_set_run_output_interval(sys, -1) == -1);
+    CHECK(strcmp(ssx_last_error(sys)->message,
+                 "system 'decimated': a run's output interval is a number of grid steps >= 1 "
+                 "(or 0 for none), not -1") == 0);
     ssx_system_free(sys);
 }
 
 int main(void)
 {
     check_hybrid_runs();
+    check_run_intervals();
     check_rejected_interval();
     return 0;
 }
