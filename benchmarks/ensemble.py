@@ -6,17 +6,19 @@
             torsion spring FMU, Gauss-Seidel): 2 s, dt 0.01; P1.theta0 swept over 0.2..0.6
 
 Sequential runs each member with the very function a worker runs (syssimx.ensemble.run_member:
-build the System, set the parameters, initialize, run, copy the samples out). The cluster is
-the embedded LocalCluster of one worker process per core. Printed, in one run:
+take the System, set the parameters, initialize, run, copy the samples out), twice: "fresh"
+builds a System per member (what a worker did before it kept its System, and what a loop of
+build-and-run does), "one System" keeps one System from member to member as a worker does.
+The cluster is the embedded LocalCluster of one worker process per core. Printed, in one run:
 - the fixed cost of the embedded cluster: start (scheduler and workers up) and close;
-- per scenario and member count: sequential wall, the sweep's wall on the started cluster,
-  the speed-up, a member's own time alone and inside a worker (the difference is the cores
-  the workers did not get), Dask's cost per member (cluster wall x workers / members minus a
-  member's time in its worker), and the speed-up counting the embedded cluster's start and
-  close;
+- per scenario and member count: both sequential walls, the sweep's wall on the started
+  cluster, the speed-up against each, a member's own time alone (one System) and inside a
+  worker (the difference is the cores the workers did not get), Dask's cost per member
+  (cluster wall x workers / members minus a member's time in its worker), and the speed-up
+  against one System counting the embedded cluster's start and close;
 - memory: each worker's resident size after start and after all sweeps;
-- how much of a seed member is reading its FMUs' model descriptions (read_fmu, once per
-  FMUComponent a member builds).
+- where a seed member's milliseconds go: initialize, run, the rest; and what building its
+  System costs.
 
     python benchmarks/ensemble.py [--members 50,200,800] [--workers N]
 """
@@ -36,8 +38,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "examples"))
 import coupled_pendulums
 import pendulum_wall
-from syssimx import FMUComponent, GaussSeidelAlgorithm, System
-from syssimx.components.model_description import read_fmu
+from syssimx import GaussSeidelAlgorithm, System
 from syssimx.ensemble import MemberTask, run_member, sweep
 from syssimx.ensemble.cluster import cores, ensemble_client
 
@@ -62,10 +63,13 @@ def resident_size() -> int:
 
 
 def sequential(build: Callable[[], System], name: str, values: np.ndarray, tf: float,
-               dt: float) -> float:
+               dt: float, ensemble: str | None) -> float:
+    """The members one after another here: on one System (an `ensemble` name), or each on a
+    fresh one (None)."""
     start = time.perf_counter()
     for index, value in enumerate(values):
-        member = run_member(build, MemberTask(index, {name: float(value)}, 0.0, tf, dt))
+        member = run_member(build, MemberTask(index, {name: float(value)}, 0.0, tf, dt,
+                                              ensemble=ensemble))
         assert member.ok, member.error
     return time.perf_counter() - start
 
@@ -79,20 +83,24 @@ def on_cluster(client: object, build: Callable[[], System], name: str, values: n
     return time.perf_counter() - start, float(np.mean([m.wall_time for m in result.members]))
 
 
-def description_share(repeats: int = 50) -> tuple[float, float]:
-    """A seed member's mean wall time in this process, and the part of it spent in read_fmu
-    for the FMUs its System builds."""
+def member_parts(repeats: int = 50) -> dict[str, float]:
+    """Where a seed member's milliseconds go in this process (mean wall times): building its
+    System (a worker does it once per ensemble), initialize, run, and a whole member on one
+    System (run_member: also setting the parameters and copying the samples out)."""
     build, name, tf, dt = SCENARIOS["seed"]
-    paths = [c.fmu_path for c in build().components.values() if isinstance(c, FMUComponent)]
-    start = time.perf_counter()
-    for _ in range(repeats):
-        for path in paths:
-            read_fmu(path)
-    reading = (time.perf_counter() - start) / repeats
-    start = time.perf_counter()
-    for index in range(repeats):
-        run_member(build, MemberTask(index, {name: 0.3}, 0.0, tf, dt))
-    return (time.perf_counter() - start) / repeats, reading
+
+    def mean(step: Callable[[], object]) -> float:
+        start = time.perf_counter()
+        for _ in range(repeats):
+            step()
+        return (time.perf_counter() - start) / repeats
+
+    system = build()
+    initialize = mean(lambda: system.initialize(0.0))
+    both = mean(lambda: (system.initialize(0.0), system.run(0.0, tf, dt)))
+    task = MemberTask(0, {name: 0.3}, 0.0, tf, dt, ensemble="parts")
+    return {"build": mean(build), "initialize": initialize, "run": both - initialize,
+            "member": mean(lambda: run_member(build, task))}
 
 
 def main() -> None:
@@ -104,7 +112,7 @@ def main() -> None:
     counts = [int(n) for n in args.members.split(",")]
     workers = args.workers
 
-    member, reading = description_share()
+    parts = member_parts()
     load_before = os.getloadavg()[0]
     start = time.perf_counter()
     with ensemble_client(workers=workers) as client:
@@ -116,9 +124,10 @@ def main() -> None:
             on_cluster(client, build, name, np.linspace(0.2, 0.6, workers), tf, dt)  # warm
             for count in member_counts:
                 values = np.linspace(0.2, 0.6, count)
-                alone = sequential(build, name, values, tf, dt)
+                fresh = sequential(build, name, values, tf, dt, None)
+                alone = sequential(build, name, values, tf, dt, f"{scenario}-{count}")
                 parallel, in_worker = on_cluster(client, build, name, values, tf, dt)
-                rows.append((scenario, count, alone, parallel, in_worker))
+                rows.append((scenario, count, fresh, alone, parallel, in_worker))
         rss_end = client.run(resident_size)
         closing = time.perf_counter()
     closed = time.perf_counter() - closing
@@ -126,24 +135,29 @@ def main() -> None:
     print(f"{cores()} cores, load average {load_before:.1f} before, {os.getloadavg()[0]:.1f} "
           "after (other processes share the cores)")
     print(f"embedded cluster, {workers} workers: start {started:.2f} s, close {closed:.2f} s")
-    print(f"{'scenario':<9}{'members':>8}{'sequential':>12}{'cluster':>10}{'speed-up':>10}"
-          f"{'per member':>12}{'in worker':>11}{'scheduling':>12}{'embedded':>10}")
-    for scenario, count, alone, parallel, in_worker in rows:
+    print(f"{'':<17}{'sequential':>22}{'':>10}{'speed-up against':>21}")
+    print(f"{'scenario':<9}{'members':>8}{'fresh':>11}{'one System':>11}{'cluster':>10}"
+          f"{'fresh':>10}{'one System':>11}{'per member':>12}{'in worker':>11}"
+          f"{'scheduling':>12}{'embedded':>10}")
+    for scenario, count, fresh, alone, parallel, in_worker in rows:
         per_member = alone / count
         scheduling = parallel * workers / count - in_worker
         embedded = started + parallel + closed
-        print(f"{scenario:<9}{count:>8}{alone:>11.2f}s{parallel:>9.2f}s{alone / parallel:>9.2f}x"
-              f"{per_member * 1e3:>10.2f}ms{in_worker * 1e3:>9.2f}ms{scheduling * 1e3:>10.2f}ms"
-              f"{alone / embedded:>9.2f}x")
-    print("(per member: sequential wall / members; in worker: a member's own wall time inside "
-          "its worker, above per member when the workers do not get a core each; scheduling: "
-          "cluster wall x workers / members minus in worker, Dask's cost per member; embedded: "
-          "sequential wall / (start + cluster + close))")
+        print(f"{scenario:<9}{count:>8}{fresh:>10.2f}s{alone:>10.2f}s{parallel:>9.2f}s"
+              f"{fresh / parallel:>9.2f}x{alone / parallel:>10.2f}x{per_member * 1e3:>10.2f}ms"
+              f"{in_worker * 1e3:>9.2f}ms{scheduling * 1e3:>10.2f}ms{alone / embedded:>9.2f}x")
+    print("(per member: sequential wall on one System / members; in worker: a member's own "
+          "wall time inside its worker, above per member when the workers do not get a core "
+          "each; scheduling: cluster wall x workers / members minus in worker, Dask's cost per "
+          "member; embedded: sequential wall on one System / (start + cluster + close))")
     for address in rss_start:
         print(f"worker {address}: resident {rss_start[address] / MB:.0f} MB after start, "
               f"{rss_end[address] / MB:.0f} MB after all sweeps")
-    print(f"a seed member in this process: {member * 1e3:.2f} ms, of which read_fmu (model "
-          f"descriptions) {reading * 1e3:.2f} ms ({reading / member:.0%})")
+    rest = parts["member"] - parts["initialize"] - parts["run"]
+    print(f"a seed member on one System in this process: {parts['member'] * 1e3:.2f} ms: "
+          f"initialize {parts['initialize'] * 1e3:.2f} ms, run {parts['run'] * 1e3:.2f} ms, "
+          f"the rest (parameters, samples copied out) {rest * 1e3:.2f} ms; building its System "
+          f"(once per worker and ensemble) {parts['build'] * 1e3:.2f} ms")
     print(f"this process (sequential runs, the client and the scheduler): "
           f"{resident_size() / MB:.0f} MB")
 
