@@ -14,24 +14,29 @@ The cluster is the embedded LocalCluster of one worker process per core. Printed
 - per scenario and member count: both sequential walls, the sweep's wall on the started
   cluster, the speed-up against each, a member's own time alone (one System) and inside a
   worker (the difference is the cores the workers did not get), Dask's cost per member
-  (cluster wall x workers / members minus a member's time in its worker), and the speed-up
-  against one System counting the embedded cluster's start and close;
+  (cluster wall x workers / members minus a member's time in its worker), CPU seconds per
+  member (sequential; the sweep's in this process and the workers), and the speed-up against
+  one System counting the embedded cluster's start and close. Each row is measured
+  `--repeats` times, sequential and cluster in turns, and the best of each is printed;
 - memory: each worker's resident size after start and after all sweeps;
 - where a seed member's milliseconds go: initialize, run, the rest; and what building its
   System costs.
 
-    python benchmarks/ensemble.py [--members 50,200,800] [--workers N]
+    python benchmarks/ensemble.py [--members 50,200,800] [--workers N] [--repeats 3]
 """
 
 from __future__ import annotations
 
 import argparse
 import functools
+import math
 import os
 import sys
 import time
 from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -62,25 +67,62 @@ def resident_size() -> int:
     return psutil.Process().memory_info().rss
 
 
+def process_cpu() -> float:
+    """CPU seconds of this process (all its threads); run in the workers too."""
+    return time.process_time()
+
+
 def sequential(build: Callable[[], System], name: str, values: np.ndarray, tf: float,
-               dt: float, ensemble: str | None) -> float:
-    """The members one after another here: on one System (an `ensemble` name), or each on a
-    fresh one (None)."""
-    start = time.perf_counter()
+               dt: float, ensemble: str | None) -> tuple[float, float]:
+    """Wall and CPU seconds of the members one after another here: on one System (an
+    `ensemble` name), or each on a fresh one (None)."""
+    start, cpu = time.perf_counter(), process_cpu()
     for index, value in enumerate(values):
         member = run_member(build, MemberTask(index, {name: float(value)}, 0.0, tf, dt,
                                               ensemble=ensemble))
         assert member.ok, member.error
-    return time.perf_counter() - start
+    return time.perf_counter() - start, process_cpu() - cpu
 
 
-def on_cluster(client: object, build: Callable[[], System], name: str, values: np.ndarray,
-               tf: float, dt: float) -> tuple[float, float]:
-    """The sweep's wall time, and the mean wall time of one member inside its worker."""
-    start = time.perf_counter()
+def on_cluster(client: Any, build: Callable[[], System], name: str, values: np.ndarray,
+               tf: float, dt: float) -> tuple[float, float, float]:
+    """The sweep's wall time, the mean wall time of one member inside its worker, and the CPU
+    seconds the sweep took: this process (client, scheduler, nannies) and the workers."""
+    workers_cpu = sum(client.run(process_cpu).values())
+    start, cpu = time.perf_counter(), process_cpu()
     result = sweep(build, {name: values}, t0=0.0, tf=tf, dt=dt, client=client, progress=False)
+    wall, cpu = time.perf_counter() - start, process_cpu() - cpu
+    cpu += sum(client.run(process_cpu).values()) - workers_cpu
     assert not result.failed, result.failed[0].error
-    return time.perf_counter() - start, float(np.mean([m.wall_time for m in result.members]))
+    return wall, float(np.mean([m.wall_time for m in result.members])), cpu
+
+
+@dataclass
+class Row:
+    """One scenario and member count: the best of the repeats of each measurement."""
+
+    scenario: str
+    members: int
+    fresh: float = math.inf  # sequential wall, a fresh System per member
+    alone: float = math.inf  # sequential wall, one System
+    alone_cpu: float = math.inf
+    cluster: float = math.inf
+    in_worker: float = math.inf
+    cluster_cpu: float = math.inf
+
+    def measure(self, client: Any, repeats: int) -> None:
+        """Sequential and cluster runs in turns, `repeats` times: the machine's other load
+        falls on both alike."""
+        build, name, tf, dt = SCENARIOS[self.scenario]
+        values = np.linspace(0.2, 0.6, self.members)
+        for repeat in range(repeats):
+            self.fresh = min(self.fresh, sequential(build, name, values, tf, dt, None)[0])
+            wall, cpu = sequential(build, name, values, tf, dt, f"{self.scenario}-{repeat}")
+            self.alone, self.alone_cpu = min(self.alone, wall), min(self.alone_cpu, cpu)
+            wall, in_worker, cpu = on_cluster(client, build, name, values, tf, dt)
+            self.cluster, self.in_worker = min(self.cluster, wall), min(self.in_worker,
+                                                                         in_worker)
+            self.cluster_cpu = min(self.cluster_cpu, cpu)
 
 
 def member_parts(repeats: int = 50) -> dict[str, float]:
@@ -108,6 +150,8 @@ def main() -> None:
     parser.add_argument("--members", default="50,200,800",
                         help="member counts for the seed scenario (comma-separated)")
     parser.add_argument("--workers", type=int, default=cores())
+    parser.add_argument("--repeats", type=int, default=3,
+                        help="measurements of each row, in turns; the best is printed")
     args = parser.parse_args()
     counts = [int(n) for n in args.members.split(",")]
     workers = args.workers
@@ -118,38 +162,41 @@ def main() -> None:
     with ensemble_client(workers=workers) as client:
         started = time.perf_counter() - start
         rss_start = client.run(resident_size)
-        rows = []
-        for scenario, member_counts in (("seed", counts), ("coupled", [200])):
+        rows = [Row("seed", count) for count in counts] + [Row("coupled", 200)]
+        for scenario in ("seed", "coupled"):
             build, name, tf, dt = SCENARIOS[scenario]
             on_cluster(client, build, name, np.linspace(0.2, 0.6, workers), tf, dt)  # warm
-            for count in member_counts:
-                values = np.linspace(0.2, 0.6, count)
-                fresh = sequential(build, name, values, tf, dt, None)
-                alone = sequential(build, name, values, tf, dt, f"{scenario}-{count}")
-                parallel, in_worker = on_cluster(client, build, name, values, tf, dt)
-                rows.append((scenario, count, fresh, alone, parallel, in_worker))
+        for row in rows:
+            row.measure(client, args.repeats)
         rss_end = client.run(resident_size)
         closing = time.perf_counter()
     closed = time.perf_counter() - closing
 
     print(f"{cores()} cores, load average {load_before:.1f} before, {os.getloadavg()[0]:.1f} "
-          "after (other processes share the cores)")
+          f"after (other processes share the cores); best of {args.repeats}")
     print(f"embedded cluster, {workers} workers: start {started:.2f} s, close {closed:.2f} s")
-    print(f"{'':<17}{'sequential':>22}{'':>10}{'speed-up against':>21}")
-    print(f"{'scenario':<9}{'members':>8}{'fresh':>11}{'one System':>11}{'cluster':>10}"
-          f"{'fresh':>10}{'one System':>11}{'per member':>12}{'in worker':>11}"
-          f"{'scheduling':>12}{'embedded':>10}")
-    for scenario, count, fresh, alone, parallel, in_worker in rows:
-        per_member = alone / count
-        scheduling = parallel * workers / count - in_worker
-        embedded = started + parallel + closed
-        print(f"{scenario:<9}{count:>8}{fresh:>10.2f}s{alone:>10.2f}s{parallel:>9.2f}s"
-              f"{fresh / parallel:>9.2f}x{alone / parallel:>10.2f}x{per_member * 1e3:>10.2f}ms"
-              f"{in_worker * 1e3:>9.2f}ms{scheduling * 1e3:>10.2f}ms{alone / embedded:>9.2f}x")
-    print("(per member: sequential wall on one System / members; in worker: a member's own "
-          "wall time inside its worker, above per member when the workers do not get a core "
-          "each; scheduling: cluster wall x workers / members minus in worker, Dask's cost per "
-          "member; embedded: sequential wall on one System / (start + cluster + close))")
+    print(f"{'':<17}{'sequential':>21}{'':>10}{'speed-up against':>21}{'per member':>23}"
+          f"{'CPU per member':>33}")
+    print(f"{'scenario':<9}{'members':>8}{'fresh':>10}{'one System':>11}{'cluster':>10}"
+          f"{'fresh':>10}{'one System':>11}{'alone':>11}{'in worker':>12}{'scheduling':>12}"
+          f"{'alone':>10}{'cluster':>11}{'embedded':>10}")
+    for row in rows:
+        per_member = row.alone / row.members
+        scheduling = row.cluster * workers / row.members - row.in_worker
+        embedded = started + row.cluster + closed
+        print(f"{row.scenario:<9}{row.members:>8}{row.fresh:>9.2f}s{row.alone:>10.2f}s"
+              f"{row.cluster:>9.2f}s{row.fresh / row.cluster:>9.2f}x"
+              f"{row.alone / row.cluster:>10.2f}x{per_member * 1e3:>9.2f}ms"
+              f"{row.in_worker * 1e3:>10.2f}ms{scheduling * 1e3:>10.2f}ms"
+              f"{row.alone_cpu / row.members * 1e3:>8.2f}ms"
+              f"{row.cluster_cpu / row.members * 1e3:>9.2f}ms{row.alone / embedded:>9.2f}x")
+    print("(fresh: a System built per member; one System: kept from member to member as a "
+          "worker keeps it; per member alone: sequential wall on one System / members; in "
+          "worker: a member's own wall time inside its worker, above alone when the workers do "
+          "not get a core each; scheduling: cluster wall x workers / members minus in worker, "
+          "Dask's cost per member; CPU per member: sequential on one System, and the sweep's "
+          "in this process (client, scheduler, nannies) and the workers together; embedded: "
+          "sequential wall on one System / (start + cluster + close))")
     for address in rss_start:
         print(f"worker {address}: resident {rss_start[address] / MB:.0f} MB after start, "
               f"{rss_end[address] / MB:.0f} MB after all sweeps")
