@@ -14,13 +14,14 @@ The cluster is the embedded LocalCluster of one worker process per core. Printed
 - per scenario and member count: both sequential walls, the sweep's wall on the started
   cluster, the speed-up against each, a member's own time alone (one System) and inside a
   worker (the difference is the cores the workers did not get), Dask's cost per member
-  (cluster wall x workers / members minus a member's time in its worker), CPU seconds per
-  member (sequential; the sweep's in this process and the workers), and the speed-up against
-  one System counting the embedded cluster's start and close. Each row is measured
-  `--repeats` times, sequential and cluster in turns, and the best of each is printed;
+  (cluster wall x workers / members minus a member's time in its worker), and the speed-up
+  against one System counting the embedded cluster's start and close; CPU seconds per member
+  (sequential; the sweep's in this process and the workers) and what their ratio times the
+  workers predicts for idle cores. Each row is measured `--repeats` times, sequential and
+  cluster in turns, and the best of each is printed;
 - memory: each worker's resident size after start and after all sweeps;
-- where a seed member's milliseconds go: initialize, run, the rest; and what building its
-  System costs.
+- where a seed member's milliseconds go: initialize and run; and what building its System
+  costs.
 
     python benchmarks/ensemble.py [--members 50,200,800] [--workers N] [--repeats 3]
 """
@@ -104,6 +105,7 @@ class Row:
     scenario: str
     members: int
     fresh: float = math.inf  # sequential wall, a fresh System per member
+    fresh_cpu: float = math.inf
     alone: float = math.inf  # sequential wall, one System
     alone_cpu: float = math.inf
     cluster: float = math.inf
@@ -116,7 +118,8 @@ class Row:
         build, name, tf, dt = SCENARIOS[self.scenario]
         values = np.linspace(0.2, 0.6, self.members)
         for repeat in range(repeats):
-            self.fresh = min(self.fresh, sequential(build, name, values, tf, dt, None)[0])
+            wall, cpu = sequential(build, name, values, tf, dt, None)
+            self.fresh, self.fresh_cpu = min(self.fresh, wall), min(self.fresh_cpu, cpu)
             wall, cpu = sequential(build, name, values, tf, dt, f"{self.scenario}-{repeat}")
             self.alone, self.alone_cpu = min(self.alone, wall), min(self.alone_cpu, cpu)
             wall, in_worker, cpu = on_cluster(client, build, name, values, tf, dt)
@@ -175,11 +178,10 @@ def main() -> None:
     print(f"{cores()} cores, load average {load_before:.1f} before, {os.getloadavg()[0]:.1f} "
           f"after (other processes share the cores); best of {args.repeats}")
     print(f"embedded cluster, {workers} workers: start {started:.2f} s, close {closed:.2f} s")
-    print(f"{'':<17}{'sequential':>21}{'':>10}{'speed-up against':>21}{'per member':>23}"
-          f"{'CPU per member':>33}")
+    print(f"{'':<17}{'sequential':>21}{'':>10}{'speed-up against':>21}{'per member':>34}")
     print(f"{'scenario':<9}{'members':>8}{'fresh':>10}{'one System':>11}{'cluster':>10}"
           f"{'fresh':>10}{'one System':>11}{'alone':>11}{'in worker':>12}{'scheduling':>12}"
-          f"{'alone':>10}{'cluster':>11}{'embedded':>10}")
+          f"{'embedded':>10}")
     for row in rows:
         per_member = row.alone / row.members
         scheduling = row.cluster * workers / row.members - row.in_worker
@@ -188,23 +190,32 @@ def main() -> None:
               f"{row.cluster:>9.2f}s{row.fresh / row.cluster:>9.2f}x"
               f"{row.alone / row.cluster:>10.2f}x{per_member * 1e3:>9.2f}ms"
               f"{row.in_worker * 1e3:>10.2f}ms{scheduling * 1e3:>10.2f}ms"
-              f"{row.alone_cpu / row.members * 1e3:>8.2f}ms"
-              f"{row.cluster_cpu / row.members * 1e3:>9.2f}ms{row.alone / embedded:>9.2f}x")
+              f"{row.alone / embedded:>9.2f}x")
     print("(fresh: a System built per member; one System: kept from member to member as a "
           "worker keeps it; per member alone: sequential wall on one System / members; in "
           "worker: a member's own wall time inside its worker, above alone when the workers do "
           "not get a core each; scheduling: cluster wall x workers / members minus in worker, "
-          "Dask's cost per member; CPU per member: sequential on one System, and the sweep's "
-          "in this process (client, scheduler, nannies) and the workers together; embedded: "
-          "sequential wall on one System / (start + cluster + close))")
+          "Dask's cost per member; embedded: sequential wall on one System / (start + cluster "
+          "+ close))")
+    print(f"\n{'':<17}{'CPU per member':>33}{'cores x CPU ratio against':>30}")
+    print(f"{'scenario':<9}{'members':>8}{'fresh':>10}{'one System':>12}{'cluster':>11}"
+          f"{'fresh':>15}{'one System':>15}")
+    for row in rows:
+        print(f"{row.scenario:<9}{row.members:>8}{row.fresh_cpu / row.members * 1e3:>8.2f}ms"
+              f"{row.alone_cpu / row.members * 1e3:>10.2f}ms"
+              f"{row.cluster_cpu / row.members * 1e3:>9.2f}ms"
+              f"{workers * row.fresh_cpu / row.cluster_cpu:>14.2f}x"
+              f"{workers * row.alone_cpu / row.cluster_cpu:>14.2f}x")
+    print("(CPU seconds, which other load changes less than walls: sequential, and the sweep's "
+          "in this process (client, scheduler, nannies) and the workers together; cores x CPU "
+          "ratio: the speed-up when the cluster's processes have the cores to themselves)")
     for address in rss_start:
         print(f"worker {address}: resident {rss_start[address] / MB:.0f} MB after start, "
               f"{rss_end[address] / MB:.0f} MB after all sweeps")
-    rest = parts["member"] - parts["initialize"] - parts["run"]
-    print(f"a seed member on one System in this process: {parts['member'] * 1e3:.2f} ms: "
-          f"initialize {parts['initialize'] * 1e3:.2f} ms, run {parts['run'] * 1e3:.2f} ms, "
-          f"the rest (parameters, samples copied out) {rest * 1e3:.2f} ms; building its System "
-          f"(once per worker and ensemble) {parts['build'] * 1e3:.2f} ms")
+    print(f"a seed member on one System in this process: {parts['member'] * 1e3:.2f} ms, of "
+          f"which initialize {parts['initialize'] * 1e3:.2f} ms and run {parts['run'] * 1e3:.2f}"
+          f" ms; building its System (once per worker and ensemble) "
+          f"{parts['build'] * 1e3:.2f} ms")
     print(f"this process (sequential runs, the client and the scheduler): "
           f"{resident_size() / MB:.0f} MB")
 

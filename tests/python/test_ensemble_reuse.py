@@ -107,7 +107,8 @@ def test_after_each_failed_member_the_next_gets_a_fresh_system() -> None:
 
 
 def bounce_for_good(component: FMUComponent, event_names: list[str], t: float) -> None:
-    """pendulum_wall's bounce, and omega0 changed for good (the next initialize would start from it)."""
+    """pendulum_wall's bounce, and omega0 changed for good (the next initialize would start
+    from it)."""
     pendulum_wall.bounce(component, event_names, t)
     component.set_parameters(omega0=0.25)
 
