@@ -1,19 +1,21 @@
 """The System a worker process keeps from one member of an ensemble to the next.
 
-Building a System (reading model descriptions, loading FMUs, making components) cost a short
-member about as much as its run. A worker builds it once per ensemble instead, and for each
-member sets the member's parameters on it and initializes it again (a fresh FMU instance, a
-fresh engine plan, a fresh history: System.initialize starts every run from scratch).
+Building a System (reading model descriptions, loading FMUs, making components, and often an
+initialize the member does again) was 40% of a seed-scenario member's time. A worker builds
+it once per ensemble instead, and for each member sets the member's parameters on it and
+initializes it again (a fresh FMU instance, a fresh engine plan, a fresh history:
+System.initialize starts every run from scratch).
 
 What a member could leave behind is in its components' user values: the parameters and inputs
 that initialize writes. Every member of an ensemble sets the same names, so the next member
-overwrites what this one set; what the run itself changed (a handler calling set_parameters)
-is caught by comparing those values before and after the run, and that System is not kept.
-Only Systems made of syssimx's own component classes are kept: a class of the user's may hold
-state of its own that no comparison sees. A failed member's System is never kept (an FMU may
-refuse every call after fmi2Fatal). Code the user runs during a member (handlers, indicator
-functions) sees the same Python objects from member to member, as in a loop that initializes
-one System again and again; the system function runs once per worker and ensemble.
+overwrites what this one set; what the run itself changed (a handler calling set_parameters) is
+caught by comparing those values before and after the run, and that System is not kept. Only
+Systems made of syssimx's own component classes are kept: a class of the user's may hold state
+of its own that no comparison sees (a MultiComponent is always a subclass of the user's). A
+failed member's System is never kept (an FMU may refuse every call after fmi2Fatal). Code the
+user runs during a member (handlers, indicator functions) sees the same Python objects from
+member to member, as in a loop that initializes one System again and again; the system function
+runs once per worker and ensemble.
 """
 
 from __future__ import annotations
