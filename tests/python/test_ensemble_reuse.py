@@ -12,7 +12,16 @@ import coupled_pendulums
 import numpy as np
 import pendulum_wall
 import pytest
-from syssimx import FMUComponent, JacobiAlgorithm, System, fmus
+from syssimx import (
+    CoSimComponent,
+    FMUComponent,
+    JacobiAlgorithm,
+    MultiComponent,
+    PortSpec,
+    PortType,
+    System,
+    fmus,
+)
 from syssimx.ensemble import MemberResult, MemberTask, parameter_sets, run_member
 from syssimx.ensemble import member as member_module
 from syssimx.ensemble.reused_system import ReusedSystem
@@ -119,21 +128,42 @@ def pendulum_changed_by_its_handler() -> System:
     return system
 
 
-class UsersPendulum(FMUComponent):
-    """A component class of the user's: it could keep state that no one compares."""
+class StepCounter(CoSimComponent):
+    """Outputs the steps it took since it was made: state of its own that initialize does
+    not reset, so a reused System would count on from the previous member."""
+
+    def __init__(self, name: str) -> None:
+        super().__init__(name)
+        self.output_specs["steps"] = PortSpec("steps", PortType.REAL, "out")
+        self.steps = 0
+
+    def _do_step_internal(self, t: float, dt: float) -> None:
+        self.steps += 1
+
+    def _update_output_states(self, t: float | None = None,
+                              event_names: list[str] | None = None) -> None:
+        self.outputs["steps"].set(float(self.steps), t)
 
 
-def users_pendulum() -> System:
-    pendulum = UsersPendulum("P", fmus.path("pendulum_cvode"))
-    pendulum.set_parameters(cvode_relative_tolerance=1e-10)
-    system = System("the user's pendulum")
-    system.add_component(pendulum)
+def pendulum_and(counter: CoSimComponent) -> System:
+    system = System("a pendulum and a step counter")
+    system.add_component(FMUComponent("P", fmus.path("pendulum_cvode")))
+    system.add_component(counter)
     return system
+
+
+def pendulum_and_a_counter() -> System:
+    return pendulum_and(StepCounter("C"))
+
+
+def pendulum_and_a_counter_inside_a_multicomponent() -> System:
+    return pendulum_and(MultiComponent("C", {"counting": StepCounter("inner")}, "counting"))
 
 
 @pytest.mark.parametrize(("build", "built"), [
     (pendulum_changed_by_its_handler, [1, 2, 3, 3]),  # the member without a hit is kept
-    (users_pendulum, [1, 2, 3, 4]),
+    (pendulum_and_a_counter, [1, 2, 3, 4]),
+    (pendulum_and_a_counter_inside_a_multicomponent, [1, 2, 3, 4]),
 ])
 def test_a_system_its_run_changed_or_of_a_users_class_is_built_anew(build, built) -> None:
     thetas = {"P.theta0": [0.5, 0.3, -0.3, 0.4]}

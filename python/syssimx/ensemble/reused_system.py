@@ -11,11 +11,11 @@ that initialize writes. Every member of an ensemble sets the same names, so the 
 overwrites what this one set; what the run itself changed (a handler calling set_parameters) is
 caught by comparing those values before and after the run, and that System is not kept. Only
 Systems made of syssimx's own component classes are kept: a class of the user's may hold state
-of its own that no comparison sees (a MultiComponent is always a subclass of the user's). A
-failed member's System is never kept (an FMU may refuse every call after fmi2Fatal). Code the
-user runs during a member (handlers, indicator functions) sees the same Python objects from
-member to member, as in a loop that initializes one System again and again; the system function
-runs once per worker and ensemble.
+of its own that no comparison sees (a MultiComponent's models included). A failed member's
+System is never kept (an FMU may refuse every call after fmi2Fatal). Code the user runs during a
+member (handlers, indicator functions) sees the same Python objects from member to member, as in
+a loop that initializes one System again and again; the system function runs once per worker and
+ensemble.
 """
 
 from __future__ import annotations
@@ -24,6 +24,7 @@ import math
 from typing import Any
 
 from ..components.fmu import FMUComponent
+from ..components.multi import MultiComponent
 from ..errors import ConfigurationError
 from ..system.system import System
 from .system_source import SystemSource
@@ -58,9 +59,13 @@ class ReusedSystem:
 
 
 def reusable(system: System) -> bool:
-    """Whether every component is of a syssimx class (whose state initialize resets)."""
+    """Whether every component, and every model of a MultiComponent, is of a syssimx class
+    (whose state initialize resets)."""
+    components = list(system.components.values())
+    components += [model for component in components if isinstance(component, MultiComponent)
+                   for model in component.models.values()]
     return all(type(component).__module__.split(".")[0] == "syssimx"
-               for component in system.components.values())
+               for component in components)
 
 
 def user_values(system: System) -> UserValues:
