@@ -1,10 +1,10 @@
 """One member of an ensemble, run where it is scheduled (a worker process, or in process).
 
 A member takes its System (the one its process kept from the ensemble's previous member, or a
-fresh one), sets its parameters, initializes and runs it. Whatever goes wrong
-inside (a failing FMU, an exception in the builder or a handler, a run past its timeout)
-becomes the member's result: status "failed" with the error, and the samples recorded before
-the failure. Only a crash of the process itself is left to the caller to report.
+fresh one), sets its parameters, initializes and runs it. Whatever goes wrong inside (a failing
+FMU, an exception in the builder or a handler, a run past its timeout) becomes the member's
+result: status "failed" with the error, and the samples recorded before the failure. Only a
+crash of the process itself is left to the caller to report.
 """
 
 from __future__ import annotations
