@@ -11,10 +11,11 @@ def tasks(count: int) -> list[MemberTask]:
 
 
 def test_chunks_come_in_a_multiple_of_the_workers_and_differ_by_one_member_at_most() -> None:
-    assert chunk_size(200, 2) == 16  # 13 chunks of 16 would leave one worker a chunk alone
-    chunks = split(tasks(200), 16, 2, "topic", every_member=False)
-    assert sorted(len(chunk) for chunk in chunks) == [14] * 10 + [15] * 4
-    assert [task.index for chunk in chunks for task in chunk] == list(range(200))
+    assert (chunk_size(200, 2), chunk_size(800, 2)) == (25, 64)
+    # 13 chunks of 64 would leave one worker a chunk alone
+    chunks = split(tasks(800), 64, 2, "topic", every_member=False)
+    assert sorted(len(chunk) for chunk in chunks) == [57] * 12 + [58] * 2
+    assert [task.index for chunk in chunks for task in chunk] == list(range(800))
     assert [len(chunk) for chunk in split(tasks(3), 1, 2, "topic", every_member=False)] == \
         [1, 1, 1]
 

@@ -126,6 +126,29 @@ def test_each_worker_extracts_each_fmu_file_once(client) -> None:
     assert all(report[path][1] == 1 for report in after.values() if path in report)
 
 
+BUILT: list[int] = []  # filled in the worker processes: one entry per System built there
+
+
+def counted_seed_pendulum() -> System:
+    BUILT.append(os.getpid())
+    return seed_pendulum()
+
+
+def systems_built() -> int:
+    """Run in a worker: how many Systems counted_seed_pendulum built in that process."""
+    return len(BUILT)
+
+
+def test_each_worker_builds_the_system_once_per_ensemble(client) -> None:
+    before = client.run(systems_built)
+    result = sweep(counted_seed_pendulum, {"P.theta0": np.linspace(0.2, 0.6, 12)}, t0=0.0,
+                   tf=0.2, dt=0.05, client=client, progress=False)
+    after = client.run(systems_built)
+    assert not result.failed
+    built = sum(after.values()) - sum(before.get(worker, 0) for worker in after)
+    assert built == len({member.worker for member in result.members})  # 1 or 2, not 12
+
+
 def test_outputs_written_as_netcdf_and_csv_read_back_equal(client, tmp_path) -> None:
     result = sweep(seed_pendulum, {"P.theta0": [0.3, 0.5]}, t0=0.0, tf=0.6, dt=0.1,
                    outputs=["P.theta"], client=client, progress=False)

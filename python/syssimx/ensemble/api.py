@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import time
+import uuid
 from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
@@ -23,15 +24,15 @@ def sweep(system: Any, parameters: Mapping[str, Iterable[Any]], *, mode: str = "
           member_timeout: float | None = None, progress: bool = True) -> EnsembleResult:
     """Run `system` once per parameter set, in Dask worker processes.
 
-    system: a YAML/JSON system file, or a picklable function returning a System (built anew
-    in the worker for each member). parameters: {"Component.parameter": values}; an input's
-    name holds that input at the value. mode: "grid" (every combination) or "zip" (the i-th
-    values together). t0, tf, dt: the run (a system file's `run` entry gives the ones not
-    given). outputs: the "Component.port" names to keep (default: all). client: a
-    distributed.Client to run on; else scheduler: an address ("tcp://host:8786"); else an
-    embedded LocalCluster of `workers` processes (default one per core). member_timeout:
-    seconds of wall time a member's run may take (see runner.py for a hang inside an FMU).
-    progress: a progress bar on stderr."""
+    system: a YAML/JSON system file, or a picklable function returning a System (built once per
+    worker process, initialized again for each member: see reused_system.py). parameters:
+    {"Component.parameter": values}; an input's name holds that input at the value. mode: "grid"
+    (every combination) or "zip" (the i-th values together). t0, tf, dt: the run (a system
+    file's `run` entry gives the ones not given). outputs: the "Component.port" names to keep
+    (default: all). client: a distributed.Client to run on; else scheduler: an address
+    ("tcp://host:8786"); else an embedded LocalCluster of `workers` processes (default one per
+    core). member_timeout: seconds of wall time a member's run may take (see runner.py for a
+    hang inside an FMU). progress: a progress bar on stderr."""
     return _run(system, parameter_sets(parameters, mode), t0, tf, dt, outputs, client,
                 scheduler, workers, member_timeout, progress)
 
@@ -65,8 +66,9 @@ def _run(system: Any, sets: list[ParameterSet], t0: float | None, tf: float | No
         raise ConfigurationError(f"member_timeout must be a positive number of seconds, got "
                                  f"{member_timeout!r}")
     kept = tuple(outputs) if outputs is not None else None
+    ensemble = uuid.uuid4().hex  # its members share one System per worker process
     tasks = [MemberTask(index, values, settings["t0"], settings["tf"], settings["dt"], kept,
-                        member_timeout) for index, values in enumerate(sets)]
+                        member_timeout, ensemble=ensemble) for index, values in enumerate(sets)]
     start = time.perf_counter()
     with ensemble_client(client, scheduler, workers) as running_on:
         members = run_members(running_on, build, tasks, member_timeout, progress)

@@ -18,10 +18,18 @@ from ..errors import ConfigurationError
 # runs: the next starts without waiting for the scheduler, and a crash takes at most one
 # innocent task with it. The workers' statistical profiler is off: it samples the running
 # thread every 10 ms and made Python-heavy members (building a System) about twice as slow.
+# Dask's housekeeping is slowed where it only measures: every process's event-loop tick (a
+# check for a blocked loop, every 20 ms), the system monitor (the dashboard's figures) and the
+# memory monitor (a nanny still ends a worker past its memory limit, within half a second).
+# Idle, they cost the client's process (scheduler, nannies) and two workers about 11% of one
+# core, after 2.5%: on two cores, that was CPU taken from the members.
 EMBEDDED_SCHEDULER_CONFIG = {
     "distributed.scheduler.allowed-failures": 0,
     "distributed.scheduler.worker-saturation": 2.0,
     "distributed.worker.profile.enabled": False,
+    "distributed.admin.tick.interval": "1s",
+    "distributed.admin.system-monitor.interval": "10s",
+    "distributed.worker.memory.monitor-interval": "500ms",
 }
 
 

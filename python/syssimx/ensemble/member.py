@@ -1,9 +1,10 @@
 """One member of an ensemble, run where it is scheduled (a worker process, or in process).
 
-A member builds its System, sets its parameters, initializes and runs it. Whatever goes wrong
-inside (a failing FMU, an exception in the builder or a handler, a run past its timeout)
-becomes the member's result: status "failed" with the error, and the samples recorded before
-the failure. Only a crash of the process itself is left to the caller to report.
+A member takes its System (the one its process kept from the ensemble's previous member, or a
+fresh one), sets its parameters, initializes and runs it. Whatever goes wrong inside (a failing
+FMU, an exception in the builder or a handler, a run past its timeout) becomes the member's
+result: status "failed" with the error, and the samples recorded before the failure. Only a
+crash of the process itself is left to the caller to report.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from ..errors import ConfigurationError
 from ..system.system import System
 from .loaded_fmus import loaded_fmus
 from .members import ParameterSet, split_name
+from .reused_system import reused_system, user_values
 from .system_source import SystemSource
 
 STATISTICS = ("macro_steps", "do_step_calls", "state_saves", "state_restores", "events",
@@ -28,7 +30,8 @@ STATISTICS = ("macro_steps", "do_step_calls", "state_saves", "state_restores", "
 @dataclass(frozen=True)
 class MemberTask:
     """What a member runs: its index, parameter values and the experiment. `timeout` is the
-    wall time its run may take; `topic` names the event stream its start is announced on."""
+    wall time its run may take; `topic` names the event stream its start is announced on;
+    `ensemble` names the ensemble whose members may run on one System per process."""
 
     index: int
     parameters: ParameterSet
@@ -38,6 +41,7 @@ class MemberTask:
     outputs: tuple[str, ...] | None = None
     timeout: float | None = None
     topic: str | None = None
+    ensemble: str | None = None
 
 
 @dataclass
@@ -66,19 +70,19 @@ class MemberResult:
 
 
 def run_member(build: SystemSource, task: MemberTask) -> MemberResult:
-    """Run one member here and return its result; never raises for a member's own failure."""
+    """Run one member here and return its result; never raises for a member's own failure.
+    A task of an ensemble runs on the System this process kept from the ensemble's previous
+    member when there is one (reused_system.py), else on a fresh one from `build`."""
     _announce(task)
     start = time.perf_counter()
     worker = f"{socket.gethostname()}:{os.getpid()}"
     system: System | None = None
     result = MemberResult(task.index, task.parameters, "ok", worker=worker)
     try:
-        system = build()
-        if not isinstance(system, System):
-            raise ConfigurationError(f"the system function returned {type(system).__name__}, "
-                                     "not a System")
+        system = reused_system.take(task.ensemble, build)
         loaded_fmus.keep(system)
         _set_parameters(system, task.parameters)
+        before_run = user_values(system)
         system.initialize(task.t0)
         run = system.run(task.t0, task.tf, task.dt, timeout=task.timeout)
         result.statistics = {name: int(getattr(run.statistics, name)) for name in STATISTICS}
@@ -88,6 +92,8 @@ def run_member(build: SystemSource, task: MemberTask) -> MemberResult:
         result.error = f"{type(error).__name__}: {error}"
     if system is not None:
         _record(result, system, task.outputs)
+        if result.ok:  # a failed member's System is dropped (an FMU may be broken)
+            reused_system.give_back(task.ensemble, system, before_run)
     result.wall_time = time.perf_counter() - start
     return result
 

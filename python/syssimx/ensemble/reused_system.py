@@ -1,0 +1,95 @@
+"""The System a worker process keeps from one member of an ensemble to the next.
+
+Building a System (reading model descriptions, loading FMUs, making components, and often an
+initialize the member does again) was 40% of a seed-scenario member's time. A worker builds
+it once per ensemble instead, and for each member sets the member's parameters on it and
+initializes it again (a fresh FMU instance, a fresh engine plan, a fresh history:
+System.initialize starts every run from scratch).
+
+What a member could leave behind is in its components' user values: the parameters and inputs
+that initialize writes. Every member of an ensemble sets the same names, so the next member
+overwrites what this one set; what the run itself changed (a handler calling set_parameters) is
+caught by comparing those values before and after the run, and that System is not kept. Only
+Systems made of syssimx's own component classes are kept: a class of the user's may hold state
+of its own that no comparison sees (a MultiComponent's models included). A failed member's
+System is never kept (an FMU may refuse every call after fmi2Fatal). Code the user runs during a
+member (handlers, indicator functions) sees the same Python objects from member to member, as in
+a loop that initializes one System again and again; the system function runs once per worker and
+ensemble.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from ..components.fmu import FMUComponent
+from ..components.multi import MultiComponent
+from ..errors import ConfigurationError
+from ..system.system import System
+from .system_source import SystemSource
+
+UserValues = list[tuple[str, dict[str, Any], tuple[str, ...], tuple[Any, ...]]]
+
+
+class ReusedSystem:
+    """The one System this process keeps, and the ensemble it belongs to."""
+
+    def __init__(self) -> None:
+        self._ensemble: str | None = None
+        self._system: System | None = None
+
+    def take(self, ensemble: str | None, build: SystemSource) -> System:
+        """The System kept for `ensemble`, else a fresh one from `build` (always fresh for no
+        ensemble). A System kept for another ensemble is dropped; until the one taken is
+        given back, nothing is kept."""
+        if ensemble is None:
+            return _built(build)
+        system, kept_for = self._system, self._ensemble
+        self._system = self._ensemble = None
+        return system if system is not None and kept_for == ensemble else _built(build)
+
+    def give_back(self, ensemble: str | None, system: System, before_run: UserValues) -> None:
+        """After a member that succeeded: keep `system` for the next member of `ensemble` when
+        its run left the user values as they were before it (`before_run`, user_values)."""
+        if ensemble is None or not reusable(system) or user_values(system) != before_run:
+            return
+        system.reset()  # frees the FMU instances and the history until the next member
+        self._ensemble, self._system = ensemble, system
+
+
+def reusable(system: System) -> bool:
+    """Whether every component, and every model of a MultiComponent, is of a syssimx class
+    (whose state initialize resets)."""
+    components = list(system.components.values())
+    components += [model for component in components if isinstance(component, MultiComponent)
+                   for model in component.models.values()]
+    return all(type(component).__module__.split(".")[0] == "syssimx"
+               for component in components)
+
+
+def user_values(system: System) -> UserValues:
+    """Per component what initialize writes: the parameters, the names of those written to an
+    FMU, and the inputs' start values (NaN, an input the FMU keeps its own value of, as
+    None: NaN equals nothing)."""
+    return [(name, dict(component.parameters),
+             tuple(sorted(component.user_parameters()))
+             if isinstance(component, FMUComponent) else (),
+             tuple(_comparable(component.input_start(port))
+                   for port in component.engine_inputs()))
+            for name, component in system.components.items()]
+
+
+def _built(build: SystemSource) -> System:
+    system = build()
+    if not isinstance(system, System):
+        raise ConfigurationError(f"the system function returned {type(system).__name__}, "
+                                 "not a System")
+    return system
+
+
+def _comparable(value: float) -> float | None:
+    return None if math.isnan(value) else value
+
+
+reused_system = ReusedSystem()
