@@ -32,7 +32,7 @@ from .system_source import SystemSource
 
 KILL_GRACE = 1.0  # seconds past member_timeout: the run's own timeout reports first if it can
 POLL = 0.1  # seconds between checks for stuck members
-DEATH_LOG_WAIT = 3.0  # seconds to wait for a nanny to log how its worker died
+DEATH_LOG_WAIT = 10.0  # seconds at most to wait for a nanny to log how its worker died
 # members per task at most: a task costs the client and its worker about 4 ms of CPU each
 # (scheduling, messages, the result's transfer); a crash reruns its chunk's members alone
 MAX_CHUNK = 64
@@ -149,8 +149,11 @@ class _Ensemble:
         # one member that announced its start on the dead process: nobody else was running
         if alone or (len(chunk) == 1 and start is not None and start[2] == dead.pid):
             task = chunk[0]
-            reason = (f"WorkerDied: the worker process {dead.pid} ({dead.address}) died while "
-                      f"running this member{_death(self.client, dead.pid)}")
+            # the process the member announced its start from: the scheduler's record of the
+            # dead worker can name the process that ran there before a restart
+            pid = start[2] if start is not None else dead.pid
+            reason = (f"WorkerDied: the worker process {pid} ({dead.address}) died while "
+                      f"running this member{_death(self.client, pid)}")
             self._keep([MemberResult(task.index, task.parameters, "failed", reason,
                                      "WorkerDied")])
             return []
