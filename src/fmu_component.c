@@ -10,6 +10,7 @@
 #include "component.h"
 #include "error.h"
 #include "fmu_binding.h"
+#include "parallel_step.h"
 #include "system.h"
 
 /* Reads every output; a failure is reported at t, the time the FMU is at. */
@@ -131,18 +132,20 @@ static int discarded_step(ssx_system *sys, ssx_component *c, double t, double dt
         if (!isnan(reached)) {
             snprintf(got_to, sizeof got_to, "fmi2LastSuccessfulTime=%.17g", reached);
         }
-        fail(sys, c->index, -1, isnan(reached) ? t : reached,
-             "component '%s': fmi2DoStep from t=%.17g to %.17g returned fmi2Discard without "
-             "asking to terminate: the FMU completed the step only up to %s%s%s%s",
-             c->name, t, t_end, got_to, log[0] ? " (FMU log: " : "", log,
-             log[0] ? ")" : " (the FMU logged no message)");
-        sys->error.fmi_status = fmi2Discard;
-        return -1;
+        return fail_status(sys, c, isnan(reached) ? t : reached, fmi2Discard,
+                           "component '%s': fmi2DoStep from t=%.17g to %.17g returned "
+                           "fmi2Discard without asking to terminate: the FMU completed the step "
+                           "only up to %s%s%s%s",
+                           c->name, t, t_end, got_to, log[0] ? " (FMU log: " : "", log,
+                           log[0] ? ")" : " (the FMU logged no message)");
     }
-    if (sys->termination.component < 0) {
-        sys->termination.component = c->index;
-        sys->termination.time = isnan(reached) ? t : reached;
-        snprintf(sys->termination.message, sizeof sys->termination.message, "%s", log);
+    double stop = isnan(reached) ? t : reached;
+    /* the first request of the run counts; on a worker thread, the first of its share */
+    ssx_termination *request = parallel_termination_slot(sys);
+    if (request->component < 0) {
+        request->component = c->index;
+        request->time = stop;
+        snprintf(request->message, sizeof request->message, "%s", log);
     }
     /* the grid's own rounding: a remainder below 1e-9 steps is the step's end */
     if (reached >= t_end - 1e-9 * dt) {
@@ -150,7 +153,7 @@ static int discarded_step(ssx_system *sys, ssx_component *c, double t, double dt
     }
     return fail(sys, c->index, -1, t,
                 "component '%s' asked to stop at t=%.17g, inside the step from %.17g to %.17g",
-                c->name, sys->termination.time, t, t_end);
+                c->name, stop, t, t_end);
 }
 
 static int fmu_do_step(ssx_system *sys, ssx_component *c, double t, double dt)

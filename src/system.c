@@ -11,6 +11,7 @@
 #include "array.h"
 #include "coupling.h"
 #include "error.h"
+#include "parallel_step.h"
 
 void ssx_get_defaults(ssx_defaults *out)
 {
@@ -25,7 +26,8 @@ void ssx_get_defaults(ssx_defaults *out)
                           .max_microsteps = 10,
                           .locator = SSX_ILLINOIS,
                           .zeno_min_interval = 0.0,
-                          .output_interval = 1};
+                          .output_interval = 1,
+                          .threads = 1};
 }
 
 ssx_system *ssx_system_new(const char *name)
@@ -42,6 +44,7 @@ ssx_system *ssx_system_new(const char *name)
     ssx_defaults d;
     ssx_get_defaults(&d);
     sys->coupling = d.coupling;
+    sys->threads = d.threads;
     sys->loop = (ssx_loop_options){.tolerance = d.loop_tolerance,
                                    .max_iterations = d.loop_max_iterations,
                                    .damping = d.loop_damping,
@@ -76,6 +79,7 @@ void ssx_system_free(ssx_system *sys)
     free(sys->order);
     free(sys->groups);
     recording_free(&sys->recording);
+    parallel_free(sys->parallel);
     localization_log_free(&sys->localization);
     free(sys->name);
     free(sys);
@@ -454,6 +458,28 @@ int ssx_set_coupling(ssx_system *sys, ssx_coupling coupling)
                            (int)coupling);
     }
     sys->coupling = coupling;
+    return 0;
+}
+
+int ssx_set_threads(ssx_system *sys, int threads)
+{
+    if (threads < 1 || threads > SSX_MAX_THREADS) {
+        return fail_config(sys, -1, -1, NAN,
+                           "system '%s': threads must be between 1 and %d, not %d", sys->name,
+                           SSX_MAX_THREADS, threads);
+    }
+    sys->threads = threads;
+    return 0;
+}
+
+int ssx_set_calling_thread_only(ssx_system *sys, int component, int only)
+{
+    ssx_component *c = system_component(sys, component);
+    if (c == NULL) {
+        return -1;
+    }
+    c->calling_thread_only = only != 0;
+    structure_changed(sys);
     return 0;
 }
 

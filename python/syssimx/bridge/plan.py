@@ -159,9 +159,11 @@ class EnginePlan:
 
     def add_fmu_component(self, component: Component, fmu: Any, can_get_set_state: bool,
                           provides_directional_derivative: bool,
-                          value_reference: Callable[[str], int], hooks: set[str]) -> None:
+                          value_reference: Callable[[str], int], hooks: set[str], *,
+                          calling_thread_only: bool = False) -> None:
         """An FMU the engine steps itself; `hooks` lists what the component's Python
-        overrides (none for a plain FMUComponent). The system borrows the loaded FMU."""
+        overrides (none for a plain FMUComponent); `calling_thread_only` keeps its steps on
+        the thread that runs the system. The system borrows the loaded FMU."""
         name, index = component.name, self.index[component.name]
         self._borrowed_fmus.append(fmu)
         self.check(lib().ssx_add_fmu_component(self.sys, name.encode(), fmu,
@@ -169,6 +171,9 @@ class EnginePlan:
         self.check(lib().ssx_set_directional_derivatives(
             self.sys, index, int(provides_directional_derivative)),
             f"{name}: directional derivatives")
+        if calling_thread_only:
+            self.check(lib().ssx_set_calling_thread_only(self.sys, index, 1),
+                       f"{name}: calling thread only")
         self._add_ports(component, value_reference)
         self._bind(component, hooks, is_fmu=True)
 

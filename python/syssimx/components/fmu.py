@@ -244,11 +244,16 @@ class FMUComponent(CoSimComponent):
             self._binding.plan.read_outputs(self)
 
     def _add_to_plan(self, plan: EnginePlan) -> None:
-        """The engine steps the FMU itself; only what a subclass overrides runs in Python."""
+        """The engine steps the FMU itself; only what a subclass overrides runs in Python. An
+        FMU that may be instantiated only once per process keeps globals in its binary and
+        steps on the calling thread, unless its binary runs in a host process of its own."""
+        once_per_process = bool(getattr(self.info.description.coSimulation,
+                                        "canBeInstantiatedOnlyOncePerProcess", False))
         plan.add_fmu_component(
             self, self._fmu, self.can_get_set_state,
             bool(self.info.description.coSimulation.providesDirectionalDerivative),
-            self.value_reference, self._python_hooks(engine_steps=True))
+            self.value_reference, self._python_hooks(engine_steps=True),
+            calling_thread_only=once_per_process and not self.isolated)
 
     # ---------------------------------------------------------------- hooks (engine built-ins)
     def _do_step_internal(self, t: float, dt: float) -> None:

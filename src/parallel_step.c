@@ -1,0 +1,296 @@
+/* Stepping a batch of components on the system's threads; see parallel_step.h. */
+#include "parallel_step.h"
+
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "coupling.h"
+#include "error.h"
+#include "worker_pool.h"
+
+/* What one thread's share of a batch left behind. */
+typedef struct {
+    ssx_error error;
+    ssx_termination termination;
+    int failed_at;      /* the task that failed, -1: none */
+    int failed_in_step; /* it failed in its doStep (counted), not while its inputs were set */
+    int terminated_at;  /* the task whose request is in `termination`, -1: none */
+} share_report;
+
+struct parallel_plan {
+    worker_pool *pool;
+    int threads;
+    unsigned char *on_pool; /* per component: it may step on any thread */
+    ssx_component **tasks;  /* the current batch's components that step on the pool */
+    int n_tasks;
+    share_report *reports;  /* one per thread, share 0 the calling thread's */
+    int running;            /* a batch is being stepped by the pool */
+    ssx_system *sys;        /* the current batch's system and step */
+    double t;
+    double h;
+    parallel_batch *batches;
+    int n_batches;
+};
+
+/* ------------------------------------------------------------------ the records */
+
+ssx_error *parallel_error_slot(ssx_system *sys)
+{
+    parallel_plan *p = sys->parallel;
+    return p != NULL && p->running ? &p->reports[worker_pool_self(p->pool)].error : &sys->error;
+}
+
+ssx_termination *parallel_termination_slot(ssx_system *sys)
+{
+    parallel_plan *p = sys->parallel;
+    return p != NULL && p->running ? &p->reports[worker_pool_self(p->pool)].termination
+                                   : &sys->termination;
+}
+
+/* ------------------------------------------------------------------ the plan */
+
+void parallel_free(parallel_plan *plan)
+{
+    if (plan == NULL) {
+        return;
+    }
+    worker_pool_free(plan->pool);
+    free(plan->on_pool);
+    free(plan->tasks);
+    free(plan->reports);
+    free(plan->batches);
+    free(plan);
+}
+
+int parallel_batches(const parallel_plan *plan, const parallel_batch **batches)
+{
+    *batches = plan->batches;
+    return plan->n_batches;
+}
+
+typedef struct {
+    uintptr_t fmu;
+    int component;
+} fmu_user;
+
+static int by_fmu(const void *a, const void *b)
+{
+    uintptr_t x = ((const fmu_user *)a)->fmu;
+    uintptr_t y = ((const fmu_user *)b)->fmu;
+    return (x > y) - (x < y);
+}
+
+/* FMU components whose Python does not step them, unless the FMU must stay on one thread
+ * (canBeInstantiatedOnlyOncePerProcess: its binary keeps globals) or another component uses
+ * the same FMU instance (the two would step it at once). */
+static int choose_pool_components(parallel_plan *p, const ssx_system *sys)
+{
+    int n = sys->n_components;
+    fmu_user *users = malloc(((size_t)n + 1) * sizeof *users);
+    if (users == NULL) {
+        return -1;
+    }
+    int n_users = 0;
+    for (int i = 0; i < n; ++i) {
+        const ssx_component *c = sys->components[i];
+        p->on_pool[i] = c->ops == &ssx_fmu_component_ops && c->hooks.do_step == NULL &&
+                        !c->calling_thread_only;
+        if (c->fmu != NULL) {
+            users[n_users++] = (fmu_user){(uintptr_t)c->fmu, i};
+        }
+    }
+    qsort(users, (size_t)n_users, sizeof *users, by_fmu);
+    for (int k = 1; k < n_users; ++k) {
+        if (users[k].fmu == users[k - 1].fmu) {
+            p->on_pool[users[k].component] = 0;
+            p->on_pool[users[k - 1].component] = 0;
+        }
+    }
+    free(users);
+    return 0;
+}
+
+/* Gauss-Seidel steps each component from the outputs its drivers have just before it steps.
+ * Consecutive components none of which drives a later one of them see the same values when
+ * their inputs are all set first: they form a batch. A loop group's members step from the
+ * loop's solution, and are a batch of their own. */
+static int build_batches(parallel_plan *p, const ssx_system *sys)
+{
+    int *batch_of = malloc(((size_t)sys->n_components + 1) * sizeof *batch_of);
+    if (batch_of == NULL) {
+        return -1;
+    }
+    for (int i = 0; i < sys->n_components; ++i) {
+        batch_of[i] = -1;
+    }
+    p->n_batches = 0;
+    for (int gi = 0; gi < sys->n_groups; ++gi) {
+        const ssx_group *g = &sys->groups[gi];
+        if (g->is_loop) {
+            p->batches[p->n_batches++] = (parallel_batch){g->first, g->size, gi};
+            continue;
+        }
+        for (int m = 0; m < g->size; ++m) {
+            const ssx_component *c = sys->components[sys->order[g->first + m]];
+            int last = p->n_batches - 1;
+            int joins = last >= 0 && p->batches[last].group < 0;
+            for (int i = 0; i < c->n_inputs && joins; ++i) {
+                int driver = c->input_driver[i];
+                joins = driver < 0 || batch_of[sys->connections[driver].src_component] != last;
+            }
+            if (!joins) {
+                p->batches[++last] = (parallel_batch){g->first + m, 0, -1};
+                p->n_batches++;
+            }
+            p->batches[last].size++;
+            batch_of[c->index] = last;
+        }
+    }
+    free(batch_of);
+    return 0;
+}
+
+int parallel_prepare(ssx_system *sys)
+{
+    parallel_plan *old = sys->parallel;
+    sys->parallel = NULL;
+    worker_pool *pool = NULL;
+    if (old != NULL && sys->threads > 1 && worker_pool_threads(old->pool) == sys->threads) {
+        pool = old->pool; /* the same threads serve the new plan */
+        old->pool = NULL;
+    }
+    parallel_free(old);
+    if (sys->threads <= 1) {
+        return 0;
+    }
+    size_t n = (size_t)sys->n_components + 1;
+    parallel_plan *p = calloc(1, sizeof *p);
+    if (p != NULL) {
+        p->threads = sys->threads;
+        p->on_pool = calloc(n, sizeof *p->on_pool);
+        p->tasks = calloc(n, sizeof *p->tasks);
+        p->reports = calloc((size_t)sys->threads, sizeof *p->reports);
+        p->batches = calloc(n, sizeof *p->batches);
+    }
+    if (p == NULL || p->on_pool == NULL || p->tasks == NULL || p->reports == NULL ||
+        p->batches == NULL || choose_pool_components(p, sys) != 0 ||
+        build_batches(p, sys) != 0) {
+        worker_pool_free(pool);
+        parallel_free(p);
+        return fail(sys, -1, -1, sys->time, "system '%s': out of memory planning %d threads",
+                    sys->name, sys->threads);
+    }
+    if (pool == NULL) {
+        int error = 0;
+        pool = worker_pool_new(sys->threads - 1, &error);
+        if (pool == NULL) {
+            parallel_free(p);
+            return fail(sys, -1, -1, sys->time, "system '%s': cannot start %d worker threads: %s",
+                        sys->name, sys->threads - 1, strerror(error));
+        }
+    }
+    p->pool = pool;
+    sys->parallel = p;
+    return 0;
+}
+
+/* ------------------------------------------------------------------ stepping a batch */
+
+static void step_share(void *context, int share)
+{
+    parallel_plan *p = context;
+    share_report *r = &p->reports[share];
+    int end = (int)((long)p->n_tasks * (share + 1) / p->threads);
+    for (int k = (int)((long)p->n_tasks * share / p->threads); k < end; ++k) {
+        ssx_component *c = p->tasks[k];
+        if (component_write_inputs(p->sys, c) != 0) {
+            r->failed_at = k;
+            return;
+        }
+        /* the built-in step: a pool component has no Python hook, and the calling thread
+         * counts the step when it replays the batch */
+        int status = c->ops->do_step(p->sys, c, p->t, p->h);
+        if (r->terminated_at < 0 && r->termination.component >= 0) {
+            r->terminated_at = k;
+        }
+        if (status != 0) {
+            r->failed_at = k;
+            r->failed_in_step = 1;
+            return;
+        }
+    }
+}
+
+/* What one thread would have done, in member order: steps the members that stay on the
+ * calling thread, counts the pool's steps, and takes over the first termination request and
+ * the first failure. */
+static int replay(ssx_system *sys, const int *members, int n, double t, double h)
+{
+    parallel_plan *p = sys->parallel;
+    int task = 0;
+    int share = 0;
+    int share_end = (int)((long)p->n_tasks / p->threads);
+    for (int m = 0; m < n; ++m) {
+        ssx_component *c = sys->components[members[m]];
+        if (!p->on_pool[c->index]) {
+            if (coupling_step_member(sys, c, t, h) != 0) {
+                return -1;
+            }
+            continue;
+        }
+        while (task >= share_end) {
+            ++share;
+            share_end = (int)((long)p->n_tasks * (share + 1) / p->threads);
+        }
+        const share_report *r = &p->reports[share];
+        int failed = r->failed_at == task;
+        if (!failed || r->failed_in_step) {
+            sys->stats.do_step_calls++;
+        }
+        if (r->terminated_at == task && sys->termination.component < 0) {
+            sys->termination = r->termination;
+        }
+        if (failed) {
+            sys->error = r->error;
+            return -1;
+        }
+        ++task;
+    }
+    return 0;
+}
+
+int parallel_step(ssx_system *sys, const int *members, int n, double t, double h)
+{
+    parallel_plan *p = sys->parallel;
+    if (p != NULL) {
+        p->n_tasks = 0;
+        for (int m = 0; m < n; ++m) {
+            if (p->on_pool[members[m]]) {
+                p->tasks[p->n_tasks++] = sys->components[members[m]];
+            }
+        }
+    }
+    if (p == NULL || p->n_tasks < 2) {
+        for (int m = 0; m < n; ++m) {
+            if (coupling_step_member(sys, sys->components[members[m]], t, h) != 0) {
+                return -1;
+            }
+        }
+        return 0;
+    }
+    for (int share = 0; share < p->threads; ++share) {
+        share_report *r = &p->reports[share];
+        r->failed_at = -1;
+        r->failed_in_step = 0;
+        r->terminated_at = -1;
+        r->termination.component = -1;
+    }
+    p->sys = sys;
+    p->t = t;
+    p->h = h;
+    p->running = 1;
+    worker_pool_run(p->pool, step_share, p);
+    p->running = 0;
+    return replay(sys, members, n, t, h);
+}

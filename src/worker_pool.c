@@ -1,0 +1,197 @@
+/* The pool's handshake: the caller publishes a job by advancing `generation` (under the lock,
+ * with a broadcast, so a sleeping worker cannot miss it) and counts the shares still running
+ * in `pending`. Between two jobs of a run, a worker and the caller poll the counters for a
+ * short while before they sleep: a macro step of cheap FMUs lasts microseconds, and waking a
+ * sleeping thread costs about as much. */
+#define _POSIX_C_SOURCE 200809L
+
+#include "worker_pool.h"
+
+#include <errno.h>
+#include <pthread.h>
+#include <signal.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+/* Polls before sleeping: a few microseconds of one core. */
+enum { SPIN_POLLS = 2000 };
+
+typedef struct {
+    worker_pool *pool;
+    int share;
+} worker_start;
+
+struct worker_pool {
+    pthread_mutex_t lock;
+    pthread_cond_t job_posted;
+    pthread_cond_t job_done;
+    atomic_ulong generation; /* advanced once per job */
+    atomic_int pending;      /* workers still running the current job */
+    atomic_int stopping;
+    worker_job job;
+    void *context;
+    int n_workers;
+    pid_t owner; /* the process whose threads these are */
+    pthread_t *threads;
+    worker_start *starts;
+};
+
+static int job_posted_since(worker_pool *pool, unsigned long seen)
+{
+    return atomic_load_explicit(&pool->generation, memory_order_acquire) != seen;
+}
+
+static void *worker_main(void *argument)
+{
+    const worker_start *start = argument;
+    worker_pool *pool = start->pool;
+    unsigned long seen = 0;
+    for (;;) {
+        for (int poll = 0; poll < SPIN_POLLS && !job_posted_since(pool, seen); ++poll) {
+        }
+        if (!job_posted_since(pool, seen)) {
+            pthread_mutex_lock(&pool->lock);
+            while (!job_posted_since(pool, seen)) {
+                pthread_cond_wait(&pool->job_posted, &pool->lock);
+            }
+            pthread_mutex_unlock(&pool->lock);
+        }
+        seen = atomic_load_explicit(&pool->generation, memory_order_acquire);
+        if (atomic_load_explicit(&pool->stopping, memory_order_acquire)) {
+            return NULL;
+        }
+        pool->job(pool->context, start->share);
+        if (atomic_fetch_sub_explicit(&pool->pending, 1, memory_order_acq_rel) == 1) {
+            pthread_mutex_lock(&pool->lock);
+            pthread_cond_signal(&pool->job_done);
+            pthread_mutex_unlock(&pool->lock);
+        }
+    }
+}
+
+/* Advances the generation so that every worker wakes up to the job (or to stopping). */
+static void post(worker_pool *pool)
+{
+    pthread_mutex_lock(&pool->lock);
+    atomic_fetch_add_explicit(&pool->generation, 1, memory_order_acq_rel);
+    pthread_cond_broadcast(&pool->job_posted);
+    pthread_mutex_unlock(&pool->lock);
+}
+
+static void stop_workers(worker_pool *pool, int started)
+{
+    atomic_store_explicit(&pool->stopping, 1, memory_order_release);
+    post(pool);
+    for (int k = 0; k < started; ++k) {
+        pthread_join(pool->threads[k], NULL);
+    }
+}
+
+static void release(worker_pool *pool)
+{
+    pthread_cond_destroy(&pool->job_done);
+    pthread_cond_destroy(&pool->job_posted);
+    pthread_mutex_destroy(&pool->lock);
+    free(pool->threads);
+    free(pool->starts);
+    free(pool);
+}
+
+worker_pool *worker_pool_new(int n_workers, int *error)
+{
+    worker_pool *pool = calloc(1, sizeof *pool);
+    if (pool == NULL) {
+        *error = ENOMEM;
+        return NULL;
+    }
+    pool->threads = calloc((size_t)n_workers, sizeof *pool->threads);
+    pool->starts = calloc((size_t)n_workers, sizeof *pool->starts);
+    pthread_mutex_init(&pool->lock, NULL);
+    pthread_cond_init(&pool->job_posted, NULL);
+    pthread_cond_init(&pool->job_done, NULL);
+    atomic_init(&pool->generation, 0);
+    atomic_init(&pool->pending, 0);
+    atomic_init(&pool->stopping, 0);
+    pool->n_workers = n_workers;
+    pool->owner = getpid();
+    if (pool->threads == NULL || pool->starts == NULL) {
+        *error = ENOMEM;
+        release(pool);
+        return NULL;
+    }
+    /* the workers inherit this mask: Ctrl-C and timers keep reaching the application's threads */
+    sigset_t all, previous;
+    sigfillset(&all);
+    pthread_sigmask(SIG_SETMASK, &all, &previous);
+    int started = 0;
+    int status = 0;
+    for (; started < n_workers; ++started) {
+        pool->starts[started] = (worker_start){pool, started + 1};
+        status = pthread_create(&pool->threads[started], NULL, worker_main,
+                                &pool->starts[started]);
+        if (status != 0) {
+            break;
+        }
+    }
+    pthread_sigmask(SIG_SETMASK, &previous, NULL);
+    if (status != 0) {
+        stop_workers(pool, started);
+        release(pool);
+        *error = status;
+        return NULL;
+    }
+    return pool;
+}
+
+void worker_pool_free(worker_pool *pool)
+{
+    if (pool == NULL) {
+        return;
+    }
+    /* a forked copy has no threads to join */
+    stop_workers(pool, pool->owner == getpid() ? pool->n_workers : 0);
+    release(pool);
+}
+
+int worker_pool_threads(const worker_pool *pool)
+{
+    return pool->n_workers + 1;
+}
+
+void worker_pool_run(worker_pool *pool, worker_job job, void *context)
+{
+    if (pool->owner != getpid()) {
+        for (int share = 0; share <= pool->n_workers; ++share) {
+            job(context, share);
+        }
+        return;
+    }
+    pool->job = job;
+    pool->context = context;
+    atomic_store_explicit(&pool->pending, pool->n_workers, memory_order_relaxed);
+    post(pool);
+    job(context, 0);
+    for (int poll = 0;
+         poll < SPIN_POLLS && atomic_load_explicit(&pool->pending, memory_order_acquire) > 0;
+         ++poll) {
+    }
+    if (atomic_load_explicit(&pool->pending, memory_order_acquire) > 0) {
+        pthread_mutex_lock(&pool->lock);
+        while (atomic_load_explicit(&pool->pending, memory_order_acquire) > 0) {
+            pthread_cond_wait(&pool->job_done, &pool->lock);
+        }
+        pthread_mutex_unlock(&pool->lock);
+    }
+}
+
+int worker_pool_self(const worker_pool *pool)
+{
+    pthread_t self = pthread_self();
+    for (int k = 0; k < pool->n_workers; ++k) {
+        if (pthread_equal(self, pool->threads[k])) {
+            return k + 1;
+        }
+    }
+    return 0;
+}
