@@ -464,8 +464,7 @@ int ssx_set_coupling(ssx_system *sys, ssx_coupling coupling)
 int ssx_set_threads(ssx_system *sys, int threads)
 {
     if (threads < 1 || threads > SSX_MAX_THREADS) {
-        return fail_config(sys, -1, -1, NAN,
-                           "system '%s': threads must be between 1 and %d, not %d", sys->name,
+        return fail_config(sys, -1, -1, NAN, "threads must be between 1 and %d, not %d",
                            SSX_MAX_THREADS, threads);
     }
     sys->threads = threads;
