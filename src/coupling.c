@@ -141,7 +141,8 @@ static int step_gauss_seidel_batches(ssx_system *sys, double t, double h)
         if (parallel_step(sys, members, batches[b].size, t, h) != 0) {
             return -1;
         }
-        if (batches[b].group >= 0 && solve_loop_at(sys, &sys->groups[batches[b].group], t + h) != 0) {
+        if (batches[b].group >= 0 &&
+            solve_loop_at(sys, &sys->groups[batches[b].group], t + h) != 0) {
             return -1;
         }
     }

@@ -24,9 +24,9 @@ struct parallel_plan {
     unsigned char *on_pool; /* per component: it may step on any thread */
     ssx_component **tasks;  /* the current batch's components that step on the pool */
     int n_tasks;
-    share_report *reports;  /* one per thread, share 0 the calling thread's */
-    int running;            /* a batch is being stepped by the pool */
-    ssx_system *sys;        /* the current batch's system and step */
+    share_report *reports; /* one per thread, share 0 the calling thread's */
+    int running;           /* a batch is being stepped by the pool */
+    ssx_system *sys;       /* the current batch's system and step */
     double t;
     double h;
     parallel_batch *batches;
@@ -94,8 +94,8 @@ static int choose_pool_components(parallel_plan *p, const ssx_system *sys)
     int n_users = 0;
     for (int i = 0; i < n; ++i) {
         const ssx_component *c = sys->components[i];
-        p->on_pool[i] = c->ops == &ssx_fmu_component_ops && c->hooks.do_step == NULL &&
-                        !c->calling_thread_only;
+        p->on_pool[i] =
+            c->ops == &ssx_fmu_component_ops && c->hooks.do_step == NULL && !c->calling_thread_only;
         if (c->fmu != NULL) {
             users[n_users++] = (fmu_user){(uintptr_t)c->fmu, i};
         }
@@ -174,8 +174,7 @@ int parallel_prepare(ssx_system *sys)
         p->batches = calloc(n, sizeof *p->batches);
     }
     if (p == NULL || p->on_pool == NULL || p->tasks == NULL || p->reports == NULL ||
-        p->batches == NULL || choose_pool_components(p, sys) != 0 ||
-        build_batches(p, sys) != 0) {
+        p->batches == NULL || choose_pool_components(p, sys) != 0 || build_batches(p, sys) != 0) {
         worker_pool_free(pool);
         parallel_free(p);
         return fail(sys, -1, -1, sys->time, "system '%s': out of memory planning %d threads",

@@ -128,8 +128,7 @@ worker_pool *worker_pool_new(int n_workers, int *error)
     int status = 0;
     for (; started < n_workers; ++started) {
         pool->starts[started] = (worker_start){pool, started + 1};
-        status = pthread_create(&pool->threads[started], NULL, worker_main,
-                                &pool->starts[started]);
+        status = pthread_create(&pool->threads[started], NULL, worker_main, &pool->starts[started]);
         if (status != 0) {
             break;
         }

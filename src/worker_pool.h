@@ -12,7 +12,7 @@ typedef void (*worker_job)(void *context, int thread);
 /* Starts n_workers >= 1 threads with every signal blocked (signals stay with the threads the
  * application owns). NULL when memory or a thread cannot be had; *error is then the errno. */
 worker_pool *worker_pool_new(int n_workers, int *error);
-void worker_pool_free(worker_pool *pool); /* joins the workers; NULL is ignored */
+void worker_pool_free(worker_pool *pool);         /* joins the workers; NULL is ignored */
 int worker_pool_threads(const worker_pool *pool); /* n_workers + 1 */
 /* Runs job(context, k) for k = 0..n_workers, share 0 on the calling thread, and returns when
  * all have returned. In a process forked from the pool's (which has none of its threads) the

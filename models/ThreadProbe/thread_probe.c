@@ -10,8 +10,8 @@ enum { VR_THREAD, VARIABLE_COUNT };
 
 static const model_variable variables[VARIABLE_COUNT] = {
     [VR_THREAD] = {"thread", VR_THREAD, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_DISCRETE,
-                   INITIAL_CALCULATED, NULL, 0, "id of the thread that last stepped the FMU",
-                   -1, DEPENDS_NONE, DEPENDS_NONE},
+                   INITIAL_CALCULATED, NULL, 0, "id of the thread that last stepped the FMU", -1,
+                   DEPENDS_NONE, DEPENDS_NONE},
 };
 
 static void outputs(double *v, double t, const double *x)

@@ -263,9 +263,10 @@ static void first_failure_in_order(void)
     CHECK(one.status == -1);
     CHECK(one.error.component == 2 && one.error.kind == SSX_ERROR_FMI);
     CHECK(one.error.time == 0.30000000000000004);
-    CHECK(strstr(one.error.message, "component 'C2': fmi2DoStep failed at t=0.30000000000000004 "
-                                    "with status fmi2Error (FMU log: fmi2DoStep from t = ") != NULL);
-    CHECK(strstr(one.error.message, "a deliberate failure") != NULL);
+    CHECK_MESSAGE_TEXT(one.error.message, "component 'C2': fmi2DoStep failed at "
+                                          "t=0.30000000000000004 with status fmi2Error (FMU "
+                                          "log: fmi2DoStep from t = ");
+    CHECK_MESSAGE_TEXT(one.error.message, "a deliberate failure");
     check_same(&one, &two);
     CHECK(late_one == 3 && late_two == 3); /* C4 stepped to 0.3, never into the failing step */
     release(&one);
