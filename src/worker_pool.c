@@ -11,6 +11,7 @@
 #include <pthread.h>
 #include <signal.h>
 #include <stdatomic.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <unistd.h>
 
@@ -120,10 +121,15 @@ worker_pool *worker_pool_new(int n_workers, int *error)
         release(pool);
         return NULL;
     }
-    /* the workers inherit this mask: Ctrl-C and timers keep reaching the application's threads */
-    sigset_t all, previous;
-    sigfillset(&all);
-    pthread_sigmask(SIG_SETMASK, &all, &previous);
+    /* the workers inherit this mask: Ctrl-C and timers keep reaching the application's
+     * threads, while a fault in an FMU still reaches the handlers installed for it */
+    sigset_t asynchronous, previous;
+    sigfillset(&asynchronous);
+    const int faults[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGTRAP, SIGSYS, SIGABRT};
+    for (size_t i = 0; i < sizeof faults / sizeof faults[0]; ++i) {
+        sigdelset(&asynchronous, faults[i]);
+    }
+    pthread_sigmask(SIG_SETMASK, &asynchronous, &previous);
     int started = 0;
     int status = 0;
     for (; started < n_workers; ++started) {

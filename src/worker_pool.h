@@ -9,8 +9,9 @@ typedef struct worker_pool worker_pool;
 /* One share of a job: `thread` is 0 on the calling thread, 1..n on the workers. */
 typedef void (*worker_job)(void *context, int thread);
 
-/* Starts n_workers >= 1 threads with every signal blocked (signals stay with the threads the
- * application owns). NULL when memory or a thread cannot be had; *error is then the errno. */
+/* Starts n_workers >= 1 threads with every signal but the faults blocked (signals stay with
+ * the threads the application owns). NULL when memory or a thread cannot be had; *error is
+ * then the errno. */
 worker_pool *worker_pool_new(int n_workers, int *error);
 void worker_pool_free(worker_pool *pool);         /* joins the workers; NULL is ignored */
 int worker_pool_threads(const worker_pool *pool); /* n_workers + 1 */

@@ -4,6 +4,8 @@ stays there."""
 
 from __future__ import annotations
 
+import os
+import signal
 import threading
 import zipfile
 from pathlib import Path
@@ -193,3 +195,38 @@ def test_cli_run_threads_writes_the_same_csv(tmp_path: Path,
     assert main(["run", description, "--threads", "0"]) == 1
     assert capsys.readouterr().err == ("syssimx: error: Gauss-Seidel: threads must be between "
                                        "1 and 256, not 0\n")
+
+
+def test_ctrl_c_stops_a_run_on_two_threads_and_it_goes_on() -> None:
+    system = System("typo")
+    for i in range(4):
+        pendulum = FMUComponent(f"P{i}", fmus.path("pendulum_euler"))
+        pendulum.set_parameters(theta0=0.1 * (i + 1))
+        system.add_component(pendulum)
+    system.set_algorithm(JacobiAlgorithm(threads=2))
+    system.initialize(0.0)
+    timer = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    # timeout only guards the test against running for hours if Ctrl-C were lost
+    with pytest.raises(KeyboardInterrupt):
+        system.run(0.0, 1.0, 1e-9, timeout=30.0)
+    t, _ = system.get_history()["P3"]
+    assert len(t) > 1000 and t[-1] == system.t
+    result = system.run(system.t, system.t + 1e-8, 1e-9)
+    assert len(result["P3"][0]) == len(t) + 10
+
+
+def test_isolated_fmus_step_on_the_workers_with_the_same_results() -> None:
+    # each isolated FMU has a host process and a socket of its own: nothing is shared
+    runs = []
+    for threads in (1, 2):
+        system = System("isolated")
+        for i in range(4):
+            pendulum = FMUComponent(f"P{i}", fmus.path("pendulum_cvode"), isolated=i % 2 == 0)
+            pendulum.set_parameters(theta0=0.1 * (i + 1))
+            system.add_component(pendulum)
+        system.set_algorithm(JacobiAlgorithm(threads=threads))
+        system.initialize(0.0)
+        runs.append(samples(system, tf=0.5))
+    assert_identical(runs[0][0], runs[1][0])
+    assert runs[1][1] == runs[0][1]
