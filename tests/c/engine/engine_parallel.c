@@ -419,6 +419,8 @@ static void one_instance_two_components(void)
     CHECK(one.status == -1 && one.error.component == 2);
     CHECK_MESSAGE_TEXT(one.error.message, "differs from the FMU's time 0.10000000000000001");
     check_same(&one, &two);
+    release(&one);
+    release(&two);
 }
 
 static int stop_at_once(void *user, double t)
