@@ -1,6 +1,7 @@
 /* Stepping a batch of components on the system's threads; see parallel_step.h. */
 #include "parallel_step.h"
 
+#include <stdatomic.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,11 +10,11 @@
 #include "error.h"
 #include "worker_pool.h"
 
-/* What one thread's share of a batch left behind. */
+/* What one thread left behind after its part of a batch. */
 typedef struct {
     ssx_error error;
     ssx_termination termination;
-    int failed_at;      /* the task that failed, -1: none */
+    int failed_at;      /* the task that failed (the thread then took no more), -1: none */
     int failed_in_step; /* it failed in its doStep (counted), not while its inputs were set */
     int terminated_at;  /* the task whose request is in `termination`, -1: none */
 } share_report;
@@ -23,7 +24,9 @@ struct parallel_plan {
     int threads;
     unsigned char *on_pool; /* per component: it may step on any thread */
     ssx_component **tasks;  /* the current batch's components that step on the pool */
+    int *owner;             /* the thread that stepped each task */
     int n_tasks;
+    atomic_int next_task;  /* the next task to claim */
     share_report *reports; /* one per thread, share 0 the calling thread's */
     int running;           /* a batch is being stepped by the pool */
     ssx_system *sys;       /* the current batch's system and step */
@@ -58,6 +61,7 @@ void parallel_free(parallel_plan *plan)
     worker_pool_free(plan->pool);
     free(plan->on_pool);
     free(plan->tasks);
+    free(plan->owner);
     free(plan->reports);
     free(plan->batches);
     free(plan);
@@ -170,11 +174,13 @@ int parallel_prepare(ssx_system *sys)
         p->threads = sys->threads;
         p->on_pool = calloc(n, sizeof *p->on_pool);
         p->tasks = calloc(n, sizeof *p->tasks);
+        p->owner = calloc(n, sizeof *p->owner);
         p->reports = calloc((size_t)sys->threads, sizeof *p->reports);
         p->batches = calloc(n, sizeof *p->batches);
     }
-    if (p == NULL || p->on_pool == NULL || p->tasks == NULL || p->reports == NULL ||
-        p->batches == NULL || choose_pool_components(p, sys) != 0 || build_batches(p, sys) != 0) {
+    if (p == NULL || p->on_pool == NULL || p->tasks == NULL || p->owner == NULL ||
+        p->reports == NULL || p->batches == NULL || choose_pool_components(p, sys) != 0 ||
+        build_batches(p, sys) != 0) {
         worker_pool_free(pool);
         parallel_free(p);
         return fail(sys, -1, -1, sys->time, "system '%s': out of memory planning %d threads",
@@ -196,28 +202,37 @@ int parallel_prepare(ssx_system *sys)
 
 /* ------------------------------------------------------------------ stepping a batch */
 
+static int step_task(parallel_plan *p, share_report *r, int k, int share)
+{
+    ssx_component *c = p->tasks[k];
+    p->owner[k] = share;
+    if (component_write_inputs(p->sys, c) != 0) {
+        r->failed_at = k;
+        return -1;
+    }
+    /* the built-in step: a pool component has no Python hook, and the calling thread counts
+     * the step when it replays the batch */
+    int status = c->ops->do_step(p->sys, c, p->t, p->h);
+    if (r->terminated_at < 0 && r->termination.component >= 0) {
+        r->terminated_at = k;
+    }
+    if (status != 0) {
+        r->failed_at = k;
+        r->failed_in_step = 1;
+        return -1;
+    }
+    return 0;
+}
+
+/* Each thread starts with a task of its own (all have work at once), then claims the rest in
+ * order, so a slow or busy thread holds up at most one task. Claims only grow: every task
+ * before the first failing one was claimed before it, and stepped. */
 static void step_share(void *context, int share)
 {
     parallel_plan *p = context;
     share_report *r = &p->reports[share];
-    int end = (int)((long)p->n_tasks * (share + 1) / p->threads);
-    for (int k = (int)((long)p->n_tasks * share / p->threads); k < end; ++k) {
-        ssx_component *c = p->tasks[k];
-        if (component_write_inputs(p->sys, c) != 0) {
-            r->failed_at = k;
-            return;
-        }
-        /* the built-in step: a pool component has no Python hook, and the calling thread
-         * counts the step when it replays the batch */
-        int status = c->ops->do_step(p->sys, c, p->t, p->h);
-        if (r->terminated_at < 0 && r->termination.component >= 0) {
-            r->terminated_at = k;
-        }
-        if (status != 0) {
-            r->failed_at = k;
-            r->failed_in_step = 1;
-            return;
-        }
+    for (int k = share; k < p->n_tasks && step_task(p, r, k, share) == 0;
+         k = atomic_fetch_add_explicit(&p->next_task, 1, memory_order_relaxed)) {
     }
 }
 
@@ -228,8 +243,6 @@ static int replay(ssx_system *sys, const int *members, int n, double t, double h
 {
     parallel_plan *p = sys->parallel;
     int task = 0;
-    int share = 0;
-    int share_end = (int)((long)p->n_tasks / p->threads);
     for (int m = 0; m < n; ++m) {
         ssx_component *c = sys->components[members[m]];
         if (!p->on_pool[c->index]) {
@@ -238,11 +251,7 @@ static int replay(ssx_system *sys, const int *members, int n, double t, double h
             }
             continue;
         }
-        while (task >= share_end) {
-            ++share;
-            share_end = (int)((long)p->n_tasks * (share + 1) / p->threads);
-        }
-        const share_report *r = &p->reports[share];
+        const share_report *r = &p->reports[p->owner[task]];
         int failed = r->failed_at == task;
         if (!failed || r->failed_in_step) {
             sys->stats.do_step_calls++;
@@ -285,6 +294,7 @@ int parallel_step(ssx_system *sys, const int *members, int n, double t, double h
         r->terminated_at = -1;
         r->termination.component = -1;
     }
+    atomic_store_explicit(&p->next_task, p->threads, memory_order_relaxed);
     p->sys = sys;
     p->t = t;
     p->h = h;

@@ -90,10 +90,10 @@ def test_hybrid_system_identical_on_two_threads() -> None:
 
 
 def pendulums_and_failing(threads: int) -> System:
-    """P0, P1 step on the calling thread and F, P3 on the worker: F fails in the step to 0.4."""
+    """F is the worker's first task (P0 the calling thread's): it fails in the step to 0.4."""
     system = System("failing")
     for i in range(4):
-        if i == 2:
+        if i == 1:
             component = FMUComponent("F", fmus.path("failing"))
             component.set_parameters(fail_time=0.35)
         else:
@@ -151,7 +151,8 @@ def once_per_process_probe(tmp_path: Path) -> str:
 def test_python_components_and_once_per_process_fmus_stay_on_the_calling_thread(
         tmp_path: Path) -> None:
     # thread_probe's output `thread` is the thread id that last stepped it. Four probes may
-    # leave the calling thread: A, B step there and C, D on the worker (a fixed share each).
+    # leave the calling thread: A is its first task and B the worker's, C and D go to
+    # whichever thread claims them.
     system = System("threads")
     for name in "ABCD":
         system.add_component(FMUComponent(name, fmus.path("thread_probe")))
@@ -163,8 +164,8 @@ def test_python_components_and_once_per_process_fmus_stay_on_the_calling_thread(
     result = system.run(0.0, 1.0, 0.1)
     caller = threading.get_native_id()
     thread = {name: result[name][1]["thread"][1:] for name in ("A", "B", "C", "D", "Once")}
-    assert set(thread["A"]) == set(thread["B"]) == set(thread["Once"]) == {caller}
-    assert set(thread["C"]) == set(thread["D"]) and caller not in set(thread["C"])
+    assert set(thread["A"]) == set(thread["Once"]) == {caller}
+    assert len(set(thread["B"])) == 1 and caller not in set(thread["B"])
     assert recorder.threads == {threading.get_ident()}
 
 

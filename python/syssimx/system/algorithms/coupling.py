@@ -63,8 +63,8 @@ class JacobiAlgorithm:
 @dataclass
 class GaussSeidelAlgorithm(JacobiAlgorithm):
     """Components step in dependency order; a consumer of a direct-feedthrough output gets
-    the value of the same communication point (the default). With threads > 1, consecutive
-    components none of which feeds a later one of them in the same step step together."""
+    the value of the same communication point (the default). With threads > 1, a run of
+    consecutive components none of which feeds a later one of the run steps in parallel."""
 
     name: str = "Gauss-Seidel"
     engine_coupling: ClassVar[str] = "SSX_GAUSS_SEIDEL"
