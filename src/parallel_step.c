@@ -1,7 +1,6 @@
 /* Stepping a batch of components on the system's threads; see parallel_step.h. */
 #include "parallel_step.h"
 
-#include <stdatomic.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,14 +9,15 @@
 #include "error.h"
 #include "worker_pool.h"
 
-/* What one thread left behind after its part of a batch. */
+/* What one thread left behind after its tasks of a batch. */
 typedef struct {
-    ssx_error error;
+    ssx_error error;       /* its first failure */
+    ssx_error later_error; /* where its later failures go: only the first can be the batch's */
     ssx_termination termination;
-    int failed_at;      /* the task that failed (the thread then took no more), -1: none */
+    int failed_at;      /* the task of its first failure, -1: none */
     int failed_in_step; /* it failed in its doStep (counted), not while its inputs were set */
     int terminated_at;  /* the task whose request is in `termination`, -1: none */
-} share_report;
+} thread_report;
 
 struct parallel_plan {
     worker_pool *pool;
@@ -26,10 +26,9 @@ struct parallel_plan {
     ssx_component **tasks;  /* the current batch's components that step on the pool */
     int *owner;             /* the thread that stepped each task */
     int n_tasks;
-    atomic_int next_task;  /* the next task to claim */
-    share_report *reports; /* one per thread, share 0 the calling thread's */
-    int running;           /* a batch is being stepped by the pool */
-    ssx_system *sys;       /* the current batch's system and step */
+    thread_report *reports; /* one per thread, 0 the calling thread's */
+    int running;            /* a batch is being stepped by the pool */
+    ssx_system *sys;        /* the current batch's system and step */
     double t;
     double h;
     parallel_batch *batches;
@@ -41,7 +40,11 @@ struct parallel_plan {
 ssx_error *parallel_error_slot(ssx_system *sys)
 {
     parallel_plan *p = sys->parallel;
-    return p != NULL && p->running ? &p->reports[worker_pool_self(p->pool)].error : &sys->error;
+    if (p == NULL || !p->running) {
+        return &sys->error;
+    }
+    thread_report *r = &p->reports[worker_pool_self(p->pool)];
+    return r->failed_at < 0 ? &r->error : &r->later_error;
 }
 
 ssx_termination *parallel_termination_slot(ssx_system *sys)
@@ -202,13 +205,18 @@ int parallel_prepare(ssx_system *sys)
 
 /* ------------------------------------------------------------------ stepping a batch */
 
-static int step_task(parallel_plan *p, share_report *r, int k, int share)
+/* A thread goes on after a failure: the tasks after it are not needed, but the tasks before
+ * it may be waiting for a thread, and one that stops would not save time. */
+static void step_task(void *context, int k, int thread)
 {
+    parallel_plan *p = context;
+    thread_report *r = &p->reports[thread];
     ssx_component *c = p->tasks[k];
-    p->owner[k] = share;
+    p->owner[k] = thread;
+    int first_failure = r->failed_at < 0;
     if (component_write_inputs(p->sys, c) != 0) {
-        r->failed_at = k;
-        return -1;
+        r->failed_at = first_failure ? k : r->failed_at;
+        return;
     }
     /* the built-in step: a pool component has no Python hook, and the calling thread counts
      * the step when it replays the batch */
@@ -216,23 +224,9 @@ static int step_task(parallel_plan *p, share_report *r, int k, int share)
     if (r->terminated_at < 0 && r->termination.component >= 0) {
         r->terminated_at = k;
     }
-    if (status != 0) {
+    if (status != 0 && first_failure) {
         r->failed_at = k;
         r->failed_in_step = 1;
-        return -1;
-    }
-    return 0;
-}
-
-/* Each thread starts with a task of its own (all have work at once), then claims the rest in
- * order, so a slow or busy thread holds up at most one task. Claims only grow: every task
- * before the first failing one was claimed before it, and stepped. */
-static void step_share(void *context, int share)
-{
-    parallel_plan *p = context;
-    share_report *r = &p->reports[share];
-    for (int k = share; k < p->n_tasks && step_task(p, r, k, share) == 0;
-         k = atomic_fetch_add_explicit(&p->next_task, 1, memory_order_relaxed)) {
     }
 }
 
@@ -251,7 +245,7 @@ static int replay(ssx_system *sys, const int *members, int n, double t, double h
             }
             continue;
         }
-        const share_report *r = &p->reports[p->owner[task]];
+        const thread_report *r = &p->reports[p->owner[task]];
         int failed = r->failed_at == task;
         if (!failed || r->failed_in_step) {
             sys->stats.do_step_calls++;
@@ -287,19 +281,18 @@ int parallel_step(ssx_system *sys, const int *members, int n, double t, double h
         }
         return 0;
     }
-    for (int share = 0; share < p->threads; ++share) {
-        share_report *r = &p->reports[share];
+    for (int thread = 0; thread < p->threads; ++thread) {
+        thread_report *r = &p->reports[thread];
         r->failed_at = -1;
         r->failed_in_step = 0;
         r->terminated_at = -1;
         r->termination.component = -1;
     }
-    atomic_store_explicit(&p->next_task, p->threads, memory_order_relaxed);
     p->sys = sys;
     p->t = t;
     p->h = h;
     p->running = 1;
-    worker_pool_run(p->pool, step_share, p);
+    worker_pool_run(p->pool, step_task, p, p->n_tasks);
     p->running = 0;
     return replay(sys, members, n, t, h);
 }

@@ -1,9 +1,10 @@
 /* Stepping components on the system's threads (ssx_set_threads). A batch is a list of
  * components that may step in any order: none feeds another within the step (all of a Jacobi
  * step; a run of Gauss-Seidel groups, or one loop's members). The FMU components of a batch
- * that may leave the calling thread step on the pool's threads: thread k starts with the k-th
- * of them, and the threads claim the rest in order as they get free. The rest (Python-backed components, table sources, FMUs that
- * declare canBeInstantiatedOnlyOncePerProcess, FMUs used by two components) step on the
+ * that may leave the calling thread step on the pool's threads, which claim them in order as
+ * they get free (the calling thread always takes part, so it never waits for a worker that is
+ * not running); the rest (Python-backed components, table sources, FMUs that declare
+ * canBeInstantiatedOnlyOncePerProcess, FMUs used by two components) step on the
  * calling thread. Each thread reports its first failure and termination request in a record
  * of its own; after the join the calling thread replays the batch in component order, so the
  * statistics, the termination and the reported error are those of one thread. */

@@ -1,8 +1,12 @@
-/* The pool's handshake: the caller publishes a job by advancing `generation` (under the lock,
- * with a broadcast, so a sleeping worker cannot miss it) and counts the shares still running
- * in `pending`. Between two jobs of a run, a worker and the caller poll the counters for a
- * short while before they sleep: a macro step of cheap FMUs lasts microseconds, and waking a
- * sleeping thread costs about as much. */
+/* The pool's handshake. A job is published as one 64-bit word, the task count in the high half
+ * and the next task to claim in the low half, so a claim is one fetch-and-add that also tells
+ * whether the job has tasks left; `generation` advances once per job (under the lock, with a
+ * broadcast, so a sleeping worker cannot miss it). A thread counts itself `busy` before it
+ * claims and uncounts itself after its last task: once the caller has claimed past the end,
+ * a busy count of zero means every claimed task is done. A worker that wakes late finds no
+ * task left, or takes part in the job posted since, whose context is then valid. Between two
+ * jobs of a run a worker and the caller poll for a short while before they sleep: a macro
+ * step of cheap FMUs lasts microseconds, and waking a sleeping thread costs about as much. */
 #define _POSIX_C_SOURCE 200809L
 
 #include "worker_pool.h"
@@ -12,6 +16,7 @@
 #include <signal.h>
 #include <stdatomic.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <unistd.h>
 
@@ -20,17 +25,18 @@ enum { SPIN_POLLS = 2000 };
 
 typedef struct {
     worker_pool *pool;
-    int share;
+    int thread;
 } worker_start;
 
 struct worker_pool {
     pthread_mutex_t lock;
     pthread_cond_t job_posted;
-    pthread_cond_t job_done;
-    atomic_ulong generation; /* advanced once per job */
-    atomic_int pending;      /* workers still running the current job */
+    pthread_cond_t idle;
+    atomic_ulong generation;     /* advanced once per job */
+    atomic_uint_least64_t claim; /* task count << 32 | next task */
+    atomic_int busy;             /* threads that may still be running a task */
     atomic_int stopping;
-    worker_job job;
+    worker_task task;
     void *context;
     int n_workers;
     pid_t owner; /* the process whose threads these are */
@@ -38,9 +44,31 @@ struct worker_pool {
     worker_start *starts;
 };
 
-static int job_posted_since(worker_pool *pool, unsigned long seen)
+static int posted_since(worker_pool *pool, unsigned long seen)
 {
     return atomic_load_explicit(&pool->generation, memory_order_acquire) != seen;
+}
+
+/* Claims and runs tasks until none is left. */
+static void take_tasks(worker_pool *pool, int thread)
+{
+    for (;;) {
+        uint_least64_t claim = atomic_fetch_add(&pool->claim, 1);
+        uint_least64_t next = claim & UINT32_MAX;
+        if (next >= claim >> 32) {
+            return;
+        }
+        pool->task(pool->context, (int)next, thread);
+    }
+}
+
+static void leave(worker_pool *pool)
+{
+    if (atomic_fetch_sub(&pool->busy, 1) == 1) {
+        pthread_mutex_lock(&pool->lock);
+        pthread_cond_signal(&pool->idle);
+        pthread_mutex_unlock(&pool->lock);
+    }
 }
 
 static void *worker_main(void *argument)
@@ -49,11 +77,11 @@ static void *worker_main(void *argument)
     worker_pool *pool = start->pool;
     unsigned long seen = 0;
     for (;;) {
-        for (int poll = 0; poll < SPIN_POLLS && !job_posted_since(pool, seen); ++poll) {
+        for (int poll = 0; poll < SPIN_POLLS && !posted_since(pool, seen); ++poll) {
         }
-        if (!job_posted_since(pool, seen)) {
+        if (!posted_since(pool, seen)) {
             pthread_mutex_lock(&pool->lock);
-            while (!job_posted_since(pool, seen)) {
+            while (!posted_since(pool, seen)) {
                 pthread_cond_wait(&pool->job_posted, &pool->lock);
             }
             pthread_mutex_unlock(&pool->lock);
@@ -62,12 +90,9 @@ static void *worker_main(void *argument)
         if (atomic_load_explicit(&pool->stopping, memory_order_acquire)) {
             return NULL;
         }
-        pool->job(pool->context, start->share);
-        if (atomic_fetch_sub_explicit(&pool->pending, 1, memory_order_acq_rel) == 1) {
-            pthread_mutex_lock(&pool->lock);
-            pthread_cond_signal(&pool->job_done);
-            pthread_mutex_unlock(&pool->lock);
-        }
+        atomic_fetch_add(&pool->busy, 1);
+        take_tasks(pool, start->thread);
+        leave(pool);
     }
 }
 
@@ -91,7 +116,7 @@ static void stop_workers(worker_pool *pool, int started)
 
 static void release(worker_pool *pool)
 {
-    pthread_cond_destroy(&pool->job_done);
+    pthread_cond_destroy(&pool->idle);
     pthread_cond_destroy(&pool->job_posted);
     pthread_mutex_destroy(&pool->lock);
     free(pool->threads);
@@ -110,9 +135,10 @@ worker_pool *worker_pool_new(int n_workers, int *error)
     pool->starts = calloc((size_t)n_workers, sizeof *pool->starts);
     pthread_mutex_init(&pool->lock, NULL);
     pthread_cond_init(&pool->job_posted, NULL);
-    pthread_cond_init(&pool->job_done, NULL);
+    pthread_cond_init(&pool->idle, NULL);
     atomic_init(&pool->generation, 0);
-    atomic_init(&pool->pending, 0);
+    atomic_init(&pool->claim, 0); /* no task: a worker that wakes takes none */
+    atomic_init(&pool->busy, 0);
     atomic_init(&pool->stopping, 0);
     pool->n_workers = n_workers;
     pool->owner = getpid();
@@ -164,27 +190,29 @@ int worker_pool_threads(const worker_pool *pool)
     return pool->n_workers + 1;
 }
 
-void worker_pool_run(worker_pool *pool, worker_job job, void *context)
+void worker_pool_run(worker_pool *pool, worker_task task, void *context, int n_tasks)
 {
+    if (n_tasks <= 0) {
+        return;
+    }
     if (pool->owner != getpid()) {
-        for (int share = 0; share <= pool->n_workers; ++share) {
-            job(context, share);
+        for (int k = 0; k < n_tasks; ++k) {
+            task(context, k, 0);
         }
         return;
     }
-    pool->job = job;
+    pool->task = task;
     pool->context = context;
-    atomic_store_explicit(&pool->pending, pool->n_workers, memory_order_relaxed);
+    atomic_store(&pool->claim, (uint_least64_t)n_tasks << 32 | 1);
     post(pool);
-    job(context, 0);
-    for (int poll = 0;
-         poll < SPIN_POLLS && atomic_load_explicit(&pool->pending, memory_order_acquire) > 0;
-         ++poll) {
+    task(context, 0, 0);
+    take_tasks(pool, 0);
+    for (int poll = 0; poll < SPIN_POLLS && atomic_load(&pool->busy) > 0; ++poll) {
     }
-    if (atomic_load_explicit(&pool->pending, memory_order_acquire) > 0) {
+    if (atomic_load(&pool->busy) > 0) {
         pthread_mutex_lock(&pool->lock);
-        while (atomic_load_explicit(&pool->pending, memory_order_acquire) > 0) {
-            pthread_cond_wait(&pool->job_done, &pool->lock);
+        while (atomic_load(&pool->busy) > 0) {
+            pthread_cond_wait(&pool->idle, &pool->lock);
         }
         pthread_mutex_unlock(&pool->lock);
     }

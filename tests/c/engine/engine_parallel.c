@@ -11,7 +11,7 @@
 
 enum { PENDULUMS = 6, GAIN_Y = 0, GAIN_U = 1, GAIN_K = 2, SUM_Y = 0, SUM_U = 1, SUM_B = 2,
        FAILING_Y = 0, FAILING_FAIL_TIME = 2, TERMINATING_Y = 0, TERMINATING_STOP_TIME = 3,
-       PROBES = 5 };
+       PROBE_THREAD = 0, PROBE_PARTNERS = 1 };
 
 /* Everything a run leaves that one thread and several must agree on. */
 typedef struct {
@@ -220,31 +220,47 @@ static void same_loop_solutions(void)
     release(&two);
 }
 
-/* A pendulum (the calling thread's first task), a failing FMU (the worker's first task), two
- * pendulums, then a failing FMU kept on the calling thread: both fail in the step to 0.4; the
- * one earlier in schedule order (on the worker) is reported, as on one thread, and the later
- * one is not stepped. */
+/* A thread probe that steps only when `partners` probes step at once (0: no wait). */
+static ssx_fmu *started_probe(int partners)
+{
+    ssx_fmu *fmu = load_fmu("thread_probe");
+    const unsigned int vr = PROBE_PARTNERS;
+    const ssx_fmu_experiment experiment = {.start_time = 0.0};
+    const ssx_fmu_values starts = {.integer_vr = &vr, .integer_values = &partners, .n_integer = 1};
+    CHECK(ssx_fmu_initialize(fmu, &experiment, &starts, NULL, NULL) == 0);
+    return fmu;
+}
+
+static int add_probe(ssx_system *sys, const char *name, ssx_fmu **fmu, int partners)
+{
+    *fmu = started_probe(partners);
+    return add_block(sys, name, *fmu, PROBE_THREAD, -1);
+}
+
+/* The calling thread takes the first pool task, R1, and waits in its step for a partner; so
+ * the worker must take F and then R2, R1's partner: F fails on the worker, in the step to 0.4.
+ * C4, a failing FMU kept on the calling thread, fails in the same step but comes later in
+ * schedule order: F is reported, as on one thread, and C4 is not stepped. One thread steps
+ * the same system without the partners' wait. */
 static void failure_system(int threads, outcome *o, long *late_steps)
 {
     ssx_fmu *fmus[5];
     ssx_system *sys = ssx_system_new("failures");
-    for (int i = 0; i < 5; ++i) {
-        char name[8];
-        snprintf(name, sizeof name, "C%d", i);
-        if (i == 1 || i == 4) {
-            fmus[i] = started("failing", FAILING_FAIL_TIME, 0.35);
-            add_block(sys, name, fmus[i], FAILING_Y, -1);
-        } else {
-            fmus[i] = load_fmu("pendulum_euler");
-            CHECK(start_pendulum(fmus[i], 0.0, 0.1 * i, 0.0, 0.0) == 0);
-            add_pendulum(sys, name, fmus[i]);
-        }
-    }
+    int partners = threads > 1 ? 2 : 0;
+    add_probe(sys, "R1", &fmus[0], partners);
+    fmus[1] = started("failing", FAILING_FAIL_TIME, 0.35);
+    add_block(sys, "F", fmus[1], FAILING_Y, -1);
+    add_probe(sys, "R2", &fmus[2], partners);
+    fmus[3] = load_fmu("pendulum_euler");
+    CHECK(start_pendulum(fmus[3], 0.0, 0.3, 0.0, 0.0) == 0);
+    add_pendulum(sys, "P", fmus[3]);
+    fmus[4] = started("failing", FAILING_FAIL_TIME, 0.35);
+    add_block(sys, "C4", fmus[4], FAILING_Y, -1);
     CHECK_OK(sys, ssx_set_calling_thread_only(sys, 4, 1));
     CHECK_OK(sys, ssx_set_coupling(sys, SSX_JACOBI));
     CHECK_OK(sys, ssx_set_threads(sys, threads));
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
-    const int n_outputs[] = {3, 1, 3, 3, 1};
+    const int n_outputs[] = {0, 1, 0, 3, 1}; /* the probes' thread ids differ */
     keep(o, sys, 5, n_outputs, ssx_run(sys, 0.0, 1.0, 0.1));
     ssx_fmu_counters counters;
     ssx_fmu_get_counters(fmus[4], &counters);
@@ -264,7 +280,7 @@ static void first_failure_in_order(void)
     CHECK(one.status == -1);
     CHECK(one.error.component == 1 && one.error.kind == SSX_ERROR_FMI);
     CHECK(one.error.time == 0.30000000000000004);
-    CHECK_MESSAGE_TEXT(one.error.message, "component 'C1': fmi2DoStep failed at "
+    CHECK_MESSAGE_TEXT(one.error.message, "component 'F': fmi2DoStep failed at "
                                           "t=0.30000000000000004 with status fmi2Error (FMU "
                                           "log: fmi2DoStep from t = ");
     CHECK_MESSAGE_TEXT(one.error.message, "a deliberate failure");
@@ -274,28 +290,23 @@ static void first_failure_in_order(void)
     release(&two);
 }
 
-/* A ramp that asks to stop at 0.45 is the worker's first task; the run ends at 0.4 either
- * way. */
+/* As above, the worker steps T, a ramp that asks to stop at 0.45: the run ends at 0.4. */
 static void termination_system(int threads, outcome *o)
 {
     ssx_fmu *fmus[4];
     ssx_system *sys = ssx_system_new("termination");
-    for (int i = 0; i < 4; ++i) {
-        char name[8];
-        snprintf(name, sizeof name, "C%d", i);
-        if (i == 1) {
-            fmus[i] = started("terminating", TERMINATING_STOP_TIME, 0.45);
-            add_block(sys, name, fmus[i], TERMINATING_Y, -1);
-        } else {
-            fmus[i] = load_fmu("pendulum_euler");
-            CHECK(start_pendulum(fmus[i], 0.0, 0.1 * (i + 1), 0.0, 0.0) == 0);
-            add_pendulum(sys, name, fmus[i]);
-        }
-    }
+    int partners = threads > 1 ? 2 : 0;
+    add_probe(sys, "R1", &fmus[0], partners);
+    fmus[1] = started("terminating", TERMINATING_STOP_TIME, 0.45);
+    add_block(sys, "T", fmus[1], TERMINATING_Y, -1);
+    add_probe(sys, "R2", &fmus[2], partners);
+    fmus[3] = load_fmu("pendulum_euler");
+    CHECK(start_pendulum(fmus[3], 0.0, 0.3, 0.0, 0.0) == 0);
+    add_pendulum(sys, "P", fmus[3]);
     CHECK_OK(sys, ssx_set_coupling(sys, SSX_JACOBI));
     CHECK_OK(sys, ssx_set_threads(sys, threads));
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
-    const int n_outputs[] = {3, 1, 3, 3};
+    const int n_outputs[] = {0, 1, 0, 3};
     keep(o, sys, 4, n_outputs, ssx_run(sys, 0.0, 1.0, 0.1));
     CHECK(ssx_time(sys) == 0.4);
     ssx_system_free(sys);
@@ -340,27 +351,23 @@ static int probe_outputs(void *user, double t)
     return 0;
 }
 
-/* thread_probe FMUs report the thread that stepped them. With two threads, the pool's first
- * component A steps on the calling thread, its second, B, on the worker, C and D on whichever
- * claims them; the FMU marked calling-thread-only and the hooked component step on the
- * calling thread. */
+/* thread_probe FMUs report the thread that stepped them. A and B step only together, so the
+ * calling thread (which takes A, the first pool task) and the worker (B) step at once; the
+ * FMU marked calling-thread-only and the hooked component step on the calling thread. */
 static void calling_thread_stays(void)
 {
-    ssx_fmu *fmus[PROBES];
+    ssx_fmu *fmus[3];
     ssx_system *sys = ssx_system_new("probes");
-    const char *names[PROBES] = {"A", "B", "C", "D", "Once"};
-    for (int i = 0; i < PROBES; ++i) {
-        fmus[i] = load_fmu("thread_probe");
-        CHECK(start_fmu(fmus[i], 0.0, 0.0, NULL, NULL, 0) == 0);
-        add_block(sys, names[i], fmus[i], 0, -1);
-    }
+    add_probe(sys, "A", &fmus[0], 2);
+    add_probe(sys, "B", &fmus[1], 2);
+    int once = add_probe(sys, "Once", &fmus[2], 0);
     hooked_probe hooked = {.sys = sys};
     hooked.component = ssx_add_python_component(sys, "Hooked", 0);
     CHECK(ssx_add_output(sys, hooked.component, SSX_REAL, 0) == 0);
     const ssx_hooks hooks = {.user = &hooked, .do_step = probe_step,
                              .evaluate_outputs = probe_outputs};
     CHECK_OK(sys, ssx_set_hooks(sys, hooked.component, &hooks));
-    CHECK_OK(sys, ssx_set_calling_thread_only(sys, 4, 1));
+    CHECK_OK(sys, ssx_set_calling_thread_only(sys, once, 1));
     CHECK_OK(sys, ssx_set_coupling(sys, SSX_JACOBI));
     CHECK_OK(sys, ssx_set_threads(sys, 2));
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
@@ -371,14 +378,14 @@ static void calling_thread_stays(void)
     for (size_t k = 1; k <= last; ++k) {
         CHECK(ssx_history_values(sys, 0)[k] == caller);
         CHECK(ssx_history_values(sys, 1)[k] != caller);
-        CHECK(ssx_history_values(sys, 4)[k] == caller);
+        CHECK(ssx_history_values(sys, once)[k] == caller);
         CHECK(ssx_history_values(sys, hooked.component)[k] == caller);
     }
     ssx_statistics stats;
     ssx_get_statistics(sys, &stats);
-    CHECK(stats.do_step_calls == 5 * 6);
+    CHECK(stats.do_step_calls == 5 * 4);
     ssx_system_free(sys);
-    for (int i = 0; i < PROBES; ++i) {
+    for (int i = 0; i < 3; ++i) {
         ssx_fmu_free(fmus[i]);
     }
 }
@@ -390,8 +397,7 @@ static void shared_instance(int threads, outcome *o)
     ssx_fmu *fmus[3];
     ssx_system *sys = ssx_system_new("twins");
     for (int i = 0; i < 3; ++i) {
-        fmus[i] = load_fmu("thread_probe");
-        CHECK(start_fmu(fmus[i], 0.0, 0.0, NULL, NULL, 0) == 0);
+        fmus[i] = started_probe(0);
     }
     const char *names[] = {"A", "Twin1", "Twin2", "B"};
     ssx_fmu *chosen[] = {fmus[0], fmus[1], fmus[1], fmus[2]};
