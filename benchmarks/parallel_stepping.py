@@ -10,9 +10,9 @@ side by side in one run.
 
 For each case: the wall time per macro step on one thread and on two (median of --repeat
 runs, the two alternating), the speed-up (wall 1 / wall 2), the CPU time over the wall time of
-each (process CPU, all threads), and whether the two recorded the same samples to the last
-bit. The machine's load average is printed before and after: other processes on the cores
-make the two-thread figure the first to suffer.
+each (process CPU, all threads), the machine's 1-minute load average after the case, and
+whether the two recorded the same samples to the last bit. Other processes on the cores make
+the two-thread figure the first to suffer: measure on a quiet machine.
 
     python benchmarks/parallel_stepping.py [--repeat N] [--threads N]
 """
@@ -110,7 +110,7 @@ def main() -> None:
           f"{args.repeat} runs each, medians")
     n = args.threads
     print(f"{'case':<20}{'µs/step 1':>11}{f'µs/step {n}':>11}{'speed-up':>10}"
-          f"{'CPU/wall 1':>12}{f'CPU/wall {n}':>12}  same samples")
+          f"{'CPU/wall 1':>12}{f'CPU/wall {n}':>12}{'load':>7}  same samples")
     for case in cases:
         runs: dict[int, list[Run]] = {1: [], n: []}
         for _ in range(args.repeat):
@@ -121,7 +121,8 @@ def main() -> None:
         load = {t: statistics.median(r.cpu / r.wall for r in runs[t]) for t in runs}
         same = all(np.array_equal(r.samples, runs[1][0].samples) for r in runs[1] + runs[n])
         print(f"{case.name:<20}{1e6 * wall[1] / steps:>11.1f}{1e6 * wall[n] / steps:>11.1f}"
-              f"{wall[1] / wall[n]:>9.2f}x{load[1]:>12.2f}{load[n]:>12.2f}  {same}")
+              f"{wall[1] / wall[n]:>9.2f}x{load[1]:>12.2f}{load[n]:>12.2f}"
+              f"{os.getloadavg()[0]:>7.2f}  {same}")
     print(f"load average after: {os.getloadavg()[0]:.2f}")
 
 
