@@ -1,6 +1,6 @@
 /* The pool's handshake. A job is published as one 64-bit word, the task count in the high half
- * and the next task to claim in the low half, so a claim is one fetch-and-add that also tells
- * whether the job has tasks left; `generation` advances once per job (under the lock, with a
+ * and the next task to claim in the low half, so a claim is one compare-and-swap that also
+ * tells whether the job has tasks left; `generation` advances once per job (under the lock, with a
  * broadcast, so a sleeping worker cannot miss it). A thread counts itself `busy` before it
  * claims and uncounts itself after its last task: once the caller has claimed past the end,
  * a busy count of zero means every claimed task is done. A worker that wakes late finds no
@@ -49,16 +49,35 @@ static int posted_since(worker_pool *pool, unsigned long seen)
     return atomic_load_explicit(&pool->generation, memory_order_acquire) != seen;
 }
 
+/* Claims the next tasks: a share of what is left (half of it split over the threads, at least
+ * one task), so a batch of many cheap tasks costs a few claims, and the last claims are
+ * small enough to even out the threads. Returns how many, from *first; 0 when none is left. */
+static int claim_tasks(worker_pool *pool, int *first)
+{
+    uint_least64_t claim = atomic_load(&pool->claim);
+    for (;;) {
+        uint_least64_t next = claim & UINT32_MAX;
+        uint_least64_t count = claim >> 32;
+        if (next >= count) {
+            return 0;
+        }
+        uint_least64_t share = (count - next) / (2 * (uint_least64_t)(pool->n_workers + 1));
+        share = share > 0 ? share : 1;
+        if (atomic_compare_exchange_weak(&pool->claim, &claim, claim + share)) {
+            *first = (int)next;
+            return (int)share;
+        }
+    }
+}
+
 /* Claims and runs tasks until none is left. */
 static void take_tasks(worker_pool *pool, int thread)
 {
-    for (;;) {
-        uint_least64_t claim = atomic_fetch_add(&pool->claim, 1);
-        uint_least64_t next = claim & UINT32_MAX;
-        if (next >= claim >> 32) {
-            return;
+    int first = 0;
+    for (int n = claim_tasks(pool, &first); n > 0; n = claim_tasks(pool, &first)) {
+        for (int k = first; k < first + n; ++k) {
+            pool->task(pool->context, k, thread);
         }
-        pool->task(pool->context, (int)next, thread);
     }
 }
 
