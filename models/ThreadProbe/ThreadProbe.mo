@@ -1,4 +1,4 @@
-model ThreadProbe "thread = the id of the thread that last stepped the FMU; with partners > 1 a step waits until that many instances step at once (tests of masters that step FMUs on several threads)"
+model ThreadProbe "thread = the id of the thread that last stepped the FMU; with partners > 1 a step waits until that many instances step at once, then lasts 1 ms (tests of masters that step FMUs on several threads)"
   function threadId "gettid() of the calling thread"
     output Real id;
   external "C" id = gettid();

@@ -1,8 +1,9 @@
 /* ThreadProbe.mo: `thread` is the Linux thread id of the thread that last computed the
  * outputs (each fmi2DoStep does), so a master's tests can see which of its threads stepped
  * the FMU. With partners = n > 1, a step waits until n instances of this binary have started
- * a step at once (one meeting per n steps started); a master that steps them one after the
- * other gets the step refused after 10 s instead. The meeting counter is the binary's one
+ * a step at once (one meeting per n steps started), then lasts 1 ms more (a master that judges
+ * whether to share steps by their cost finds these worth sharing); a master that steps them
+ * one after the other gets the step refused after 10 s instead. The meeting counter is the binary's one
  * global: it is what the instances share on purpose. */
 #define _GNU_SOURCE
 #include <stdatomic.h>
@@ -53,6 +54,7 @@ static const char *meet_partners(const double *v, double t_end, step_refusal_kin
             return "no partner started a step at the same time within 10 s";
         }
     }
+    nanosleep(&(struct timespec){0, 1000000}, NULL);
     return NULL;
 }
 
