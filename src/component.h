@@ -43,6 +43,7 @@ struct ssx_component {
     void *data;   /* the kind's own data (a table source's table), freed by ops->release */
     int can_snapshot;
     int provides_directional_derivatives; /* FMU components only */
+    int calling_thread_only; /* ssx_set_calling_thread_only */
 
     ssx_port *output_ports;
     double *outputs;

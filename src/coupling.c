@@ -1,18 +1,24 @@
-/* Jacobi and Gauss-Seidel macro steps over the schedule. */
+/* Jacobi and Gauss-Seidel macro steps over the schedule, on one thread or several
+ * (parallel_step.h). */
 #include "coupling.h"
 
 #include <stdlib.h>
 
 #include "algebraic_loop.h"
 #include "error.h"
+#include "parallel_step.h"
+
+typedef int (*coupled_step)(ssx_system *sys, double t, double h);
 
 static int step_gauss_seidel(ssx_system *sys, double t, double h);
+static int step_gauss_seidel_batches(ssx_system *sys, double t, double h);
 static int step_jacobi(ssx_system *sys, double t, double h);
 
-/* The couplings' steps, chosen once per initialization. */
-static int (*const COUPLED_STEPS[])(ssx_system *sys, double t, double h) = {
-    [SSX_GAUSS_SEIDEL] = step_gauss_seidel,
-    [SSX_JACOBI] = step_jacobi,
+/* The couplings' steps on one thread and on several, chosen once per initialization. Jacobi
+ * is one batch either way. */
+static const coupled_step COUPLED_STEPS[][2] = {
+    [SSX_GAUSS_SEIDEL] = {step_gauss_seidel, step_gauss_seidel_batches},
+    [SSX_JACOBI] = {step_jacobi, step_jacobi},
 };
 
 int coupling_known(int coupling)
@@ -20,9 +26,19 @@ int coupling_known(int coupling)
     return coupling >= 0 && coupling < (int)(sizeof COUPLED_STEPS / sizeof *COUPLED_STEPS);
 }
 
+static int prepare_schedule(ssx_system *sys);
+
 int coupling_prepare(ssx_system *sys)
 {
-    sys->coupled_step = COUPLED_STEPS[sys->coupling];
+    if (prepare_schedule(sys) != 0 || parallel_prepare(sys) != 0) {
+        return -1;
+    }
+    sys->coupled_step = COUPLED_STEPS[sys->coupling][sys->parallel != NULL];
+    return 0;
+}
+
+static int prepare_schedule(ssx_system *sys)
+{
     if (sys->has_schedule) {
         const ssx_group *last = &sys->groups[sys->n_groups - 1];
         if (last->first + last->size != sys->n_components) {
@@ -70,7 +86,7 @@ static ssx_component *member(ssx_system *sys, const ssx_group *g, int m)
     return sys->components[sys->order[g->first + m]];
 }
 
-static int step_member(ssx_system *sys, ssx_component *c, double t, double h)
+int coupling_step_member(ssx_system *sys, ssx_component *c, double t, double h)
 {
     if (component_write_inputs(sys, c) != 0) {
         return -1;
@@ -100,11 +116,33 @@ static int step_gauss_seidel(ssx_system *sys, double t, double h)
             if (!g->is_loop) {
                 coupling_propagate_inputs(sys, c);
             }
-            if (step_member(sys, c, t, h) != 0) {
+            if (coupling_step_member(sys, c, t, h) != 0) {
                 return -1;
             }
         }
         if (g->is_loop && solve_loop_at(sys, g, t + h) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* Gauss-Seidel on several threads: the members of a batch see the same driver outputs when
+ * all their inputs are set before any of them steps (parallel_step.h). */
+static int step_gauss_seidel_batches(ssx_system *sys, double t, double h)
+{
+    const parallel_batch *batches;
+    int n_batches = parallel_batches(sys->parallel, &batches);
+    for (int b = 0; b < n_batches; ++b) {
+        const int *members = &sys->order[batches[b].first];
+        for (int m = 0; m < batches[b].size && batches[b].group < 0; ++m) {
+            coupling_propagate_inputs(sys, sys->components[members[m]]);
+        }
+        if (parallel_step(sys, members, batches[b].size, t, h) != 0) {
+            return -1;
+        }
+        if (batches[b].group >= 0 &&
+            solve_loop_at(sys, &sys->groups[batches[b].group], t + h) != 0) {
             return -1;
         }
     }
@@ -121,10 +159,8 @@ static int step_jacobi(ssx_system *sys, double t, double h)
             coupling_propagate_inputs(sys, member(sys, g, m));
         }
     }
-    for (int i = 0; i < sys->n_components; ++i) {
-        if (step_member(sys, sys->components[sys->order[i]], t, h) != 0) {
-            return -1;
-        }
+    if (parallel_step(sys, sys->order, sys->n_components, t, h) != 0) {
+        return -1;
     }
     for (int gi = 0; gi < sys->n_groups; ++gi) {
         const ssx_group *g = &sys->groups[gi];

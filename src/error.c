@@ -7,11 +7,14 @@
 #include <string.h>
 
 #include "fmu_binding.h"
+#include "parallel_step.h"
 
-static int vfail(ssx_system *sys, ssx_error_kind kind, int component, int indicator, double t,
-                 const char *format, va_list args)
+/* Fills the record of the current thread: the system's, or a worker's own while it steps a
+ * share of a batch (the calling thread publishes the first one afterwards). */
+static ssx_error *vrecord(ssx_system *sys, ssx_error_kind kind, int component, int indicator,
+                          double t, const char *format, va_list args)
 {
-    ssx_error *e = &sys->error;
+    ssx_error *e = parallel_error_slot(sys);
     e->kind = kind;
     e->component = component;
     e->indicator = indicator;
@@ -19,6 +22,24 @@ static int vfail(ssx_system *sys, ssx_error_kind kind, int component, int indica
     e->time = t;
     e->fmi_status = -1;
     vsnprintf(e->message, sizeof e->message, format, args);
+    return e;
+}
+
+SSX_PRINTF(6, 7)
+static ssx_error *record(ssx_system *sys, ssx_error_kind kind, int component, int indicator,
+                         double t, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    ssx_error *e = vrecord(sys, kind, component, indicator, t, format, args);
+    va_end(args);
+    return e;
+}
+
+static int vfail(ssx_system *sys, ssx_error_kind kind, int component, int indicator, double t,
+                 const char *format, va_list args)
+{
+    vrecord(sys, kind, component, indicator, t, format, args);
     return -1;
 }
 
@@ -62,30 +83,40 @@ int fail_zeno(ssx_system *sys, int component, int indicator, double t, const cha
 int fail_fmi(ssx_system *sys, const ssx_component *c, double t, int status, const char *call)
 {
     const char *log = ssx_fmu_last_message(c->fmu);
-    fail(sys, c->index, -1, t, "component '%s': %s failed at t=%.17g with status %s%s%s%s",
-         c->name, call, t, ssx_fmu_status_text(c->fmu, status), log[0] ? " (FMU log: " : "", log,
-         log[0] ? ")" : " (the FMU logged no message)");
-    sys->error.kind = SSX_ERROR_FMI;
-    sys->error.fmi_status = status;
+    ssx_error *e = record(sys, SSX_ERROR_FMI, c->index, -1, t,
+                          "component '%s': %s failed at t=%.17g with status %s%s%s%s", c->name,
+                          call, t, ssx_fmu_status_text(c->fmu, status),
+                          log[0] ? " (FMU log: " : "", log,
+                          log[0] ? ")" : " (the FMU logged no message)");
+    e->fmi_status = status;
+    return -1;
+}
+
+int fail_status(ssx_system *sys, const ssx_component *c, double t, int status,
+                const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    ssx_error *e = vrecord(sys, SSX_ERROR_SIMULATION, c->index, -1, t, format, args);
+    va_end(args);
+    e->fmi_status = status;
     return -1;
 }
 
 int fail_non_finite(ssx_system *sys, const ssx_component *c, int output, double t)
 {
-    fail(sys, c->index, -1, t,
-         "component '%s': output %d is %g at t=%.17g (non-finite values stop the run unless they "
-         "are allowed)",
-         c->name, output, c->outputs[output], t);
-    sys->error.kind = SSX_ERROR_NON_FINITE;
-    sys->error.output = output;
+    ssx_error *e = record(sys, SSX_ERROR_NON_FINITE, c->index, -1, t,
+                          "component '%s': output %d is %g at t=%.17g (non-finite values stop "
+                          "the run unless they are allowed)",
+                          c->name, output, c->outputs[output], t);
+    e->output = output;
     return -1;
 }
 
 int fail_hook(ssx_system *sys, const ssx_component *c, double t, const char *hook)
 {
-    fail(sys, c->index, -1, t, "component '%s': the Python %s hook failed at t=%.17g", c->name,
-         hook, t);
-    sys->error.kind = SSX_ERROR_CALLBACK;
+    record(sys, SSX_ERROR_CALLBACK, c->index, -1, t,
+           "component '%s': the Python %s hook failed at t=%.17g", c->name, hook, t);
     return -1;
 }
 

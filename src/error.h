@@ -23,6 +23,10 @@ int fail_kind(ssx_system *sys, ssx_error_kind kind, int component, int indicator
               const char *format, ...) SSX_PRINTF(6, 7);
 /* An fmi2 call of component c returned `status` (or the binding failed, status -1). */
 int fail_fmi(ssx_system *sys, const ssx_component *c, double t, int status, const char *call);
+/* Component c failed in a way an fmi2 status explains without an fmi2 call failing (a step
+ * discarded without a request to terminate): kind SSX_ERROR_SIMULATION with that status. */
+int fail_status(ssx_system *sys, const ssx_component *c, double t, int status,
+                const char *format, ...) SSX_PRINTF(5, 6);
 /* Output `output` of component c holds a NaN or an infinity at time t. */
 int fail_non_finite(ssx_system *sys, const ssx_component *c, int output, double t);
 /* A Python hook of component c reported failure; Python keeps the exception. */

@@ -10,6 +10,7 @@
 #include "error.h"
 #include "fmu_backend.h"
 #include "fmu_binding.h"
+#include "parallel_step.h"
 #include "system.h"
 
 /* The status every standard gives a step it could not complete (fmi2Discard, fmi3Discard). */
@@ -138,10 +139,13 @@ static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
 static int stop_requested(ssx_system *sys, ssx_component *c, double t, double t_end,
                           double reached, const char *log)
 {
-    if (sys->termination.component < 0) {
-        sys->termination.component = c->index;
-        sys->termination.time = isnan(reached) ? t : reached;
-        snprintf(sys->termination.message, sizeof sys->termination.message, "%s", log);
+    double stop = isnan(reached) ? t : reached;
+    /* the first request of the run counts; on a worker thread, the first of its share */
+    ssx_termination *request = parallel_termination_slot(sys);
+    if (request->component < 0) {
+        request->component = c->index;
+        request->time = stop;
+        snprintf(request->message, sizeof request->message, "%s", log);
     }
     /* the grid's own rounding: a remainder below 1e-9 steps is the step's end */
     if (reached >= t_end - 1e-9 * (t_end - t)) {
@@ -149,7 +153,7 @@ static int stop_requested(ssx_system *sys, ssx_component *c, double t, double t_
     }
     return fail(sys, c->index, -1, t,
                 "component '%s' asked to stop at t=%.17g, inside the step from %.17g to %.17g",
-                c->name, sys->termination.time, t, t_end);
+                c->name, stop, t, t_end);
 }
 
 /* A discarded step means one of two things. The FMU asks to end the simulation (FMI 2.0's
@@ -175,14 +179,13 @@ static int discarded_step(ssx_system *sys, ssx_component *c, double t, double t_
         if (!isnan(reached)) {
             snprintf(got_to, sizeof got_to, "%s=%.17g", reached_name, reached);
         }
-        fail(sys, c->index, -1, isnan(reached) ? t : reached,
-             "component '%s': %s from t=%.17g to %.17g returned %s without asking to "
-             "terminate: the FMU completed the step only up to %s%s%s%s",
-             c->name, call_name(c, SLOT_DO_STEP), t, t_end,
-             ssx_fmu_status_text(c->fmu, STATUS_DISCARD), got_to, log[0] ? " (FMU log: " : "",
-             log, log[0] ? ")" : " (the FMU logged no message)");
-        sys->error.fmi_status = STATUS_DISCARD;
-        return -1;
+        return fail_status(sys, c, isnan(reached) ? t : reached, STATUS_DISCARD,
+                           "component '%s': %s from t=%.17g to %.17g returned %s without asking "
+                           "to terminate: the FMU completed the step only up to %s%s%s%s",
+                           c->name, call_name(c, SLOT_DO_STEP), t, t_end,
+                           ssx_fmu_status_text(c->fmu, STATUS_DISCARD), got_to,
+                           log[0] ? " (FMU log: " : "", log,
+                           log[0] ? ")" : " (the FMU logged no message)");
     }
     return stop_requested(sys, c, t, t_end, reached, log);
 }

@@ -43,6 +43,7 @@ typedef struct {
     int output_interval;
     /* CVODE's relative tolerance for a Model Exchange FMU set up without one (FMPy's) */
     double model_exchange_tolerance;
+    int threads; /* threads that step FMU components (ssx_set_threads) */
 } ssx_defaults;
 void ssx_get_defaults(ssx_defaults *out);
 
@@ -360,6 +361,22 @@ int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_compon
 int ssx_set_schedule(ssx_system *sys, const int *order, const int *group_sizes,
                      const int *group_is_loop, int n_groups);
 int ssx_set_coupling(ssx_system *sys, ssx_coupling coupling);
+/* Steps FMU components on `threads` threads (1 .. SSX_MAX_THREADS): the calling thread and
+ * threads - 1 workers, started at the next ssx_initialize and kept until the system is freed.
+ * Under Jacobi every component of a step may run on any of them; under Gauss-Seidel those of
+ * consecutive groups none of which feeds a later one of them in the same step, and the members
+ * of a loop. Python-backed components, table sources, components marked with
+ * ssx_set_calling_thread_only and components sharing one ssx_fmu step on the calling thread;
+ * so do the monitor, the recording and the event handling, and the steps whose FMUs together
+ * took less than a hand-off to the workers costs (about 20 us). Each FMU steps on its own
+ * instance from inputs set before the step, so the results, the statistics and the first error
+ * (in schedule order) are those of one thread. */
+enum { SSX_MAX_THREADS = 256 };
+int ssx_set_threads(ssx_system *sys, int threads);
+/* The component steps on the thread that calls ssx_run (on: nonzero): for an FMU whose
+ * modelDescription declares canBeInstantiatedOnlyOncePerProcess (its binary may keep state
+ * that expects one thread). Off by default. */
+int ssx_set_calling_thread_only(ssx_system *sys, int component, int only);
 int ssx_set_loop_options(ssx_system *sys, double tolerance, int max_iterations, double damping);
 /* The FMU of an FMU component provides fmi2GetDirectionalDerivative (its modelDescription says
  * providesDirectionalDerivative="true"); off until set. */

@@ -11,6 +11,7 @@
 #include "array.h"
 #include "coupling.h"
 #include "error.h"
+#include "parallel_step.h"
 
 void ssx_get_defaults(ssx_defaults *out)
 {
@@ -26,7 +27,8 @@ void ssx_get_defaults(ssx_defaults *out)
                           .locator = SSX_ILLINOIS,
                           .zeno_min_interval = 0.0,
                           .output_interval = 1,
-                          .model_exchange_tolerance = 1e-5};
+                          .model_exchange_tolerance = 1e-5,
+                          .threads = 1};
 }
 
 ssx_system *ssx_system_new(const char *name)
@@ -43,6 +45,7 @@ ssx_system *ssx_system_new(const char *name)
     ssx_defaults d;
     ssx_get_defaults(&d);
     sys->coupling = d.coupling;
+    sys->threads = d.threads;
     sys->loop = (ssx_loop_options){.tolerance = d.loop_tolerance,
                                    .max_iterations = d.loop_max_iterations,
                                    .damping = d.loop_damping,
@@ -77,6 +80,7 @@ void ssx_system_free(ssx_system *sys)
     free(sys->order);
     free(sys->groups);
     recording_free(&sys->recording);
+    parallel_free(sys->parallel);
     localization_log_free(&sys->localization);
     free(sys->name);
     free(sys);
@@ -455,6 +459,27 @@ int ssx_set_coupling(ssx_system *sys, ssx_coupling coupling)
                            (int)coupling);
     }
     sys->coupling = coupling;
+    return 0;
+}
+
+int ssx_set_threads(ssx_system *sys, int threads)
+{
+    if (threads < 1 || threads > SSX_MAX_THREADS) {
+        return fail_config(sys, -1, -1, NAN, "threads must be between 1 and %d, not %d",
+                           SSX_MAX_THREADS, threads);
+    }
+    sys->threads = threads;
+    return 0;
+}
+
+int ssx_set_calling_thread_only(ssx_system *sys, int component, int only)
+{
+    ssx_component *c = system_component(sys, component);
+    if (c == NULL) {
+        return -1;
+    }
+    c->calling_thread_only = only != 0;
+    structure_changed(sys);
     return 0;
 }
 

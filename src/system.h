@@ -75,6 +75,8 @@ struct ssx_system {
     int has_schedule;
 
     ssx_coupling coupling;
+    int threads;                    /* ssx_set_threads */
+    struct parallel_plan *parallel; /* built at ssx_initialize when threads > 1 */
     /* chosen at ssx_initialize */
     const ssx_master_algorithm *algorithm;
     int (*coupled_step)(ssx_system *sys, double t, double h); /* the coupling's step */

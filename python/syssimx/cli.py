@@ -150,6 +150,9 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--algorithm", choices=ALGORITHMS, default=None,
                      help="the master algorithm (default: the description's; for an SSP "
                           "gauss_seidel)")
+    run.add_argument("--threads", type=int, default=None, metavar="N",
+                     help="step the FMU components on N threads (default: the description's, "
+                          "else 1)")
     run.add_argument("--quiet", action="store_true",
                      help="no progress bar (there is none either when not on a terminal)")
     run.set_defaults(run=_run_config)
@@ -393,14 +396,14 @@ def _run_config(args: argparse.Namespace, out: TextIO) -> None:
         from .system.loader import build_system, run_from_config, run_settings
 
         with _working_directory_importable():
-            if args.algorithm is None:
+            if args.algorithm is None and args.threads is None:
                 result = run_from_config(args.config, t0=args.t0, tf=args.tf, dt=args.dt,
                                          progress=options.get("progress"))
             else:
                 settings = run_settings(Source(Path(args.config)), read_file(args.config),
                                         {"t0": args.t0, "tf": args.tf, "dt": args.dt})
                 system = build_system(args.config)
-                system.set_algorithm(_algorithm(args.algorithm))
+                _choose_algorithm(system, args)
                 system.initialize(settings["t0"])
                 result = system.run(settings["t0"], settings["tf"], settings["dt"], **options)
     out.write(f"Completed '{result.system_name}': t in [{result.t0}, {result.tf}] s, "
@@ -444,6 +447,17 @@ def _algorithm(name: str) -> Any:
             "hybrid": HybridAlgorithm}[name]()
 
 
+def _choose_algorithm(system: Any, args: argparse.Namespace) -> None:
+    """--algorithm replaces the description's algorithm; --threads sets its threads."""
+    if args.algorithm is None and args.threads is None:
+        return
+    algorithm = _algorithm(args.algorithm) if args.algorithm is not None else system.algorithm
+    if args.threads is not None:
+        coupling = getattr(algorithm, "coupling", algorithm)  # a hybrid algorithm's coupling
+        coupling.threads = args.threads
+    system.set_algorithm(algorithm)
+
+
 def _run_ssp(args: argparse.Namespace, options: dict[str, Any]) -> Any:
     """An SSP's system over its default experiment (start 0 when it has none); the stop time
     and the step come from the experiment, the OSP fixed-step annotation, or the options."""
@@ -459,8 +473,7 @@ def _run_ssp(args: argparse.Namespace, options: dict[str, Any]) -> Any:
         raise CommandError(f"{args.config}: give {missing}: the SSP has no "
                            + ("stop time in its DefaultExperiment" if tf is None else
                               "step size (an OSP FixedStepAlgorithm baseStepSize annotation)"))
-    if args.algorithm is not None:
-        imported.system.set_algorithm(_algorithm(args.algorithm))
+    _choose_algorithm(imported.system, args)
     imported.system.initialize(t0)
     return imported.system.run(t0, float(tf), float(dt), **options)
 

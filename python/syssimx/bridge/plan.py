@@ -160,11 +160,13 @@ class EnginePlan:
     def add_fmu_component(self, component: Component, fmu: Any, can_get_set_state: bool,
                           provides_directional_derivative: bool,
                           value_reference: Callable[[str], int], hooks: set[str],
-                          model_exchange: tuple[int, int] | None = None) -> None:
+                          model_exchange: tuple[int, int] | None = None, *,
+                          calling_thread_only: bool = False) -> None:
         """An FMU the engine steps itself; `hooks` lists what the component's Python
         overrides (none for a plain FMUComponent). `model_exchange`: the engine integrates it,
         with (continuous states, event indicators), at the tolerance the instance is set up
-        with. The system borrows the loaded FMU."""
+        with. `calling_thread_only` keeps its steps on the thread that runs the system. The
+        system borrows the loaded FMU."""
         name, index = component.name, self.index[component.name]
         self._borrowed_fmus.append(fmu)
         if model_exchange is None:
@@ -177,6 +179,9 @@ class EnginePlan:
         self.check(lib().ssx_set_directional_derivatives(
             self.sys, index, int(provides_directional_derivative)),
             f"{name}: directional derivatives")
+        if calling_thread_only:
+            self.check(lib().ssx_set_calling_thread_only(self.sys, index, 1),
+                       f"{name}: calling thread only")
         self._add_ports(component, value_reference)
         self._bind(component, hooks, is_fmu=True)
 

@@ -320,13 +320,17 @@ class FMUComponent(CoSimComponent):
             self._binding.plan.read_outputs(self)
 
     def _add_to_plan(self, plan: EnginePlan) -> None:
-        """The engine steps the FMU itself; only what a subclass overrides runs in Python."""
+        """The engine steps the FMU itself; only what a subclass overrides runs in Python. An
+        FMU that may be instantiated only once per process keeps globals in its binary and
+        steps on the calling thread, unless its binary runs in a host process of its own."""
         model_exchange = (self.info.number_of_states, self.info.number_of_event_indicators) \
             if self.model_exchange else None
+        once_per_process = self.fmu_interface.can_be_instantiated_only_once_per_process
         plan.add_fmu_component(
             self, self._fmu, self.can_get_set_state,
             self.fmu_interface.provides_directional_derivative,
-            self.value_reference, self._python_hooks(engine_steps=True), model_exchange)
+            self.value_reference, self._python_hooks(engine_steps=True), model_exchange,
+            calling_thread_only=once_per_process and not self.isolated)
 
     # ---------------------------------------------------------------- hooks (engine built-ins)
     def _do_step_internal(self, t: float, dt: float) -> None:

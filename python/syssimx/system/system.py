@@ -204,6 +204,7 @@ class System:
                                               coupling.damping), "loop options")
         plan.check(lib().ssx_set_loop_jacobian(
             plan.sys, loop_jacobians()[coupling.loop_jacobian]), "loop Jacobian")
+        plan.check(lib().ssx_set_threads(plan.sys, coupling.threads), "threads")
         if isinstance(algorithm, HybridAlgorithm):
             plan.check(lib().ssx_set_hybrid_options(
                 plan.sys, algorithm.tol_time, algorithm.tol_value, algorithm.max_iter,

@@ -25,7 +25,11 @@ class JacobiAlgorithm:
     tolerance, max_iter and damping configure the solution of algebraic loops at each
     communication point. loop_jacobian: "auto" takes Newton's Jacobian from
     fmi2GetDirectionalDerivative for the inputs of FMUs that provide it and from finite
-    differences elsewhere; "finite_differences" uses finite differences throughout."""
+    differences elsewhere; "finite_differences" uses finite differences throughout.
+    threads: FMU components step on this many threads in C (the calling thread and
+    threads - 1 workers, see ssx_set_threads); Python components and FMUs that declare
+    canBeInstantiatedOnlyOncePerProcess stay on the calling thread, and the results are those
+    of one thread."""
 
     tolerance: float = field(default_factory=lambda: defaults().loop_tolerance)
     max_iter: int = field(default_factory=lambda: defaults().loop_max_iterations)
@@ -33,6 +37,7 @@ class JacobiAlgorithm:
     name: str = "Jacobi"
     loop_jacobian: str = field(default_factory=lambda: enum_name(
         "ssx_loop_jacobian", JACOBIAN_PREFIX, defaults().loop_jacobian))
+    threads: int = field(default_factory=lambda: defaults().threads)
     engine_coupling: ClassVar[str] = "SSX_JACOBI"  # the ssx_coupling it runs as
 
     def coupling_value(self) -> int:
@@ -48,12 +53,18 @@ class JacobiAlgorithm:
             raise ValueError(f"{self.name}: tolerance > 0, max_iter >= 1 and 0 < damping <= 1 "
                              f"are required (got {self.tolerance}, {self.max_iter}, "
                              f"{self.damping})")
+        if isinstance(self.threads, bool) or not isinstance(self.threads, int):
+            raise ValueError(f"{self.name}: threads must be an integer, got {self.threads!r}")
+        refusal = engine_refusal(lambda system: lib().ssx_set_threads(system, self.threads))
+        if refusal is not None:
+            raise ValueError(f"{self.name}: {refusal}")
 
 
 @dataclass
 class GaussSeidelAlgorithm(JacobiAlgorithm):
     """Components step in dependency order; a consumer of a direct-feedthrough output gets
-    the value of the same communication point (the default)."""
+    the value of the same communication point (the default). With threads > 1, a run of
+    consecutive components none of which feeds a later one of the run steps in parallel."""
 
     name: str = "Gauss-Seidel"
     engine_coupling: ClassVar[str] = "SSX_GAUSS_SEIDEL"

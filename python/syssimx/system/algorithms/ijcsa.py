@@ -25,7 +25,7 @@ class IJCSAAlgorithm(GaussSeidelAlgorithm):
 
     def __init__(self, max_iter: int | None = None, tol: float | None = None, *,
                  damping: float | None = None, loop_jacobian: str | None = None,
-                 name: str = "IJCSA") -> None:
+                 threads: int | None = None, name: str = "IJCSA") -> None:
         super().__init__(name=name)
         if max_iter is not None:
             self.max_iter = max_iter
@@ -35,6 +35,8 @@ class IJCSAAlgorithm(GaussSeidelAlgorithm):
             self.damping = damping
         if loop_jacobian is not None:
             self.loop_jacobian = loop_jacobian
+        if threads is not None:
+            self.threads = threads
 
     @property
     def tol(self) -> float:
