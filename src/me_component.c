@@ -262,9 +262,9 @@ static int check_count(ssx_system *sys, ssx_component *c, double t, ssx_fmu_slot
     }
     if (n != expected) {
         return fail(sys, c->index, -1, t,
-                    "component '%s': %s says the instance has %zu %s, its modelDescription "
-                    "%zu",
-                    c->name, call_name(c, slot), n, what, expected);
+                    "component '%s': %s: the instance has %zu (%s at t=%.17g), its "
+                    "modelDescription declares %zu",
+                    c->name, what, n, call_name(c, slot), t, expected);
     }
     return 0;
 }
