@@ -12,7 +12,9 @@ syssimx and FMPy's simulate_fmu(fmi_type="ModelExchange", solver="CVode"):
   nominal: y1 1e-4, y2 1e-2). FMPy's y1 is not (1.02e-7), so "as close as FMPy" is not asked.
 - Stair and Feedthrough (no states): FMPy's numbers exactly; Stair's time events at each second
   and its request to terminate at 9 s, without rollback, and its `_out.csv` (1e-12).
-- BouncingBall's bounces at the closed-form times within 1e-8, with no rollback.
+- BouncingBall's bounces at the closed-form times within 1e-8, with no rollback; beside an
+  indicator of the master located by rollback (fmi3GetFMUState/SetFMUState in Model Exchange's
+  modes), each bounce recorded once.
 """
 
 from __future__ import annotations
@@ -27,7 +29,14 @@ from syssimx import FMUComponent, SimulationResult, System
 from syssimx.errors import SimulationError
 from test_fmi3_import import edited
 from test_fmi3_reference import fmu, outputs
-from test_model_exchange_reference import RTOL, accurate, bounce_times, distance, grid
+from test_model_exchange_reference import (
+    RTOL,
+    accurate,
+    bounce_times,
+    distance,
+    fall_crossings,
+    grid,
+)
 from test_reference_fmus import reference_result
 
 
@@ -126,6 +135,24 @@ def test_bouncing_ball_bounces_at_the_closed_form_times_without_rollback():
     statistics = result.statistics
     assert (statistics.own_events, statistics.state_restores, statistics.events) == (11, 0, 0)
     assert statistics.do_step_calls == 300
+
+
+def test_external_indicator_is_located_by_rollback_and_own_events_recorded_once():
+    ball = FMUComponent("B", fmu("BouncingBall"), interface="model-exchange", tolerance=1e-12)
+    ball.add_event_indicator("low", lambda b: b.get_outputs()["h"].magnitude - 0.2,
+                             direction=-1)
+    system = System("ball")
+    system.add_component(ball)
+    system.initialize(0.0)
+    system.algorithm.tol_time = 1e-10
+    result = system.run(0.0, 3.0, 0.01)
+    own = [e for e in result.events if e.own]
+    master = [e for e in result.events if not e.own]
+    assert np.max(np.abs(np.array([e.t for e in own]) - bounce_times())) < 1e-8
+    assert result.statistics.own_events == len(own) == 11
+    assert result.statistics.state_restores > 0
+    assert np.max(np.abs(np.array([e.t for e in master]) - fall_crossings(0.2))) < 1e-9
+    assert len(master) == len(fall_crossings(0.2))
 
 
 def test_auto_takes_co_simulation_and_model_exchange_when_it_is_the_only_interface(
