@@ -1,7 +1,9 @@
 """Model Exchange in the engine: the same FMUs run as Co-Simulation (behind fmi2DoStep) and as
 Model Exchange (integrated by the engine with CVODE, events found by root finding), and FMPy's
 Model Exchange simulation (simulate_fmu with fmi_type="ModelExchange", solver="CVode") on the
-same grid and tolerance. Measured side by side in one run, median of --repeat:
+same grid and tolerance; the same models' FMI 3.0 builds as Model Exchange too (our
+`<stem>_fmi3`, the Reference FMUs' fmi3/ folder), through the same engine component. Measured
+side by side in one run, median of --repeat:
 
   bouncing_ball_cvode  ours, CS with its own CVODE and root finding: restitution 0.8 (31
                        bounces, then it rests at 4.06 s), 4 s in steps of 10 ms
@@ -50,16 +52,17 @@ class Case:
     accurate: Callable[[np.ndarray], np.ndarray]
     reference: bool  # a Reference FMU (else one of ours)
 
-    def path(self) -> Path:
-        return reference_folder() / f"{self.model}.fmu" if self.reference \
-            else fmus.path(self.model)
+    def path(self, fmi3: bool = False) -> Path:
+        if self.reference:
+            return reference_folder(fmi3) / f"{self.model}.fmu"
+        return fmus.path(self.model + "_fmi3" if fmi3 else self.model)
 
 
-def reference_folder() -> Path:
+def reference_folder(fmi3: bool = False) -> Path:
     given = os.environ.get("SYSSIMX_REFERENCE_FMUS")
     root = Path(given) if given else Path(__file__).resolve().parents[1].parent / "shared" / \
         "reference-fmus"
-    return root / "fmi2"
+    return root / ("fmi3" if fmi3 else "fmi2")
 
 
 def ball_height(restitution: float, resting: Callable[[float], bool]) -> Callable[
@@ -101,10 +104,10 @@ CASES = [
 ]
 
 
-def syssimx_run(case: Case, interface: str, tolerance: float
+def syssimx_run(case: Case, interface: str, tolerance: float, fmi3: bool = False
                 ) -> Callable[[], tuple[np.ndarray, int]]:
     def run() -> tuple[np.ndarray, int]:
-        component = FMUComponent("M", case.path(), interface=interface, tolerance=tolerance)
+        component = FMUComponent("M", case.path(fmi3), interface=interface, tolerance=tolerance)
         component.set_parameters(**case.parameters)
         if "cvode_relative_tolerance" in component.parameters:  # our CS build's own CVODE
             component.set_parameters(cvode_relative_tolerance=tolerance)
@@ -161,6 +164,8 @@ def main() -> None:
                                                                  args.tolerance),
             "syssimx Model Exchange (CVODE)": syssimx_run(case, "model-exchange",
                                                            args.tolerance),
+            "syssimx FMI 3.0 Model Exchange": syssimx_run(case, "model-exchange",
+                                                           args.tolerance, fmi3=True),
             "FMPy Model Exchange (CVode)": fmpy_run(case, args.tolerance),
         }
         measured = {name: measure(run, args.repeat) for name, run in runs.items()}

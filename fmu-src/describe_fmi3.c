@@ -102,6 +102,19 @@ static void write_structure(FILE *out, const variable_list *list)
     fputs("  </ModelStructure>\n", out);
 }
 
+/* One binary serves both interfaces, as in FMI 2.0; fmi3CompletedIntegratorStep never has
+ * anything to do. */
+static void write_model_exchange(FILE *out, const char *model_identifier)
+{
+    fprintf(out,
+            "  <ModelExchange modelIdentifier=\"%s\" needsCompletedIntegratorStep=\"false\"\n"
+            "    canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\"",
+            model_identifier);
+    if (fmu_model.partial_derivative != NULL)
+        fputs(" providesDirectionalDerivatives=\"true\"", out);
+    fputs("/>\n", out);
+}
+
 static void write_co_simulation(FILE *out, const char *model_identifier)
 {
     int has_events = fmu_model.n_event_indicators > 0;
@@ -138,6 +151,7 @@ int write_description_fmi3(FILE *out, const char *model_identifier)
     fprintf(out, " (%s back-end)\"\n", fmu_solver_name);
     fputs("  generationTool=\"syssimx FMU framework\" variableNamingConvention=\"structured\">\n",
           out);
+    write_model_exchange(out, model_identifier);
     write_co_simulation(out, model_identifier);
     write_units(out, &list);
     write_log_categories(out, log_category_descriptions);

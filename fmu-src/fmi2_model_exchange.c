@@ -1,143 +1,50 @@
-/* The Model Exchange interface: the importer integrates the model's equations itself. It sets
- * the time and the states, reads the derivatives and the event indicators (its root functions),
- * and calls event mode where an indicator changed sign or a time event is due; event mode
- * applies the model's own event handling. Which call is allowed when is in fmu_instance.h. */
-#include <math.h>
-#include <string.h>
-
+/* The FMI 2.0 Model Exchange entry points: each checks the call is allowed in the instance's
+ * phase (fmu_instance.h) and runs the version-neutral Model Exchange core
+ * (fmu_model_exchange.c). */
 #include "fmu_instance.h"
 #include "fmu_log.h"
-
-/* Every model quantity is of order one (model.h): the importer scales its tolerances by this. */
-#define STATE_NOMINAL 1.0
-
-static fmi2Status check_vector(const fmu_instance *inst, const char *function, const void *array,
-                               size_t given, size_t expected, const char *what)
-{
-    if (given != expected)
-        return fmu_error(inst, "%s: %zu %s requested, the model has %zu", function, given, what,
-                         expected);
-    if (given > 0 && array == NULL)
-        return fmu_error(inst, "%s: the array of %s is NULL", function, what);
-    return fmi2OK;
-}
-
-/* In initialization mode the states follow their start parameters (fmu_refresh_outputs);
- * afterwards they are what the importer set. */
-static void settle(fmu_instance *inst)
-{
-    if (inst->outputs_stale && inst->phase == PHASE_INITIALIZATION)
-        fmu_refresh_outputs(inst);
-}
-
-/* When the model asks to end the simulation (INFINITY when it never does). */
-static double termination_time(const fmu_instance *inst)
-{
-    return inst->model->termination_time != NULL ? inst->model->termination_time(inst->values)
-                                                 : INFINITY;
-}
+#include "fmu_model_exchange.h"
 
 fmi2Status fmi2SetTime(fmi2Component c, fmi2Real time)
 {
     fmu_instance *inst = fmu_checked(c, "fmi2SetTime", PHASES_EVENT_OR_CONTINUOUS);
-    if (inst == NULL)
-        return fmi2Error;
-    if (!isfinite(time))
-        return fmu_error(inst, "fmi2SetTime: time %g is not finite", time);
-    /* A model that refuses a step ending at some time refuses to be evaluated there: models
-     * without states are evaluated through their time alone. */
-    if (inst->model->step_refusal != NULL) {
-        step_refusal_kind kind = STEP_FAILS;
-        const char *reason = inst->model->step_refusal(inst->values, time, &kind);
-        if (reason != NULL) {
-            fmi2Status status = fmu_refusal_status(inst, kind);
-            fmu_log(inst, status, status == fmi2Discard ? LOG_STATUS_WARNING : LOG_STATUS_ERROR,
-                    "fmi2SetTime to t = %.17g: %s", time, reason);
-            return status;
-        }
-    }
-    inst->time = time;
-    inst->outputs_stale = 1;
-    return fmi2OK;
+    return inst != NULL ? fmu_me_set_time(inst, "fmi2SetTime", time) : fmi2Error;
 }
 
 fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real x[], size_t nx)
 {
     fmu_instance *inst =
         fmu_checked(c, "fmi2SetContinuousStates", PHASE_BIT(PHASE_CONTINUOUS_TIME));
-    if (inst == NULL)
-        return fmi2Error;
-    if (check_vector(inst, "fmi2SetContinuousStates", x, nx, inst->model->n_states, "states") !=
-        fmi2OK)
-        return fmi2Error;
-    for (size_t i = 0; i < nx; ++i)
-        if (isnan(x[i]))
-            return fmu_error(inst, "fmi2SetContinuousStates: state %zu (%s) is NaN", i,
-                             inst->model->variables[inst->model->state_vrs[i]].name);
-    memcpy(inst->x, x, nx * sizeof(double));
-    inst->outputs_stale = 1;
-    return fmi2OK;
+    return inst != NULL ? fmu_me_set_states(inst, "fmi2SetContinuousStates", x, nx) : fmi2Error;
 }
 
 fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t nx)
 {
     fmu_instance *inst = fmu_checked(c, "fmi2GetContinuousStates", PHASES_MODEL_EVALUATION);
-    if (inst == NULL)
-        return fmi2Error;
-    if (check_vector(inst, "fmi2GetContinuousStates", x, nx, inst->model->n_states, "states") !=
-        fmi2OK)
-        return fmi2Error;
-    settle(inst);
-    memcpy(x, inst->x, nx * sizeof(double));
-    return fmi2OK;
+    return inst != NULL ? fmu_me_get_states(inst, "fmi2GetContinuousStates", x, nx) : fmi2Error;
 }
 
 fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real derivatives[], size_t nx)
 {
     fmu_instance *inst = fmu_checked(c, "fmi2GetDerivatives", PHASES_MODEL_EVALUATION);
-    if (inst == NULL)
-        return fmi2Error;
-    if (check_vector(inst, "fmi2GetDerivatives", derivatives, nx, inst->model->n_states,
-                     "derivatives") != fmi2OK)
-        return fmi2Error;
-    settle(inst);
-    if (nx > 0)
-        inst->model->derivatives(inst->values, inst->time, inst->x, derivatives);
-    return fmi2OK;
+    return inst != NULL ? fmu_me_derivatives(inst, "fmi2GetDerivatives", derivatives, nx)
+                        : fmi2Error;
 }
 
 fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real eventIndicators[], size_t ni)
 {
     fmu_instance *inst = fmu_checked(c, "fmi2GetEventIndicators", PHASES_MODEL_EVALUATION);
-    if (inst == NULL)
-        return fmi2Error;
-    if (check_vector(inst, "fmi2GetEventIndicators", eventIndicators, ni,
-                     inst->model->n_event_indicators, "event indicators") != fmi2OK)
-        return fmi2Error;
-    settle(inst);
-    fmu_event_indicators(inst, eventIndicators);
-    /* An event can leave an indicator at exactly 0 (a bounce puts the ball on the floor), and a
-     * root finder reports no crossing when it leaves 0 upwards. The importer asks for the
-     * indicators on the trajectory it accepts, so a positive value seen here arms the next
-     * fall, as the model's own back-ends do with falling-only root directions. */
-    if (inst->phase == PHASE_CONTINUOUS_TIME)
-        for (size_t i = 0; i < ni; ++i)
-            if (eventIndicators[i] > 0.0)
-                inst->z_previous[i] = eventIndicators[i];
-    return fmi2OK;
+    return inst != NULL
+               ? fmu_me_event_indicators(inst, "fmi2GetEventIndicators", eventIndicators, ni)
+               : fmi2Error;
 }
 
 fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real x_nominal[], size_t nx)
 {
     fmu_instance *inst = fmu_checked(c, "fmi2GetNominalsOfContinuousStates", PHASES_NOMINALS);
-    if (inst == NULL)
-        return fmi2Error;
-    if (check_vector(inst, "fmi2GetNominalsOfContinuousStates", x_nominal, nx,
-                     inst->model->n_states, "nominals") != fmi2OK)
-        return fmi2Error;
-    for (size_t i = 0; i < nx; ++i)
-        x_nominal[i] = STATE_NOMINAL;
-    return fmi2OK;
+    return inst != NULL
+               ? fmu_me_nominals(inst, "fmi2GetNominalsOfContinuousStates", x_nominal, nx)
+               : fmi2Error;
 }
 
 fmi2Status fmi2EnterEventMode(fmi2Component c)
@@ -149,31 +56,6 @@ fmi2Status fmi2EnterEventMode(fmi2Component c)
     return fmi2OK;
 }
 
-/* Applies the events of the indicators that fell from > 0 to <= 0 since the last event mode;
- * returns whether the states changed. The indicators after it are the next comparison's. */
-static int handle_state_events(fmu_instance *inst)
-{
-    const model_definition *model = inst->model;
-    size_t n = model->n_event_indicators;
-    if (n == 0)
-        return 0;
-    fmu_event_indicators(inst, inst->z_after);
-    int any = 0;
-    for (size_t i = 0; i < n; ++i) {
-        inst->fired[i] = inst->z_previous[i] > 0.0 && inst->z_after[i] <= 0.0;
-        any |= inst->fired[i];
-    }
-    int changed = 0;
-    if (any) {
-        memcpy(inst->dx, inst->x, model->n_states * sizeof(double)); /* dx: scratch */
-        fmu_handle_events(inst, inst->time, inst->x);
-        changed = memcmp(inst->dx, inst->x, model->n_states * sizeof(double)) != 0;
-        inst->outputs_stale = 1;
-    }
-    fmu_event_indicators(inst, inst->z_previous);
-    return changed;
-}
-
 fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *eventInfo)
 {
     fmu_instance *inst = fmu_checked(c, "fmi2NewDiscreteStates", PHASE_BIT(PHASE_EVENT));
@@ -181,24 +63,15 @@ fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *eventInfo)
         return fmi2Error;
     if (eventInfo == NULL)
         return fmu_error(inst, "fmi2NewDiscreteStates: the event info pointer is NULL");
-    int states_changed = handle_state_events(inst);
-    double next = inst->model->next_time_event != NULL
-                      ? inst->model->next_time_event(inst->values, inst->time)
-                      : INFINITY;
-    double stop = termination_time(inst);
-    int terminate = inst->time >= stop;
-    if (terminate)
-        fmu_log(inst, fmi2OK, LOG_EVENTS, "the model asks to end the simulation at t = %.17g",
-                inst->time);
-    else
-        next = fmin(next, stop);
+    fmu_discrete_update update;
+    fmu_me_update_discrete_states(inst, &update);
     /* one pass reaches the new discrete state: handling an event never fires another */
     eventInfo->newDiscreteStatesNeeded = fmi2False;
-    eventInfo->terminateSimulation = terminate ? fmi2True : fmi2False;
+    eventInfo->terminateSimulation = update.terminate ? fmi2True : fmi2False;
     eventInfo->nominalsOfContinuousStatesChanged = fmi2False;
-    eventInfo->valuesOfContinuousStatesChanged = states_changed ? fmi2True : fmi2False;
-    eventInfo->nextEventTimeDefined = isfinite(next) ? fmi2True : fmi2False;
-    eventInfo->nextEventTime = isfinite(next) ? next : 0.0;
+    eventInfo->valuesOfContinuousStatesChanged = update.values_changed ? fmi2True : fmi2False;
+    eventInfo->nextEventTimeDefined = update.next_event_time_defined ? fmi2True : fmi2False;
+    eventInfo->nextEventTime = update.next_event_time;
     return fmi2OK;
 }
 
@@ -225,6 +98,6 @@ fmi2Status fmi2CompletedIntegratorStep(fmi2Component c,
         return fmu_error(inst, "fmi2CompletedIntegratorStep: a result pointer is NULL");
     /* no step events: every event is a state event (an indicator) or a time event */
     *enterEventMode = fmi2False;
-    *terminateSimulation = inst->time >= termination_time(inst) ? fmi2True : fmi2False;
+    *terminateSimulation = fmu_me_terminates(inst) ? fmi2True : fmi2False;
     return fmi2OK;
 }

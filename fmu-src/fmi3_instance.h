@@ -1,5 +1,6 @@
-/* The FMI 3.0 Co-Simulation instance: the framework's instance plus what FMI 3.0 adds (its
- * logging callback, event mode and early return), its state machine and its extra variables. */
+/* The FMI 3.0 instance, Co-Simulation or Model Exchange: the framework's instance plus what
+ * FMI 3.0 adds (its logging callback, event mode and early return), its state machine and its
+ * extra variables. */
 #ifndef SYSSIMX_FMI3_INSTANCE_H
 #define SYSSIMX_FMI3_INSTANCE_H
 
@@ -12,33 +13,39 @@ typedef struct {
     fmi3InstanceEnvironment environment;
     int event_mode_used;
     int early_return_allowed;
+    int model_exchange; /* made by fmi3InstantiateModelExchange */
 } fmi3_instance;
 
-/* The FMI 3.0 Co-Simulation states this FMU goes through; Event Mode is step mode of the
- * framework with in_event_mode set. */
+/* The FMI 3.0 states this FMU goes through. Co-Simulation's Event Mode is step mode of the
+ * framework with in_event_mode set; Model Exchange's is the framework's event phase, and
+ * Continuous-Time Mode its continuous-time phase. */
 typedef enum {
     MODE_INSTANTIATED,
     MODE_INITIALIZATION,
     MODE_EVENT,
     MODE_STEP,
+    MODE_CONTINUOUS_TIME,
     MODE_TERMINATED,
     MODE_FATAL
 } fmi3_mode;
 
 #define MODE_BIT(mode) (1u << (mode))
 
-/* Where each kind of call is allowed (FMI 3.0 Co-Simulation state machine), one table for every
- * entry point; MODE_FATAL is in none of them. */
+/* Where each kind of call is allowed (FMI 3.0 Co-Simulation and Model Exchange state
+ * machines: a Co-Simulation instance is never in Continuous-Time Mode, a Model Exchange one
+ * never in Step Mode), one table for every entry point; MODE_FATAL is in none of them. */
+#define MODES_RUNNING                                                                          \
+    (MODE_BIT(MODE_EVENT) | MODE_BIT(MODE_STEP) | MODE_BIT(MODE_CONTINUOUS_TIME))
 #define MODES_ANY                                                                              \
-    (MODE_BIT(MODE_INSTANTIATED) | MODE_BIT(MODE_INITIALIZATION) | MODE_BIT(MODE_EVENT) |       \
-     MODE_BIT(MODE_STEP) | MODE_BIT(MODE_TERMINATED))
-#define MODES_GET                                                                              \
-    (MODE_BIT(MODE_INITIALIZATION) | MODE_BIT(MODE_EVENT) | MODE_BIT(MODE_STEP) |               \
+    (MODE_BIT(MODE_INSTANTIATED) | MODE_BIT(MODE_INITIALIZATION) | MODES_RUNNING |             \
      MODE_BIT(MODE_TERMINATED))
-#define MODES_SET                                                                              \
-    (MODE_BIT(MODE_INSTANTIATED) | MODE_BIT(MODE_INITIALIZATION) | MODE_BIT(MODE_EVENT) |       \
-     MODE_BIT(MODE_STEP))
-#define MODES_INITIALIZED (MODE_BIT(MODE_EVENT) | MODE_BIT(MODE_STEP))
+#define MODES_GET (MODE_BIT(MODE_INITIALIZATION) | MODES_RUNNING | MODE_BIT(MODE_TERMINATED))
+#define MODES_SET (MODE_BIT(MODE_INSTANTIATED) | MODE_BIT(MODE_INITIALIZATION) | MODES_RUNNING)
+#define MODES_INITIALIZED MODES_RUNNING
+/* Model Exchange */
+#define MODES_EVENT_OR_CONTINUOUS (MODE_BIT(MODE_EVENT) | MODE_BIT(MODE_CONTINUOUS_TIME))
+#define MODES_MODEL_EVALUATION                                                                 \
+    (MODE_BIT(MODE_INITIALIZATION) | MODES_EVENT_OR_CONTINUOUS | MODE_BIT(MODE_TERMINATED))
 
 fmi3_mode fmi3_mode_of(const fmu_instance *inst);
 const char *fmi3_mode_name(fmi3_mode mode);

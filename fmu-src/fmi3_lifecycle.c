@@ -1,14 +1,17 @@
-/* FMI 3.0: creating, initializing, event and step mode, terminating, resetting and freeing. */
+/* FMI 3.0: creating, initializing, event and step mode, terminating, resetting and freeing, for
+ * both interfaces (Model Exchange's own calls are in fmi3_model_exchange.c). */
 #include <string.h>
 
 #include "fmi3_instance.h"
 #include "fmu_guid.h"
 #include "fmu_log.h"
+#include "fmu_model_exchange.h"
 #include "fmu_step.h"
 
-static const char *const mode_names[] = {"Instantiated", "Initialization Mode", "Event Mode",
-                                         "Step Mode",    "Terminated",
-                                         "the fatal state (after fmi3Fatal)"};
+static const char *const mode_names[] = {
+    "Instantiated", "Initialization Mode",  "Event Mode",
+    "Step Mode",    "Continuous-Time Mode", "Terminated",
+    "the fatal state (after fmi3Fatal)"};
 
 fmi3_mode fmi3_mode_of(const fmu_instance *inst)
 {
@@ -17,8 +20,8 @@ fmi3_mode fmi3_mode_of(const fmu_instance *inst)
     case PHASE_INITIALIZATION: return MODE_INITIALIZATION;
     case PHASE_STEP: return inst->in_event_mode ? MODE_EVENT : MODE_STEP;
     case PHASE_TERMINATED: return MODE_TERMINATED;
-    case PHASE_EVENT:
-    case PHASE_CONTINUOUS_TIME: /* FMI 2.0 Model Exchange only */
+    case PHASE_EVENT: return MODE_EVENT;
+    case PHASE_CONTINUOUS_TIME: return MODE_CONTINUOUS_TIME;
     case PHASE_FATAL: break;
     }
     return MODE_FATAL;
@@ -92,17 +95,14 @@ static const char *refusal(fmi3String instanceName, fmi3String instantiationToke
     return NULL;
 }
 
-fmi3Instance fmi3InstantiateCoSimulation(
-    fmi3String instanceName, fmi3String instantiationToken, fmi3String resourcePath,
-    fmi3Boolean visible, fmi3Boolean loggingOn, fmi3Boolean eventModeUsed,
-    fmi3Boolean earlyReturnAllowed, const fmi3ValueReference requiredIntermediateVariables[],
-    size_t nRequiredIntermediateVariables, fmi3InstanceEnvironment instanceEnvironment,
-    fmi3LogMessageCallback logMessage, fmi3IntermediateUpdateCallback intermediateUpdate)
+/* The instance both interfaces start from, or NULL after reporting why through the importer's
+ * callback; `function` names the call in messages. */
+static fmi3_instance *create(const char *function, fmi3String instanceName,
+                             fmi3String instantiationToken, fmi3Boolean loggingOn,
+                             fmi3Boolean eventModeUsed, size_t nRequiredIntermediateVariables,
+                             fmi3InstanceEnvironment instanceEnvironment,
+                             fmi3LogMessageCallback logMessage)
 {
-    (void)resourcePath; /* the models need no resources */
-    (void)visible;
-    (void)requiredIntermediateVariables;
-    (void)intermediateUpdate; /* providesIntermediateUpdate="false": never called */
     /* A stand-in to report failures before the instance exists. */
     fmi3_instance reporter = {
         .core = {.name = (char *)(instanceName ? instanceName : "(unnamed)"),
@@ -117,20 +117,59 @@ fmi3Instance fmi3InstantiateCoSimulation(
     const char *reason = refusal(instanceName, instantiationToken, guid, eventModeUsed,
                                  nRequiredIntermediateVariables);
     if (reason != NULL) {
-        fmu_error(&reporter.core, "fmi3InstantiateCoSimulation: %s", reason);
+        fmu_error(&reporter.core, "%s: %s", function, reason);
         return NULL;
     }
     fmi3_instance *inst = (fmi3_instance *)fmu_instance_create(
-        &reporter.core, sizeof(fmi3_instance), "fmi3InstantiateCoSimulation");
+        &reporter.core, sizeof(fmi3_instance), function);
     if (inst == NULL)
         return NULL;
     inst->log_message = logMessage;
     inst->environment = instanceEnvironment;
     inst->core.callbacks.environment = inst;
+    return inst;
+}
+
+fmi3Instance fmi3InstantiateCoSimulation(
+    fmi3String instanceName, fmi3String instantiationToken, fmi3String resourcePath,
+    fmi3Boolean visible, fmi3Boolean loggingOn, fmi3Boolean eventModeUsed,
+    fmi3Boolean earlyReturnAllowed, const fmi3ValueReference requiredIntermediateVariables[],
+    size_t nRequiredIntermediateVariables, fmi3InstanceEnvironment instanceEnvironment,
+    fmi3LogMessageCallback logMessage, fmi3IntermediateUpdateCallback intermediateUpdate)
+{
+    (void)resourcePath; /* the models need no resources */
+    (void)visible;
+    (void)requiredIntermediateVariables;
+    (void)intermediateUpdate; /* providesIntermediateUpdate="false": never called */
+    fmi3_instance *inst = create("fmi3InstantiateCoSimulation", instanceName, instantiationToken,
+                                 loggingOn, eventModeUsed, nRequiredIntermediateVariables,
+                                 instanceEnvironment, logMessage);
+    if (inst == NULL)
+        return NULL;
     inst->event_mode_used = eventModeUsed;
     inst->early_return_allowed = earlyReturnAllowed;
     /* the importer handles internal events only when it can also be told of them early */
     inst->core.importer_handles_events = eventModeUsed && earlyReturnAllowed;
+    return inst;
+}
+
+fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName,
+                                          fmi3String instantiationToken,
+                                          fmi3String resourcePath, fmi3Boolean visible,
+                                          fmi3Boolean loggingOn,
+                                          fmi3InstanceEnvironment instanceEnvironment,
+                                          fmi3LogMessageCallback logMessage)
+{
+    (void)resourcePath;
+    (void)visible;
+    fmi3_instance *inst = create("fmi3InstantiateModelExchange", instanceName, instantiationToken,
+                                 loggingOn, fmi3False, 0, instanceEnvironment, logMessage);
+    if (inst == NULL)
+        return NULL;
+    inst->model_exchange = 1;
+    /* Model Exchange leaves initialization in event mode: the importer handles the initial
+     * events */
+    inst->core.running_phase = PHASE_EVENT;
     return inst;
 }
 
@@ -169,9 +208,18 @@ fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)
 
 fmi3Status fmi3EnterEventMode(fmi3Instance instance)
 {
-    fmi3_instance *inst = fmi3_checked(instance, "fmi3EnterEventMode", MODE_BIT(MODE_STEP));
+    fmi3_instance *inst = fmi3_checked(instance, "fmi3EnterEventMode",
+                                       MODE_BIT(MODE_STEP) | MODES_EVENT_OR_CONTINUOUS);
     if (inst == NULL)
         return fmi3Error;
+    if (inst->model_exchange) {
+        inst->core.phase = PHASE_EVENT;
+        return fmi3OK;
+    }
+    if (fmi3_mode_of(&inst->core) != MODE_STEP) {
+        fmi3_refuse_in_mode(inst, "fmi3EnterEventMode");
+        return fmi3Error;
+    }
     if (!inst->event_mode_used)
         return fmi3_status(fmu_error(&inst->core, "fmi3EnterEventMode: the instance was "
                                                   "created with eventModeUsed = false"));
@@ -195,10 +243,19 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discrete
         return fmi3_status(
             fmu_error(&inst->core, "fmi3UpdateDiscreteStates: an output argument is NULL"));
     /* the model's events change the state once; nothing else is discrete, so one call settles */
-    *valuesOfContinuousStatesChanged = fmu_apply_pending_events(&inst->core);
     *discreteStatesNeedUpdate = false;
-    *terminateSimulation = inst->core.time >= fmu_stop_time(&inst->core);
     *nominalsOfContinuousStatesChanged = false;
+    if (inst->model_exchange) {
+        fmu_discrete_update update;
+        fmu_me_update_discrete_states(&inst->core, &update);
+        *valuesOfContinuousStatesChanged = update.values_changed;
+        *terminateSimulation = update.terminate;
+        *nextEventTimeDefined = update.next_event_time_defined;
+        *nextEventTime = update.next_event_time;
+        return fmi3OK;
+    }
+    *valuesOfContinuousStatesChanged = fmu_apply_pending_events(&inst->core);
+    *terminateSimulation = inst->core.time >= fmu_stop_time(&inst->core);
     *nextEventTimeDefined = false;
     *nextEventTime = 0.0;
     return fmi3OK;
@@ -209,6 +266,10 @@ fmi3Status fmi3EnterStepMode(fmi3Instance instance)
     fmi3_instance *inst = fmi3_checked(instance, "fmi3EnterStepMode", MODE_BIT(MODE_EVENT));
     if (inst == NULL)
         return fmi3Error;
+    if (inst->model_exchange)
+        return fmi3_status(fmu_error(&inst->core, "fmi3EnterStepMode: a Model Exchange instance "
+                                                  "has no Step Mode (fmi3EnterContinuousTimeMode "
+                                                  "leaves Event Mode)"));
     if (inst->core.event_pending)
         return fmi3_status(fmu_error(&inst->core,
                                      "fmi3EnterStepMode: the internal event at t = %.17g is not "

@@ -1,5 +1,4 @@
-/* FMI 3.0 functions this Co-Simulation FMU exports but does not support: Model Exchange,
- * Scheduled Execution, clocks, configuration mode, dependencies at run time, adjoint and output
+/* FMI 3.0 functions this FMU exports but does not support: Scheduled Execution, clocks, configuration mode, dependencies at run time, adjoint and output
  * derivatives. Each returns fmi3Error (or NULL) with a message naming the call. */
 #include "fmi3_instance.h"
 #include "fmu_log.h"
@@ -9,7 +8,7 @@ static fmi3Status unsupported(fmi3Instance instance, const char *function)
     fmi3_instance *inst = instance;
     if (inst == NULL)
         return fmi3Error;
-    fmu_error(&inst->core, "%s is not supported by this Co-Simulation FMU", function);
+    fmu_error(&inst->core, "%s is not supported by this FMU", function);
     return fmi3Error;
 }
 
@@ -23,19 +22,6 @@ static fmi3Instance refuse_interface(fmi3InstanceEnvironment instanceEnvironment
     return NULL;
 }
 
-fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName,
-                                          fmi3String instantiationToken,
-                                          fmi3String resourcePath, fmi3Boolean visible,
-                                          fmi3Boolean loggingOn,
-                                          fmi3InstanceEnvironment instanceEnvironment,
-                                          fmi3LogMessageCallback logMessage)
-{
-    (void)instanceName, (void)instantiationToken, (void)resourcePath, (void)visible,
-        (void)loggingOn;
-    return refuse_interface(instanceEnvironment, logMessage,
-                            "fmi3InstantiateModelExchange: this FMU supports Co-Simulation only");
-}
-
 fmi3Instance fmi3InstantiateScheduledExecution(
     fmi3String instanceName, fmi3String instantiationToken, fmi3String resourcePath,
     fmi3Boolean visible, fmi3Boolean loggingOn, fmi3InstanceEnvironment instanceEnvironment,
@@ -46,7 +32,8 @@ fmi3Instance fmi3InstantiateScheduledExecution(
         (void)loggingOn, (void)clockUpdate, (void)lockPreemption, (void)unlockPreemption;
     return refuse_interface(
         instanceEnvironment, logMessage,
-        "fmi3InstantiateScheduledExecution: this FMU supports Co-Simulation only");
+        "fmi3InstantiateScheduledExecution: this FMU supports Co-Simulation and Model "
+        "Exchange only");
 }
 
 fmi3Status fmi3GetNumberOfVariableDependencies(fmi3Instance instance,
@@ -155,73 +142,6 @@ fmi3Status fmi3SetShiftFraction(fmi3Instance instance, const fmi3ValueReference 
 fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance instance)
 {
     return unsupported(instance, "fmi3EvaluateDiscreteStates");
-}
-
-fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance instance)
-{
-    return unsupported(instance, "fmi3EnterContinuousTimeMode");
-}
-
-fmi3Status fmi3CompletedIntegratorStep(fmi3Instance instance,
-                                       fmi3Boolean noSetFMUStatePriorToCurrentPoint,
-                                       fmi3Boolean *enterEventMode,
-                                       fmi3Boolean *terminateSimulation)
-{
-    (void)noSetFMUStatePriorToCurrentPoint, (void)enterEventMode, (void)terminateSimulation;
-    return unsupported(instance, "fmi3CompletedIntegratorStep");
-}
-
-fmi3Status fmi3SetTime(fmi3Instance instance, fmi3Float64 time)
-{
-    (void)time;
-    return unsupported(instance, "fmi3SetTime");
-}
-
-fmi3Status fmi3SetContinuousStates(fmi3Instance instance, const fmi3Float64 continuousStates[],
-                                   size_t nContinuousStates)
-{
-    (void)continuousStates, (void)nContinuousStates;
-    return unsupported(instance, "fmi3SetContinuousStates");
-}
-
-fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance instance, fmi3Float64 derivatives[],
-                                             size_t nContinuousStates)
-{
-    (void)derivatives, (void)nContinuousStates;
-    return unsupported(instance, "fmi3GetContinuousStateDerivatives");
-}
-
-fmi3Status fmi3GetEventIndicators(fmi3Instance instance, fmi3Float64 eventIndicators[],
-                                  size_t nEventIndicators)
-{
-    (void)eventIndicators, (void)nEventIndicators;
-    return unsupported(instance, "fmi3GetEventIndicators");
-}
-
-fmi3Status fmi3GetContinuousStates(fmi3Instance instance, fmi3Float64 continuousStates[],
-                                   size_t nContinuousStates)
-{
-    (void)continuousStates, (void)nContinuousStates;
-    return unsupported(instance, "fmi3GetContinuousStates");
-}
-
-fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance instance, fmi3Float64 nominals[],
-                                             size_t nContinuousStates)
-{
-    (void)nominals, (void)nContinuousStates;
-    return unsupported(instance, "fmi3GetNominalsOfContinuousStates");
-}
-
-fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance instance, size_t *nEventIndicators)
-{
-    (void)nEventIndicators;
-    return unsupported(instance, "fmi3GetNumberOfEventIndicators");
-}
-
-fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance instance, size_t *nContinuousStates)
-{
-    (void)nContinuousStates;
-    return unsupported(instance, "fmi3GetNumberOfContinuousStates");
 }
 
 fmi3Status fmi3GetOutputDerivatives(fmi3Instance instance,

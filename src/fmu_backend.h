@@ -48,6 +48,8 @@ typedef enum {
     SLOT_NEW_DISCRETE_STATES,
     SLOT_ENTER_CONTINUOUS_TIME_MODE,
     SLOT_COMPLETED_INTEGRATOR_STEP,
+    SLOT_GET_NUMBER_OF_CONTINUOUS_STATES, /* FMI 3.0 asks the instance */
+    SLOT_GET_NUMBER_OF_EVENT_INDICATORS,
     /* FMI 3.0: the value types beyond the engine's three port types (Float64, Int32 and
      * Boolean fill the slots above), strings and binaries, step mode (event mode is above) */
     SLOT_GET_FLOAT32,
@@ -164,6 +166,10 @@ typedef struct {
     int (*completed_integrator_step)(const ssx_fmu_function *fn, void *instance,
                                      int no_set_state_prior, int *enter_event_mode,
                                      int *terminate_simulation);
+    int (*get_number_of_continuous_states)(const ssx_fmu_function *fn, void *instance,
+                                           size_t *n);
+    int (*get_number_of_event_indicators)(const ssx_fmu_function *fn, void *instance,
+                                          size_t *n);
     /* FMI 3.0 (NULL in a back-end without them) */
     int (*get_string)(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
                       size_t n, const char **values);
@@ -187,6 +193,9 @@ extern const ssx_fmu_backend ssx_fmi2_backend;
  * functions is refused, one without fmi2DoStep is not. */
 extern const ssx_fmu_backend ssx_fmi2_model_exchange_backend;
 extern const ssx_fmu_backend ssx_fmi3_backend;
+/* FMI 3.0 Model Exchange: fmi3InstantiateModelExchange, the Model Exchange functions instead
+ * of fmi3DoStep and step mode; the same context and value adapters as Co-Simulation. */
+extern const ssx_fmu_backend ssx_fmi3_model_exchange_backend;
 
 /* The FMI 3.0 back-end's load-time facts, into its zeroed context: the type of every value
  * reference the engine gets or sets (copied) and how the FMU is instantiated. Fails (-1, the

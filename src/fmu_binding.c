@@ -199,19 +199,38 @@ ssx_fmu *ssx_fmu_load_model_exchange(const char *binary_path, const char *model_
                 resource_uri, instance_name, logging_on, error, error_size);
 }
 
-ssx_fmu *ssx_fmu_load_fmi3(const char *binary_path, const char *model_identifier,
-                           const char *instantiation_token, const char *resource_path,
-                           const char *instance_name, int logging_on,
-                           const ssx_fmi3_variables *variables, char *error, size_t error_size)
+static ssx_fmu *load_fmi3(const ssx_fmu_backend *backend, const char *binary_path,
+                          const char *model_identifier, const char *instantiation_token,
+                          const char *resource_path, const char *instance_name, int logging_on,
+                          const ssx_fmi3_variables *variables, char *error, size_t error_size)
 {
-    ssx_fmu *fmu = load(&ssx_fmi3_backend, NULL, 0.0, binary_path, model_identifier,
-                        instantiation_token, resource_path, instance_name, logging_on, error,
-                        error_size);
+    ssx_fmu *fmu = load(backend, NULL, 0.0, binary_path, model_identifier, instantiation_token,
+                        resource_path, instance_name, logging_on, error, error_size);
     if (fmu != NULL && ssx_fmi3_prepare(fmu->context, variables, error, error_size) != 0) {
         ssx_fmu_free(fmu);
         return NULL;
     }
     return fmu;
+}
+
+ssx_fmu *ssx_fmu_load_fmi3(const char *binary_path, const char *model_identifier,
+                           const char *instantiation_token, const char *resource_path,
+                           const char *instance_name, int logging_on,
+                           const ssx_fmi3_variables *variables, char *error, size_t error_size)
+{
+    return load_fmi3(&ssx_fmi3_backend, binary_path, model_identifier, instantiation_token,
+                     resource_path, instance_name, logging_on, variables, error, error_size);
+}
+
+ssx_fmu *ssx_fmu_load_fmi3_model_exchange(const char *binary_path, const char *model_identifier,
+                                          const char *instantiation_token,
+                                          const char *resource_path, const char *instance_name,
+                                          int logging_on, const ssx_fmi3_variables *variables,
+                                          char *error, size_t error_size)
+{
+    return load_fmi3(&ssx_fmi3_model_exchange_backend, binary_path, model_identifier,
+                     instantiation_token, resource_path, instance_name, logging_on, variables,
+                     error, error_size);
 }
 
 ssx_fmu *ssx_fmu_load_isolated(const char *host_path, double step_timeout,
@@ -626,6 +645,16 @@ int ssx_fmu_completed_integrator_step(ssx_fmu *fmu, int no_set_state_prior,
                    no_set_state_prior, enter_event_mode, terminate_simulation);
 }
 
+int ssx_fmu_get_number_of_continuous_states(ssx_fmu *fmu, size_t *n)
+{
+    return CHECKED(fmu, SLOT_GET_NUMBER_OF_CONTINUOUS_STATES, get_number_of_continuous_states, n);
+}
+
+int ssx_fmu_get_number_of_event_indicators(ssx_fmu *fmu, size_t *n)
+{
+    return CHECKED(fmu, SLOT_GET_NUMBER_OF_EVENT_INDICATORS, get_number_of_event_indicators, n);
+}
+
 int ssx_fmu_experiment_tolerance(const ssx_fmu *fmu, double *tolerance)
 {
     if (fmu == NULL || !fmu->tolerance_defined) {
@@ -637,7 +666,8 @@ int ssx_fmu_experiment_tolerance(const ssx_fmu *fmu, double *tolerance)
 
 int ssx_fmu_is_model_exchange(const ssx_fmu *fmu)
 {
-    return fmu != NULL && fmu->backend == &ssx_fmi2_model_exchange_backend;
+    return fmu != NULL && (fmu->backend == &ssx_fmi2_model_exchange_backend ||
+                           fmu->backend == &ssx_fmi3_model_exchange_backend);
 }
 
 /* ------------------------------------------------------------------ states */

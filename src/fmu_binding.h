@@ -52,7 +52,8 @@ typedef struct {
     int next_event_time_defined;
     double next_event_time;
 } ssx_fmu_event_info;
-/* The Model Exchange calls of an FMU loaded by ssx_fmu_load_model_exchange, checked like every
+/* The Model Exchange calls of an FMU loaded by ssx_fmu_load_model_exchange or
+ * ssx_fmu_load_fmi3_model_exchange, checked like every
  * other call; each returns the status, or -1. Event mode (enter, new discrete states) serves an
  * FMI 3.0 Co-Simulation instance made with eventModeUsed too, with fmi3EnterStepMode to leave
  * it. */
@@ -68,6 +69,10 @@ int ssx_fmu_enter_step_mode(ssx_fmu *fmu);
 int ssx_fmu_enter_continuous_time_mode(ssx_fmu *fmu);
 int ssx_fmu_completed_integrator_step(ssx_fmu *fmu, int no_set_state_prior,
                                       int *enter_event_mode, int *terminate_simulation);
+/* How many continuous states and event indicators the live instance says it has (FMI 3.0
+ * Model Exchange: fmi3GetNumberOfContinuousStates/EventIndicators); other FMUs refuse them. */
+int ssx_fmu_get_number_of_continuous_states(ssx_fmu *fmu, size_t *n);
+int ssx_fmu_get_number_of_event_indicators(ssx_fmu *fmu, size_t *n);
 /* The relative tolerance the live instance was set up with (fmi2SetupExperiment): 1 with it
  * in *tolerance, 0 when none was given. */
 int ssx_fmu_experiment_tolerance(const ssx_fmu *fmu, double *tolerance);

@@ -1,5 +1,6 @@
-/* The FMI 3.0 Co-Simulation back-end of the FMU binding: the fmi3 functions, which of them a
- * binary must export, and adapters that call each with its fmi3 type.
+/* The FMI 3.0 back-ends of the FMU binding, Co-Simulation and Model Exchange: the fmi3
+ * functions, which of them a binary must export for each interface, and adapters that call
+ * each with its fmi3 type.
  *
  * The engine speaks in three port types; FMI 3.0 has eleven numeric ones. The back-end keeps
  * the type of every value reference (given at load) and turns one engine call into one fmi3
@@ -19,56 +20,79 @@
 
 #include "fmi3Functions.h"
 
+/* The rows both interfaces share: required, then optional. */
+#define FMI3_COMMON_ROWS                                                                      \
+    {"fmi3FreeInstance", SLOT_FREE_INSTANCE, 1},                                              \
+    /* the experiment is kept until fmi3EnterInitializationMode, which takes it */            \
+    {"fmi3EnterInitializationMode", SLOT_SETUP_EXPERIMENT, 1},                                \
+    {"fmi3EnterInitializationMode", SLOT_ENTER_INITIALIZATION_MODE, 1},                       \
+    {"fmi3ExitInitializationMode", SLOT_EXIT_INITIALIZATION_MODE, 1},                         \
+    {"fmi3Terminate", SLOT_TERMINATE, 1},                                                     \
+    {"fmi3Reset", SLOT_RESET, 1},                                                             \
+    {"fmi3GetFloat64", SLOT_GET_REAL, 1},                                                     \
+    {"fmi3GetInt32", SLOT_GET_INTEGER, 1},                                                    \
+    {"fmi3GetBoolean", SLOT_GET_BOOLEAN, 1},                                                  \
+    {"fmi3SetFloat64", SLOT_SET_REAL, 1},                                                     \
+    {"fmi3SetInt32", SLOT_SET_INTEGER, 1},                                                    \
+    {"fmi3SetBoolean", SLOT_SET_BOOLEAN, 1},                                                  \
+    {"fmi3GetFloat32", SLOT_GET_FLOAT32, 1},                                                  \
+    {"fmi3GetInt8", SLOT_GET_INT8, 1},                                                        \
+    {"fmi3GetUInt8", SLOT_GET_UINT8, 1},                                                      \
+    {"fmi3GetInt16", SLOT_GET_INT16, 1},                                                      \
+    {"fmi3GetUInt16", SLOT_GET_UINT16, 1},                                                    \
+    {"fmi3GetUInt32", SLOT_GET_UINT32, 1},                                                    \
+    {"fmi3GetInt64", SLOT_GET_INT64, 1},                                                      \
+    {"fmi3GetUInt64", SLOT_GET_UINT64, 1},                                                    \
+    {"fmi3SetFloat32", SLOT_SET_FLOAT32, 1},                                                  \
+    {"fmi3SetInt8", SLOT_SET_INT8, 1},                                                        \
+    {"fmi3SetUInt8", SLOT_SET_UINT8, 1},                                                      \
+    {"fmi3SetInt16", SLOT_SET_INT16, 1},                                                      \
+    {"fmi3SetUInt16", SLOT_SET_UINT16, 1},                                                    \
+    {"fmi3SetUInt32", SLOT_SET_UINT32, 1},                                                    \
+    {"fmi3SetInt64", SLOT_SET_INT64, 1},                                                      \
+    {"fmi3SetUInt64", SLOT_SET_UINT64, 1},                                                    \
+    {"fmi3GetString", SLOT_GET_STRING, 1},                                                    \
+    {"fmi3SetString", SLOT_SET_STRING, 1},                                                    \
+    {"fmi3GetBinary", SLOT_GET_BINARY, 1},                                                    \
+    {"fmi3SetBinary", SLOT_SET_BINARY, 1},                                                    \
+    {"fmi3EnterEventMode", SLOT_ENTER_EVENT_MODE, 1},                                         \
+    {"fmi3UpdateDiscreteStates", SLOT_NEW_DISCRETE_STATES, 1},
+/* capabilities an FMU may lack (FMI 3.0 has every binary export them; be lenient) */
+#define FMI3_OPTIONAL_ROWS                                                                    \
+    {"fmi3GetFMUState", SLOT_GET_STATE, 0},                                                   \
+    {"fmi3SetFMUState", SLOT_SET_STATE, 0},                                                   \
+    {"fmi3FreeFMUState", SLOT_FREE_STATE, 0},                                                 \
+    {"fmi3SerializedFMUStateSize", SLOT_SERIALIZED_STATE_SIZE, 0},                            \
+    {"fmi3SerializeFMUState", SLOT_SERIALIZE_STATE, 0},                                       \
+    {"fmi3DeserializeFMUState", SLOT_DESERIALIZE_STATE, 0},                                   \
+    {"fmi3GetDirectionalDerivative", SLOT_DIRECTIONAL_DERIVATIVE, 0},
+
 static const ssx_fmu_function_row fmi3_functions[] = {
     {"fmi3InstantiateCoSimulation", SLOT_INSTANTIATE, 1},
-    {"fmi3FreeInstance", SLOT_FREE_INSTANCE, 1},
-    /* the experiment is kept until fmi3EnterInitializationMode, which takes it */
-    {"fmi3EnterInitializationMode", SLOT_SETUP_EXPERIMENT, 1},
-    {"fmi3EnterInitializationMode", SLOT_ENTER_INITIALIZATION_MODE, 1},
-    {"fmi3ExitInitializationMode", SLOT_EXIT_INITIALIZATION_MODE, 1},
-    {"fmi3Terminate", SLOT_TERMINATE, 1},
-    {"fmi3Reset", SLOT_RESET, 1},
-    {"fmi3GetFloat64", SLOT_GET_REAL, 1},
-    {"fmi3GetInt32", SLOT_GET_INTEGER, 1},
-    {"fmi3GetBoolean", SLOT_GET_BOOLEAN, 1},
-    {"fmi3SetFloat64", SLOT_SET_REAL, 1},
-    {"fmi3SetInt32", SLOT_SET_INTEGER, 1},
-    {"fmi3SetBoolean", SLOT_SET_BOOLEAN, 1},
+    FMI3_COMMON_ROWS
     {"fmi3DoStep", SLOT_DO_STEP, 1},
     /* doStep's out-arguments say what FMI 2.0 asks status functions for */
     {"fmi3DoStep", SLOT_GET_TERMINATED, 1},
     {"fmi3DoStep", SLOT_GET_LAST_SUCCESSFUL_TIME, 1},
-    {"fmi3GetFloat32", SLOT_GET_FLOAT32, 1},
-    {"fmi3GetInt8", SLOT_GET_INT8, 1},
-    {"fmi3GetUInt8", SLOT_GET_UINT8, 1},
-    {"fmi3GetInt16", SLOT_GET_INT16, 1},
-    {"fmi3GetUInt16", SLOT_GET_UINT16, 1},
-    {"fmi3GetUInt32", SLOT_GET_UINT32, 1},
-    {"fmi3GetInt64", SLOT_GET_INT64, 1},
-    {"fmi3GetUInt64", SLOT_GET_UINT64, 1},
-    {"fmi3SetFloat32", SLOT_SET_FLOAT32, 1},
-    {"fmi3SetInt8", SLOT_SET_INT8, 1},
-    {"fmi3SetUInt8", SLOT_SET_UINT8, 1},
-    {"fmi3SetInt16", SLOT_SET_INT16, 1},
-    {"fmi3SetUInt16", SLOT_SET_UINT16, 1},
-    {"fmi3SetUInt32", SLOT_SET_UINT32, 1},
-    {"fmi3SetInt64", SLOT_SET_INT64, 1},
-    {"fmi3SetUInt64", SLOT_SET_UINT64, 1},
-    {"fmi3GetString", SLOT_GET_STRING, 1},
-    {"fmi3SetString", SLOT_SET_STRING, 1},
-    {"fmi3GetBinary", SLOT_GET_BINARY, 1},
-    {"fmi3SetBinary", SLOT_SET_BINARY, 1},
-    {"fmi3EnterEventMode", SLOT_ENTER_EVENT_MODE, 1},
-    {"fmi3UpdateDiscreteStates", SLOT_NEW_DISCRETE_STATES, 1},
     {"fmi3EnterStepMode", SLOT_ENTER_STEP_MODE, 1},
-    /* capabilities an FMU may lack (FMI 3.0 has every binary export them; be lenient) */
-    {"fmi3GetFMUState", SLOT_GET_STATE, 0},
-    {"fmi3SetFMUState", SLOT_SET_STATE, 0},
-    {"fmi3FreeFMUState", SLOT_FREE_STATE, 0},
-    {"fmi3SerializedFMUStateSize", SLOT_SERIALIZED_STATE_SIZE, 0},
-    {"fmi3SerializeFMUState", SLOT_SERIALIZE_STATE, 0},
-    {"fmi3DeserializeFMUState", SLOT_DESERIALIZE_STATE, 0},
-    {"fmi3GetDirectionalDerivative", SLOT_DIRECTIONAL_DERIVATIVE, 0},
+    FMI3_OPTIONAL_ROWS
+};
+
+/* Model Exchange: the common functions, the ones of the interface instead of fmi3DoStep. */
+static const ssx_fmu_function_row fmi3_model_exchange_functions[] = {
+    {"fmi3InstantiateModelExchange", SLOT_INSTANTIATE, 1},
+    FMI3_COMMON_ROWS
+    {"fmi3SetTime", SLOT_SET_TIME, 1},
+    {"fmi3SetContinuousStates", SLOT_SET_CONTINUOUS_STATES, 1},
+    {"fmi3GetContinuousStates", SLOT_GET_CONTINUOUS_STATES, 1},
+    {"fmi3GetContinuousStateDerivatives", SLOT_GET_DERIVATIVES, 1},
+    {"fmi3GetEventIndicators", SLOT_GET_EVENT_INDICATORS, 1},
+    {"fmi3GetNominalsOfContinuousStates", SLOT_GET_NOMINALS_OF_CONTINUOUS_STATES, 1},
+    {"fmi3EnterContinuousTimeMode", SLOT_ENTER_CONTINUOUS_TIME_MODE, 1},
+    {"fmi3CompletedIntegratorStep", SLOT_COMPLETED_INTEGRATOR_STEP, 1},
+    {"fmi3GetNumberOfContinuousStates", SLOT_GET_NUMBER_OF_CONTINUOUS_STATES, 1},
+    {"fmi3GetNumberOfEventIndicators", SLOT_GET_NUMBER_OF_EVENT_INDICATORS, 1},
+    FMI3_OPTIONAL_ROWS
 };
 
 #define FMI3_NAME(name) "fmi3" #name,
@@ -872,44 +896,147 @@ static int directional_derivative(const ssx_fmu_function *fn, void *instance,
         n_knowns, dv_unknown, n_unknowns);
 }
 
+/* ------------------------------------------------------------------ Model Exchange */
+
+static void *instantiate_model_exchange(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
+                                        const char *instance_name, const char *token,
+                                        const char *resource_path, int logging_on)
+{
+    fmi3_context *ctx = context;
+    ctx->fmu = fmu;
+    ctx->outcome = (ssx_step_outcome){0};
+    ctx->instance = FMI3(fn, SLOT_INSTANTIATE, fmi3InstantiateModelExchangeTYPE)(
+        instance_name, token, resource_path, fmi3False, logging_on ? fmi3True : fmi3False, ctx,
+        (fmi3LogMessageCallback)logger);
+    return ctx->instance != NULL ? ctx : NULL;
+}
+
+/* The instance leaves initialization in event mode; the engine's Model Exchange component
+ * runs the event iteration that follows, as for FMI 2.0. */
+static int exit_initialization_mode_model_exchange(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI3(fn, SLOT_EXIT_INITIALIZATION_MODE, fmi3ExitInitializationModeTYPE)(
+        ((fmi3_context *)instance)->instance);
+}
+
+static int set_time(const ssx_fmu_function *fn, void *instance, double time)
+{
+    return (int)FMI3(fn, SLOT_SET_TIME, fmi3SetTimeTYPE)(((fmi3_context *)instance)->instance,
+                                                         time);
+}
+
+static int set_continuous_states(const ssx_fmu_function *fn, void *instance, const double *x,
+                                 size_t nx)
+{
+    return (int)FMI3(fn, SLOT_SET_CONTINUOUS_STATES, fmi3SetContinuousStatesTYPE)(
+        ((fmi3_context *)instance)->instance, x, nx);
+}
+
+static int get_continuous_states(const ssx_fmu_function *fn, void *instance, double *x,
+                                 size_t nx)
+{
+    return (int)FMI3(fn, SLOT_GET_CONTINUOUS_STATES, fmi3GetContinuousStatesTYPE)(
+        ((fmi3_context *)instance)->instance, x, nx);
+}
+
+static int get_derivatives(const ssx_fmu_function *fn, void *instance, double *dx, size_t nx)
+{
+    return (int)FMI3(fn, SLOT_GET_DERIVATIVES, fmi3GetContinuousStateDerivativesTYPE)(
+        ((fmi3_context *)instance)->instance, dx, nx);
+}
+
+static int get_event_indicators(const ssx_fmu_function *fn, void *instance, double *z,
+                                size_t nz)
+{
+    return (int)FMI3(fn, SLOT_GET_EVENT_INDICATORS, fmi3GetEventIndicatorsTYPE)(
+        ((fmi3_context *)instance)->instance, z, nz);
+}
+
+static int get_nominals_of_continuous_states(const ssx_fmu_function *fn, void *instance,
+                                             double *nominals, size_t nx)
+{
+    return (int)FMI3(fn, SLOT_GET_NOMINALS_OF_CONTINUOUS_STATES,
+                     fmi3GetNominalsOfContinuousStatesTYPE)(((fmi3_context *)instance)->instance,
+                                                            nominals, nx);
+}
+
+static int enter_continuous_time_mode(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI3(fn, SLOT_ENTER_CONTINUOUS_TIME_MODE, fmi3EnterContinuousTimeModeTYPE)(
+        ((fmi3_context *)instance)->instance);
+}
+
+static int completed_integrator_step(const ssx_fmu_function *fn, void *instance,
+                                     int no_set_state_prior, int *enter_event_mode,
+                                     int *terminate_simulation)
+{
+    fmi3Boolean enter = fmi3False, terminate = fmi3False;
+    int status = (int)FMI3(fn, SLOT_COMPLETED_INTEGRATOR_STEP, fmi3CompletedIntegratorStepTYPE)(
+        ((fmi3_context *)instance)->instance, no_set_state_prior ? fmi3True : fmi3False, &enter,
+        &terminate);
+    *enter_event_mode = enter != fmi3False;
+    *terminate_simulation = terminate != fmi3False;
+    return status;
+}
+
+static int get_number_of_continuous_states(const ssx_fmu_function *fn, void *instance,
+                                           size_t *n)
+{
+    return (int)FMI3(fn, SLOT_GET_NUMBER_OF_CONTINUOUS_STATES,
+                     fmi3GetNumberOfContinuousStatesTYPE)(((fmi3_context *)instance)->instance, n);
+}
+
+static int get_number_of_event_indicators(const ssx_fmu_function *fn, void *instance, size_t *n)
+{
+    return (int)FMI3(fn, SLOT_GET_NUMBER_OF_EVENT_INDICATORS,
+                     fmi3GetNumberOfEventIndicatorsTYPE)(((fmi3_context *)instance)->instance, n);
+}
+
+/* The adapters both interfaces share. */
+#define FMI3_ADAPTERS                                                                         \
+    .version = "FMI 3.0", .status_names = fmi3_status_names,                                  \
+    .context_size = sizeof(fmi3_context), .free_instance = free_instance,                     \
+    .setup_experiment = setup_experiment,                                                     \
+    .enter_initialization_mode = enter_initialization_mode, .terminate = terminate,           \
+    .reset = reset, .get_real = get_real, .get_integer = get_integer,                         \
+    .get_boolean = get_boolean, .set_real = set_real, .set_integer = set_integer,             \
+    .set_boolean = set_boolean, .get_state = get_state, .set_state = set_state,               \
+    .free_state = free_state, .serialized_state_size = serialized_state_size,                 \
+    .serialize_state = serialize_state, .deserialize_state = deserialize_state,               \
+    .directional_derivative = directional_derivative, .get_string = get_string,               \
+    .set_string = set_string, .get_binary = get_binary, .set_binary = set_binary,             \
+    .enter_event_mode = enter_event_mode, .new_discrete_states = new_discrete_states,         \
+    .variable_name = variable_name, .release_context = release_context
+
+const ssx_fmu_backend ssx_fmi3_model_exchange_backend = {
+    FMI3_ADAPTERS,
+    .standard = "FMI 3.0 Model Exchange",
+    .functions = fmi3_model_exchange_functions,
+    .n_functions = sizeof fmi3_model_exchange_functions / sizeof fmi3_model_exchange_functions[0],
+    .instantiate = instantiate_model_exchange,
+    .exit_initialization_mode = exit_initialization_mode_model_exchange,
+    .set_time = set_time,
+    .set_continuous_states = set_continuous_states,
+    .get_continuous_states = get_continuous_states,
+    .get_derivatives = get_derivatives,
+    .get_event_indicators = get_event_indicators,
+    .get_nominals_of_continuous_states = get_nominals_of_continuous_states,
+    .enter_continuous_time_mode = enter_continuous_time_mode,
+    .completed_integrator_step = completed_integrator_step,
+    .get_number_of_continuous_states = get_number_of_continuous_states,
+    .get_number_of_event_indicators = get_number_of_event_indicators,
+};
+
 const ssx_fmu_backend ssx_fmi3_backend = {
+    FMI3_ADAPTERS,
     .standard = "FMI 3.0 Co-Simulation",
-    .version = "FMI 3.0",
-    .status_names = fmi3_status_names,
     .functions = fmi3_functions,
     .n_functions = sizeof fmi3_functions / sizeof fmi3_functions[0],
-    .context_size = sizeof(fmi3_context),
     .instantiate = instantiate,
-    .free_instance = free_instance,
-    .setup_experiment = setup_experiment,
-    .enter_initialization_mode = enter_initialization_mode,
     .exit_initialization_mode = exit_initialization_mode,
-    .terminate = terminate,
-    .reset = reset,
-    .get_real = get_real,
-    .get_integer = get_integer,
-    .get_boolean = get_boolean,
-    .set_real = set_real,
-    .set_integer = set_integer,
-    .set_boolean = set_boolean,
     .do_step = do_step,
-    .get_state = get_state,
-    .set_state = set_state,
-    .free_state = free_state,
-    .serialized_state_size = serialized_state_size,
-    .serialize_state = serialize_state,
-    .deserialize_state = deserialize_state,
-    .directional_derivative = directional_derivative,
     .get_terminated = get_terminated,
     .get_last_successful_time = get_last_successful_time,
-    .get_string = get_string,
-    .set_string = set_string,
-    .get_binary = get_binary,
-    .set_binary = set_binary,
-    .enter_event_mode = enter_event_mode,
-    .new_discrete_states = new_discrete_states,
     .enter_step_mode = enter_step_mode,
     .step_outcome = step_outcome,
-    .variable_name = variable_name,
-    .release_context = release_context,
 };

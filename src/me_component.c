@@ -1,10 +1,12 @@
 /* A Model Exchange FMU as a component: the engine integrates it with SUNDIALS CVODE (BDF,
  * Newton, dense linear solver) from communication point to communication point, its inputs held
- * over the step, and runs FMI 2.0's Model Exchange state machine around the integrator: event
+ * over the step, and runs the Model Exchange state machine (FMI 2.0's and FMI 3.0's are the
+ * same; the binding's back-end makes each call in its standard) around the integrator: event
  * indicators are CVODE's root functions, nextEventTime is a stop time, and after every
- * integrator step fmi2CompletedIntegratorStep may ask for event mode. Each event is handled at
- * its own time inside the step (fmi2NewDiscreteStates until nothing more is needed) and
- * reported as the component's own event, so no rollback is needed to find it.
+ * integrator step CompletedIntegratorStep may ask for event mode. Each event is handled at its
+ * own time inside the step (NewDiscreteStates or UpdateDiscreteStates until nothing more is
+ * needed) and reported as the component's own event, so no rollback is needed to find it.
+ * Messages name each call as the FMU's standard does (ssx_fmu_function_name).
  *
  * CVODE stays warm (keeps its order, step size and history) from one communication point to
  * the next while nothing changed there: no input written, no event, no snapshot. Otherwise it
@@ -31,6 +33,7 @@
 
 #include "component.h"
 #include "error.h"
+#include "fmu_backend.h"
 #include "fmu_binding.h"
 #include "system.h"
 
@@ -65,19 +68,25 @@ typedef struct {
     double warm_at;
     long warm_epoch;
     ssx_component *c; /* for the callbacks */
-    /* set by a CVODE callback whose fmi2 call failed, reported when CVODE returns */
+    /* set by a CVODE callback whose FMU call failed, reported when CVODE returns */
     int failed_status;
     const char *failed_call;
     double failed_time;
     char cvode_message[512];
 } me_data;
 
+/* The name of the call in `slot` in the FMU's standard ("fmi3SetTime"). */
+static const char *call_name(const ssx_component *c, ssx_fmu_slot slot)
+{
+    return ssx_fmu_function_name(c->fmu, (int)slot);
+}
+
 /* ------------------------------------------------------------------ CVODE's callbacks */
 
-static int callback_failed(me_data *me, int status, const char *call, double t)
+static int callback_failed(me_data *me, int status, ssx_fmu_slot slot, double t)
 {
     me->failed_status = status;
-    me->failed_call = call;
+    me->failed_call = call_name(me->c, slot);
     me->failed_time = t;
     return -1; /* unrecoverable: CVODE stops and returns */
 }
@@ -87,12 +96,12 @@ static int set_point(me_data *me, double t, N_Vector y)
 {
     int status = ssx_fmu_set_time(me->c->fmu, t);
     if (!fmi_ok(status)) {
-        return callback_failed(me, status, "fmi2SetTime", t);
+        return callback_failed(me, status, SLOT_SET_TIME, t);
     }
     if (me->nx > 0) {
         status = ssx_fmu_set_continuous_states(me->c->fmu, N_VGetArrayPointer(y), me->nx);
         if (!fmi_ok(status)) {
-            return callback_failed(me, status, "fmi2SetContinuousStates", t);
+            return callback_failed(me, status, SLOT_SET_CONTINUOUS_STATES, t);
         }
     }
     return 0;
@@ -109,7 +118,7 @@ static int derivatives(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
         return -1;
     }
     int status = ssx_fmu_get_derivatives(me->c->fmu, N_VGetArrayPointer(ydot), me->nx);
-    return fmi_ok(status) ? 0 : callback_failed(me, status, "fmi2GetDerivatives", t);
+    return fmi_ok(status) ? 0 : callback_failed(me, status, SLOT_GET_DERIVATIVES, t);
 }
 
 static int indicators(sunrealtype t, N_Vector y, sunrealtype *z, void *user)
@@ -119,7 +128,7 @@ static int indicators(sunrealtype t, N_Vector y, sunrealtype *z, void *user)
         return -1;
     }
     int status = ssx_fmu_get_event_indicators(me->c->fmu, z, me->nz);
-    return fmi_ok(status) ? 0 : callback_failed(me, status, "fmi2GetEventIndicators", t);
+    return fmi_ok(status) ? 0 : callback_failed(me, status, SLOT_GET_EVENT_INDICATORS, t);
 }
 
 static void cvode_error(int code, const char *module, const char *function, char *message,
@@ -172,21 +181,22 @@ static int terminated(ssx_system *sys, ssx_component *c, double t, double t_end,
 
 /* ------------------------------------------------------------------ event mode */
 
-/* fmi2NewDiscreteStates until the FMU needs no more, bounded: an FMU that never settles is
- * chattering at t. */
+/* NewDiscreteStates (FMI 2.0) or UpdateDiscreteStates (FMI 3.0) until the FMU needs no more,
+ * bounded: an FMU that never settles is chattering at t. */
 static int iterate_discrete_states(ssx_system *sys, ssx_component *c, me_data *me, double t)
 {
     ssx_fmu_event_info *info = &me->now.event;
     for (int round = 0;; ++round) {
         if (round > sys->hybrid.max_microsteps) {
             return fail_zeno(sys, c->index, -1, t,
-                             "component '%s': fmi2NewDiscreteStates still asked for new discrete "
-                             "states after %d rounds at t=%.17g (max_microsteps)",
-                             c->name, sys->hybrid.max_microsteps, t);
+                             "component '%s': %s still asked for new discrete states after %d "
+                             "rounds at t=%.17g (max_microsteps)",
+                             c->name, call_name(c, SLOT_NEW_DISCRETE_STATES),
+                             sys->hybrid.max_microsteps, t);
         }
         int status = ssx_fmu_new_discrete_states(c->fmu, info);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, t, status, "fmi2NewDiscreteStates");
+            return fail_fmi(sys, c, t, status, call_name(c, SLOT_NEW_DISCRETE_STATES));
         }
         if (!info->new_discrete_states_needed || info->terminate_simulation) {
             return 0;
@@ -202,7 +212,7 @@ static int read_states(ssx_system *sys, ssx_component *c, me_data *me, double t)
         return 0;
     }
     int status = ssx_fmu_get_continuous_states(c->fmu, me->now.x, me->nx);
-    return fmi_ok(status) ? 0 : fail_fmi(sys, c, t, status, "fmi2GetContinuousStates");
+    return fmi_ok(status) ? 0 : fail_fmi(sys, c, t, status, call_name(c, SLOT_GET_CONTINUOUS_STATES));
 }
 
 /* Back to continuous-time mode after event mode: the states the event left and, when they
@@ -212,7 +222,7 @@ static int leave_event_mode(ssx_system *sys, ssx_component *c, me_data *me, doub
 {
     int status = ssx_fmu_enter_continuous_time_mode(c->fmu);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, t, status, "fmi2EnterContinuousTimeMode");
+        return fail_fmi(sys, c, t, status, call_name(c, SLOT_ENTER_CONTINUOUS_TIME_MODE));
     }
     if (read_states(sys, c, me, t) != 0) {
         return -1;
@@ -220,7 +230,7 @@ static int leave_event_mode(ssx_system *sys, ssx_component *c, me_data *me, doub
     if (me->nx > 0 && (read_nominals || me->now.event.nominals_changed)) {
         status = ssx_fmu_get_nominals_of_continuous_states(c->fmu, me->nominals, me->nx);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, t, status, "fmi2GetNominalsOfContinuousStates");
+            return fail_fmi(sys, c, t, status, call_name(c, SLOT_GET_NOMINALS_OF_CONTINUOUS_STATES));
         }
         double *atol = N_VGetArrayPointer(me->absolute_tolerance);
         for (size_t i = 0; i < me->nx; ++i) {
@@ -237,13 +247,41 @@ static int leave_event_mode(ssx_system *sys, ssx_component *c, me_data *me, doub
     return 0;
 }
 
-/* The event iteration FMI 2.0 requires after fmi2ExitInitializationMode, once per instance:
- * the FMU may have been instantiated again (reinitialize) since the last step. */
+/* One count the component was added with against the one the instance gives (FMI 3.0 asks
+ * the instance; FMI 2.0 has no such call and the description's count is the only one). */
+static int check_count(ssx_system *sys, ssx_component *c, double t, ssx_fmu_slot slot,
+                       int (*ask)(ssx_fmu *, size_t *), size_t expected, const char *what)
+{
+    if (call_name(c, slot)[0] == '\0') {
+        return 0;
+    }
+    size_t n = 0;
+    int status = ask(c->fmu, &n);
+    if (!fmi_ok(status)) {
+        return fail_fmi(sys, c, t, status, call_name(c, slot));
+    }
+    if (n != expected) {
+        return fail(sys, c->index, -1, t,
+                    "component '%s': %s: the instance has %zu (%s at t=%.17g), its "
+                    "modelDescription declares %zu",
+                    c->name, what, n, call_name(c, slot), t, expected);
+    }
+    return 0;
+}
+
+/* The event iteration FMI 2.0 and 3.0 require after ExitInitializationMode, once per
+ * instance: the FMU may have been instantiated again (reinitialize) since the last step. */
 static int start_instance(ssx_system *sys, ssx_component *c, me_data *me, double t)
 {
     long generation = ssx_fmu_generation(c->fmu);
     if (me->generation == generation) {
         return 0;
+    }
+    if (check_count(sys, c, t, SLOT_GET_NUMBER_OF_CONTINUOUS_STATES,
+                    ssx_fmu_get_number_of_continuous_states, me->nx, "continuous states") != 0 ||
+        check_count(sys, c, t, SLOT_GET_NUMBER_OF_EVENT_INDICATORS,
+                    ssx_fmu_get_number_of_event_indicators, me->nz, "event indicators") != 0) {
+        return -1;
     }
     if (!ssx_fmu_experiment_tolerance(c->fmu, &me->relative_tolerance) ||
         !(me->relative_tolerance > 0.0)) {
@@ -275,7 +313,7 @@ static int handle_event(ssx_system *sys, ssx_component *c, me_data *me, double t
 {
     int status = ssx_fmu_enter_event_mode(c->fmu);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, t, status, "fmi2EnterEventMode");
+        return fail_fmi(sys, c, t, status, call_name(c, SLOT_ENTER_EVENT_MODE));
     }
     if (iterate_discrete_states(sys, c, me, t) != 0) {
         return -1;
@@ -340,12 +378,12 @@ static int integrate(ssx_system *sys, ssx_component *c, me_data *me, double stop
     }
     int status = ssx_fmu_set_time(c->fmu, *t);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, *t, status, "fmi2SetTime");
+        return fail_fmi(sys, c, *t, status, call_name(c, SLOT_SET_TIME));
     }
     if (me->nx > 0) {
         status = ssx_fmu_set_continuous_states(c->fmu, me->now.x, me->nx);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, *t, status, "fmi2SetContinuousStates");
+            return fail_fmi(sys, c, *t, status, call_name(c, SLOT_SET_CONTINUOUS_STATES));
         }
     }
     return 0;
@@ -426,7 +464,7 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
         int status = ssx_fmu_completed_integrator_step(c->fmu, !sys->stepping_hybrid,
                                                        &enter_event_mode, &terminate);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, now, status, "fmi2CompletedIntegratorStep");
+            return fail_fmi(sys, c, now, status, call_name(c, SLOT_COMPLETED_INTEGRATOR_STEP));
         }
         if (terminate) {
             return terminated(sys, c, now, t_end, dt);
@@ -475,7 +513,7 @@ static int me_write_inputs(ssx_system *sys, ssx_component *c)
     }
     int status = ssx_fmu_enter_event_mode(c->fmu);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, t, status, "fmi2EnterEventMode");
+        return fail_fmi(sys, c, t, status, call_name(c, SLOT_ENTER_EVENT_MODE));
     }
     if (ssx_fmu_component_ops.write_inputs(sys, c) != 0 ||
         iterate_discrete_states(sys, c, me, t) != 0) {
@@ -539,7 +577,7 @@ static int me_restore(ssx_system *sys, ssx_component *c, int slot, double t)
     }
     /* the engine's copy is the state: the FMU holds it whatever its own state kept */
     int status = ssx_fmu_set_continuous_states(c->fmu, me->now.x, me->nx);
-    return fmi_ok(status) ? 0 : fail_fmi(sys, c, t, status, "fmi2SetContinuousStates");
+    return fmi_ok(status) ? 0 : fail_fmi(sys, c, t, status, call_name(c, SLOT_SET_CONTINUOUS_STATES));
 }
 
 /* ------------------------------------------------------------------ life cycle */
@@ -671,7 +709,8 @@ int ssx_add_model_exchange_component(ssx_system *sys, const char *name, ssx_fmu 
                            "component '%s': %s", label,
                            fmu == NULL ? "no FMU given"
                                        : "the FMU was not loaded for Model Exchange "
-                                         "(ssx_fmu_load_model_exchange)");
+                                         "(ssx_fmu_load_model_exchange or "
+                                         "ssx_fmu_load_fmi3_model_exchange)");
     }
     if (n_states < 0 || n_event_indicators < 0) {
         return fail_config(sys, -1, -1, NAN,

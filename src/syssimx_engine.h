@@ -113,6 +113,16 @@ ssx_fmu *ssx_fmu_load_fmi3(const char *binary_path, const char *model_identifier
                            const char *instantiation_token, const char *resource_path,
                            const char *instance_name, int logging_on,
                            const ssx_fmi3_variables *variables, char *error, size_t error_size);
+/* Like ssx_fmu_load_fmi3, for the FMU's FMI 3.0 Model Exchange interface (model_identifier:
+ * the ModelExchange element's): the instance is made by fmi3InstantiateModelExchange, the
+ * binary must export the Model Exchange functions (fmi3DoStep is neither needed nor called),
+ * and the event_mode_used and early_return_allowed of `variables` do not apply. Its component
+ * is added with ssx_add_model_exchange_component. */
+ssx_fmu *ssx_fmu_load_fmi3_model_exchange(const char *binary_path, const char *model_identifier,
+                                          const char *instantiation_token,
+                                          const char *resource_path, const char *instance_name,
+                                          int logging_on, const ssx_fmi3_variables *variables,
+                                          char *error, size_t error_size);
 /* fmi3Get/SetString and fmi3Get/SetBinary (FMI 3.0 only: other FMUs refuse them). The texts
  * and bytes read stay valid until the next call on the FMU. */
 int ssx_fmu_get_string(ssx_fmu *fmu, const unsigned int *vr, size_t n, const char **values);
@@ -309,10 +319,12 @@ const ssx_error *ssx_last_error(const ssx_system *sys);
 
 int ssx_add_fmu_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_get_set_state);
 int ssx_add_python_component(ssx_system *sys, const char *name, int can_snapshot);
-/* A Model Exchange FMU (loaded by ssx_fmu_load_model_exchange, initialized by
- * ssx_fmu_initialize) that the engine integrates with CVODE between communication points:
- * n_states continuous states (ModelStructure/Derivatives), n_event_indicators
- * (numberOfEventIndicators). The relative tolerance is the one the instance was set up with
+/* A Model Exchange FMU (loaded by ssx_fmu_load_model_exchange or
+ * ssx_fmu_load_fmi3_model_exchange, initialized by ssx_fmu_initialize) that the engine
+ * integrates with CVODE between communication points: n_states continuous states
+ * (ModelStructure/Derivatives), n_event_indicators (numberOfEventIndicators, FMI 3.0's
+ * ModelStructure/EventIndicator); an FMI 3.0 instance that counts others fails its first
+ * step. The relative tolerance is the one the instance was set up with
  * (ssx_fmu_experiment's), else model_exchange_tolerance of ssx_defaults; the absolute
  * tolerances are it times the states' nominals. Its state, time and step events are handled
  * inside its steps at their own time and recorded as its own events (ssx_own_event_kind); a

@@ -1,6 +1,7 @@
 """FMI 3.0 Co-Simulation import: events an FMU handles itself (early return, event mode), state
 rollback, types, String and Binary values, units, and the clear errors for what syssimx does
-not run (Model Exchange only, arrays, isolation, connecting a String).
+not run (no interface it runs, arrays, isolation, connecting a String). Model Exchange is
+tested in test_fmi3_model_exchange.py.
 
 The FMUs are our own FMI 3.0 builds (`<stem>_fmi3`, the same models as the FMI 2.0 ones), the
 Reference FMUs built for FMI 3.0 (SYSSIMX_REFERENCE_FMUS or <repository>/../shared/
@@ -341,24 +342,15 @@ def test_info_shows_fmi3_capabilities_and_display_units(capsys: pytest.CaptureFi
 
 # ------------------------------------------------------------------------------ refusals
 @reference
-def test_model_exchange_only_is_refused_naming_the_file(tmp_path: Path):
+def test_scheduled_execution_only_is_refused_naming_the_file(tmp_path: Path):
     path = edited(tmp_path, BALL, ("<CoSimulation", "<!--CoSimulation"),
-                  ('hasEventMode="true"/>', 'hasEventMode="true"-->'))
+                  ('hasEventMode="true"/>', 'hasEventMode="true"-->'),
+                  ("<ModelExchange", "<!--ModelExchange"),
+                  ('canSerializeFMUState="true"/>', 'canSerializeFMUState="true"-->'))
     with pytest.raises(FMUFileError) as info:
         FMUComponent("Ball", path)
-    assert str(info.value) == (f"{path}: FMI 3.0 Model Exchange is not supported yet (syssimx "
-                               "runs FMI 3.0 Co-Simulation FMUs)")
-
-
-@reference
-def test_fmi3_model_exchange_is_refused_when_asked_for():
-    """The Reference BouncingBall declares both interfaces: "auto" takes Co-Simulation, asking
-    for Model Exchange (which syssimx runs for FMI 2.0 only) is refused by name."""
-    assert FMUComponent("Ball", BALL).fmu_interface.name == "co-simulation"
-    with pytest.raises(ConfigurationError) as info:
-        FMUComponent("Ball", BALL, interface="model-exchange")
-    assert str(info.value) == (f"component 'Ball': {BALL}: FMI 3.0 Model Exchange is not "
-                               "supported yet (its Co-Simulation interface is)")
+    assert str(info.value) == (f"{path}: the FMI 3.0 description declares neither "
+                               "CoSimulation nor ModelExchange")
 
 
 @reference

@@ -1,6 +1,7 @@
 """The FMI 3.0 builds of every model (stem_fmi3.fmu), checked through FMPy, an FMI 3.0 client
 independent of syssimx: valid modelDescriptions, the FMI 2.0 build's results, early return at
-internal events with event mode, FMU state round trips and the state machine's refusals."""
+internal events with event mode, FMU state round trips, the state machine's refusals, and the
+Model Exchange interface beside Co-Simulation."""
 
 from __future__ import annotations
 
@@ -444,3 +445,45 @@ def test_directional_derivatives_are_those_of_the_fmi2_build(open_fmu3, open_fmu
     assert fmi3.slave.getDirectionalDerivative(unknown, known, [1.0]) == \
         fmi2.slave.getDirectionalDerivative(unknown, known, [1.0])
     assert fmi3.slave.getDirectionalDerivative(unknown, known, [1.0])[0] == 1.0 / 20.0
+
+
+# ------------------------------------------------------------------------------ Model Exchange
+@pytest.mark.parametrize("stem", BUILT)
+def test_model_exchange_is_declared_beside_co_simulation(stem: str) -> None:
+    description = read_model_description(fmus.path(stem + "_fmi3"))
+    me, cs = description.modelExchange, description.coSimulation
+    assert me.modelIdentifier == cs.modelIdentifier == stem + "_fmi3"
+    assert me.canGetAndSetFMUstate and me.canSerializeFMUstate  # FMPy keeps FMI 2.0 spelling
+    assert not me.needsCompletedIntegratorStep
+    assert description.numberOfContinuousStates == \
+        read_model_description(fmus.path(stem)).numberOfContinuousStates
+
+
+@pytest.mark.parametrize("stem", [s for s in BUILT if s != "failing"])
+def test_fmpy_integrates_the_model_exchange_build_as_the_fmi2_one(stem: str) -> None:
+    """The same model code behind both versions' Model Exchange calls: FMPy's CVODE takes the
+    same steps and finds the same events, to the last bit."""
+    fmi2, fmi3 = (fmpy.simulate_fmu(fmus.path(name), fmi_type="ModelExchange", solver="CVode",
+                                    relative_tolerance=1e-8)
+                  for name in (stem, stem + "_fmi3"))
+    assert fmi3.dtype.names == fmi2.dtype.names
+    for name in fmi2.dtype.names:
+        np.testing.assert_array_equal(fmi3[name], fmi2[name], err_msg=name)
+
+
+def test_bouncing_ball_as_model_exchange_through_syssimx_bounces_at_the_closed_form() -> None:
+    """syssimx's CVODE finds each bounce with the FMU's event indicator, inside its step, and
+    handles it with fmi3EnterEventMode and fmi3UpdateDiscreteStates: no rollback."""
+    from syssimx import FMUComponent, System
+    from test_fmu_bouncing_ball import closed_form_bounces
+
+    ball = FMUComponent("B", fmus.path("bouncing_ball_cvode_fmi3"), interface="model-exchange",
+                        tolerance=1e-12)
+    system = System("ball")
+    system.add_component(ball)
+    system.initialize(0.0)
+    result = system.run(0.0, 3.0, 0.01)
+    np.testing.assert_allclose([e.t for e in result.events], closed_form_bounces(6), rtol=0,
+                               atol=1e-8)
+    assert {(e.event, e.own) for e in result.events} == {("state_event", True)}
+    assert (result.statistics.own_events, result.statistics.state_restores) == (6, 0)

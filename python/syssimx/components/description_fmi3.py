@@ -5,10 +5,10 @@ its type element (`<Float64>`, `<Int8>`, ...), gives it dimensions, clocks and a
 states ModelStructure by value reference. FMPy reads all of that into the same objects (fmpy's
 attribute names), so the rest of syssimx reads an FMI 3.0 description like an FMI 2.0 one.
 
-syssimx steps FMI 3.0 Co-Simulation FMUs. It refuses, naming the file and the element:
-Model Exchange only, scheduled execution, any Clock variable (clocked partitions need a
-scheduler syssimx does not have), and arrays among the inputs, outputs and parameters (the
-engine's ports are scalars).
+syssimx steps FMI 3.0 Co-Simulation FMUs and integrates FMI 3.0 Model Exchange ones. It
+refuses, naming the file and the element: scheduled execution only, any Clock variable (clocked
+partitions need a scheduler syssimx does not have), and arrays among the inputs, outputs and
+parameters (the engine's ports are scalars).
 """
 
 from __future__ import annotations
@@ -45,23 +45,25 @@ def read_fmi3_description(path: Path) -> ModelDescription:
                            ) from exc
     for variable in description.modelVariables:
         _check_variable(variable, path)
-    if description.coSimulation is None:
-        if description.modelExchange is not None:
-            raise FMUFileError(f"{path}: FMI 3.0 Model Exchange is not supported yet (syssimx "
-                               "runs FMI 3.0 Co-Simulation FMUs)")
+    if description.coSimulation is None and description.modelExchange is None:
         if description.scheduledExecution is not None:
             raise FMUFileError(f"{path}: FMI 3.0 Scheduled Execution is not supported (syssimx "
-                               "runs FMI 3.0 Co-Simulation FMUs without clocks)")
-        raise FMUFileError(f"{path}: the FMI 3.0 description declares no CoSimulation interface")
+                               "runs FMI 3.0 Co-Simulation and Model Exchange FMUs without "
+                               "clocks)")
+        raise FMUFileError(f"{path}: the FMI 3.0 description declares neither CoSimulation nor "
+                           "ModelExchange")
     # fmpy keeps FMI 3.0's token under both names; syssimx passes it where FMI 2.0 has the guid
     description.guid = description.instantiationToken
-    description.coSimulation.providesDirectionalDerivative = \
-        provides_directional_derivatives(path)
+    for element, part in (("CoSimulation", description.coSimulation),
+                          ("ModelExchange", description.modelExchange)):
+        if part is not None:
+            part.providesDirectionalDerivative = provides_directional_derivatives(path, element)
     return description
 
 
-def provides_directional_derivatives(path: Path) -> bool:
-    """FMI 3.0 spells the flag providesDirectionalDerivatives, which FMPy 0.3 does not read."""
+def provides_directional_derivatives(path: Path, element: str = "CoSimulation") -> bool:
+    """FMI 3.0 spells the flag providesDirectionalDerivatives, which FMPy 0.3 does not read;
+    `element`: the interface's (CoSimulation or ModelExchange)."""
     import zipfile
 
     from lxml import etree
@@ -69,9 +71,8 @@ def provides_directional_derivatives(path: Path) -> bool:
     parser = etree.XMLParser(resolve_entities=False, no_network=True)
     with zipfile.ZipFile(path) as archive:
         root = etree.fromstring(archive.read("modelDescription.xml"), parser)
-    element = root.find("CoSimulation")
-    return element is not None and element.get("providesDirectionalDerivatives") in ("true",
-                                                                                     "1")
+    found = root.find(element)
+    return found is not None and found.get("providesDirectionalDerivatives") in ("true", "1")
 
 
 def _check_variable(variable: Any, path: Path) -> None:

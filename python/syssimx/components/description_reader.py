@@ -132,7 +132,7 @@ def _message(error: Any, where: str) -> str:
     kind = ffi.string(ffi.cast("ssx_md_problem", error.problem))
     if kind == "SSX_MD_NOT_FMI2":
         return (f"{where}: FMI version {problem.text} is not supported (syssimx runs FMI 2.0 "
-                "and FMI 3.0 Co-Simulation FMUs)")
+                "and FMI 3.0 Co-Simulation and Model Exchange FMUs)")
     return f"{where}: modelDescription.xml: {_MESSAGES[kind](problem)}"
 
 

@@ -1,6 +1,6 @@
 """FMUComponent: an FMI 2.0 FMU stepped by the engine, through its Co-Simulation interface
-(fmi2DoStep) or its Model Exchange interface (integrated by the engine with CVODE), or an FMI
-3.0 Co-Simulation FMU.
+(fmi2DoStep) or its Model Exchange interface (integrated by the engine with CVODE), and the
+same for an FMI 3.0 FMU.
 
 Plain use costs no Python per step: the engine calls the FMU directly, rolls it back with
 fmi2Get/SetFMUstate for event localization and evaluates variable indicators in C. Overriding
@@ -17,9 +17,10 @@ of them. fmi2SetupExperiment gets the tolerance the user gave (to the component,
 System.initialize), else the DefaultExperiment's; a Model Exchange component integrates with
 that relative tolerance (absolute: times each state's nominal), else the engine's default.
 
-An FMI 3.0 FMU is instantiated with event mode when it declares hasEventMode, and with early
-return when it can return early: it then handles its own events inside the engine's step, at
-their time, without rollback (they appear in the result's events as its own). Its Float32 and
+An FMI 3.0 Co-Simulation FMU is instantiated with event mode when it declares hasEventMode,
+and with early return when it can return early: it then handles its own events inside the
+engine's step, at their time, without rollback (they appear in the result's events as its own),
+as a Model Exchange FMU of either version does inside its integration. Its Float32 and
 integer types travel as Real and Integer ports; String and Binary variables are set with
 set_parameters (inputs too) and read with get_state, never connected.
 """
@@ -55,8 +56,7 @@ if TYPE_CHECKING:
 
 
 class FMUComponent(CoSimComponent):
-    """An FMI 2.0 FMU (linux64 binary) or an FMI 3.0 Co-Simulation FMU (x86_64-linux) as a
-    component."""
+    """An FMI 2.0 FMU (linux64 binary) or an FMI 3.0 FMU (x86_64-linux) as a component."""
 
     def __init__(self, name: str, fmu_path: str | Path, group: str | None = None,
                  tolerance: float | None = None, *, isolated: bool = False,
@@ -77,10 +77,6 @@ class FMUComponent(CoSimComponent):
         self.step_timeout = step_timeout
         self.info: FMUInfo = read_fmu(fmu_path)
         self.fmu_path = str(self.info.path)
-        if self.info.is_fmi3 and interface == "model-exchange":
-            raise ConfigurationError(f"component {name!r}: {self.fmu_path}: FMI 3.0 Model "
-                                     "Exchange is not supported yet (its Co-Simulation "
-                                     "interface is)")
         if isolated and self.info.is_fmi3:
             raise ConfigurationError(f"component {name!r}: isolated=True is not supported for "
                                      f"FMI 3.0 FMUs ({self.fmu_path}): the FMU host process "
@@ -474,7 +470,7 @@ def _load(info: FMUInfo, interface: FMUInterface, name: str, isolated: bool,
                            "extracted archive; refused to load it")
     error = ffi.new("char[1024]")
     if info.is_fmi3:
-        handle = _load_fmi3(info, binary, unzip_dir, name, error)
+        handle = _load_fmi3(info, interface, binary, unzip_dir, name, error)
     else:
         arguments = (str(binary).encode(), interface.model_identifier.encode(),
                      info.description.guid.encode(), (unzip_dir / "resources").as_uri().encode(),
@@ -492,9 +488,12 @@ def _load(info: FMUInfo, interface: FMUInterface, name: str, isolated: bool,
     return handle, unzip_dir, key
 
 
-def _load_fmi3(info: FMUInfo, binary: Path, unzip_dir: Path, name: str, error: Any) -> Any:
-    """ssx_fmu_load_fmi3 with the FMU's type table. Event mode when the FMU has it, early
-    return when it may return early: its events are then handled at their time."""
+def _load_fmi3(info: FMUInfo, interface: FMUInterface, binary: Path, unzip_dir: Path,
+               name: str, error: Any) -> Any:
+    """ssx_fmu_load_fmi3 (or its Model Exchange twin) with the FMU's type table. Co-Simulation:
+    event mode when the FMU has it, early return when it may return early: its events are then
+    handled at their time."""
+    model_exchange = interface.name == "model-exchange"
     cosimulation = info.description.coSimulation
     rows = info.fmi3_variables
     # the struct does not keep what it points at alive: these locals do, until the engine
@@ -505,14 +504,16 @@ def _load_fmi3(info: FMUInfo, binary: Path, unzip_dir: Path, name: str, error: A
     names = ffi.new("const char *[]", texts)
     variables = ffi.new("ssx_fmi3_variables *", {
         "vr": refs, "type": codes, "name": names, "n": len(rows),
-        "event_mode_used": bool(cosimulation.hasEventMode),
-        "early_return_allowed": bool(cosimulation.canReturnEarlyAfterIntermediateUpdate
-                                     or cosimulation.mightReturnEarlyFromDoStep)})
+        "event_mode_used": not model_exchange and bool(cosimulation.hasEventMode),
+        "early_return_allowed": not model_exchange and bool(
+            cosimulation.canReturnEarlyAfterIntermediateUpdate
+            or cosimulation.mightReturnEarlyFromDoStep)})
     # FMI 3.0 gives the resources as a directory path ending in a separator
     resources = f"{unzip_dir / 'resources'}/"
-    return lib().ssx_fmu_load_fmi3(
-        str(binary).encode(), info.model_identifier.encode(), info.description.guid.encode(),
-        resources.encode(), name.encode(), 0, variables, error, 1024)
+    load = lib().ssx_fmu_load_fmi3_model_exchange if model_exchange else lib().ssx_fmu_load_fmi3
+    return load(str(binary).encode(), interface.model_identifier.encode(),
+                info.description.guid.encode(), resources.encode(), name.encode(), 0, variables,
+                error, 1024)
 
 
 def _release(free_fmu: Any, instance: FMUInstance, unzip_dir: Path,

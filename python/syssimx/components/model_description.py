@@ -89,7 +89,8 @@ class FMUInfo:
     value_references: dict[str, int] = field(default_factory=dict)  # of ports and parameters
     feedthrough: dict[str, set[str]] = field(default_factory=dict)
     interfaces: dict[str, FMUInterface] = field(default_factory=dict)  # by INTERFACES name
-    # Model Exchange: ModelStructure/Derivatives, numberOfEventIndicators
+    # Model Exchange: ModelStructure/Derivatives, numberOfEventIndicators (FMI 3.0:
+    # ModelStructure/EventIndicator)
     number_of_states: int = 0
     number_of_event_indicators: int = 0
     fmi_version: str = "2.0"
@@ -189,8 +190,6 @@ def _read_fmu(path: Path) -> FMUInfo:
         description = _read_description(archive, path)
         fmi3 = is_fmi3(description.fmiVersion)
         interfaces = _interfaces(description, path)
-        if fmi3:  # syssimx runs FMI 3.0 Co-Simulation only (its reader checked there is one)
-            interfaces = {"co-simulation": interfaces["co-simulation"]}
         first = interfaces[next(n for n in INTERFACES if n in interfaces)]
         table = description.modelVariables
         info = FMUInfo(path=path, description=description,
@@ -199,9 +198,8 @@ def _read_fmu(path: Path) -> FMUInfo:
                        variables=({v.name: v for v in table} if fmi3 else table.by_name()),
                        default_tolerance=_default_tolerance(description, path),
                        interfaces=interfaces,
-                       number_of_states=0 if fmi3 else description.numberOfContinuousStates,
-                       number_of_event_indicators=(0 if fmi3
-                                                   else description.numberOfEventIndicators),
+                       number_of_states=description.numberOfContinuousStates,
+                       number_of_event_indicators=description.numberOfEventIndicators,
                        fmi_version=description.fmiVersion)
         if info.binary_name() not in names:
             raise FMUFileError(f"{path} has no {PLATFORM_FMI3 if fmi3 else PLATFORM} binary "

@@ -1,4 +1,5 @@
-"""Write a C header listing each built FMU's binary and GUID, for the engine's C tests.
+"""Write a C header listing each built FMU's binary and GUID (FMI 3.0: instantiation token), for
+the engine's C tests.
 
 Usage: fmu_table_header.py <output.h> (<stem> <file.fmu> <binary.so>)...
 """
@@ -13,9 +14,10 @@ import zipfile
 def guid_of(fmu: str) -> str:
     with zipfile.ZipFile(fmu) as archive:
         description = archive.read("modelDescription.xml").decode("utf-8")
-    match = re.search(r'guid="([^"]+)"', description)
+    # FMI 3.0 names the GUID instantiationToken
+    match = re.search(r'\b(?:guid|instantiationToken)="([^"]+)"', description)
     if match is None:
-        raise SystemExit(f"{fmu}: modelDescription.xml has no guid")
+        raise SystemExit(f"{fmu}: modelDescription.xml has no guid or instantiationToken")
     return match.group(1)
 
 

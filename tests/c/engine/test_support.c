@@ -13,26 +13,47 @@ typedef struct {
 
 static const built_fmu built_fmus[] = {ENGINE_TEST_FMUS};
 
-static ssx_fmu *load_as(const char *stem, int model_exchange)
+static const built_fmu *built(const char *stem)
 {
     for (size_t i = 0; i < sizeof built_fmus / sizeof built_fmus[0]; ++i) {
         if (strcmp(built_fmus[i].stem, stem) == 0) {
-            char error[512];
-            ssx_fmu *fmu =
-                model_exchange
-                    ? ssx_fmu_load_model_exchange(built_fmus[i].binary, stem, built_fmus[i].guid,
-                                                  "", stem, 0, error, sizeof error)
-                    : ssx_fmu_load(built_fmus[i].binary, stem, built_fmus[i].guid, "", stem, 0,
-                                   error, sizeof error);
-            if (fmu == NULL) {
-                fprintf(stderr, "cannot load %s: %s\n", stem, error);
-                exit(1);
-            }
-            return fmu;
+            return &built_fmus[i];
         }
     }
     fprintf(stderr, "the FMU %s was not built\n", stem);
     exit(1);
+}
+
+static ssx_fmu *loaded(ssx_fmu *fmu, const char *stem, const char *error)
+{
+    if (fmu == NULL) {
+        fprintf(stderr, "cannot load %s: %s\n", stem, error);
+        exit(1);
+    }
+    return fmu;
+}
+
+static ssx_fmu *load_as(const char *stem, int model_exchange)
+{
+    const built_fmu *b = built(stem);
+    char error[512];
+    ssx_fmu *fmu = model_exchange ? ssx_fmu_load_model_exchange(b->binary, stem, b->guid, "", stem,
+                                                                0, error, sizeof error)
+                                  : ssx_fmu_load(b->binary, stem, b->guid, "", stem, 0, error,
+                                                 sizeof error);
+    return loaded(fmu, stem, error);
+}
+
+ssx_fmu *load_fmi3_fmu(const char *stem, const ssx_fmi3_variables *variables, int model_exchange)
+{
+    const built_fmu *b = built(stem);
+    char error[512];
+    ssx_fmu *fmu = model_exchange
+                       ? ssx_fmu_load_fmi3_model_exchange(b->binary, stem, b->guid, "", stem, 0,
+                                                          variables, error, sizeof error)
+                       : ssx_fmu_load_fmi3(b->binary, stem, b->guid, "", stem, 0, variables,
+                                           error, sizeof error);
+    return loaded(fmu, stem, error);
 }
 
 ssx_fmu *load_fmu(const char *stem)
