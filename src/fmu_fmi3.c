@@ -770,13 +770,20 @@ static int give(fmi3_context *ctx, const variable *v, void *values, size_t k,
         if (put_real(type, values, k, value) != 0) {
             long long lo, hi;
             integer_range(type, &lo, &hi);
-            say(ctx,
-                "variable '%s' (%s) cannot take %.17g: not a whole number within "
-                "%.17g..%.17g (its range, within the 2^53 the engine's Real ports carry "
-                "exactly)",
-                v->name, type_names[type], value,
-                lo < -EXACT_INTEGER ? -EXACT_INTEGER : (double)lo,
-                hi > EXACT_INTEGER ? EXACT_INTEGER : (double)hi);
+            /* the range first: casting a double beyond long long is undefined */
+            if (!(value > -EXACT_INTEGER && value < EXACT_INTEGER) ||
+                value == (double)(long long)value) {
+                say(ctx,
+                    "variable '%s' (%s) cannot take %.17g: outside %.17g..%.17g (its range, "
+                    "within the 2^53 up to which the engine's Real ports carry integers "
+                    "exactly)",
+                    v->name, type_names[type], value,
+                    lo < -EXACT_INTEGER ? -EXACT_INTEGER : (double)lo,
+                    hi > EXACT_INTEGER ? EXACT_INTEGER : (double)hi);
+            } else {
+                say(ctx, "variable '%s' (%s) cannot take %.17g: not a whole number", v->name,
+                    type_names[type], value);
+            }
             return -1;
         }
         return 0;

@@ -7,8 +7,8 @@ attribute names), so the rest of syssimx reads an FMI 3.0 description like an FM
 
 syssimx steps FMI 3.0 Co-Simulation FMUs. It refuses, naming the file and the element:
 Model Exchange only, scheduled execution, any Clock variable (clocked partitions need a
-scheduler syssimx does not have), and arrays among the inputs, outputs and parameters (the
-engine's ports are scalars).
+scheduler syssimx does not have), and String or Binary arrays among the inputs, outputs and
+parameters. Numeric and Boolean arrays become one port per element (fmi3_arrays.py).
 """
 
 from __future__ import annotations
@@ -78,7 +78,8 @@ def _check_variable(variable: Any, path: Path) -> None:
     if variable.type == "Clock":
         raise FMUFileError(f"{path}: variable {variable.name!r} is a Clock: clocked FMI 3.0 FMUs "
                            "(clocks, model partitions) are not supported")
-    if variable.dimensions and variable.causality in _PORT_CAUSALITIES:
-        raise FMUFileError(f"{path}: variable {variable.name!r} is an array "
-                           f"({variable.causality}, {len(variable.dimensions)} dimension(s)): "
-                           "array inputs, outputs and parameters are not supported")
+    if variable.dimensions and variable.causality in _PORT_CAUSALITIES \
+            and variable.type in ("String", "Binary"):
+        raise FMUFileError(f"{path}: variable {variable.name!r} is a {variable.type} array "
+                           f"({variable.causality}): String and Binary arrays are not "
+                           "supported (numeric and Boolean arrays are)")
