@@ -8,6 +8,7 @@
  *   m[2][2]   Int32 tunable parameter, row-major
  *   order     Int32 output, 10 * m[0][1] + m[1][0] (tells the row-major order)
  *   big       Int64 output, 2^32 + the number of steps done (beyond a C int)
+ *   writes    Int32 output, how many fmi3SetFloat64 calls wrote u (one per importer's write)
  * Every array is read and written whole: one value reference, all its values. The structural
  * parameter cannot change (no configuration mode). */
 #include <stdarg.h>
@@ -22,7 +23,7 @@
 #define TOKEN "{8c4e810f-3df3-4a00-8276-176fa3c9f003}"
 
 enum { N = 3 };
-enum { VR_TIME, VR_N, VR_U, VR_K, VR_Y, VR_BIG, VR_M, VR_ORDER, VR_POSITIVE };
+enum { VR_TIME, VR_N, VR_U, VR_K, VR_Y, VR_BIG, VR_M, VR_ORDER, VR_POSITIVE, VR_WRITES };
 
 typedef struct {
     fmi3InstanceEnvironment environment;
@@ -32,6 +33,7 @@ typedef struct {
     double k[N];
     int32_t m[4];
     uint64_t steps;
+    int32_t writes;
 } model;
 
 static void say(model *self, const char *format, ...)
@@ -70,6 +72,7 @@ static void start(model *self)
     memcpy(self->k, k, sizeof self->k);
     memcpy(self->m, m, sizeof self->m);
     self->steps = 0;
+    self->writes = 0;
 }
 
 fmi3Instance fmi3InstantiateCoSimulation(
@@ -82,7 +85,7 @@ fmi3Instance fmi3InstantiateCoSimulation(
     (void)instanceName, (void)resourcePath, (void)visible, (void)loggingOn,
         (void)earlyReturnAllowed, (void)requiredIntermediateVariables,
         (void)nRequiredIntermediateVariables, (void)intermediateUpdate;
-    model probe = {instanceEnvironment, logMessage, 0.0, {0}, {0}, {0}, 0};
+    model probe = {instanceEnvironment, logMessage, 0.0, {0}, {0}, {0}, 0, 0};
     if (instantiationToken == NULL || strcmp(instantiationToken, TOKEN) != 0) {
         say(&probe, "wrong instantiation token");
         return NULL;
@@ -178,7 +181,7 @@ static size_t float64_count(fmi3ValueReference vr)
 
 static size_t int32_count(fmi3ValueReference vr)
 {
-    return vr == VR_M ? 4 : vr == VR_ORDER ? 1 : 0;
+    return vr == VR_M ? 4 : vr == VR_ORDER || vr == VR_WRITES ? 1 : 0;
 }
 
 static size_t int64_count(fmi3ValueReference vr)
@@ -231,6 +234,7 @@ fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference vr[], 
         }
         memcpy(vr[i] == VR_U ? self->u : self->k, values, N * sizeof *values);
         values += N;
+        self->writes += vr[i] == VR_U;
     }
     return fmi3OK;
 }
@@ -247,7 +251,7 @@ fmi3Status fmi3GetInt32(fmi3Instance instance, const fmi3ValueReference vr[], si
             memcpy(values, self->m, sizeof self->m);
             values += 4;
         } else {
-            *values++ = 10 * self->m[1] + self->m[2];
+            *values++ = vr[i] == VR_ORDER ? 10 * self->m[1] + self->m[2] : self->writes;
         }
     }
     return fmi3OK;
