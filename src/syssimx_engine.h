@@ -106,11 +106,11 @@ typedef struct {
     size_t n;
     int event_mode_used;
     int early_return_allowed;
-    /* Array elements; NULL when every variable is a scalar. Variable i is element element[i]
-     * (row-major) of the FMU's array variable fmu_vr[i] of size[i] elements, or a scalar when
-     * size[i] is 0; its vr is then the engine's own reference. The back-end reads and writes
-     * each array whole, completing the elements not written with start[i] or the last value
-     * written. */
+    /* Array elements; all NULL when every variable is a scalar. size[i] == 0: variable i is a
+     * scalar (vr[i] is the FMU's). Otherwise vr[i] is the engine's own reference for element
+     * element[i] (row-major) of the FMU's array variable fmu_vr[i] of size[i] elements, whose
+     * start value is start[i]. The back-end reads and writes each array whole, in one call,
+     * completing the elements not written with their last value written (start until then). */
     const unsigned int *fmu_vr;
     const size_t *element;
     const size_t *size;

@@ -4,7 +4,8 @@ The FMU (tests/fmus/fmi3_arrays, built by meson beside the tests) has a Float64 
 a tunable Float64 parameter k[3] and an output y = k * u, a Boolean output positive[3] = y > 0,
 all sized by the structural parameter n; a 2x2 Int32 parameter m sized by its dimensions'
 starts with an output order = 10 * m[0,1] + m[1,0]; an Int64 output big = 2**32 + the steps
-done; and writes, the number of fmi3SetFloat64 calls that wrote u.
+done; writes, the number of fmi3SetFloat64 calls that wrote u; and a UInt64 output
+wide = 2**40 * |u[0]|.
 
 Each element is a port named as FMPy names elements (0-based, row-major: "u[0]", "m[0,1]");
 the back-end reads and writes each array whole, with one call.
@@ -21,7 +22,7 @@ from fmpy import simulate_fmu
 from syssimx import Connection, FMUComponent, GaussSeidelAlgorithm, System, TableSource
 from syssimx._paths import build_dir
 from syssimx.core.port import PortType
-from syssimx.errors import ConfigurationError, FMUFileError
+from syssimx.errors import ConfigurationError, FMUFileError, SimulationError
 
 ROOT = Path(__file__).resolve().parents[2]
 ELEMENTS = ["u[0]", "u[1]", "u[2]"]
@@ -67,7 +68,8 @@ def test_each_element_is_a_port_named_as_fmpy_names_it(arrays_fmu: str):
     arrays = FMUComponent("A", arrays_fmu)
     assert list(arrays.input_specs) == ELEMENTS
     assert list(arrays.output_specs) == ["y[0]", "y[1]", "y[2]", "big", "order",
-                                         "positive[0]", "positive[1]", "positive[2]", "writes"]
+                                         "positive[0]", "positive[1]", "positive[2]", "writes",
+                                         "wide"]
     assert list(arrays.info.parameters) == ["k[0]", "k[1]", "k[2]", "m[0,0]", "m[0,1]",
                                             "m[1,0]", "m[1,1]"]
     assert [arrays.info.parameters[f"k[{i}]"].start for i in range(3)] == [1.0, 2.0, 3.0]
@@ -81,7 +83,7 @@ def test_a_system_equals_fmpy_element_by_element(arrays_fmu: str):
     t, ours = system.run(0.0, 1.0, 0.1)["A"]
     theirs = simulate_fmu(arrays_fmu, stop_time=1.0, output_interval=0.1, input=fmpy_signals(),
                           start_values={"k": list(K)},
-                          output=["y", "positive", "big", "order"])
+                          output=["y", "positive", "big", "order", "wide"])
     np.testing.assert_array_equal(t, theirs["time"])
     for i in range(3):
         np.testing.assert_array_equal(ours[f"y[{i}]"], theirs["y"][:, i], err_msg=f"y[{i}]")
@@ -89,7 +91,9 @@ def test_a_system_equals_fmpy_element_by_element(arrays_fmu: str):
                                       err_msg=f"positive[{i}]")
     np.testing.assert_array_equal(ours["big"], theirs["big"])
     np.testing.assert_array_equal(ours["order"], theirs["order"])
-    assert ours["big"][-1] == 2**32 + 10 and list(ours["y[1]"][[0, -1]]) == [-1.0, 2.0]
+    np.testing.assert_array_equal(ours["wide"], theirs["wide"])
+    assert ours["wide"][-1] == 3 * 2**40 and ours["big"][-1] == 2**32 + 10
+    assert list(ours["y[1]"][[0, -1]]) == [-1.0, 2.0]
 
 
 def test_an_array_is_written_with_one_call_per_write(arrays_fmu: str):
@@ -165,3 +169,23 @@ def test_start_values_that_do_not_fill_the_array_are_refused(arrays_fmu: str,
     with pytest.raises(FMUFileError) as info:
         FMUComponent("A", str(target))
     assert str(info.value) == f"{target}: array 'k' has 3 elements but 2 start values"
+
+
+def test_a_64_bit_output_beyond_2_53_names_the_variable(arrays_fmu: str):
+    """wide = 2**40 * |u[0]| is read exactly up to 2**53 (u[0] = 2**13) and refused beyond,
+    naming it; the samples before stay readable."""
+    arrays = FMUComponent("A", arrays_fmu)
+    signals = np.array([(0.0, 2.0**13), (0.5, 2.0**13 + 1)],
+                       dtype=[("time", np.float64), ("u[0]", np.float64)])
+    system = System("wide")
+    system.add_component(arrays)
+    system.add_component(TableSource("u", signals, hold=["u[0]"]))
+    system.add_connection(Connection("u", "u[0]", "A", "u[0]"))
+    system.initialize(0.0)
+    with pytest.raises(SimulationError) as info:
+        system.run(0.0, 1.0, 0.1)
+    assert str(info.value).endswith(
+        "(FMU log: variable 'wide' (UInt64) holds 9008298766368768, beyond 2^53, the largest "
+        "magnitude up to which the engine's Real ports carry integers exactly)")
+    t, values = system.get_history()["A"]
+    assert list(values["wide"]) == [2**53] * 6 and t[-1] == pytest.approx(0.5)

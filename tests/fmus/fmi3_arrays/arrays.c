@@ -9,8 +9,10 @@
  *   order     Int32 output, 10 * m[0][1] + m[1][0] (tells the row-major order)
  *   big       Int64 output, 2^32 + the number of steps done (beyond a C int)
  *   writes    Int32 output, how many fmi3SetFloat64 calls wrote u (one per importer's write)
+ *   wide      UInt64 output, 2^40 * |u[0]| (beyond 2^53 from |u[0]| = 2^13 + 1)
  * Every array is read and written whole: one value reference, all its values. The structural
  * parameter cannot change (no configuration mode). */
+#include <math.h>
 #include <stdarg.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -23,7 +25,7 @@
 #define TOKEN "{8c4e810f-3df3-4a00-8276-176fa3c9f003}"
 
 enum { N = 3 };
-enum { VR_TIME, VR_N, VR_U, VR_K, VR_Y, VR_BIG, VR_M, VR_ORDER, VR_POSITIVE, VR_WRITES };
+enum { VR_TIME, VR_N, VR_U, VR_K, VR_Y, VR_BIG, VR_M, VR_ORDER, VR_POSITIVE, VR_WRITES, VR_WIDE };
 
 typedef struct {
     fmi3InstanceEnvironment environment;
@@ -191,7 +193,7 @@ static size_t int64_count(fmi3ValueReference vr)
 
 static size_t uint64_count(fmi3ValueReference vr)
 {
-    return vr == VR_N;
+    return vr == VR_N || vr == VR_WIDE;
 }
 
 static size_t boolean_count(fmi3ValueReference vr)
@@ -307,7 +309,7 @@ fmi3Status fmi3GetUInt64(fmi3Instance instance, const fmi3ValueReference vr[], s
         return fmi3Error;
     }
     for (size_t i = 0; i < n; ++i) {
-        values[i] = N;
+        values[i] = vr[i] == VR_N ? N : ((uint64_t)1 << 40) * (uint64_t)fabs(self->u[0]);
     }
     return fmi3OK;
 }
@@ -320,6 +322,10 @@ fmi3Status fmi3SetUInt64(fmi3Instance instance, const fmi3ValueReference vr[], s
         return fmi3Error;
     }
     for (size_t i = 0; i < n; ++i) {
+        if (vr[i] == VR_WIDE) {
+            say(self, "fmi3SetUInt64: wide is an output");
+            return fmi3Error;
+        }
         if (values[i] != N) {
             say(self, "fmi3SetUInt64: n is a structural parameter fixed at %d", N);
             return fmi3Error;
