@@ -157,18 +157,32 @@ def test_a_structural_parameter_cannot_change(arrays_fmu: str):
                                "value 3: changing it is not supported")
 
 
-def test_start_values_that_do_not_fill_the_array_are_refused(arrays_fmu: str,
-                                                             tmp_path: Path):
-    target = tmp_path / "short_start.fmu"
-    with zipfile.ZipFile(arrays_fmu) as original, zipfile.ZipFile(target, "w") as copy:
+def edited(source: str, target: Path, old: bytes, new: bytes) -> str:
+    """A copy of the FMU at `source` whose modelDescription has `old` replaced by `new`."""
+    with zipfile.ZipFile(source) as original, zipfile.ZipFile(target, "w") as copy:
         for item in original.infolist():
             data = original.read(item.filename)
             if item.filename == "modelDescription.xml":
-                data = data.replace(b'start="1 2 3"', b'start="1 2"')
+                assert old in data
+                data = data.replace(old, new)
             copy.writestr(item, data)
+    return str(target)
+
+
+def test_start_values_that_do_not_fill_the_array_are_refused(arrays_fmu: str,
+                                                             tmp_path: Path):
+    path = edited(arrays_fmu, tmp_path / "short_start.fmu", b'start="1 2 3"', b'start="1 2"')
     with pytest.raises(FMUFileError) as info:
-        FMUComponent("A", str(target))
-    assert str(info.value) == f"{target}: array 'k' has 3 elements but 2 start values"
+        FMUComponent("A", path)
+    assert str(info.value) == f"{path}: array 'k' has 3 elements but 2 start values"
+
+
+def test_array_ports_take_no_directional_derivatives(arrays_fmu: str, tmp_path: Path):
+    """The engine's element references are not the FMU's: an FMU with array ports that
+    provides directional derivatives gets finite differences in loops instead."""
+    path = edited(arrays_fmu, tmp_path / "derivatives.fmu", b'modelIdentifier="fmi3_arrays"',
+                  b'modelIdentifier="fmi3_arrays" providesDirectionalDerivatives="true"')
+    assert FMUComponent("A", path).fmu_interface.provides_directional_derivative is False
 
 
 def test_a_64_bit_output_beyond_2_53_names_the_variable(arrays_fmu: str):

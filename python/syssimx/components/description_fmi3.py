@@ -55,8 +55,12 @@ def read_fmi3_description(path: Path) -> ModelDescription:
         raise FMUFileError(f"{path}: the FMI 3.0 description declares no CoSimulation interface")
     # fmpy keeps FMI 3.0's token under both names; syssimx passes it where FMI 2.0 has the guid
     description.guid = description.instantiationToken
+    # the engine's references of array elements are not the FMU's: with array ports the
+    # engine takes finite differences instead of asking the FMU for directional derivatives
     description.coSimulation.providesDirectionalDerivative = \
-        provides_directional_derivatives(path)
+        provides_directional_derivatives(path) and not any(
+            v.dimensions and v.causality in _PORT_CAUSALITIES
+            for v in description.modelVariables)
     return description
 
 

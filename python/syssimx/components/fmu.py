@@ -403,7 +403,8 @@ class FMUComponent(CoSimComponent):
         self._finalizer()
 
 
-# Integer values cross the FMI boundary as C ints (an FMI 3.0 UInt32 or 64-bit one too)
+# Integer ports cross the FMI boundary as C ints (FMI 3.0 UInt32 and 64-bit integers are Real
+# ports, exact up to 2**53)
 INT_MIN, INT_MAX = -(2**31), 2**31 - 1
 
 
