@@ -124,10 +124,24 @@ static ssx_value_type port_type(ssx_fmi3_type type)
 }
 
 typedef struct {
-    unsigned int vr;
+    unsigned int vr; /* the engine's: the FMU's for a scalar, the element's own in an array */
     unsigned char type;
     const char *name; /* into the context's name pool */
+    size_t array;     /* 1 + the index of its array among the context's, 0 for a scalar */
+    size_t element;   /* its position in the array (row-major) */
 } variable;
+
+/* An FMU array variable: read and written whole, one fmi3Get/Set call per engine call. */
+typedef struct {
+    unsigned int vr; /* the FMU's */
+    unsigned char type;
+    size_t size;
+    void *start;  /* the start values given at load */
+    void *values; /* the values last written, start until then: a write completes with them */
+    void *read;   /* the values last read */
+    int fresh;    /* read during this engine call */
+    int pending;  /* written during this engine call, not yet sent */
+} array;
 
 typedef struct {
     fmi3Instance instance; /* the FMU's; NULL until instantiated */
@@ -135,6 +149,8 @@ typedef struct {
     variable *variables;   /* sorted by value reference */
     size_t n_variables;
     char *names;
+    array *arrays;
+    size_t n_arrays;
     int event_mode_used;
     int early_return_allowed;
     /* the experiment, kept for fmi3EnterInitializationMode */
@@ -160,6 +176,81 @@ static int by_value_reference(const void *a, const void *b)
 {
     unsigned int x = ((const variable *)a)->vr, y = ((const variable *)b)->vr;
     return (x > y) - (x < y);
+}
+
+static int put_real(ssx_fmi3_type type, void *values, size_t k, double d);
+
+/* The arrays the elements among `variables` belong to (ctx->variables in the given order),
+ * each with its buffers and start values; every element points at its array. */
+static int collect_arrays(fmi3_context *ctx, const ssx_fmi3_variables *variables, char *error,
+                          size_t error_size)
+{
+    if (variables->fmu_vr == NULL || variables->element == NULL) {
+        snprintf(error, error_size, "array sizes given without value references and elements");
+        return -1;
+    }
+    size_t elements = 0;
+    for (size_t i = 0; i < variables->n; ++i) {
+        elements += variables->size[i] > 0;
+    }
+    ctx->arrays = calloc(elements > 0 ? elements : 1, sizeof *ctx->arrays);
+    if (ctx->arrays == NULL) {
+        snprintf(error, error_size, "out of memory keeping the FMU's arrays");
+        return -1;
+    }
+    for (size_t i = 0; i < variables->n; ++i) {
+        size_t size = variables->size[i], element = variables->element[i];
+        if (size == 0) {
+            continue;
+        }
+        variable *v = &ctx->variables[i];
+        size_t j = ctx->n_arrays;
+        while (j > 0 && ctx->arrays[j - 1].vr != variables->fmu_vr[i]) {
+            --j;
+        }
+        if (j == 0) {
+            unsigned char *block =
+                size <= SIZE_MAX / (3 * sizeof(uint64_t)) ? calloc(3 * size, sizeof(uint64_t))
+                                                          : NULL;
+            if (block == NULL) {
+                snprintf(error, error_size, "out of memory keeping the %zu elements of '%s'",
+                         size, v->name);
+                return -1;
+            }
+            /* 8 bytes per element hold any type: start, values and read share one block */
+            ctx->arrays[ctx->n_arrays++] = (array){
+                .vr = variables->fmu_vr[i],
+                .type = v->type,
+                .size = size,
+                .start = block,
+                .values = block + size * sizeof(uint64_t),
+                .read = block + 2 * size * sizeof(uint64_t),
+            };
+            j = ctx->n_arrays;
+        }
+        array *a = &ctx->arrays[j - 1];
+        if (a->size != size || a->type != v->type || element >= size) {
+            snprintf(error, error_size,
+                     "variable '%s': element %zu of a %zu-element %s array does not fit the "
+                     "%zu-element %s array of value reference %u",
+                     v->name, element, size, type_names[v->type], a->size, type_names[a->type],
+                     a->vr);
+            return -1;
+        }
+        double start = variables->start != NULL ? variables->start[i] : 0.0;
+        if (put_real((ssx_fmi3_type)v->type, a->start, element, start) != 0) {
+            snprintf(error, error_size, "variable '%s' (%s): start value %.17g does not fit",
+                     v->name, type_names[v->type], start);
+            return -1;
+        }
+        v->array = j;
+        v->element = element;
+    }
+    for (size_t j = 0; j < ctx->n_arrays; ++j) {
+        memcpy(ctx->arrays[j].values, ctx->arrays[j].start,
+               ctx->arrays[j].size * sizeof(uint64_t));
+    }
+    return 0;
 }
 
 int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *error,
@@ -189,8 +280,12 @@ int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *e
         const char *name = variables->name[i] != NULL ? variables->name[i] : "";
         size_t length = strlen(name) + 1;
         memcpy(at, name, length);
-        ctx->variables[i] = (variable){variables->vr[i], variables->type[i], at};
+        ctx->variables[i] = (variable){variables->vr[i], variables->type[i], at, 0, 0};
         at += length;
+    }
+    if (variables != NULL && variables->size != NULL &&
+        collect_arrays(ctx, variables, error, error_size) != 0) {
+        return -1;
     }
     qsort(ctx->variables, n, sizeof *ctx->variables, by_value_reference);
     ctx->n_variables = n;
@@ -204,6 +299,10 @@ int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *e
 static void release_context(void *context)
 {
     fmi3_context *ctx = context;
+    for (size_t i = 0; i < ctx->n_arrays; ++i) {
+        free(ctx->arrays[i].start);
+    }
+    free(ctx->arrays);
     free(ctx->variables);
     free(ctx->names);
     free(ctx->part_vr);
@@ -342,6 +441,11 @@ static int reset(const ssx_fmu_function *fn, void *instance)
 {
     fmi3_context *ctx = instance;
     ctx->outcome = (ssx_step_outcome){0};
+    /* the reset FMU holds its start values again */
+    for (size_t i = 0; i < ctx->n_arrays; ++i) {
+        memcpy(ctx->arrays[i].values, ctx->arrays[i].start,
+               ctx->arrays[i].size * sizeof(uint64_t));
+    }
     return (int)FMI3(fn, SLOT_RESET, fmi3ResetTYPE)(ctx->instance);
 }
 
@@ -386,8 +490,15 @@ static int reserve_parts(fmi3_context *ctx, size_t n)
     return 0;
 }
 
-/* The types of vr[0..n) are all of `port`'s family; every one is known. Returns the type when
- * all are the same, SSX_FMI3_TYPE_COUNT when they differ, -1 for an unknown or foreign one. */
+/* A variable of `type` travels as its own port family, an integer one also as Real. */
+static int exchanged_as(ssx_fmi3_type type, ssx_value_type port)
+{
+    return port_type(type) == port || (port == SSX_REAL && port_type(type) == SSX_INTEGER);
+}
+
+/* Every vr is known and may travel as `port`. Returns their type when all are the same
+ * scalar type, SSX_FMI3_TYPE_COUNT when they differ or one is an array element, -1 for an
+ * unknown or foreign one. */
 static int common_type(fmi3_context *ctx, ssx_value_type port, const unsigned int *vr, size_t n)
 {
     int common = -1;
@@ -398,22 +509,32 @@ static int common_type(fmi3_context *ctx, ssx_value_type port, const unsigned in
                 vr[i]);
             return -1;
         }
-        if (port_type(v->type) != port) {
+        if (!exchanged_as(v->type, port)) {
             say(ctx, "variable '%s' (%s) is not exchanged as this port type", v->name,
                 type_names[v->type]);
             return -1;
         }
-        common = common < 0 || common == v->type ? v->type : SSX_FMI3_TYPE_COUNT;
+        common = v->array != 0                        ? SSX_FMI3_TYPE_COUNT
+                 : common < 0 || common == v->type ? v->type
+                                                      : SSX_FMI3_TYPE_COUNT;
     }
     return common;
 }
 
-/* Gathers the entries of type `type` into the parts; returns how many. */
+/* Whether values of `type` pass to `port` unconverted. */
+static int direct(int type, ssx_value_type port)
+{
+    return (type == SSX_FMI3_FLOAT64 && port == SSX_REAL) ||
+           (type == SSX_FMI3_INT32 && port == SSX_INTEGER);
+}
+
+/* Gathers the scalars of type `type` into the parts; returns how many. */
 static size_t gather(fmi3_context *ctx, ssx_fmi3_type type, const unsigned int *vr, size_t n)
 {
     size_t k = 0;
     for (size_t i = 0; i < n; ++i) {
-        if (find(ctx, vr[i])->type == type) {
+        const variable *v = find(ctx, vr[i]);
+        if (v->array == 0 && v->type == type) {
             ctx->part_vr[k] = vr[i];
             ctx->part_at[k++] = i;
         }
@@ -421,66 +542,67 @@ static size_t gather(fmi3_context *ctx, ssx_fmi3_type type, const unsigned int *
     return k;
 }
 
-/* One fmi3GetX call of `type` into `values` (an array of that type). */
+/* One fmi3GetX call of `type` for n value references into `values` (n_values of that type:
+ * more than n when one is an array). */
 static int get_typed(const ssx_fmu_function *fn, fmi3Instance instance, ssx_fmi3_type type,
-                     const unsigned int *vr, size_t n, void *values)
+                     const unsigned int *vr, size_t n, void *values, size_t n_values)
 {
     ssx_fmu_function f = fn[getter[type]];
     switch (type) {
     case SSX_FMI3_FLOAT64:
-        return (int)((fmi3GetFloat64TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3GetFloat64TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_FLOAT32:
-        return (int)((fmi3GetFloat32TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3GetFloat32TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_INT8:
-        return (int)((fmi3GetInt8TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3GetInt8TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_UINT8:
-        return (int)((fmi3GetUInt8TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3GetUInt8TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_INT16:
-        return (int)((fmi3GetInt16TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3GetInt16TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_UINT16:
-        return (int)((fmi3GetUInt16TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3GetUInt16TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_INT32:
-        return (int)((fmi3GetInt32TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3GetInt32TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_UINT32:
-        return (int)((fmi3GetUInt32TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3GetUInt32TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_INT64:
-        return (int)((fmi3GetInt64TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3GetInt64TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_UINT64:
-        return (int)((fmi3GetUInt64TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3GetUInt64TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_BOOLEAN:
-        return (int)((fmi3GetBooleanTYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3GetBooleanTYPE *)f)(instance, vr, n, values, n_values);
     default:
         return fmi3Error;
     }
 }
 
 static int set_typed(const ssx_fmu_function *fn, fmi3Instance instance, ssx_fmi3_type type,
-                     const unsigned int *vr, size_t n, const void *values)
+                     const unsigned int *vr, size_t n, const void *values, size_t n_values)
 {
     ssx_fmu_function f = fn[setter[type]];
     switch (type) {
     case SSX_FMI3_FLOAT64:
-        return (int)((fmi3SetFloat64TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3SetFloat64TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_FLOAT32:
-        return (int)((fmi3SetFloat32TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3SetFloat32TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_INT8:
-        return (int)((fmi3SetInt8TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3SetInt8TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_UINT8:
-        return (int)((fmi3SetUInt8TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3SetUInt8TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_INT16:
-        return (int)((fmi3SetInt16TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3SetInt16TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_UINT16:
-        return (int)((fmi3SetUInt16TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3SetUInt16TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_INT32:
-        return (int)((fmi3SetInt32TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3SetInt32TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_UINT32:
-        return (int)((fmi3SetUInt32TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3SetUInt32TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_INT64:
-        return (int)((fmi3SetInt64TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3SetInt64TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_UINT64:
-        return (int)((fmi3SetUInt64TYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3SetUInt64TYPE *)f)(instance, vr, n, values, n_values);
     case SSX_FMI3_BOOLEAN:
-        return (int)((fmi3SetBooleanTYPE *)f)(instance, vr, n, values, n);
+        return (int)((fmi3SetBooleanTYPE *)f)(instance, vr, n, values, n_values);
     default:
         return fmi3Error;
     }
@@ -559,15 +681,83 @@ static void put_integer(ssx_fmi3_type type, void *values, size_t k, long long va
     }
 }
 
-/* Converts part k of `type` (read into the part values) into the engine's array `out` of port
- * type `port`; 0, or -1 when the value does not fit. */
-static int take(fmi3_context *ctx, ssx_fmi3_type type, size_t k, ssx_value_type port, void *out)
+/* Beyond 2^53 in magnitude a double no longer holds every integer: an integer variable
+ * exchanged as a Real port carries its value exactly up to there and fails beyond. */
+static const double EXACT_INTEGER = 9007199254740992.0;
+
+/* Whether d is a whole number that integer `type` holds and a double carries exactly. */
+static int whole_in_range(ssx_fmi3_type type, double d)
 {
-    const void *values = ctx->part_values;
-    size_t at = ctx->part_at[k];
+    long long lo, hi;
+    integer_range(type, &lo, &hi);
+    double low = lo < -EXACT_INTEGER ? -EXACT_INTEGER : (double)lo;
+    double high = hi > EXACT_INTEGER ? EXACT_INTEGER : (double)hi;
+    return d >= low && d <= high && (double)(long long)d == d;
+}
+
+/* Element k of `values` (of `type`) as a double: the Real port's value of a float or an
+ * integer, or of a Boolean (1, 0). */
+static double real_at(ssx_fmi3_type type, const void *values, size_t k)
+{
+    switch (type) {
+    case SSX_FMI3_FLOAT64:
+        return ((const double *)values)[k];
+    case SSX_FMI3_FLOAT32:
+        return (double)((const float *)values)[k];
+    case SSX_FMI3_BOOLEAN:
+        return ((const bool *)values)[k] ? 1.0 : 0.0;
+    case SSX_FMI3_UINT64:
+        return (double)((const uint64_t *)values)[k];
+    default:
+        return (double)integer_at(type, values, k);
+    }
+}
+
+/* Stores d as element k of `values` (of `type`); -1 when an integer type cannot hold it. */
+static int put_real(ssx_fmi3_type type, void *values, size_t k, double d)
+{
+    switch (type) {
+    case SSX_FMI3_FLOAT64:
+        ((double *)values)[k] = d;
+        return 0;
+    case SSX_FMI3_FLOAT32:
+        ((float *)values)[k] = (float)d;
+        return 0;
+    case SSX_FMI3_BOOLEAN:
+        ((bool *)values)[k] = d != 0.0;
+        return 0;
+    default:
+        if (!whole_in_range(type, d)) {
+            return -1;
+        }
+        put_integer(type, values, k, (long long)d);
+        return 0;
+    }
+}
+
+/* Converts element k of `values` (v's type) into the engine's array `out` of port type `port`
+ * at `at`; 0, or -1 when the value does not fit. */
+static int take(fmi3_context *ctx, const variable *v, const void *values, size_t k,
+                ssx_value_type port, void *out, size_t at)
+{
+    ssx_fmi3_type type = (ssx_fmi3_type)v->type;
     if (port == SSX_REAL) {
-        ((double *)out)[at] = type == SSX_FMI3_FLOAT64 ? ((const double *)values)[k]
-                                                       : (double)((const float *)values)[k];
+        double value = real_at(type, values, k);
+        if (port_type(type) == SSX_INTEGER && !(value >= -EXACT_INTEGER && value <= EXACT_INTEGER)) {
+            if (type == SSX_FMI3_UINT64) {
+                say(ctx,
+                    "variable '%s' (UInt64) holds %llu, beyond 2^53, the largest magnitude "
+                    "up to which the engine's Real ports carry integers exactly",
+                    v->name, (unsigned long long)((const uint64_t *)values)[k]);
+            } else {
+                say(ctx,
+                    "variable '%s' (%s) holds %lld, beyond 2^53, the largest magnitude up to "
+                    "which the engine's Real ports carry integers exactly",
+                    v->name, type_names[type], integer_at(type, values, k));
+            }
+            return -1;
+        }
+        ((double *)out)[at] = value;
         return 0;
     }
     if (port == SSX_BOOLEAN) {
@@ -576,7 +766,6 @@ static int take(fmi3_context *ctx, ssx_fmi3_type type, size_t k, ssx_value_type 
     }
     long long value = integer_at(type, values, k);
     if (value < INT_MIN || value > INT_MAX) {
-        const variable *v = find(ctx, ctx->part_vr[k]);
         if (type == SSX_FMI3_UINT64) {
             say(ctx,
                 "variable '%s' (UInt64) holds %llu, outside the range of the engine's "
@@ -594,19 +783,32 @@ static int take(fmi3_context *ctx, ssx_fmi3_type type, size_t k, ssx_value_type 
     return 0;
 }
 
-/* Converts the engine's value at the part's position into part k of `type`; -1 when it does
- * not fit the type. */
-static int give(fmi3_context *ctx, ssx_fmi3_type type, size_t k, ssx_value_type port,
-                const void *in)
+/* Converts the engine's value at `at` of `in` into element k of `values` (v's type); -1 when
+ * it does not fit the type. */
+static int give(fmi3_context *ctx, const variable *v, void *values, size_t k,
+                ssx_value_type port, const void *in, size_t at)
 {
-    void *values = ctx->part_values;
-    size_t at = ctx->part_at[k];
+    ssx_fmi3_type type = (ssx_fmi3_type)v->type;
     if (port == SSX_REAL) {
         double value = ((const double *)in)[at];
-        if (type == SSX_FMI3_FLOAT64) {
-            ((double *)values)[k] = value;
-        } else {
-            ((float *)values)[k] = (float)value;
+        if (put_real(type, values, k, value) != 0) {
+            long long lo, hi;
+            integer_range(type, &lo, &hi);
+            /* the range first: casting a double beyond long long is undefined */
+            if (!(value > -EXACT_INTEGER && value < EXACT_INTEGER) ||
+                value == (double)(long long)value) {
+                say(ctx,
+                    "variable '%s' (%s) cannot take %.17g: outside %.17g..%.17g (its range, "
+                    "within the 2^53 up to which the engine's Real ports carry integers "
+                    "exactly)",
+                    v->name, type_names[type], value,
+                    lo < -EXACT_INTEGER ? -EXACT_INTEGER : (double)lo,
+                    hi > EXACT_INTEGER ? EXACT_INTEGER : (double)hi);
+            } else {
+                say(ctx, "variable '%s' (%s) cannot take %.17g: not a whole number", v->name,
+                    type_names[type], value);
+            }
+            return -1;
         }
         return 0;
     }
@@ -618,15 +820,83 @@ static int give(fmi3_context *ctx, ssx_fmi3_type type, size_t k, ssx_value_type 
     long long lo, hi;
     integer_range(type, &lo, &hi);
     if (value < lo || value > hi) {
-        say(ctx, "variable '%s' (%s) cannot take %d: outside %lld..%lld",
-            find(ctx, ctx->part_vr[k])->name, type_names[type], value, lo, hi);
+        say(ctx, "variable '%s' (%s) cannot take %d: outside %lld..%lld", v->name,
+            type_names[type], value, lo, hi);
         return -1;
     }
     put_integer(type, values, k, value);
     return 0;
 }
 
-/* The engine's get of `port` type: one fmi3 call per FMI 3.0 type among vr. */
+/* Whether a status (or -1, a value that did not fit) lets the call go on. */
+static int usable(int status)
+{
+    return status == fmi3OK || status == fmi3Warning;
+}
+
+static array *array_of(fmi3_context *ctx, const variable *v)
+{
+    return v->array != 0 ? &ctx->arrays[v->array - 1] : NULL;
+}
+
+/* The array elements among vr: each array read whole, once per call. */
+static int get_elements(const ssx_fmu_function *fn, fmi3_context *ctx, ssx_value_type port,
+                        const unsigned int *vr, size_t n, void *out)
+{
+    int result = fmi3OK;
+    for (size_t i = 0; i < n && usable(result); ++i) {
+        const variable *v = find(ctx, vr[i]);
+        array *a = array_of(ctx, v);
+        if (a == NULL) {
+            continue;
+        }
+        if (!a->fresh) {
+            result = worse(result, get_typed(fn, ctx->instance, (ssx_fmi3_type)a->type, &a->vr,
+                                             1, a->read, a->size));
+            a->fresh = 1;
+        }
+        if (usable(result) && take(ctx, v, a->read, v->element, port, out, i) != 0) {
+            result = -1;
+        }
+    }
+    for (size_t i = 0; i < n; ++i) {
+        array *a = array_of(ctx, find(ctx, vr[i]));
+        if (a != NULL) {
+            a->fresh = 0;
+        }
+    }
+    return result;
+}
+
+/* The array elements among vr: each array written whole, once per call, its other elements
+ * as last written (their start values until then). */
+static int set_elements(const ssx_fmu_function *fn, fmi3_context *ctx, ssx_value_type port,
+                        const unsigned int *vr, size_t n, const void *in)
+{
+    int result = fmi3OK;
+    for (size_t i = 0; i < n && result == fmi3OK; ++i) {
+        const variable *v = find(ctx, vr[i]);
+        array *a = array_of(ctx, v);
+        if (a != NULL) {
+            result = give(ctx, v, a->values, v->element, port, in, i);
+            a->pending = 1;
+        }
+    }
+    for (size_t i = 0; i < n; ++i) {
+        array *a = array_of(ctx, find(ctx, vr[i]));
+        if (a != NULL && a->pending) {
+            a->pending = 0;
+            if (usable(result)) {
+                result = worse(result, set_typed(fn, ctx->instance, (ssx_fmi3_type)a->type,
+                                                 &a->vr, 1, a->values, a->size));
+            }
+        }
+    }
+    return result;
+}
+
+/* The engine's get of `port` type: one fmi3 call per FMI 3.0 type among the scalars of vr,
+ * one per array among its elements. */
 static int get_values(const ssx_fmu_function *fn, fmi3_context *ctx, ssx_value_type port,
                       const unsigned int *vr, size_t n, void *out)
 {
@@ -635,34 +905,36 @@ static int get_values(const ssx_fmu_function *fn, fmi3_context *ctx, ssx_value_t
         return -1;
     }
     /* the usual case: nothing to convert */
-    if (common == SSX_FMI3_FLOAT64 || common == SSX_FMI3_INT32) {
-        return get_typed(fn, ctx->instance, (ssx_fmi3_type)common, vr, n, out);
+    if (direct(common, port)) {
+        return get_typed(fn, ctx->instance, (ssx_fmi3_type)common, vr, n, out, n);
     }
     if (reserve_parts(ctx, n) != 0) {
         return -1;
     }
     int worst = fmi3OK;
     for (int type = 0; type < SSX_FMI3_TYPE_COUNT; ++type) {
-        if (port_type((ssx_fmi3_type)type) != port) {
+        if (!exchanged_as((ssx_fmi3_type)type, port)) {
             continue;
         }
         size_t m = gather(ctx, (ssx_fmi3_type)type, vr, n);
         if (m == 0) {
             continue;
         }
-        int status =
-            get_typed(fn, ctx->instance, (ssx_fmi3_type)type, ctx->part_vr, m, ctx->part_values);
+        int status = get_typed(fn, ctx->instance, (ssx_fmi3_type)type, ctx->part_vr, m,
+                               ctx->part_values, m);
         worst = worse(worst, status);
         if (status > fmi3Warning) {
             return status;
         }
         for (size_t k = 0; k < m; ++k) {
-            if (take(ctx, (ssx_fmi3_type)type, k, port, out) != 0) {
+            if (take(ctx, find(ctx, ctx->part_vr[k]), ctx->part_values, k, port, out,
+                     ctx->part_at[k]) != 0) {
                 return -1;
             }
         }
     }
-    return worst;
+    int status = get_elements(fn, ctx, port, vr, n, out);
+    return status < 0 ? status : worse(worst, status);
 }
 
 static int set_values(const ssx_fmu_function *fn, fmi3_context *ctx, ssx_value_type port,
@@ -672,15 +944,15 @@ static int set_values(const ssx_fmu_function *fn, fmi3_context *ctx, ssx_value_t
     if (common < 0) {
         return -1;
     }
-    if (common == SSX_FMI3_FLOAT64 || common == SSX_FMI3_INT32) {
-        return set_typed(fn, ctx->instance, (ssx_fmi3_type)common, vr, n, in);
+    if (direct(common, port)) {
+        return set_typed(fn, ctx->instance, (ssx_fmi3_type)common, vr, n, in, n);
     }
     if (reserve_parts(ctx, n) != 0) {
         return -1;
     }
     int worst = fmi3OK;
     for (int type = 0; type < SSX_FMI3_TYPE_COUNT; ++type) {
-        if (port_type((ssx_fmi3_type)type) != port) {
+        if (!exchanged_as((ssx_fmi3_type)type, port)) {
             continue;
         }
         size_t m = gather(ctx, (ssx_fmi3_type)type, vr, n);
@@ -688,18 +960,20 @@ static int set_values(const ssx_fmu_function *fn, fmi3_context *ctx, ssx_value_t
             continue;
         }
         for (size_t k = 0; k < m; ++k) {
-            if (give(ctx, (ssx_fmi3_type)type, k, port, in) != 0) {
+            if (give(ctx, find(ctx, ctx->part_vr[k]), ctx->part_values, k, port, in,
+                     ctx->part_at[k]) != 0) {
                 return -1;
             }
         }
-        int status =
-            set_typed(fn, ctx->instance, (ssx_fmi3_type)type, ctx->part_vr, m, ctx->part_values);
+        int status = set_typed(fn, ctx->instance, (ssx_fmi3_type)type, ctx->part_vr, m,
+                               ctx->part_values, m);
         worst = worse(worst, status);
         if (status > fmi3Warning) {
             return status;
         }
     }
-    return worst;
+    int status = set_elements(fn, ctx, port, vr, n, in);
+    return status < 0 ? status : worse(worst, status);
 }
 
 static int get_real(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,

@@ -85,8 +85,11 @@ ssx_fmu *ssx_fmu_load_model_exchange(const char *binary_path, const char *model_
 
 /* FMI 3.0 Co-Simulation. The engine keeps its three port types: Float64 and Float32 variables
  * are Real ports, Int8 ... UInt64 Integer ports (a value outside the int range fails the call
- * that meets it, naming the variable), Boolean ones Boolean ports. The back-end batches each
- * engine call into one fmi3Get/Set call per FMI 3.0 type, by the table given at load. */
+ * that meets it, naming the variable), Boolean ones Boolean ports. An integer variable may be
+ * exchanged as a Real port instead: exact up to 2^53 in magnitude, a value beyond fails
+ * naming the variable (syssimx does so for UInt32, Int64 and UInt64). The
+ * back-end batches each engine call into one fmi3Get/Set call per FMI 3.0 type, by the table
+ * given at load. */
 typedef enum {
     SSX_FMI3_FLOAT64 = 0, SSX_FMI3_FLOAT32, SSX_FMI3_INT8, SSX_FMI3_UINT8, SSX_FMI3_INT16,
     SSX_FMI3_UINT16, SSX_FMI3_INT32, SSX_FMI3_UINT32, SSX_FMI3_INT64, SSX_FMI3_UINT64,
@@ -104,6 +107,15 @@ typedef struct {
     size_t n;
     int event_mode_used;
     int early_return_allowed;
+    /* Array elements; all NULL when every variable is a scalar. size[i] == 0: variable i is a
+     * scalar (vr[i] is the FMU's). Otherwise vr[i] is the engine's own reference for element
+     * element[i] (row-major) of the FMU's array variable fmu_vr[i] of size[i] elements, whose
+     * start value is start[i]. The back-end reads and writes each array whole, in one call,
+     * completing the elements not written with their last value written (start until then). */
+    const unsigned int *fmu_vr;
+    const size_t *element;
+    const size_t *size;
+    const double *start;
 } ssx_fmi3_variables;
 
 /* Like ssx_fmu_load for an FMI 3.0 Co-Simulation binary: resolves the fmi3 functions; the

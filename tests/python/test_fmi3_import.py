@@ -1,7 +1,7 @@
 """FMI 3.0 Co-Simulation import: events an FMU handles itself (early return, event mode), state
 rollback, types, String and Binary values, units, and the clear errors for what syssimx does
-not run (no interface it runs, arrays, isolation, connecting a String). Model Exchange is
-tested in test_fmi3_model_exchange.py.
+not run (no interface it runs, String arrays, isolation, connecting a String). Model Exchange is
+tested in test_fmi3_model_exchange.py; arrays and 64-bit integers in test_fmi3_arrays.py.
 
 The FMUs are our own FMI 3.0 builds (`<stem>_fmi3`, the same models as the FMI 2.0 ones), the
 Reference FMUs built for FMI 3.0 (SYSSIMX_REFERENCE_FMUS or <repository>/../shared/
@@ -25,6 +25,7 @@ from fmpy import simulate_fmu
 from scipy.special import ellipk
 from syssimx import Connection, FMUComponent, System, TableSource, fmus
 from syssimx.cli import main
+from syssimx.core.port import PortType
 from syssimx.errors import ConfigurationError, FMUFileError, SimulationError
 
 # the seed's pendulum: the quarter period from rest at 0.5 rad (tests/python/
@@ -316,17 +317,24 @@ def test_an_integer_beyond_the_variables_type_names_the_variable():
 
 @reference
 def test_an_integer_beyond_the_engines_ports_names_the_input():
+    """UInt32, Int64 and UInt64 travel as Real ports: exact up to 2**53, beyond refused by the
+    back-end naming the variable; an Enumeration (Int64 in FMI 3.0) stays an Integer port."""
     with pytest.raises(SimulationError) as info:
-        driven("Int64_input", 2**40).run(0.0, 1.0, 0.1)
-    assert str(info.value).startswith(
-        "component 'F': input 'Int64_input' (value reference 23) receives 1099511627776 at "
-        "t=0.5, outside the range of the engine's Integer ports (-2147483648..2147483647)")
+        driven("Int64_input", 2**53 + 2).run(0.0, 1.0, 0.1)
+    assert str(info.value).endswith(
+        "(FMU log: variable 'Int64_input' (Int64) cannot take 9007199254740994: outside "
+        "-9007199254740992..9007199254740992 (its range, within the 2^53 up to which the "
+        "engine's Real ports carry integers exactly))")
     feedthrough = FMUComponent("G", FEEDTHROUGH)
-    feedthrough.set_inputs({"UInt32_input": 2**32 - 1})
-    with pytest.raises(ConfigurationError) as python_side:
-        feedthrough._start(0.0)
-    assert str(python_side.value) == ("G.UInt32_input: 4294967295 is outside the range of the "
-                                      "engine's Integer ports (-2147483648..2147483647)")
+    assert [feedthrough.input_specs[n].type for n in ("Int32_input", "UInt32_input",
+                                                      "UInt64_input", "Enumeration_input")] \
+        == [PortType.INT, PortType.REAL, PortType.REAL, PortType.INT]
+    feedthrough.set_inputs({"UInt32_input": 2**32 - 1, "Int64_input": -(2**53)})
+    system = System("wide")
+    system.add_component(feedthrough)
+    system.initialize(0.0)
+    _, values = system.run(0.0, 0.2, 0.1)["G"]
+    assert values["UInt32_output"][-1] == 2**32 - 1 and values["Int64_output"][-1] == -(2**53)
 
 
 @reference
@@ -354,15 +362,16 @@ def test_scheduled_execution_only_is_refused_naming_the_file(tmp_path: Path):
 
 
 @reference
-def test_an_array_port_is_refused_naming_the_variable(tmp_path: Path):
-    path = edited(tmp_path, BALL, ('start="0.7" min="0.5" max="1" description="Coefficient of '
-                                   'restitution"/>',
-                                   'start="0.7 0.7" description="Coefficient of restitution">'
-                                   '<Dimension start="2"/></Float64>'))
+def test_a_string_array_is_refused_naming_the_variable(tmp_path: Path):
+    path = edited(tmp_path, FEEDTHROUGH, ('<String name="String_input" valueReference="29" '
+                                          'causality="input">',
+                                          '<String name="String_input" valueReference="29" '
+                                          'causality="input"><Dimension start="1"/>'))
     with pytest.raises(FMUFileError) as info:
-        FMUComponent("Ball", path)
-    assert str(info.value) == (f"{path}: variable 'e' is an array (parameter, 1 dimension(s)): "
-                               "array inputs, outputs and parameters are not supported")
+        FMUComponent("F", path)
+    assert str(info.value) == (f"{path}: variable 'String_input' is a String array (input): "
+                               "String and Binary arrays are not supported (numeric and "
+                               "Boolean arrays are)")
 
 
 @reference

@@ -138,41 +138,50 @@ def test_cli_equals_fmpy_with_the_default_experiment(model: str, tmp_path: Path,
 
 
 @pytest.mark.filterwarnings("ignore:invalid value encountered in cast:RuntimeWarning")  # FMPy's
-def test_feedthrough_refuses_the_collections_input_file_by_column(
+def test_feedthrough_refuses_the_collections_input_file_at_its_64_bit_extremes(
         capsys: pytest.CaptureFixture[str]):
-    """Feedthrough_in.csv drives each integer input to its type's extremes: UInt32 4294967295
-    and the 64-bit ones do not fit the engine's Integer ports (C ints), so syssimx names the
-    first such column instead of wrapping it. (FMPy does not pass them exactly either: its
-    input table is float64, and Int64_output reads -2**63 where the file says 2**63 - 1.)"""
+    """Feedthrough_in.csv drives each integer input to its type's extremes. Every column but
+    Int64_input and UInt64_input fits (UInt32 4294967295 too: UInt32, Int64 and UInt64 travel
+    as Real ports, exact up to 2**53); Int64_input's -2**63 at t = 0 is refused naming the
+    variable instead of being rounded. (FMPy does not pass them exactly either: its input table
+    is float64, and Int64_output reads -2**63 where the file says 2**63 - 1.)"""
     signals = ROOT / "fmi2" / "Feedthrough_in.csv"
     assert main(["simulate", fmu("Feedthrough"), "--input", str(signals)]) == 1
     assert capsys.readouterr().err.splitlines()[-1] == (
-        f"syssimx: error: --input {signals}: column 'UInt32_input' holds 4294967295 at "
-        "t = 1.0, outside the range of syssimx's Integer ports (-2147483648..2147483647)")
+        "syssimx: error: Feedthrough: fmi3SetFloat64 returned failed: variable 'Int64_input' "
+        "(Int64) cannot take -9.2233720368547758e+18: outside "
+        "-9007199254740992..9007199254740992 (its range, within the 2^53 up to which the "
+        "engine's Real ports carry integers exactly)")
     theirs = simulate_fmu(fmu("Feedthrough"), input=read_csv(signals),
                           output=["Int64_output"])
     assert theirs["Int64_output"][-1] == -2**63
 
 
-def test_feedthrough_follows_the_in_range_columns_as_in_fmpy(tmp_path: Path):
-    """The columns of Feedthrough_in.csv that fit (Int8 ... Int32, UInt8, UInt16, each at its
-    type's extremes) through syssimx simulate give FMPy's outputs exactly."""
+def test_feedthrough_follows_every_column_within_2_53_as_in_fmpy(tmp_path: Path):
+    """Feedthrough_in.csv with its two 64-bit columns brought within 2**53 (Int64 from -2**53
+    to 2**53, UInt64 from 0 to 2**53; the other seven columns as in the file, each at its
+    type's extremes, UInt32 4294967295 among them): every output column equals FMPy's
+    exactly."""
     table = read_csv(ROOT / "fmi2" / "Feedthrough_in.csv")
-    kept = ["Int8_input", "UInt8_input", "Int16_input", "UInt16_input", "Int32_input"]
-    path = tmp_path / "in_range.csv"
+    columns = ["Int8_input", "UInt8_input", "Int16_input", "UInt16_input", "Int32_input",
+               "UInt32_input"]
+    wide = {"Int64_input": (-(2**53), 2**53), "UInt64_input": (0, 2**53)}
+    path = tmp_path / "within_2_53.csv"
     with path.open("w", newline="") as stream:
         writer = csv.writer(stream)
-        writer.writerow(["time", *kept])
-        writer.writerows([[repr(float(row["time"])), *(int(row[n]) for n in kept)]
-                          for row in table])
+        writer.writerow(["time", *columns, *wide])
+        writer.writerows([[repr(float(row["time"])), *(int(row[n]) for n in columns),
+                           *(values[i] for values in wide.values())]
+                          for i, row in enumerate(table)])
     out = tmp_path / "out.csv"
     assert main(["simulate", fmu("Feedthrough"), "--input", str(path), "--output",
                  str(out)]) == 0
-    names = [n.replace("input", "output") for n in kept]
+    names = [n.replace("input", "output") for n in [*columns, *wide]]
     theirs = simulate_fmu(fmu("Feedthrough"), input=read_csv(path), output=names)
     ours = read_result(out)
-    assert_same(ours, theirs, names, RTOL_FMPY)
-    assert ours["Int32_output"][-1] == 2**31 - 1 and ours["UInt16_output"][-1] == 65535
+    assert_same(ours, theirs, names, 0.0)
+    assert ours["UInt32_output"][-1] == 2**32 - 1
+    assert ours["Int64_output"][0] == -(2**53) and ours["UInt64_output"][-1] == 2**53
 
 
 def test_feedthrough_in_a_system_carries_every_type_as_fmpy():

@@ -7,8 +7,9 @@ attribute names), so the rest of syssimx reads an FMI 3.0 description like an FM
 
 syssimx steps FMI 3.0 Co-Simulation FMUs and integrates FMI 3.0 Model Exchange ones. It
 refuses, naming the file and the element: scheduled execution only, any Clock variable (clocked
-partitions need a scheduler syssimx does not have), and arrays among the inputs, outputs and
-parameters (the engine's ports are scalars).
+partitions need a scheduler syssimx does not have), and String or Binary arrays among the
+inputs, outputs and parameters. Numeric and Boolean arrays become one port per element
+(fmi3_arrays.py).
 """
 
 from __future__ import annotations
@@ -54,10 +55,15 @@ def read_fmi3_description(path: Path) -> ModelDescription:
                            "ModelExchange")
     # fmpy keeps FMI 3.0's token under both names; syssimx passes it where FMI 2.0 has the guid
     description.guid = description.instantiationToken
+    # the engine's references of array elements are not the FMU's: with array ports the
+    # engine takes finite differences instead of asking the FMU for directional derivatives
+    has_array_ports = any(v.dimensions and v.causality in _PORT_CAUSALITIES
+                          for v in description.modelVariables)
     for element, part in (("CoSimulation", description.coSimulation),
                           ("ModelExchange", description.modelExchange)):
         if part is not None:
-            part.providesDirectionalDerivative = provides_directional_derivatives(path, element)
+            part.providesDirectionalDerivative = \
+                provides_directional_derivatives(path, element) and not has_array_ports
     return description
 
 
@@ -79,7 +85,8 @@ def _check_variable(variable: Any, path: Path) -> None:
     if variable.type == "Clock":
         raise FMUFileError(f"{path}: variable {variable.name!r} is a Clock: clocked FMI 3.0 FMUs "
                            "(clocks, model partitions) are not supported")
-    if variable.dimensions and variable.causality in _PORT_CAUSALITIES:
-        raise FMUFileError(f"{path}: variable {variable.name!r} is an array "
-                           f"({variable.causality}, {len(variable.dimensions)} dimension(s)): "
-                           "array inputs, outputs and parameters are not supported")
+    if variable.dimensions and variable.causality in _PORT_CAUSALITIES \
+            and variable.type in ("String", "Binary"):
+        raise FMUFileError(f"{path}: variable {variable.name!r} is a {variable.type} array "
+                           f"({variable.causality}): String and Binary arrays are not "
+                           "supported (numeric and Boolean arrays are)")

@@ -40,6 +40,7 @@ from ..errors import ConfigurationError, FMUFileError
 from ..units import is_quantity, magnitude_in
 from .base import CoSimComponent
 from .extraction import extractions
+from .fmi3_arrays import ArrayElement
 from .fmu_instance import FMUInstance
 from .model_description import (
     INTERFACES,
@@ -220,6 +221,12 @@ class FMUComponent(CoSimComponent):
         """Numbers or pint quantities (converted to the FMU's unit)."""
         for name, value in parameters.items():
             parameter = self.info.parameters.get(name)
+            sized = self.info.structural_parameters.get(name)
+            if parameter is None and sized is not None:
+                raise ConfigurationError(
+                    f"component {self.name!r}: {name!r} is a structural parameter (it sizes "
+                    f"the array(s) {', '.join(map(repr, sized))}); syssimx keeps its start "
+                    f"value {self.info.variables[name].start}: changing it is not supported")
             if parameter is None:
                 raise ConfigurationError(
                     f"component {self.name!r} has no parameter {name!r}; "
@@ -361,7 +368,10 @@ class FMUComponent(CoSimComponent):
             getters.update({"String": self.instance.getString,
                             "Binary": self.instance.getBinary})
         by_type: dict[str, list[Any]] = {}
-        for variable in self.info.description.modelVariables:
+        # an FMI 3.0 FMU's variables with its arrays as elements
+        table = self.info.variables.values() if self.info.is_fmi3 \
+            else self.info.description.modelVariables
+        for variable in table:
             kind = PORT_TYPES.get(variable.type, variable.type)
             if (variable.variability != "fixed" and variable.causality != "local"
                     and kind in getters and not getattr(variable, "dimensions", None)):
@@ -393,7 +403,8 @@ class FMUComponent(CoSimComponent):
         self._finalizer()
 
 
-# Integer values cross the FMI boundary as C ints (an FMI 3.0 UInt32 or 64-bit one too)
+# Integer ports cross the FMI boundary as C ints (FMI 3.0 UInt32 and 64-bit integers are Real
+# ports, exact up to 2**53)
 INT_MIN, INT_MAX = -(2**31), 2**31 - 1
 
 
@@ -498,16 +509,24 @@ def _load_fmi3(info: FMUInfo, interface: FMUInterface, binary: Path, unzip_dir: 
     rows = info.fmi3_variables
     # the struct does not keep what it points at alive: these locals do, until the engine
     # copied them
-    texts = [ffi.new("char[]", n.encode()) for _, _, n in rows]
-    refs = ffi.new("unsigned int[]", [vr for vr, _, _ in rows])
-    codes = ffi.new("unsigned char[]", [code for _, code, _ in rows])
+    texts = [ffi.new("char[]", row.name.encode()) for row in rows]
+    refs = ffi.new("unsigned int[]", [row.value_reference for row in rows])
+    codes = ffi.new("unsigned char[]", [row.type_code for row in rows])
     names = ffi.new("const char *[]", texts)
-    variables = ffi.new("ssx_fmi3_variables *", {
-        "vr": refs, "type": codes, "name": names, "n": len(rows),
-        "event_mode_used": not model_exchange and bool(cosimulation.hasEventMode),
-        "early_return_allowed": not model_exchange and bool(
-            cosimulation.canReturnEarlyAfterIntermediateUpdate
-            or cosimulation.mightReturnEarlyFromDoStep)})
+    fields = {"vr": refs, "type": codes, "name": names, "n": len(rows),
+              "event_mode_used": not model_exchange and bool(cosimulation.hasEventMode),
+              "early_return_allowed": not model_exchange and bool(
+                  cosimulation.canReturnEarlyAfterIntermediateUpdate
+                  or cosimulation.mightReturnEarlyFromDoStep)}
+    if any(row.element is not None for row in rows):  # array elements: where each lies
+        elements = [row.element or ArrayElement(row.value_reference, 0, 0, 0.0)
+                    for row in rows]
+        fields.update({
+            "fmu_vr": ffi.new("unsigned int[]", [e.array_vr for e in elements]),
+            "element": ffi.new("size_t[]", [e.position for e in elements]),
+            "size": ffi.new("size_t[]", [e.size for e in elements]),
+            "start": ffi.new("double[]", [e.start for e in elements])})
+    variables = ffi.new("ssx_fmi3_variables *", fields)
     # FMI 3.0 gives the resources as a directory path ending in a separator
     resources = f"{unzip_dir / 'resources'}/"
     load = lib().ssx_fmu_load_fmi3_model_exchange if model_exchange else lib().ssx_fmu_load_fmi3

@@ -24,6 +24,7 @@ from ..units import plainly_readable, to_unit
 from .archive import open_archive
 from .description_fmi3 import FMI3_TYPE_CODES, is_fmi3
 from .description_reader import read_description
+from .fmi3_arrays import ArrayElement, expand_arrays
 from .variable_table import ScalarVariable
 
 if TYPE_CHECKING:
@@ -31,17 +32,29 @@ if TYPE_CHECKING:
 
 logger = logging.getLogger("syssimx.fmu")
 
-# the engine's port type of each FMI 2.0 and FMI 3.0 value type
+# the engine's port type of each FMI 2.0 and FMI 3.0 value type: the integers a C int holds
+# are Integer ports, the wider ones Real ports (exact up to 2**53, a value beyond fails naming
+# the variable)
 PORT_TYPES = {"Real": PortType.REAL, "Integer": PortType.INT, "Enumeration": PortType.INT,
                "Boolean": PortType.BOOL, "Float64": PortType.REAL, "Float32": PortType.REAL,
-               **dict.fromkeys(("Int8", "UInt8", "Int16", "UInt16", "Int32", "UInt32", "Int64",
-                                "UInt64"), PortType.INT)}
+               **dict.fromkeys(("Int8", "UInt8", "Int16", "UInt16", "Int32"), PortType.INT),
+               **dict.fromkeys(("UInt32", "Int64", "UInt64"), PortType.REAL)}
 # FMI 3.0 values that are no port: settable as parameters, readable, never connected
 TEXT_TYPES = ("String", "Binary")
 
 PLATFORM = "linux64" if sys.platform.startswith("linux") else sys.platform
 # FMI 3.0 names the platform by architecture and system
 PLATFORM_FMI3 = "x86_64-linux" if sys.platform.startswith("linux") else sys.platform
+
+
+class FMI3Variable(NamedTuple):
+    """A row of the engine's FMI 3.0 table: engine value reference, ssx_fmi3_type code, name,
+    and for an array element where it lies (None for a scalar)."""
+
+    value_reference: int
+    type_code: int
+    name: str
+    element: ArrayElement | None
 
 
 class Parameter(NamedTuple):
@@ -94,10 +107,12 @@ class FMUInfo:
     number_of_states: int = 0
     number_of_event_indicators: int = 0
     fmi_version: str = "2.0"
-    # FMI 3.0: (value reference, ssx_fmi3_type code, name) of every scalar the engine may get
-    # or set, and the String and Binary outputs, which no port carries
-    fmi3_variables: list[tuple[int, int, str]] = field(default_factory=list)
+    # FMI 3.0: every scalar the engine may get or set (array elements among them), the String
+    # and Binary outputs, which no port carries, and each structural parameter with the
+    # arrays it sizes
+    fmi3_variables: list[FMI3Variable] = field(default_factory=list)
     text_outputs: dict[str, ScalarVariable] = field(default_factory=dict)
+    structural_parameters: dict[str, list[str]] = field(default_factory=dict)
 
     @property
     def is_fmi3(self) -> bool:
@@ -192,6 +207,9 @@ def _read_fmu(path: Path) -> FMUInfo:
         interfaces = _interfaces(description, path)
         first = interfaces[next(n for n in INTERFACES if n in interfaces)]
         table = description.modelVariables
+        expanded = expand_arrays(description, path) if fmi3 else None
+        if expanded is not None:
+            table = expanded.variables
         info = FMUInfo(path=path, description=description,
                        model_identifier=first.model_identifier,
                        can_get_set_state=first.can_get_set_state,
@@ -207,10 +225,12 @@ def _read_fmu(path: Path) -> FMUInfo:
     # only these become objects: a large model's locals stay in the reader's arrays
     ports = ([v for v in table if v.causality in _PORT_CAUSALITIES] if fmi3
              else table.with_causality(*_PORT_CAUSALITIES))
-    if fmi3:
-        info.fmi3_variables = _fmi3_variables(table)
+    if expanded is not None:
+        info.fmi3_variables = _fmi3_variables(table, expanded.elements)
+        info.structural_parameters = expanded.structural
     _collect_ports_and_parameters(info, ports)
-    _collect_feedthrough(info, [v for v in ports if v.causality in ("input", "output")])
+    _collect_feedthrough(info, [v for v in ports if v.causality in ("input", "output")],
+                         expanded.outputs if expanded is not None else description.outputs)
     return info
 
 
@@ -319,26 +339,28 @@ def _collect_text(info: FMUInfo, variable: ScalarVariable) -> None:
         variable.causality == "input" or variable.variability == "tunable", start, variable.type)
 
 
-def _fmi3_variables(variables: Any) -> list[tuple[int, int, str]]:
+def _fmi3_variables(variables: Any, elements: dict[int, ArrayElement]) -> list[FMI3Variable]:
     """The engine's FMI 3.0 type table: each numeric or Boolean scalar once per value
-    reference (an alias shares its variable's)."""
-    table: dict[int, tuple[int, int, str]] = {}
+    reference (an alias shares its variable's), array elements among them; arrays no port
+    carries (locals) are left out."""
+    table: dict[int, FMI3Variable] = {}
     for variable in variables:
         code = FMI3_TYPE_CODES.get(variable.type)
         if code is not None and not variable.dimensions:
-            table.setdefault(variable.valueReference,
-                             (variable.valueReference, code, variable.name))
+            vr = variable.valueReference
+            table.setdefault(vr, FMI3Variable(vr, code, variable.name, elements.get(vr)))
     return list(table.values())
 
 
-def _collect_feedthrough(info: FMUInfo, inputs_and_outputs: list[ScalarVariable]) -> None:
-    """Output -> the inputs it depends on directly, from ModelStructure."""
+def _collect_feedthrough(info: FMUInfo, inputs_and_outputs: list[ScalarVariable],
+                        outputs: list[Any]) -> None:
+    """Output -> the inputs it depends on directly, from ModelStructure's `outputs`."""
     from fmpy.model_description import ModelDescription
 
     # The analysis reads inputs, outputs and ModelStructure: hand it those, not every local.
     ports_only = ModelDescription()
     ports_only.modelVariables = inputs_and_outputs
-    ports_only.outputs = info.description.outputs
+    ports_only.outputs = outputs
     declared = feedthrough_from_model_description(ports_only)
     info.feedthrough = {name: declared[name] & set(info.input_specs)
                         for name in info.output_specs}

@@ -17,7 +17,8 @@ static const unsigned int ball_vr[] = {BALL_H, BALL_V, BALL_E, BALL_GAP_TOL};
 static const unsigned char ball_types[] = {SSX_FMI3_FLOAT64, SSX_FMI3_FLOAT64, SSX_FMI3_FLOAT64,
                                            SSX_FMI3_FLOAT64};
 static const char *const ball_names[] = {"h", "v", "e", "gap_tol"};
-static const ssx_fmi3_variables ball_variables = {ball_vr, ball_types, ball_names, 4, 0, 0};
+static const ssx_fmi3_variables ball_variables = {
+    .vr = ball_vr, .type = ball_types, .name = ball_names, .n = 4};
 
 /* Dropped from 1 m at rest: the first impact at sqrt(2 / g), each flight after impact k lasts
  * 2 e^k v1 / g with v1 = sqrt(2 g). */
