@@ -91,6 +91,22 @@ def test_seed_scenario_as_model_exchange_hits_the_wall_at_the_exact_time():
     assert np.all(result["P"][1]["theta"] > -1e-9)  # reflected at the wall
 
 
+def test_pendulum_with_its_own_wall_as_model_exchange_hits_it_at_the_exact_time():
+    """The seed's wall as the model's own event indicator (pendulum_contact): integrated by the
+    engine, the impact is a root of CVODE, found at the seed's exact time with no rollback."""
+    pendulum = FMUComponent("P", fmus.path("pendulum_contact_cvode"),
+                            interface="model-exchange", tolerance=1e-12)
+    pendulum.set_parameters(theta0=THETA0, omega0=0.0, restitution=1.0)
+    system = one(pendulum)
+    result = system.run(0.0, 1.0, 0.05)
+    impact = result.events[0]
+    assert (impact.component, impact.event, impact.micro, impact.own) == (
+        "P", "state_event", 0, True)
+    assert abs(impact.t - EXACT_WALL_HIT) < 1e-9
+    assert result.statistics.state_restores == 0 and result.statistics.state_saves == 0
+    assert np.all(result["P"][1]["theta"] > -1e-9)  # reflected at the wall
+
+
 def test_bouncing_ball_bounces_at_the_closed_form_times_without_rollback():
     system = one(ball())
     result = system.run(0.0, 3.0, 0.01)
