@@ -31,9 +31,8 @@ from test_fmi3_import import edited
 from test_fmi3_reference import fmu, outputs
 from test_model_exchange_reference import (
     RTOL,
-    accurate,
+    assert_states_within_ten_tolerances_and_as_close_as_fmpy,
     bounce_times,
-    distance,
     fall_crossings,
     grid,
 )
@@ -77,15 +76,7 @@ def test_the_reference_fmus_with_model_exchange_are_the_ones_tested():
 
 @pytest.mark.parametrize("model", ["BouncingBall", "Dahlquist", "VanDerPol"])
 def test_states_within_ten_tolerances_and_as_close_as_fmpy(model: str):
-    t0, tf, dt = grid(model)
-    ours, result = run_me(model, t0, tf, dt)
-    theirs = fmpy_me(model, t0, tf, dt)
-    np.testing.assert_array_equal(ours["time"], theirs["time"])
-    exact = accurate(model, ours["time"])
-    bound = ours["time"] < (bounce_times()[2] if model == "BouncingBall" else np.inf)
-    for name, solution in exact.items():
-        assert distance(ours[name][bound], solution[bound]) <= 10 * RTOL, name
-        assert distance(ours[name], solution) <= distance(theirs[name], solution), name
+    result = assert_states_within_ten_tolerances_and_as_close_as_fmpy(model, run_me, fmpy_me)
     assert result.statistics.state_restores == 0
 
 
