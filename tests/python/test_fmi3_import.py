@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import itertools
 import math
-import os
 import zipfile
 from pathlib import Path
 
@@ -22,6 +21,7 @@ import numpy as np
 import pendulum_wall
 import pytest
 from fmpy import simulate_fmu
+from reference_root import reference_root
 from scipy.special import ellipk
 from syssimx import Connection, FMUComponent, System, TableSource, fmus
 from syssimx.cli import main
@@ -33,14 +33,8 @@ from syssimx.errors import ConfigurationError, FMUFileError, SimulationError
 EXACT = ellipk(math.sin(0.5 / 2) ** 2) / math.sqrt(40.0 * 9.81 * 0.6 / 20.0)
 
 
-def _reference_root() -> Path:
-    given = os.environ.get("SYSSIMX_REFERENCE_FMUS")
-    if given:
-        return Path(given)
-    return Path(__file__).resolve().parents[2].parent / "shared" / "reference-fmus"
 
-
-FOLDER = _reference_root() / "fmi3"
+FOLDER = reference_root() / "fmi3"
 reference = pytest.mark.skipif(not FOLDER.is_dir(), reason=(
     f"the FMI 3.0 Reference FMUs are absent (no folder {FOLDER}): set SYSSIMX_REFERENCE_FMUS "
     "to the folder holding fmi3/"))

@@ -19,26 +19,18 @@ The folder is found through SYSSIMX_REFERENCE_FMUS or at <repository>/../shared/
 from __future__ import annotations
 
 import csv
-import os
 from pathlib import Path
 
 import numpy as np
 import pytest
 from fmpy import read_model_description, simulate_fmu
 from fmpy.util import read_csv
+from reference_root import reference_root
 from syssimx import Connection, FMUComponent, JacobiAlgorithm, System, TableSource
 from syssimx.cli import main
 from syssimx.errors import FMUFileError
 
-
-def _reference_root() -> Path:
-    given = os.environ.get("SYSSIMX_REFERENCE_FMUS")
-    if given:
-        return Path(given)
-    return Path(__file__).resolve().parents[2].parent / "shared" / "reference-fmus"
-
-
-ROOT = _reference_root()
+ROOT = reference_root()
 FOLDER = ROOT / "fmi3"
 if not FOLDER.is_dir():
     pytest.skip(f"the FMI 3.0 Reference FMUs are absent (no folder {FOLDER}): set "

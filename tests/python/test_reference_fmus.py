@@ -14,25 +14,17 @@ The folder is found through SYSSIMX_REFERENCE_FMUS or at <repository>/../shared/
 from __future__ import annotations
 
 import csv
-import os
 from pathlib import Path
 
 import numpy as np
 import pytest
 from fmpy import read_model_description, simulate_fmu
 from fmpy.util import read_csv
+from reference_root import reference_root
 from syssimx import Connection, FMUComponent, JacobiAlgorithm, System, TableSource
 from syssimx.cli import main
 
-
-def _reference_root() -> Path:
-    given = os.environ.get("SYSSIMX_REFERENCE_FMUS")
-    if given:
-        return Path(given)
-    return Path(__file__).resolve().parents[2].parent / "shared" / "reference-fmus"
-
-
-FOLDER = _reference_root() / "fmi2"
+FOLDER = reference_root() / "fmi2"
 if not FOLDER.is_dir():
     pytest.skip(f"the Reference FMUs are absent (no folder {FOLDER}): set SYSSIMX_REFERENCE_FMUS "
                 "to the folder holding fmi2/, or place it at <repository>/../shared/"

@@ -9,12 +9,14 @@ import sys
 from pathlib import Path
 
 import pytest
+import syssimx
 
 # pint (its registry alone costs more than the rest of syssimx), networkx, and the libraries only
 # results, plots and ensembles need
 HEAVY = ("pint", "networkx", "pandas", "matplotlib", "scipy", "xarray", "dask")
 
-PYTHON_DIR = Path(__file__).resolve().parents[2] / "python"
+# the syssimx this test process imports (the source tree with a build, or the installed package)
+PYTHON_DIR = Path(syssimx.__file__).resolve().parents[1]
 
 
 def loaded_after(code: str) -> list[str]:
