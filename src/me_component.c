@@ -35,6 +35,7 @@
 #include "error.h"
 #include "fmu_backend.h"
 #include "fmu_binding.h"
+#include "parallel_step.h"
 #include "system.h"
 
 /* What the engine holds of the component's state besides the FMU state: the continuous
@@ -156,14 +157,14 @@ static int fail_cvode(ssx_system *sys, ssx_component *c, me_data *me, double t, 
 }
 
 /* The FMU asked to end the simulation at t: the engine's termination path (see
- * ssx_termination). */
+ * ssx_termination); on a worker thread, the first request of its share. */
 static void note_termination(ssx_system *sys, ssx_component *c, double t)
 {
-    if (sys->termination.component < 0) {
-        sys->termination.component = c->index;
-        sys->termination.time = t;
-        snprintf(sys->termination.message, sizeof sys->termination.message, "%s",
-                 ssx_fmu_last_message(c->fmu));
+    ssx_termination *request = parallel_termination_slot(sys);
+    if (request->component < 0) {
+        request->component = c->index;
+        request->time = t;
+        snprintf(request->message, sizeof request->message, "%s", ssx_fmu_last_message(c->fmu));
     }
 }
 

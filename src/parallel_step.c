@@ -100,7 +100,8 @@ static int by_fmu(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* FMU components whose Python does not step them, unless the FMU must stay on one thread
+/* FMU components the engine steps or integrates (Co-Simulation, Model Exchange) whose Python
+ * does not step them, unless the FMU must stay on one thread
  * (canBeInstantiatedOnlyOncePerProcess: its binary keeps globals) or another component uses
  * the same FMU instance (the two would step it at once). */
 static int choose_pool_components(parallel_plan *p, const ssx_system *sys)
@@ -113,8 +114,9 @@ static int choose_pool_components(parallel_plan *p, const ssx_system *sys)
     int n_users = 0;
     for (int i = 0; i < n; ++i) {
         const ssx_component *c = sys->components[i];
-        p->on_pool[i] =
-            c->ops == &ssx_fmu_component_ops && c->hooks.do_step == NULL && !c->calling_thread_only;
+        int fmu_stepped_by_engine =
+            c->ops == &ssx_fmu_component_ops || c->ops == &ssx_model_exchange_component_ops;
+        p->on_pool[i] = fmu_stepped_by_engine && c->hooks.do_step == NULL && !c->calling_thread_only;
         if (c->fmu != NULL) {
             users[n_users++] = (fmu_user){(uintptr_t)c->fmu, i};
         }

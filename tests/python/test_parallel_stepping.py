@@ -239,3 +239,35 @@ def test_isolated_fmus_step_on_the_workers_with_the_same_results() -> None:
         runs.append(samples(system, tf=0.5))
     assert_identical(runs[0][0], runs[1][0])
     assert runs[1][1] == runs[0][1]
+
+
+def bouncing_balls_as_model_exchange(threads: int) -> System:
+    """Four balls the engine integrates (Model Exchange), dropped from different heights, their
+    bounces their own events, and a master's indicator (an apex) on one of them located by
+    rollback."""
+    system = System("balls")
+    for k in range(4):
+        ball = FMUComponent(f"B{k}", fmus.path("bouncing_ball_cvode"),
+                            interface="model-exchange", tolerance=1e-10)
+        ball.set_parameters(h0=1.0 + 0.25 * k)
+        system.add_component(ball)
+    system.components["B0"].add_event_indicator("apex", variable="v", direction=-1)
+    system.set_algorithm(HybridAlgorithm(coupling=JacobiAlgorithm(threads=threads)))
+    system.initialize(0.0)
+    return system
+
+
+def test_model_exchange_components_identical_on_two_threads() -> None:
+    runs = {}
+    for threads in (1, 2):
+        system = bouncing_balls_as_model_exchange(threads)
+        result = system.run(0.0, 2.0, 0.01)
+        runs[threads] = ({n: (result[n][0].copy(), {p: v.copy() for p, v in result[n][1].items()})
+                          for n in system.components},
+                         [(e.t, e.micro, e.component, e.event, e.own) for e in result.events],
+                         str(result.statistics))
+    assert_identical(runs[1][0], runs[2][0])
+    assert runs[2][1:] == runs[1][1:]
+    events = runs[1][1]
+    assert {e[3] for e in events} == {"state_event", "apex"}
+    assert sum(1 for e in events if e[3] == "state_event") >= 8
