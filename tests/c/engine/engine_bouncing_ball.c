@@ -7,7 +7,6 @@
 
 enum { BALL_H = 0, BALL_V = 1, BALL_G = 4, BALL_H0 = 5, BALL_V0 = 6 };
 
-#define GRAVITY 9.81
 #define RESTITUTION 0.8
 #define BOUNCES 10
 
@@ -33,18 +32,6 @@ static int bounce(void *user, const int *indicators, int n, double t)
     return start_ball(b->fmu, t, out[BALL_H], -RESTITUTION * out[BALL_V]) == 0 ? 0 : -1;
 }
 
-/* Dropped from h0 = 1 at rest: the first impact at sqrt(2 h0 / g); each flight after impact k
- * lasts 2 e^k v1 / g with v1 = sqrt(2 g h0). */
-static double bounce_time(int k)
-{
-    double v1 = sqrt(2.0 * GRAVITY * 1.0);
-    double t = v1 / GRAVITY;
-    for (int j = 1; j < k; ++j) {
-        t += 2.0 * pow(RESTITUTION, j) * v1 / GRAVITY;
-    }
-    return t;
-}
-
 static void run(int direction)
 {
     ssx_fmu *fmu = load_fmu("bouncing_ball_continuous_cvode");
@@ -60,7 +47,8 @@ static void run(int direction)
     CHECK_OK(sys, ssx_set_hooks(sys, b.component, &hooks));
     CHECK_OK(sys, ssx_set_hybrid_options(sys, 1e-10, 1e-10, 100, 10, 0, SSX_ILLINOIS, 0.0));
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
-    double tf = 0.5 * (bounce_time(BOUNCES) + bounce_time(BOUNCES + 1));
+    double tf =
+        0.5 * (ball_bounce_time(BOUNCES, RESTITUTION) + ball_bounce_time(BOUNCES + 1, RESTITUTION));
     CHECK_OK(sys, ssx_run(sys, 0.0, tf, 0.05));
 
     CHECK(ssx_event_count(sys) == BOUNCES);
@@ -69,7 +57,7 @@ static void run(int direction)
         CHECK(ssx_event_get(sys, (size_t)k - 1, &event) == 0);
         CHECK(event.micro == 0);
         /* CVODE at rtol 1e-10 and tol_time 1e-10 per bounce; the restart error adds up */
-        CHECK_CLOSE(event.t, bounce_time(k), 1e-8);
+        CHECK_CLOSE(event.t, ball_bounce_time(k, RESTITUTION), 1e-8);
     }
     /* never below the floor by more than the localization residue */
     const double *values = ssx_history_values(sys, b.component);

@@ -1,6 +1,8 @@
 /* Helpers of the engine's C tests. */
 #include "test_support.h"
 
+#include <math.h>
+
 #include <string.h>
 
 #include "engine_test_fmus.h"
@@ -113,4 +115,30 @@ int reverse_velocity(void *user, const int *indicators, int n, double t)
     const double *out = ssx_outputs(b->sys, b->component);
     b->calls++;
     return start_pendulum(b->fmu, t, out[0], -out[1], 1e-10) == 0 ? 0 : -1;
+}
+
+double ball_bounce_time(int k, double restitution)
+{
+    double v1 = sqrt(2.0 * BALL_GRAVITY);
+    double t = v1 / BALL_GRAVITY;
+    for (int j = 1; j < k; ++j) {
+        t += 2.0 * pow(restitution, j) * v1 / BALL_GRAVITY;
+    }
+    return t;
+}
+
+void check_own_bounces(ssx_system *sys)
+{
+    CHECK_OK(sys, ssx_run(sys, 0.0, 3.0, 0.01));
+    CHECK(ssx_event_count(sys) == 6);
+    for (int k = 1; k <= 6; ++k) {
+        ssx_event_record event;
+        CHECK(ssx_event_get(sys, (size_t)k - 1, &event) == 0);
+        CHECK(event.own == SSX_OWN_STATE_EVENT && event.micro == 0 && event.component == 0);
+        CHECK_CLOSE(event.t, ball_bounce_time(k, 0.8), 1e-8);
+    }
+    ssx_statistics statistics;
+    ssx_get_statistics(sys, &statistics);
+    CHECK(statistics.own_events == 6 && statistics.state_restores == 0);
+    CHECK(statistics.do_step_calls == 300);
 }

@@ -59,6 +59,16 @@ enum {
  * K(sin^2(0.25)) / sqrt(11.772), scipy's ellipk. */
 #define PENDULUM_QUARTER_PERIOD 0.46507759431173046
 
+/* The bouncing balls (models/BouncingBall, BouncingBallContinuous) dropped from 1 m at rest
+ * under g = 9.81: the time of impact k = 1, 2, ... when each rebound keeps `restitution` of
+ * the impact speed. */
+#define BALL_GRAVITY 9.81
+double ball_bounce_time(int k, double restitution);
+/* A system whose component 0 is the Model Exchange bouncing ball (restitution 0.8) run from 0
+ * to 3 s in steps of 0.01: its six bounces are its own state events, each within 1e-8 of the
+ * closed form at micro step 0, with no rollback and one integration per step (300). */
+void check_own_bounces(ssx_system *sys);
+
 /* Loads one of the built FMUs by its stem (e.g. "pendulum_cvode"); exits on failure. */
 ssx_fmu *load_fmu(const char *stem);
 /* The same FMU loaded for its Model Exchange interface. */
