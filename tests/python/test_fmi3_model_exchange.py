@@ -31,9 +31,9 @@ from test_fmi3_import import edited
 from test_fmi3_reference import fmu, outputs
 from test_model_exchange_reference import (
     RTOL,
+    assert_external_indicator_located_and_own_events_recorded_once,
     assert_states_within_ten_tolerances_and_as_close_as_fmpy,
     bounce_times,
-    fall_crossings,
     grid,
 )
 from test_reference_fmus import reference_result
@@ -129,21 +129,7 @@ def test_bouncing_ball_bounces_at_the_closed_form_times_without_rollback():
 
 
 def test_external_indicator_is_located_by_rollback_and_own_events_recorded_once():
-    ball = FMUComponent("B", fmu("BouncingBall"), interface="model-exchange", tolerance=1e-12)
-    ball.add_event_indicator("low", lambda b: b.get_outputs()["h"].magnitude - 0.2,
-                             direction=-1)
-    system = System("ball")
-    system.add_component(ball)
-    system.initialize(0.0)
-    system.algorithm.tol_time = 1e-10
-    result = system.run(0.0, 3.0, 0.01)
-    own = [e for e in result.events if e.own]
-    master = [e for e in result.events if not e.own]
-    assert np.max(np.abs(np.array([e.t for e in own]) - bounce_times())) < 1e-8
-    assert result.statistics.own_events == len(own) == 11
-    assert result.statistics.state_restores > 0
-    assert np.max(np.abs(np.array([e.t for e in master]) - fall_crossings(0.2))) < 1e-9
-    assert len(master) == len(fall_crossings(0.2))
+    assert_external_indicator_located_and_own_events_recorded_once(fmu("BouncingBall"))
 
 
 def test_auto_takes_co_simulation_and_model_exchange_when_it_is_the_only_interface(
