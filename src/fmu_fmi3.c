@@ -75,6 +75,7 @@ static const ssx_fmu_function_row fmi3_functions[] = {
     {"fmi3DoStep", SLOT_GET_TERMINATED, 1},
     {"fmi3DoStep", SLOT_GET_LAST_SUCCESSFUL_TIME, 1},
     {"fmi3EnterStepMode", SLOT_ENTER_STEP_MODE, 1},
+    {"fmi3GetOutputDerivatives", SLOT_GET_OUTPUT_DERIVATIVES, 0},
     FMI3_OPTIONAL_ROWS
 };
 
@@ -1170,6 +1171,14 @@ static int directional_derivative(const ssx_fmu_function *fn, void *instance,
         n_knowns, dv_unknown, n_unknowns);
 }
 
+static int get_output_derivatives(const ssx_fmu_function *fn, void *instance,
+                                  const unsigned int *vr, size_t n, const int *order,
+                                  double *values)
+{
+    return (int)FMI3(fn, SLOT_GET_OUTPUT_DERIVATIVES, fmi3GetOutputDerivativesTYPE)(
+        ((fmi3_context *)instance)->instance, vr, n, order, values, n);
+}
+
 /* ------------------------------------------------------------------ Model Exchange */
 
 static void *instantiate_model_exchange(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
@@ -1277,7 +1286,8 @@ static int get_number_of_event_indicators(const ssx_fmu_function *fn, void *inst
     .set_boolean = set_boolean, .get_state = get_state, .set_state = set_state,               \
     .free_state = free_state, .serialized_state_size = serialized_state_size,                 \
     .serialize_state = serialize_state, .deserialize_state = deserialize_state,               \
-    .directional_derivative = directional_derivative, .get_string = get_string,               \
+    .directional_derivative = directional_derivative,                                         \
+    .get_output_derivatives = get_output_derivatives, .get_string = get_string,               \
     .set_string = set_string, .get_binary = get_binary, .set_binary = set_binary,             \
     .enter_event_mode = enter_event_mode, .new_discrete_states = new_discrete_states,         \
     .variable_name = variable_name, .release_context = release_context

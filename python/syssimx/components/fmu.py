@@ -329,11 +329,16 @@ class FMUComponent(CoSimComponent):
         model_exchange = (self.info.number_of_states, self.info.number_of_event_indicators) \
             if self.model_exchange else None
         once_per_process = self.fmu_interface.can_be_instantiated_only_once_per_process
+        interface = self.fmu_interface
+        # an isolated FMU's host forwards neither input nor output derivatives
+        direct = not self.isolated and not self.model_exchange
         plan.add_fmu_component(
             self, self._fmu, self.can_get_set_state,
-            self.fmu_interface.provides_directional_derivative,
+            interface.provides_directional_derivative,
             self.value_reference, self._python_hooks(engine_steps=True), model_exchange,
-            calling_thread_only=once_per_process and not self.isolated)
+            calling_thread_only=once_per_process and not self.isolated,
+            interpolation=(direct and interface.can_interpolate_inputs,
+                           interface.max_output_derivative_order if direct else 0))
 
     # ---------------------------------------------------------------- hooks (engine built-ins)
     def _do_step_internal(self, t: float, dt: float) -> None:

@@ -80,6 +80,9 @@ class FMUInterface(NamedTuple):
     can_get_set_state: bool
     provides_directional_derivative: bool
     can_be_instantiated_only_once_per_process: bool
+    # Co-Simulation only (FMI 2.0 input derivatives; output derivatives in 2.0 and 3.0)
+    can_interpolate_inputs: bool = False
+    max_output_derivative_order: int = 0
 
 
 INTERFACES = ("co-simulation", "model-exchange")  # "auto" takes the first the FMU has
@@ -267,7 +270,10 @@ def _interfaces(description: ModelDescription, path: Path) -> dict[str, FMUInter
             interfaces[name] = FMUInterface(
                 name, _model_identifier(part.modelIdentifier, path, element),
                 bool(part.canGetAndSetFMUstate), bool(part.providesDirectionalDerivative),
-                bool(part.canBeInstantiatedOnlyOncePerProcess))
+                bool(part.canBeInstantiatedOnlyOncePerProcess),
+                element == "CoSimulation" and bool(getattr(part, "canInterpolateInputs", False)),
+                int(getattr(part, "maxOutputDerivativeOrder", 0) or 0)
+                if element == "CoSimulation" else 0)
     if not interfaces:
         raise FMUFileError(f"{path}: the modelDescription declares neither CoSimulation nor "
                            "ModelExchange")
