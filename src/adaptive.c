@@ -47,6 +47,15 @@ static double step_factor(const ssx_system *sys, double error)
     return fmin(MAX_GROWTH, fmax(MAX_SHRINK, factor));
 }
 
+/* Without an initial step: a tenth of the grid interval, shortened as the tolerance asks of
+ * an error that grows like h^(order + 1) (a step taken without rollback is kept, so the first
+ * one had better be within tolerance). */
+static double first_step(const ssx_system *sys, double grid_step)
+{
+    double tolerance = fmin(1.0, fmax(sys->step_control.rtol, sys->step_control.atol));
+    return 0.1 * grid_step * pow(tolerance, 1.0 / (double)(sys->input_order + 1));
+}
+
 static double clamp_step(const ssx_step_control *sc, double h)
 {
     double longest = sc->max_step > 0.0 ? sc->max_step : INFINITY;
@@ -122,7 +131,7 @@ int adaptive_step(ssx_system *sys, double t, double t_next)
     const ssx_step_control *sc = &sys->step_control;
     if (!(w->proposed > 0.0)) {
         w->proposed = clamp_step(sc, sc->initial_step > 0.0 ? sc->initial_step
-                                                            : 0.1 * (t_next - t));
+                                                            : first_step(sys, t_next - t));
     }
     double a = t;
     int event = 0;

@@ -227,25 +227,31 @@ static int read_slopes(ssx_system *sys, ssx_component *c, component_track *tr, d
     return 0;
 }
 
-/* The history and the output derivatives at the step's start. The derivatives are read in
- * schedule order, each component after its inputs got their values and derivatives at t (so a
- * direct-feedthrough output moves with its inputs). */
+/* The history and the output derivatives at the step's start, in schedule order: each FMU
+ * gets its inputs' values and derivatives at t first, so its direct-feedthrough outputs are
+ * those of the drivers' outputs at t (under Jacobi they were computed from the inputs the last
+ * step extrapolated to t: an offset no shorter step could shrink) and move with its inputs. */
 static int begin_step(ssx_system *sys, struct input_motion *w, double t, double h)
 {
     w->stepping = 0;
     for (int i = 0; i < sys->n_components; ++i) {
         remember(&w->tracks[i], sys->components[i], t);
     }
-    for (int s = 0; w->order > 0 && s < sys->n_components; ++s) {
+    for (int s = 0; s < sys->n_components; ++s) {
         int i = sys->order[s];
         ssx_component *c = sys->components[i];
-        if (c->fmu == NULL || c->max_output_derivative_order < 1) {
+        component_track *tr = &w->tracks[i];
+        if (c->ops != &ssx_fmu_component_ops) {
             continue;
         }
-        if (!w->held[i]) {
+        if (!w->held[i] && c->n_inputs > 0) {
             coupling_propagate_inputs(sys, c);
+            if (component_write_inputs(sys, c) != 0 || component_read_outputs(sys, c) != 0) {
+                return -1;
+            }
+            memcpy(tr->y[0], c->outputs, (size_t)c->n_outputs * sizeof(double));
         }
-        if (component_write_inputs(sys, c) != 0 || read_slopes(sys, c, &w->tracks[i], t) != 0) {
+        if (w->order > 0 && read_slopes(sys, c, tr, t) != 0) {
             return -1;
         }
     }

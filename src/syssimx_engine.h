@@ -450,8 +450,8 @@ int ssx_set_interpolation(ssx_system *sys, int component, int can_interpolate_in
  * and only the next ones shrink (non-iterative, as libcosim's ECCO). The next step is the
  * last times safety * error^(-1/(order + 1)), within [min_step, max_step] (max_step 0: no bound
  * but the grid) and at most 5 times longer; initial_step <= 0 starts with a tenth of the grid
- * step. Events are still located to
- * tol_time inside the steps. Applies at the next ssx_initialize. */
+ * step times max(rtol, atol)^(1/(order + 1)). Events are still located to tol_time inside the
+ * steps. Applies at the next ssx_initialize. */
 typedef struct {
     int enabled;
     int rollback;

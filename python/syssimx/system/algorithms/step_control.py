@@ -23,7 +23,8 @@ class StepControl:
     the step is kept and only the next ones adapt (non-iterative, like libcosim's ECCO). The
     next step is the last times safety * error^(-1 / (input_order + 1)), at most 5 times
     longer, within [min_step, max_step] (max_step 0: bounded only by the grid interval);
-    initial_step 0 starts with a tenth of the first grid interval."""
+    initial_step 0 starts with a tenth of the first grid interval times
+    max(rtol, atol)^(1 / (input_order + 1))."""
 
     rtol: float = field(default_factory=lambda: defaults().step_rtol)
     atol: float = field(default_factory=lambda: defaults().step_atol)
