@@ -13,6 +13,7 @@ import zipfile
 import numpy as np
 import pytest
 from fmpy import extract, read_model_description
+from fmpy.fmi1 import FMICallException
 from fmpy.fmi3 import FMU3Slave
 from scipy.integrate import solve_ivp
 from syssimx import fmus
@@ -63,10 +64,10 @@ def test_input_derivatives_drive_the_input_along_its_polynomial(open_fmu, name, 
 
 def test_input_derivatives_are_refused_for_a_non_input(open_fmu):
     fmu = open_fmu("pendulum_cvode")
-    with pytest.raises(Exception):
+    with pytest.raises(FMICallException):
         fmu.slave.setRealInputDerivatives([fmu.vr("theta")], [1], [1.0])
     assert "is not a Real input" in fmu.messages[-1][1]
-    with pytest.raises(Exception):
+    with pytest.raises(FMICallException):
         fmu.slave.setRealInputDerivatives([fmu.vr("torque")], [3], [1.0])
     assert "order 3" in fmu.messages[-1][1]
 
