@@ -1,7 +1,8 @@
 """The `algorithm` entry of a description: {type: jacobi|gauss_seidel|hybrid|ijcsa, options}.
 
 A hybrid algorithm's coupling (`coupling` or SysSimX's `gauss_seidel_algorithm`) is a type name
-or a mapping of the same form."""
+or a mapping of the same form. A coupling's `step_control` is a mapping of StepControl's options
+(`{rtol: 1e-5, atol: 1e-5, rollback: false}`); `{}` takes every default."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ from .algorithms import (
     HybridAlgorithm,
     IJCSAAlgorithm,
     JacobiAlgorithm,
+    StepControl,
 )
 from .config_source import Source
 
@@ -43,6 +45,8 @@ def build_algorithm(source: Source, entry: Any, label: str = "algorithm") -> Alg
                     raise source.error(f"{label}.{key}", "the coupling of a hybrid algorithm "
                                        "is jacobi, gauss_seidel or ijcsa", entry)
     try:
+        if isinstance(options.get("step_control"), dict):
+            options["step_control"] = StepControl(**options["step_control"])
         algorithm = ALGORITHMS[kind](**options)
         algorithm.validate()
     except (TypeError, ValueError) as exc:
