@@ -122,6 +122,13 @@ typedef struct {
     const size_t *element;
     const size_t *size;
     const double *start;
+    /* Co-Simulation with providesIntermediateUpdate: the scalar Float64 inputs the FMU lets the
+     * importer set in intermediate update (intermediateUpdate="true"). With any, the instance
+     * is made with them as requiredIntermediateVariables, and ssx_fmu_set_real_input_derivatives
+     * moves them inside each step: the callback answers with their Taylor polynomial from the
+     * communication point. NULL / 0: none. */
+    const unsigned int *intermediate_vr;
+    size_t n_intermediate;
 } ssx_fmi3_variables;
 
 /* Like ssx_fmu_load for an FMI 3.0 Co-Simulation binary: resolves the fmi3 functions; the

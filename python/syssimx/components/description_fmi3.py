@@ -67,18 +67,40 @@ def read_fmi3_description(path: Path) -> ModelDescription:
     return description
 
 
+def intermediate_inputs(path: Path) -> list[int]:
+    """Value references of the scalar continuous Float64 inputs with intermediateUpdate="true"
+    (an attribute FMPy 0.3 does not read): FMI 3.0 moves inputs inside a step by intermediate
+    update, which the engine answers for these as FMI 2.0's input derivatives."""
+    root = _description_root(path)
+    variables = root.find("ModelVariables")
+    if variables is None:
+        return []
+    found = []
+    for variable in variables.findall("Float64"):
+        if variable.get("causality") == "input" and variable.get("intermediateUpdate") in \
+                ("true", "1") and variable.find("Dimension") is None and \
+                variable.get("variability", "continuous") == "continuous":
+            reference = variable.get("valueReference", "")
+            if reference.isdigit():
+                found.append(int(reference))
+    return found
+
+
 def provides_directional_derivatives(path: Path, element: str = "CoSimulation") -> bool:
     """FMI 3.0 spells the flag providesDirectionalDerivatives, which FMPy 0.3 does not read;
     `element`: the interface's (CoSimulation or ModelExchange)."""
+    found = _description_root(path).find(element)
+    return found is not None and found.get("providesDirectionalDerivatives") in ("true", "1")
+
+
+def _description_root(path: Path) -> Any:
     import zipfile
 
     from lxml import etree
 
     parser = etree.XMLParser(resolve_entities=False, no_network=True)
     with zipfile.ZipFile(path) as archive:
-        root = etree.fromstring(archive.read("modelDescription.xml"), parser)
-    found = root.find(element)
-    return found is not None and found.get("providesDirectionalDerivatives") in ("true", "1")
+        return etree.fromstring(archive.read("modelDescription.xml"), parser)
 
 
 def _check_variable(variable: Any, path: Path) -> None:

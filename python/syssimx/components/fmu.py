@@ -332,13 +332,18 @@ class FMUComponent(CoSimComponent):
         interface = self.fmu_interface
         # an isolated FMU's host forwards neither input nor output derivatives
         direct = not self.isolated and not self.model_exchange
+        output_order = interface.max_output_derivative_order if direct else 0
+        if str(self.info.description.fmiVersion).startswith("3.") and \
+                any(self.info.feedthrough.values()):
+            # FMI 3.0 gives an FMU no input derivatives: the derivative of an output that
+            # depends directly on inputs misses their motion (the coupling history serves)
+            output_order = 0
         plan.add_fmu_component(
             self, self._fmu, self.can_get_set_state,
             interface.provides_directional_derivative,
             self.value_reference, self._python_hooks(engine_steps=True), model_exchange,
             calling_thread_only=once_per_process and not self.isolated,
-            interpolation=(direct and interface.can_interpolate_inputs,
-                           interface.max_output_derivative_order if direct else 0))
+            interpolation=(direct and interface.can_interpolate_inputs, output_order))
 
     # ---------------------------------------------------------------- hooks (engine built-ins)
     def _do_step_internal(self, t: float, dt: float) -> None:
@@ -523,6 +528,10 @@ def _load_fmi3(info: FMUInfo, interface: FMUInterface, binary: Path, unzip_dir: 
               "early_return_allowed": not model_exchange and bool(
                   cosimulation.canReturnEarlyAfterIntermediateUpdate
                   or cosimulation.mightReturnEarlyFromDoStep)}
+    moving = [] if model_exchange else list(interface.intermediate_inputs)
+    if moving:  # inputs the engine moves inside a step through intermediate update
+        fields.update({"intermediate_vr": ffi.new("unsigned int[]", moving),
+                       "n_intermediate": len(moving)})
     if any(row.element is not None for row in rows):  # array elements: where each lies
         elements = [row.element or ArrayElement(row.value_reference, 0, 0, 0.0)
                     for row in rows]
