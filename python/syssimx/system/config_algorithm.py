@@ -6,25 +6,12 @@ or a mapping of the same form. A coupling's `step_control` is a mapping of StepC
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from typing import Any
 
-from .algorithms import (
-    Algorithm,
-    GaussSeidelAlgorithm,
-    HybridAlgorithm,
-    IJCSAAlgorithm,
-    JacobiAlgorithm,
-    StepControl,
-)
+from .algorithm_table import ALGORITHM_NAMES, algorithm_class
+from .algorithms import Algorithm, HybridAlgorithm, StepControl
 from .config_source import Source
 
-ALGORITHMS: dict[str, Callable[..., Algorithm]] = {
-    "jacobi": JacobiAlgorithm,
-    "gauss_seidel": GaussSeidelAlgorithm,
-    "hybrid": HybridAlgorithm,
-    "ijcsa": IJCSAAlgorithm,
-}
 COUPLING_KEYS = ("coupling", "gauss_seidel_algorithm")
 
 
@@ -34,8 +21,8 @@ def build_algorithm(source: Source, entry: Any, label: str = "algorithm") -> Alg
     if not isinstance(entry, dict):
         raise source.error(label, f"must be a mapping with a 'type', got {entry!r}", entry)
     kind = entry.get("type")
-    if kind not in ALGORITHMS:
-        raise source.error(label, f"unknown type {kind!r}; types: {sorted(ALGORITHMS)}", entry)
+    if kind not in ALGORITHM_NAMES:
+        raise source.error(label, f"unknown type {kind!r}; types: {sorted(ALGORITHM_NAMES)}", entry)
     options = {k: v for k, v in entry.items() if k != "type"}
     if kind == "hybrid":
         for key in COUPLING_KEYS:
@@ -47,7 +34,7 @@ def build_algorithm(source: Source, entry: Any, label: str = "algorithm") -> Alg
     try:
         if isinstance(options.get("step_control"), dict):
             options["step_control"] = StepControl(**options["step_control"])
-        algorithm = ALGORITHMS[kind](**options)
+        algorithm = algorithm_class(kind)(**options)
         algorithm.validate()
     except (TypeError, ValueError) as exc:
         raise source.error(label, f"invalid options for {kind!r}: {exc}", entry) from exc
