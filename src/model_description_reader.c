@@ -225,7 +225,7 @@ size_t ssx_md_join(const ssx_md *md, const uint32_t *offsets, size_t n, char *ou
     for (size_t i = 0; i < n; ++i) {
         const char *text = md->strings + offsets[i];
         size_t length = strlen(text) + (i + 1 < n); /* the separator */
-        if (size + length <= out_size) {
+        if (length > 0 && size + length <= out_size) { /* out may be NULL when it sizes */
             memcpy(out + size, text, length); /* the NUL of the text separates it */
         }
         size += length;
@@ -460,6 +460,9 @@ static bool read_end_tag(reader *r)
         return fail_xml(r, r->line, "expected '>' after '</%.*s'", shown(tag), tag.at);
     }
     ++r->at;
+    if (r->depth == 0) { /* the root's place: nothing is open to close */
+        return fail_xml(r, line, "end tag </%.*s> without a start tag", shown(tag), tag.at);
+    }
     open_element top = r->open[r->depth - 1];
     if (tag.length != top.name.length || memcmp(tag.at, top.name.at, tag.length) != 0) {
         return fail_xml(r, line, "end tag </%.*s> does not match <%.*s> of line %zu",

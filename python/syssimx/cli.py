@@ -36,6 +36,7 @@ from .components.model_description import INTERFACES
 from .core.literal import literal
 from .core.port import PortType
 from .graph.analysis import feedthrough_from_model_description
+from .system.component_classes import add_allow_module_option
 from .system.csv_export import write_wide
 
 if TYPE_CHECKING:
@@ -155,6 +156,7 @@ def _parser() -> argparse.ArgumentParser:
                           "else 1)")
     run.add_argument("--quiet", action="store_true",
                      help="no progress bar (there is none either when not on a terminal)")
+    add_allow_module_option(run)
     run.set_defaults(run=_run_config)
 
     describe = commands.add_parser("describe", help="print the structure of a system "
@@ -163,6 +165,7 @@ def _parser() -> argparse.ArgumentParser:
                           "(.ssp archive or .ssd file)")
     describe.add_argument("--initialize", action="store_true",
                           help="initialize the system first (at run.t0, else 0)")
+    add_allow_module_option(describe)
     describe.set_defaults(run=_describe_config)
 
     sweep = commands.add_parser("sweep", help="run a system once per parameter set, in "
@@ -196,6 +199,7 @@ def _parser() -> argparse.ArgumentParser:
                             "sample) or .nc (the xarray dataset)")
     sweep.add_argument("--quiet", action="store_true", dest="no_progress",
                        help="no progress bar")
+    add_allow_module_option(sweep)
     sweep.set_defaults(run=_sweep)
     return parser
 
@@ -398,11 +402,12 @@ def _run_config(args: argparse.Namespace, out: TextIO) -> None:
         with _working_directory_importable():
             if args.algorithm is None and args.threads is None:
                 result = run_from_config(args.config, t0=args.t0, tf=args.tf, dt=args.dt,
-                                         progress=options.get("progress"))
+                                         progress=options.get("progress"),
+                                         allowed_modules=args.allowed_modules)
             else:
                 settings = run_settings(Source(Path(args.config)), read_file(args.config),
                                         {"t0": args.t0, "tf": args.tf, "dt": args.dt})
-                system = build_system(args.config)
+                system = build_system(args.config, allowed_modules=args.allowed_modules)
                 _choose_algorithm(system, args)
                 system.initialize(settings["t0"])
                 result = system.run(settings["t0"], settings["tf"], settings["dt"], **options)
@@ -429,7 +434,7 @@ def _describe_config(args: argparse.Namespace, out: TextIO) -> None:
         out.write(imported.system.describe() + "\n")
         return
     with _working_directory_importable():
-        system = build_system(args.config)
+        system = build_system(args.config, allowed_modules=args.allowed_modules)
     if args.initialize:
         run = load_config(args.config).get("run") or {}
         system.initialize(float(run.get("t0", 0.0)) if isinstance(run, dict) else 0.0)

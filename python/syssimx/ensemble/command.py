@@ -12,7 +12,7 @@ from typing import Any, TextIO
 from ..errors import ConfigurationError, SimulationError
 from .api import sweep
 from .members import Scalar, parse_values
-from .system_source import SYSTEM_FILE_SUFFIXES, ShippedFunction
+from .system_source import SYSTEM_FILE_SUFFIXES, ShippedFunction, system_source
 
 
 def parameter_values(text: str) -> tuple[str, list[Scalar]]:
@@ -28,7 +28,10 @@ def parameter_values(text: str) -> tuple[str, list[Scalar]]:
 
 def run_sweep(args: argparse.Namespace, out: TextIO) -> None:
     """Run the sweep the arguments describe, write the results, list the failed members."""
-    result = sweep(resolve_system(args.system), dict(args.parameters), mode=args.mode,
+    system = resolve_system(args.system)
+    if isinstance(system, str):  # a system file: its classes come from the allowed modules
+        system = system_source(system, tuple(args.allowed_modules or ()))
+    result = sweep(system, dict(args.parameters), mode=args.mode,
                    t0=args.start_time, tf=args.stop_time, dt=args.step_size,
                    scheduler=args.scheduler, workers=args.workers,
                    member_timeout=args.member_timeout, progress=not args.no_progress)

@@ -15,7 +15,7 @@ from .algorithms import (
     IJCSAAlgorithm,
     JacobiAlgorithm,
 )
-from .config_source import Source
+from .config_source import Source, quoted
 
 ALGORITHMS: dict[str, Callable[..., Algorithm]] = {
     "jacobi": JacobiAlgorithm,
@@ -30,7 +30,7 @@ def build_algorithm(source: Source, entry: Any, label: str = "algorithm") -> Alg
     if isinstance(entry, str):
         entry = {"type": entry}
     if not isinstance(entry, dict):
-        raise source.error(label, f"must be a mapping with a 'type', got {entry!r}", entry)
+        raise source.error(label, f"must be a mapping with a 'type', got {quoted(entry)}", entry)
     kind = entry.get("type")
     if kind not in ALGORITHMS:
         raise source.error(label, f"unknown type {kind!r}; types: {sorted(ALGORITHMS)}", entry)
