@@ -32,10 +32,13 @@ from typing import TYPE_CHECKING, Any, TextIO
 import numpy as np
 
 from . import __version__, fmus
+from .atomic_file import write_or_fallback
 from .components.model_description import INTERFACES
 from .core.literal import literal
 from .core.port import PortType
 from .graph.analysis import feedthrough_from_model_description
+from .output_check import check_command_outputs
+from .partial_results import run_keeping_partial
 from .system.component_classes import add_allow_module_option
 from .system.csv_export import write_wide
 
@@ -74,7 +77,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as exit_request:  # argparse has printed usage or help already
         return int(exit_request.code or 0)
     try:
+        check_command_outputs(args)  # before anything runs: results are never computed in vain
         args.run(args, sys.stdout)
+    except KeyboardInterrupt as stop:  # what was finished has been written by the command
+        print(f"syssimx: interrupted{': ' + str(stop) if str(stop) else ''}", file=sys.stderr)
+        return 130
     except Exception as error:  # the command line shows messages, never tracebacks
         print(f"syssimx: error: {_describe(error, args)}", file=sys.stderr)
         return 1
@@ -361,14 +368,16 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
                                    md.coSimulation.canHandleVariableCommunicationStepSize):
             events = source.event_times().tolist()
     system.initialize(t0)
-    result = _run(system, _communication_points(t0, tf, dt, events), dt) if events \
-        else system.run(t0, tf, dt)
+    result, interrupted = run_keeping_partial(
+        lambda: _run(system, _communication_points(t0, tf, dt, events), dt) if events
+        else system.run(t0, tf, dt))
 
     t, values = result[component.name]
     columns = {name: values[name] for name, spec in component.output_specs.items()
                if name in values and str(getattr(spec.type, "value", spec.type)) != "event"}
     if args.output is not None:
-        write_wide(args.output, t, columns, result.units[component.name])
+        write_or_fallback(args.output, lambda path: write_wide(path, t, columns,
+                                                               result.units[component.name]))
         out.write(f"wrote {len(t)} samples of {len(columns)} outputs to {args.output}\n")
     if args.plot is not None:
         from .viz.plot import plot_result
@@ -387,10 +396,28 @@ def _simulate(args: argparse.Namespace, out: TextIO) -> None:
     if args.output is None:
         for name, series in columns.items():
             out.write(f"{name} = {series[-1]:.12g} at t = {t[-1]:.12g}\n")
+    if interrupted is not None:
+        raise interrupted
 
 
 # ---------------------------------------------------------------------------------- run
 def _run_config(args: argparse.Namespace, out: TextIO) -> None:
+    result, interrupted = run_keeping_partial(lambda: _config_result(args))
+    verb = "Completed" if interrupted is None else "Interrupted (what was finished)"
+    out.write(f"{verb} '{result.system_name}': t in [{result.t0}, {result.tf}] s, "
+              f"dt = {result.dt} s, algorithm = {result.algorithm}, "
+              f"wall time = {result.wall_time:.3f} s\n")
+    termination = result.termination
+    if termination is not None:  # a component asked to stop: the end of the run, not a failure
+        out.write(f"{termination}\n")
+    if args.output is not None:
+        write_or_fallback(args.output, result.to_csv)
+        out.write(f"Results written to {args.output}\n")
+    if interrupted is not None:
+        raise interrupted
+
+
+def _config_result(args: argparse.Namespace) -> Any:
     bar = not args.quiet and sys.stdout.isatty() and sys.stderr.isatty()
     options = {"progress": True} if bar else {}
     if _is_ssp(args.config):
@@ -411,14 +438,7 @@ def _run_config(args: argparse.Namespace, out: TextIO) -> None:
                 _choose_algorithm(system, args)
                 system.initialize(settings["t0"])
                 result = system.run(settings["t0"], settings["tf"], settings["dt"], **options)
-    out.write(f"Completed '{result.system_name}': t in [{result.t0}, {result.tf}] s, "
-              f"dt = {result.dt} s, algorithm = {result.algorithm}, "
-              f"wall time = {result.wall_time:.3f} s\n")
-    termination = result.termination
-    if termination is not None:  # a component asked to stop: the end of the run, not a failure
-        out.write(f"{termination}\n")
-    if args.output is not None:
-        out.write(f"Results written to {result.to_csv(args.output)}\n")
+    return result
 
 
 # ---------------------------------------------------------------------------------- describe
