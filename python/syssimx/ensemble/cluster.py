@@ -33,6 +33,12 @@ EMBEDDED_SCHEDULER_CONFIG = {
 }
 
 
+# Every socket of the embedded cluster (scheduler, workers, nannies, the dashboard) listens on
+# loopback only: the dashboard shows the workers, their memory and local folders to anyone who
+# reaches it. A cluster of the user's own (client=, scheduler=) is theirs to expose.
+LOOPBACK = "127.0.0.1"
+
+
 def cores() -> int:
     """The cores this process may run on."""
     return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") \
@@ -71,6 +77,7 @@ def ensemble_client(client: Any = None, scheduler: str | None = None,
     # (how a worker died) that a crashed member's reason is read from.
     with dask.config.set(EMBEDDED_SCHEDULER_CONFIG), \
             LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
-                         dashboard_address=":0", silence_logs=logging.CRITICAL) as cluster, \
+                         host=LOOPBACK, dashboard_address=f"{LOOPBACK}:0",
+                         silence_logs=logging.CRITICAL) as cluster, \
             Client(cluster) as local:
         yield local
