@@ -154,3 +154,25 @@ def test_messages_quote_a_bounded_part_of_a_value(tmp_path: Path):
         build_system(path)
     assert "cannot construct syssimx:FMUComponent" in str(caught.value)
     assert len(str(caught.value)) < 2000
+
+
+def test_an_ssp_entity_in_element_content_is_an_ssp_error(tmp_path: Path):
+    """Before: lxml's XMLSchemaValidateError ("Internal error in XML Schema validation")."""
+    from syssimx.ssp import SSPError, read
+
+    secret = tmp_path / "secret.txt"
+    secret.write_text("not for a system file\n")
+    path = tmp_path / "SystemStructure.ssd"
+    path.write_text(
+        '<?xml version="1.0" encoding="UTF-8"?>\n'
+        f'<!DOCTYPE ssd:SystemStructureDescription [<!ENTITY e SYSTEM "{secret.as_uri()}">]>\n'
+        '<ssd:SystemStructureDescription '
+        'xmlns:ssd="http://ssp-standard.org/SSP1/SystemStructureDescription" '
+        'xmlns:ssc="http://ssp-standard.org/SSP1/SystemStructureCommon" version="1.0" '
+        'name="x"><ssd:System name="root"><ssd:Annotations><ssc:Annotation type="x">&e;'
+        '</ssc:Annotation></ssd:Annotations></ssd:System></ssd:SystemStructureDescription>\n')
+    with pytest.raises(SSPError) as caught:
+        read(path)
+    assert str(path) in str(caught.value) or path.name in str(caught.value)
+    assert "cannot be checked against the SSP 1.0 schema" in str(caught.value)
+    assert "not for a system file" not in str(caught.value)
