@@ -244,3 +244,28 @@ def test_a_killed_process_s_folder_goes_at_the_next_start(tmp_path: Path):
     assert not folder.exists() and done.stdout.strip() != str(folder)
     assert list(tmp_path.iterdir()) == []
 
+
+
+def extracting_then_terminated() -> System:
+    """A member whose worker ends by SIGTERM after extracting its FMU: nothing of Python's
+    exit (atexit) runs in the worker."""
+    system = System("terminated")
+    system.add_component(FMUComponent("P", fmus.path("pendulum_euler")))
+    os.kill(os.getpid(), signal.SIGTERM)
+    time.sleep(30)
+    return system
+
+
+def test_a_sweep_removes_what_its_killed_workers_extracted(tmp_path: Path,
+                                                           monkeypatch: pytest.MonkeyPatch):
+    pytest.importorskip("distributed")
+    import tempfile
+
+    from syssimx.ensemble import sweep
+
+    monkeypatch.setenv("TMPDIR", str(tmp_path))  # the workers' temporary folder
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))  # and this process's
+    result = sweep(extracting_then_terminated, {"P.theta0": [0.1]}, t0=0.0, tf=0.1, dt=0.05,
+                   workers=1, progress=False)
+    assert not result.members[0].ok
+    assert [p.name for p in tmp_path.iterdir() if p.name.startswith("syssimx_")] == []
