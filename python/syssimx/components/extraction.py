@@ -121,14 +121,20 @@ def _remove(directory: Path) -> None:
     _owner_file(directory).unlink(missing_ok=True)
 
 
-def _start_time(pid: int) -> str:
-    """The process's start time in clock ticks since boot ("" when unknown): with its id, it
-    tells the owner from a later process that got the same id."""
+def _process_stat(pid: int) -> list[str]:
+    """The fields of /proc/<pid>/stat after the command's name ([] when unknown): [0] is the
+    state, [19] the start time in clock ticks since boot."""
     try:
-        stat = Path(f"/proc/{pid}/stat").read_text()
-    except OSError:
-        return ""
-    return stat.rsplit(")", 1)[1].split()[19]
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except (OSError, IndexError):
+        return []
+
+
+def _start_time(pid: int) -> str:
+    """The process's start time ("" when unknown): with its id, it tells the owner from a later
+    process that got the same id."""
+    fields = _process_stat(pid)
+    return fields[19] if len(fields) > 19 else ""
 
 
 def _owner_alive(owner: Path) -> bool:
@@ -143,7 +149,11 @@ def _owner_alive(owner: Path) -> bool:
         return False
     except PermissionError:
         return True  # another user's process: alive
-    return not started or _start_time(pid) in ("", started[0])
+    fields = _process_stat(pid)
+    if fields and fields[0] in ("Z", "X"):
+        return False  # ended, not yet reaped by its parent
+    now_started = fields[19] if len(fields) > 19 else ""
+    return not started or now_started in ("", started[0])
 
 
 def remove_stale_folders(temporary: Path) -> list[Path]:
