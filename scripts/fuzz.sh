@@ -14,7 +14,9 @@ mkdir -p "$out/artifacts"
 rm -rf "$out/corpus" && mkdir -p "$out/corpus"
 
 clang -g -O1 -std=c11 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-  -Isrc tests/fuzz/model_description_fuzz.c src/model_description_reader.c src/array.c \
+  -Isrc/include -Isrc/fmu/description -Isrc/support tests/fuzz/model_description_fuzz.c \
+  src/fmu/description/model_description.c src/fmu/description/string_store.c \
+  src/fmu/description/xml_tokenizer.c src/support/array.c \
   -o "$out/model_description_fuzz"
 
 # seeds: every modelDescription.xml in the FMUs we build and in the Reference FMUs
