@@ -16,15 +16,15 @@ from .errors import ConfigurationError
 _WRITERS: dict[str, tuple[tuple[str, ...], str]] = {
     ".parquet": (("pyarrow", "fastparquet"), "pyarrow or fastparquet"),
     ".nc": (("netCDF4", "scipy"), "netCDF4 or scipy"),
-    ".png": (("matplotlib",), "matplotlib"),
 }
 
 
 def check_output(path: str | Path, what: str = "output",
-                 suffixes: Iterable[str] | None = None) -> Path:
+                 suffixes: Iterable[str] | None = None, writer: str | None = None) -> Path:
     """`path`, after checking that a file can be written there: its folder exists and is
     writable, it is not a folder, its suffix is one of `suffixes` (when given) and the writer
-    of its format is installed. ConfigurationError naming the path and what is wrong."""
+    of its format (by its suffix, or the module `writer`) is installed. ConfigurationError
+    naming the path and what is wrong."""
     target = Path(path)
     suffix = target.suffix.lower()
     if suffixes is not None:
@@ -41,10 +41,11 @@ def check_output(path: str | Path, what: str = "output",
         raise ConfigurationError(f"{what} {target} is a folder, not a file")
     if target.exists() and not os.access(target, os.W_OK):
         raise ConfigurationError(f"{what} {target} exists and is not writable")
-    modules, install = _WRITERS.get(suffix, ((), ""))
+    modules, install = ((writer,), writer) if writer is not None \
+        else _WRITERS.get(suffix, ((), ""))
     if modules and not any(importlib.util.find_spec(m) is not None for m in modules):
-        raise ConfigurationError(f"{what} {target}: writing {suffix} needs {install}, which is "
-                                 "not installed")
+        raise ConfigurationError(f"{what} {target}: writing {suffix or 'it'} needs {install}, "
+                                 "which is not installed")
     return target
 
 
@@ -59,5 +60,5 @@ def check_command_outputs(args: Any) -> None:
             suffixes = WRITERS
         check_output(output, "output", suffixes)
     plot = getattr(args, "plot", None)
-    if plot is not None:
-        check_output(plot, "plot", (".png",))
+    if plot is not None:  # a PNG whatever its name
+        check_output(plot, "plot", writer="matplotlib")
