@@ -196,22 +196,26 @@ def test_a_signal_removes_the_extraction_folders(tmp_path: Path, signum: int, is
 
 def test_stale_extraction_folders_are_removed_at_start_up(tmp_path: Path):
     """Folders whose owner ended without removing them (SIGKILL) go at the next extraction;
-    a live owner's stay, and so does a young folder without an owner file (being made)."""
+    a live owner's stay, and so do a young folder without an owner file (being made) and one
+    owned in another machine or container (its process ids are not ours to judge)."""
     ended = subprocess.Popen(["true"])
     ended.wait()
     stale, live = tmp_path / "syssimx_stale", tmp_path / "syssimx_live"
     old_orphan, young_orphan = tmp_path / "syssimx_old", tmp_path / "syssimx_young"
-    for folder in (stale, live, old_orphan, young_orphan):
+    elsewhere = tmp_path / "syssimx_elsewhere"
+    for folder in (stale, live, old_orphan, young_orphan, elsewhere):
         folder.mkdir()
         (folder / "binary.so").write_bytes(b"x")
     (tmp_path / "syssimx_stale.owner").write_text(f"{ended.pid} 1\n")
     (tmp_path / "syssimx_live.owner").write_text(f"{os.getpid()}\n")
+    (tmp_path / "syssimx_elsewhere.owner").write_text(f"{ended.pid} 1 another-host/pid:[1]\n")
     two_days_ago = time.time() - 2 * ORPHAN_AGE
     os.utime(old_orphan, (two_days_ago, two_days_ago))
     removed = remove_stale_folders(tmp_path)
     assert sorted(removed) == [old_orphan, stale]
     assert sorted(p.name for p in tmp_path.iterdir()) == [
-        "syssimx_live", "syssimx_live.owner", "syssimx_young"]
+        "syssimx_elsewhere", "syssimx_elsewhere.owner", "syssimx_live", "syssimx_live.owner",
+        "syssimx_young"]
 
 
 def test_a_killed_process_s_folder_goes_at_the_next_start(tmp_path: Path):

@@ -18,6 +18,7 @@ import atexit
 import os
 import shutil
 import signal
+import socket
 import tempfile
 import threading
 import time
@@ -97,7 +98,7 @@ class ExtractionCache:
             _remove_on_signals(self)
         directory = Path(tempfile.mkdtemp(prefix=PREFIX))
         try:
-            _owner_file(directory).write_text(f"{os.getpid()} {_start_time(os.getpid())}\n")
+            _owner_file(directory).write_text(_owner_line())
             extract(archive, directory)  # removes the folder if it fails
         except BaseException:
             _remove(directory)
@@ -137,12 +138,29 @@ def _start_time(pid: int) -> str:
     return fields[19] if len(fields) > 19 else ""
 
 
+def _here() -> str:
+    """This machine and PID namespace: a process id means something only there (a container
+    sharing the temporary folder counts its processes apart)."""
+    try:
+        namespace = os.readlink("/proc/self/ns/pid")
+    except OSError:
+        namespace = "?"
+    return f"{socket.gethostname()}/{namespace}".replace(" ", "_")
+
+
+def _owner_line() -> str:
+    return f"{os.getpid()} {_start_time(os.getpid()) or '?'} {_here()}\n"
+
+
 def _owner_alive(owner: Path) -> bool:
     try:
-        pid_text, *started = owner.read_text().split()
+        pid_text, *rest = owner.read_text().split()
         pid = int(pid_text)
     except (OSError, ValueError):
         return True  # being written, or not ours to judge
+    started = [rest[0]] if rest and rest[0] != "?" else []
+    if len(rest) > 1 and rest[1] != _here():
+        return True  # another machine's or container's process: not ours to judge
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
