@@ -16,7 +16,7 @@ from syssimx import FMUComponent, fmus
 from syssimx.cli import main
 from syssimx.components.description_fmi3 import MAX_ARRAY_ELEMENTS
 from syssimx.components.description_reader import MAX_EVENT_INDICATORS
-from syssimx.errors import FMUFileError
+from syssimx.errors import ConfigurationError, FMUFileError
 
 GAIN3 = Path(fmus.path("gain_fmi3"))
 GAIN2 = Path(fmus.path("gain"))
@@ -170,17 +170,26 @@ def mutants(text: bytes, count: int, seed: int) -> list[bytes]:
     return out
 
 
-def test_mutated_fmi3_descriptions_raise_only_fmu_file_errors(tmp_path: Path):
+@pytest.mark.parametrize(("stem", "interface"), [("gain_fmi3", "auto"),
+                                                 ("bouncing_ball_cvode_fmi3", "model-exchange")])
+def test_mutated_fmi3_descriptions_raise_only_fmu_file_errors(tmp_path: Path, stem: str,
+                                                              interface: str):
     """The FMI 3.0 description path is Python (FMPy's reader over lxml, then our checks): a
     bounded mutation run where each input is read or refused with FMUFileError, nothing else
-    (the C reader of FMI 2.0 is fuzzed with libFuzzer: scripts/fuzz.sh)."""
-    text = entries(GAIN3)["modelDescription.xml"]
+    (the C reader of FMI 2.0 is fuzzed with libFuzzer: scripts/fuzz.sh). The seeds: a static
+    gain, and a ball with states and an event indicator read as Model Exchange (a mutant that
+    lost its ModelExchange element is a ConfigurationError naming the file and interface)."""
+    fmu = Path(fmus.path(stem))
+    text = entries(fmu)["modelDescription.xml"]
     refusals = 0
     for k, data in enumerate(mutants(text, 300, seed=20)):
-        path = with_description(tmp_path, GAIN3, data, name=f"mutant{k}")
+        path = with_description(tmp_path, fmu, data, name=f"mutant{k}")
         try:
-            FMUComponent("G", str(path))
+            FMUComponent("G", str(path), interface=interface)
         except FMUFileError:
+            refusals += 1
+        except ConfigurationError as exc:  # the interface asked for is gone: named as such
+            assert path.name in str(exc) and "interface" in str(exc), exc
             refusals += 1
         except Exception as exc:  # the point: nothing else escapes
             pytest.fail(f"mutant {k} raised {type(exc).__name__}: {exc}\n{data.decode('latin-1')}")
