@@ -234,3 +234,26 @@ def test_ctrl_c_in_a_sweep_keeps_the_finished_members():
     assert members[2].error_type == "KeyboardInterrupt"
     assert "interrupted" in members[2].error
 
+
+
+def test_an_ssp_archive_that_fails_while_written_leaves_the_old_file(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    """The archive is written under a temporary name: a failure while the FMUs are copied in
+    (a full disk) leaves the previous archive, and no part."""
+    import zipfile
+
+    from syssimx.ssp import write_ssp
+
+    system = System("s")
+    system.add_component(FMUComponent("P", fmus.path("pendulum_euler")))
+    target = tmp_path / "s.ssp"
+    target.write_bytes(b"the previous archive")
+
+    def full_disk(self: zipfile.ZipFile, *args: object, **kwargs: object) -> None:
+        raise OSError("No space left on device")
+
+    monkeypatch.setattr(zipfile.ZipFile, "write", full_disk)
+    with pytest.raises(OSError, match="No space left"):
+        write_ssp(system, target)
+    assert target.read_bytes() == b"the previous archive"
+    assert [p.name for p in tmp_path.iterdir()] == ["s.ssp"]
