@@ -253,10 +253,13 @@ static int collect_arrays(fmi3_context *ctx, const ssx_fmi3_variables *variables
     return 0;
 }
 
-int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *error,
-                     size_t error_size)
+/* The load-time facts, into the zeroed context: the type of every value reference the engine
+ * gets or sets (copied) and how the FMU is instantiated. Fails when out of memory or when a
+ * type is not an ssx_fmi3_type. */
+static int prepare(void *context, const ssx_fmu_load_spec *spec, char *error, size_t error_size)
 {
     fmi3_context *ctx = context;
+    const ssx_fmi3_variables *variables = spec->fmi3_variables;
     size_t n = variables != NULL ? variables->n : 0;
     size_t pool = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -1280,7 +1283,7 @@ static int get_number_of_event_indicators(const ssx_fmu_function *fn, void *inst
     .directional_derivative = directional_derivative, .get_string = get_string,               \
     .set_string = set_string, .get_binary = get_binary, .set_binary = set_binary,             \
     .enter_event_mode = enter_event_mode, .new_discrete_states = new_discrete_states,         \
-    .variable_name = variable_name, .release_context = release_context
+    .variable_name = variable_name, .prepare = prepare, .release_context = release_context
 
 const ssx_fmu_backend ssx_fmi3_model_exchange_backend = {
     FMI3_ADAPTERS,

@@ -32,9 +32,9 @@ from typing import TYPE_CHECKING, Any, TextIO
 import numpy as np
 
 from . import __version__, fmus
-from .components.model_description import INTERFACES
 from .core.literal import literal
 from .core.port import PortType
+from .fmu.info import INTERFACES
 from .graph.analysis import feedthrough_from_model_description
 from .system.csv_export import write_wide
 
@@ -237,7 +237,7 @@ def _read_description(path: Path) -> Any:
     except Exception as error:  # fmpy raises many kinds for a broken archive
         raise CommandError(f"{path} is not a readable FMU: {error}") from error
     if md.fmiVersion.startswith("3.") and md.coSimulation is not None:
-        from .components.description_fmi3 import provides_directional_derivatives
+        from .fmu.description_fmi3 import provides_directional_derivatives
 
         md.coSimulation.providesDirectionalDerivative = provides_directional_derivatives(path)
     return md
@@ -325,7 +325,7 @@ def _sweep(args: argparse.Namespace, out: TextIO) -> None:
 # ---------------------------------------------------------------------------------- simulate
 def _simulate(args: argparse.Namespace, out: TextIO) -> None:
     from . import FMUComponent, JacobiAlgorithm, System
-    from .components.model_description import read_fmu
+    from .fmu.info import read_fmu
 
     path = _resolve_fmu(args.fmu)
     md = read_fmu(path).description  # what the component reads too: read once, by syssimx

@@ -15,8 +15,8 @@ import pint
 import pytest
 from fmpy import read_model_description
 from syssimx import Connection, FMUComponent, System, fmus, units
-from syssimx.components.description_reader import read_description
 from syssimx.errors import ConfigurationError, FMUFileError
+from syssimx.fmu.description import read_description
 
 
 def reference_fmus() -> list[Path]:
@@ -34,7 +34,7 @@ INTERFACE_FIELDS = ("modelIdentifier", "canGetAndSetFMUstate", "canSerializeFMUs
 
 def both(path: Path):
     with zipfile.ZipFile(path) as archive, archive.open("modelDescription.xml") as stream:
-        ours = read_description(stream, path)
+        ours = read_description(stream, path).description
     return ours, read_model_description(str(path), validate=False)
 
 
@@ -224,8 +224,8 @@ def test_a_large_description_reads_as_fmpy_reads_it(tmp_path: Path):
 
 
 def test_only_ports_become_objects_the_rest_is_looked_up_by_name(tmp_path: Path):
-    from syssimx.components.model_description import read_fmu
-    from syssimx.components.variable_table import ScalarVariable
+    from syssimx.fmu.info import read_fmu
+    from syssimx.fmu.variable_table import ScalarVariable
 
     count = 20000
     path = gain_with_description(tmp_path, large_description(count))
@@ -267,7 +267,7 @@ MINIMAL = """<?xml version="1.0" encoding="UTF-8"?>
 
 def read_text(text: str | bytes):
     data = text.encode() if isinstance(text, str) else text
-    return read_description(io.BytesIO(data), "m.fmu")
+    return read_description(io.BytesIO(data), "m.fmu").description
 
 
 @pytest.mark.parametrize(("old", "new", "message"), [

@@ -15,8 +15,8 @@ from pathlib import Path
 
 import pytest
 from syssimx import FMUComponent, fmus
-from syssimx.components.archive import SIZE_LIMIT_VARIABLE
 from syssimx.errors import ConfigurationError, FMUFileError
+from syssimx.fmu.archive import SIZE_LIMIT_VARIABLE
 
 GAIN = Path(fmus.path("gain"))
 BINARY = "binaries/linux64/gain.so"
