@@ -293,9 +293,8 @@ def read_text(text: str | bytes):
     ("</ModelVariables>", "</ModelVariable>", "not well-formed XML: line 9: end tag "
                                               "</ModelVariable> does not match <ModelVariables> "
                                               "of line 6"),
-    ('encoding="UTF-8"', 'encoding="ISO-8859-1"', "not well-formed XML: line 1: encoding "
-                                                  "ISO-8859-1 is not supported (FMI 2.0 "
-                                                  "requires UTF-8)"),
+    ('encoding="UTF-8"', 'encoding="x-unknown"', "its XML declaration names the encoding "
+                                                 "'x-unknown', which Python does not know"),
     ('<fmiModelDescription', '<!DOCTYPE m [<!ENTITY a "aaaaaaaaaa">]>\n<fmiModelDescription',
      "not well-formed XML: line 2: a DOCTYPE is not accepted in a modelDescription"),
     ('modelName="m"', 'modelName="&a;"', "not well-formed XML: line 2: '&a...' is neither a "
@@ -315,6 +314,12 @@ def test_bytes_that_are_not_utf8_are_refused():
                                            r"line 2: invalid UTF-8 \(a sequence starting with "
                                            r"byte 0xE9\)"):
         read_text(MINIMAL.encode().replace(b'modelName="m"', b'modelName="\xe9"'))
+
+
+def test_a_declared_encoding_is_read():
+    text = MINIMAL.replace('encoding="UTF-8"', 'encoding="ISO-8859-1"').replace(
+        'modelName="m"', 'modelName="Gefäß"')
+    assert read_text(text.encode("latin-1")).modelName == "Gefäß"
 
 
 @pytest.mark.parametrize("start", ["INF", "-inf", "NaN", " 1e5 ", ".5", "5.", "+1E-3"])

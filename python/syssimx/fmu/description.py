@@ -1,6 +1,7 @@
 """modelDescription.xml, read once: the one place the FMI version is decided.
 
-The engine's reader (description_fmi2.py) reads the text; it stops at the root element of a
+The engine's reader (description_fmi2.py) reads the text, in UTF-8 whatever encoding the file
+declares (encoding.py); it stops at the root element of a
 version it does not read, and tells the fmiVersion either way. That version picks the FMU's
 standard (standards.py), which makes the description.
 """
@@ -12,6 +13,7 @@ from typing import IO, TYPE_CHECKING, NamedTuple
 
 from ..errors import FMUFileError
 from .description_fmi2 import declared_version, engine_description, problem_message
+from .encoding import as_utf8
 from .standards import Standard, standard_of, supported
 
 if TYPE_CHECKING:
@@ -33,7 +35,7 @@ def read_description(stream: IO[bytes], where: str | Path) -> Described:
     text = bytearray()
     while chunk := stream.read(_CHUNK):
         text += chunk
-    md = engine_description(text, where)
+    md = engine_description(as_utf8(text, where), where)
     del text  # the engine copied what it keeps
     version = declared_version(md)
     standard = standard_of(version)
