@@ -134,6 +134,7 @@ static void unload(void *library, ssx_remote *remote)
 static const ssx_fmu_backend *backend_of(const ssx_fmu_load_spec *spec)
 {
     static const ssx_fmu_backend *const backends[][2] = {
+        [SSX_FMI1] = {&ssx_fmi1_backend, &ssx_fmi1_model_exchange_backend},
         [SSX_FMI2] = {&ssx_fmi2_backend, &ssx_fmi2_model_exchange_backend},
         [SSX_FMI3] = {&ssx_fmi3_backend, &ssx_fmi3_model_exchange_backend},
     };
@@ -640,8 +641,7 @@ int ssx_fmu_experiment_tolerance(const ssx_fmu *fmu, double *tolerance)
 
 int ssx_fmu_is_model_exchange(const ssx_fmu *fmu)
 {
-    return fmu != NULL && (fmu->backend == &ssx_fmi2_model_exchange_backend ||
-                           fmu->backend == &ssx_fmi3_model_exchange_backend);
+    return fmu != NULL && fmu->backend->interface == SSX_MODEL_EXCHANGE;
 }
 
 /* ------------------------------------------------------------------ states */

@@ -1288,6 +1288,7 @@ static int get_number_of_event_indicators(const ssx_fmu_function *fn, void *inst
 const ssx_fmu_backend ssx_fmi3_model_exchange_backend = {
     FMI3_ADAPTERS,
     .standard = "FMI 3.0 Model Exchange",
+    .interface = SSX_MODEL_EXCHANGE,
     .functions = fmi3_model_exchange_functions,
     .n_functions = sizeof fmi3_model_exchange_functions / sizeof fmi3_model_exchange_functions[0],
     .instantiate = instantiate_model_exchange,
@@ -1307,6 +1308,7 @@ const ssx_fmu_backend ssx_fmi3_model_exchange_backend = {
 const ssx_fmu_backend ssx_fmi3_backend = {
     FMI3_ADAPTERS,
     .standard = "FMI 3.0 Co-Simulation",
+    .interface = SSX_CO_SIMULATION,
     .functions = fmi3_functions,
     .n_functions = sizeof fmi3_functions / sizeof fmi3_functions[0],
     .instantiate = instantiate,

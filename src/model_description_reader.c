@@ -1,4 +1,5 @@
-/* modelDescription.xml of FMI 2.0 into compact arrays (the contract is in syssimx_engine.h).
+/* modelDescription.xml of FMI 2.0 and FMI 1.0 into compact arrays (the contract is in
+ * syssimx_engine.h). FMI 1.0's variables are told in FMI 2.0's words (see finish_variable).
  *
  * Read top-down: the document (prolog, root element, what follows it), the content loop that
  * checks well-formedness and hands every start and end tag to the model layer, the model
@@ -43,6 +44,7 @@ typedef struct {
     bool open;
     size_t line;
     slice name, value_reference, causality, variability, initial, description;
+    slice alias; /* FMI 1.0 */
     int type; /* SSX_MD_NONE until the type element */
     slice start, unit, declared_type;
 } variable_parts;
@@ -70,6 +72,7 @@ typedef struct {
     size_t attribute_count, attribute_capacity;
     /* the model layer */
     bool fmi_root;
+    bool fmi1; /* the root declares fmiVersion 1.0 */
     slice section, subsection; /* the open elements at depth 2 and 3 */
     variable_parts variable;
     bool in_type, type_has_element;
@@ -164,6 +167,7 @@ static bool end_element(reader *r);
 static bool finish_variable(reader *r);
 static bool finish_type(reader *r);
 static bool read_unknown(reader *r, size_t line);
+static bool push_output(reader *r, uint32_t index);
 static bool keep_attributes(reader *r, slice tag);
 static bool store(reader *r, slice text, uint32_t *offset);
 static bool view(reader *r, slice value, slice *text);
@@ -688,9 +692,10 @@ static bool start_element(reader *r, slice tag, size_t line)
                 if (!view(r, r->attributes[i].value, &version)) {
                     return false;
                 }
-                return is(version, "2.0") ? true
-                                          : fail(r, SSX_MD_NOT_FMI2, line, NULL, version,
-                                                 (slice){0});
+                r->fmi1 = is(version, "1.0");
+                return is(version, "2.0") || r->fmi1
+                           ? true
+                           : fail(r, SSX_MD_NOT_FMI2, line, NULL, version, (slice){0});
             }
         }
         /* before reading variables of another schema */
@@ -720,9 +725,12 @@ static bool start_element(reader *r, slice tag, size_t line)
                     v->initial = value;
                 } else if (is(name, "description")) {
                     v->description = value;
+                } else if (is(name, "alias")) {
+                    v->alias = value;
                 }
             }
-        } else if (is(tag, "SimpleType") && is(r->section, "TypeDefinitions")) {
+        } else if (is(tag, r->fmi1 ? "Type" : "SimpleType") &&
+                   is(r->section, "TypeDefinitions")) {
             r->in_type = true;
             r->type_has_element = false;
             r->type_line = line;
@@ -761,6 +769,9 @@ static bool start_element(reader *r, slice tag, size_t line)
         }
         if (r->in_type) {
             return r->type_has_element ? true : finish_type(r);
+        }
+        if (r->fmi1 && is(tag, "Capabilities") && is(r->section, "Implementation")) {
+            return keep_attributes(r, tag); /* of CoSimulation_StandAlone or _Tool */
         }
         if (is(tag, "Unknown") && is(r->subsection, "Outputs") &&
             is(r->section, "ModelStructure")) {
@@ -813,6 +824,9 @@ static bool finish_type(reader *r)
         return out_of_memory(r);
     }
     slice tag = r->open[r->depth - 1].name;
+    if (r->fmi1 && tag.length > 4 && memcmp(tag.at + tag.length - 4, "Type", 4) == 0) {
+        tag.length -= 4; /* FMI 1.0's RealType is FMI 2.0's Real */
+    }
     slice unit = {0}, quantity = {0};
     for (size_t i = 0; i < r->attribute_count; ++i) {
         slice name = r->attributes[i].name;
@@ -874,6 +888,45 @@ static bool word_attribute(reader *r, slice value, int fallback, int first, int 
             *word = candidate;
         }
     }
+    return true;
+}
+
+/* FMI 1.0's causality (input, output, internal, none) and variability (constant, parameter,
+ * discrete, continuous) in FMI 2.0's words: a parameter is a fixed parameter (FMI 1.0 sets it
+ * before initialization only), internal and none are local. A negated alias is local too: its
+ * value reference reads the value it negates, so it can be no port. An unknown word is
+ * SSX_MD_NONE (the caller refuses the combination). */
+static bool fmi1_words(reader *r, const variable_parts *v, int *causality, int *variability)
+{
+    /* a view lasts until the next one: each is judged at once */
+    slice text = {"internal", 8, true};
+    if (v->causality.at != NULL && !view(r, v->causality, &text)) {
+        return false;
+    }
+    bool input = is(text, "input"), output = is(text, "output");
+    bool known = input || output || is(text, "internal") || is(text, "none");
+    text = (slice){"continuous", 10, true};
+    if (v->variability.at != NULL && !view(r, v->variability, &text)) {
+        return false;
+    }
+    bool parameter = is(text, "parameter");
+    *variability = parameter                      ? SSX_MD_FIXED
+                   : is(text, "constant")         ? SSX_MD_CONSTANT
+                   : is(text, "discrete")         ? SSX_MD_DISCRETE
+                   : is(text, "continuous")       ? SSX_MD_CONTINUOUS
+                                                  : SSX_MD_NONE;
+    text = (slice){0};
+    if (v->alias.at != NULL && !view(r, v->alias, &text)) {
+        return false;
+    }
+    bool negated = is(text, "negatedAlias");
+    *causality = !known                ? SSX_MD_NONE
+                 : negated             ? SSX_MD_LOCAL
+                 : parameter && output ? SSX_MD_LOCAL
+                 : parameter           ? SSX_MD_PARAMETER
+                 : input               ? SSX_MD_INPUT
+                 : output              ? SSX_MD_OUTPUT
+                                       : SSX_MD_LOCAL;
     return true;
 }
 
@@ -939,12 +992,15 @@ static bool finish_variable(reader *r)
     }
 
     int causality, variability, initial;
-    if (!word_attribute(r, v->causality, SSX_MD_LOCAL, SSX_MD_PARAMETER, SSX_MD_INDEPENDENT,
-                        &causality) ||
-        !word_attribute(r, v->variability, SSX_MD_CONTINUOUS, SSX_MD_CONSTANT,
-                        SSX_MD_CONTINUOUS, &variability) ||
-        !word_attribute(r, v->initial, SSX_MD_NONE, SSX_MD_EXACT, SSX_MD_CALCULATED,
-                        &initial)) {
+    if (r->fmi1 ? !fmi1_words(r, v, &causality, &variability)
+                : (!word_attribute(r, v->causality, SSX_MD_LOCAL, SSX_MD_PARAMETER,
+                                   SSX_MD_INDEPENDENT, &causality) ||
+                   !word_attribute(r, v->variability, SSX_MD_CONTINUOUS, SSX_MD_CONSTANT,
+                                   SSX_MD_CONTINUOUS, &variability))) {
+        return false;
+    }
+    if (!word_attribute(r, r->fmi1 ? none : v->initial, SSX_MD_NONE, SSX_MD_EXACT,
+                        SSX_MD_CALCULATED, &initial)) {
         return false;
     }
     subject = r->pool + name; /* the pool may have moved */
@@ -966,6 +1022,9 @@ static bool finish_variable(reader *r)
     if (!store(r, v->description, &description) ||
         !store(r, v->type == SSX_MD_REAL ? v->unit : none, &unit)) {
         return false;
+    }
+    if (r->fmi1 && causality == SSX_MD_OUTPUT && !push_output(r, (uint32_t)r->count)) {
+        return false; /* FMI 1.0 has no ModelStructure: an output depends on every input */
     }
     size_t k = r->count++;
     r->name[k] = name;
@@ -1003,24 +1062,9 @@ static bool read_unknown(reader *r, size_t line)
     }
     r->pool_size = scratch;
     size_t k = r->output_count;
-    if (array_reserve((void **)&r->output, &r->output_capacity, k + 1, sizeof *r->output, 64)) {
-        return out_of_memory(r);
+    if (!push_output(r, (uint32_t)(value - 1))) {
+        return false;
     }
-    size_t capacity = r->output_capacity;
-    void *first = realloc(r->first_dependency, capacity * sizeof *r->first_dependency);
-    if (first != NULL) {
-        r->first_dependency = first;
-    }
-    void *counts = realloc(r->dependency_count, capacity * sizeof *r->dependency_count);
-    if (counts != NULL) {
-        r->dependency_count = counts;
-    }
-    if (first == NULL || counts == NULL) {
-        return out_of_memory(r);
-    }
-    r->output[k] = (uint32_t)(value - 1);
-    r->first_dependency[k] = r->dependency_total;
-    r->dependency_count[k] = -1;
     if (dependencies.at != NULL) {
         if (!store(r, dependencies, &scratch)) {
             return false;
@@ -1053,6 +1097,31 @@ static bool read_unknown(reader *r, size_t line)
         r->dependency_count[k] = count;
         r->pool_size = scratch;
     }
+    return true;
+}
+
+/* An output (its variable's index) depending on everything until its dependencies are read. */
+static bool push_output(reader *r, uint32_t index)
+{
+    size_t k = r->output_count;
+    if (array_reserve((void **)&r->output, &r->output_capacity, k + 1, sizeof *r->output, 64)) {
+        return out_of_memory(r);
+    }
+    size_t capacity = r->output_capacity;
+    void *first = realloc(r->first_dependency, capacity * sizeof *r->first_dependency);
+    if (first != NULL) {
+        r->first_dependency = first;
+    }
+    void *counts = realloc(r->dependency_count, capacity * sizeof *r->dependency_count);
+    if (counts != NULL) {
+        r->dependency_count = counts;
+    }
+    if (first == NULL || counts == NULL) {
+        return out_of_memory(r);
+    }
+    r->output[k] = index;
+    r->first_dependency[k] = r->dependency_total;
+    r->dependency_count[k] = -1;
     r->output_count = k + 1;
     return true;
 }

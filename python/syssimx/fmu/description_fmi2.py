@@ -148,6 +148,16 @@ def _message(error: Any, where: str) -> str:
 
 
 # ------------------------------------------------------------------------------ the description
+def kept_attributes(md: Any) -> dict[str | None, dict[str | None, str | None]]:
+    """The attributes the engine kept (root, interfaces, DefaultExperiment), by element."""
+    elements: dict[str | None, dict[str | None, str | None]] = {}
+    for k in range(md.attribute_count):
+        kept = md.attributes[k]
+        elements.setdefault(_text(md, kept.element), {})[_text(md, kept.name)] = \
+            _text(md, kept.value)
+    return elements
+
+
 def describe(md: Any, where: str | Path) -> ModelDescription:
     """fmpy's objects of what the engine read (md read without a problem)."""
     where = str(where)
@@ -162,10 +172,7 @@ def describe(md: Any, where: str | Path) -> ModelDescription:
     def text(offset: int) -> str | None:
         return _text(md, offset)
 
-    elements: dict[str | None, dict[str | None, str | None]] = {}
-    for k in range(md.attribute_count):
-        kept = md.attributes[k]
-        elements.setdefault(text(kept.element), {})[text(kept.name)] = text(kept.value)
+    elements = kept_attributes(md)
     description = ModelDescription()
     root = elements.get("fmiModelDescription", {})
     for name in _ROOT_TEXT:
@@ -174,9 +181,9 @@ def describe(md: Any, where: str | Path) -> ModelDescription:
     description.numberOfContinuousStates = int(md.derivative_count)
     description.numberOfEventIndicators = _count(root.get("numberOfEventIndicators"), where)
     if "CoSimulation" in elements:
-        description.coSimulation = _interface(CoSimulation(), elements["CoSimulation"])
+        description.coSimulation = interface_flags(CoSimulation(), elements["CoSimulation"])
     if "ModelExchange" in elements:
-        description.modelExchange = _interface(ModelExchange(), elements["ModelExchange"])
+        description.modelExchange = interface_flags(ModelExchange(), elements["ModelExchange"])
     if "DefaultExperiment" in elements:
         experiment = elements["DefaultExperiment"]
         description.defaultExperiment = DefaultExperiment(
@@ -207,7 +214,7 @@ def _count(text: str | None, where: str) -> int:
     return count
 
 
-def _interface(interface: Any, attributes: dict[str | None, str | None]) -> Any:
+def interface_flags(interface: Any, attributes: dict[str | None, str | None]) -> Any:
     from fmpy.model_description import CoSimulation
 
     interface.modelIdentifier = attributes.get("modelIdentifier")

@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple
 
 from ..engine import ffi, lib
-from . import description_fmi2, description_fmi3
+from . import description_fmi1, description_fmi2, description_fmi3
 
 if TYPE_CHECKING:
     from fmpy.model_description import ModelDescription
@@ -65,6 +65,9 @@ class Standard:
         problem = description_fmi2.problem_message(md, path)
         if problem is not None:
             raise FMUFileError(problem)
+        return self._described(md, path)
+
+    def _described(self, md: Any, path: Path) -> ModelDescription:
         return description_fmi2.describe(md, path)
 
     def variables(self, description: ModelDescription, path: Path) -> Variables:
@@ -106,6 +109,25 @@ class Standard:
         return spec, [texts, host_text, variables, pointed_at]
 
 
+class FMI1(Standard):
+    """FMI 1.0: its own function names (no "fmi2"-like prefix), no FMU state, and one
+    interface per FMU."""
+
+    version = "1.0"
+    engine_version = 1
+    function_prefix = "fmi"
+
+    isolatable = False
+
+    def _described(self, md: Any, path: Path) -> ModelDescription:
+        return description_fmi1.describe_fmi1(md, path)
+
+    def resource_location(self, unzip_dir: Path) -> str:
+        """FMI 1.0 Co-Simulation gives the slave the URI of the extracted archive
+        (fmuLocation); Model Exchange passes nothing."""
+        return unzip_dir.as_uri()
+
+
 class FMI3(Standard):
     version = "3.0"
     engine_version = 3
@@ -144,7 +166,7 @@ class FMI3(Standard):
             model_exchange=interface.name == "model-exchange")
 
 
-STANDARDS: tuple[Standard, ...] = (Standard(), FMI3())
+STANDARDS: tuple[Standard, ...] = (FMI1(), Standard(), FMI3())
 
 
 def standard_of(version: str | None) -> Standard | None:
