@@ -358,6 +358,13 @@ class FMUComponent(CoSimComponent):
     def can_rollback(self) -> bool:
         return self.can_get_set_state or super().can_rollback()
 
+    def why_no_rollback(self) -> str:
+        standard = self.info.standard
+        if standard.has_fmu_state:
+            return ""
+        return (f"{self.info.path.name} is an {standard.name} FMU, and {standard.name} has no "
+                "FMU state to save and restore")
+
     def get_state(self) -> dict[str, dict[str, Any]]:
         """Outputs, parameters and the other non-fixed, non-local variables, read from the FMU
         (one fmi2Get call per value type)."""

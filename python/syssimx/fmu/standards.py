@@ -46,6 +46,7 @@ class Standard:
     function_prefix = "fmi2"  # of the standard's function names
     platform = "linux64" if _LINUX else sys.platform
     isolatable = True  # the FMU host process speaks it
+    has_fmu_state = True  # get/set FMU state exists (whether an FMU has it, it declares)
     # value types set and read as values, never connected (FMI 3.0's String and Binary)
     text_types: tuple[str, ...] = ()
 
@@ -116,8 +117,8 @@ class FMI1(Standard):
     version = "1.0"
     engine_version = 1
     function_prefix = "fmi"
-
     isolatable = False
+    has_fmu_state = False
 
     def _described(self, md: Any, path: Path) -> ModelDescription:
         return description_fmi1.describe_fmi1(md, path)
