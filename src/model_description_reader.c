@@ -1017,6 +1017,9 @@ static bool finish_variable(reader *r)
     if (initial == SSX_MD_NONE && v->initial.at != NULL) {
         return fail(r, SSX_MD_BAD_INITIAL, line, subject, v->initial, none);
     }
+    if (r->fmi1) {
+        initial = SSX_MD_NONE; /* FMI 1.0 has no initial; the table only judged the words */
+    }
 
     uint32_t description, unit;
     if (!store(r, v->description, &description) ||

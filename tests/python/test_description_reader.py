@@ -61,10 +61,34 @@ def assert_same(path: Path) -> None:
             (None if fmpys.dependencies is None else [v.name for v in fmpys.dependencies])
 
 
-# the FMI 2.0 builds; their FMI 3.0 twins (stem_fmi3) join when the reader reads FMI 3.0
-@pytest.mark.parametrize("name", [n for n in fmus.available() if not n.endswith("_fmi3")])
+# the FMI 2.0 builds; their FMI 3.0 twins (stem_fmi3) are read by FMPy, the FMI 1.0 ones
+# (stem_fmi1, stem_fmi1_me) below
+@pytest.mark.parametrize("name", [n for n in fmus.available()
+                                  if not n.endswith(("_fmi3", "_fmi1", "_fmi1_me"))])
 def test_our_fmus_read_as_fmpy_reads_them(name: str):
     assert_same(Path(fmus.path(name)))
+
+
+@pytest.mark.parametrize("name", [n for n in fmus.available() if n.endswith(("_fmi1", "_fmi1_me"))])
+def test_fmi1_builds_read_as_fmpy_reads_them(name: str):
+    """FMI 1.0 in FMI 2.0's words, as FMPy reads it: parameters, internal variables as locals,
+    no initial; the interface from Implementation; every output depending on every input."""
+    ours, theirs = both(Path(fmus.path(name)))
+    assert ours.fmiVersion == theirs.fmiVersion == "1.0"
+    for name_ in ("modelName", "guid", "description", "numberOfContinuousStates",
+                  "numberOfEventIndicators"):
+        assert getattr(ours, name_) == getattr(theirs, name_), name_
+    for part in ("coSimulation", "modelExchange"):
+        mine, fmpys = getattr(ours, part), getattr(theirs, part)
+        assert (mine is None) == (fmpys is None), part
+        assert getattr(mine, "modelIdentifier", None) == getattr(fmpys, "modelIdentifier", None)
+    assert len(ours.modelVariables) == len(theirs.modelVariables)
+    for mine, fmpys in zip(ours.modelVariables, theirs.modelVariables, strict=True):
+        for field in VARIABLE_FIELDS:
+            assert getattr(mine, field) == getattr(fmpys, field), (mine.name, field)
+    outputs = [v.name for v in ours.modelVariables if v.causality == "output"]
+    assert [u.variable.name for u in ours.outputs] == outputs
+    assert all(u.dependencies is None for u in ours.outputs)
 
 
 def test_reference_fmus_read_as_fmpy_reads_them():
