@@ -58,6 +58,17 @@ ssx_fmu *load_fmi3_fmu(const char *stem, const ssx_fmi3_variables *variables, in
     return loaded(ssx_fmu_load(&spec, error, sizeof error), stem, error);
 }
 
+ssx_fmu *load_fmi1_fmu(const char *stem, const char *model_identifier, int model_exchange)
+{
+    const built_fmu *b = built(stem);
+    char error[512];
+    ssx_fmu_load_spec spec = {.version = SSX_FMI1,
+                              .interface = model_exchange ? SSX_MODEL_EXCHANGE : SSX_CO_SIMULATION,
+                              .binary_path = b->binary, .model_identifier = model_identifier,
+                              .guid = b->guid, .resource_location = "", .instance_name = stem};
+    return loaded(ssx_fmu_load(&spec, error, sizeof error), stem, error);
+}
+
 ssx_fmu *load_fmu(const char *stem)
 {
     return load_as(stem, 0);
