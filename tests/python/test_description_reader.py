@@ -351,3 +351,52 @@ def test_real_starts_python_reads_are_accepted(start: str):
     description = read_text(MINIMAL.replace('start="1"', f'start="{start}"'))
     assert description.modelVariables[0].start == start
     float(start)
+
+
+FMI1 = """<?xml version="1.0" encoding="UTF-8"?>
+<fmiModelDescription fmiVersion="1.0" modelName="m" modelIdentifier="m_id" guid="{g}"
+    numberOfContinuousStates="2" numberOfEventIndicators="1">
+  <ModelVariables>
+    <ScalarVariable name="u" valueReference="0" causality="input"><Real start="1"/>
+    </ScalarVariable>
+    <ScalarVariable name="k" valueReference="1" variability="parameter"><Real start="2"/>
+    </ScalarVariable>
+    <ScalarVariable name="y" valueReference="2" causality="output"><Real/></ScalarVariable>
+    <ScalarVariable name="minus_y" valueReference="2" causality="output" alias="negatedAlias">
+      <Real/></ScalarVariable>
+  </ModelVariables>
+</fmiModelDescription>
+"""
+
+
+def test_fmi1_without_implementation_is_model_exchange():
+    description = read_text(FMI1)
+    assert description.fmiVersion == "1.0"
+    assert description.coSimulation is None
+    assert description.modelExchange.modelIdentifier == "m_id"
+    assert not description.modelExchange.canGetAndSetFMUstate
+    assert (description.numberOfContinuousStates, description.numberOfEventIndicators) == (2, 1)
+    causalities = {v.name: (v.causality, v.variability) for v in description.modelVariables}
+    assert causalities == {"u": ("input", "continuous"), "k": ("parameter", "fixed"),
+                           "y": ("output", "continuous"),
+                           "minus_y": ("local", "continuous")}  # a negated alias is no port
+    assert [u.variable.name for u in description.outputs] == ["y"]
+
+
+def test_fmi1_with_implementation_is_co_simulation():
+    text = FMI1.replace("</fmiModelDescription>", """  <Implementation><CoSimulation_Tool>
+    <Capabilities canHandleVariableCommunicationStepSize="true"/>
+    <Model entryPoint="fmu://tool" type="application/x-tool"/>
+  </CoSimulation_Tool></Implementation>
+</fmiModelDescription>""")
+    description = read_text(text)
+    assert description.modelExchange is None
+    assert description.coSimulation.modelIdentifier == "m_id"
+    assert description.coSimulation.canHandleVariableCommunicationStepSize
+
+
+def test_other_fmi_versions_are_refused_naming_what_runs():
+    with pytest.raises(FMUFileError, match=r"^m\.fmu: FMI version 4\.0 is not supported "
+                       r"\(syssimx runs FMI 1\.0, FMI 2\.0 and FMI 3\.0 Co-Simulation and "
+                       r"Model Exchange FMUs\)$"):
+        read_text(MINIMAL.replace('fmiVersion="2.0"', 'fmiVersion="4.0"'))

@@ -1,6 +1,7 @@
 """FMUComponent: an FMI 2.0 FMU stepped by the engine, through its Co-Simulation interface
 (fmi2DoStep) or its Model Exchange interface (integrated by the engine with CVODE), and the
-same for an FMI 3.0 FMU.
+same for an FMI 3.0 and an FMI 1.0 FMU (syssimx.fmu reads the archive and decides the
+version; an FMI 1.0 FMU has no FMU state, so it cannot be rolled back).
 
 Plain use costs no Python per step: the engine calls the FMU directly, rolls it back with
 fmi2Get/SetFMUstate for event localization and evaluates variable indicators in C. Overriding
@@ -56,7 +57,8 @@ if TYPE_CHECKING:
 
 
 class FMUComponent(CoSimComponent):
-    """An FMI 2.0 FMU (linux64 binary) or an FMI 3.0 FMU (x86_64-linux) as a component."""
+    """An FMI 1.0 or 2.0 FMU (linux64 binary) or an FMI 3.0 FMU (x86_64-linux) as a
+    component."""
 
     def __init__(self, name: str, fmu_path: str | Path, group: str | None = None,
                  tolerance: float | None = None, *, isolated: bool = False,
