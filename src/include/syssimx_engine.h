@@ -330,16 +330,16 @@ const ssx_error *ssx_last_error(const ssx_system *sys);
 int ssx_add_fmu_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_get_set_state);
 int ssx_add_python_component(ssx_system *sys, const char *name, int can_snapshot);
 /* A Model Exchange FMU (loaded with interface SSX_MODEL_EXCHANGE, initialized by
- * ssx_fmu_initialize) that the engine integrates with CVODE between communication points: n_states continuous states
- * (ModelStructure/Derivatives), n_event_indicators (numberOfEventIndicators, FMI 3.0's
- * ModelStructure/EventIndicator); an FMI 3.0 instance that counts others fails its first
- * step. The relative tolerance is the one the instance was set up with
- * (ssx_fmu_experiment's), else model_exchange_tolerance of ssx_defaults; the absolute
- * tolerances are it times the states' nominals. Its state, time and step events are handled
- * inside its steps at their own time and recorded as its own events (ssx_own_event_kind); a
- * request to terminate ends the run as for a Co-Simulation FMU. Its snapshots hold the FMU
- * state (fmi2GetFMUstate, when can_get_set_state) and the engine's copy of the continuous
- * states; ports are added as for any FMU component. */
+ * ssx_fmu_initialize) that the engine integrates with CVODE between communication points:
+ * n_states continuous states (ModelStructure/Derivatives; FMI 1.0: numberOfContinuousStates),
+ * n_event_indicators (numberOfEventIndicators, FMI 3.0's ModelStructure/EventIndicator); an
+ * FMI 3.0 instance that counts others fails its first step. The relative tolerance is the
+ * one the instance was set up with (ssx_fmu_experiment's), else model_exchange_tolerance of
+ * ssx_defaults; the absolute tolerances are it times the states' nominals. Its state, time and
+ * step events are handled inside its steps at their own time and recorded as its own events
+ * (ssx_own_event_kind); a request to terminate ends the run as for a Co-Simulation FMU. Its
+ * snapshots hold the FMU state (fmi2GetFMUstate, when can_get_set_state) and the engine's copy
+ * of the continuous states; ports are added as for any FMU component. */
 int ssx_add_model_exchange_component(ssx_system *sys, const char *name, ssx_fmu *fmu,
                                      int can_get_set_state, int n_states,
                                      int n_event_indicators);
@@ -498,8 +498,8 @@ int ssx_add_table_column(ssx_system *sys, int component, ssx_value_type type, in
 int ssx_table_values(ssx_system *sys, int component, double t, int after_event, double *values);
 
 /* ------------------------------------------------------------------------------------------
- * modelDescription.xml (FMI 2.0), read into compact arrays: one pass over the text, no tree,
- * no object per variable. The reader is a small XML tokenizer for what a modelDescription
+ * modelDescription.xml (FMI 2.0 and 1.0), read into compact arrays: one pass over the text,
+ * no tree, no object per variable. The reader is a small XML tokenizer for what a modelDescription
  * uses (elements, attributes in either quote, the five predefined entities, character
  * references, comments, processing instructions, CDATA skipped; UTF-8 only, no DOCTYPE).
  * Elements count only at their place in the schema (fmiModelDescription/CoSimulation,
@@ -507,7 +507,10 @@ int ssx_table_values(ssx_system *sys, int component, double t, int after_event, 
  * are ignored. It refuses what would make syssimx exchange wrong data: two variables of one
  * name, a value reference outside 0..2**32-1, a start that is not a value of the variable's
  * type, an undefined declaredType, a causality/variability pair FMI 2.0 forbids, a
- * ModelStructure index that names no variable.
+ * ModelStructure index that names no variable. FMI 1.0 is read in FMI 2.0's words: a
+ * parameter is causality parameter and variability fixed, internal and none are local, a
+ * negated alias is local (no port), initial is absent, each output depends on everything, and
+ * the Capabilities of Implementation/CoSimulation_* are kept (their presence: Co-Simulation).
  * ------------------------------------------------------------------------------------------ */
 /* The words of FMI 2.0 a variable is described by; SSX_MD_NONE: absent. */
 typedef enum {
@@ -525,7 +528,7 @@ typedef enum {
 typedef enum {
     SSX_MD_OK = 0,
     SSX_MD_NOT_XML,                /* line, detail */
-    SSX_MD_NOT_FMI2,               /* text: the fmiVersion, NULL when absent */
+    SSX_MD_NOT_FMI2,               /* neither 2.0 nor 1.0; text: the fmiVersion (NULL: none) */
     SSX_MD_NO_FMI_ROOT,            /* the root element is not an fmiModelDescription */
     SSX_MD_TYPE_WITHOUT_ELEMENT,   /* subject: the SimpleType's name (NULL when absent) */
     SSX_MD_VARIABLE_WITHOUT_NAME,  /* text: its valueReference (NULL when absent) */
