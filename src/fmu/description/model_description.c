@@ -532,11 +532,10 @@ static bool finish_variable(reader *r)
                     v->causality.at != NULL ? v->causality : local,
                     v->variability.at != NULL ? v->variability : continuous);
     }
-    if (initial == SSX_MD_NONE && v->initial.at != NULL) {
-        return fail(r, SSX_MD_BAD_INITIAL, line, subject, v->initial, none);
-    }
     if (r->fmi1) {
         initial = SSX_MD_NONE; /* FMI 1.0 has no initial; the table only judged the words */
+    } else if (initial == SSX_MD_NONE && v->initial.at != NULL) {
+        return fail(r, SSX_MD_BAD_INITIAL, line, subject, v->initial, none);
     }
 
     uint32_t description, unit;
