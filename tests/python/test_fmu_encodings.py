@@ -131,3 +131,31 @@ def test_utf8_files_pass_untouched(tmp_path: Path):
     shutil.copyfile(fmus.path("gain"), tmp_path / "gain.fmu")
     assert FMUComponent("G", tmp_path / "gain.fmu").info.description.description.startswith(
         "Static gain")
+
+
+@pytest.mark.parametrize("encoding", ["ISO-8859-1", "windows-1252", "UTF-16", "shift_jis"])
+def test_mutated_bytes_in_any_encoding_are_read_or_refused_by_name(encoding: str):
+    """Random bytes written over a description that declares `encoding`: each mutant is read
+    or refused with an FMUFileError naming the file, never another exception."""
+    import io
+    import random
+
+    from syssimx.fmu.description import read_description
+
+    text = zipfile.ZipFile(fmus.path("gain")).read("modelDescription.xml").decode()
+    data = text.replace('encoding="UTF-8"', f'encoding="{encoding}"').encode(encoding)
+    rng = random.Random(20261125)
+    outcomes = {"read": 0, "refused": 0}
+    for _ in range(300):
+        mutant = bytearray(data)
+        for _ in range(rng.randint(1, 4)):
+            at = rng.randrange(len(mutant))
+            mutant[at:at + rng.randint(1, 3)] = bytes(rng.randrange(256)
+                                                       for _ in range(rng.randint(0, 3)))
+        try:
+            read_description(io.BytesIO(bytes(mutant)), "m.fmu")
+            outcomes["read"] += 1
+        except FMUFileError as error:
+            assert str(error).startswith("m.fmu: ")
+            outcomes["refused"] += 1
+    assert outcomes["read"] > 0 and outcomes["refused"] > 0
