@@ -14,9 +14,9 @@ from pathlib import Path
 import pytest
 from syssimx import FMUComponent, fmus
 from syssimx.cli import main
-from syssimx.components.description_fmi3 import MAX_ARRAY_ELEMENTS
-from syssimx.components.description_reader import MAX_EVENT_INDICATORS
 from syssimx.errors import ConfigurationError, FMUFileError
+from syssimx.fmu.description_fmi2 import MAX_EVENT_INDICATORS
+from syssimx.fmu.description_fmi3 import MAX_ARRAY_ELEMENTS
 
 GAIN3 = Path(fmus.path("gain_fmi3"))
 GAIN2 = Path(fmus.path("gain"))

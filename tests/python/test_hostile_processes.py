@@ -20,8 +20,8 @@ from pathlib import Path
 
 import pytest
 from syssimx import FMUComponent, System, fmus
-from syssimx.components.extraction import ORPHAN_AGE, remove_stale_folders
 from syssimx.errors import RunInterrupted, SimulationTimeoutError
+from syssimx.fmu.extraction import ORPHAN_AGE, remove_stale_folders
 from test_isolation import child_processes, hostile_fmu
 
 ENDLESS_LOOP, FORK_CHILD = 4, 6

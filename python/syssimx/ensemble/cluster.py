@@ -88,6 +88,6 @@ def ensemble_client(client: Any = None, scheduler: str | None = None,
         import tempfile
         from pathlib import Path
 
-        from ..components.extraction import remove_stale_folders
+        from ..fmu.extraction import remove_stale_folders
 
         remove_stale_folders(Path(tempfile.gettempdir()))
