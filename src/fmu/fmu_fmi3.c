@@ -94,6 +94,12 @@ static const char *const fmi3_status_names[] = {SSX_STATUS_NAMES(FMI3_NAME)};
 /* Rounds of fmi3UpdateDiscreteStates after initialization before it counts as chattering. */
 enum { INITIAL_UPDATE_ROUNDS = 1000 };
 
+/* The load spec's type table (ssx_fmi3_prepare) */
+static int prepare(void *context, const ssx_fmu_load_spec *spec, char *error, size_t error_size)
+{
+    return ssx_fmi3_prepare(context, spec->fmi3_variables, error, error_size);
+}
+
 static void release_context(void *context)
 {
     fmi3_values_free(context);
@@ -305,8 +311,19 @@ static int set_string(const ssx_fmu_function *fn, void *instance, const unsigned
 static int get_binary(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
                       size_t *sizes, const unsigned char **values)
 {
-    return (int)FMI3(fn, SLOT_GET_BINARY, fmi3GetBinaryTYPE)(((fmi3_context *)instance)->instance,
-                                                             vr, n, sizes, values, n);
+    fmi3_context *ctx = instance;
+    int status = (int)FMI3(fn, SLOT_GET_BINARY, fmi3GetBinaryTYPE)(ctx->instance, vr, n, sizes,
+                                                                   values, n);
+    for (size_t k = 0; status <= fmi3Warning && k < n; ++k) {
+        if (values[k] == NULL && sizes[k] != 0) {
+            /* the caller would read sizes[k] bytes from address 0 on: never hand that on */
+            const char *name = fmi3_variable_name(ctx, vr[k]);
+            fmi3_say(ctx, "fmi3GetBinary returned no data (NULL) with a size of %zu bytes for %s "
+                     "(value reference %u)", sizes[k], name != NULL ? name : "a variable", vr[k]);
+            return fmi3Error;
+        }
+    }
+    return status;
 }
 
 static int set_binary(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
@@ -612,11 +629,12 @@ static int get_number_of_event_indicators(const ssx_fmu_function *fn, void *inst
     .set_input_derivatives = set_input_derivatives, .get_string = get_string,               \
     .set_string = set_string, .get_binary = get_binary, .set_binary = set_binary,             \
     .enter_event_mode = enter_event_mode, .new_discrete_states = new_discrete_states,         \
-    .variable_name = variable_name, .release_context = release_context
+    .variable_name = variable_name, .prepare = prepare, .release_context = release_context
 
 const ssx_fmu_backend ssx_fmi3_model_exchange_backend = {
     FMI3_ADAPTERS,
     .standard = "FMI 3.0 Model Exchange",
+    .interface = SSX_MODEL_EXCHANGE,
     .functions = fmi3_model_exchange_functions,
     .n_functions = sizeof fmi3_model_exchange_functions / sizeof fmi3_model_exchange_functions[0],
     .instantiate = instantiate_model_exchange,
@@ -636,6 +654,7 @@ const ssx_fmu_backend ssx_fmi3_model_exchange_backend = {
 const ssx_fmu_backend ssx_fmi3_backend = {
     FMI3_ADAPTERS,
     .standard = "FMI 3.0 Co-Simulation",
+    .interface = SSX_CO_SIMULATION,
     .functions = fmi3_functions,
     .n_functions = sizeof fmi3_functions / sizeof fmi3_functions[0],
     .instantiate = instantiate,

@@ -15,7 +15,7 @@ from ..bridge.plan import EnginePlan
 from ..components.base import CoSimComponent
 from ..core.port import PortType
 from ..engine import ffi, lib
-from ..errors import ConfigurationError
+from ..errors import ConfigurationError, RunInterrupted
 from ..graph.analysis import analyze
 from ..units import conversion
 from .algorithms import Algorithm, HybridAlgorithm, JacobiAlgorithm
@@ -160,7 +160,13 @@ class System:
                     f"{listener.name!r} receives {connection.src_comp}.{connection.src_port} "
                     "but handles no events: override _handle_events_internal or call "
                     f"add_event_handler({connection.dst_port!r}, handler)")
+        hybrid = any(c.event_indicators for c in self.components.values())
         for component in self.components.values():
+            reason = component.why_no_rollback() if hybrid else ""
+            if reason and not component.can_rollback():
+                raise ConfigurationError(
+                    f"{component.name!r} cannot roll back, which locating events needs (the "
+                    f"system has event indicators): {reason}")
             if component.event_indicators and not component.can_rollback():
                 raise ConfigurationError(
                     f"{component.name!r} has event indicators but cannot roll back: its FMU "
@@ -308,7 +314,15 @@ class System:
         if status < 0:
             if reports is not None:
                 reports.close()
-            raise_failure(plan)
+            try:
+                raise_failure(plan)
+            except KeyboardInterrupt as stop:  # Ctrl-C: the steps completed are the result
+                for component in self.components.values():
+                    component.t = self.t
+                partial = SimulationResult.from_system(self, t0, self.t, dt, wall)
+                raise RunInterrupted(f"system {self.name!r}: the run was interrupted at "
+                                     f"t={self.t:.12g} (partial_result holds the samples up "
+                                     "to there)", partial) from stop
         if reports is not None:
             reports.finish(self.t)
         self.termination = read_termination(plan)

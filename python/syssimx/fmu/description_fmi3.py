@@ -1,0 +1,243 @@
+"""FMI 3.0 modelDescription.xml, read with FMPy's reader and checked for what syssimx runs.
+
+The engine's one-pass reader (description_reader.py) is FMI 2.0's: FMI 3.0 names a variable by
+its type element (`<Float64>`, `<Int8>`, ...), gives it dimensions, clocks and aliases, and
+states ModelStructure by value reference. FMPy reads all of that into the same objects (fmpy's
+attribute names), so the rest of syssimx reads an FMI 3.0 description like an FMI 2.0 one.
+
+syssimx steps FMI 3.0 Co-Simulation FMUs and integrates FMI 3.0 Model Exchange ones. It
+refuses, naming the file and the element: scheduled execution only, any Clock variable (clocked
+partitions need a scheduler syssimx does not have), and String or Binary arrays among the
+inputs, outputs and parameters. Numeric and Boolean arrays become one port per element
+(fmi3_arrays.py).
+
+A description is data: every value reference, dimension and start value is checked here, and
+an FMUFileError names the file and the variable, before anything is sized by it. The arrays of
+one FMU hold at most MAX_ARRAY_ELEMENTS elements together (each element is a port).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+from ..engine import ffi
+from ..errors import FMUFileError
+from .fmi3_arrays import ArrayElement
+
+if TYPE_CHECKING:  # fmpy is imported by the first read, not with syssimx
+    from fmpy.model_description import ModelDescription
+
+# the FMI 3.0 types syssimx exchanges, by the engine's ssx_fmi3_type code
+FMI3_TYPE_CODES = {"Float64": 0, "Float32": 1, "Int8": 2, "UInt8": 3, "Int16": 4, "UInt16": 5,
+                   "Int32": 6, "UInt32": 7, "Int64": 8, "UInt64": 9, "Boolean": 10,
+                   "Enumeration": 8}  # FMI 3.0 enumerations are exchanged as Int64
+_PORT_CAUSALITIES = ("input", "output", "parameter")
+MAX_ARRAY_ELEMENTS = 100_000  # all arrays of one FMU together
+MAX_VALUE_REFERENCE = 2**32 - 1
+_INTEGER_RANGES = {"Int8": (-2**7, 2**7 - 1), "UInt8": (0, 2**8 - 1),
+                   "Int16": (-2**15, 2**15 - 1), "UInt16": (0, 2**16 - 1),
+                   "Int32": (-2**31, 2**31 - 1), "UInt32": (0, 2**32 - 1),
+                   "Int64": (-2**63, 2**63 - 1), "UInt64": (0, 2**64 - 1),
+                   "Enumeration": (-2**63, 2**63 - 1)}
+
+
+class FMI3Variable(NamedTuple):
+    """A row of the engine's FMI 3.0 table: engine value reference, ssx_fmi3_type code, name,
+    and for an array element where it lies (None for a scalar)."""
+
+    value_reference: int
+    type_code: int
+    name: str
+    element: ArrayElement | None
+
+
+def read_fmi3_description(path: Path) -> ModelDescription:
+    """The FMI 3.0 description of the FMU archive at `path`; FMUFileError naming the file and
+    the element when syssimx cannot run it."""
+    from fmpy import read_model_description
+
+    try:
+        description = read_model_description(str(path), validate=False)
+    except Exception as exc:  # fmpy raises many kinds for a broken description
+        raise FMUFileError(f"{path}: modelDescription.xml declares FMI 3.0 but is not a "
+                           f"readable FMI 3.0 description ({type(exc).__name__}: {exc})"
+                           ) from exc
+    seen: set[str] = set()
+    elements = 0
+    for variable in description.modelVariables:
+        if variable.name in seen:
+            raise FMUFileError(f"{path}: two variables are named {_quoted(variable.name)} (FMI "
+                               "3.0 requires unique names)")
+        seen.add(variable.name)
+        _check_variable(variable, path)
+        if variable.dimensions:
+            elements += math.prod(variable.shape)
+            if elements > MAX_ARRAY_ELEMENTS:
+                raise FMUFileError(f"{path}: array {_quoted(variable.name)} of shape "
+                                   f"{tuple(variable.shape)} takes the FMU's array elements "
+                                   f"past syssimx's limit of {MAX_ARRAY_ELEMENTS}")
+    if description.coSimulation is None and description.modelExchange is None:
+        if description.scheduledExecution is not None:
+            raise FMUFileError(f"{path}: FMI 3.0 Scheduled Execution is not supported (syssimx "
+                               "runs FMI 3.0 Co-Simulation and Model Exchange FMUs without "
+                               "clocks)")
+        raise FMUFileError(f"{path}: the FMI 3.0 description declares neither CoSimulation nor "
+                           "ModelExchange")
+    if not description.instantiationToken:
+        raise FMUFileError(f"{path}: the FMI 3.0 description has no instantiationToken")
+    # fmpy keeps FMI 3.0's token under both names; syssimx passes it where FMI 2.0 has the guid
+    description.guid = description.instantiationToken
+    # the engine's references of array elements are not the FMU's: with array ports the
+    # engine takes finite differences instead of asking the FMU for directional derivatives
+    has_array_ports = any(v.dimensions and v.causality in _PORT_CAUSALITIES
+                          for v in description.modelVariables)
+    for element, part in (("CoSimulation", description.coSimulation),
+                          ("ModelExchange", description.modelExchange)):
+        if part is not None:
+            part.providesDirectionalDerivative = \
+                provides_directional_derivatives(path, element) and not has_array_ports
+    return description
+
+
+def provides_directional_derivatives(path: Path, element: str = "CoSimulation") -> bool:
+    """FMI 3.0 spells the flag providesDirectionalDerivatives, which FMPy 0.3 does not read;
+    `element`: the interface's (CoSimulation or ModelExchange)."""
+    found = _description_root(path).find(element)
+    return found is not None and found.get("providesDirectionalDerivatives") in ("true", "1")
+
+
+def intermediate_inputs(path: Path) -> list[int]:
+    """Value references of the scalar continuous Float64 inputs with intermediateUpdate="true"
+    (an attribute FMPy 0.3 does not read): FMI 3.0 moves inputs inside a step by intermediate
+    update, which the engine answers for these as FMI 2.0's input derivatives."""
+    variables = _description_root(path).find("ModelVariables")
+    if variables is None:
+        return []
+    found = []
+    for variable in variables.findall("Float64"):
+        if variable.get("causality") == "input" and variable.get("intermediateUpdate") in \
+                ("true", "1") and variable.find("Dimension") is None and \
+                variable.get("variability", "continuous") == "continuous":
+            reference = variable.get("valueReference", "")
+            if reference.isdigit():
+                found.append(int(reference))
+    return found
+
+
+def _description_root(path: Path) -> Any:
+    import zipfile
+
+    from lxml import etree
+
+    parser = etree.XMLParser(resolve_entities=False, no_network=True)
+    with zipfile.ZipFile(path) as archive:
+        return etree.fromstring(archive.read("modelDescription.xml"), parser)
+
+
+def _check_variable(variable: Any, path: Path) -> None:
+    name = _quoted(variable.name)
+    vr = variable.valueReference
+    if not isinstance(vr, int) or not 0 <= vr <= MAX_VALUE_REFERENCE:
+        raise FMUFileError(f"{path}: variable {name} has valueReference {_quoted(vr)}; FMI 3.0 "
+                           f"value references are 0 to {MAX_VALUE_REFERENCE}")
+    for extent, dimension in zip(variable.shape or (), variable.dimensions or (), strict=False):
+        if extent < 0:
+            source = f"structural parameter {_quoted(dimension.variable.name)}" \
+                if dimension.variable is not None else "its start"
+            raise FMUFileError(f"{path}: variable {name} has a dimension of {extent} (from "
+                               f"{source}); a dimension is 0 or more")
+    _check_start(variable, path)
+    if variable.type == "Clock":
+        raise FMUFileError(f"{path}: variable {variable.name!r} is a Clock: clocked FMI 3.0 FMUs "
+                           "(clocks, model partitions) are not supported")
+    if variable.dimensions and variable.causality in _PORT_CAUSALITIES \
+            and variable.type in ("String", "Binary"):
+        raise FMUFileError(f"{path}: variable {variable.name!r} is a {variable.type} array "
+                           f"({variable.causality}): String and Binary arrays are not "
+                           "supported (numeric and Boolean arrays are)")
+
+
+def _check_start(variable: Any, path: Path) -> None:
+    """The start value parses as the variable's type: each element's for an array."""
+    if variable.start is None or variable.type in ("String", "Clock"):
+        return
+    text = str(variable.start)
+    if variable.type == "Binary":
+        hex_digits = "".join(text.split())
+        if len(hex_digits) % 2 or any(c not in "0123456789abcdefABCDEF" for c in hex_digits):
+            raise FMUFileError(f"{path}: variable {_quoted(variable.name)}: Binary start "
+                               f"{_quoted(text)} is not an even number of hexadecimal digits")
+        return
+    for value in text.split():  # an array's count of values: fmi3_arrays.py
+        if not _parses(variable.type, value):
+            raise FMUFileError(f"{path}: variable {_quoted(variable.name)}: start "
+                               f"{_quoted(value)} is not a {variable.type} value")
+
+
+def _parses(fmi_type: str, text: str) -> bool:
+    if fmi_type in ("Float64", "Float32"):
+        try:
+            float(text)
+        except ValueError:
+            return False
+        return True
+    if fmi_type == "Boolean":
+        return text in ("true", "false", "1", "0")
+    if fmi_type in _INTEGER_RANGES:
+        low, high = _INTEGER_RANGES[fmi_type]
+        try:
+            return low <= int(text) <= high
+        except ValueError:
+            return False
+    return True
+
+
+def _quoted(value: Any) -> str:
+    """repr of a name or value from the file, cut short: a message never grows with it."""
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def engine_rows(variables: Any, elements: dict[int, ArrayElement]) -> list[FMI3Variable]:
+    """The engine's FMI 3.0 type table: each numeric or Boolean scalar once per value
+    reference (an alias shares its variable's), array elements among them; arrays no port
+    carries (locals) are left out."""
+    table: dict[int, FMI3Variable] = {}
+    for variable in variables:
+        code = FMI3_TYPE_CODES.get(variable.type)
+        if code is not None and not variable.dimensions:
+            vr = variable.valueReference
+            table.setdefault(vr, FMI3Variable(vr, code, variable.name, elements.get(vr)))
+    return list(table.values())
+
+
+def engine_variables(rows: list[FMI3Variable], cosimulation: Any, model_exchange: bool,
+                     intermediate: tuple[int, ...] = ()) -> tuple[Any, list[Any]]:
+    """The ssx_fmi3_variables of `rows` and of how a Co-Simulation instance is made (event
+    mode when the FMU has it, early return when it may return early, the inputs it moves by
+    intermediate update), and what it points at: the struct does not keep that alive, the
+    caller does until the engine copied it."""
+    texts = [ffi.new("char[]", row.name.encode()) for row in rows]
+    arrays = {"vr": ffi.new("unsigned int[]", [row.value_reference for row in rows]),
+              "type": ffi.new("unsigned char[]", [row.type_code for row in rows]),
+              "name": ffi.new("const char *[]", texts)}
+    fields: dict[str, Any] = {
+        **arrays, "n": len(rows),
+        "event_mode_used": not model_exchange and bool(cosimulation.hasEventMode),
+        "early_return_allowed": not model_exchange and bool(
+            cosimulation.canReturnEarlyAfterIntermediateUpdate
+            or cosimulation.mightReturnEarlyFromDoStep)}
+    if intermediate and not model_exchange:  # inputs the engine moves inside a step
+        fields.update({"intermediate_vr": ffi.new("unsigned int[]", list(intermediate)),
+                       "n_intermediate": len(intermediate)})
+    if any(row.element is not None for row in rows):  # array elements: where each lies
+        elements = [row.element or ArrayElement(row.value_reference, 0, 0, 0.0)
+                    for row in rows]
+        fields.update({
+            "fmu_vr": ffi.new("unsigned int[]", [e.array_vr for e in elements]),
+            "element": ffi.new("size_t[]", [e.position for e in elements]),
+            "size": ffi.new("size_t[]", [e.size for e in elements]),
+            "start": ffi.new("double[]", [e.start for e in elements])})
+    return ffi.new("ssx_fmi3_variables *", fields), [texts, fields]
