@@ -39,6 +39,7 @@ struct ssx_fmu {
      * the library stays loaded */
     const char *fatal_call;
     long generation;
+    long starts;       /* see ssx_fmu_starts */
     long values_epoch; /* see ssx_fmu_values_epoch */
     /* FMU states handed out by the live instance, freed with it */
     void **states;
@@ -267,7 +268,7 @@ static const struct {
     [SLOT_GET_STATE] = {COUNTED(get_state), 0},
     [SLOT_SET_STATE] = {COUNTED(set_state), 1},
     [SLOT_DIRECTIONAL_DERIVATIVE] = {COUNTED(directional_derivative), 0},
-    [SLOT_RESET] = {0, 1},
+    [SLOT_RESET] = {COUNTED(reset), 1},
     [SLOT_GET_STRING] = {COUNTED(get_values), 0},
     [SLOT_GET_BINARY] = {COUNTED(get_values), 0},
     [SLOT_SET_STRING] = {COUNTED(set_values), 1},
@@ -450,6 +451,7 @@ int ssx_fmu_instantiate(ssx_fmu *fmu)
                                               fmu->guid, fmu->resource_uri, fmu->logging_on);
     (void)finish(fmu, SLOT_INSTANTIATE, 0);
     fmu->generation++;
+    fmu->starts++;
     if (fmu->instance == NULL) {
         if (fmu->last_message[0] == '\0') {
             snprintf(fmu->last_message, sizeof fmu->last_message, "%s returned NULL",
@@ -483,7 +485,11 @@ int ssx_fmu_exit_initialization_mode(ssx_fmu *fmu)
 
 int ssx_fmu_reset(ssx_fmu *fmu)
 {
-    return CHECKED0(fmu, SLOT_RESET, reset);
+    int status = CHECKED0(fmu, SLOT_RESET, reset);
+    if (status == 0 || status == 1) { /* OK or Warning */
+        fmu->starts++;
+    }
+    return status;
 }
 
 int ssx_fmu_terminate(ssx_fmu *fmu)
@@ -825,6 +831,11 @@ const char *ssx_fmu_function_name(const ssx_fmu *fmu, int slot)
 long ssx_fmu_generation(const ssx_fmu *fmu)
 {
     return fmu != NULL ? fmu->generation : 0;
+}
+
+long ssx_fmu_starts(const ssx_fmu *fmu)
+{
+    return fmu != NULL ? fmu->starts : 0;
 }
 
 long ssx_fmu_values_epoch(const ssx_fmu *fmu)

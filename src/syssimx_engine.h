@@ -65,6 +65,7 @@ typedef struct {
     long set_values;   /* fmi2Set* calls, any type */
     long instantiate;
     long directional_derivative; /* fmi2GetDirectionalDerivative calls */
+    long reset;        /* fmi2Reset calls, ssx_fmu_initialize's reuse of a live instance too */
 } ssx_fmu_counters;
 
 /* dlopen(binary_path, RTLD_NOW | RTLD_LOCAL) and resolve the fmi2 functions (prefixed with
@@ -172,8 +173,9 @@ typedef struct {
     double stop_time;
 } ssx_fmu_experiment;
 
-/* A fresh instance ready to step: instantiate (a live instance is freed first), set up the
- * experiment, enter initialization mode, write `starts` (NULL: none) by type, call
+/* An instance ready to step from its start values: a live instance is reset (fmi2Reset,
+ * fmi3Reset: the FMU is as just instantiated, its FMU states stay valid), else, or when the
+ * reset fails, instantiated (a live instance is freed first); then set up the experiment, enter initialization mode, write `starts` (NULL: none) by type, call
  * in_initialization_mode(user) when it is not NULL (it may write more values; nonzero fails
  * the call and its caller keeps the reason), exit initialization mode. Returns the highest
  * status of the sequence (0 OK or 1 Warning), else the status of the call that failed (-1:
@@ -354,6 +356,9 @@ int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks);
  * the port's index. */
 int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned int vr);
 int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned int vr, double start);
+/* Before initializing a system again (its plan reused): every input's start value, the
+ * components' inputs in order, n in all; each input holds its start again, as when added. */
+int ssx_reset_inputs(ssx_system *sys, const double *starts, size_t n);
 double *ssx_outputs(ssx_system *sys, int component); /* n_outputs current values */
 double *ssx_inputs(ssx_system *sys, int component);  /* n_inputs current values */
 
@@ -466,6 +471,9 @@ int ssx_set_run_output_interval(ssx_system *sys, int grid_steps);
 typedef struct ssx_history_block ssx_history_block;
 ssx_history_block *ssx_history_retain(ssx_system *sys);
 void ssx_history_release(ssx_history_block *block);
+/* A component's samples in a retained block (ssx_history_values at the time of the retain):
+ * read later, after the system is gone, as long as the block is held. */
+const double *ssx_history_block_values(const ssx_history_block *block, int component);
 
 size_t ssx_event_count(const ssx_system *sys);
 int ssx_event_get(const ssx_system *sys, size_t index, ssx_event_record *out);
