@@ -26,8 +26,8 @@ from collections.abc import Sequence
 from dataclasses import replace
 from typing import Any
 
-from .cluster import check_processes
 from .block import run_block
+from .cluster import check_processes
 from .member import MemberResult, MemberTask
 from .progress import ProgressBar
 from .system_source import SystemSource
