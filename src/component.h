@@ -71,6 +71,8 @@ struct ssx_component {
     double *saved_inputs[SSX_SNAPSHOT_SLOTS];
     /* events handled inside its steps, until the master accepts them (own_events.h) */
     ssx_own_event_list own_events;
+    /* its declarative event handler (restart_handler.h), NULL for none */
+    struct ssx_restart *restart;
 };
 
 extern const ssx_component_ops ssx_fmu_component_ops;

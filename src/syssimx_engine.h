@@ -349,6 +349,17 @@ int ssx_add_model_exchange_component(ssx_system *sys, const char *name, ssx_fmu 
                                      int can_get_set_state, int n_states,
                                      int n_event_indicators);
 int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks);
+/* A declarative event handler of an FMU component, run by the engine when an event reaches it
+ * (a handle_events hook, when set, runs instead): the FMU starts again at the event time t from
+ * its start values, as ssx_fmu_initialize does (a reset, else a new instance), set up with
+ * `experiment` (its start time becomes t), `starts` written in initialization mode (copied
+ * now; NULL: none), then each Real value reference vr[k] set to scale[k] * output[source[k]]
+ * + offset[k] (the component's outputs at the event, source[k] an output index), then every
+ * input holding a value; the outputs are read after. experiment NULL removes the handler. */
+int ssx_set_restart_handler(ssx_system *sys, int component, const ssx_fmu_experiment *experiment,
+                            const ssx_fmu_values *starts, const unsigned int *vr,
+                            const int *source, const double *scale, const double *offset,
+                            size_t n);
 
 /* Ports. vr is the FMU value reference (ignored for Python components). start is written to
  * the FMU input at initialization when the input is unconnected; NaN (FMU components only)

@@ -239,6 +239,20 @@ class EnginePlan:
         if struct is not None:  # the engine copies the struct; the callbacks are kept above
             self.check(lib().ssx_set_hooks(self.sys, index, struct), f"{component.name}: hooks")
 
+    def set_restart(self, component: Component, tolerance: float | None, starts: Any,
+                    targets: list[int], sources: list[int], gains: list[float]) -> None:
+        """The component's events are handled by the engine (ssx_set_restart_handler): a
+        restart with `starts` (an ssx_fmu_values, copied by the engine) and each Real target =
+        gain * its source output."""
+        experiment = ffi.new("ssx_fmu_experiment *", {
+            "tolerance_defined": tolerance is not None, "tolerance": tolerance or 0.0})
+        n = len(targets)
+        self.check(lib().ssx_set_restart_handler(
+            self.sys, self.index[component.name], experiment, starts,
+            ffi.new("unsigned int[]", targets), ffi.new("int[]", sources),
+            ffi.new("double[]", gains), ffi.new("double[]", n), n),
+            f"{component.name}: event handler")
+
     def add_table(self, component: Component, time: np.ndarray,
                   columns: Mapping[str, np.ndarray], hold: set[str]) -> None:
         """A table source is evaluated in C: its table is copied into the engine, no hooks.

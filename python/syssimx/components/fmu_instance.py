@@ -119,7 +119,7 @@ class FMUInstance:
         experiment = ffi.new("ssx_fmu_experiment *", {
             "start_time": start_time, "tolerance_defined": tolerance is not None,
             "tolerance": tolerance or 0.0})
-        values, _arrays = _values(starts or {})  # the arrays live as long as this call
+        values, _arrays = start_values(starts or {})  # the arrays live as long as this call
         raised: list[BaseException] = []
 
         def during(_user: Any) -> int:
@@ -301,7 +301,7 @@ class FMUInstance:
     deserializeFMUState = deserializeFMUstate  # noqa: N815
 
 
-def _values(starts: Values) -> tuple[Any, list[Any]]:
+def start_values(starts: Values) -> tuple[Any, list[Any]]:
     """The ssx_fmu_values of `starts`, and the arrays it points at (keep them alive)."""
     values = ffi.new("ssx_fmu_values *")
     keep: list[Any] = [values]

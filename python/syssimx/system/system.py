@@ -198,12 +198,14 @@ class System:
 
     def _structure(self) -> tuple[Any, ...]:
         """What the engine plan is compiled from: the components (by identity and class) with
-        their port, feedthrough and handler counts and their indicators, the connections and
+        their port and feedthrough counts, their handlers and their indicators, the connections and
         the event connections. Equal before two initializes, the plan is reused. Cheap: it is
         taken at every initialize."""
         components = tuple(
             (name, id(c), type(c), len(c.input_specs), len(c.output_specs),
-             len(c.direct_feedthrough), len(c.event_handlers),
+             len(c.direct_feedthrough),
+             tuple(id(h) for hs in c.event_handlers.values() for h in hs)
+             if c.event_handlers else (),
              tuple(c.event_indicators.values()) if c.event_indicators else ())
             for name, c in self.components.items())
         connections = tuple((*c.key(), c.factor, c.offset, c.convert_units)
