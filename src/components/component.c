@@ -182,6 +182,9 @@ static void free_prepared(ssx_component *c)
     free(c->real_scratch);
     free(c->int_scratch);
     free(c->inputs_written);
+    free(c->links);
+    c->links = NULL;
+    c->n_links = 0;
     c->real_scratch = NULL;
     c->int_scratch = NULL;
     c->inputs_written = NULL;
