@@ -57,7 +57,7 @@ def test_the_step_gets_plain_values_of_each_ports_type_and_its_outputs_reach_the
     system.initialize(0.0)
     result = system.run(0.0, 0.5, 0.1)
     assert probe.seen == {(float, float, float, int, bool)}
-    t, outputs = result["Q"]
+    outputs = result["Q"][1]
     assert outputs["y"][1:].tolist() == [2.5 + 3 + 1.0] * 5
     assert outputs["steps"].tolist() == [0, 1, 2, 3, 4, 5]
     system.initialize(0.0)  # on the same plan: the ports start again
