@@ -18,7 +18,19 @@
 #include "fmu_remote.h"
 
 struct ssx_fmu {
+    /* what every doStep touches, together at the start: one cache line where thousands of
+     * FMUs step in turn (the function tables below span several) */
     const ssx_fmu_backend *backend;
+    void *instance;
+    const char *last_call; /* the last call made or refused, "" before any */
+    /* the call that returned Fatal, or NULL: after it FMI allows no call at all, not even
+     * freeing the instance, so the instance and its states are abandoned (instance NULL) and
+     * the library stays loaded */
+    const char *fatal_call;
+    long values_epoch; /* see ssx_fmu_values_epoch */
+    long generation;
+    long starts; /* see ssx_fmu_starts */
+    ssx_fmu_counters counters;
     ssx_fmu_function fn[SLOT_COUNT]; /* NULL: the binary lacks the function */
     const char *names[SLOT_COUNT];   /* the standard's name of each slot, for messages */
     void *context;                   /* the back-end's, outlives every instance */
@@ -32,20 +44,10 @@ struct ssx_fmu {
      * uses */
     int tolerance_defined;
     double tolerance;
-    void *instance;
-    const char *last_call;     /* the last call made or refused, "" before any */
-    /* the call that returned Fatal, or NULL: after it FMI allows no call at all, not even
-     * freeing the instance, so the instance and its states are abandoned (instance NULL) and
-     * the library stays loaded */
-    const char *fatal_call;
-    long generation;
-    long starts;       /* see ssx_fmu_starts */
-    long values_epoch; /* see ssx_fmu_values_epoch */
     /* FMU states handed out by the live instance, freed with it */
     void **states;
     size_t n_states;
     size_t states_capacity;
-    ssx_fmu_counters counters;
     char last_message[1024];
 };
 
