@@ -13,7 +13,8 @@ what `System.run` costs in Python as the component count grows.
 2. `System.run` of one step on a chain-free system of N `gain` FMUs (N = 100, 1000, 10000):
    the wall of `System.run` against `ssx_run` called directly on the same engine system for
    the same step; the difference is the Python cost per call, printed per call and per
-   component.
+   component; and the Python function calls one `System.run` makes (counted by a profile
+   hook: a figure the machine's load does not move).
 
     python benchmarks/run_cost.py [--members 200] [--repeats 5] [--components 100,1000,10000]
 """
@@ -21,7 +22,9 @@ what `System.run` costs in Python as the component count grows.
 from __future__ import annotations
 
 import argparse
+import functools
 import statistics
+import sys
 import time
 from collections.abc import Callable
 
@@ -111,10 +114,26 @@ def member_costs(members: int, repeats: int) -> None:
                   f"{np.max(np.abs(np.array(values) - reference)):.1e}")
 
 
+def python_calls_of(call: Callable[[], object]) -> int:
+    """The Python functions `call` runs (C functions not counted)."""
+    counted = 0
+
+    def count(_frame: object, event: str, _argument: object) -> None:
+        nonlocal counted
+        counted += event == "call"
+
+    sys.setprofile(count)
+    try:
+        call()
+    finally:
+        sys.setprofile(None)
+    return counted
+
+
 def run_call_cost(counts: list[int], repeats: int) -> None:
     print(f"\n2. System.run of one step (dt 1e-3) on N uncoupled gain FMUs, median of {repeats}")
     print(f"{'N':>6} {'System.run us':>14} {'ssx_run us':>11} {'Python us':>10} "
-          f"{'Python us/component':>20}")
+          f"{'Python us/component':>20} {'Python calls':>13}")
     for count in counts:
         system = System("gains")
         for i in range(count):
@@ -134,8 +153,10 @@ def run_call_cost(counts: list[int], repeats: int) -> None:
             t += 1e-3
             system.t = t
         whole, engine = statistics.median(python_calls), statistics.median(engine_calls)
+        calls = python_calls_of(functools.partial(system.run, system.t, system.t + 1e-3, 1e-3))
         print(f"{count:6d} {whole * 1e6:14.1f} {engine * 1e6:11.1f} "
-              f"{(whole - engine) * 1e6:10.1f} {(whole - engine) / count * 1e6:20.3f}")
+              f"{(whole - engine) * 1e6:10.1f} {(whole - engine) / count * 1e6:20.3f} "
+              f"{calls:13d}")
         for component in system.components.values():
             component.free()
 
