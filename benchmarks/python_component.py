@@ -3,9 +3,11 @@ two Python `CoSimComponent`s, examples/quickstart.py) run by `System.run`, again
 run with a pendulum FMU in place of each Python component and against the engine's own time
 for an empty step (a `gain` FMU), all in one process.
 
-Printed: microseconds per step of the whole run and per Python component step (the run's wall
-less the FMU run's, over the Python components). The comparison with SysSimX 0.4.3 on the
-same quickstart is benchmarks/yaml_system.py (SysSimX in its own virtual environment).
+Printed: microseconds of CPU per step of the whole run and per Python component step (the
+run's CPU time less the FMU run's, over the Python components; CPU time, not wall time: on a
+shared machine the wall counts the other processes' turns too). The comparison with SysSimX
+0.4.3 on the same quickstart is benchmarks/yaml_system.py (SysSimX in its own virtual
+environment).
 
     python benchmarks/python_component.py [--steps 20000] [--repeats 5]
 """
@@ -42,14 +44,14 @@ def gains() -> System:
 
 
 def per_step(system: System, steps: int, repeats: int) -> tuple[float, float]:
-    """Median microseconds per step over `repeats` runs of `steps` steps; the last value of
-    the last component's first output."""
+    """Median CPU microseconds per step over `repeats` runs of `steps` steps; the last value
+    of the last component's first output."""
     walls = []
     for _ in range(repeats):
         system.initialize(0.0)
-        start = time.perf_counter()
+        start = time.process_time()
         result = system.run(0.0, steps * DT, DT)
-        walls.append(time.perf_counter() - start)
+        walls.append(time.process_time() - start)
     last = list(system.components)[-1]
     values = next(iter(result[last][1].values()))
     return statistics.median(walls) / steps * 1e6, float(values[-1])
