@@ -8,8 +8,9 @@ what `System.run` costs in Python as the component count grows.
      fresh instance per member: what every initialize did before plans were reused);
    - FMPy's reuse loop: one FMU2Slave, `reset` between members, setupExperiment, start value,
      initialization mode, 20 doStep + getReal of the outputs into a list.
-   Median microseconds per member of `--repeats` rounds of `--members` members, and ratios to
-   FMPy.
+   Median CPU microseconds per member of `--repeats` rounds of `--members` members (CPU time,
+   not wall time: on a shared machine the wall counts the other processes' turns too), and
+   ratios to FMPy.
 2. `System.run` of one step on a chain-free system of N `gain` FMUs (N = 100, 1000, 10000):
    the wall of `System.run` against `ssx_run` called directly on the same engine system for
    the same step; the difference is the Python cost per call, printed per call and per
@@ -90,7 +91,7 @@ def member_costs(members: int, repeats: int) -> None:
     thetas = np.linspace(0.2, 0.6, members)
     print(f"1. members of {STEPS} steps (dt {DT}), {members} members per round, median of "
           f"{repeats} rounds, in turns")
-    print(f"{'FMU':<16} {'path':<26} {'us/member':>10} {'/ FMPy':>8}")
+    print(f"{'FMU':<16} {'path':<26} {'CPU us/member':>14} {'/ FMPy':>8}")
     for fmu in ("pendulum_euler", "pendulum_cvode"):
         paths = {"syssimx, reused System": syssimx_members(fmu, rebuild=False),
                  "syssimx, rebuilt": syssimx_members(fmu, rebuild=True),
@@ -101,13 +102,13 @@ def member_costs(members: int, repeats: int) -> None:
             finals[name] = [float(series[-1]) for series in run(thetas[:5])]
         for _ in range(repeats):
             for name, run in paths.items():
-                start = time.perf_counter()
+                start = time.process_time()
                 run(thetas)
-                times[name].append((time.perf_counter() - start) / members * 1e6)
+                times[name].append((time.process_time() - start) / members * 1e6)
         fmpy = statistics.median(times["FMPy reuse loop"])
         for name, samples in times.items():
             cost = statistics.median(samples)
-            print(f"{fmu:<16} {name:<26} {cost:10.1f} {cost / fmpy:8.2f}")
+            print(f"{fmu:<16} {name:<26} {cost:14.1f} {cost / fmpy:8.2f}")
         reference = np.array(finals["FMPy reuse loop"])
         for name, values in finals.items():
             print(f"{'':<16} {name:<26} max |theta(1 s) - FMPy's| = "
