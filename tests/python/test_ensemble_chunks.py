@@ -8,28 +8,29 @@ import pendulum_wall
 from syssimx.ensemble import MemberResult, MemberTask
 from syssimx.ensemble.block import pack, run_block
 from syssimx.ensemble.member import run_member
-from syssimx.ensemble.runner import AHEAD, MAX_CHUNK, TASK_SECONDS, announcing, next_size
+from syssimx.ensemble.runner import chunk_size, split
 
 
 def tasks(count: int) -> list[MemberTask]:
     return [MemberTask(index, {"P.theta0": 0.1}, 0.0, 1.0, 0.1) for index in range(count)]
 
 
-def test_tasks_are_sized_from_the_measured_member_time() -> None:
-    assert next_size(2000, 2, None) == 1  # the first tasks measure
-    assert next_size(2000, 2, TASK_SECONDS / 20) == 20
-    assert next_size(2000, 2, 1e-6) == MAX_CHUNK
-    assert next_size(2000, 2, 1.0) == 1  # a long member is a task of its own
-    # the last tasks are small, so that no worker is left with a long one alone
-    assert next_size(30, 2, TASK_SECONDS / 20) == -(-30 // (AHEAD * 2))
-    assert next_size(1, 2, TASK_SECONDS / 20) == 1
+def test_chunks_come_in_a_multiple_of_the_workers_and_differ_by_one_member_at_most() -> None:
+    assert (chunk_size(200, 2), chunk_size(800, 2)) == (25, 64)
+    # 13 chunks of 64 would leave one worker a chunk alone
+    chunks = split(tasks(800), 64, 2, "topic", every_member=False)
+    assert sorted(len(chunk) for chunk in chunks) == [57] * 12 + [58] * 2
+    assert [task.index for chunk in chunks for task in chunk] == list(range(800))
+    assert [len(chunk) for chunk in split(tasks(3), 1, 2, "topic", every_member=False)] == \
+        [1, 1, 1]
 
 
 def test_only_a_chunks_first_member_announces_its_start_unless_the_watchdog_times_each() -> None:
-    assert [task.topic for task in announcing(tasks(4), "topic", every_member=False)] == \
-        ["topic", None, None, None]
-    assert [task.topic for task in announcing(tasks(4), "topic", every_member=True)] == \
-        ["topic"] * 4
+    chunks = split(tasks(8), 4, 2, "topic", every_member=False)
+    assert [[task.topic for task in chunk] for chunk in chunks] == \
+        [["topic", None, None, None]] * 2
+    watched = split(tasks(8), 4, 2, "topic", every_member=True)
+    assert all(task.topic == "topic" for chunk in watched for task in chunk)
 
 
 def _seed() -> object:

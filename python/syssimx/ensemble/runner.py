@@ -1,9 +1,8 @@
 """Running members as Dask tasks and turning every outcome into a MemberResult.
 
-Short members share a task, sized from the members' measured time (next_size), so the
-scheduler's cost per task is paid once for several; a few tasks per worker are in flight, so a
-worker never waits for the client; a task's results come back as one block (block.py). A
-member's own failures come back as its result (member.py). Two faults need the client:
+Short members share a task (chunk_size), so the scheduler's cost per task is paid once for
+several, and a task's results come back as one block (block.py). A member's own failures come
+back as its result (member.py). Two faults need the client:
 - a member still running `member_timeout` (+ KILL_GRACE) seconds after it started is stuck
   where its run's own timeout cannot reach (inside an FMU call): its task is cancelled and its
   worker process restarted (the worker's nanny starts a fresh one);
@@ -17,11 +16,12 @@ Every other member's result is kept and the ensemble finishes.
 
 from __future__ import annotations
 
+import functools
+import itertools
 import signal
 import threading
 import time
 import uuid
-from collections import deque
 from collections.abc import Sequence
 from dataclasses import replace
 from typing import Any
@@ -35,15 +35,10 @@ from .system_source import SystemSource
 KILL_GRACE = 1.0  # seconds past member_timeout: the run's own timeout reports first if it can
 POLL = 0.1  # seconds between checks for stuck members
 DEATH_LOG_WAIT = 10.0  # seconds at most to wait for a nanny to log how its worker died
-# A task costs the client, the scheduler and its worker a few milliseconds of CPU (scheduling,
-# messages, the results' transfer) whatever its members: tasks are sized from the members'
-# measured time to take about TASK_SECONDS, and MAX_CHUNK members at most (a crash reruns a
-# task's members alone).
-TASK_SECONDS = 0.03
+# members per task at most: a task costs the client and its worker about 4 ms of CPU each
+# (scheduling, messages, the result's transfer); a crash reruns its chunk's members alone
 MAX_CHUNK = 64
-# Tasks per worker submitted ahead: a worker starts its next task without waiting for the
-# client, and the client assembles results while the workers run.
-AHEAD = 2
+CHUNKS_PER_WORKER = 4  # tasks per worker at least, for the balance
 
 
 class _Starts:
@@ -64,24 +59,26 @@ class _Starts:
             return self._starts.get(member)
 
 
-def next_size(remaining: int, workers: int, member_seconds: float | None) -> int:
-    """Members for the next task: one until a member's time is known (the first tasks measure
-    it), then as many as take about TASK_SECONDS, at most MAX_CHUNK, and never so many that
-    the last tasks leave workers idle (each task at most its share of what remains)."""
-    if member_seconds is None:
-        return 1
-    by_time = max(1, round(TASK_SECONDS / max(member_seconds, 1e-9)))
-    share = -(-remaining // (AHEAD * max(workers, 1)))
-    return max(1, min(by_time, MAX_CHUNK, share))
+def chunk_size(members: int, workers: int) -> int:
+    """Members per Dask task: short members share a task, so the per-task cost of the
+    scheduler is paid once for several; at least CHUNKS_PER_WORKER tasks per worker keep the
+    load balanced."""
+    return max(1, min(MAX_CHUNK, members // (CHUNKS_PER_WORKER * max(workers, 1))))
 
 
-def announcing(chunk: Sequence[MemberTask], topic: str, every_member: bool) -> list[MemberTask]:
-    """The members of a task, those that announce their start on `topic` marked: all when
-    `every_member` (the watchdog times each member), else only the first (a worker death is
-    pinned on a task of one member only, and each announcement costs the scheduler and the
-    client a message)."""
-    return [replace(task, topic=topic) if every_member or offset == 0 else task
-            for offset, task in enumerate(chunk)]
+def split(tasks: Sequence[MemberTask], size: int, workers: int, topic: str,
+          every_member: bool) -> list[list[MemberTask]]:
+    """`tasks` in chunks of `size` at most, as many chunks as a multiple of `workers` and of
+    sizes differing by one at most, so no worker is left with a last chunk alone. The members
+    that announce their start on `topic`: all when `every_member` (the watchdog times each
+    member), else only each chunk's first (a worker death is pinned on a chunk of one member
+    only, and each announcement costs the scheduler and the client a message)."""
+    count = -(-len(tasks) // size)
+    count = min(len(tasks), -(-count // workers) * workers)
+    bounds = [len(tasks) * k // count for k in range(count + 1)]
+    return [[replace(task, topic=topic) if every_member or offset == 0 else task
+             for offset, task in enumerate(tasks[first:last])]
+            for first, last in itertools.pairwise(bounds)]
 
 
 class _Ensemble:
@@ -92,44 +89,34 @@ class _Ensemble:
         self.client, self.build, self.member_timeout, self.bar = client, build, \
             member_timeout, bar
         self.workers = max(1, len(client.nthreads()))
+        # one function object for every task: Dask serializes it once, not per task
+        self.task = functools.partial(run_block, build)
+        self.parameters: dict[int, Any] = {}  # by member index
         self.topic = f"syssimx-ensemble-{uuid.uuid4().hex}"
         self.starts = _Starts()
         self.results: dict[int, MemberResult] = {}
-        self.parameters: dict[int, Any] = {}  # by member index
         self._attempt = 0
-        self._member_time, self._timed = 0.0, 0
 
-    def run(self, tasks: Sequence[MemberTask], alone: bool = False) -> list[MemberTask]:
-        """Run `tasks`, AHEAD tasks per worker in flight, each new one sized from the member
-        time measured so far; returns the suspects (see the module's description). `alone`:
-        `tasks` is one member run alone on the cluster, so a worker death is its own."""
+    def run(self, tasks: Sequence[MemberTask], size: int) -> list[MemberTask]:
+        """Run `tasks` in chunks of `size` members; returns the suspects (see the module's
+        description). A chunk of one member alone on the cluster (size 0 here: `tasks` is one
+        member run alone) makes a worker death that member's."""
         from distributed import as_completed
 
+        alone = size == 0
         self._attempt += 1
-        waiting = deque(tasks)
-        futures: list[Any] = []
-        by_key: dict[Any, list[MemberTask]] = {}
-        running = as_completed([], with_results=True, raise_errors=False)
-
-        def submit() -> None:
-            size = next_size(len(waiting), self.workers, self.member_seconds())
-            chunk = announcing([waiting.popleft() for _ in range(min(size, len(waiting)))],
-                               self.topic, every_member=self.member_timeout is not None)
-            key = f"syssimx-members-{chunk[0].index}-{self.topic[-8:]}-{self._attempt}"
-            by_key[key] = chunk  # before the future: the watchdog looks chunks up by key
-            future = self.client.submit(run_block, self.build, chunk, key=key, pure=False)
-            futures.append(future)
-            running.add(future)
-
-        while waiting and len(futures) < AHEAD * self.workers:
-            submit()
+        chunks = split(tasks, max(size, 1), self.workers, self.topic,
+                       every_member=self.member_timeout is not None)
+        futures = self.client.map(
+            self.task, chunks,
+            key=[f"syssimx-members-{c[0].index}-{self.topic[-8:]}-{self._attempt}"
+                 for c in chunks], pure=False)
+        by_key = {future.key: chunk for future, chunk in zip(futures, chunks, strict=True)}
         watchdog = _Watchdog(self.client, futures, by_key, self.starts, self.member_timeout) \
             if self.member_timeout is not None else None
         suspects: list[MemberTask] = []
         try:
-            for future, outcome in running:
-                if waiting:  # the next task first: the worker that finished gets it at once
-                    submit()
+            for future, outcome in as_completed(futures, with_results=True, raise_errors=False):
                 chunk = by_key[future.key]
                 if future.status == "finished":
                     self._keep(outcome.results(self.parameters))
@@ -146,17 +133,10 @@ class _Ensemble:
             self.client.cancel([future for future in futures if not future.done()])
         return suspects
 
-    def member_seconds(self) -> float | None:
-        """The mean time of the members finished so far, inside their workers."""
-        return self._member_time / self._timed if self._timed else None
-
     def _keep(self, results: Sequence[MemberResult]) -> None:
         for result in results:
             self.results[result.index] = result
             self.bar.advance(not result.ok)
-            if result.wall_time == result.wall_time:  # NaN for a member that never ran
-                self._member_time += result.wall_time
-                self._timed += 1
 
     def _failed(self, error: BaseException, chunk: list[MemberTask], alone: bool
                 ) -> list[MemberTask]:
@@ -194,8 +174,8 @@ def run_members(client: Any, build: SystemSource, tasks: Sequence[MemberTask],
     ensemble.parameters = {task.index: task.parameters for task in tasks}
     client.subscribe_topic(ensemble.topic, ensemble.starts.record)
     try:
-        for suspect in ensemble.run(tasks):
-            ensemble.run([suspect], alone=True)
+        for suspect in ensemble.run(tasks, chunk_size(len(tasks), ensemble.workers)):
+            ensemble.run([suspect], 0)
     finally:
         bar.close()
         client.unsubscribe_topic(ensemble.topic)
