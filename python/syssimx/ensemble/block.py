@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .leftovers import end_left_children
 from .member import STATISTICS, MemberResult, MemberTask, run_member
 from .members import ParameterSet
 from .system_source import SystemSource
@@ -86,6 +87,9 @@ def pack(results: Sequence[MemberResult]) -> MemberBlock:
 
 
 def run_block(build: SystemSource, tasks: list[MemberTask]) -> MemberBlock:
-    """Run members one after another here (one Dask task for several short members) and pack
-    their results."""
-    return pack([run_member(build, task) for task in tasks])
+    """Run members one after another here (one Dask task for several short members), end the
+    processes their FMUs forked and left (leftovers.py), and pack their results."""
+    end_left_children()  # the first call notes the worker's own children
+    results = [run_member(build, task) for task in tasks]
+    end_left_children()
+    return pack(results)
