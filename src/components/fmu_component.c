@@ -141,7 +141,7 @@ static int stop_requested(ssx_system *sys, ssx_component *c, double t, double t_
 {
     double stop = isnan(reached) ? t : reached;
     /* the first request of the run counts; on a worker thread, the first of its share */
-    ssx_termination *request = parallel_termination_slot(sys);
+    ssx_termination *request = termination_record(sys);
     if (request->component < 0) {
         request->component = c->index;
         request->time = stop;

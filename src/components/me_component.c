@@ -160,7 +160,7 @@ static int fail_cvode(ssx_system *sys, ssx_component *c, me_data *me, double t, 
  * ssx_termination); on a worker thread, the first request of its share. */
 static void note_termination(ssx_system *sys, ssx_component *c, double t)
 {
-    ssx_termination *request = parallel_termination_slot(sys);
+    ssx_termination *request = termination_record(sys);
     if (request->component < 0) {
         request->component = c->index;
         request->time = t;

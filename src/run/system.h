@@ -48,6 +48,15 @@ typedef struct {
     double zeno_min_interval; /* <= 0: ten times tol_time */
 } ssx_hybrid_options;
 
+/* Where the current thread's failures and termination requests go (error.h): while a batch
+ * of components steps on several threads, each thread's own (parallel_step.c sets them);
+ * without them, the system's. */
+typedef struct {
+    ssx_error *(*error)(void *owner);
+    ssx_termination *(*termination)(void *owner);
+    void *owner;
+} thread_records;
+
 struct ssx_system {
     char *name;
     ssx_component **components;
@@ -88,6 +97,7 @@ struct ssx_system {
     ssx_statistics stats;
     ssx_error error;
     ssx_termination termination;
+    thread_records thread_records; /* all NULL: failures go to error and termination */
     int allow_non_finite;
     ssx_monitor monitor;
 

@@ -138,7 +138,7 @@ static int step_gauss_seidel_batches(ssx_system *sys, double t, double h)
         for (int m = 0; m < batches[b].size && batches[b].group < 0; ++m) {
             coupling_propagate_inputs(sys, sys->components[members[m]]);
         }
-        if (parallel_step(sys, members, batches[b].size, t, h) != 0) {
+        if (parallel_step(sys, members, batches[b].size, t, h, coupling_step_member) != 0) {
             return -1;
         }
         if (batches[b].group >= 0 &&
@@ -159,7 +159,7 @@ static int step_jacobi(ssx_system *sys, double t, double h)
             coupling_propagate_inputs(sys, member(sys, g, m));
         }
     }
-    if (parallel_step(sys, sys->order, sys->n_components, t, h) != 0) {
+    if (parallel_step(sys, sys->order, sys->n_components, t, h, coupling_step_member) != 0) {
         return -1;
     }
     for (int gi = 0; gi < sys->n_groups; ++gi) {

@@ -8,7 +8,6 @@
 #include <string.h>
 #include <time.h>
 
-#include "coupling.h"
 #include "error.h"
 #include "worker_pool.h"
 
@@ -36,7 +35,6 @@ struct parallel_plan {
     int *owner;             /* the thread that stepped each task */
     int n_tasks;
     thread_report *reports; /* one per thread, 0 the calling thread's */
-    int running;            /* a batch is being stepped by the pool */
     double task_seconds;    /* recent cost of one pool task (a moving average), < 0 unknown */
     double caller_seconds;  /* in the current batch, the calling thread's time in its tasks */
     int caller_tasks;
@@ -49,21 +47,18 @@ struct parallel_plan {
 
 /* ------------------------------------------------------------------ the records */
 
-ssx_error *parallel_error_slot(ssx_system *sys)
+/* While a batch runs: the records of the thread that calls (the system's thread_records). */
+static ssx_error *thread_error(void *plan)
 {
-    parallel_plan *p = sys->parallel;
-    if (p == NULL || !p->running) {
-        return &sys->error;
-    }
+    parallel_plan *p = plan;
     thread_report *r = &p->reports[worker_pool_self(p->pool)];
     return r->failed_at < 0 ? &r->error : &r->later_error;
 }
 
-ssx_termination *parallel_termination_slot(ssx_system *sys)
+static ssx_termination *thread_termination(void *plan)
 {
-    parallel_plan *p = sys->parallel;
-    return p != NULL && p->running ? &p->reports[worker_pool_self(p->pool)].termination
-                                   : &sys->termination;
+    parallel_plan *p = plan;
+    return &p->reports[worker_pool_self(p->pool)].termination;
 }
 
 /* ------------------------------------------------------------------ the plan */
@@ -278,14 +273,15 @@ static void step_one(void *context, int k, int thread)
 /* What one thread would have done, in member order: steps the members that stay on the
  * calling thread, counts the pool's steps, and takes over the first termination request and
  * the first failure. */
-static int replay(ssx_system *sys, const int *members, int n, double t, double h)
+static int replay(ssx_system *sys, const int *members, int n, double t, double h,
+                  member_step step_member)
 {
     parallel_plan *p = sys->parallel;
     int task = 0;
     for (int m = 0; m < n; ++m) {
         ssx_component *c = sys->components[members[m]];
         if (!p->on_pool[c->index]) {
-            if (coupling_step_member(sys, c, t, h) != 0) {
+            if (step_member(sys, c, t, h) != 0) {
                 return -1;
             }
             continue;
@@ -307,7 +303,8 @@ static int replay(ssx_system *sys, const int *members, int n, double t, double h
     return 0;
 }
 
-int parallel_step(ssx_system *sys, const int *members, int n, double t, double h)
+int parallel_step(ssx_system *sys, const int *members, int n, double t, double h,
+                  member_step step_member)
 {
     parallel_plan *p = sys->parallel;
     if (p != NULL) {
@@ -324,7 +321,7 @@ int parallel_step(ssx_system *sys, const int *members, int n, double t, double h
         int timed = p != NULL && p->n_tasks >= 2; /* a batch that might be shared next time */
         double start = timed ? seconds_now() : 0.0;
         for (int m = 0; m < n; ++m) {
-            if (coupling_step_member(sys, sys->components[members[m]], t, h) != 0) {
+            if (step_member(sys, sys->components[members[m]], t, h) != 0) {
                 return -1;
             }
         }
@@ -345,9 +342,9 @@ int parallel_step(ssx_system *sys, const int *members, int n, double t, double h
     p->h = h;
     p->caller_seconds = 0.0;
     p->caller_tasks = 0;
-    p->running = 1;
+    sys->thread_records = (thread_records){thread_error, thread_termination, p};
     worker_pool_run(p->pool, step_task, p, p->n_tasks);
-    p->running = 0;
+    sys->thread_records = (thread_records){0};
     note_task_cost(p, p->caller_seconds / p->caller_tasks);
-    return replay(sys, members, n, t, h);
+    return replay(sys, members, n, t, h, step_member);
 }
