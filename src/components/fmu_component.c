@@ -7,9 +7,11 @@
 #include <string.h>
 
 #include "component.h"
+#include "component_calls.h"
 #include "error.h"
 #include "fmu_backend.h"
 #include "fmu_binding.h"
+#include "own_events.h"
 #include "parallel_step.h"
 #include "system.h"
 

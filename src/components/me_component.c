@@ -32,9 +32,11 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "component.h"
+#include "component_calls.h"
 #include "error.h"
 #include "fmu_backend.h"
 #include "fmu_binding.h"
+#include "own_events.h"
 #include "parallel_step.h"
 #include "system.h"
 

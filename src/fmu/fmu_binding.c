@@ -831,7 +831,8 @@ long ssx_fmu_values_epoch(const ssx_fmu *fmu)
     return fmu != NULL ? fmu->values_epoch : 0;
 }
 
-ssx_remote *ssx_fmu_remote(const ssx_fmu *fmu)
+ssx_remote *ssx_fmu_remote(const void *environment)
 {
+    const ssx_fmu *fmu = environment;
     return fmu != NULL ? fmu->remote : NULL;
 }

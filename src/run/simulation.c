@@ -3,10 +3,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "algorithm.h"
 #include "component.h"
+#include "component_calls.h"
 #include "coupling.h"
 #include "error.h"
 #include "indicator.h"
+#include "own_events.h"
+#include "recording.h"
 #include "system.h"
 
 /* Steps beyond this would not fit the history's size arithmetic. */

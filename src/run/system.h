@@ -1,15 +1,20 @@
-/* The system's internal layout, shared by the engine's source files. */
+/* The system's internal layout, shared by the engine's source files. It includes only what
+ * needs no system itself; the rooms that read the system (components, the algorithm, the
+ * indicators, the recording) are named here by their types alone. */
 #ifndef SSX_SYSTEM_H
 #define SSX_SYSTEM_H
 
-#include "algorithm.h"
-#include "component.h"
-#include "indicator.h"
 #include "locator.h"
 #include "localization_log.h"
 #include "monitor.h"
-#include "recording.h"
 #include "syssimx_engine.h"
+
+typedef struct ssx_component ssx_component;
+typedef struct ssx_component_ops ssx_component_ops;
+typedef struct ssx_master_algorithm ssx_master_algorithm;
+typedef struct ssx_indicator ssx_indicator;
+typedef struct indicator_state indicator_state;
+typedef struct ssx_recording ssx_recording;
 
 typedef struct {
     int src_component;
@@ -92,7 +97,8 @@ struct ssx_system {
     ssx_loop_options loop;
     ssx_hybrid_options hybrid;
 
-    ssx_recording recording;
+    ssx_recording *recording;
+    int record_hooks_observed; /* a component's record hook was set: its observer is added */
     ssx_localization_log localization;
     ssx_statistics stats;
     ssx_error error;
@@ -111,6 +117,9 @@ ssx_component *system_component(ssx_system *sys, int index); /* NULL with the er
 /* Appends a component of the given kind; returns its index, or -1 with the error set. */
 int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
                          const ssx_component_ops *ops);
-int system_is_hybrid(const ssx_system *sys);
+static inline int system_is_hybrid(const ssx_system *sys)
+{
+    return sys->n_indicators > 0;
+}
 
 #endif

@@ -2,6 +2,7 @@
  * (singular Jacobian, no convergence). A Jacobian column comes from the owning FMU's directional
  * derivatives when it provides them, otherwise from finite differences. */
 #include "algebraic_loop.h"
+#include "component_calls.h"
 
 #include <float.h>
 #include <math.h>

@@ -3,6 +3,8 @@
 
 #include "coupling.h"
 #include "hybrid.h"
+#include "own_events.h"
+#include "recording.h"
 #include "system.h"
 
 /* No events: one coupled step per communication step. */

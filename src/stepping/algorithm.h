@@ -6,7 +6,7 @@
 
 #include "syssimx_engine.h"
 
-typedef struct {
+typedef struct ssx_master_algorithm {
     /* Sets up the algorithm's workspace for the system as built; NULL when it needs none. */
     int (*prepare)(ssx_system *sys);
     /* Advances from t to the communication point t_next and records what it completes. */

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "algebraic_loop.h"
+#include "component_calls.h"
 #include "error.h"
 #include "parallel_step.h"
 

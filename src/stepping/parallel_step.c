@@ -8,6 +8,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "component_calls.h"
 #include "error.h"
 #include "worker_pool.h"
 

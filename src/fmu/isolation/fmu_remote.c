@@ -19,7 +19,6 @@
 #include <unistd.h>
 
 #include "fmi2Functions.h"
-#include "fmu_binding.h"
 #include "fmu_remote_protocol.h"
 #include "remote_io.h"
 

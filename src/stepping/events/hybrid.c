@@ -10,10 +10,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "component_calls.h"
 #include "coupling.h"
 #include "error.h"
 #include "indicator.h"
 #include "locator.h"
+#include "own_events.h"
+#include "recording.h"
 
 enum { MACRO_SLOT = 0, PROBE_SLOT = 1 };
 /* Fraction of the macro step over which the probe follows a handled state. */

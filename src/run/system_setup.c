@@ -9,9 +9,13 @@
 #include <string.h>
 
 #include "array.h"
+#include "component_calls.h"
 #include "coupling.h"
 #include "error.h"
+#include "indicator.h"
 #include "parallel_step.h"
+#include "record_hooks.h"
+#include "recording.h"
 
 void ssx_get_defaults(ssx_defaults *out)
 {
@@ -58,7 +62,12 @@ ssx_system *ssx_system_new(const char *name)
                                        .locator = d.locator,
                                        .zeno_min_interval = d.zeno_min_interval};
     sys->termination.component = -1;
-    recording_init(&sys->recording, d.output_interval);
+    sys->recording = recording_new(d.output_interval);
+    if (sys->recording == NULL) {
+        free(sys->name);
+        free(sys);
+        return NULL;
+    }
     clear_error(sys);
     return sys;
 }
@@ -79,7 +88,7 @@ void ssx_system_free(ssx_system *sys)
     free(sys->event_links);
     free(sys->order);
     free(sys->groups);
-    recording_free(&sys->recording);
+    recording_free(sys->recording);
     parallel_free(sys->parallel);
     localization_log_free(&sys->localization);
     free(sys->name);
@@ -100,11 +109,6 @@ ssx_component *system_component(ssx_system *sys, int index)
         return NULL;
     }
     return sys->components[index];
-}
-
-int system_is_hybrid(const ssx_system *sys)
-{
-    return sys->n_indicators > 0;
 }
 
 /* Any change of structure requires a new ssx_initialize. */
@@ -170,6 +174,15 @@ int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks)
         memset(&c->hooks, 0, sizeof c->hooks);
     } else {
         c->hooks = *hooks;
+    }
+    /* most systems have no record hook: no call for them on every sample */
+    if (c->hooks.record != NULL && !sys->record_hooks_observed) {
+        ssx_observer *observer = record_hooks_observer_new();
+        if (observer == NULL || recording_add_sample_observer(sys->recording, observer) != 0) {
+            return fail_config(sys, component, -1, sys->time,
+                               "out of memory observing the record hooks");
+        }
+        sys->record_hooks_observed = 1;
     }
     structure_changed(sys);
     return 0;
@@ -562,7 +575,7 @@ int ssx_set_output_interval(ssx_system *sys, int grid_steps)
             "system '%s': the output interval is a number of grid steps >= 1, not %d", sys->name,
             grid_steps);
     }
-    sys->recording.output_interval = grid_steps;
+    sys->recording->output_interval = grid_steps;
     return 0;
 }
 
@@ -574,6 +587,6 @@ int ssx_set_run_output_interval(ssx_system *sys, int grid_steps)
                            "(or 0 for none), not %d",
                            sys->name, grid_steps);
     }
-    sys->recording.run_output_interval = grid_steps;
+    sys->recording->run_output_interval = grid_steps;
     return 0;
 }
