@@ -246,8 +246,15 @@ int recording_add_sample_observer(ssx_recording *r, ssx_observer *observer)
     return 0;
 }
 
-int recording_keep_history(ssx_recording *r, int keep)
+void recording_keep_history(ssx_recording *r, int keep)
 {
+    r->history_off = !keep;
+}
+
+/* At the start: the history first among the kept observers, or gone with its samples. */
+static int place_history(ssx_recording *r)
+{
+    int keep = !r->history_off;
     int kept = r->kept.n > 0 && r->kept.items[0] == &r->history.base;
     if (keep && !kept) {
         if (list_add(&r->kept, &r->history.base) != 0) {
@@ -269,6 +276,9 @@ int recording_keep_history(ssx_recording *r, int keep)
 int recording_start(ssx_system *sys)
 {
     ssx_recording *r = sys->recording;
+    if (place_history(r) != 0) {
+        return fail(sys, -1, -1, sys->time, "out of memory starting the history");
+    }
     r->n_events = 0;
     r->decimator = (ssx_decimator){.interval = r->output_interval};
     r->run_end_time = sys->time;

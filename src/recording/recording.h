@@ -37,6 +37,7 @@ typedef struct {
 
 typedef struct ssx_recording {
     ssx_history_observer history;
+    int history_off; /* ssx_set_history(sys, 0) */
     ssx_decimator decimator;
     observer_list kept;  /* the history (first, unless off) and the observers added */
     observer_list every; /* observers of every sample */
@@ -60,9 +61,9 @@ int recording_add_observer(ssx_recording *r, ssx_observer *observer);
 int recording_remove_observer(ssx_recording *r, int id);
 /* Adds an observer of every sample, which the recording owns: 0, or -1 when out of memory. */
 int recording_add_sample_observer(ssx_recording *r, ssx_observer *observer);
-/* Whether the history keeps samples (1, the default) or not (ssx_set_history): 0, or -1 when
- * out of memory. */
-int recording_keep_history(ssx_recording *r, int keep);
+/* Whether the history keeps samples (1, the default) or not (ssx_set_history), from the next
+ * start on. */
+void recording_keep_history(ssx_recording *r, int keep);
 
 /* ssx_initialize: drops the last run's events and starts the observers. */
 int recording_start(ssx_system *sys);
