@@ -484,6 +484,14 @@ typedef struct {
  * ssx_remove_observer, or -1 with the error set. Neither adding nor removing may happen during
  * a run (from a callback). */
 int ssx_add_observer(ssx_system *sys, const ssx_observer_callbacks *callbacks, void *user);
+/* A block observer: the samples an observer sees, gathered into blocks of up to `rows` rows
+ * (times, micro steps, and every component's outputs in component order, row-major: n_rows x
+ * n_columns) and handed to `write` when a block is full, at the last point of each run, and
+ * after a failed run with what came before the failure. The arrays are valid during the call.
+ * How a file is written while the run goes on in bounded memory. Returns its id, or -1. */
+typedef int (*ssx_block_writer)(void *user, const double *t, const int *micro,
+                                const double *values, size_t n_rows, size_t n_columns);
+int ssx_add_block_observer(ssx_system *sys, size_t rows, ssx_block_writer write, void *user);
 /* Removes the observer of that id; its callbacks are never called again. 0, or -1. */
 int ssx_remove_observer(ssx_system *sys, int observer);
 /* keep 0: the history keeps no samples (its accessors see none), for a run that only

@@ -201,8 +201,56 @@ static void check_failing_observer(void)
     stop_bouncing(&p);
 }
 
+/* What a block observer was handed, gathered. */
+typedef struct {
+    size_t n, blocks, columns;
+    double t[MAX_SAMPLES];
+    int micro[MAX_SAMPLES];
+    double values[MAX_SAMPLES * PENDULUM_OUTPUTS];
+} gathered;
+
+static int gather(void *user, const double *t, const int *micro, const double *values,
+                  size_t n_rows, size_t n_columns)
+{
+    gathered *g = user;
+    CHECK(g->n + n_rows <= MAX_SAMPLES && n_columns == PENDULUM_OUTPUTS);
+    memcpy(g->t + g->n, t, n_rows * sizeof *t);
+    memcpy(g->micro + g->n, micro, n_rows * sizeof *micro);
+    memcpy(g->values + g->n * n_columns, values, n_rows * n_columns * sizeof *values);
+    g->n += n_rows;
+    g->blocks++;
+    g->columns = n_columns;
+    return 0;
+}
+
+/* Blocks of 16 rows: together, the history bit for bit; the end of ssx_initialize and of
+ * each run closes a block. */
+static void check_blocks(void)
+{
+    bouncing_pendulum p;
+    start_bouncing(&p, 1);
+    static gathered g;
+    g = (gathered){0};
+    CHECK(ssx_add_block_observer(p.sys, 16, gather, &g) > 0);
+    CHECK(ssx_add_block_observer(p.sys, 0, gather, &g) < 0);
+    CHECK_OK(p.sys, ssx_initialize(p.sys, 0.0));
+    CHECK_OK(p.sys, ssx_run(p.sys, 0.0, 0.55, 0.01));
+    size_t first_run = ssx_history_length(p.sys);
+    CHECK(g.n == first_run); /* nothing waits for the next run */
+    CHECK_OK(p.sys, ssx_run(p.sys, 0.55, 1.0, 0.01));
+    size_t n = ssx_history_length(p.sys);
+    /* the sample at t0 closes a block of its own (it ends ssx_initialize) */
+    CHECK(g.n == n && g.blocks == 1 + (first_run - 1 + 15) / 16 + (n - first_run + 15) / 16);
+    CHECK(memcmp(g.t, ssx_history_time(p.sys), n * sizeof(double)) == 0);
+    CHECK(memcmp(g.micro, ssx_history_micro(p.sys), n * sizeof(int)) == 0);
+    CHECK(memcmp(g.values, ssx_history_values(p.sys, 0), n * PENDULUM_OUTPUTS * sizeof(double)) ==
+          0);
+    stop_bouncing(&p);
+}
+
 int main(void)
 {
+    check_blocks();
     check_equal_to_history(1);
     check_equal_to_history(7);
     check_history_off();
