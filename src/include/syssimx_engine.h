@@ -494,9 +494,9 @@ typedef int (*ssx_block_writer)(void *user, const double *t, const int *micro,
 int ssx_add_block_observer(ssx_system *sys, size_t rows, ssx_block_writer write, void *user);
 /* Removes the observer of that id; its callbacks are never called again. 0, or -1. */
 int ssx_remove_observer(ssx_system *sys, int observer);
-/* keep 0: the history keeps no samples (its accessors see none), for a run that only
- * observers keep, larger than memory would hold; 1, the default, keeps them. Takes effect at
- * the next ssx_initialize. */
+/* keep 0: the history keeps no more samples, for a run that only observers keep, larger than
+ * memory would hold: from the next ssx_run on (its samples so far are dropped then). keep 1,
+ * the default: the history keeps the samples again from the next ssx_initialize. */
 int ssx_set_history(ssx_system *sys, int keep);
 
 /* A reference to the buffers the history accessors return now: until it is released, their

@@ -288,6 +288,9 @@ int recording_start(ssx_system *sys)
 int recording_run_start(ssx_system *sys, size_t n_steps, double tf)
 {
     ssx_recording *r = sys->recording;
+    if (r->history_off) {
+        (void)place_history(r); /* removing it takes no memory */
+    }
     r->run_end_time = tf;
     size_t kept_steps = n_steps;
     if (decimating(r)) {

@@ -61,8 +61,8 @@ int recording_add_observer(ssx_recording *r, ssx_observer *observer);
 int recording_remove_observer(ssx_recording *r, int id);
 /* Adds an observer of every sample, which the recording owns: 0, or -1 when out of memory. */
 int recording_add_sample_observer(ssx_recording *r, ssx_observer *observer);
-/* Whether the history keeps samples (1, the default) or not (ssx_set_history), from the next
- * start on. */
+/* Whether the history keeps samples (1, the default) or not (ssx_set_history): switched off,
+ * from the next run on; on again, from the next start. */
 void recording_keep_history(ssx_recording *r, int keep);
 
 /* ssx_initialize: drops the last run's events and starts the observers. */
