@@ -39,6 +39,7 @@
 #include "own_events.h"
 #include "parallel_step.h"
 #include "system.h"
+#include "zeno.h"
 
 /* What the engine holds of the component's state besides the FMU state: the continuous
  * states, the pending time event and when each event indicator last crossed (a restore before
@@ -392,30 +393,28 @@ static int integrate(ssx_system *sys, ssx_component *c, me_data *me, double stop
     return 0;
 }
 
-/* Chattering, by the master's rule for its indicators: an indicator that crosses again
- * within zeno_min_interval (by default ten times tol_time) of its previous crossing. Near an
- * accumulation point (a ball whose bounces never end) CVODE would soon miss a crossing and let
- * the state sink through: the run ends here instead. */
+/* Chattering, by the rule of the master's indicators (zeno.h), with no grid to resolve: the
+ * engine's integrator resolves every crossing. Near an accumulation point (a ball whose
+ * bounces never end) CVODE would soon miss a crossing and let the state sink through: the run
+ * ends here instead. */
 static int state_event_chatters(ssx_system *sys, ssx_component *c, me_data *me, double t)
 {
     if (CVodeGetRootInfo(me->cvode, me->roots_found) != CV_SUCCESS) {
         return fail(sys, c->index, -1, t, "component '%s': CVodeGetRootInfo failed at t=%.17g",
                     c->name, t);
     }
-    double minimum = sys->hybrid.zeno_min_interval > 0.0 ? sys->hybrid.zeno_min_interval
-                                                         : 10.0 * sys->hybrid.tol_time;
     for (size_t i = 0; i < me->nz; ++i) {
         if (me->roots_found[i] == 0) {
             continue;
         }
         double interval = t - me->now.last_crossing[i];
         me->now.last_crossing[i] = t;
-        if (interval < minimum) {
+        if (zeno_judge(&sys->hybrid, interval, INFINITY, 0.0) != ZENO_NONE) {
             return fail_zeno(sys, c->index, -1, t,
                              "component '%s': its event indicator %zu crossed again at t=%.17g, "
                              "only %.3g after its previous crossing: chattering (Zeno) "
                              "behaviour; the minimum interval is %.3g",
-                             c->name, i, t, interval, minimum);
+                             c->name, i, t, interval, zeno_min_interval(&sys->hybrid));
         }
     }
     return 0;

@@ -17,13 +17,11 @@
 #include "locator.h"
 #include "own_events.h"
 #include "recording.h"
+#include "zeno.h"
 
 enum { MACRO_SLOT = 0, PROBE_SLOT = 1 };
 /* Fraction of the macro step over which the probe follows a handled state. */
 #define PROBE_HORIZON 0.1
-/* Event intervals that shrink at least this much each are on their way to an accumulation
- * point (a bouncing ball's shrink by its restitution). */
-#define GEOMETRIC_APPROACH 0.9
 
 typedef struct {
     double a0;            /* start of the macro piece: the snapshot time */
@@ -253,7 +251,7 @@ static int probe(ssx_system *sys, double b, double delta_max, instant_work *w)
     if (snapshot_all(sys, PROBE_SLOT) != 0) {
         return -1;
     }
-    double delta = 10.0 * sys->hybrid.tol_time;
+    double delta = distinct_events_interval(&sys->hybrid);
     for (int first = 1;; first = 0) {
         if (coupling_step(sys, b, delta) != 0 || indicators_evaluate(sys, b + delta) != 0) {
             return -1;
@@ -304,28 +302,13 @@ static int notify_listeners(ssx_system *sys, double b, instant_work *w)
     return 0;
 }
 
-/* Two firings of one indicator this close are chattering. With zeno_min_interval set, that is
- * the whole rule. By default the scale is a tenth of the communication step (the horizon over
- * which the probe judges where a handled state goes): crossings that come back faster are finer
- * than the grid resolves, since between two grid points a master sees only the signs at the
- * ends. They are still followed while their intervals shrink geometrically, the way to an
- * accumulation point, which ten times tol_time or the residue test of settle_signs then stops
- * precisely; once they stop shrinking the model chatters at a fixed fine scale (an explicit
- * Euler FMU gains speed at every bounce and settles into flights of a few of its own steps,
- * bouncing for ever). */
-static int chattering(const ssx_system *sys, const event_bracket *br, const indicator_state *s,
-                      double interval)
-{
-    if (sys->hybrid.zeno_min_interval > 0.0) {
-        return interval < sys->hybrid.zeno_min_interval;
-    }
-    if (interval < 10.0 * sys->hybrid.tol_time) {
-        return 1;
-    }
-    return interval < PROBE_HORIZON * br->grid_step &&
-           !(interval <= GEOMETRIC_APPROACH * s->last_interval);
-}
-
+/* Chattering by zeno.h's rule. The master's resolution is a tenth of the communication step
+ * (the horizon over which the probe judges where a handled state goes): crossings that come
+ * back faster are finer than the grid resolves, since between two grid points a master sees
+ * only the signs at the ends. The residue test of settle_signs stops an accumulation point
+ * precisely too; once the intervals stop shrinking the model chatters at a fixed fine scale (an
+ * explicit Euler FMU gains speed at every bounce and settles into flights of a few of its own
+ * steps, bouncing for ever). */
 static int check_zeno(ssx_system *sys, const event_bracket *br, int micro, const instant_work *w)
 {
     double b = br->b;
@@ -337,17 +320,19 @@ static int check_zeno(ssx_system *sys, const event_bracket *br, int micro, const
             continue;
         }
         double interval = b - s->last_event_time;
-        if (!chattering(sys, br, s, interval)) {
+        zeno_verdict verdict = zeno_judge(&sys->hybrid, interval, s->last_interval,
+                                          PROBE_HORIZON * br->grid_step);
+        if (verdict == ZENO_NONE) {
             continue;
         }
         const char *name = sys->components[component]->name;
-        if (sys->hybrid.zeno_min_interval > 0.0 || interval < 10.0 * sys->hybrid.tol_time) {
+        if (verdict == ZENO_TOO_CLOSE) {
             return fail_zeno(sys, component, i, b,
                              "indicator %d of component '%s' fired again at t=%.17g, only %.3g "
                              "after its previous event (event number %ld): chattering (Zeno) "
                              "behaviour; the minimum interval is %.3g",
                              i, name, b, interval, s->fire_count + 1,
-                             fmax(sys->hybrid.zeno_min_interval, 10.0 * sys->hybrid.tol_time));
+                             zeno_min_interval(&sys->hybrid));
         }
         return fail_zeno(sys, component, i, b,
                          "indicator %d of component '%s' fired again at t=%.17g, only %.3g after "
@@ -372,7 +357,8 @@ static int settle_signs(ssx_system *sys, double b, const event_bracket *br, inst
         need_probe |= near_zero(w, i);
     }
     /* the probe stays well inside the macro step it belongs to */
-    double delta_max = fmax(10.0 * sys->hybrid.tol_time, PROBE_HORIZON * (br->t_end - br->a0));
+    double delta_max =
+        fmax(distinct_events_interval(&sys->hybrid), PROBE_HORIZON * (br->t_end - br->a0));
     if (need_probe && probe(sys, b, delta_max, w) != 0) {
         return -1;
     }
@@ -541,7 +527,8 @@ static int resolve_zero_start(ssx_system *sys, double a0, double t_next)
         w.band[i] = 0.0;
     }
     int status =
-        probe(sys, a0, fmax(10.0 * sys->hybrid.tol_time, PROBE_HORIZON * (t_next - a0)), &w);
+        probe(sys, a0, fmax(distinct_events_interval(&sys->hybrid), PROBE_HORIZON * (t_next - a0)),
+              &w);
     int fires = 0;
     for (int i = 0; status == 0 && i < sys->n_indicators; ++i) {
         indicator_state *s = &sys->indicator_states[i];
