@@ -7,7 +7,7 @@ so what recording costs is not hidden behind the model.
   per sample   best of --repeat runs of --steps steps, side by side in this process: the
                history alone; with a Python observer that does nothing (System.add_observer:
                one cffi call and one numpy array per sample); streamed to Parquet
-               (run(stream_to=...), the engine hands pyarrow blocks of 10 000 samples)
+               (run(stream_to=...), the engine hands pyarrow blocks of about 8 MB)
   bounded      one child process per size, each a fresh interpreter: a run of N samples
                streamed to Parquet with keep_history=False, its wall time per sample, the peak
                resident size during the run above the size before it (Linux: the peak is reset

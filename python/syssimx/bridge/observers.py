@@ -16,8 +16,10 @@ import numpy as np
 from ..engine import enum_name, ffi, lib
 from .plan import CallbackFailure, EnginePlan
 
-# rows per block a writer is handed: about 8 MB of values for a hundred outputs
-BLOCK_ROWS = 10_000
+# A block a writer is handed holds about this many bytes (time, micro and the values): large
+# enough that a file format's cost per block (a Parquet row group and its footer entry) is
+# paid rarely, small enough that memory stays a few blocks.
+BLOCK_BYTES = 8 << 20
 
 BlockWriter = Callable[[np.ndarray, np.ndarray, np.ndarray], None]
 
@@ -97,9 +99,12 @@ def add_observer(plan: EnginePlan, observer: Any) -> int:
     return plan.check(lib().ssx_add_observer(plan.sys, callbacks, ffi.NULL), "add_observer")
 
 
-def add_block_writer(plan: EnginePlan, write: BlockWriter, rows: int = BLOCK_ROWS) -> int:
+def add_block_writer(plan: EnginePlan, write: BlockWriter, rows: int | None = None) -> int:
     """Calls write(t, micro, values) with each block of samples (values: n_rows x n_columns,
-    named by columns(plan)); the arrays are valid only during the call. Returns the id."""
+    named by columns(plan); rows: a block's, by default about BLOCK_BYTES); the arrays are
+    valid only during the call. Returns the id."""
+    if rows is None:
+        rows = max(1, BLOCK_BYTES // (12 + 8 * len(columns(plan))))
     def on_block(_user: Any, t: Any, micro: Any, values: Any, n_rows: int,
                  n_columns: int) -> int:
         write(np.frombuffer(ffi.buffer(t, n_rows * 8), dtype=np.float64),

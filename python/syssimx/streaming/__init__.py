@@ -1,8 +1,8 @@
 """Writing a run to disk while it runs: one writer per file format, each handed the samples the
 history keeps in blocks, so that a run larger than memory keeps every sample.
 
-`open_writer(path)` chooses the writer by the file's suffix: .csv, .parquet, .nc (NetCDF-4, an
-HDF5 file; also .h5 and .hdf5). A writer of your own is any object with open(path, columns),
+`open_writer(path)` chooses the writer by the file's suffix: .csv, .parquet, .nc (NetCDF). A
+writer of your own is any object with open(path, columns),
 write(t, micro, values) and close() (see writer.StreamWriter).
 """
 
@@ -24,12 +24,12 @@ def open_writer(path: str | Path) -> StreamWriter:
         from .parquet_writer import ParquetWriter
 
         return ParquetWriter()
-    if suffix in (".nc", ".h5", ".hdf5"):
+    if suffix == ".nc":
         from .netcdf_writer import NetcdfWriter
 
         return NetcdfWriter()
     raise ValueError(f"cannot stream a run to {path}: the suffix {suffix!r} names no format "
-                     "syssimx writes (.csv, .parquet, .nc, .h5, .hdf5)")
+                     "syssimx writes (.csv, .parquet, .nc)")
 
 
 __all__ = ["StreamWriter", "open_writer"]

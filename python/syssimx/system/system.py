@@ -305,8 +305,8 @@ class System:
         t0 + j*output_interval, its last point and every event instant (None: what initialize's
         output_interval says).
         stream_to: write the run's samples to disk while it runs, exactly the history's (from
-        the state it starts at): a path whose suffix chooses the format (.csv, .parquet, .nc,
-        .h5), or a writer object of yours with write(t, micro, values) (and optionally
+        the state it starts at): a path whose suffix chooses the format (.csv, .parquet, .nc),
+        or a writer object of yours with write(t, micro, values) (and optionally
         start(columns)) that you close, which may take several runs.
         keep_history: False keeps no samples in memory from this run on (until the next
         initialize): with stream_to, a run larger than memory keeps every sample on disk."""
