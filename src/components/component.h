@@ -33,6 +33,20 @@ typedef struct ssx_component_ops {
     int (*snapshot)(ssx_system *sys, ssx_component *c, int slot);
     int (*restore)(ssx_system *sys, ssx_component *c, int slot, double t);
     void (*release)(ssx_component *c); /* frees c->data; NULL when the kind keeps none */
+    /* What callers would otherwise ask the kind for. Each may be NULL: the kind has none. */
+    /* Refuses a component the run cannot use (a Python component without its two hooks). */
+    int (*validate)(ssx_system *sys, const ssx_component *c);
+    /* After initialization: unconnected inputs whose start is NaN take the value the
+     * component holds (an FMU's own start). NULL: every start is given. */
+    int (*adopt_inputs)(ssx_system *sys, ssx_component *c, double t0);
+    /* d outputs / d inputs (value references) in the direction seed, into out, as the
+     * component stands at t; fails with the error set. NULL: the kind cannot tell. */
+    int (*directional_derivative)(ssx_system *sys, ssx_component *c, const unsigned int *outputs,
+                                  size_t n_outputs, const unsigned int *inputs, size_t n_inputs,
+                                  const double *seed, double *out, double t);
+    /* What two components must never use on two threads at once (their FMU instance), NULL:
+     * nothing shared. Only kinds whose built-in step may run on a worker thread have it. */
+    const void *(*shared_with_threads)(const ssx_component *c);
 } ssx_component_ops;
 
 /* Ports of one value type, batched for a single fmi2Get/Set call. */
@@ -93,6 +107,12 @@ int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0);
 /* Whether the FMU already holds every input value: nothing set it since the engine's last
  * write. */
 int fmu_component_inputs_unchanged(const ssx_component *c);
+/* Both FMU kinds' directional derivatives and the instance their threads must not share. */
+int fmu_component_directional_derivative(ssx_system *sys, ssx_component *c,
+                                         const unsigned int *outputs, size_t n_outputs,
+                                         const unsigned int *inputs, size_t n_inputs,
+                                         const double *seed, double *out, double t);
+const void *fmu_component_instance(const ssx_component *c);
 /* Reads every output of an FMU component; a failure is reported at t, the time the FMU is at. */
 int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t);
 /* A Model Exchange FMU integrated by the engine (me_component.c); its ports are an FMU

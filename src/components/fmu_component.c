@@ -372,6 +372,21 @@ int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0)
     return 0;
 }
 
+int fmu_component_directional_derivative(ssx_system *sys, ssx_component *c,
+                                         const unsigned int *outputs, size_t n_outputs,
+                                         const unsigned int *inputs, size_t n_inputs,
+                                         const double *seed, double *out, double t)
+{
+    int status = ssx_fmu_get_directional_derivative(c->fmu, outputs, n_outputs, inputs,
+                                                    n_inputs, seed, out);
+    return fmi_ok(status) ? 0 : fail_fmi(sys, c, t, status, "fmi2GetDirectionalDerivative");
+}
+
+const void *fmu_component_instance(const ssx_component *c)
+{
+    return c->fmu;
+}
+
 const ssx_component_ops ssx_fmu_component_ops = {
     .do_step = fmu_do_step,
     .write_inputs = fmu_write_inputs,
@@ -379,4 +394,7 @@ const ssx_component_ops ssx_fmu_component_ops = {
     .evaluate_outputs = fmu_evaluate_outputs,
     .snapshot = fmu_snapshot,
     .restore = fmu_restore,
+    .adopt_inputs = fmu_component_adopt_inputs,
+    .directional_derivative = fmu_component_directional_derivative,
+    .shared_with_threads = fmu_component_instance,
 };

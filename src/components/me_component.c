@@ -632,6 +632,9 @@ const ssx_component_ops ssx_model_exchange_component_ops = {
     .snapshot = me_snapshot,
     .restore = me_restore,
     .release = me_release,
+    .adopt_inputs = fmu_component_adopt_inputs,
+    .directional_derivative = fmu_component_directional_derivative,
+    .shared_with_threads = fmu_component_instance,
 };
 
 static int state_new(me_state *state, size_t n, size_t nz)

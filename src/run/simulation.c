@@ -21,11 +21,8 @@ static int check_components(ssx_system *sys)
     int hybrid = system_is_hybrid(sys);
     for (int i = 0; i < sys->n_components; ++i) {
         ssx_component *c = sys->components[i];
-        if (c->ops == &ssx_python_component_ops &&
-            (c->hooks.do_step == NULL || c->hooks.evaluate_outputs == NULL)) {
-            return fail(sys, i, -1, sys->time,
-                        "Python component '%s' needs do_step and evaluate_outputs hooks",
-                        c->name);
+        if (c->ops->validate != NULL && c->ops->validate(sys, c) != 0) {
+            return -1;
         }
         if (hybrid && !component_can_roll_back(c)) {
             return fail(sys, i, -1, sys->time,
@@ -72,7 +69,7 @@ int ssx_initialize(ssx_system *sys, double t0)
             }
         }
         if (component_initialize(sys, c, t0) != 0 ||
-            (c->fmu != NULL && fmu_component_adopt_inputs(sys, c, t0) != 0)) {
+            (c->ops->adopt_inputs != NULL && c->ops->adopt_inputs(sys, c, t0) != 0)) {
             return -1;
         }
     }

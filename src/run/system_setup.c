@@ -233,7 +233,7 @@ int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned 
         return fail_config(sys, component, -1, NAN, "component '%s': unknown value type %d",
                            c->name, (int)type);
     }
-    if (isinf(start) || (isnan(start) && c->fmu == NULL)) {
+    if (isinf(start) || (isnan(start) && c->ops->adopt_inputs == NULL)) {
         return fail_config(sys, component, -1, NAN,
                            "component '%s': the start value of an input must "
                            "be finite (NaN, the FMU's own value, exists for FMU components only)",
@@ -518,7 +518,7 @@ int ssx_set_directional_derivatives(ssx_system *sys, int component, int provided
     if (c == NULL) {
         return -1;
     }
-    if (c->fmu == NULL && provided) {
+    if (c->ops->directional_derivative == NULL && provided) {
         return fail_config(
             sys, component, -1, NAN,
             "component '%s' is not an FMU component: it has no directional derivatives", c->name);

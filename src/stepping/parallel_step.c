@@ -110,11 +110,11 @@ static int choose_pool_components(parallel_plan *p, const ssx_system *sys)
     int n_users = 0;
     for (int i = 0; i < n; ++i) {
         const ssx_component *c = sys->components[i];
-        int fmu_stepped_by_engine =
-            c->ops == &ssx_fmu_component_ops || c->ops == &ssx_model_exchange_component_ops;
-        p->on_pool[i] = fmu_stepped_by_engine && c->hooks.do_step == NULL && !c->calling_thread_only;
-        if (c->fmu != NULL) {
-            users[n_users++] = (fmu_user){(uintptr_t)c->fmu, i};
+        const void *shared = c->ops->shared_with_threads != NULL ? c->ops->shared_with_threads(c)
+                                                                 : NULL;
+        p->on_pool[i] = shared != NULL && c->hooks.do_step == NULL && !c->calling_thread_only;
+        if (shared != NULL) {
+            users[n_users++] = (fmu_user){(uintptr_t)shared, i};
         }
     }
     qsort(users, (size_t)n_users, sizeof *users, by_fmu);
