@@ -81,7 +81,6 @@ int ssx_initialize(ssx_system *sys, double t0)
     if (record_grid_point(sys, t0) != 0) {
         return -1;
     }
-    sys->zero_start_pending = 1;
     sys->initialized = 1;
     return 0;
 }

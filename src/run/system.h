@@ -77,7 +77,6 @@ struct ssx_system {
     size_t indicators_capacity;
     /* per indicator, set up by the hybrid algorithm at ssx_initialize */
     indicator_state *indicator_states;
-    indicator_bracket *brackets; /* the localization workspace */
 
     ssx_event_link *event_links;
     int n_event_links;
@@ -93,6 +92,7 @@ struct ssx_system {
     struct parallel_plan *parallel; /* built at ssx_initialize when threads > 1 */
     /* chosen at ssx_initialize */
     const ssx_master_algorithm *algorithm;
+    void *algorithm_workspace; /* the algorithm's own state (algorithm.h) */
     int (*coupled_step)(ssx_system *sys, double t, double h); /* the coupling's step */
     ssx_loop_options loop;
     ssx_hybrid_options hybrid;
@@ -110,7 +110,6 @@ struct ssx_system {
     double time;
     int initialized;
     int stepping_hybrid; /* FMUs are told that a rollback may follow */
-    int zero_start_pending; /* indicators starting on zero still need their side probed */
 };
 
 ssx_component *system_component(ssx_system *sys, int index); /* NULL with the error set */

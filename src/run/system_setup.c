@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "algorithm.h"
 #include "array.h"
 #include "component_calls.h"
 #include "coupling.h"
@@ -84,7 +85,7 @@ void ssx_system_free(ssx_system *sys)
     free(sys->connections);
     free(sys->indicators);
     free(sys->indicator_states);
-    free(sys->brackets);
+    master_algorithm_release(sys);
     free(sys->event_links);
     free(sys->order);
     free(sys->groups);

@@ -21,13 +21,23 @@ static int plain_step(ssx_system *sys, double t, double t_next)
 enum { PLAIN, HYBRID };
 
 static const ssx_master_algorithm ALGORITHMS[] = {
-    [PLAIN] = {NULL, plain_step},
-    [HYBRID] = {hybrid_prepare, hybrid_step},
+    [PLAIN] = {NULL, plain_step, NULL},
+    [HYBRID] = {hybrid_prepare, hybrid_step, hybrid_release},
 };
+
+void master_algorithm_release(ssx_system *sys)
+{
+    if (sys->algorithm != NULL && sys->algorithm->release != NULL) {
+        sys->algorithm->release(sys->algorithm_workspace);
+    }
+    sys->algorithm = NULL;
+    sys->algorithm_workspace = NULL;
+}
 
 int master_algorithm_choose(ssx_system *sys)
 {
+    master_algorithm_release(sys);
     const ssx_master_algorithm *algorithm = &ALGORITHMS[system_is_hybrid(sys) ? HYBRID : PLAIN];
     sys->algorithm = algorithm;
-    return algorithm->prepare != NULL ? algorithm->prepare(sys) : 0;
+    return algorithm->prepare != NULL ? algorithm->prepare(sys, &sys->algorithm_workspace) : 0;
 }

@@ -20,6 +20,18 @@
 #include "zeno.h"
 
 enum { MACRO_SLOT = 0, PROBE_SLOT = 1 };
+
+/* The hybrid algorithm's own state: made by hybrid_prepare at ssx_initialize, held for it by
+ * the system (sys->algorithm_workspace), freed by hybrid_release. */
+typedef struct {
+    indicator_bracket *brackets; /* the localization workspace, one per indicator */
+    int zero_start_pending;      /* indicators starting on zero still need their side probed */
+} hybrid_workspace;
+
+static hybrid_workspace *workspace(const ssx_system *sys)
+{
+    return sys->algorithm_workspace;
+}
 /* Fraction of the macro step over which the probe follows a handled state. */
 #define PROBE_HORIZON 0.1
 
@@ -99,7 +111,7 @@ static int far_side_converged(const ssx_system *sys)
         return 0;
     }
     for (int i = 0; i < sys->n_indicators; ++i) {
-        const indicator_bracket *end = &sys->brackets[i];
+        const indicator_bracket *end = &workspace(sys)->brackets[i];
         if (end->crossing && !(end->z_right != 0.0 && fabs(end->z_right) <= sys->hybrid.tol_value)) {
             return 0;
         }
@@ -116,7 +128,7 @@ static int log_row(ssx_system *sys, double t, double a, double b, int left)
         return fail(sys, -1, -1, t, "out of memory logging the localization at t=%.17g", t);
     }
     for (int i = 0; i < sys->n_indicators; ++i) {
-        values[i] = left ? sys->brackets[i].z_left : sys->indicator_states[i].value;
+        values[i] = left ? workspace(sys)->brackets[i].z_left : sys->indicator_states[i].value;
     }
     return 0;
 }
@@ -127,7 +139,7 @@ static int locate(ssx_system *sys, event_bracket *br)
     const ssx_hybrid_options *opt = &sys->hybrid;
     const locator_method *method = locator_method_of(opt->locator);
     int n = sys->n_indicators;
-    indicator_bracket *ends = sys->brackets;
+    indicator_bracket *ends = workspace(sys)->brackets;
     double a = br->a0;
     double b = br->t_end;
     for (int i = 0; i < n; ++i) {
@@ -442,7 +454,7 @@ static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work
         indicator_state *s = &sys->indicator_states[i];
         w->fired[i] = fires_now(sys, i);
         indicator_follow(s, s->value);
-        w->band[i] = residue_band(sys, br, &sys->brackets[i], s->value);
+        w->band[i] = residue_band(sys, br, &workspace(sys)->brackets[i], s->value);
     }
     for (int micro = 0;; ++micro) {
         if (micro >= sys->hybrid.max_microsteps) {
@@ -497,10 +509,10 @@ static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work
  * on zero later takes its side from its first nonzero value, without an event. */
 static int resolve_zero_start(ssx_system *sys, double a0, double t_next)
 {
-    if (!sys->zero_start_pending) {
+    if (!workspace(sys)->zero_start_pending) {
         return 0;
     }
-    sys->zero_start_pending = 0;
+    workspace(sys)->zero_start_pending = 0;
     int unknown = 0;
     for (int i = 0; i < sys->n_indicators; ++i) {
         unknown |= sys->indicator_states[i].sign == 0;
@@ -521,7 +533,7 @@ static int resolve_zero_start(ssx_system *sys, double a0, double t_next)
                         .restores_before = sys->stats.state_restores};
     for (int i = 0; i < sys->n_indicators; ++i) {
         const indicator_state *s = &sys->indicator_states[i];
-        sys->brackets[i].z_left = sys->brackets[i].z_right = s->value;
+        workspace(sys)->brackets[i].z_left = workspace(sys)->brackets[i].z_right = s->value;
         w.fired[i] = s->sign == 0;
         w.z_after[i] = s->value;
         w.band[i] = 0.0;
@@ -550,23 +562,32 @@ static int resolve_zero_start(ssx_system *sys, double a0, double t_next)
     return status;
 }
 
-int hybrid_prepare(ssx_system *sys)
+int hybrid_prepare(ssx_system *sys, void **out)
 {
     size_t n = (size_t)sys->n_indicators;
     indicator_state *states = realloc(sys->indicator_states, n * sizeof *states);
     if (states != NULL) {
         sys->indicator_states = states;
     }
-    indicator_bracket *brackets = realloc(sys->brackets, n * sizeof *brackets);
-    if (brackets != NULL) {
-        sys->brackets = brackets;
-    }
+    hybrid_workspace *hw = calloc(1, sizeof *hw);
+    indicator_bracket *brackets = hw != NULL ? calloc(n > 0 ? n : 1, sizeof *brackets) : NULL;
     if (states == NULL || brackets == NULL) {
+        free(hw);
         return fail(sys, -1, -1, sys->time, "out of memory preparing %zu event indicators", n);
     }
     memset(states, 0, n * sizeof *states);
-    memset(brackets, 0, n * sizeof *brackets);
+    *hw = (hybrid_workspace){.brackets = brackets, .zero_start_pending = 1};
+    *out = hw;
     return 0;
+}
+
+void hybrid_release(void *workspace)
+{
+    hybrid_workspace *hw = workspace;
+    if (hw != NULL) {
+        free(hw->brackets);
+        free(hw);
+    }
 }
 
 int hybrid_step(ssx_system *sys, double t, double t_next)
@@ -583,7 +604,7 @@ int hybrid_step(ssx_system *sys, double t, double t_next)
                             .do_steps_before = sys->stats.do_step_calls,
                             .restores_before = sys->stats.state_restores};
         for (int i = 0; i < sys->n_indicators; ++i) {
-            sys->brackets[i].z_left = sys->indicator_states[i].value;
+            workspace(sys)->brackets[i].z_left = sys->indicator_states[i].value;
         }
         if (snapshot_all(sys, MACRO_SLOT) != 0 || coupling_step(sys, a0, t_next - a0) != 0 ||
             indicators_evaluate(sys, t_next) != 0) {
