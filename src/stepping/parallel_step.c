@@ -6,8 +6,8 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "clock.h"
 #include "component_calls.h"
 #include "error.h"
 #include "worker_pool.h"
@@ -218,13 +218,6 @@ int parallel_prepare(ssx_system *sys)
 
 /* A thread goes on after a failure: the tasks after it are not needed, but the tasks before
  * it may be waiting for a thread, and one that stops would not save time. */
-static double seconds_now(void)
-{
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return (double)now.tv_sec + 1e-9 * (double)now.tv_nsec;
-}
-
 /* One batch's cost per task into the moving average that decides whether the next is shared. */
 static void note_task_cost(parallel_plan *p, double seconds_per_task)
 {
@@ -242,9 +235,9 @@ static void step_task(void *context, int k, int thread)
         step_one(context, k, thread);
         return;
     }
-    double start = seconds_now();
+    double start = monotonic_seconds();
     step_one(context, k, thread);
-    p->caller_seconds += seconds_now() - start;
+    p->caller_seconds += monotonic_seconds() - start;
     p->caller_tasks++;
 }
 
@@ -320,14 +313,14 @@ int parallel_step(ssx_system *sys, const int *members, int n, double t, double h
                  (p->task_seconds < 0.0 || p->task_seconds * p->n_tasks >= SHARED_WORK_MIN_S);
     if (!shared) {
         int timed = p != NULL && p->n_tasks >= 2; /* a batch that might be shared next time */
-        double start = timed ? seconds_now() : 0.0;
+        double start = timed ? monotonic_seconds() : 0.0;
         for (int m = 0; m < n; ++m) {
             if (step_member(sys, sys->components[members[m]], t, h) != 0) {
                 return -1;
             }
         }
         if (timed) {
-            note_task_cost(p, (seconds_now() - start) / n);
+            note_task_cost(p, (monotonic_seconds() - start) / n);
         }
         return 0;
     }
