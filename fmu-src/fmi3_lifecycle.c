@@ -2,6 +2,7 @@
  * both interfaces (Model Exchange's own calls are in fmi3_model_exchange.c). */
 #include <string.h>
 
+#include "fmi3_allowed.h"
 #include "fmi3_instance.h"
 #include "fmu_guid.h"
 #include "fmu_log.h"
@@ -27,7 +28,7 @@ const char *fmi3GetVersion(void)
 fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, size_t nCategories,
                                const fmi3String categories[])
 {
-    fmi3_instance *inst = fmi3_checked(instance, "fmi3SetDebugLogging", MODES_ANY);
+    fmi3_instance *inst = fmi3_checked(instance, FMI3_CALL(fmi3SetDebugLogging));
     if (inst == NULL)
         return fmi3Error;
     return fmi3_status(
@@ -140,7 +141,7 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean tolera
                                        fmi3Boolean stopTimeDefined, fmi3Float64 stopTime)
 {
     fmi3_instance *inst =
-        fmi3_checked(instance, "fmi3EnterInitializationMode", MODE_BIT(MODE_INSTANTIATED));
+        fmi3_checked(instance, FMI3_CALL(fmi3EnterInitializationMode));
     if (inst == NULL)
         return fmi3Error;
     fmi2Status status = fmu_setup_experiment(&inst->core, "fmi3EnterInitializationMode",
@@ -154,7 +155,7 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean tolera
 fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)
 {
     fmi3_instance *inst =
-        fmi3_checked(instance, "fmi3ExitInitializationMode", MODE_BIT(MODE_INITIALIZATION));
+        fmi3_checked(instance, FMI3_CALL(fmi3ExitInitializationMode));
     if (inst == NULL)
         return fmi3Error;
     fmu_exit_initialization(&inst->core);
@@ -164,8 +165,7 @@ fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)
 
 fmi3Status fmi3EnterEventMode(fmi3Instance instance)
 {
-    fmi3_instance *inst = fmi3_checked(instance, "fmi3EnterEventMode",
-                                       MODE_BIT(MODE_STEP) | MODES_EVENT_OR_CONTINUOUS);
+    fmi3_instance *inst = fmi3_checked(instance, FMI3_CALL(fmi3EnterEventMode));
     if (inst == NULL)
         return fmi3Error;
     if (inst->model_exchange) {
@@ -191,7 +191,7 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discrete
                                     fmi3Float64 *nextEventTime)
 {
     fmi3_instance *inst =
-        fmi3_checked(instance, "fmi3UpdateDiscreteStates", MODE_BIT(MODE_EVENT));
+        fmi3_checked(instance, FMI3_CALL(fmi3UpdateDiscreteStates));
     if (inst == NULL)
         return fmi3Error;
     if (!discreteStatesNeedUpdate || !terminateSimulation || !nominalsOfContinuousStatesChanged ||
@@ -219,7 +219,7 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discrete
 
 fmi3Status fmi3EnterStepMode(fmi3Instance instance)
 {
-    fmi3_instance *inst = fmi3_checked(instance, "fmi3EnterStepMode", MODE_BIT(MODE_EVENT));
+    fmi3_instance *inst = fmi3_checked(instance, FMI3_CALL(fmi3EnterStepMode));
     if (inst == NULL)
         return fmi3Error;
     if (inst->model_exchange)
@@ -237,7 +237,7 @@ fmi3Status fmi3EnterStepMode(fmi3Instance instance)
 
 fmi3Status fmi3Terminate(fmi3Instance instance)
 {
-    fmi3_instance *inst = fmi3_checked(instance, "fmi3Terminate", MODES_INITIALIZED);
+    fmi3_instance *inst = fmi3_checked(instance, FMI3_CALL(fmi3Terminate));
     if (inst == NULL)
         return fmi3Error;
     inst->core.phase = PHASE_TERMINATED;
@@ -247,7 +247,7 @@ fmi3Status fmi3Terminate(fmi3Instance instance)
 
 fmi3Status fmi3Reset(fmi3Instance instance)
 {
-    fmi3_instance *inst = fmi3_checked(instance, "fmi3Reset", MODES_ANY);
+    fmi3_instance *inst = fmi3_checked(instance, FMI3_CALL(fmi3Reset));
     if (inst == NULL)
         return fmi3Error;
     fmu_reset(&inst->core);
