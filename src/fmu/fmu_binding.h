@@ -33,9 +33,8 @@ const char *ssx_fmu_variable_name(const ssx_fmu *fmu, unsigned int vr);
 /* The last doStep's out-arguments (all 0 before a step). */
 void ssx_fmu_step_outcome(const ssx_fmu *fmu, ssx_step_outcome *outcome);
 
-/* The Model Exchange calls of an FMU loaded by ssx_fmu_load_model_exchange or
- * ssx_fmu_load_fmi3_model_exchange, checked like every
- * other call; each returns the status, or -1. Event mode (enter, new discrete states) serves an
+/* The Model Exchange calls of an FMU loaded with SSX_MODEL_EXCHANGE, checked like every other
+ * call; each returns the status, or -1. Event mode (enter, new discrete states) serves an
  * FMI 3.0 Co-Simulation instance made with eventModeUsed too, with fmi3EnterStepMode to leave
  * it. */
 int ssx_fmu_set_time(ssx_fmu *fmu, double time);

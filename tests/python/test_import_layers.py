@@ -64,12 +64,25 @@ def test_system_builds_on_components_and_bridge():
     assert _reaching(system, "components") and _reaching(system, "bridge")
 
 
+def test_fmu_files_build_on_neither_components_nor_system():
+    """The FMU seam (archive, description, loading, instance) knows no component kind."""
+    fmu = _imports_of("fmu")
+    assert _reaching(fmu, "components") + _reaching(fmu, "system") == []
+
+
+def test_components_keep_only_component_kinds():
+    """What reads, extracts and loads FMU files lives in syssimx.fmu."""
+    kinds = {path.stem for path in (PACKAGE / "components").glob("*.py")}
+    assert not kinds & {"archive", "extraction", "model_description", "description_reader",
+                        "description_fmi3", "fmu_instance", "variable_table", "fmi3_arrays"}
+
+
 # The package's rooms from the ground up: a room imports only rooms on a lower floor (or its
 # own). The CLI and the package's face stand above everything.
 FLOORS = (
     ("_paths", "_lazy", "errors", "units"),
     ("engine", "core", "fmus", "graph"),
-    ("bridge", "viz"),
+    ("bridge", "viz", "fmu"),
     ("components", "streaming"),
     ("system",),
     ("ssp", "ensemble", "algorithms"),
