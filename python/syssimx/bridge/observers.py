@@ -55,9 +55,10 @@ def add_observer(plan: EnginePlan, observer: Any) -> int:
     An exception in one stops the run and is raised by it. Returns the engine's id."""
     names = columns(plan)
     views = _output_views(plan)
-    concatenate = np.concatenate
-    empty = np.empty(0)
     step_complete = observer.step_complete
+    # a new array per sample: one component's outputs copied, several concatenated
+    values = (views[0].copy if len(views) == 1 else
+              (lambda: np.concatenate(views)) if views else (lambda: np.empty(0)))
 
     def failed(where: str) -> Callable[[BaseException], None]:
         def keep(exc: BaseException) -> None:
@@ -67,7 +68,7 @@ def add_observer(plan: EnginePlan, observer: Any) -> int:
         return keep
 
     def on_step(_user: Any, t: float, micro: int) -> int:
-        step_complete(t, micro, concatenate(views) if views else empty)
+        step_complete(t, micro, values())
         return 0
 
     callbacks = ffi.new("ssx_observer_callbacks *")
