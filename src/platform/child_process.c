@@ -82,6 +82,11 @@ void child_process_kill(int pid)
     kill((pid_t)pid, SIGKILL);
 }
 
+void child_process_kill_group(int pid)
+{
+    kill(-(pid_t)pid, SIGKILL);
+}
+
 static const char *signal_name(int signal)
 {
     switch (signal) {

@@ -14,6 +14,8 @@ int child_process_start(char *const argv[], int child_fd, int *pid, int *socket,
                         size_t error_size);
 /* Ends the child now, whatever it is doing (SIGKILL). */
 void child_process_kill(int pid);
+/* Ends the child's process group: the child and whatever it started (it leads the group). */
+void child_process_kill_group(int pid);
 /* Waits for the child to end, killing it when it does not end by itself within a second, and
  * says how it ended ("died of signal 11 (SIGSEGV, Segmentation fault)"). */
 void child_process_reap(int pid, char *how, size_t how_size);

@@ -36,6 +36,7 @@ struct ssx_remote {
     int read_status;
     int read_ready;
     char gone[512]; /* why the host ended, "" while it runs */
+    remote_watch watch; /* asked while a call waits: the engine's run stops it */
 };
 
 /* ------------------------------------------------------------------ the host process */
@@ -62,6 +63,7 @@ static void close_host(ssx_remote *r, char *how, size_t how_size)
     }
     if (r->pid > 0) {
         child_process_reap(r->pid, how, how_size);
+        child_process_kill_group(r->pid); /* whatever the FMU forked is ended with it */
         r->pid = 0;
     }
 }
@@ -198,11 +200,17 @@ static int lost(ssx_remote *r, remote_call call, remote_receive_result why)
 {
     char how[256];
     if (why == TIMED_OUT) {
-        child_process_kill(r->pid);
+        child_process_kill_group(r->pid);
         close_host(r, how, sizeof how);
         snprintf(r->gone, sizeof r->gone,
                  "%s did not return within the step timeout of %g s: the FMU process was "
                  "killed", remote_call_names[call], r->call_timeout);
+    } else if (why == STOPPED) {
+        child_process_kill_group(r->pid);
+        close_host(r, how, sizeof how);
+        snprintf(r->gone, sizeof r->gone,
+                 "the run was stopped (an interrupt or its timeout) while %s was running: the "
+                 "FMU process was killed", remote_call_names[call]);
     } else {
         close_host(r, how, sizeof how);
         snprintf(r->gone, sizeof r->gone, "the FMU process %s in %s", how,
@@ -229,15 +237,16 @@ static int call(ssx_remote *r, remote_request *rq, void *out, size_t out_size, u
     }
     for (;;) {
         remote_reply reply;
-        remote_receive_result got = remote_receive(r->socket, &reply, sizeof reply, deadline,
-                                                   r->pid);
+        remote_receive_result got = remote_receive_watched(r->socket, &reply, sizeof reply,
+                                                           deadline, r->pid, &r->watch);
         /* a reply the host would never send (the FMU wrote to the socket itself) ends it */
         if (got == RECEIVED && (reply.payload >= SIZE_MAX / 2 ||
                                 reserve(r, (size_t)reply.payload + 1) != 0)) {
             got = PEER_GONE;
         }
         if (got == RECEIVED) {
-            got = remote_receive(r->socket, r->buffer, (size_t)reply.payload, deadline, r->pid);
+            got = remote_receive_watched(r->socket, r->buffer, (size_t)reply.payload, deadline,
+                                         r->pid, &r->watch);
         }
         if (got != RECEIVED) {
             return lost(r, rq->call, got);
@@ -580,4 +589,11 @@ void *ssx_remote_function(const ssx_remote *r, const char *name)
         }
     }
     return NULL;
+}
+
+void ssx_remote_set_watch(ssx_remote *r, int (*stop)(void *user), void *user)
+{
+    if (r != NULL) {
+        r->watch = (remote_watch){stop, user};
+    }
 }
