@@ -181,6 +181,11 @@ def test_a_run_without_history_keeps_every_sample_on_disk(tmp_path) -> None:
         np.testing.assert_array_equal(got, expected)
     with pytest.raises(ConfigurationError, match="kept no history"):
         system.run(2.0, 3.0, 0.01)
+    # initialize again (the engine system is reused): the history keeps samples again
+    system.initialize(0.0, output_interval=3)
+    system.run(0.0, 2.0, 0.01)
+    for got, expected in zip(history_of(system), history_of(reference), strict=True):
+        np.testing.assert_array_equal(got, expected)
 
 
 @pytest.mark.parametrize("suffix", [".parquet", ".csv", ".nc"])
