@@ -112,19 +112,6 @@ int component_record(ssx_system *sys, ssx_component *c, double t)
     return c->hooks.record(c->hooks.user, t) == 0 ? 0 : fail_hook(sys, c, t, "record");
 }
 
-int component_check_outputs(ssx_system *sys, const ssx_component *c, double t)
-{
-    if (sys->allow_non_finite) {
-        return 0;
-    }
-    for (int i = 0; i < c->n_outputs; ++i) {
-        if (!isfinite(c->outputs[i])) {
-            return fail_non_finite(sys, c, i, t);
-        }
-    }
-    return 0;
-}
-
 int component_can_roll_back(const ssx_component *c)
 {
     int has_pair = c->hooks.snapshot != NULL && c->hooks.restore != NULL;

@@ -4,6 +4,7 @@
 #define SSX_COMPONENT_CALLS_H
 
 #include "component.h"
+#include "finite_outputs.h"
 
 /* A Python hook if set, else the built-in. Each returns 0 or -1 with the error set. */
 int component_do_step(ssx_system *sys, ssx_component *c, double t, double dt);
@@ -17,8 +18,6 @@ int component_handle_events(ssx_system *sys, ssx_component *c, const int *indica
 int component_initialize(ssx_system *sys, ssx_component *c, double t0);
 int component_record(ssx_system *sys, ssx_component *c, double t);
 int component_can_roll_back(const ssx_component *c);
-/* Fails on the first NaN or infinite output, unless the system allows them. */
-int component_check_outputs(ssx_system *sys, const ssx_component *c, double t);
 
 /* Builds the per-type batches; called when the system initializes. */
 int component_prepare(ssx_component *c);

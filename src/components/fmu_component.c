@@ -7,8 +7,8 @@
 #include <string.h>
 
 #include "component.h"
-#include "component_calls.h"
 #include "error.h"
+#include "finite_outputs.h"
 #include "fmu_backend.h"
 #include "fmu_binding.h"
 #include "own_events.h"

@@ -141,3 +141,13 @@ void clear_error(ssx_system *sys)
     sys->error.time = NAN;
 }
 
+ssx_component *system_component(ssx_system *sys, int index)
+{
+    if (index < 0 || index >= sys->n_components) {
+        fail_config(sys, -1, -1, sys->time,
+                    "unknown component index %d (system '%s' has %d components)", index, sys->name,
+                    sys->n_components);
+        return NULL;
+    }
+    return sys->components[index];
+}

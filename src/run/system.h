@@ -112,7 +112,6 @@ struct ssx_system {
     int stepping_hybrid; /* FMUs are told that a rollback may follow */
 };
 
-ssx_component *system_component(ssx_system *sys, int index); /* NULL with the error set */
 /* Appends a component of the given kind; returns its index, or -1 with the error set. */
 int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
                          const ssx_component_ops *ops);

@@ -101,17 +101,6 @@ const ssx_error *ssx_last_error(const ssx_system *sys)
     return sys != NULL ? &sys->error : NULL;
 }
 
-ssx_component *system_component(ssx_system *sys, int index)
-{
-    if (index < 0 || index >= sys->n_components) {
-        fail_config(sys, -1, -1, sys->time,
-                    "unknown component index %d (system '%s' has %d components)", index, sys->name,
-                    sys->n_components);
-        return NULL;
-    }
-    return sys->components[index];
-}
-
 /* Any change of structure requires a new ssx_initialize. */
 static void structure_changed(ssx_system *sys)
 {
