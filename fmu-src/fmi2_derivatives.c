@@ -1,4 +1,5 @@
 /* fmi2GetDirectionalDerivative, in initialization and step mode. */
+#include "fmi2_allowed.h"
 #include "fmu_derivatives.h"
 #include "fmu_instance.h"
 
@@ -7,7 +8,7 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
                                         size_t nKnown, const fmi2Real dvKnown[],
                                         fmi2Real dvUnknown[])
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2GetDirectionalDerivative", PHASES_INITIALIZED);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2GetDirectionalDerivative));
     if (inst == NULL)
         return fmi2Error;
     return fmu_directional_derivative(inst, "fmi2GetDirectionalDerivative", vUnknown_ref,

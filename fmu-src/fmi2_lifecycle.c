@@ -1,6 +1,7 @@
 /* Creating, setting up, initializing, resetting and freeing an instance. */
 #include <string.h>
 
+#include "fmi2_allowed.h"
 #include "fmu_guid.h"
 #include "fmu_instance.h"
 #include "fmu_log.h"
@@ -18,7 +19,7 @@ const char *fmi2GetVersion(void)
 fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nCategories,
                                const fmi2String categories[])
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2SetDebugLogging", PHASES_ANY);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2SetDebugLogging));
     if (inst == NULL)
         return fmi2Error;
     return fmu_set_logging(inst, "fmi2SetDebugLogging", loggingOn != fmi2False, nCategories,
@@ -80,7 +81,7 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined,
                                fmi2Real tolerance, fmi2Real startTime,
                                fmi2Boolean stopTimeDefined, fmi2Real stopTime)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2SetupExperiment", PHASE_BIT(PHASE_INSTANTIATED));
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2SetupExperiment));
     if (inst == NULL)
         return fmi2Error;
     return fmu_setup_experiment(inst, "fmi2SetupExperiment", toleranceDefined != fmi2False,
@@ -90,7 +91,7 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined,
 fmi2Status fmi2EnterInitializationMode(fmi2Component c)
 {
     fmu_instance *inst =
-        fmu_checked(c, "fmi2EnterInitializationMode", PHASE_BIT(PHASE_INSTANTIATED));
+        fmu_checked(c, FMI2_CALL(fmi2EnterInitializationMode));
     if (inst == NULL)
         return fmi2Error;
     inst->phase = PHASE_INITIALIZATION;
@@ -100,7 +101,7 @@ fmi2Status fmi2EnterInitializationMode(fmi2Component c)
 fmi2Status fmi2ExitInitializationMode(fmi2Component c)
 {
     fmu_instance *inst =
-        fmu_checked(c, "fmi2ExitInitializationMode", PHASE_BIT(PHASE_INITIALIZATION));
+        fmu_checked(c, FMI2_CALL(fmi2ExitInitializationMode));
     if (inst == NULL)
         return fmi2Error;
     fmu_exit_initialization(inst);
@@ -109,7 +110,7 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component c)
 
 fmi2Status fmi2Terminate(fmi2Component c)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2Terminate", PHASES_INITIALIZED);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2Terminate));
     if (inst == NULL)
         return fmi2Error;
     inst->phase = PHASE_TERMINATED;
@@ -118,7 +119,7 @@ fmi2Status fmi2Terminate(fmi2Component c)
 
 fmi2Status fmi2Reset(fmi2Component c)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2Reset", PHASES_ANY);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2Reset));
     if (inst == NULL)
         return fmi2Error;
     fmu_reset(inst);

@@ -1,39 +1,40 @@
 /* The FMI 2.0 Model Exchange entry points: each checks the call is allowed in the instance's
  * phase (fmu_instance.h) and runs the version-neutral Model Exchange core
  * (fmu_model_exchange.c). */
+#include "fmi2_allowed.h"
 #include "fmu_instance.h"
 #include "fmu_log.h"
 #include "fmu_model_exchange.h"
 
 fmi2Status fmi2SetTime(fmi2Component c, fmi2Real time)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2SetTime", PHASES_EVENT_OR_CONTINUOUS);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2SetTime));
     return inst != NULL ? fmu_me_set_time(inst, "fmi2SetTime", time) : fmi2Error;
 }
 
 fmi2Status fmi2SetContinuousStates(fmi2Component c, const fmi2Real x[], size_t nx)
 {
     fmu_instance *inst =
-        fmu_checked(c, "fmi2SetContinuousStates", PHASE_BIT(PHASE_CONTINUOUS_TIME));
+        fmu_checked(c, FMI2_CALL(fmi2SetContinuousStates));
     return inst != NULL ? fmu_me_set_states(inst, "fmi2SetContinuousStates", x, nx) : fmi2Error;
 }
 
 fmi2Status fmi2GetContinuousStates(fmi2Component c, fmi2Real x[], size_t nx)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2GetContinuousStates", PHASES_MODEL_EVALUATION);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2GetContinuousStates));
     return inst != NULL ? fmu_me_get_states(inst, "fmi2GetContinuousStates", x, nx) : fmi2Error;
 }
 
 fmi2Status fmi2GetDerivatives(fmi2Component c, fmi2Real derivatives[], size_t nx)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2GetDerivatives", PHASES_MODEL_EVALUATION);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2GetDerivatives));
     return inst != NULL ? fmu_me_derivatives(inst, "fmi2GetDerivatives", derivatives, nx)
                         : fmi2Error;
 }
 
 fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real eventIndicators[], size_t ni)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2GetEventIndicators", PHASES_MODEL_EVALUATION);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2GetEventIndicators));
     return inst != NULL
                ? fmu_me_event_indicators(inst, "fmi2GetEventIndicators", eventIndicators, ni)
                : fmi2Error;
@@ -41,7 +42,7 @@ fmi2Status fmi2GetEventIndicators(fmi2Component c, fmi2Real eventIndicators[], s
 
 fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real x_nominal[], size_t nx)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2GetNominalsOfContinuousStates", PHASES_NOMINALS);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2GetNominalsOfContinuousStates));
     return inst != NULL
                ? fmu_me_nominals(inst, "fmi2GetNominalsOfContinuousStates", x_nominal, nx)
                : fmi2Error;
@@ -49,7 +50,7 @@ fmi2Status fmi2GetNominalsOfContinuousStates(fmi2Component c, fmi2Real x_nominal
 
 fmi2Status fmi2EnterEventMode(fmi2Component c)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2EnterEventMode", PHASES_EVENT_OR_CONTINUOUS);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2EnterEventMode));
     if (inst == NULL)
         return fmi2Error;
     inst->phase = PHASE_EVENT;
@@ -58,7 +59,7 @@ fmi2Status fmi2EnterEventMode(fmi2Component c)
 
 fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *eventInfo)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2NewDiscreteStates", PHASE_BIT(PHASE_EVENT));
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2NewDiscreteStates));
     if (inst == NULL)
         return fmi2Error;
     if (eventInfo == NULL)
@@ -77,7 +78,7 @@ fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *eventInfo)
 
 fmi2Status fmi2EnterContinuousTimeMode(fmi2Component c)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2EnterContinuousTimeMode", PHASE_BIT(PHASE_EVENT));
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2EnterContinuousTimeMode));
     if (inst == NULL)
         return fmi2Error;
     inst->phase = PHASE_CONTINUOUS_TIME;
@@ -91,7 +92,7 @@ fmi2Status fmi2CompletedIntegratorStep(fmi2Component c,
 {
     (void)noSetFMUStatePriorToCurrentPoint; /* the FMU keeps no history to discard */
     fmu_instance *inst =
-        fmu_checked(c, "fmi2CompletedIntegratorStep", PHASE_BIT(PHASE_CONTINUOUS_TIME));
+        fmu_checked(c, FMI2_CALL(fmi2CompletedIntegratorStep));
     if (inst == NULL)
         return fmi2Error;
     if (enterEventMode == NULL || terminateSimulation == NULL)

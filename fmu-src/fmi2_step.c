@@ -1,4 +1,5 @@
 /* fmi2DoStep and the Co-Simulation status queries. */
+#include "fmi2_allowed.h"
 #include "fmu_instance.h"
 #include "fmu_log.h"
 #include "fmu_step.h"
@@ -7,7 +8,7 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
                       fmi2Real communicationStepSize, fmi2Boolean noSetFMUStatePriorToCurrentPoint)
 {
     (void)noSetFMUStatePriorToCurrentPoint;
-    fmu_instance *inst = fmu_checked(c, "fmi2DoStep", PHASE_BIT(PHASE_STEP));
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2DoStep));
     if (inst == NULL)
         return fmi2Error;
     double start = inst->time;
@@ -26,7 +27,7 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
 
 fmi2Status fmi2CancelStep(fmi2Component c)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2CancelStep", PHASE_BIT(PHASE_STEP));
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2CancelStep));
     if (inst == NULL)
         return fmi2Error;
     return fmu_error(inst, "fmi2CancelStep: steps are never asynchronous in this FMU");
@@ -35,7 +36,7 @@ fmi2Status fmi2CancelStep(fmi2Component c)
 
 fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *value)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2GetStatus", PHASES_STATUS);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2GetStatus));
     if (inst == NULL)
         return fmi2Error;
     if (s != fmi2DoStepStatus || value == NULL)
@@ -46,7 +47,7 @@ fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *va
 
 fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real *value)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2GetRealStatus", PHASES_STATUS);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2GetRealStatus));
     if (inst == NULL)
         return fmi2Error;
     if (s != fmi2LastSuccessfulTime || value == NULL)
@@ -59,7 +60,7 @@ fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Int
 {
     (void)s;
     (void)value;
-    fmu_instance *inst = fmu_checked(c, "fmi2GetIntegerStatus", PHASES_STATUS);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2GetIntegerStatus));
     if (inst == NULL)
         return fmi2Error;
     return fmu_error(inst, "fmi2GetIntegerStatus: no integer status is defined");
@@ -67,7 +68,7 @@ fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Int
 
 fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boolean *value)
 {
-    fmu_instance *inst = fmu_checked(c, "fmi2GetBooleanStatus", PHASES_STATUS);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2GetBooleanStatus));
     if (inst == NULL)
         return fmi2Error;
     if (s != fmi2Terminated || value == NULL)
@@ -80,7 +81,7 @@ fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind s, fmi2Stri
 {
     (void)s;
     (void)value;
-    fmu_instance *inst = fmu_checked(c, "fmi2GetStringStatus", PHASES_STATUS);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2GetStringStatus));
     if (inst == NULL)
         return fmi2Error;
     return fmu_error(inst, "fmi2GetStringStatus: no string status is defined");

@@ -1,15 +1,16 @@
 /* fmi2Get and fmi2Set, served from the variable table. */
 #include <stddef.h>
 
+#include "fmi2_allowed.h"
 #include "fmu_instance.h"
 #include "fmu_log.h"
 #include "fmu_values.h"
 
-static fmu_instance *prepare_get(fmi2Component c, const char *function,
+static fmu_instance *prepare_get(fmi2Component c, const char *function, unsigned allowed,
                                  const fmi2ValueReference vr[], size_t nvr, const void *value,
                                  variable_type type)
 {
-    fmu_instance *inst = fmu_checked(c, function, PHASES_ANY);
+    fmu_instance *inst = fmu_checked(c, function, allowed);
     if (inst == NULL || fmu_check_references(inst, function, vr, nvr, value, type) != fmi2OK ||
         fmu_prepare_read(inst, function) != fmi2OK)
         return NULL;
@@ -19,7 +20,7 @@ static fmu_instance *prepare_get(fmi2Component c, const char *function,
 fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                        fmi2Real value[])
 {
-    fmu_instance *inst = prepare_get(c, "fmi2GetReal", vr, nvr, value, TYPE_REAL);
+    fmu_instance *inst = prepare_get(c, FMI2_CALL(fmi2GetReal), vr, nvr, value, TYPE_REAL);
     if (inst == NULL)
         return fmi2Error;
     for (size_t i = 0; i < nvr; ++i)
@@ -30,7 +31,7 @@ fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
 fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           fmi2Integer value[])
 {
-    fmu_instance *inst = prepare_get(c, "fmi2GetInteger", vr, nvr, value, TYPE_INTEGER);
+    fmu_instance *inst = prepare_get(c, FMI2_CALL(fmi2GetInteger), vr, nvr, value, TYPE_INTEGER);
     if (inst == NULL)
         return fmi2Error;
     for (size_t i = 0; i < nvr; ++i)
@@ -41,7 +42,7 @@ fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
 fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           fmi2Boolean value[])
 {
-    fmu_instance *inst = prepare_get(c, "fmi2GetBoolean", vr, nvr, value, TYPE_BOOLEAN);
+    fmu_instance *inst = prepare_get(c, FMI2_CALL(fmi2GetBoolean), vr, nvr, value, TYPE_BOOLEAN);
     if (inst == NULL)
         return fmi2Error;
     for (size_t i = 0; i < nvr; ++i)
@@ -53,7 +54,7 @@ fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
                          fmi2String value[])
 {
     (void)value;
-    fmu_instance *inst = fmu_checked(c, "fmi2GetString", PHASES_ANY);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2GetString));
     if (inst == NULL)
         return fmi2Error;
     if (nvr == 0)
@@ -62,11 +63,11 @@ fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
                      vr ? vr[0] : 0u);
 }
 
-static fmu_instance *prepare_set(fmi2Component c, const char *function,
+static fmu_instance *prepare_set(fmi2Component c, const char *function, unsigned allowed,
                                  const fmi2ValueReference vr[], size_t nvr, const void *value,
                                  variable_type type)
 {
-    fmu_instance *inst = fmu_checked(c, function, PHASES_SETTABLE);
+    fmu_instance *inst = fmu_checked(c, function, allowed);
     if (inst == NULL || fmu_check_references(inst, function, vr, nvr, value, type) != fmi2OK)
         return NULL;
     return inst;
@@ -85,7 +86,7 @@ static double boolean_at(const void *values, size_t i)
 fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                        const fmi2Real value[])
 {
-    fmu_instance *inst = prepare_set(c, "fmi2SetReal", vr, nvr, value, TYPE_REAL);
+    fmu_instance *inst = prepare_set(c, FMI2_CALL(fmi2SetReal), vr, nvr, value, TYPE_REAL);
     if (inst == NULL || fmu_check_reals(inst, "fmi2SetReal", vr, nvr, value) != fmi2OK)
         return fmi2Error;
     return fmu_store(inst, "fmi2SetReal", vr, nvr, value, real_at);
@@ -94,7 +95,7 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
 fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           const fmi2Integer value[])
 {
-    fmu_instance *inst = prepare_set(c, "fmi2SetInteger", vr, nvr, value, TYPE_INTEGER);
+    fmu_instance *inst = prepare_set(c, FMI2_CALL(fmi2SetInteger), vr, nvr, value, TYPE_INTEGER);
     if (inst == NULL)
         return fmi2Error;
     return fmu_store(inst, "fmi2SetInteger", vr, nvr, value, integer_at);
@@ -103,7 +104,7 @@ fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
 fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           const fmi2Boolean value[])
 {
-    fmu_instance *inst = prepare_set(c, "fmi2SetBoolean", vr, nvr, value, TYPE_BOOLEAN);
+    fmu_instance *inst = prepare_set(c, FMI2_CALL(fmi2SetBoolean), vr, nvr, value, TYPE_BOOLEAN);
     if (inst == NULL)
         return fmi2Error;
     return fmu_store(inst, "fmi2SetBoolean", vr, nvr, value, boolean_at);
@@ -113,7 +114,7 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
                          const fmi2String value[])
 {
     (void)value;
-    fmu_instance *inst = fmu_checked(c, "fmi2SetString", PHASES_SETTABLE);
+    fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2SetString));
     if (inst == NULL)
         return fmi2Error;
     if (nvr == 0)

@@ -1,5 +1,6 @@
 /* fmi3GetDirectionalDerivative: outputs with respect to inputs, states held fixed, in every
  * state after instantiation. */
+#include "fmi3_allowed.h"
 #include "fmi3_instance.h"
 #include "fmu_derivatives.h"
 #include "fmu_log.h"
@@ -11,7 +12,7 @@ fmi3Status fmi3GetDirectionalDerivative(fmi3Instance instance, const fmi3ValueRe
                                         size_t nKnowns, const fmi3Float64 seed[], size_t nSeed,
                                         fmi3Float64 sensitivity[], size_t nSensitivity)
 {
-    fmi3_instance *inst = fmi3_checked(instance, FUNCTION, MODES_GET);
+    fmi3_instance *inst = fmi3_checked(instance, FMI3_CALL(fmi3GetDirectionalDerivative));
     if (inst == NULL)
         return fmi3Error;
     if (nSeed != nKnowns || nSensitivity != nUnknowns)

@@ -2,55 +2,12 @@
  * both interfaces (Model Exchange's own calls are in fmi3_model_exchange.c). */
 #include <string.h>
 
+#include "fmi3_allowed.h"
 #include "fmi3_instance.h"
 #include "fmu_guid.h"
 #include "fmu_log.h"
 #include "fmu_model_exchange.h"
 #include "fmu_step.h"
-
-static const char *const mode_names[] = {
-    "Instantiated", "Initialization Mode",  "Event Mode",
-    "Step Mode",    "Continuous-Time Mode", "Terminated",
-    "the fatal state (after fmi3Fatal)"};
-
-fmi3_mode fmi3_mode_of(const fmu_instance *inst)
-{
-    switch (inst->phase) {
-    case PHASE_INSTANTIATED: return MODE_INSTANTIATED;
-    case PHASE_INITIALIZATION: return MODE_INITIALIZATION;
-    case PHASE_STEP: return inst->in_event_mode ? MODE_EVENT : MODE_STEP;
-    case PHASE_TERMINATED: return MODE_TERMINATED;
-    case PHASE_EVENT: return MODE_EVENT;
-    case PHASE_CONTINUOUS_TIME: return MODE_CONTINUOUS_TIME;
-    case PHASE_FATAL: break;
-    }
-    return MODE_FATAL;
-}
-
-const char *fmi3_mode_name(fmi3_mode mode)
-{
-    return mode_names[mode];
-}
-
-fmi3_instance *fmi3_refuse_in_mode(fmi3_instance *inst, const char *function)
-{
-    fmu_error(&inst->core, "%s is not allowed in %s", function,
-              fmi3_mode_name(fmi3_mode_of(&inst->core)));
-    return NULL;
-}
-
-fmi3Status fmi3_status(fmi2Status status)
-{
-    switch (status) {
-    case fmi2OK: return fmi3OK;
-    case fmi2Warning: return fmi3Warning;
-    case fmi2Discard: return fmi3Discard;
-    case fmi2Fatal: return fmi3Fatal;
-    case fmi2Error:
-    case fmi2Pending: break; /* the framework never returns pending */
-    }
-    return fmi3Error;
-}
 
 /* The framework logs through an FMI 2.0 style callback; this one hands the message to the
  * FMI 3.0 callback, which takes no instance name. */
@@ -71,7 +28,7 @@ const char *fmi3GetVersion(void)
 fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, size_t nCategories,
                                const fmi3String categories[])
 {
-    fmi3_instance *inst = fmi3_checked(instance, "fmi3SetDebugLogging", MODES_ANY);
+    fmi3_instance *inst = fmi3_checked(instance, FMI3_CALL(fmi3SetDebugLogging));
     if (inst == NULL)
         return fmi3Error;
     return fmi3_status(
@@ -207,7 +164,7 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean tolera
                                        fmi3Boolean stopTimeDefined, fmi3Float64 stopTime)
 {
     fmi3_instance *inst =
-        fmi3_checked(instance, "fmi3EnterInitializationMode", MODE_BIT(MODE_INSTANTIATED));
+        fmi3_checked(instance, FMI3_CALL(fmi3EnterInitializationMode));
     if (inst == NULL)
         return fmi3Error;
     fmi2Status status = fmu_setup_experiment(&inst->core, "fmi3EnterInitializationMode",
@@ -221,7 +178,7 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean tolera
 fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)
 {
     fmi3_instance *inst =
-        fmi3_checked(instance, "fmi3ExitInitializationMode", MODE_BIT(MODE_INITIALIZATION));
+        fmi3_checked(instance, FMI3_CALL(fmi3ExitInitializationMode));
     if (inst == NULL)
         return fmi3Error;
     fmu_exit_initialization(&inst->core);
@@ -231,8 +188,7 @@ fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)
 
 fmi3Status fmi3EnterEventMode(fmi3Instance instance)
 {
-    fmi3_instance *inst = fmi3_checked(instance, "fmi3EnterEventMode",
-                                       MODE_BIT(MODE_STEP) | MODES_EVENT_OR_CONTINUOUS);
+    fmi3_instance *inst = fmi3_checked(instance, FMI3_CALL(fmi3EnterEventMode));
     if (inst == NULL)
         return fmi3Error;
     if (inst->model_exchange) {
@@ -258,7 +214,7 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discrete
                                     fmi3Float64 *nextEventTime)
 {
     fmi3_instance *inst =
-        fmi3_checked(instance, "fmi3UpdateDiscreteStates", MODE_BIT(MODE_EVENT));
+        fmi3_checked(instance, FMI3_CALL(fmi3UpdateDiscreteStates));
     if (inst == NULL)
         return fmi3Error;
     if (!discreteStatesNeedUpdate || !terminateSimulation || !nominalsOfContinuousStatesChanged ||
@@ -286,7 +242,7 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discrete
 
 fmi3Status fmi3EnterStepMode(fmi3Instance instance)
 {
-    fmi3_instance *inst = fmi3_checked(instance, "fmi3EnterStepMode", MODE_BIT(MODE_EVENT));
+    fmi3_instance *inst = fmi3_checked(instance, FMI3_CALL(fmi3EnterStepMode));
     if (inst == NULL)
         return fmi3Error;
     if (inst->model_exchange)
@@ -304,7 +260,7 @@ fmi3Status fmi3EnterStepMode(fmi3Instance instance)
 
 fmi3Status fmi3Terminate(fmi3Instance instance)
 {
-    fmi3_instance *inst = fmi3_checked(instance, "fmi3Terminate", MODES_INITIALIZED);
+    fmi3_instance *inst = fmi3_checked(instance, FMI3_CALL(fmi3Terminate));
     if (inst == NULL)
         return fmi3Error;
     inst->core.phase = PHASE_TERMINATED;
@@ -314,7 +270,7 @@ fmi3Status fmi3Terminate(fmi3Instance instance)
 
 fmi3Status fmi3Reset(fmi3Instance instance)
 {
-    fmi3_instance *inst = fmi3_checked(instance, "fmi3Reset", MODES_ANY);
+    fmi3_instance *inst = fmi3_checked(instance, FMI3_CALL(fmi3Reset));
     if (inst == NULL)
         return fmi3Error;
     fmu_reset(&inst->core);

@@ -2,6 +2,7 @@
  * mode, and on a Model Exchange instance only, then runs the version-neutral Model Exchange
  * core (fmu_model_exchange.c) that fmi2_model_exchange.c runs too. Event Mode (entering it,
  * fmi3UpdateDiscreteStates) is shared with Co-Simulation in fmi3_lifecycle.c. */
+#include "fmi3_allowed.h"
 #include "fmi3_instance.h"
 #include "fmu_log.h"
 #include "fmu_model_exchange.h"
@@ -21,7 +22,7 @@ static fmi3_instance *me_checked(fmi3Instance instance, const char *function, un
 
 fmi3Status fmi3SetTime(fmi3Instance instance, fmi3Float64 time)
 {
-    fmi3_instance *inst = me_checked(instance, "fmi3SetTime", MODES_EVENT_OR_CONTINUOUS);
+    fmi3_instance *inst = me_checked(instance, FMI3_CALL(fmi3SetTime));
     return inst != NULL ? fmi3_status(fmu_me_set_time(&inst->core, "fmi3SetTime", time))
                         : fmi3Error;
 }
@@ -30,7 +31,7 @@ fmi3Status fmi3SetContinuousStates(fmi3Instance instance, const fmi3Float64 cont
                                    size_t nContinuousStates)
 {
     fmi3_instance *inst =
-        me_checked(instance, "fmi3SetContinuousStates", MODE_BIT(MODE_CONTINUOUS_TIME));
+        me_checked(instance, FMI3_CALL(fmi3SetContinuousStates));
     return inst != NULL ? fmi3_status(fmu_me_set_states(&inst->core, "fmi3SetContinuousStates",
                                                         continuousStates, nContinuousStates))
                         : fmi3Error;
@@ -39,7 +40,7 @@ fmi3Status fmi3SetContinuousStates(fmi3Instance instance, const fmi3Float64 cont
 fmi3Status fmi3GetContinuousStates(fmi3Instance instance, fmi3Float64 continuousStates[],
                                    size_t nContinuousStates)
 {
-    fmi3_instance *inst = me_checked(instance, "fmi3GetContinuousStates", MODES_MODEL_EVALUATION);
+    fmi3_instance *inst = me_checked(instance, FMI3_CALL(fmi3GetContinuousStates));
     return inst != NULL ? fmi3_status(fmu_me_get_states(&inst->core, "fmi3GetContinuousStates",
                                                         continuousStates, nContinuousStates))
                         : fmi3Error;
@@ -49,7 +50,7 @@ fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance instance, fmi3Float64 
                                              size_t nContinuousStates)
 {
     fmi3_instance *inst =
-        me_checked(instance, "fmi3GetContinuousStateDerivatives", MODES_MODEL_EVALUATION);
+        me_checked(instance, FMI3_CALL(fmi3GetContinuousStateDerivatives));
     return inst != NULL
                ? fmi3_status(fmu_me_derivatives(&inst->core, "fmi3GetContinuousStateDerivatives",
                                                 derivatives, nContinuousStates))
@@ -59,7 +60,7 @@ fmi3Status fmi3GetContinuousStateDerivatives(fmi3Instance instance, fmi3Float64 
 fmi3Status fmi3GetEventIndicators(fmi3Instance instance, fmi3Float64 eventIndicators[],
                                   size_t nEventIndicators)
 {
-    fmi3_instance *inst = me_checked(instance, "fmi3GetEventIndicators", MODES_MODEL_EVALUATION);
+    fmi3_instance *inst = me_checked(instance, FMI3_CALL(fmi3GetEventIndicators));
     return inst != NULL ? fmi3_status(fmu_me_event_indicators(&inst->core,
                                                               "fmi3GetEventIndicators",
                                                               eventIndicators, nEventIndicators))
@@ -69,9 +70,7 @@ fmi3Status fmi3GetEventIndicators(fmi3Instance instance, fmi3Float64 eventIndica
 fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance instance, fmi3Float64 nominals[],
                                              size_t nContinuousStates)
 {
-    fmi3_instance *inst = me_checked(instance, "fmi3GetNominalsOfContinuousStates",
-                                     MODE_BIT(MODE_INSTANTIATED) | MODES_EVENT_OR_CONTINUOUS |
-                                         MODE_BIT(MODE_TERMINATED));
+    fmi3_instance *inst = me_checked(instance, FMI3_CALL(fmi3GetNominalsOfContinuousStates));
     return inst != NULL
                ? fmi3_status(fmu_me_nominals(&inst->core, "fmi3GetNominalsOfContinuousStates",
                                              nominals, nContinuousStates))
@@ -80,7 +79,7 @@ fmi3Status fmi3GetNominalsOfContinuousStates(fmi3Instance instance, fmi3Float64 
 
 fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance instance, size_t *nEventIndicators)
 {
-    fmi3_instance *inst = me_checked(instance, "fmi3GetNumberOfEventIndicators", MODES_ANY);
+    fmi3_instance *inst = me_checked(instance, FMI3_CALL(fmi3GetNumberOfEventIndicators));
     if (inst == NULL)
         return fmi3Error;
     if (nEventIndicators == NULL)
@@ -92,7 +91,7 @@ fmi3Status fmi3GetNumberOfEventIndicators(fmi3Instance instance, size_t *nEventI
 
 fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance instance, size_t *nContinuousStates)
 {
-    fmi3_instance *inst = me_checked(instance, "fmi3GetNumberOfContinuousStates", MODES_ANY);
+    fmi3_instance *inst = me_checked(instance, FMI3_CALL(fmi3GetNumberOfContinuousStates));
     if (inst == NULL)
         return fmi3Error;
     if (nContinuousStates == NULL)
@@ -105,7 +104,7 @@ fmi3Status fmi3GetNumberOfContinuousStates(fmi3Instance instance, size_t *nConti
 fmi3Status fmi3EnterContinuousTimeMode(fmi3Instance instance)
 {
     fmi3_instance *inst =
-        me_checked(instance, "fmi3EnterContinuousTimeMode", MODE_BIT(MODE_EVENT));
+        me_checked(instance, FMI3_CALL(fmi3EnterContinuousTimeMode));
     if (inst == NULL)
         return fmi3Error;
     inst->core.phase = PHASE_CONTINUOUS_TIME;
@@ -119,7 +118,7 @@ fmi3Status fmi3CompletedIntegratorStep(fmi3Instance instance,
 {
     (void)noSetFMUStatePriorToCurrentPoint; /* the FMU keeps no history to discard */
     fmi3_instance *inst =
-        me_checked(instance, "fmi3CompletedIntegratorStep", MODE_BIT(MODE_CONTINUOUS_TIME));
+        me_checked(instance, FMI3_CALL(fmi3CompletedIntegratorStep));
     if (inst == NULL)
         return fmi3Error;
     if (enterEventMode == NULL || terminateSimulation == NULL)

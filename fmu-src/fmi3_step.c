@@ -2,6 +2,7 @@
  * or, with event mode and early return, end the step at the event: the importer then applies it
  * in Event Mode. A model that asks to stop ends the step at that time with terminateSimulation;
  * a step the model refuses fails, is discarded or is fatal, as the model says. */
+#include "fmi3_allowed.h"
 #include "fmi3_instance.h"
 #include "fmu_log.h"
 #include "fmu_step.h"
@@ -13,7 +14,7 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
                       fmi3Boolean *earlyReturn, fmi3Float64 *lastSuccessfulTime)
 {
     (void)noSetFMUStatePriorToCurrentPoint;
-    fmi3_instance *self = fmi3_checked(instance, "fmi3DoStep", MODE_BIT(MODE_STEP));
+    fmi3_instance *self = fmi3_checked(instance, FMI3_CALL(fmi3DoStep));
     if (self == NULL)
         return fmi3Error;
     fmu_instance *inst = &self->core;

@@ -3,6 +3,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "fmi3_allowed.h"
 #include "fmi3_instance.h"
 #include "fmu_log.h"
 #include "fmu_values.h"
@@ -68,7 +69,7 @@ static fmi3_instance *checked(fmi3Instance instance, const char *function, unsig
 fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                           size_t nValueReferences, fmi3Float64 values[], size_t nValues)
 {
-    fmi3_instance *self = checked(instance, "fmi3GetFloat64", MODES_GET, valueReferences,
+    fmi3_instance *self = checked(instance, FMI3_CALL(fmi3GetFloat64), valueReferences,
                                   nValueReferences, values, nValues, TYPE_REAL, 0);
     if (self == NULL)
         return fmi3Error;
@@ -93,7 +94,7 @@ fmi3Status fmi3GetFloat64(fmi3Instance instance, const fmi3ValueReference valueR
 fmi3Status fmi3GetInt32(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                         size_t nValueReferences, fmi3Int32 values[], size_t nValues)
 {
-    fmi3_instance *self = checked(instance, "fmi3GetInt32", MODES_GET, valueReferences,
+    fmi3_instance *self = checked(instance, FMI3_CALL(fmi3GetInt32), valueReferences,
                                   nValueReferences, values, nValues, TYPE_INTEGER, 0);
     if (self == NULL)
         return fmi3Error;
@@ -105,7 +106,7 @@ fmi3Status fmi3GetInt32(fmi3Instance instance, const fmi3ValueReference valueRef
 fmi3Status fmi3GetBoolean(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                           size_t nValueReferences, fmi3Boolean values[], size_t nValues)
 {
-    fmi3_instance *self = checked(instance, "fmi3GetBoolean", MODES_GET, valueReferences,
+    fmi3_instance *self = checked(instance, FMI3_CALL(fmi3GetBoolean), valueReferences,
                                   nValueReferences, values, nValues, TYPE_BOOLEAN, 0);
     if (self == NULL)
         return fmi3Error;
@@ -130,7 +131,7 @@ static double boolean_at(const void *values, size_t i)
 fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                           size_t nValueReferences, const fmi3Float64 values[], size_t nValues)
 {
-    fmi3_instance *self = checked(instance, "fmi3SetFloat64", MODES_SET, valueReferences,
+    fmi3_instance *self = checked(instance, FMI3_CALL(fmi3SetFloat64), valueReferences,
                                   nValueReferences, values, nValues, TYPE_REAL, 1);
     if (self == NULL ||
         fmu_check_reals(&self->core, "fmi3SetFloat64", valueReferences, nValueReferences,
@@ -143,7 +144,7 @@ fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference valueR
 fmi3Status fmi3SetInt32(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                         size_t nValueReferences, const fmi3Int32 values[], size_t nValues)
 {
-    fmi3_instance *self = checked(instance, "fmi3SetInt32", MODES_SET, valueReferences,
+    fmi3_instance *self = checked(instance, FMI3_CALL(fmi3SetInt32), valueReferences,
                                   nValueReferences, values, nValues, TYPE_INTEGER, 1);
     if (self == NULL)
         return fmi3Error;
@@ -154,7 +155,7 @@ fmi3Status fmi3SetInt32(fmi3Instance instance, const fmi3ValueReference valueRef
 fmi3Status fmi3SetBoolean(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                           size_t nValueReferences, const fmi3Boolean values[], size_t nValues)
 {
-    fmi3_instance *self = checked(instance, "fmi3SetBoolean", MODES_SET, valueReferences,
+    fmi3_instance *self = checked(instance, FMI3_CALL(fmi3SetBoolean), valueReferences,
                                   nValueReferences, values, nValues, TYPE_BOOLEAN, 1);
     if (self == NULL)
         return fmi3Error;
@@ -190,7 +191,7 @@ static fmi3Status no_variables_of_type(fmi3Instance instance, const char *functi
                              size_t nValueReferences, C_TYPE values[], size_t nValues)         \
     {                                                                                          \
         (void)values, (void)nValues;                                                           \
-        return no_variables_of_type(instance, "fmi3Get" #TYPE, MODES_GET, valueReferences,     \
+        return no_variables_of_type(instance, FMI3_CALL(fmi3Get##TYPE), valueReferences,      \
                                     nValueReferences);                                         \
     }
 #define SETTER(TYPE, C_TYPE)                                                                   \
@@ -198,7 +199,7 @@ static fmi3Status no_variables_of_type(fmi3Instance instance, const char *functi
                              size_t nValueReferences, const C_TYPE values[], size_t nValues)   \
     {                                                                                          \
         (void)values, (void)nValues;                                                           \
-        return no_variables_of_type(instance, "fmi3Set" #TYPE, MODES_SET, valueReferences,     \
+        return no_variables_of_type(instance, FMI3_CALL(fmi3Set##TYPE), valueReferences,      \
                                     nValueReferences);                                         \
     }
 
@@ -226,7 +227,7 @@ fmi3Status fmi3GetBinary(fmi3Instance instance, const fmi3ValueReference valueRe
                          size_t nValues)
 {
     (void)valueSizes, (void)values, (void)nValues;
-    return no_variables_of_type(instance, "fmi3GetBinary", MODES_GET, valueReferences,
+    return no_variables_of_type(instance, FMI3_CALL(fmi3GetBinary), valueReferences,
                                 nValueReferences);
 }
 
@@ -235,7 +236,7 @@ fmi3Status fmi3SetBinary(fmi3Instance instance, const fmi3ValueReference valueRe
                          const fmi3Binary values[], size_t nValues)
 {
     (void)valueSizes, (void)values, (void)nValues;
-    return no_variables_of_type(instance, "fmi3SetBinary", MODES_SET, valueReferences,
+    return no_variables_of_type(instance, FMI3_CALL(fmi3SetBinary), valueReferences,
                                 nValueReferences);
 }
 
@@ -243,7 +244,7 @@ fmi3Status fmi3GetClock(fmi3Instance instance, const fmi3ValueReference valueRef
                         size_t nValueReferences, fmi3Clock values[])
 {
     (void)values;
-    return no_variables_of_type(instance, "fmi3GetClock", MODES_GET, valueReferences,
+    return no_variables_of_type(instance, FMI3_CALL(fmi3GetClock), valueReferences,
                                 nValueReferences);
 }
 
@@ -251,6 +252,6 @@ fmi3Status fmi3SetClock(fmi3Instance instance, const fmi3ValueReference valueRef
                         size_t nValueReferences, const fmi3Clock values[])
 {
     (void)values;
-    return no_variables_of_type(instance, "fmi3SetClock", MODES_SET, valueReferences,
+    return no_variables_of_type(instance, FMI3_CALL(fmi3SetClock), valueReferences,
                                 nValueReferences);
 }

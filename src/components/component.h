@@ -1,10 +1,11 @@
-/* One component of a system: its ports and the behaviour behind one interface. Built-in
- * behaviour comes from a table per kind (FMU or Python); a hook set from Python replaces the
- * matching built-in. */
+/* One component of a system: its ports and the behaviour behind one interface, a table of
+ * operations per kind (FMU, Model Exchange FMU, Python, table source). Callers go through
+ * component_calls.h, where a hook set from Python replaces the matching built-in. */
 #ifndef SSX_COMPONENT_H
 #define SSX_COMPONENT_H
 
-#include "own_events.h"
+#include <stddef.h>
+
 #include "syssimx_engine.h"
 
 /* Slot 0 holds the macro-step snapshot, slot 1 the short probe after an event. */
@@ -12,7 +13,19 @@ enum { SSX_SNAPSHOT_SLOTS = 2 };
 
 typedef struct ssx_component ssx_component;
 
+/* An event the component handled inside its own step (own_events.h). */
 typedef struct {
+    double t;
+    ssx_own_event_kind kind;
+} ssx_own_event;
+
+typedef struct {
+    ssx_own_event *pending; /* in time order */
+    size_t n;
+    size_t capacity;
+} ssx_own_event_list;
+
+typedef struct ssx_component_ops {
     int (*do_step)(ssx_system *sys, ssx_component *c, double t, double dt);
     int (*write_inputs)(ssx_system *sys, ssx_component *c);
     int (*read_outputs)(ssx_system *sys, ssx_component *c);
@@ -20,6 +33,20 @@ typedef struct {
     int (*snapshot)(ssx_system *sys, ssx_component *c, int slot);
     int (*restore)(ssx_system *sys, ssx_component *c, int slot, double t);
     void (*release)(ssx_component *c); /* frees c->data; NULL when the kind keeps none */
+    /* What callers would otherwise ask the kind for. Each may be NULL: the kind has none. */
+    /* Refuses a component the run cannot use (a Python component without its two hooks). */
+    int (*validate)(ssx_system *sys, const ssx_component *c);
+    /* After initialization: unconnected inputs whose start is NaN take the value the
+     * component holds (an FMU's own start). NULL: every start is given. */
+    int (*adopt_inputs)(ssx_system *sys, ssx_component *c, double t0);
+    /* d outputs / d inputs (value references) in the direction seed, into out, as the
+     * component stands at t; fails with the error set. NULL: the kind cannot tell. */
+    int (*directional_derivative)(ssx_system *sys, ssx_component *c, const unsigned int *outputs,
+                                  size_t n_outputs, const unsigned int *inputs, size_t n_inputs,
+                                  const double *seed, double *out, double t);
+    /* What two components must never use on two threads at once (their FMU instance), NULL:
+     * nothing shared. Only kinds whose built-in step may run on a worker thread have it. */
+    const void *(*shared_with_threads)(const ssx_component *c);
 } ssx_component_ops;
 
 /* A driven input, resolved for the coupling loop: inputs[input] = scale * *source + offset,
@@ -99,6 +126,12 @@ int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0);
 /* Whether the FMU already holds every input value: nothing set it since the engine's last
  * write. */
 int fmu_component_inputs_unchanged(const ssx_component *c);
+/* Both FMU kinds' directional derivatives and the instance their threads must not share. */
+int fmu_component_directional_derivative(ssx_system *sys, ssx_component *c,
+                                         const unsigned int *outputs, size_t n_outputs,
+                                         const unsigned int *inputs, size_t n_inputs,
+                                         const double *seed, double *out, double t);
+const void *fmu_component_instance(const ssx_component *c);
 /* Reads every output of an FMU component; a failure is reported at t, the time the FMU is at. */
 int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t);
 /* A Model Exchange FMU integrated by the engine (me_component.c); its ports are an FMU
@@ -106,24 +139,5 @@ int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t);
 extern const ssx_component_ops ssx_model_exchange_component_ops;
 extern const ssx_component_ops ssx_python_component_ops;
 extern const ssx_component_ops ssx_table_component_ops;
-
-/* Dispatch: a Python hook if set, else the built-in. Each returns 0 or -1 with the error set. */
-int component_do_step(ssx_system *sys, ssx_component *c, double t, double dt);
-int component_write_inputs(ssx_system *sys, ssx_component *c);
-int component_read_outputs(ssx_system *sys, ssx_component *c);
-int component_evaluate_outputs(ssx_system *sys, ssx_component *c, double t);
-int component_snapshot(ssx_system *sys, ssx_component *c, int slot);
-int component_restore(ssx_system *sys, ssx_component *c, int slot, double t);
-int component_handle_events(ssx_system *sys, ssx_component *c, const int *indicators, int n,
-                            double t);
-int component_initialize(ssx_system *sys, ssx_component *c, double t0);
-int component_record(ssx_system *sys, ssx_component *c, double t);
-int component_can_roll_back(const ssx_component *c);
-/* Fails on the first NaN or infinite output, unless the system allows them. */
-int component_check_outputs(ssx_system *sys, const ssx_component *c, double t);
-
-/* Builds the per-type batches; called when the system initializes. */
-int component_prepare(ssx_component *c);
-void component_free(ssx_component *c);
 
 #endif

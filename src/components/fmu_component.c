@@ -8,9 +8,11 @@
 
 #include "component.h"
 #include "error.h"
+#include "finite_outputs.h"
 #include "fmu_backend.h"
 #include "fmu_binding.h"
 #include "input_order.h"
+#include "own_events.h"
 #include "parallel_step.h"
 #include "system.h"
 
@@ -149,7 +151,7 @@ static int stop_requested(ssx_system *sys, ssx_component *c, double t, double t_
 {
     double stop = isnan(reached) ? t : reached;
     /* the first request of the run counts; on a worker thread, the first of its share */
-    ssx_termination *request = parallel_termination_slot(sys);
+    ssx_termination *request = termination_record(sys);
     if (request->component < 0) {
         request->component = c->index;
         request->time = stop;
@@ -386,6 +388,21 @@ int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0)
     return 0;
 }
 
+int fmu_component_directional_derivative(ssx_system *sys, ssx_component *c,
+                                         const unsigned int *outputs, size_t n_outputs,
+                                         const unsigned int *inputs, size_t n_inputs,
+                                         const double *seed, double *out, double t)
+{
+    int status = ssx_fmu_get_directional_derivative(c->fmu, outputs, n_outputs, inputs,
+                                                    n_inputs, seed, out);
+    return fmi_ok(status) ? 0 : fail_fmi(sys, c, t, status, "fmi2GetDirectionalDerivative");
+}
+
+const void *fmu_component_instance(const ssx_component *c)
+{
+    return c->fmu;
+}
+
 const ssx_component_ops ssx_fmu_component_ops = {
     .do_step = fmu_do_step,
     .write_inputs = fmu_write_inputs,
@@ -393,4 +410,7 @@ const ssx_component_ops ssx_fmu_component_ops = {
     .evaluate_outputs = fmu_evaluate_outputs,
     .snapshot = fmu_snapshot,
     .restore = fmu_restore,
+    .adopt_inputs = fmu_component_adopt_inputs,
+    .directional_derivative = fmu_component_directional_derivative,
+    .shared_with_threads = fmu_component_instance,
 };

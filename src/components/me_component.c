@@ -32,11 +32,14 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "component.h"
+#include "component_calls.h"
 #include "error.h"
 #include "fmu_backend.h"
 #include "fmu_binding.h"
+#include "own_events.h"
 #include "parallel_step.h"
 #include "system.h"
+#include "zeno.h"
 
 /* What the engine holds of the component's state besides the FMU state: the continuous
  * states, the pending time event and when each event indicator last crossed (a restore before
@@ -183,7 +186,7 @@ static int fail_cvode(ssx_system *sys, ssx_component *c, me_data *me, double t, 
  * ssx_termination); on a worker thread, the first request of its share. */
 static void note_termination(ssx_system *sys, ssx_component *c, double t)
 {
-    ssx_termination *request = parallel_termination_slot(sys);
+    ssx_termination *request = termination_record(sys);
     if (request->component < 0) {
         request->component = c->index;
         request->time = t;
@@ -413,30 +416,28 @@ static int integrate(ssx_system *sys, ssx_component *c, me_data *me, double stop
     return 0;
 }
 
-/* Chattering, by the master's rule for its indicators: an indicator that crosses again
- * within zeno_min_interval (by default ten times tol_time) of its previous crossing. Near an
- * accumulation point (a ball whose bounces never end) CVODE would soon miss a crossing and let
- * the state sink through: the run ends here instead. */
+/* Chattering, by the rule of the master's indicators (zeno.h), with no grid to resolve: the
+ * engine's integrator resolves every crossing. Near an accumulation point (a ball whose
+ * bounces never end) CVODE would soon miss a crossing and let the state sink through: the run
+ * ends here instead. */
 static int state_event_chatters(ssx_system *sys, ssx_component *c, me_data *me, double t)
 {
     if (CVodeGetRootInfo(me->cvode, me->roots_found) != CV_SUCCESS) {
         return fail(sys, c->index, -1, t, "component '%s': CVodeGetRootInfo failed at t=%.17g",
                     c->name, t);
     }
-    double minimum = sys->hybrid.zeno_min_interval > 0.0 ? sys->hybrid.zeno_min_interval
-                                                         : 10.0 * sys->hybrid.tol_time;
     for (size_t i = 0; i < me->nz; ++i) {
         if (me->roots_found[i] == 0) {
             continue;
         }
         double interval = t - me->now.last_crossing[i];
         me->now.last_crossing[i] = t;
-        if (interval < minimum) {
+        if (zeno_judge(&sys->hybrid, interval, INFINITY, 0.0) != ZENO_NONE) {
             return fail_zeno(sys, c->index, -1, t,
                              "component '%s': its event indicator %zu crossed again at t=%.17g, "
                              "only %.3g after its previous crossing: chattering (Zeno) "
                              "behaviour; the minimum interval is %.3g",
-                             c->name, i, t, interval, minimum);
+                             c->name, i, t, interval, zeno_min_interval(&sys->hybrid));
         }
     }
     return 0;
@@ -654,6 +655,9 @@ const ssx_component_ops ssx_model_exchange_component_ops = {
     .snapshot = me_snapshot,
     .restore = me_restore,
     .release = me_release,
+    .adopt_inputs = fmu_component_adopt_inputs,
+    .directional_derivative = fmu_component_directional_derivative,
+    .shared_with_threads = fmu_component_instance,
 };
 
 static int state_new(me_state *state, size_t n, size_t nz)

@@ -8,22 +8,7 @@
 #ifndef SSX_OWN_EVENTS_H
 #define SSX_OWN_EVENTS_H
 
-#include <stddef.h>
-
-#include "syssimx_engine.h"
-
-typedef struct {
-    double t;
-    ssx_own_event_kind kind;
-} ssx_own_event;
-
-typedef struct {
-    ssx_own_event *pending; /* in time order */
-    size_t n;
-    size_t capacity;
-} ssx_own_event_list;
-
-typedef struct ssx_component ssx_component;
+#include "component.h"
 
 /* The component handled an event of its own at t during the step it is taking. */
 int own_event_report(ssx_system *sys, ssx_component *c, ssx_own_event_kind kind, double t);

@@ -50,6 +50,15 @@ static int python_restore(ssx_system *sys, ssx_component *c, int slot, double t)
     return c->hooks.restore(c->hooks.user, slot, t) == 0 ? 0 : fail_hook(sys, c, t, "restore");
 }
 
+static int python_validate(ssx_system *sys, const ssx_component *c)
+{
+    if (c->hooks.do_step == NULL || c->hooks.evaluate_outputs == NULL) {
+        return fail(sys, c->index, -1, sys->time,
+                    "Python component '%s' needs do_step and evaluate_outputs hooks", c->name);
+    }
+    return 0;
+}
+
 const ssx_component_ops ssx_python_component_ops = {
     .do_step = python_do_step,
     .write_inputs = python_ports_in_place,
@@ -57,4 +66,5 @@ const ssx_component_ops ssx_python_component_ops = {
     .evaluate_outputs = python_evaluate_outputs,
     .snapshot = python_snapshot,
     .restore = python_restore,
+    .validate = python_validate,
 };

@@ -8,7 +8,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 
-#include "fmu_binding.h"
+#include "fmu_outcome.h"
 #include "syssimx_engine.h"
 
 /* The operations of the interface: a back-end resolves one function of its standard into each

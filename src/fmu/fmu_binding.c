@@ -1,4 +1,4 @@
-/* The FMU binding: one loaded binary (dlopen'ed here, or run by a host process), the functions
+/* The FMU binding: one loaded binary (loaded here, or run by a host process), the functions
  * its back-end resolved, at most one live instance, counters of every call and the last message
  * the FMU logged. Version-neutral: the FMI standard's functions and types are the back-end's
  * (fmu_backend.h); every call on the instance passes the one check below. */
@@ -6,7 +6,6 @@
 
 #include "fmu_binding.h"
 
-#include <dlfcn.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -16,6 +15,7 @@
 #include "fmu_backend.h"
 #include "fmu_message.h"
 #include "fmu_remote.h"
+#include "shared_library.h"
 
 struct ssx_fmu {
     /* what every doStep touches, together at the start: one cache line where thousands of
@@ -87,11 +87,11 @@ static char *duplicate(const char *text)
 /* Unprefixed names first; FMUs compiled with a function prefix export <id>_<name>. */
 static void *resolve(void *library, const char *model_identifier, const char *name)
 {
-    void *symbol = dlsym(library, name);
+    void *symbol = shared_library_symbol(library, name);
     if (symbol == NULL && model_identifier[0] != '\0') {
         char prefixed[256];
         snprintf(prefixed, sizeof prefixed, "%s_%s", model_identifier, name);
-        symbol = dlsym(library, prefixed);
+        symbol = shared_library_symbol(library, prefixed);
     }
     return symbol;
 }
@@ -112,7 +112,7 @@ static int resolve_functions(ssx_fmu *fmu, const char *binary_path,
         const ssx_fmu_function_row *row = &backend->functions[i];
         void *symbol = fmu->remote != NULL ? ssx_remote_function(fmu->remote, row->name)
                                            : resolve(fmu->library, model_identifier, row->name);
-        /* dlsym returns void *; C11 has no direct cast to a function pointer */
+        /* a symbol is a void *; C11 has no direct cast to a function pointer */
         memcpy(&fmu->fn[row->slot], &symbol, sizeof symbol);
         fmu->names[row->slot] = row->name;
         if (symbol == NULL && row->required) {
@@ -129,7 +129,7 @@ static void unload(void *library, ssx_remote *remote)
     if (remote != NULL) {
         ssx_remote_stop(remote);
     } else if (library != NULL) {
-        dlclose(library);
+        shared_library_close(library);
     }
 }
 
@@ -192,11 +192,11 @@ ssx_fmu *ssx_fmu_load(const ssx_fmu_load_spec *spec, char *error, size_t error_s
             return NULL;
         }
     } else {
-        fmu->library = dlopen(spec->binary_path, RTLD_NOW | RTLD_LOCAL);
+        const char *reason = NULL;
+        fmu->library = shared_library_open(spec->binary_path, &reason);
         if (fmu->library == NULL) {
-            const char *reason = dlerror();
             snprintf(error, error_size, "cannot load the FMU binary %s: %s", spec->binary_path,
-                     reason != NULL ? reason : "unknown dlopen failure");
+                     reason);
             free(fmu);
             return NULL;
         }
@@ -834,7 +834,8 @@ long ssx_fmu_values_epoch(const ssx_fmu *fmu)
     return fmu != NULL ? fmu->values_epoch : 0;
 }
 
-ssx_remote *ssx_fmu_remote(const ssx_fmu *fmu)
+ssx_remote *ssx_fmu_remote(const void *environment)
 {
+    const ssx_fmu *fmu = environment;
     return fmu != NULL ? fmu->remote : NULL;
 }

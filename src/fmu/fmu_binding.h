@@ -2,6 +2,7 @@
 #ifndef SSX_FMU_BINDING_H
 #define SSX_FMU_BINDING_H
 
+#include "fmu_outcome.h"
 #include "syssimx_engine.h"
 
 /* Counts instantiations: FMU states of an earlier instance are invalid (the binding frees them
@@ -33,29 +34,9 @@ const char *ssx_fmu_function_name(const ssx_fmu *fmu, int slot);
  * (FMI 3.0), else "". */
 const char *ssx_fmu_variable_name(const ssx_fmu *fmu, unsigned int vr);
 
-/* What an FMI 3.0 doStep returns besides its status. `reported` is 0 when the standard says
- * nothing more than the status (FMI 2.0); event_handling_needed is 1 only for an instance made
- * with eventModeUsed. */
-typedef struct {
-    int reported;
-    int event_handling_needed;
-    int terminate_simulation;
-    int early_return;
-    double last_successful_time;
-} ssx_step_outcome;
 /* The last doStep's out-arguments (all 0 before a step). */
 void ssx_fmu_step_outcome(const ssx_fmu *fmu, ssx_step_outcome *outcome);
 
-/* What fmi2NewDiscreteStates (fmi2EventInfo, Model Exchange) and fmi3UpdateDiscreteStates
- * (FMI 3.0 Co-Simulation in event mode) tell, version-neutral. */
-typedef struct {
-    int new_discrete_states_needed;
-    int terminate_simulation;
-    int nominals_changed;
-    int values_changed;
-    int next_event_time_defined;
-    double next_event_time;
-} ssx_fmu_event_info;
 /* The Model Exchange calls of an FMU loaded with SSX_MODEL_EXCHANGE, checked like every other
  * call; each returns the status, or -1. Event mode (enter, new discrete states) serves an
  * FMI 3.0 Co-Simulation instance made with eventModeUsed too, with fmi3EnterStepMode to leave
@@ -81,8 +62,5 @@ int ssx_fmu_get_number_of_event_indicators(ssx_fmu *fmu, size_t *n);
 int ssx_fmu_experiment_tolerance(const ssx_fmu *fmu, double *tolerance);
 /* Whether the FMU was loaded for Model Exchange. */
 int ssx_fmu_is_model_exchange(const ssx_fmu *fmu);
-/* The host process of an isolated FMU, NULL for one loaded into this process. */
-struct ssx_remote;
-struct ssx_remote *ssx_fmu_remote(const ssx_fmu *fmu);
 
 #endif

@@ -8,7 +8,7 @@
  * FMI 3.0 passes the experiment to fmi3EnterInitializationMode and returns doStep's news in
  * out-arguments: the instance the binding holds is this back-end's context, which keeps both
  * beside the FMU's own instance. */
-#include "fmu_fmi3.h"
+#include "fmu_fmi3_context.h"
 
 /* The rows both interfaces share: required, then optional. */
 #define FMI3_COMMON_ROWS                                                                      \

@@ -1,7 +1,7 @@
-/* The FMI 3.0 value table (see fmu_fmi3.h): each value reference's type, given at load; the
+/* The FMI 3.0 value table (see fmu_fmi3_context.h): each value reference's type, given at load; the
  * FMU's arrays, read and written whole; and every conversion between an engine port type and
  * an FMI 3.0 type, refusing a value that does not fit. */
-#include "fmu_fmi3.h"
+#include "fmu_fmi3_context.h"
 
 #include <limits.h>
 #include <stdarg.h>

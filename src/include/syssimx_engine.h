@@ -533,6 +533,46 @@ int ssx_set_output_interval(ssx_system *sys, int grid_steps);
  * every event instant and trial, whatever ssx_set_output_interval says; 0, the default, returns
  * to the system's interval. */
 int ssx_set_run_output_interval(ssx_system *sys, int grid_steps);
+/* Observers: code of the user's that the run reports to as it goes (libcosim's observers), a
+ * file written while the run goes on, say. An observer sees the samples the history keeps (the
+ * same decimation), in the same order, and reads their values through ssx_outputs() during
+ * step_complete. Every member may be NULL; each returns 0, or -1 to stop the run (kind
+ * SSX_ERROR_CALLBACK; Python keeps the exception). The engine calls none of them while a
+ * system is freed.
+ *   start           ssx_initialize, before the sample at t0
+ *   step_complete   a sample: the communication point t (micro 0), an event instant before
+ *                   and after handling (micro 0, 1, ...), a trial (micro -1, only with
+ *                   record_internal_steps)
+ *   state_restored  the system went back to its state at t: later samples were trials
+ *   event           an event was handled; its record is complete
+ *   run_end         ssx_run returns, whatever its status (its result is ignored) */
+typedef struct {
+    int (*start)(void *user, double t0);
+    int (*step_complete)(void *user, double t, int micro);
+    int (*state_restored)(void *user, double t);
+    int (*event)(void *user, const ssx_event_record *record);
+    int (*run_end)(void *user);
+} ssx_observer_callbacks;
+/* Adds an observer (callbacks copied) after those added before. Added after ssx_initialize, it
+ * is started by the next ssx_run and sees the samples from there. Returns its id (> 0) for
+ * ssx_remove_observer, or -1 with the error set. Neither adding nor removing may happen during
+ * a run (from a callback). */
+int ssx_add_observer(ssx_system *sys, const ssx_observer_callbacks *callbacks, void *user);
+/* A block observer: the samples an observer sees, gathered into blocks of up to `rows` rows
+ * (times, micro steps, and every component's outputs in component order, row-major: n_rows x
+ * n_columns) and handed to `write` when a block is full, at the last point of each run, and
+ * after a failed run with what came before the failure. The arrays are valid during the call.
+ * How a file is written while the run goes on in bounded memory. Returns its id, or -1. */
+typedef int (*ssx_block_writer)(void *user, const double *t, const int *micro,
+                                const double *values, size_t n_rows, size_t n_columns);
+int ssx_add_block_observer(ssx_system *sys, size_t rows, ssx_block_writer write, void *user);
+/* Removes the observer of that id; its callbacks are never called again. 0, or -1. */
+int ssx_remove_observer(ssx_system *sys, int observer);
+/* keep 0: the history keeps no more samples, for a run that only observers keep, larger than
+ * memory would hold: from the next ssx_run on (its samples so far are dropped then). keep 1,
+ * the default: the history keeps the samples again from the next ssx_initialize. */
+int ssx_set_history(ssx_system *sys, int keep);
+
 /* A reference to the buffers the history accessors return now: until it is released, their
  * first ssx_history_length() samples are never written, moved or freed, whatever the system
  * does (record, initialize again, ssx_system_free). This is how Python hands out numpy arrays

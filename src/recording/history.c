@@ -1,67 +1,26 @@
 /* Reference-counted history buffers that grow as they are used. */
-#define _GNU_SOURCE /* mremap */
-
 #include "history.h"
 
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
+
+#include "large_buffer.h"
 
 /* Rows of a new history, and the least growth beyond a reservation. */
 enum { INITIAL_ROWS = 256 };
 
-/* Buffers from this size on are pages of their own (mmap): they grow and shrink by mremap,
- * which copies nothing, and pages beyond the recorded rows are never made resident. malloc
- * does so too above its mmap threshold, but that threshold moves with the program's frees. */
-#if defined(__linux__)
-static const size_t MAPPED_MIN_BYTES = 1024 * 1024;
-#else
-static const size_t MAPPED_MIN_BYTES = (size_t)-1;
-#endif
-
-static int is_mapped(size_t bytes)
-{
-    return bytes >= MAPPED_MIN_BYTES;
-}
-
 static void buffer_free(ssx_buffer *buffer)
 {
-    if (buffer->data != NULL && is_mapped(buffer->bytes)) {
-        munmap(buffer->data, buffer->bytes);
-    } else {
-        free(buffer->data);
-    }
+    large_buffer_free(buffer->data, buffer->bytes);
     buffer->data = NULL;
     buffer->bytes = 0;
-}
-
-static void *buffer_allocate(size_t bytes)
-{
-    if (!is_mapped(bytes)) {
-        return malloc(bytes);
-    }
-    void *data = mmap(NULL, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    return data != MAP_FAILED ? data : NULL;
 }
 
 /* Keeps the contents up to the smaller size. Returns 0, or -1 with the buffer unchanged. */
 static int buffer_resize(ssx_buffer *buffer, size_t bytes)
 {
-    void *data;
-    if (buffer->data == NULL) {
-        data = buffer_allocate(bytes);
-    } else if (is_mapped(buffer->bytes) && is_mapped(bytes)) {
-        data = mremap(buffer->data, buffer->bytes, bytes, MREMAP_MAYMOVE);
-        data = data != MAP_FAILED ? data : NULL;
-    } else if (!is_mapped(buffer->bytes) && !is_mapped(bytes)) {
-        data = realloc(buffer->data, bytes);
-    } else { /* crossing the threshold: the other kind of allocation */
-        data = buffer_allocate(bytes);
-        if (data != NULL) {
-            memcpy(data, buffer->data, bytes < buffer->bytes ? bytes : buffer->bytes);
-            buffer_free(buffer);
-        }
-    }
+    void *data = buffer->data == NULL ? large_buffer_allocate(bytes)
+                                      : large_buffer_resize(buffer->data, buffer->bytes, bytes);
     if (data == NULL) {
         return -1;
     }

@@ -1,7 +1,7 @@
 /* Observers of a run (libcosim's idea): the time loop reports what it completed and never
  * records anything itself; each observer decides what to keep. The history is one observer,
- * a decimating front of it another; streaming to disk or collecting an ensemble would each be
- * one more, without a change to the algorithms.
+ * the components' record hooks another, and each observer a user adds (ssx_add_observer: a
+ * file written while the run goes on) one more, without a change to the algorithms.
  *
  * Every member but step_complete may be NULL (step_complete is called for every sample, without
  * a check). Those returning int return 0, or -1 with the system's error set; a failing observer
@@ -36,11 +36,15 @@ typedef struct {
     int (*event)(ssx_observer *self, ssx_system *sys, const ssx_event_record *record);
     /* ssx_run returns, whatever its status. */
     void (*run_end)(ssx_observer *self, ssx_system *sys);
+    /* Frees the observer (the recording owns the observers added to it); NULL: nothing to
+     * free. */
+    void (*release)(ssx_observer *self);
 } ssx_observer_ops;
 
 /* Embedded first in each observer's own struct, which its functions cast back to. */
 struct ssx_observer {
     const ssx_observer_ops *ops;
+    int id; /* given by the recording when it is added */
 };
 
 #endif

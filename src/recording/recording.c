@@ -72,122 +72,55 @@ static const ssx_observer_ops HISTORY_OPS = {
 
 /* ---------------------------------------------------------------- decimation */
 
-static int decimator_start(ssx_observer *self, ssx_system *sys)
+static int decimating(const ssx_recording *r)
 {
-    ssx_decimator *d = (ssx_decimator *)self;
-    d->grid_points = 0;
-    return d->next->ops->start(d->next, sys);
+    return r->output_interval > 1 || r->run_output_interval > 1;
 }
 
-/* The run's start point was recorded before it: the run's first step ends at its 1st point.
- * Room for the points kept, plus the end point: events grow the history as they come. */
-static int decimator_run_start(ssx_observer *self, ssx_system *sys, size_t n_steps)
+static int decimator_keeps(ssx_decimator *d, const ssx_sample *sample)
 {
-    ssx_decimator *d = (ssx_decimator *)self;
-    d->run_interval = sys->recording.run_output_interval;
-    d->run_points = 1;
-    int every = d->run_interval > 0 ? d->run_interval : d->interval;
-    return d->next->ops->run_start(d->next, sys, n_steps / (size_t)every + 1);
-}
-
-static int decimator_step_complete(ssx_observer *self, ssx_system *sys, const ssx_sample *sample)
-{
-    ssx_decimator *d = (ssx_decimator *)self;
-    if (sample->on_grid) {
-        int kept = (d->run_interval > 0 ? d->run_points % d->run_interval == 0
-                                        : d->grid_points % d->interval == 0) ||
-                   sample->run_end;
-        d->grid_points++;
-        d->run_points++;
-        if (!kept) {
-            return 0;
-        }
+    if (!sample->on_grid) {
+        return 1;
     }
-    return d->next->ops->step_complete(d->next, sys, sample);
+    int kept = (d->run_interval > 0 ? d->run_points % d->run_interval == 0
+                                    : d->grid_points % d->interval == 0) ||
+               sample->run_end;
+    d->grid_points++;
+    d->run_points++;
+    return kept;
 }
 
-static void decimator_run_end(ssx_observer *self, ssx_system *sys)
+/* ---------------------------------------------------------------- the lists */
+
+static int list_add(observer_list *list, ssx_observer *observer)
 {
-    ssx_decimator *d = (ssx_decimator *)self;
-    d->next->ops->run_end(d->next, sys);
-}
-
-/* In front of the history only, whose ops it calls without checking them for NULL. */
-static const ssx_observer_ops DECIMATOR_OPS = {
-    .start = decimator_start,
-    .run_start = decimator_run_start,
-    .step_complete = decimator_step_complete,
-    .run_end = decimator_run_end,
-};
-
-/* ---------------------------------------------------------------- record hooks */
-
-static int record_hooks_step_complete(ssx_observer *self, ssx_system *sys,
-                                      const ssx_sample *sample)
-{
-    (void)self;
-    for (int i = 0; i < sys->n_components; ++i) {
-        ssx_component *c = sys->components[i];
-        if (c->hooks.record != NULL && component_record(sys, c, sample->t) != 0) {
-            return -1;
-        }
+    if (array_reserve((void **)&list->items, &list->capacity, (size_t)list->n + 1,
+                      sizeof *list->items, 4) != 0) {
+        return -1;
     }
+    list->items[list->n++] = observer;
     return 0;
 }
 
-static const ssx_observer_ops RECORD_HOOKS_OPS = {.step_complete = record_hooks_step_complete};
-
-/* ---------------------------------------------------------------- the recording */
-
-void recording_init(ssx_recording *r, int output_interval)
+static void release(ssx_observer *observer)
 {
-    memset(r, 0, sizeof *r);
-    r->history.base.ops = &HISTORY_OPS;
-    r->decimator.base.ops = &DECIMATOR_OPS;
-    r->decimator.next = &r->history.base;
-    r->record_hooks.ops = &RECORD_HOOKS_OPS;
-    r->output_interval = output_interval;
-}
-
-/* The history itself when every point is kept: no decimator call per sample. */
-static ssx_observer *history_or_decimator(ssx_recording *r)
-{
-    return r->output_interval > 1 || r->run_output_interval > 1 ? &r->decimator.base
-                                                                 : &r->history.base;
-}
-
-void recording_free(ssx_recording *r)
-{
-    history_free(&r->history.history);
-    free(r->history.output_views);
-    free(r->events);
-}
-
-static int has_record_hooks(const ssx_system *sys)
-{
-    for (int i = 0; i < sys->n_components; ++i) {
-        if (sys->components[i]->hooks.record != NULL) {
-            return 1;
-        }
+    if (observer->ops->release != NULL) {
+        observer->ops->release(observer);
     }
-    return 0;
 }
 
-int recording_start(ssx_system *sys)
+static void list_free(observer_list *list)
 {
-    ssx_recording *r = &sys->recording;
-    r->n_events = 0;
-    r->n_observers = 0;
-    r->decimator.interval = r->output_interval;
-    r->decimator.run_interval = 0;
-    r->observers[r->n_observers++] = history_or_decimator(r);
-    /* most systems have no record hook: no call for them on every sample */
-    if (has_record_hooks(sys)) {
-        r->observers[r->n_observers++] = &r->record_hooks;
+    for (int k = 0; k < list->n; ++k) {
+        release(list->items[k]);
     }
-    r->run_end_time = sys->time;
-    for (int k = 0; k < r->n_observers; ++k) {
-        ssx_observer *o = r->observers[k];
+    free(list->items);
+}
+
+static int list_start(observer_list *list, ssx_system *sys)
+{
+    for (int k = 0; k < list->n; ++k) {
+        ssx_observer *o = list->items[k];
         if (o->ops->start != NULL && o->ops->start(o, sys) != 0) {
             return -1;
         }
@@ -195,15 +128,10 @@ int recording_start(ssx_system *sys)
     return 0;
 }
 
-int recording_run_start(ssx_system *sys, size_t n_steps, double tf)
+static int list_run_start(observer_list *list, ssx_system *sys, size_t n_steps)
 {
-    ssx_recording *r = &sys->recording;
-    r->run_end_time = tf;
-    /* the run's own interval may call for the decimator (its start only began the history,
-     * which is started already) */
-    r->observers[0] = history_or_decimator(r);
-    for (int k = 0; k < r->n_observers; ++k) {
-        ssx_observer *o = r->observers[k];
+    for (int k = 0; k < list->n; ++k) {
+        ssx_observer *o = list->items[k];
         if (o->ops->run_start != NULL && o->ops->run_start(o, sys, n_steps) != 0) {
             return -1;
         }
@@ -211,22 +139,10 @@ int recording_run_start(ssx_system *sys, size_t n_steps, double tf)
     return 0;
 }
 
-void recording_run_end(ssx_system *sys)
+static int list_step_complete(observer_list *list, ssx_system *sys, const ssx_sample *sample)
 {
-    ssx_recording *r = &sys->recording;
-    for (int k = 0; k < r->n_observers; ++k) {
-        ssx_observer *o = r->observers[k];
-        if (o->ops->run_end != NULL) {
-            o->ops->run_end(o, sys);
-        }
-    }
-}
-
-static int step_complete(ssx_system *sys, const ssx_sample *sample)
-{
-    ssx_recording *r = &sys->recording;
-    for (int k = 0; k < r->n_observers; ++k) {
-        ssx_observer *o = r->observers[k];
+    for (int k = 0; k < list->n; ++k) {
+        ssx_observer *o = list->items[k];
         if (o->ops->step_complete(o, sys, sample) != 0) {
             return -1;
         }
@@ -234,12 +150,187 @@ static int step_complete(ssx_system *sys, const ssx_sample *sample)
     return 0;
 }
 
+static int list_state_restored(observer_list *list, ssx_system *sys, double t)
+{
+    for (int k = 0; k < list->n; ++k) {
+        ssx_observer *o = list->items[k];
+        if (o->ops->state_restored != NULL && o->ops->state_restored(o, sys, t) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static int list_event(observer_list *list, ssx_system *sys, const ssx_event_record *record)
+{
+    for (int k = 0; k < list->n; ++k) {
+        ssx_observer *o = list->items[k];
+        if (o->ops->event != NULL && o->ops->event(o, sys, record) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static void list_run_end(observer_list *list, ssx_system *sys)
+{
+    for (int k = 0; k < list->n; ++k) {
+        ssx_observer *o = list->items[k];
+        if (o->ops->run_end != NULL) {
+            o->ops->run_end(o, sys);
+        }
+    }
+}
+
+/* ---------------------------------------------------------------- the recording */
+
+ssx_recording *recording_new(int output_interval)
+{
+    ssx_recording *r = calloc(1, sizeof *r);
+    if (r == NULL) {
+        return NULL;
+    }
+    r->history.base.ops = &HISTORY_OPS;
+    r->output_interval = output_interval;
+    if (list_add(&r->kept, &r->history.base) != 0) {
+        free(r);
+        return NULL;
+    }
+    return r;
+}
+
+void recording_free(ssx_recording *r)
+{
+    if (r == NULL) {
+        return;
+    }
+    list_free(&r->kept);
+    list_free(&r->every);
+    history_free(&r->history.history);
+    free(r->history.output_views);
+    free(r->events);
+    free(r);
+}
+
+int recording_add_observer(ssx_recording *r, ssx_observer *observer)
+{
+    if (list_add(&r->kept, observer) != 0) {
+        release(observer);
+        return -1;
+    }
+    observer->id = ++r->next_id;
+    return observer->id;
+}
+
+int recording_remove_observer(ssx_recording *r, int id)
+{
+    for (int k = 0; k < r->kept.n; ++k) {
+        ssx_observer *o = r->kept.items[k];
+        if (o != &r->history.base && o->id == id) {
+            memmove(&r->kept.items[k], &r->kept.items[k + 1],
+                    (size_t)(r->kept.n - k - 1) * sizeof *r->kept.items);
+            r->kept.n--;
+            release(o);
+            return 0;
+        }
+    }
+    return -1;
+}
+
+int recording_add_sample_observer(ssx_recording *r, ssx_observer *observer)
+{
+    if (list_add(&r->every, observer) != 0) {
+        release(observer);
+        return -1;
+    }
+    return 0;
+}
+
+void recording_keep_history(ssx_recording *r, int keep)
+{
+    r->history_off = !keep;
+}
+
+/* At the start: the history first among the kept observers, or gone with its samples. */
+static int place_history(ssx_recording *r)
+{
+    int keep = !r->history_off;
+    int kept = r->kept.n > 0 && r->kept.items[0] == &r->history.base;
+    if (keep && !kept) {
+        if (list_add(&r->kept, &r->history.base) != 0) {
+            return -1;
+        }
+        /* first again, as it was */
+        memmove(&r->kept.items[1], &r->kept.items[0],
+                (size_t)(r->kept.n - 1) * sizeof *r->kept.items);
+        r->kept.items[0] = &r->history.base;
+    } else if (!keep && kept) {
+        memmove(&r->kept.items[0], &r->kept.items[1],
+                (size_t)(r->kept.n - 1) * sizeof *r->kept.items);
+        r->kept.n--;
+        history_free(&r->history.history);
+    }
+    return 0;
+}
+
+int recording_start(ssx_system *sys)
+{
+    ssx_recording *r = sys->recording;
+    if (place_history(r) != 0) {
+        return fail(sys, -1, -1, sys->time, "out of memory starting the history");
+    }
+    r->n_events = 0;
+    r->decimator = (ssx_decimator){.interval = r->output_interval};
+    r->run_end_time = sys->time;
+    return list_start(&r->kept, sys) != 0 || list_start(&r->every, sys) != 0 ? -1 : 0;
+}
+
+int recording_run_start(ssx_system *sys, size_t n_steps, double tf)
+{
+    ssx_recording *r = sys->recording;
+    if (r->history_off) {
+        (void)place_history(r); /* removing it takes no memory */
+    }
+    r->run_end_time = tf;
+    size_t kept_steps = n_steps;
+    if (decimating(r)) {
+        /* The run's start point was recorded before it: the run's first step ends at its 1st
+         * point. Room for the points kept, plus the end point: events grow the history as
+         * they come. */
+        ssx_decimator *d = &r->decimator;
+        d->run_interval = r->run_output_interval;
+        d->run_points = 1;
+        int every = d->run_interval > 0 ? d->run_interval : d->interval;
+        kept_steps = n_steps / (size_t)every + 1;
+    }
+    return list_run_start(&r->kept, sys, kept_steps) != 0 ||
+                   list_run_start(&r->every, sys, n_steps) != 0
+               ? -1
+               : 0;
+}
+
+void recording_run_end(ssx_system *sys)
+{
+    list_run_end(&sys->recording->kept, sys);
+    list_run_end(&sys->recording->every, sys);
+}
+
+static int step_complete(ssx_system *sys, const ssx_sample *sample)
+{
+    ssx_recording *r = sys->recording;
+    int kept = !decimating(r) || decimator_keeps(&r->decimator, sample);
+    if (kept && list_step_complete(&r->kept, sys, sample) != 0) {
+        return -1;
+    }
+    return list_step_complete(&r->every, sys, sample);
+}
+
 int record_grid_point(ssx_system *sys, double t)
 {
     ssx_sample sample = {.t = t,
                          .micro = 0,
                          .on_grid = 1,
-                         .run_end = t == sys->recording.run_end_time};
+                         .run_end = t == sys->recording->run_end_time};
     return step_complete(sys, &sample);
 }
 
@@ -251,30 +342,23 @@ int record_sample(ssx_system *sys, double t, int micro)
 
 int record_state_restored(ssx_system *sys, double t)
 {
-    ssx_recording *r = &sys->recording;
-    for (int k = 0; k < r->n_observers; ++k) {
-        ssx_observer *o = r->observers[k];
-        if (o->ops->state_restored != NULL && o->ops->state_restored(o, sys, t) != 0) {
-            return -1;
-        }
-    }
-    return 0;
+    ssx_recording *r = sys->recording;
+    return list_state_restored(&r->kept, sys, t) != 0 ||
+                   list_state_restored(&r->every, sys, t) != 0
+               ? -1
+               : 0;
 }
 
 int record_event(ssx_system *sys, const ssx_event_record *record)
 {
-    ssx_recording *r = &sys->recording;
+    ssx_recording *r = sys->recording;
     if (array_reserve((void **)&r->events, &r->events_capacity, r->n_events + 1,
                       sizeof *r->events, 16) != 0) {
         return fail(sys, record->component, record->indicator, record->t,
                     "out of memory recording an event");
     }
     r->events[r->n_events++] = *record;
-    for (int k = 0; k < r->n_observers; ++k) {
-        ssx_observer *o = r->observers[k];
-        if (o->ops->event != NULL && o->ops->event(o, sys, record) != 0) {
-            return -1;
-        }
-    }
-    return 0;
+    return list_event(&r->kept, sys, record) != 0 || list_event(&r->every, sys, record) != 0
+               ? -1
+               : 0;
 }

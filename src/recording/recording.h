@@ -1,6 +1,11 @@
 /* What a run keeps: the observers the time loop reports to (observer.h) and the event records.
- * The history is always observed; with an output interval above 1 (the system's or the run's)
- * a decimator stands in front of it; the components' record hooks are a third observer, present only when one is set. */
+ *
+ * Two lists of observers. The kept samples go to the history (unless it is switched off) and
+ * then to the observers added (ssx_add_observer: a file being written, a user's callbacks):
+ * with an output interval above 1 (the system's or the run's) the recording keeps every k-th
+ * communication point, the last point of each run and every sample off the grid, so all of
+ * them see the same samples. Every sample, kept or not, goes to the observers of every sample
+ * (the components' record hooks). */
 #ifndef SSX_RECORDING_H
 #define SSX_RECORDING_H
 
@@ -14,27 +19,29 @@ typedef struct {
     double **output_views; /* per component: its outputs array */
 } ssx_history_observer;
 
-/* Passes on every k-th communication point (counted from t0, which is the 0th), the last point
- * of each run, and every sample off the grid (event instants, trials): an event is never
- * decimated away. A run with an interval of its own counts from its start instead. */
+/* Which communication points are kept: every k-th (counted from t0, which is the 0th), the
+ * last point of each run, and every sample off the grid (event instants, trials): an event is
+ * never decimated away. A run with an interval of its own counts from its start instead. */
 typedef struct {
-    ssx_observer base;
-    ssx_observer *next;
     int interval;
     int run_interval; /* 0: the current run keeps every interval-th point since ssx_initialize */
     long grid_points; /* seen since ssx_initialize */
     long run_points;  /* seen since the current run's start, which is the 0th */
 } ssx_decimator;
 
-/* the history or its decimator, and the record hooks; a new kind of observer adds one */
-enum { RECORDING_MAX_OBSERVERS = 3 };
-
 typedef struct {
+    ssx_observer **items;
+    int n;
+    size_t capacity;
+} observer_list;
+
+typedef struct ssx_recording {
     ssx_history_observer history;
+    int history_off; /* ssx_set_history(sys, 0) */
     ssx_decimator decimator;
-    ssx_observer record_hooks;
-    ssx_observer *observers[RECORDING_MAX_OBSERVERS];
-    int n_observers;
+    observer_list kept;  /* the history (first, unless off) and the observers added */
+    observer_list every; /* observers of every sample */
+    int next_id;         /* of the next observer added */
     int output_interval;
     int run_output_interval; /* ssx_set_run_output_interval: 0, or each run's own */
     double run_end_time;     /* tf of the current ssx_run */
@@ -44,9 +51,21 @@ typedef struct {
     size_t events_capacity;
 } ssx_recording;
 
-void recording_init(ssx_recording *r, int output_interval);
+/* NULL when out of memory. */
+ssx_recording *recording_new(int output_interval);
 void recording_free(ssx_recording *r);
-/* ssx_initialize: drops the last run's events, chooses the observers and starts them. */
+/* Adds an observer of the kept samples, which the recording owns from now on (even when this
+ * fails). Returns its id, or -1 when out of memory. */
+int recording_add_observer(ssx_recording *r, ssx_observer *observer);
+/* Removes (and releases) the observer of that id: 0, or -1 when there is none. */
+int recording_remove_observer(ssx_recording *r, int id);
+/* Adds an observer of every sample, which the recording owns: 0, or -1 when out of memory. */
+int recording_add_sample_observer(ssx_recording *r, ssx_observer *observer);
+/* Whether the history keeps samples (1, the default) or not (ssx_set_history): switched off,
+ * from the next run on; on again, from the next start. */
+void recording_keep_history(ssx_recording *r, int keep);
+
+/* ssx_initialize: drops the last run's events and starts the observers. */
 int recording_start(ssx_system *sys);
 int recording_run_start(ssx_system *sys, size_t n_steps, double tf);
 void recording_run_end(ssx_system *sys);

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "recording.h"
 #include "system.h"
 
 double ssx_time(const ssx_system *sys)
@@ -18,12 +19,12 @@ const ssx_termination *ssx_get_termination(const ssx_system *sys)
 /* The history observer's block: one every system has, decimated or not. */
 static ssx_history_block *history_block(const ssx_system *sys)
 {
-    return sys->recording.history.history.block;
+    return sys->recording->history.history.block;
 }
 
 size_t ssx_history_length(const ssx_system *sys)
 {
-    return sys->recording.history.history.length;
+    return sys->recording->history.history.length;
 }
 
 const double *ssx_history_time(const ssx_system *sys)
@@ -47,7 +48,7 @@ const double *ssx_history_values(const ssx_system *sys, int component)
 
 size_t ssx_history_bytes(const ssx_system *sys)
 {
-    return history_bytes(&sys->recording.history.history);
+    return history_bytes(&sys->recording->history.history);
 }
 
 ssx_history_block *ssx_history_retain(ssx_system *sys)
@@ -70,15 +71,15 @@ void ssx_history_release(ssx_history_block *block)
 
 size_t ssx_event_count(const ssx_system *sys)
 {
-    return sys->recording.n_events;
+    return sys->recording->n_events;
 }
 
 int ssx_event_get(const ssx_system *sys, size_t index, ssx_event_record *out)
 {
-    if (index >= sys->recording.n_events || out == NULL) {
+    if (index >= sys->recording->n_events || out == NULL) {
         return -1;
     }
-    *out = sys->recording.events[index];
+    *out = sys->recording->events[index];
     return 0;
 }
 

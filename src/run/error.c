@@ -7,14 +7,25 @@
 #include <string.h>
 
 #include "fmu_binding.h"
-#include "parallel_step.h"
+
+ssx_error *error_record(ssx_system *sys)
+{
+    const thread_records *own = &sys->thread_records;
+    return own->error != NULL ? own->error(own->owner) : &sys->error;
+}
+
+ssx_termination *termination_record(ssx_system *sys)
+{
+    const thread_records *own = &sys->thread_records;
+    return own->termination != NULL ? own->termination(own->owner) : &sys->termination;
+}
 
 /* Fills the record of the current thread: the system's, or a worker's own while it steps a
  * share of a batch (the calling thread publishes the first one afterwards). */
 static ssx_error *vrecord(ssx_system *sys, ssx_error_kind kind, int component, int indicator,
                           double t, const char *format, va_list args)
 {
-    ssx_error *e = parallel_error_slot(sys);
+    ssx_error *e = error_record(sys);
     e->kind = kind;
     e->component = component;
     e->indicator = indicator;
@@ -130,3 +141,13 @@ void clear_error(ssx_system *sys)
     sys->error.time = NAN;
 }
 
+ssx_component *system_component(ssx_system *sys, int index)
+{
+    if (index < 0 || index >= sys->n_components) {
+        fail_config(sys, -1, -1, sys->time,
+                    "unknown component index %d (system '%s' has %d components)", index, sys->name,
+                    sys->n_components);
+        return NULL;
+    }
+    return sys->components[index];
+}

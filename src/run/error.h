@@ -35,6 +35,13 @@ int fail_hook(ssx_system *sys, const ssx_component *c, double t, const char *hoo
 int fail_zeno(ssx_system *sys, int component, int indicator, double t, const char *format, ...)
     SSX_PRINTF(5, 6);
 void clear_error(ssx_system *sys);
+/* The component of that index, or NULL with a configuration error naming the index (every
+ * public call that takes a component index asks here). */
+ssx_component *system_component(ssx_system *sys, int index);
+/* What the current thread fills when a component fails or asks to stop: its own record while
+ * it steps a share of a batch, else the system's. */
+ssx_error *error_record(ssx_system *sys);
+ssx_termination *termination_record(ssx_system *sys);
 /* fmi2OK and fmi2Warning let the simulation go on. Inline: checked after every fmi2 call. */
 static inline int fmi_ok(int status)
 {

@@ -1,28 +1,18 @@
 /* Reading the clock costs about as much as a cheap macro step, so the monitor reads it every
  * `stride` steps and sizes the stride from the last readings to about a tenth of the
  * interval: a Ctrl-C waits at most about one interval plus one stride. */
-#define _POSIX_C_SOURCE 199309L
-
 #include "monitor.h"
 
-#include <time.h>
-
+#include "clock.h"
 #include "syssimx_engine.h"
 
 enum { MAX_STRIDE = 1 << 20 };
-
-static double seconds_now(void)
-{
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return (double)now.tv_sec + 1e-9 * (double)now.tv_nsec;
-}
 
 void monitor_start(ssx_monitor *m)
 {
     m->stride = 1;
     m->countdown = 1;
-    m->last_reading = seconds_now();
+    m->last_reading = monotonic_seconds();
     m->last_call = m->last_reading;
 }
 
@@ -43,7 +33,7 @@ static long next_stride(long stride, double elapsed, double target)
 int monitor_check(ssx_monitor *m, double t)
 {
     const double interval = SSX_MONITOR_INTERVAL_MS * 1e-3;
-    double now = seconds_now();
+    double now = monotonic_seconds();
     m->stride = next_stride(m->stride, now - m->last_reading, interval / 10.0);
     m->countdown = m->stride;
     m->last_reading = now;

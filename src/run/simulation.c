@@ -3,13 +3,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "algorithm.h"
 #include "component.h"
+#include "component_calls.h"
 #include "coupling.h"
 #include "error.h"
 #include "fmu_binding.h"
 #include "fmu_remote.h"
 #include "indicator.h"
 #include "input_order.h"
+#include "own_events.h"
+#include "recording.h"
 #include "system.h"
 
 /* Steps beyond this would not fit the history's size arithmetic. */
@@ -20,11 +24,8 @@ static int check_components(ssx_system *sys)
     int hybrid = system_is_hybrid(sys);
     for (int i = 0; i < sys->n_components; ++i) {
         ssx_component *c = sys->components[i];
-        if (c->ops == &ssx_python_component_ops &&
-            (c->hooks.do_step == NULL || c->hooks.evaluate_outputs == NULL)) {
-            return fail(sys, i, -1, sys->time,
-                        "Python component '%s' needs do_step and evaluate_outputs hooks",
-                        c->name);
+        if (c->ops->validate != NULL && c->ops->validate(sys, c) != 0) {
+            return -1;
         }
         if (hybrid && !component_can_roll_back(c)) {
             return fail(sys, i, -1, sys->time,
@@ -71,7 +72,7 @@ int ssx_initialize(ssx_system *sys, double t0)
             }
         }
         if (component_initialize(sys, c, t0) != 0 ||
-            (c->fmu != NULL && fmu_component_adopt_inputs(sys, c, t0) != 0)) {
+            (c->ops->adopt_inputs != NULL && c->ops->adopt_inputs(sys, c, t0) != 0)) {
             return -1;
         }
     }
@@ -83,7 +84,6 @@ int ssx_initialize(ssx_system *sys, double t0)
     if (record_grid_point(sys, t0) != 0) {
         return -1;
     }
-    sys->zero_start_pending = 1;
     sys->initialized = 1;
     return 0;
 }

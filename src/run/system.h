@@ -1,15 +1,20 @@
-/* The system's internal layout, shared by the engine's source files. */
+/* The system's internal layout, shared by the engine's source files. It includes only what
+ * needs no system itself; the rooms that read the system (components, the algorithm, the
+ * indicators, the recording) are named here by their types alone. */
 #ifndef SSX_SYSTEM_H
 #define SSX_SYSTEM_H
 
-#include "algorithm.h"
-#include "component.h"
-#include "indicator.h"
 #include "locator.h"
 #include "localization_log.h"
 #include "monitor.h"
-#include "recording.h"
 #include "syssimx_engine.h"
+
+typedef struct ssx_component ssx_component;
+typedef struct ssx_component_ops ssx_component_ops;
+typedef struct ssx_master_algorithm ssx_master_algorithm;
+typedef struct ssx_indicator ssx_indicator;
+typedef struct indicator_state indicator_state;
+typedef struct ssx_recording ssx_recording;
 
 typedef struct {
     int src_component;
@@ -48,6 +53,15 @@ typedef struct {
     double zeno_min_interval; /* <= 0: ten times tol_time */
 } ssx_hybrid_options;
 
+/* Where the current thread's failures and termination requests go (error.h): while a batch
+ * of components steps on several threads, each thread's own (parallel_step.c sets them);
+ * without them, the system's. */
+typedef struct {
+    ssx_error *(*error)(void *owner);
+    ssx_termination *(*termination)(void *owner);
+    void *owner;
+} thread_records;
+
 struct ssx_system {
     char *name;
     ssx_component **components;
@@ -63,7 +77,6 @@ struct ssx_system {
     size_t indicators_capacity;
     /* per indicator, set up by the hybrid algorithm at ssx_initialize */
     indicator_state *indicator_states;
-    indicator_bracket *brackets; /* the localization workspace */
 
     ssx_event_link *event_links;
     int n_event_links;
@@ -83,31 +96,35 @@ struct ssx_system {
     struct adaptive_workspace *adaptive;    /* adaptive.h, at ssx_initialize */
     /* chosen at ssx_initialize */
     const ssx_master_algorithm *algorithm;
+    void *algorithm_workspace; /* the algorithm's own state (algorithm.h) */
     int (*coupled_step)(ssx_system *sys, double t, double h); /* the coupling's step */
     ssx_loop_options loop;
     ssx_hybrid_options hybrid;
 
-    ssx_recording recording;
+    ssx_recording *recording;
+    int record_hooks_observed; /* a component's record hook was set: its observer is added */
     ssx_localization_log localization;
     ssx_statistics stats;
     ssx_error error;
     ssx_termination termination;
+    thread_records thread_records; /* all NULL: failures go to error and termination */
     int allow_non_finite;
     ssx_monitor monitor;
 
     double time;
     int initialized;
     int stepping_hybrid; /* FMUs are told that a rollback may follow */
-    int zero_start_pending; /* indicators starting on zero still need their side probed */
 };
 
-ssx_component *system_component(ssx_system *sys, int index); /* NULL with the error set */
 /* Appends a component of the given kind; returns its index, or -1 with the error set. */
 int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
                          const ssx_component_ops *ops);
-int system_is_hybrid(const ssx_system *sys);
 /* Every component's snapshot into slot, or back from it at time t (observers are told). */
 int system_snapshot(ssx_system *sys, int slot);
 int system_restore(ssx_system *sys, int slot, double t);
+static inline int system_is_hybrid(const ssx_system *sys)
+{
+    return sys->n_indicators > 0;
+}
 
 #endif

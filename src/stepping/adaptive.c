@@ -7,6 +7,8 @@
 #include "error.h"
 #include "hybrid.h"
 #include "input_order.h"
+#include "own_events.h"
+#include "recording.h"
 
 /* Bounds on how much one step may change the next: a controller that jumps further trusts an
  * error estimate beyond what one step tells. */
@@ -19,7 +21,7 @@ struct adaptive_workspace {
     double proposed; /* the next step's length; 0 before the first */
 };
 
-int adaptive_prepare(ssx_system *sys)
+int adaptive_prepare(ssx_system *sys, void **workspace)
 {
     adaptive_free(sys);
     sys->adaptive = calloc(1, sizeof *sys->adaptive);
@@ -27,7 +29,7 @@ int adaptive_prepare(ssx_system *sys)
         return fail(sys, -1, -1, sys->time, "out of memory preparing the step control");
     }
     if (system_is_hybrid(sys)) {
-        return hybrid_prepare(sys);
+        return hybrid_prepare(sys, workspace);
     }
     return 0;
 }

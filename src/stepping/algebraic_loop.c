@@ -2,6 +2,7 @@
  * (singular Jacobian, no convergence). A Jacobian column comes from the owning FMU's directional
  * derivatives when it provides them, otherwise from finite differences. */
 #include "algebraic_loop.h"
+#include "component_calls.h"
 
 #include <float.h>
 #include <math.h>
@@ -53,7 +54,7 @@ static const ssx_connection *driver_of(const loop_work *w, int k)
  * derivatives, no Python code stands between the engine and the FMU, and they are all Real. */
 static int has_directional_derivatives(const loop_work *w, const ssx_component *c)
 {
-    if (w->sys->loop.jacobian != SSX_JACOBIAN_AUTO || c->fmu == NULL ||
+    if (w->sys->loop.jacobian != SSX_JACOBIAN_AUTO || c->ops->directional_derivative == NULL ||
         !c->provides_directional_derivatives || c->hooks.evaluate_outputs != NULL) {
         return 0;
     }
@@ -208,10 +209,9 @@ static int directional_column(loop_work *w, int j)
     const unsigned int known = c->input_ports[w->input[j]].vr;
     const double seed = 1.0;
     sys->stats.directional_derivatives++;
-    int status = ssx_fmu_get_directional_derivative(c->fmu, w->output_vr, (size_t)n_rows, &known,
-                                                    1, &seed, w->r_step);
-    if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, w->t, status, "fmi2GetDirectionalDerivative");
+    if (c->ops->directional_derivative(sys, c, w->output_vr, (size_t)n_rows, &known, 1, &seed,
+                                       w->r_step, w->t) != 0) {
+        return -1;
     }
     for (int m = 0; m < n_rows; ++m) {
         int k = w->rows[m];

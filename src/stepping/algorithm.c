@@ -4,6 +4,8 @@
 #include "adaptive.h"
 #include "coupling.h"
 #include "hybrid.h"
+#include "own_events.h"
+#include "recording.h"
 #include "system.h"
 
 /* No events: one coupled step per communication step. */
@@ -20,16 +22,26 @@ static int plain_step(ssx_system *sys, double t, double t_next)
 enum { PLAIN, HYBRID, ADAPTIVE };
 
 static const ssx_master_algorithm ALGORITHMS[] = {
-    [PLAIN] = {NULL, plain_step},
-    [HYBRID] = {hybrid_prepare, hybrid_step},
-    /* events inside adaptive steps too */
-    [ADAPTIVE] = {adaptive_prepare, adaptive_step},
+    [PLAIN] = {NULL, plain_step, NULL},
+    [HYBRID] = {hybrid_prepare, hybrid_step, hybrid_release},
+    /* events inside adaptive steps too: its workspace is the hybrid one */
+    [ADAPTIVE] = {adaptive_prepare, adaptive_step, hybrid_release},
 };
+
+void master_algorithm_release(ssx_system *sys)
+{
+    if (sys->algorithm != NULL && sys->algorithm->release != NULL) {
+        sys->algorithm->release(sys->algorithm_workspace);
+    }
+    sys->algorithm = NULL;
+    sys->algorithm_workspace = NULL;
+}
 
 int master_algorithm_choose(ssx_system *sys)
 {
+    master_algorithm_release(sys);
     int chosen = sys->step_control.enabled ? ADAPTIVE : system_is_hybrid(sys) ? HYBRID : PLAIN;
     const ssx_master_algorithm *algorithm = &ALGORITHMS[chosen];
     sys->algorithm = algorithm;
-    return algorithm->prepare != NULL ? algorithm->prepare(sys) : 0;
+    return algorithm->prepare != NULL ? algorithm->prepare(sys, &sys->algorithm_workspace) : 0;
 }

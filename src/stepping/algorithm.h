@@ -6,14 +6,20 @@
 
 #include "syssimx_engine.h"
 
-typedef struct {
-    /* Sets up the algorithm's workspace for the system as built; NULL when it needs none. */
-    int (*prepare)(ssx_system *sys);
+typedef struct ssx_master_algorithm {
+    /* Makes the algorithm's own state for the system as built into *workspace, which the
+     * system holds for it (sys->algorithm_workspace) until release. NULL: it keeps none. */
+    int (*prepare)(ssx_system *sys, void **workspace);
     /* Advances from t to the communication point t_next and records what it completes. */
     int (*step)(ssx_system *sys, double t, double t_next);
+    /* Frees what prepare made. NULL: prepare makes nothing to free. */
+    void (*release)(void *workspace);
 } ssx_master_algorithm;
 
-/* Chooses the system's algorithm and prepares it: hybrid when it has event indicators. */
+/* Chooses the system's algorithm and prepares it, releasing the one before: hybrid when the
+ * system has event indicators. */
 int master_algorithm_choose(ssx_system *sys);
+/* Releases the system's algorithm and its state (ssx_system_free). */
+void master_algorithm_release(ssx_system *sys);
 
 #endif

@@ -5,7 +5,9 @@
 #include <stdlib.h>
 
 #include "algebraic_loop.h"
+#include "component_calls.h"
 #include "error.h"
+#include "input_links.h"
 #include "input_order.h"
 #include "parallel_step.h"
 
@@ -102,10 +104,7 @@ static int prepare_links(ssx_system *sys)
 
 void coupling_propagate_inputs(ssx_system *sys, ssx_component *c)
 {
-    const ssx_input_link *links = c->links;
-    for (int i = 0; i < c->n_links; ++i) {
-        c->inputs[links[i].input] = links[i].scale * *links[i].source + links[i].offset;
-    }
+    input_links_apply(c);
     input_order_propagate(sys, c);
 }
 
@@ -166,7 +165,7 @@ static int step_gauss_seidel_batches(ssx_system *sys, double t, double h)
         for (int m = 0; m < batches[b].size && batches[b].group < 0; ++m) {
             coupling_propagate_inputs(sys, sys->components[members[m]]);
         }
-        if (parallel_step(sys, members, batches[b].size, t, h) != 0) {
+        if (parallel_step(sys, members, batches[b].size, t, h, coupling_step_member) != 0) {
             return -1;
         }
         if (batches[b].group >= 0 &&
@@ -187,7 +186,7 @@ static int step_jacobi(ssx_system *sys, double t, double h)
             coupling_propagate_inputs(sys, member(sys, g, m));
         }
     }
-    if (parallel_step(sys, sys->order, sys->n_components, t, h) != 0) {
+    if (parallel_step(sys, sys->order, sys->n_components, t, h, coupling_step_member) != 0) {
         return -1;
     }
     for (int gi = 0; gi < sys->n_groups; ++gi) {

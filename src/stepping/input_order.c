@@ -4,10 +4,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "coupling.h"
+#include "component_calls.h"
 #include "error.h"
 #include "fmu_backend.h"
 #include "fmu_binding.h"
+#include "input_links.h"
 
 /* Communication points kept per component: three give a second-order extrapolation. */
 enum { HISTORY = 3 };
@@ -245,7 +246,8 @@ static int begin_step(ssx_system *sys, struct input_motion *w, double t, double 
             continue;
         }
         if (!w->held[i] && c->n_inputs > 0) {
-            coupling_propagate_inputs(sys, c);
+            input_links_apply(c);
+            input_order_propagate(sys, c);
             if (component_write_inputs(sys, c) != 0 || component_read_outputs(sys, c) != 0) {
                 return -1;
             }

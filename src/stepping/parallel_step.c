@@ -6,9 +6,9 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
-#include "coupling.h"
+#include "clock.h"
+#include "component_calls.h"
 #include "error.h"
 #include "worker_pool.h"
 
@@ -42,7 +42,6 @@ struct parallel_plan {
     int n_tasks;
     int n_slices;           /* the batch's tasks in this many contiguous slices */
     thread_report *reports; /* one per thread, 0 the calling thread's */
-    int running;            /* a batch is being stepped by the pool */
     double task_seconds;    /* recent cost of one pool task (a moving average), < 0 unknown */
     double caller_seconds;  /* in the current batch, the calling thread's time in its tasks */
     int caller_tasks;
@@ -55,21 +54,18 @@ struct parallel_plan {
 
 /* ------------------------------------------------------------------ the records */
 
-ssx_error *parallel_error_slot(ssx_system *sys)
+/* While a batch runs: the records of the thread that calls (the system's thread_records). */
+static ssx_error *thread_error(void *plan)
 {
-    parallel_plan *p = sys->parallel;
-    if (p == NULL || !p->running) {
-        return &sys->error;
-    }
+    parallel_plan *p = plan;
     thread_report *r = &p->reports[worker_pool_self(p->pool)];
     return r->failed_at < 0 ? &r->error : &r->later_error;
 }
 
-ssx_termination *parallel_termination_slot(ssx_system *sys)
+static ssx_termination *thread_termination(void *plan)
 {
-    parallel_plan *p = sys->parallel;
-    return p != NULL && p->running ? &p->reports[worker_pool_self(p->pool)].termination
-                                   : &sys->termination;
+    parallel_plan *p = plan;
+    return &p->reports[worker_pool_self(p->pool)].termination;
 }
 
 /* ------------------------------------------------------------------ the plan */
@@ -120,11 +116,11 @@ static int choose_pool_components(parallel_plan *p, const ssx_system *sys)
     int n_users = 0;
     for (int i = 0; i < n; ++i) {
         const ssx_component *c = sys->components[i];
-        int fmu_stepped_by_engine =
-            c->ops == &ssx_fmu_component_ops || c->ops == &ssx_model_exchange_component_ops;
-        p->on_pool[i] = fmu_stepped_by_engine && c->hooks.do_step == NULL && !c->calling_thread_only;
-        if (c->fmu != NULL) {
-            users[n_users++] = (fmu_user){(uintptr_t)c->fmu, i};
+        const void *shared = c->ops->shared_with_threads != NULL ? c->ops->shared_with_threads(c)
+                                                                 : NULL;
+        p->on_pool[i] = shared != NULL && c->hooks.do_step == NULL && !c->calling_thread_only;
+        if (shared != NULL) {
+            users[n_users++] = (fmu_user){(uintptr_t)shared, i};
         }
     }
     qsort(users, (size_t)n_users, sizeof *users, by_fmu);
@@ -228,13 +224,6 @@ int parallel_prepare(ssx_system *sys)
 
 /* A thread goes on after a failure: the tasks after it are not needed, but the tasks before
  * it may be waiting for a thread, and one that stops would not save time. */
-static double seconds_now(void)
-{
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return (double)now.tv_sec + 1e-9 * (double)now.tv_nsec;
-}
-
 /* One batch's cost per task into the moving average that decides whether the next is shared. */
 static void note_task_cost(parallel_plan *p, double seconds_per_task)
 {
@@ -251,12 +240,12 @@ static void step_slice(void *context, int slice, int thread)
     parallel_plan *p = context;
     int first = (int)((long)slice * p->n_tasks / p->n_slices);
     int end = (int)((long)(slice + 1) * p->n_tasks / p->n_slices);
-    double start = thread == 0 ? seconds_now() : 0.0;
+    double start = thread == 0 ? monotonic_seconds() : 0.0;
     for (int k = first; k < end; ++k) {
         step_one(context, k, thread);
     }
     if (thread == 0) {
-        p->caller_seconds += seconds_now() - start;
+        p->caller_seconds += monotonic_seconds() - start;
         p->caller_tasks += end - first;
     }
 }
@@ -298,14 +287,15 @@ static void step_one(void *context, int k, int thread)
 /* What one thread would have done, in member order: steps the members that stay on the
  * calling thread, counts the pool's steps, and takes over the first termination request and
  * the first failure. */
-static int replay(ssx_system *sys, const int *members, int n, double t, double h)
+static int replay(ssx_system *sys, const int *members, int n, double t, double h,
+                  member_step step_member)
 {
     parallel_plan *p = sys->parallel;
     int task = 0;
     for (int m = 0; m < n; ++m) {
         ssx_component *c = sys->components[members[m]];
         if (!p->on_pool[c->index]) {
-            if (coupling_step_member(sys, c, t, h) != 0) {
+            if (step_member(sys, c, t, h) != 0) {
                 return -1;
             }
             continue;
@@ -327,7 +317,8 @@ static int replay(ssx_system *sys, const int *members, int n, double t, double h
     return 0;
 }
 
-int parallel_step(ssx_system *sys, const int *members, int n, double t, double h)
+int parallel_step(ssx_system *sys, const int *members, int n, double t, double h,
+                  member_step step_member)
 {
     parallel_plan *p = sys->parallel;
     if (p != NULL) {
@@ -345,14 +336,14 @@ int parallel_step(ssx_system *sys, const int *members, int n, double t, double h
     }
     if (sharing < 2) {
         int timed = p != NULL && p->n_tasks >= 2; /* a batch that might be shared next time */
-        double start = timed ? seconds_now() : 0.0;
+        double start = timed ? monotonic_seconds() : 0.0;
         for (int m = 0; m < n; ++m) {
-            if (coupling_step_member(sys, sys->components[members[m]], t, h) != 0) {
+            if (step_member(sys, sys->components[members[m]], t, h) != 0) {
                 return -1;
             }
         }
         if (timed) {
-            note_task_cost(p, (seconds_now() - start) / n);
+            note_task_cost(p, (monotonic_seconds() - start) / n);
         }
         return 0;
     }
@@ -368,11 +359,11 @@ int parallel_step(ssx_system *sys, const int *members, int n, double t, double h
     p->h = h;
     p->caller_seconds = 0.0;
     p->caller_tasks = 0;
-    p->running = 1;
+    sys->thread_records = (thread_records){thread_error, thread_termination, p};
     p->n_slices = sharing * SLICES_PER_THREAD < p->n_tasks ? sharing * SLICES_PER_THREAD
                                                             : p->n_tasks;
     worker_pool_run(p->pool, step_slice, p, p->n_slices);
-    p->running = 0;
+    sys->thread_records = (thread_records){0};
     note_task_cost(p, p->caller_seconds / p->caller_tasks);
-    return replay(sys, members, n, t, h);
+    return replay(sys, members, n, t, h, step_member);
 }

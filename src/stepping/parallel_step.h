@@ -29,12 +29,13 @@ int parallel_prepare(ssx_system *sys);
 void parallel_free(parallel_plan *plan);
 /* The Gauss-Seidel batches of the schedule, in order. */
 int parallel_batches(const parallel_plan *plan, const parallel_batch **batches);
+/* How one member is written and stepped from t to t + h on the calling thread (the
+ * coupling's). */
+typedef int (*member_step)(ssx_system *sys, ssx_component *c, double t, double h);
 /* Writes and steps components[members[0..n)] from t to t + h, the first failure in member
- * order reported as if they had stepped one by one. Without a plan: one by one. */
-int parallel_step(ssx_system *sys, const int *members, int n, double t, double h);
-/* What the current thread fills when a component fails or asks to stop: its own record while
- * it steps a share of a batch, else the system's. */
-ssx_error *parallel_error_slot(ssx_system *sys);
-ssx_termination *parallel_termination_slot(ssx_system *sys);
+ * order reported as if they had stepped one by one. Without a plan: one by one, by
+ * step_member. */
+int parallel_step(ssx_system *sys, const int *members, int n, double t, double h,
+                  member_step step_member);
 
 #endif

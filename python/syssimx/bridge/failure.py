@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, NoReturn
+from collections.abc import Mapping
+from typing import Any, NoReturn, Protocol
 
 from ..engine import ffi, lib, status_name
 from ..errors import (
@@ -14,15 +15,23 @@ from ..errors import (
     ZenoError,
 )
 
-if TYPE_CHECKING:
-    from .plan import EnginePlan
+
+class FailedPlan(Protocol):
+    """What a failure reads of the engine plan it happened in (an EnginePlan)."""
+
+    sys: Any
+    failure: Any
+    index: Mapping[str, int]
+    indicators: list[tuple[str, str]]
+    components: Mapping[str, Any]
+    outputs: Mapping[str, list[str]]
 
 # The exception of each kind of engine failure (ssx_error_kind) that has one of its own.
 _EXCEPTIONS: dict[str, type[SimulationError]] = {"SSX_ERROR_ZENO": ZenoError,
                                                  "SSX_ERROR_LOOP": AlgebraicLoopError}
 
 
-def raise_failure(plan: EnginePlan, default_component: str | None = None) -> NoReturn:
+def raise_failure(plan: FailedPlan, default_component: str | None = None) -> NoReturn:
     """Raise the plan's last failure. An interrupt (KeyboardInterrupt, SystemExit) raised in a
     callback and a timeout are raised as they are, arguments the engine refused (a step that is
     not positive, ...) as ConfigurationError; anything else becomes a SimulationError."""
@@ -37,7 +46,7 @@ def raise_failure(plan: EnginePlan, default_component: str | None = None) -> NoR
     raise simulation_error(plan, default_component)
 
 
-def simulation_error(plan: EnginePlan, default_component: str | None = None) -> SimulationError:
+def simulation_error(plan: FailedPlan, default_component: str | None = None) -> SimulationError:
     """The exception for the plan's last failure; clears the kept callback failure."""
     error = lib().ssx_last_error(plan.sys)
     message = ffi.string(error.message).decode(errors="replace")

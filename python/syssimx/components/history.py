@@ -2,15 +2,24 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any, Protocol
 
 import numpy as np
 
 from ..units import to_unit
 
-if TYPE_CHECKING:
-    from .base import CoSimComponent
+
+class Recorded(Protocol):
+    """What a history reads of its component (a CoSimComponent)."""
+
+    name: str
+    output_specs: Mapping[str, Any]
+
+    def get_history_arrays(self) -> tuple[np.ndarray, dict[str, np.ndarray]]: ...
+
+    def engine_outputs(self) -> list[str]: ...
 
 
 @dataclass(frozen=True)
@@ -43,7 +52,7 @@ class ComponentHistory:
     """The outputs a component recorded in the system it runs in (copies of the engine's
     samples, taken when asked for), and its committed model switches."""
 
-    def __init__(self, component: CoSimComponent) -> None:
+    def __init__(self, component: Recorded) -> None:
         self._component = component
 
     def get_all_histories(self) -> dict[str, PortHistory]:

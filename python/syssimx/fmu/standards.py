@@ -11,7 +11,7 @@ from __future__ import annotations
 import sys
 from collections.abc import Iterable, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import TYPE_CHECKING, Any, NamedTuple, Protocol
 
 from ..engine import ffi, lib
 from . import description_fmi1, description_fmi2, description_fmi3
@@ -19,7 +19,19 @@ from . import description_fmi1, description_fmi2, description_fmi3
 if TYPE_CHECKING:
     from fmpy.model_description import ModelDescription
 
-    from .info import FMUInfo, FMUInterface
+
+class FMUInfo(Protocol):
+    """What a standard reads of an FMU's info (info.FMUInfo, which builds on this module)."""
+
+    description: Any
+    fmi3_variables: Any
+
+
+class FMUInterface(Protocol):
+    """What a standard reads of one of the FMU's interfaces (info.FMUInterface)."""
+
+    name: str
+    model_identifier: str
 
 _LINUX = sys.platform.startswith("linux")
 PORT_CAUSALITIES = ("input", "output", "parameter")  # locals are no ports

@@ -7,16 +7,25 @@ from __future__ import annotations
 
 import warnings
 import zipfile
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 from ..components.fmu import FMUComponent
 from ..core.port import PortType
-from ..system.system import System
 from .archive import SSD_NAME
 from .documents import NS, tag, validate
 from .errors import SSPError, SSPWarning
 from .experiment import Experiment
+
+
+class WrittenSystem(Protocol):
+    """What the writer reads of a System."""
+
+    name: str
+    components: Mapping[str, Any]
+    connections: Sequence[Any]
+    event_connections: Sequence[Any]
 
 OSP_NAMESPACE = "http://opensimulationplatform.com/SSP/OSPAnnotations"
 OSP_TYPE = "com.opensimulationplatform"
@@ -24,7 +33,8 @@ _SSP_TYPE = {PortType.REAL: "Real", PortType.INT: "Integer", PortType.BOOL: "Boo
              PortType.STRING: "String"}
 
 
-def write_ssp(system: System, path: str | Path, experiment: Experiment | None = None) -> Path:
+def write_ssp(system: WrittenSystem, path: str | Path,
+              experiment: Experiment | None = None) -> Path:
     """Write `system` to the .ssp archive `path`; returns the path."""
     from lxml import etree
 
@@ -66,7 +76,7 @@ def write_ssp(system: System, path: str | Path, experiment: Experiment | None = 
     return path
 
 
-def _warn_events(system: System, path: Path) -> None:
+def _warn_events(system: WrittenSystem, path: Path) -> None:
     """SSP 1.0 has no events: what the system has of them is named, not written."""
     left_out = [f"event indicator {c.name}.{e}" for c in system.components.values()
                 for e in c.event_indicators]
@@ -77,7 +87,7 @@ def _warn_events(system: System, path: Path) -> None:
                       SSPWarning, stacklevel=3)
 
 
-def _fmu_files(system: System) -> dict[str, str]:
+def _fmu_files(system: WrittenSystem) -> dict[str, str]:
     """Each FMU file once, by its path, with its name in the archive."""
     names: dict[str, str] = {}
     for component in system.components.values():

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any, SupportsIndex, overload
 
 if TYPE_CHECKING:
     from ..core.events import DenseTime
-    from .results import EventRecord
+    from .event_record import EventRecord
 
 
 class EventLog(list["EventRecord"]):

@@ -11,6 +11,8 @@ from typing import Any
 
 from .. import units
 from ..bridge.failure import raise_failure
+from ..bridge.observers import add_observer, remove_observer
+from ..bridge.observers import keep_history as keep_history_samples
 from ..bridge.plan import EnginePlan
 from ..components.base import CoSimComponent
 from ..core.port import PortType
@@ -24,6 +26,7 @@ from .algorithms.hybrid import log_events
 from .connection import Connection, EventConnection
 from .progress import ProgressCallback, run_progress
 from .results import HistoryView, SimulationResult, read_events
+from .run_stream import RunStream
 from .system_history import SystemHistory
 from .table_starts import start_tables
 from .termination import Termination, read_termination
@@ -50,6 +53,10 @@ class System:
         self._algorithm: Algorithm = default_coupling()
         self._algorithm_chosen = False
         self._plan: EnginePlan | None = None
+        self._observers: list[Any] = []  # System.add_observer, attached to every plan
+        self._observer_ids: dict[int, int] = {}  # id(observer) -> its id in the current plan
+        self._streamed: set[int] = set()  # writer objects that got their start point
+        self._history_off = False  # a run with keep_history=False since initialize
         self._plan_structure: tuple[Any, ...] | None = None  # what _plan was compiled from
 
     def __repr__(self) -> str:
@@ -189,6 +196,7 @@ class System:
                 plan.add_indicator(component, event)
         for c in self.event_connections:
             plan.add_event_connection(c.src_comp, c.src_port, c.dst_comp)
+        self._observer_ids = {id(o): add_observer(plan, o) for o in self._observers}
         for component in self.components.values():
             for event in component.self_handled_events():
                 plan.add_event_connection(component.name, event, component.name)
@@ -281,6 +289,7 @@ class System:
             self._plan, self._plan_structure = plan, structure
         else:
             plan.restart()
+            keep_history_samples(plan, True)  # a run may have switched it off
         self._push_options(plan)
         plan.check(lib().ssx_set_allow_non_finite(plan.sys, int(bool(allow_non_finite))),
                    "allow_non_finite")
@@ -296,6 +305,7 @@ class System:
         self.history = SystemHistory(system=self)
         self.t = t0
         self.is_initialized = True
+        self._history_off = False
 
     def restart_recording(self, t: float) -> None:
         """Continue from t with the components as they are now (a component restored to a
@@ -307,9 +317,37 @@ class System:
         self.history = SystemHistory(system=self)
         self.t = t
 
+    # ------------------------------------------------------------------ observers
+    def add_observer(self, observer: Any) -> Any:
+        """Call `observer` as the system runs (libcosim's observers): its
+        step_complete(t, micro, values) at every sample the history keeps (values: a new numpy
+        array of every component's outputs, named by the `columns` given to start), and where
+        it has them start(t0, columns) at initialize, state_restored(t) when localization goes
+        back to t (the samples after t were trials), event(t, micro, component, event) for each
+        handled event, run_end() when a run returns. An exception raised in one stops the run
+        and is raised by it. Added after initialize, it starts with the next run. Returns the
+        observer."""
+        if not callable(getattr(observer, "step_complete", None)):
+            raise ConfigurationError(f"{self.name}: an observer needs a step_complete(t, micro, "
+                                     f"values) method, {observer!r} has none")
+        self._observers.append(observer)
+        if self._plan is not None:
+            self._observer_ids[id(observer)] = add_observer(self._plan, observer)
+        return observer
+
+    def remove_observer(self, observer: Any) -> None:
+        """Stop calling an observer added by add_observer."""
+        if observer not in self._observers:
+            raise ConfigurationError(f"{self.name}: {observer!r} is not an observer of it")
+        self._observers.remove(observer)
+        engine_id = self._observer_ids.pop(id(observer), None)
+        if self._plan is not None and engine_id is not None:
+            remove_observer(self._plan, engine_id)
+
     def run(self, t0: float, tf: float, dt: float,
             progress: bool | ProgressCallback | None = None, timeout: float | None = None,
-            output_interval: float | None = None) -> SimulationResult:
+            output_interval: float | None = None, stream_to: Any = None,
+            keep_history: bool = True) -> SimulationResult:
         """Simulate on the grid t0 + k*dt (the last point exactly tf) plus event instants.
 
         progress: SysSimX's callback progress(t, tf), called with the time reached about every
@@ -319,7 +357,13 @@ class System:
         up to the last completed step stay readable through get_history().
         output_interval: a time, a whole multiple of dt (FMPy's meaning): this run records
         t0 + j*output_interval, its last point and every event instant (None: what initialize's
-        output_interval says)."""
+        output_interval says).
+        stream_to: write the run's samples to disk while it runs, exactly the history's (from
+        the state it starts at): a path whose suffix chooses the format (.csv, .parquet, .nc),
+        or a writer object of yours with write(t, micro, values) (and optionally
+        start(columns)) that you close, which may take several runs.
+        keep_history: False keeps no samples in memory from this run on (until the next
+        initialize): with stream_to, a run larger than memory keeps every sample on disk."""
         if not self.is_initialized or self._plan is None:
             raise ConfigurationError(f"{self.name}: call initialize(t0) before run()")
         t0, tf, dt = (_time_value(self.name, label, value)
@@ -337,8 +381,16 @@ class System:
             raise ConfigurationError(
                 f"{self.name}: component {plan.left!r} was initialized elsewhere since "
                 "this system's initialize; call initialize again")
+        if keep_history and self._history_off:
+            raise ConfigurationError(f"{self.name}: an earlier run kept no history "
+                                     "(keep_history=False); call initialize to keep it again")
         self._push_options(plan)
         plan.check(lib().ssx_set_run_output_interval(plan.sys, grid_steps), "output_interval")
+        stream = RunStream(plan, stream_to, t0, self._streamed) if stream_to is not None \
+            else None
+        if not keep_history:
+            keep_history_samples(plan, False)
+            self._history_off = True
         logger.info("Starting simulation run from t=%s to t=%s with dt=%s", t0, tf, dt)
         start = time.perf_counter()
         plan.timeout = timeout
@@ -348,6 +400,8 @@ class System:
             status = lib().ssx_run(plan.sys, t0, tf, dt)
         finally:
             plan.progress = None
+            if stream is not None:
+                stream.finish()
         wall = time.perf_counter() - start
         events = read_events(plan)
         self.history = SystemHistory(events, self)
@@ -404,7 +458,8 @@ class System:
                stop_time: float | None = None, step_size: float | None = None) -> Path:
         """Write the system (FMU components only) as an SSP 1.0 archive; the times become its
         default experiment, the step the Open Simulation Platform's fixed step annotation."""
-        from ..ssp import Experiment, write_ssp
+        from ..ssp.experiment import Experiment
+        from ..ssp.writer import write_ssp
 
         return write_ssp(self, path, Experiment(start_time, stop_time, step_size))
 
@@ -420,8 +475,9 @@ class System:
         return system_svg(self)
 
     def reset(self) -> None:
-        """Drop the engine system; components keep their parameters."""
+        """Drop the engine system; components keep their parameters and observers."""
         self._plan = self._plan_structure = None
+        self._observer_ids = {}
         self.is_initialized = False
         self.history = SystemHistory(system=self)
         self.termination = None

@@ -4,26 +4,37 @@ trajectories of ports and the CSV files of the samples."""
 from __future__ import annotations
 
 import weakref
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
 from ..core.events import DenseTime
 from ..errors import ConfigurationError
 from . import csv_export
-from .results import EventRecord, recorded_units
+from .event_record import EventRecord
+from .results import recorded_units
 
 if TYPE_CHECKING:
-    from .system import System
+    from ..bridge.plan import EnginePlan
+
+
+class HistorySource(Protocol):
+    """What a history reads of the System that records it."""
+
+    components: Mapping[str, Any]
+    _plan: EnginePlan | None
+
+    def get_history(self) -> dict[str, Any]: ...
 
 
 class SystemHistory:
     """A system's record (SysSimX's `system.history`): its events, and through `system` (when
     given) its samples: trajectories of ports and CSV files."""
 
-    def __init__(self, events: Sequence[EventRecord] = (), system: System | None = None) -> None:
+    def __init__(self, events: Sequence[EventRecord] = (),
+                 system: HistorySource | None = None) -> None:
         self.events = list(events)
         # weak: the system holds its history, and a cycle would keep both until a collection
         self._system = weakref.ref(system) if system is not None else None
@@ -37,7 +48,7 @@ class SystemHistory:
             histories.setdefault((e.component, e.event), []).append(e.time)
         return histories
 
-    def _recording_system(self) -> System:
+    def _recording_system(self) -> HistorySource:
         system = self._system() if self._system is not None else None
         if system is None or system._plan is None:
             raise ConfigurationError("this history has no samples: it belongs to no "

@@ -9,7 +9,6 @@
  * still inside a call (the engine's process died). */
 #define _GNU_SOURCE /* POLLRDHUP */
 
-#include <dlfcn.h>
 #include <poll.h>
 #include <pthread.h>
 #include <stdint.h>
@@ -22,6 +21,7 @@
 #include "fmu_message.h"
 #include "fmu_remote_protocol.h"
 #include "remote_io.h"
+#include "shared_library.h"
 
 typedef void (*any_function)(void);
 
@@ -217,14 +217,14 @@ static uint64_t resolve(host *h, void *library, const char *model_identifier)
 {
     uint64_t exported = 0;
     for (int call = 0; call < CALL_COUNT; ++call) {
-        void *symbol = dlsym(library, remote_call_names[call]);
+        void *symbol = shared_library_symbol(library, remote_call_names[call]);
         if (symbol == NULL && model_identifier[0] != '\0') {
             char prefixed[256];
             snprintf(prefixed, sizeof prefixed, "%s_%s", model_identifier,
                      remote_call_names[call]);
-            symbol = dlsym(library, prefixed);
+            symbol = shared_library_symbol(library, prefixed);
         }
-        /* dlsym returns void *; C11 has no direct cast to a function pointer. */
+        /* a symbol is a void *; C11 has no direct cast to a function pointer. */
         memcpy(&h->fn[call], &symbol, sizeof symbol);
         if (symbol != NULL) {
             exported |= UINT64_C(1) << call;
@@ -289,12 +289,11 @@ int main(int argc, char **argv)
     h.callbacks.allocateMemory = calloc;
     h.callbacks.freeMemory = free;
     h.callbacks.componentEnvironment = &h;
-    void *library = dlopen(argv[1], RTLD_NOW | RTLD_LOCAL);
+    const char *reason = NULL;
+    void *library = shared_library_open(argv[1], &reason);
     if (library == NULL) {
-        const char *reason = dlerror();
         char text[1024];
-        snprintf(text, sizeof text, "cannot load the FMU binary %s: %s", argv[1],
-                 reason != NULL ? reason : "unknown dlopen failure");
+        snprintf(text, sizeof text, "cannot load the FMU binary %s: %s", argv[1], reason);
         (void)send_reply(&h, REPLY_HELLO, -1, 0, text, strlen(text) + 1);
         return 1;
     }
@@ -302,6 +301,6 @@ int main(int argc, char **argv)
                  serve_requests(&h) != 0;
     free(h.request);
     free(h.reply);
-    dlclose(library);
+    shared_library_close(library);
     return failed;
 }

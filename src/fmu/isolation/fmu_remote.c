@@ -4,29 +4,19 @@
 
 #include "fmu_remote.h"
 
-#include <errno.h>
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/socket.h>
-#include <sys/types.h>
-#include <sys/wait.h>
 #include <time.h>
-#include <unistd.h>
 
+#include "child_process.h"
 #include "fmi2Functions.h"
-#include "fmu_binding.h"
 #include "fmu_remote_protocol.h"
 #include "remote_io.h"
 
-extern char **environ;
-
 struct ssx_remote {
-    pid_t pid; /* 0 while no host runs */
+    int pid; /* 0 while no host runs */
     int socket;
     double call_timeout;
     uint64_t exported; /* bit i: the binary exports remote_call_names[i] */
@@ -65,94 +55,17 @@ static int reserve(ssx_remote *r, size_t size)
     return 0;
 }
 
-static const char *signal_name(int signal)
-{
-    switch (signal) {
-    case SIGSEGV: return "SIGSEGV";
-    case SIGABRT: return "SIGABRT";
-    case SIGBUS: return "SIGBUS";
-    case SIGFPE: return "SIGFPE";
-    case SIGILL: return "SIGILL";
-    case SIGKILL: return "SIGKILL";
-    case SIGTERM: return "SIGTERM";
-    case SIGINT: return "SIGINT";
-    default: return "signal";
-    }
-}
-
-/* Waits for the host to end, killing it when it does not end by itself within a second, and
- * says how it ended. */
-static void reap(ssx_remote *r, char *how, size_t how_size)
-{
-    int status = 0;
-    pid_t done = 0;
-    for (int tries = 0; tries < 100 && done == 0; ++tries) {
-        done = waitpid(r->pid, &status, WNOHANG);
-        if (done == 0) {
-            nanosleep(&(struct timespec){0, 10000000}, NULL);
-        }
-    }
-    if (done == 0) {
-        kill(r->pid, SIGKILL);
-        done = waitpid(r->pid, &status, 0);
-    }
-    if (done != r->pid) {
-        snprintf(how, how_size, "ended (its exit status is unknown: %s)", strerror(errno));
-    } else if (WIFSIGNALED(status)) {
-        snprintf(how, how_size, "died of signal %d (%s, %s)", WTERMSIG(status),
-                 signal_name(WTERMSIG(status)), strsignal(WTERMSIG(status)));
-    } else {
-        snprintf(how, how_size, "exited with status %d", WEXITSTATUS(status));
-    }
-    r->pid = 0;
-}
-
 static void close_host(ssx_remote *r, char *how, size_t how_size)
 {
     if (r->socket >= 0) {
-        close(r->socket);
+        child_process_close_socket(r->socket);
         r->socket = -1;
     }
     if (r->pid > 0) {
-        pid_t group = r->pid; /* the host leads its process group (spawn_host) */
-        reap(r, how, how_size);
-        kill(-group, SIGKILL); /* whatever the FMU forked is ended with it */
-    }
-}
-
-static int spawn_host(ssx_remote *r, int host_end)
-{
-    posix_spawn_file_actions_t actions;
-    posix_spawnattr_t attributes;
-    if (posix_spawn_file_actions_init(&actions) != 0) {
-        return ENOMEM;
-    }
-    if (posix_spawnattr_init(&attributes) != 0) {
-        posix_spawn_file_actions_destroy(&actions);
-        return ENOMEM;
-    }
-    sigset_t no_signals, default_signals;
-    sigemptyset(&no_signals);
-    sigemptyset(&default_signals);
-    sigaddset(&default_signals, SIGPIPE);
-    /* Its own process group: Ctrl-C at the terminal is the engine's to handle, not the FMU's. */
-    int failed = posix_spawn_file_actions_adddup2(&actions, host_end, REMOTE_SOCKET_FD) ||
-                 posix_spawnattr_setpgroup(&attributes, 0) ||
-                 posix_spawnattr_setsigmask(&attributes, &no_signals) ||
-                 posix_spawnattr_setsigdefault(&attributes, &default_signals) ||
-                 posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP |
-                                                           POSIX_SPAWN_SETSIGMASK |
-                                                           POSIX_SPAWN_SETSIGDEF);
-    char *argv[] = {r->host_path, r->binary_path, r->model_identifier, NULL};
-    if (!failed) {
-        failed = posix_spawn(&r->pid, r->host_path, &actions, &attributes, argv, environ);
-    }
-    posix_spawnattr_destroy(&attributes);
-    posix_spawn_file_actions_destroy(&actions);
-    if (failed) {
+        child_process_reap(r->pid, how, how_size);
+        child_process_kill_group(r->pid); /* whatever the FMU forked is ended with it */
         r->pid = 0;
     }
-    return failed;
 }
 
 static struct timespec deadline_after(double seconds)
@@ -181,27 +94,13 @@ static const struct timespec *call_deadline(const ssx_remote *r, struct timespec
 /* Starts the host and reads its HELLO. */
 static int start_host(ssx_remote *r, char *error, size_t error_size)
 {
-    int pair[2];
-    /* close-on-exec on both ends: only the host gets its end, as REMOTE_SOCKET_FD */
-    if (socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, pair) != 0) {
-        snprintf(error, error_size, "cannot create the socket to the FMU host: %s",
-                 strerror(errno));
-        return -1;
-    }
-    if (pair[1] == REMOTE_SOCKET_FD) { /* dup2 onto itself would keep close-on-exec */
-        int moved = fcntl(pair[1], F_DUPFD_CLOEXEC, REMOTE_SOCKET_FD + 1);
-        close(pair[1]);
-        pair[1] = moved;
-    }
-    int failed = pair[1] < 0 ? errno : spawn_host(r, pair[1]);
-    if (pair[1] >= 0) {
-        close(pair[1]);
-    }
-    r->socket = pair[0];
-    if (failed) {
-        snprintf(error, error_size, "cannot start the FMU host %s: %s", r->host_path,
-                 strerror(failed));
-        close_host(r, (char[64]){0}, 64);
+    char *argv[] = {r->host_path, r->binary_path, r->model_identifier, NULL};
+    char reason_of_start[512];
+    if (child_process_start(argv, REMOTE_SOCKET_FD, &r->pid, &r->socket, reason_of_start,
+                            sizeof reason_of_start) != 0) {
+        r->pid = 0;
+        r->socket = -1;
+        snprintf(error, error_size, "the FMU host %s: %s", r->host_path, reason_of_start);
         return -1;
     }
     struct timespec storage;
@@ -220,7 +119,7 @@ static int start_host(ssx_remote *r, char *error, size_t error_size)
         reason[hello.payload] = '\0';
     }
     if (got == TIMED_OUT) {
-        kill(r->pid, SIGKILL);
+        child_process_kill(r->pid);
     }
     char how[256];
     close_host(r, how, sizeof how);
@@ -279,7 +178,7 @@ void ssx_remote_stop(ssx_remote *r)
 void ssx_remote_restart(ssx_remote *r)
 {
     if (r->pid > 0) {
-        kill(r->pid, SIGKILL);
+        child_process_kill(r->pid);
     }
     char how[256];
     close_host(r, how, sizeof how);
@@ -301,13 +200,13 @@ static int lost(ssx_remote *r, remote_call call, remote_receive_result why)
 {
     char how[256];
     if (why == TIMED_OUT) {
-        kill(-r->pid, SIGKILL);
+        child_process_kill_group(r->pid);
         close_host(r, how, sizeof how);
         snprintf(r->gone, sizeof r->gone,
                  "%s did not return within the step timeout of %g s: the FMU process was "
                  "killed", remote_call_names[call], r->call_timeout);
     } else if (why == STOPPED) {
-        kill(-r->pid, SIGKILL);
+        child_process_kill_group(r->pid);
         close_host(r, how, sizeof how);
         snprintf(r->gone, sizeof r->gone,
                  "the run was stopped (an interrupt or its timeout) while %s was running: the "

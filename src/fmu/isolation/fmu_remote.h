@@ -32,4 +32,9 @@ void ssx_remote_set_watch(ssx_remote *remote, int (*stop)(void *user), void *use
  * next fmi2Instantiate starts a new host. */
 void *ssx_remote_function(const ssx_remote *remote, const char *name);
 
+/* The remote of the ssx_fmu an instance was made for (its callbacks' componentEnvironment):
+ * FMI 2.0 hands fmi2Instantiate nothing else to find it by. The binding, which makes both,
+ * defines it. */
+ssx_remote *ssx_fmu_remote(const void *environment);
+
 #endif

@@ -10,17 +10,31 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "component_calls.h"
 #include "coupling.h"
 #include "error.h"
 #include "indicator.h"
 #include "locator.h"
+#include "own_events.h"
+#include "recording.h"
+#include "zeno.h"
 
 enum { PROBE_SLOT = 1 };
+
+/* The hybrid algorithm's own state: made by hybrid_prepare at ssx_initialize, held for it by
+ * the system (sys->algorithm_workspace), freed by hybrid_release. */
+typedef struct {
+    indicator_bracket *brackets; /* the localization workspace, one per indicator */
+    int zero_start_pending;      /* indicators starting on zero still need their side probed */
+} hybrid_workspace;
+
+static hybrid_workspace *workspace(const ssx_system *sys)
+{
+    return sys->algorithm_workspace;
+}
+
 /* Fraction of the macro step over which the probe follows a handled state. */
 #define PROBE_HORIZON 0.1
-/* Event intervals that shrink at least this much each are on their way to an accumulation
- * point (a bouncing ball's shrink by its restitution). */
-#define GEOMETRIC_APPROACH 0.9
 
 typedef struct {
     double a0;            /* start of the macro piece: the snapshot time */
@@ -78,7 +92,7 @@ static int far_side_converged(const ssx_system *sys)
         return 0;
     }
     for (int i = 0; i < sys->n_indicators; ++i) {
-        const indicator_bracket *end = &sys->brackets[i];
+        const indicator_bracket *end = &workspace(sys)->brackets[i];
         if (end->crossing && !(end->z_right != 0.0 && fabs(end->z_right) <= sys->hybrid.tol_value)) {
             return 0;
         }
@@ -95,7 +109,7 @@ static int log_row(ssx_system *sys, double t, double a, double b, int left)
         return fail(sys, -1, -1, t, "out of memory logging the localization at t=%.17g", t);
     }
     for (int i = 0; i < sys->n_indicators; ++i) {
-        values[i] = left ? sys->brackets[i].z_left : sys->indicator_states[i].value;
+        values[i] = left ? workspace(sys)->brackets[i].z_left : sys->indicator_states[i].value;
     }
     return 0;
 }
@@ -106,7 +120,7 @@ static int locate(ssx_system *sys, event_bracket *br)
     const ssx_hybrid_options *opt = &sys->hybrid;
     const locator_method *method = locator_method_of(opt->locator);
     int n = sys->n_indicators;
-    indicator_bracket *ends = sys->brackets;
+    indicator_bracket *ends = workspace(sys)->brackets;
     double a = br->a0;
     double b = br->t_end;
     for (int i = 0; i < n; ++i) {
@@ -230,7 +244,7 @@ static int probe(ssx_system *sys, double b, double delta_max, instant_work *w)
     if (system_snapshot(sys, PROBE_SLOT) != 0) {
         return -1;
     }
-    double delta = 10.0 * sys->hybrid.tol_time;
+    double delta = distinct_events_interval(&sys->hybrid);
     for (int first = 1;; first = 0) {
         if (coupling_step(sys, b, delta) != 0 || indicators_evaluate(sys, b + delta) != 0) {
             return -1;
@@ -281,28 +295,13 @@ static int notify_listeners(ssx_system *sys, double b, instant_work *w)
     return 0;
 }
 
-/* Two firings of one indicator this close are chattering. With zeno_min_interval set, that is
- * the whole rule. By default the scale is a tenth of the communication step (the horizon over
- * which the probe judges where a handled state goes): crossings that come back faster are finer
- * than the grid resolves, since between two grid points a master sees only the signs at the
- * ends. They are still followed while their intervals shrink geometrically, the way to an
- * accumulation point, which ten times tol_time or the residue test of settle_signs then stops
- * precisely; once they stop shrinking the model chatters at a fixed fine scale (an explicit
- * Euler FMU gains speed at every bounce and settles into flights of a few of its own steps,
- * bouncing for ever). */
-static int chattering(const ssx_system *sys, const event_bracket *br, const indicator_state *s,
-                      double interval)
-{
-    if (sys->hybrid.zeno_min_interval > 0.0) {
-        return interval < sys->hybrid.zeno_min_interval;
-    }
-    if (interval < 10.0 * sys->hybrid.tol_time) {
-        return 1;
-    }
-    return interval < PROBE_HORIZON * br->grid_step &&
-           !(interval <= GEOMETRIC_APPROACH * s->last_interval);
-}
-
+/* Chattering by zeno.h's rule. The master's resolution is a tenth of the communication step
+ * (the horizon over which the probe judges where a handled state goes): crossings that come
+ * back faster are finer than the grid resolves, since between two grid points a master sees
+ * only the signs at the ends. The residue test of settle_signs stops an accumulation point
+ * precisely too; once the intervals stop shrinking the model chatters at a fixed fine scale (an
+ * explicit Euler FMU gains speed at every bounce and settles into flights of a few of its own
+ * steps, bouncing for ever). */
 static int check_zeno(ssx_system *sys, const event_bracket *br, int micro, const instant_work *w)
 {
     double b = br->b;
@@ -314,17 +313,19 @@ static int check_zeno(ssx_system *sys, const event_bracket *br, int micro, const
             continue;
         }
         double interval = b - s->last_event_time;
-        if (!chattering(sys, br, s, interval)) {
+        zeno_verdict verdict = zeno_judge(&sys->hybrid, interval, s->last_interval,
+                                          PROBE_HORIZON * br->grid_step);
+        if (verdict == ZENO_NONE) {
             continue;
         }
         const char *name = sys->components[component]->name;
-        if (sys->hybrid.zeno_min_interval > 0.0 || interval < 10.0 * sys->hybrid.tol_time) {
+        if (verdict == ZENO_TOO_CLOSE) {
             return fail_zeno(sys, component, i, b,
                              "indicator %d of component '%s' fired again at t=%.17g, only %.3g "
                              "after its previous event (event number %ld): chattering (Zeno) "
                              "behaviour; the minimum interval is %.3g",
                              i, name, b, interval, s->fire_count + 1,
-                             fmax(sys->hybrid.zeno_min_interval, 10.0 * sys->hybrid.tol_time));
+                             zeno_min_interval(&sys->hybrid));
         }
         return fail_zeno(sys, component, i, b,
                          "indicator %d of component '%s' fired again at t=%.17g, only %.3g after "
@@ -349,7 +350,8 @@ static int settle_signs(ssx_system *sys, double b, const event_bracket *br, inst
         need_probe |= near_zero(w, i);
     }
     /* the probe stays well inside the macro step it belongs to */
-    double delta_max = fmax(10.0 * sys->hybrid.tol_time, PROBE_HORIZON * (br->t_end - br->a0));
+    double delta_max =
+        fmax(distinct_events_interval(&sys->hybrid), PROBE_HORIZON * (br->t_end - br->a0));
     if (need_probe && probe(sys, b, delta_max, w) != 0) {
         return -1;
     }
@@ -433,7 +435,7 @@ static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work
         indicator_state *s = &sys->indicator_states[i];
         w->fired[i] = fires_now(sys, i);
         indicator_follow(s, s->value);
-        w->band[i] = residue_band(sys, br, &sys->brackets[i], s->value);
+        w->band[i] = residue_band(sys, br, &workspace(sys)->brackets[i], s->value);
     }
     for (int micro = 0;; ++micro) {
         if (micro >= sys->hybrid.max_microsteps) {
@@ -488,10 +490,10 @@ static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work
  * on zero later takes its side from its first nonzero value, without an event. */
 static int resolve_zero_start(ssx_system *sys, double a0, double t_next)
 {
-    if (!sys->zero_start_pending) {
+    if (!workspace(sys)->zero_start_pending) {
         return 0;
     }
-    sys->zero_start_pending = 0;
+    workspace(sys)->zero_start_pending = 0;
     int unknown = 0;
     for (int i = 0; i < sys->n_indicators; ++i) {
         unknown |= sys->indicator_states[i].sign == 0;
@@ -512,13 +514,14 @@ static int resolve_zero_start(ssx_system *sys, double a0, double t_next)
                         .restores_before = sys->stats.state_restores};
     for (int i = 0; i < sys->n_indicators; ++i) {
         const indicator_state *s = &sys->indicator_states[i];
-        sys->brackets[i].z_left = sys->brackets[i].z_right = s->value;
+        workspace(sys)->brackets[i].z_left = workspace(sys)->brackets[i].z_right = s->value;
         w.fired[i] = s->sign == 0;
         w.z_after[i] = s->value;
         w.band[i] = 0.0;
     }
     int status =
-        probe(sys, a0, fmax(10.0 * sys->hybrid.tol_time, PROBE_HORIZON * (t_next - a0)), &w);
+        probe(sys, a0, fmax(distinct_events_interval(&sys->hybrid), PROBE_HORIZON * (t_next - a0)),
+              &w);
     int fires = 0;
     for (int i = 0; status == 0 && i < sys->n_indicators; ++i) {
         indicator_state *s = &sys->indicator_states[i];
@@ -540,22 +543,22 @@ static int resolve_zero_start(ssx_system *sys, double a0, double t_next)
     return status;
 }
 
-int hybrid_prepare(ssx_system *sys)
+int hybrid_prepare(ssx_system *sys, void **out)
 {
     size_t n = (size_t)sys->n_indicators;
     indicator_state *states = realloc(sys->indicator_states, n * sizeof *states);
     if (states != NULL) {
         sys->indicator_states = states;
     }
-    indicator_bracket *brackets = realloc(sys->brackets, n * sizeof *brackets);
-    if (brackets != NULL) {
-        sys->brackets = brackets;
-    }
+    hybrid_workspace *hw = calloc(1, sizeof *hw);
+    indicator_bracket *brackets = hw != NULL ? calloc(n > 0 ? n : 1, sizeof *brackets) : NULL;
     if (states == NULL || brackets == NULL) {
+        free(hw);
         return fail(sys, -1, -1, sys->time, "out of memory preparing %zu event indicators", n);
     }
     memset(states, 0, n * sizeof *states);
-    memset(brackets, 0, n * sizeof *brackets);
+    *hw = (hybrid_workspace){.brackets = brackets, .zero_start_pending = 1};
+    *out = hw;
     return 0;
 }
 
@@ -569,7 +572,7 @@ int hybrid_begin_piece(ssx_system *sys, double a0, double t_end, hybrid_piece *p
                             .do_steps_before = sys->stats.do_step_calls,
                             .restores_before = sys->stats.state_restores};
     for (int i = 0; i < sys->n_indicators; ++i) {
-        sys->brackets[i].z_left = sys->indicator_states[i].value;
+        workspace(sys)->brackets[i].z_left = sys->indicator_states[i].value;
     }
     return 0;
 }
@@ -607,6 +610,15 @@ int hybrid_end_piece(ssx_system *sys, const hybrid_piece *piece, double t_end, d
     *reached = br.b;
     *event = 1;
     return status;
+}
+
+void hybrid_release(void *workspace)
+{
+    hybrid_workspace *hw = workspace;
+    if (hw != NULL) {
+        free(hw->brackets);
+        free(hw);
+    }
 }
 
 int hybrid_step(ssx_system *sys, double t, double t_next)

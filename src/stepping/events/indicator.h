@@ -11,7 +11,7 @@
 #include "syssimx_engine.h"
 
 /* What an indicator is, as built: which value it watches and which crossings fire. */
-typedef struct {
+typedef struct ssx_indicator {
     int component;
     int output; /* -1 for a callback indicator */
     int (*evaluate)(void *user, double t, double *value);
@@ -20,7 +20,7 @@ typedef struct {
 } ssx_indicator;
 
 /* Where an indicator stands in a run: its value, its side, its events so far. */
-typedef struct {
+typedef struct indicator_state {
     double value;
     int sign;    /* side the indicator is on: -1 or +1; 0 while unknown (started at zero) */
     int on_zero; /* reached exactly zero in its last crossing and stays there: no new crossing

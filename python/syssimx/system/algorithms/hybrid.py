@@ -17,7 +17,7 @@ from ...engine import defaults, enum_name, enum_values, lib
 from .coupling import JacobiAlgorithm, default_coupling
 
 if TYPE_CHECKING:
-    from ..results import EventRecord
+    from ..event_record import EventRecord
 
 logger = logging.getLogger("syssimx.hybrid")
 

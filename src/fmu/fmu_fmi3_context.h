@@ -1,8 +1,8 @@
 /* The FMI 3.0 back-ends' instance (fmu_fmi3.c) and its value table (fmu_fmi3_values.c): the
  * type of every value reference, the FMU's arrays, and the conversion between the engine's
  * three port types and FMI 3.0's eleven. */
-#ifndef SSX_FMU_FMI3_H
-#define SSX_FMU_FMI3_H
+#ifndef SSX_FMU_FMI3_CONTEXT_H
+#define SSX_FMU_FMI3_CONTEXT_H
 
 #include <stddef.h>
 #include <stdint.h>

@@ -1,12 +1,12 @@
-/* The component interface: dispatch between Python hooks and built-in behaviour, the public
- * built-ins Python calls as super(), and the per-type port batches. */
-#include "component.h"
+/* Calling a component (see component_calls.h). */
+#include "component_calls.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "error.h"
+#include "own_events.h"
 #include "restart_handler.h"
 #include "system.h"
 
@@ -110,19 +110,6 @@ int component_record(ssx_system *sys, ssx_component *c, double t)
         return 0;
     }
     return c->hooks.record(c->hooks.user, t) == 0 ? 0 : fail_hook(sys, c, t, "record");
-}
-
-int component_check_outputs(ssx_system *sys, const ssx_component *c, double t)
-{
-    if (sys->allow_non_finite) {
-        return 0;
-    }
-    for (int i = 0; i < c->n_outputs; ++i) {
-        if (!isfinite(c->outputs[i])) {
-            return fail_non_finite(sys, c, i, t);
-        }
-    }
-    return 0;
 }
 
 int component_can_roll_back(const ssx_component *c)
@@ -246,50 +233,4 @@ void component_free(ssx_component *c)
     free(c->input_starts);
     free(c->input_driver);
     free(c);
-}
-
-/* Public built-ins: what a Python override reaches as super(); never a hook, never counted. */
-
-int ssx_component_do_step(ssx_system *sys, int component, double t, double dt)
-{
-    ssx_component *c = system_component(sys, component);
-    return c == NULL ? -1 : c->ops->do_step(sys, c, t, dt);
-}
-
-int ssx_component_write_inputs(ssx_system *sys, int component)
-{
-    ssx_component *c = system_component(sys, component);
-    return c == NULL ? -1 : c->ops->write_inputs(sys, c);
-}
-
-int ssx_component_read_outputs(ssx_system *sys, int component)
-{
-    ssx_component *c = system_component(sys, component);
-    return c == NULL ? -1 : c->ops->read_outputs(sys, c);
-}
-
-int ssx_component_snapshot(ssx_system *sys, int component, int slot)
-{
-    ssx_component *c = system_component(sys, component);
-    if (c == NULL) {
-        return -1;
-    }
-    if (slot < 0 || slot >= SSX_SNAPSHOT_SLOTS) {
-        return fail(sys, component, -1, sys->time, "component '%s': snapshot slot %d out of range",
-                    c->name, slot);
-    }
-    return c->ops->snapshot(sys, c, slot);
-}
-
-int ssx_component_restore(ssx_system *sys, int component, int slot, double t)
-{
-    ssx_component *c = system_component(sys, component);
-    if (c == NULL) {
-        return -1;
-    }
-    if (slot < 0 || slot >= SSX_SNAPSHOT_SLOTS) {
-        return fail(sys, component, -1, t, "component '%s': snapshot slot %d out of range",
-                    c->name, slot);
-    }
-    return c->ops->restore(sys, c, slot, t);
 }

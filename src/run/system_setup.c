@@ -9,11 +9,16 @@
 #include <string.h>
 
 #include "adaptive.h"
+#include "algorithm.h"
 #include "array.h"
+#include "component_calls.h"
 #include "coupling.h"
 #include "error.h"
+#include "indicator.h"
 #include "input_order.h"
 #include "parallel_step.h"
+#include "record_hooks.h"
+#include "recording.h"
 
 void ssx_get_defaults(ssx_defaults *out)
 {
@@ -73,7 +78,12 @@ ssx_system *ssx_system_new(const char *name)
                                            .max_step = 0.0,
                                            .safety = d.step_safety};
     sys->termination.component = -1;
-    recording_init(&sys->recording, d.output_interval);
+    sys->recording = recording_new(d.output_interval);
+    if (sys->recording == NULL) {
+        free(sys->name);
+        free(sys);
+        return NULL;
+    }
     clear_error(sys);
     return sys;
 }
@@ -92,11 +102,11 @@ void ssx_system_free(ssx_system *sys)
     free(sys->connections);
     free(sys->indicators);
     free(sys->indicator_states);
-    free(sys->brackets);
+    master_algorithm_release(sys);
     free(sys->event_links);
     free(sys->order);
     free(sys->groups);
-    recording_free(&sys->recording);
+    recording_free(sys->recording);
     parallel_free(sys->parallel);
     localization_log_free(&sys->localization);
     free(sys->name);
@@ -106,22 +116,6 @@ void ssx_system_free(ssx_system *sys)
 const ssx_error *ssx_last_error(const ssx_system *sys)
 {
     return sys != NULL ? &sys->error : NULL;
-}
-
-ssx_component *system_component(ssx_system *sys, int index)
-{
-    if (index < 0 || index >= sys->n_components) {
-        fail_config(sys, -1, -1, sys->time,
-                    "unknown component index %d (system '%s' has %d components)", index, sys->name,
-                    sys->n_components);
-        return NULL;
-    }
-    return sys->components[index];
-}
-
-int system_is_hybrid(const ssx_system *sys)
-{
-    return sys->n_indicators > 0;
 }
 
 /* Any change of structure requires a new ssx_initialize. */
@@ -188,6 +182,15 @@ int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks)
     } else {
         c->hooks = *hooks;
     }
+    /* most systems have no record hook: no call for them on every sample */
+    if (c->hooks.record != NULL && !sys->record_hooks_observed) {
+        ssx_observer *observer = record_hooks_observer_new();
+        if (observer == NULL || recording_add_sample_observer(sys->recording, observer) != 0) {
+            return fail_config(sys, component, -1, sys->time,
+                               "out of memory observing the record hooks");
+        }
+        sys->record_hooks_observed = 1;
+    }
     structure_changed(sys);
     return 0;
 }
@@ -237,7 +240,7 @@ int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned 
         return fail_config(sys, component, -1, NAN, "component '%s': unknown value type %d",
                            c->name, (int)type);
     }
-    if (isinf(start) || (isnan(start) && c->fmu == NULL)) {
+    if (isinf(start) || (isnan(start) && c->ops->adopt_inputs == NULL)) {
         return fail_config(sys, component, -1, NAN,
                            "component '%s': the start value of an input must "
                            "be finite (NaN, the FMU's own value, exists for FMU components only)",
@@ -557,7 +560,7 @@ int ssx_set_directional_derivatives(ssx_system *sys, int component, int provided
     if (c == NULL) {
         return -1;
     }
-    if (c->fmu == NULL && provided) {
+    if (c->ops->directional_derivative == NULL && provided) {
         return fail_config(
             sys, component, -1, NAN,
             "component '%s' is not an FMU component: it has no directional derivatives", c->name);
@@ -614,7 +617,7 @@ int ssx_set_output_interval(ssx_system *sys, int grid_steps)
             "system '%s': the output interval is a number of grid steps >= 1, not %d", sys->name,
             grid_steps);
     }
-    sys->recording.output_interval = grid_steps;
+    sys->recording->output_interval = grid_steps;
     return 0;
 }
 
@@ -626,7 +629,7 @@ int ssx_set_run_output_interval(ssx_system *sys, int grid_steps)
                            "(or 0 for none), not %d",
                            sys->name, grid_steps);
     }
-    sys->recording.run_output_interval = grid_steps;
+    sys->recording->run_output_interval = grid_steps;
     return 0;
 }
 

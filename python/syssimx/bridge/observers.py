@@ -1,0 +1,132 @@
+"""Observers of a run on the Python side: a user's object called at every sample the history
+keeps (ssx_add_observer), and block writers handed the samples in blocks (ssx_add_block_observer)
+so that a file is written while the run goes on. Both see exactly the samples of the history.
+
+A sample's values are every component's outputs, in component order and each component's
+output order: the names `columns(plan)` gives ("Pendulum.theta").
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from ..engine import enum_name, ffi, lib
+from .plan import CallbackFailure, EnginePlan
+
+# A block a writer is handed holds about this many bytes (time, micro and the values): large
+# enough that a file format's cost per block (a Parquet row group and its footer entry) is
+# paid rarely, small enough that memory stays a few blocks.
+BLOCK_BYTES = 8 << 20
+
+BlockWriter = Callable[[np.ndarray, np.ndarray, np.ndarray], None]
+
+
+def columns(plan: EnginePlan) -> list[str]:
+    """The names of a sample's values: component.output, in the engine's order."""
+    return [f"{name}.{output}" for name in plan.index for output in plan.outputs[name]]
+
+
+def _output_views(plan: EnginePlan) -> list[np.ndarray]:
+    """Each component's engine outputs as an array that follows them (never copied)."""
+    views = []
+    for name, index in plan.index.items():
+        n = len(plan.outputs[name])
+        if n > 0:
+            pointer = lib().ssx_outputs(plan.sys, index)
+            views.append(np.frombuffer(ffi.buffer(pointer, n * 8), dtype=np.float64))
+    return views
+
+
+def _event_source(plan: EnginePlan, record: Any) -> tuple[str, str]:
+    """(component, event) of an event record: an indicator's, or a component's own event."""
+    if record.indicator >= 0:
+        return plan.indicators[record.indicator]
+    return (list(plan.index)[record.component],
+            enum_name("ssx_own_event_kind", "SSX_OWN_", record.own))
+
+
+def add_observer(plan: EnginePlan, observer: Any) -> int:
+    """Calls observer.step_complete(t, micro, values) at every sample (values: a new array of
+    the sample's values, named by columns(plan)), and, where the observer has them,
+    start(t0, columns), state_restored(t), event(t, micro, component, event) and run_end().
+    An exception in one stops the run and is raised by it. Returns the engine's id."""
+    names = columns(plan)
+    views = _output_views(plan)
+    step_complete = observer.step_complete
+    # a new array per sample: one component's outputs copied, several concatenated
+    values = (views[0].copy if len(views) == 1 else
+              (lambda: np.concatenate(views)) if views else (lambda: np.empty(0)))
+
+    def failed(where: str) -> Callable[[BaseException], None]:
+        def keep(exc: BaseException) -> None:
+            if plan.failure is None:
+                plan.failure = CallbackFailure(type(observer).__name__, f"observer {where}",
+                                               float(lib().ssx_time(plan.sys)), exc)
+        return keep
+
+    def on_step(_user: Any, t: float, micro: int) -> int:
+        step_complete(t, micro, values())
+        return 0
+
+    callbacks = ffi.new("ssx_observer_callbacks *")
+    callbacks.step_complete = plan.callback("int(void *, double, int)", on_step, -1,
+                                            failed("step_complete"))
+    if hasattr(observer, "start"):
+        def on_start(_user: Any, t0: float) -> int:
+            observer.start(t0, names)
+            return 0
+        callbacks.start = plan.callback("int(void *, double)", on_start, -1, failed("start"))
+    if hasattr(observer, "state_restored"):
+        def on_restored(_user: Any, t: float) -> int:
+            observer.state_restored(t)
+            return 0
+        callbacks.state_restored = plan.callback("int(void *, double)", on_restored, -1,
+                                                 failed("state_restored"))
+    if hasattr(observer, "event"):
+        def on_event(_user: Any, record: Any) -> int:
+            component, event = _event_source(plan, record)
+            observer.event(float(record.t), int(record.micro), component, event)
+            return 0
+        callbacks.event = plan.callback("int(void *, ssx_event_record *)", on_event, -1,
+                                        failed("event"))
+    if hasattr(observer, "run_end"):
+        def on_run_end(_user: Any) -> int:
+            observer.run_end()
+            return 0
+        callbacks.run_end = plan.callback("int(void *)", on_run_end, -1, failed("run_end"))
+    return plan.check(lib().ssx_add_observer(plan.sys, callbacks, ffi.NULL), "add_observer")
+
+
+def add_block_writer(plan: EnginePlan, write: BlockWriter, rows: int | None = None) -> int:
+    """Calls write(t, micro, values) with each block of samples (values: n_rows x n_columns,
+    named by columns(plan); rows: a block's, by default about BLOCK_BYTES); the arrays are
+    valid only during the call. Returns the id."""
+    if rows is None:
+        rows = max(1, BLOCK_BYTES // (12 + 8 * len(columns(plan))))
+    def on_block(_user: Any, t: Any, micro: Any, values: Any, n_rows: int,
+                 n_columns: int) -> int:
+        write(np.frombuffer(ffi.buffer(t, n_rows * 8), dtype=np.float64),
+              np.frombuffer(ffi.buffer(micro, n_rows * 4), dtype=np.int32),
+              np.frombuffer(ffi.buffer(values, n_rows * n_columns * 8),
+                            dtype=np.float64).reshape(n_rows, n_columns))
+        return 0
+
+    def keep(exc: BaseException) -> None:
+        if plan.failure is None:
+            plan.failure = CallbackFailure(plan.name, "stream writer",
+                                           float(lib().ssx_time(plan.sys)), exc)
+
+    callback = plan.callback("ssx_block_writer", on_block, -1, keep)
+    return plan.check(lib().ssx_add_block_observer(plan.sys, rows, callback, ffi.NULL),
+                      "add_block_observer")
+
+
+def remove_observer(plan: EnginePlan, observer_id: int) -> None:
+    plan.check(lib().ssx_remove_observer(plan.sys, observer_id), "remove_observer")
+
+
+def keep_history(plan: EnginePlan, keep: bool) -> None:
+    plan.check(lib().ssx_set_history(plan.sys, int(keep)), "history")

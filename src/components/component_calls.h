@@ -1,0 +1,26 @@
+/* Calling a component: a Python hook if set, else its kind's built-in; the per-type port
+ * batches; freeing it. */
+#ifndef SSX_COMPONENT_CALLS_H
+#define SSX_COMPONENT_CALLS_H
+
+#include "component.h"
+#include "finite_outputs.h"
+
+/* A Python hook if set, else the built-in. Each returns 0 or -1 with the error set. */
+int component_do_step(ssx_system *sys, ssx_component *c, double t, double dt);
+int component_write_inputs(ssx_system *sys, ssx_component *c);
+int component_read_outputs(ssx_system *sys, ssx_component *c);
+int component_evaluate_outputs(ssx_system *sys, ssx_component *c, double t);
+int component_snapshot(ssx_system *sys, ssx_component *c, int slot);
+int component_restore(ssx_system *sys, ssx_component *c, int slot, double t);
+int component_handle_events(ssx_system *sys, ssx_component *c, const int *indicators, int n,
+                            double t);
+int component_initialize(ssx_system *sys, ssx_component *c, double t0);
+int component_record(ssx_system *sys, ssx_component *c, double t);
+int component_can_roll_back(const ssx_component *c);
+
+/* Builds the per-type batches; called when the system initializes. */
+int component_prepare(ssx_component *c);
+void component_free(ssx_component *c);
+
+#endif
