@@ -42,7 +42,6 @@ if TYPE_CHECKING:
     from .components.table_source import TableSource
 
 ALGORITHMS = ("jacobi", "gauss_seidel", "hybrid")
-SSP_SUFFIXES = (".ssp", ".ssd")
 DIRECTIONS = {"-1": -1, "falling": -1, "0": 0, "both": 0, "1": 1, "+1": 1, "rising": 1}
 CAPABILITIES = (
     "canGetAndSetFMUstate",
@@ -138,8 +137,8 @@ def _parser() -> argparse.ArgumentParser:
     simulate.set_defaults(run=_simulate)
 
     run = commands.add_parser("run", help="build, initialize and run a system description")
-    run.add_argument("config", help="a YAML or JSON system description, or an SSP (.ssp "
-                     "archive or .ssd file)")
+    run.add_argument("config", help="a YAML or JSON system description, an SSP (.ssp "
+                     "archive or .ssd file) or an OSP system structure (.xml)")
     run.add_argument("--t0", type=float, default=None, help="start time in s (default: the "
                      "description's run.t0)")
     run.add_argument("--tf", type=float, default=None, help="end time in s (default: run.tf)")
@@ -155,14 +154,19 @@ def _parser() -> argparse.ArgumentParser:
                           "else 1)")
     run.add_argument("--quiet", action="store_true",
                      help="no progress bar (there is none either when not on a terminal)")
+    run.add_argument("--strict", action="store_true",
+                     help="SSP/OSP: refuse what the file names that does not exist or that "
+                          "syssimx does not support (default: one warning each, left out)")
     run.set_defaults(run=_run_config)
 
     describe = commands.add_parser("describe", help="print the structure of a system "
                                    "description: components, connections, order, loops")
-    describe.add_argument("config", help="a YAML or JSON system description, or an SSP "
-                          "(.ssp archive or .ssd file)")
+    describe.add_argument("config", help="a YAML or JSON system description, an SSP "
+                          "(.ssp archive or .ssd file) or an OSP system structure (.xml)")
     describe.add_argument("--initialize", action="store_true",
                           help="initialize the system first (at run.t0, else 0)")
+    describe.add_argument("--strict", action="store_true",
+                          help="SSP/OSP: refuse what run --strict refuses")
     describe.set_defaults(run=_describe_config)
 
     sweep = commands.add_parser("sweep", help="run a system once per parameter set, in "
@@ -421,9 +425,9 @@ def _describe_config(args: argparse.Namespace, out: TextIO) -> None:
     from .system.loader import build_system, load_config
 
     if _is_ssp(args.config):
-        from .ssp import read
+        from .system_files import read_system_file
 
-        imported = read(args.config)
+        imported = read_system_file(args.config, strict=args.strict)
         if args.initialize:
             imported.system.initialize(_choose(None, imported.experiment.start_time, 0.0))
         out.write(imported.system.describe() + "\n")
@@ -437,7 +441,10 @@ def _describe_config(args: argparse.Namespace, out: TextIO) -> None:
 
 
 def _is_ssp(path: str) -> bool:
-    return Path(path).suffix.lower() in SSP_SUFFIXES
+    """An SSP (.ssp, .ssd) or OSP (.xml, or a folder holding OspSystemStructure.xml) file."""
+    from .system_files import is_system_file
+
+    return is_system_file(path)
 
 
 def _algorithm(name: str) -> Any:
@@ -459,20 +466,22 @@ def _choose_algorithm(system: Any, args: argparse.Namespace) -> None:
 
 
 def _run_ssp(args: argparse.Namespace, options: dict[str, Any]) -> Any:
-    """An SSP's system over its default experiment (start 0 when it has none); the stop time
-    and the step come from the experiment, the OSP fixed-step annotation, or the options."""
-    from .ssp import read
+    """A system file's system (SSP or OSP) over its default experiment (start 0 when it has
+    none); the stop time and the step come from the options, the file, else the step is
+    FMPy's output interval for the run's length."""
+    from .system_files import read_system_file
 
-    imported = read(args.config)
+    imported = read_system_file(args.config, strict=args.strict)
     experiment = imported.experiment
     t0 = _choose(args.t0, experiment.start_time, 0.0)
     tf = args.tf if args.tf is not None else experiment.stop_time
+    if tf is None:
+        raise CommandError(f"{args.config}: give --tf: the file has no stop time")
     dt = args.dt if args.dt is not None else experiment.step_size
-    if tf is None or dt is None:
-        missing = " and ".join(o for o, v in (("--tf", tf), ("--dt", dt)) if v is None)
-        raise CommandError(f"{args.config}: give {missing}: the SSP has no "
-                           + ("stop time in its DefaultExperiment" if tf is None else
-                              "step size (an OSP FixedStepAlgorithm baseStepSize annotation)"))
+    if dt is None:
+        from fmpy.util import auto_interval
+
+        dt = float(auto_interval(float(tf) - t0))
     _choose_algorithm(imported.system, args)
     imported.system.initialize(t0)
     return imported.system.run(t0, float(tf), float(dt), **options)
