@@ -1,0 +1,127 @@
+"""Users' system files, as OMSimulator and libcosim wrote them (never edited): `syssimx run`
+runs each or refuses it in one line with a reason a user can act on, and the files OMSimulator
+tests give OMSimulator's printed numbers."""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import pytest
+from ssp_samples import samples_root
+from syssimx.cli import main
+from syssimx.ssp import read
+
+ENCODING = "encoding ISO-8859-1 is not supported (FMI 2.0 requires UTF-8)"  # 20-sim's crane FMUs
+FMI1 = "FMI version 1.0 is not supported"  # libcosim's identity.fmu
+NO_STOP_TIME = "give --tf: the file has no stop time"
+
+# every SSD, SSP and OSP system structure among the samples, and what `syssimx run` does
+OUTCOMES = {
+    "libcosim/msmi/OspSystemStructure.xml": ENCODING,
+    "libcosim/msmi/OspSystemStructure_Bond.xml": ENCODING,
+    "libcosim/msmi/OspSystemStructure_Dahlquist.xml": NO_STOP_TIME,
+    "libcosim/msmi/OspSystemStructure_Dahlquist_proxyfmu.xml": NO_STOP_TIME,
+    "libcosim/msmi/OspSystemStructure_EndTime.xml": ENCODING,
+    "libcosim/msmi/OspSystemStructure_proxyfmu.xml": ENCODING,
+    "libcosim/msmi/msmi2.xml": "not an OSP system structure: its root element is <MSMI>",
+    "libcosim/ssp/linear_transformation/SystemStructure.ssd": FMI1,
+    "omsimulator/LinearTransformation/SystemStructure.ssd": None,
+    "omsimulator/importParameterMappingInline/SystemStructure.ssd": None,
+    "omsimulator/import_export_parameters1/SystemStructure.ssd": None,
+    "omsimulator/toplevelparameter1/SystemStructure.ssd": None,
+}
+
+
+def system_files(root: Path) -> list[str]:
+    """The system files among the samples: SSDs, SSPs and the XML files that are not FMU or
+    OSP model descriptions, schemas or OMSimulator's signal filters."""
+    found = [p for p in root.rglob("*") if p.suffix in (".ssd", ".ssp")
+             or p.suffix == ".xml" and "schema" not in p.parts
+             and not p.name.endswith("_OspModelDescription.xml")
+             and p.name not in ("modelDescription.xml", "signalFilter.xml")]
+    return sorted(p.relative_to(root).as_posix() for p in found)
+
+
+def test_the_samples_are_the_files_listed() -> None:
+    assert system_files(samples_root()) == sorted(OUTCOMES)
+
+
+@pytest.mark.parametrize("name", sorted(OUTCOMES))
+def test_run_runs_or_refuses_in_one_line(name: str, capsys: pytest.CaptureFixture[str]) -> None:
+    path = samples_root() / name
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the warnings are the subject of other tests
+        code = main(["run", str(path), "--quiet"])
+    out, err = capsys.readouterr()
+    reason = OUTCOMES[name]
+    if reason is None:
+        assert code == 0, err
+        assert out.startswith("Completed ")
+        return
+    assert code == 1
+    assert err.startswith(f"syssimx: error: {path}") and err.count("\n") == 1
+    assert reason in err
+
+
+def imported(name: str) -> tuple:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        result = read(samples_root() / "omsimulator" / name / "SystemStructure.ssd")
+    system = result.system
+    system.initialize(0.0)
+    system.run(0.0, result.experiment.stop_time, result.experiment.step_size or 0.01)
+    return system, result.experiment
+
+
+def value(system, component: str, variable: str) -> float:  # noqa: ANN001
+    return system.components[component].get_state()[variable]["value"]
+
+
+def test_linear_transformation_gives_omsimulators_numbers() -> None:
+    """OMSimulator's LinearTransformation1.py prints Gain1.y = 0.0 and Add1.u1 = 3.0 after a
+    0-1 s run (u1 = 2 Gain1.y + 3). The file says SSP version 2.0."""
+    system, experiment = imported("LinearTransformation")
+    assert (experiment.start_time, experiment.stop_time, experiment.step_size) == (0.0, 1.0,
+                                                                                   None)
+    assert value(system, "Gain1", "y") == 0.0
+    assert value(system, "Add1", "u1") == 3.0
+
+
+def test_top_level_parameters_give_omsimulators_numbers() -> None:
+    """OMSimulator's toplevelparameter1.lua prints addP.k1 = -200 and addP.k2 = -300: the
+    root's root.ssv wins over the component's addp.ssv (10 and 20); Input_cref = -20 is a
+    value on the system's own input, connected to nothing. The step is OMSimulator's
+    FixedStepMaster annotation."""
+    system, experiment = imported("toplevelparameter1")
+    assert experiment.step_size == 0.001
+    assert system.components["addP"].user_parameters() == {"k1": -200.0, "k2": -300.0}
+    assert value(system, "addP", "k1") == -200.0
+
+
+def test_values_on_system_connectors_drive_what_they_connect_to() -> None:
+    """OMSimulator's import_export_parameters1.lua: after initialization addP.k1 = k_cref = 30
+    (not the 10 bound to addP.k1 itself) and addI.k2 = T_cref = 20: a value on a system
+    connector drives its connection. Input_cref = -20 in the .ssv drives addP.u1 (the script
+    sets -3.7 first), so addP.y = k1 u1 + k2 u2 = 30 * -20 + -1 * 0 = -600. foo.F_cref is a
+    connector of the empty subsystem foo: its value drives nothing."""
+    system, _ = imported("import_export_parameters1")
+    assert value(system, "addP", "k1") == 30.0
+    assert value(system, "addP", "k2") == -1.0
+    assert value(system, "addP", "u1") == -20.0
+    assert value(system, "addP", "y") == -600.0
+    assert value(system, "addI", "k2") == 20.0
+    assert value(system, "addI", "k3") == 1.0  # the FMU's own start: nothing binds it
+
+
+def test_an_inline_mapping_onto_system_connectors_loads_without_complaint() -> None:
+    """importParameterMappingInline binds values (one source mapped to several targets) to
+    connectors of systems that hold no component: nothing to warn about but OMSimulator's
+    own annotations."""
+    path = samples_root() / "omsimulator/importParameterMappingInline/SystemStructure.ssd"
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        system = read(path).system
+    assert list(system.components) == []
+    assert [str(w.message).split(" is not supported")[0] for w in caught] == [
+        "annotation type 'org.openmodelica'"]
