@@ -6,11 +6,13 @@ from __future__ import annotations
 
 import warnings
 from pathlib import Path
+from typing import Any
 
 import pytest
 from ssp_samples import samples_root
+from syssimx import System
 from syssimx.cli import main
-from syssimx.ssp import read
+from syssimx.ssp import Experiment, read
 
 ENCODING = "encoding ISO-8859-1 is not supported (FMI 2.0 requires UTF-8)"  # 20-sim's crane FMUs
 FMI1 = "FMI version 1.0 is not supported"  # libcosim's identity.fmu
@@ -37,9 +39,9 @@ def system_files(root: Path) -> list[str]:
     """The system files among the samples: SSDs, SSPs and the XML files that are not FMU or
     OSP model descriptions, schemas or OMSimulator's signal filters."""
     found = [p for p in root.rglob("*") if p.suffix in (".ssd", ".ssp")
-             or p.suffix == ".xml" and "schema" not in p.parts
-             and not p.name.endswith("_OspModelDescription.xml")
-             and p.name not in ("modelDescription.xml", "signalFilter.xml")]
+             or (p.suffix == ".xml" and "schema" not in p.parts
+                 and not p.name.endswith("_OspModelDescription.xml")
+                 and p.name not in ("modelDescription.xml", "signalFilter.xml"))]
     return sorted(p.relative_to(root).as_posix() for p in found)
 
 
@@ -64,7 +66,7 @@ def test_run_runs_or_refuses_in_one_line(name: str, capsys: pytest.CaptureFixtur
     assert reason in err
 
 
-def imported(name: str) -> tuple:
+def imported(name: str) -> tuple[System, Experiment]:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         result = read(samples_root() / "omsimulator" / name / "SystemStructure.ssd")
@@ -74,7 +76,7 @@ def imported(name: str) -> tuple:
     return system, result.experiment
 
 
-def value(system, component: str, variable: str) -> float:  # noqa: ANN001
+def value(system: System, component: str, variable: str) -> Any:
     return system.components[component].get_state()[variable]["value"]
 
 

@@ -92,7 +92,7 @@ def _set_values(component: FMUComponent, entry: ComponentEntry,
         is_input = value.name in component.input_specs
         if not is_input and value.name not in component.info.parameters:
             unsupported.ignore(f"{value.where}: component {component.name!r} has no parameter "
-                               f"or input {value.name!r}")
+                               f"or input {value.name!r}", "the value is ignored")
             continue
         target = component.input_specs[value.name].unit if is_input \
             else component.info.parameters[value.name].unit

@@ -172,7 +172,7 @@ class _Walk:
             endpoint = self.endpoint(system, element, name)
             problem = self.unknown(endpoint, element, name, role, system)
             if problem:
-                self.unsupported.ignore(f"{label}: {problem}; the connection is left out")
+                self.unsupported.ignore(f"{label}: {problem}", "the connection is left out")
                 return
             ends.append(endpoint)
         for name in _MAP_TRANSFORMATIONS:
@@ -275,7 +275,8 @@ class _Walk:
             if match is None:
                 self.unsupported.ignore(f"{value.where}: parameter {value.name!r} names no "
                                         f"component or connector of "
-                                        f"{f'system {owner!r}' if owner else 'the root system'}")
+                                        f"{f'system {owner!r}' if owner else 'the root system'}",
+                                        "the value is ignored")
                 continue
             self.components[match].parameters.append(
                 ParameterValue(full[len(match) + 1:], value.value, value.unit, value.where,

@@ -28,9 +28,9 @@ class Unsupported:
         warnings.warn(f"{kind} is not supported and is ignored: {where}", self.warning,
                       stacklevel=4)
 
-    def ignore(self, problem: str) -> None:
+    def ignore(self, problem: str, consequence: str) -> None:
         """Something the file names does not exist (`problem` says what and where): left out
-        with a warning, refused under strict."""
+        (`consequence` says what is) with a warning, refused under strict."""
         if self.strict:
             raise self.error(f"{problem} (strict)")
-        warnings.warn(f"{problem}; ignored", self.warning, stacklevel=4)
+        warnings.warn(f"{problem}; {consequence}", self.warning, stacklevel=4)
