@@ -73,7 +73,7 @@ def test_ecco_runs_at_the_base_step_with_one_warning(tmp_path: Path) -> None:
     assert caught == [f"<Algorithm> ecco (libcosim's energy-based adaptive step) is not "
                       f"supported and is ignored: {path}: runs with the fixed step "
                       "BaseStepSize 0.01"]
-    with pytest.raises(OSPError, match="<Algorithm> ecco .* is not supported \\(strict\\)"):
+    with pytest.raises(OSPError, match=r"<Algorithm> ecco .* is not supported \(strict\)"):
         read(path, strict=True)
 
 
@@ -124,7 +124,7 @@ def test_a_local_proxy_fmu_runs_isolated_and_a_remote_one_is_refused(tmp_path: P
     assert caught[0].startswith("a proxy FMU server (proxyfmu://) is not supported and is "
                                 f"ignored: {path}: <Simulator 'G'> (line ")
     path.write_text(text.replace("localhost", "sim.example.com"))
-    with pytest.raises(OSPError, match="is a proxy FMU on the remote host 'sim.example.com'"):
+    with pytest.raises(OSPError, match=r"is a proxy FMU on the remote host 'sim\.example\.com'"):
         load(path)
 
 
