@@ -1,7 +1,8 @@
 """OSP system structures for tests: the coupled pendulums (two pendulum FMUs and the torsion
 spring), written as libcosim's users write them: P1's shaft joined to the spring by a variable
 group connection (groups from OspModelDescription files), P2's by variable connections marked
-as a power bond, the spring's torque into P2 through a LinearTransformation function."""
+as a power bond (torque one way, speed the other), P2's angle into the spring through a
+LinearTransformation function."""
 
 from __future__ import annotations
 
@@ -76,17 +77,17 @@ def structure(algorithm: str = "fixedStep", extra_simulator: str = "",
       <Variable simulator="Spring" name="omega2" causality="input"/>
       <Variable simulator="P2" name="omega" causality="output"/>
     </VariableConnection>
-    <VariableConnection>
-      <Variable simulator="P2" name="theta"/>
-      <Variable simulator="Spring" name="theta2"/>
+    <VariableConnection powerBond="right">
+      <Variable simulator="P2" name="torque" causality="input"/>
+      <Variable simulator="Spring" name="tau2" causality="output"/>
     </VariableConnection>
     <SignalConnection>
-      <Variable simulator="Spring" name="tau2"/>
+      <Variable simulator="P2" name="theta"/>
       <Signal function="halved" name="in"/>
     </SignalConnection>
     <SignalConnection>
       <Signal function="halved" name="out"/>
-      <Variable simulator="P2" name="torque"/>
+      <Variable simulator="Spring" name="theta2"/>
     </SignalConnection>
     {extra}
   </Connections>
@@ -121,10 +122,10 @@ def python_built() -> System:
     spring.set_parameters(k=100.0, d=1.0)
     system.add_component(spring)
     for i in ("1", "2"):
-        system.add_connection(Connection(f"P{i}", "theta", "Spring", f"theta{i}"))
         system.add_connection(Connection(f"P{i}", "omega", "Spring", f"omega{i}"))
-    system.add_connection(Connection("Spring", "tau1", "P1", "torque"))
-    system.add_connection(Connection("Spring", "tau2", "P2", "torque", factor=FACTOR,
+        system.add_connection(Connection("Spring", f"tau{i}", f"P{i}", "torque"))
+    system.add_connection(Connection("P1", "theta", "Spring", "theta1"))
+    system.add_connection(Connection("P2", "theta", "Spring", "theta2", factor=FACTOR,
                                      offset=OFFSET))
     system.set_algorithm(GaussSeidelAlgorithm())
     return system

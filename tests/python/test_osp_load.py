@@ -41,9 +41,9 @@ def test_an_osp_structure_builds_the_system_python_builds(tmp_path: Path) -> Non
             imported.experiment.step_size, imported.algorithm) == (0.0, 0.5, 0.01, "fixedStep")
     assert sorted(c.key() for c in system.connections) == \
         sorted(c.key() for c in python_built().connections)
-    torque = next(c for c in system.connections if c.key() == ("Spring", "tau2", "P2",
-                                                                "torque"))
-    assert (torque.factor, torque.offset) == (FACTOR, OFFSET)
+    angle = next(c for c in system.connections if c.key() == ("P2", "theta", "Spring",
+                                                               "theta2"))
+    assert (angle.factor, angle.offset) == (FACTOR, OFFSET)
     assert system.components["Spring"].user_parameters() == {"k": 100.0, "d": 1.0}
     ours, reference = outputs(system), outputs(python_built())
     for name in reference:
@@ -53,7 +53,8 @@ def test_an_osp_structure_builds_the_system_python_builds(tmp_path: Path) -> Non
 def test_power_bonds_are_recorded(tmp_path: Path) -> None:
     imported, _ = read_quietly(write_osp(tmp_path))
     assert [(b.name, b.connections) for b in imported.power_bonds] == [
-        ("right", ((("P2", "omega"), ("Spring", "omega2")),))]
+        ("right", ((("P2", "omega"), ("Spring", "omega2")),
+                   (("Spring", "tau2"), ("P2", "torque"))))]
 
 
 def test_a_model_description_beside_the_structure_is_found(tmp_path: Path) -> None:
