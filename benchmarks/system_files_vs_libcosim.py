@@ -7,8 +7,11 @@ deviation of the same signals, and what libcosim makes of the users' samples.
 2. An SSD written here with SSP constructs (a binding that sets an input's start, a
    LinearTransformation; then also a parameter mapped to two targets): syssimx.ssp.read
    against CosimExecution.from_ssp_file, with the closed form (A.y = k 14, B.y = k (2 A.y + 3)).
-3. With --samples, each SSD and OSP file of the users' samples folder opened by libcosim in a
-   process of its own (libcosimpy may crash): whether it loads.
+3. With --samples: libcosim's own crane (OspSystemStructure_Bond.xml: variable groups from
+   its OspModelDescription files; a copy without the FMI 1.0 identity simulators and the
+   simulators' own step sizes, its FMUs' modelDescription declared UTF-8), 10 steps of 1e-4 s;
+   then each SSD and OSP file of the samples opened by libcosim in a process of its own
+   (libcosimpy may crash): whether it loads.
 
 libcosimpy is installed apart, in a Python of its own:
 
@@ -34,6 +37,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "python"))
 from osp_files import write_osp
+from ssp_samples import utf8_crane
 from syssimx import JacobiAlgorithm, fmus
 from syssimx.osp import read as read_osp
 from syssimx.ssp import read as read_ssp
@@ -144,18 +148,19 @@ CONSTRUCTS = f"""<?xml version="1.0" encoding="UTF-8"?>
 
 
 def libcosim(python: str, kind: str, path: Path, signals: list[tuple[str, str]],
-             folder: Path) -> np.ndarray:
+             folder: Path, steps: int = STEPS) -> np.ndarray:
     rows = folder / f"libcosim-{kind}.json"
     subprocess.run([python, "-c", LIBCOSIM_RUN, kind, str(path), json.dumps(signals),
-                    str(STEPS), str(rows)], capture_output=True, check=True)
+                    str(steps), str(rows)], capture_output=True, check=True)
     return np.array(json.loads(rows.read_text()))
 
 
-def syssimx(imported: object, signals: list[tuple[str, str]]) -> np.ndarray:
+def syssimx(imported: object, signals: list[tuple[str, str]], step: float = STEP,
+            steps: int = STEPS) -> np.ndarray:
     system = imported.system  # type: ignore[attr-defined]
     system.set_algorithm(JacobiAlgorithm())
     system.initialize(0.0)
-    result = system.run(0.0, STEPS * STEP, STEP)
+    result = system.run(0.0, steps * step, step)
     return np.array([result[c][1][v][1:] for c, v in signals]).T
 
 
@@ -216,6 +221,13 @@ def main() -> None:
             print(f"  last A.y, B.y: closed form {k * 14:g}, {k * (2 * k * 14 + 3):g}; syssimx "
                   f"{ours[-1, 0]:g}, {ours[-1, 1]:g}; libcosim {theirs[-1, 0]:g}, "
                   f"{theirs[-1, 1]:g}")
+        if args.samples is not None:
+            crane = utf8_crane(args.samples.resolve(), folder / "crane", step_sizes=False)
+            signals = [("CraneController", f"p_Crane.e[{i}]") for i in (1, 2, 3)] + \
+                [("KnuckleBoomCrane", f"p_Crane.f[{i}]") for i in (1, 2, 3)]
+            compare("libcosim's crane (variable groups), 10 steps of 1e-4 s:", signals,
+                    syssimx(read_osp(crane), signals, 1e-4, 10),
+                    libcosim(args.libcosimpy_python, "osp", crane, signals, folder, 10))
     if args.samples is not None:
         samples(args.libcosimpy_python, args.samples)
 
