@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from osp_files import FACTOR, NAMESPACE, OFFSET, python_built, structure, write_osp
 from ssp_archive import reference_fmu
-from syssimx import GaussSeidelAlgorithm, System
+from syssimx import GaussSeidelAlgorithm, JacobiAlgorithm, System
 from syssimx.cli import main
 from syssimx.osp import OSPError, OSPImported, OSPWarning, load, read
 
@@ -39,6 +39,7 @@ def test_an_osp_structure_builds_the_system_python_builds(tmp_path: Path) -> Non
     assert system.name == tmp_path.name  # the folder of an OspSystemStructure.xml
     assert (imported.experiment.start_time, imported.experiment.stop_time,
             imported.experiment.step_size, imported.algorithm) == (0.0, 0.5, 0.01, "fixedStep")
+    assert type(system.algorithm) is JacobiAlgorithm  # libcosim's fixedStep
     assert sorted(c.key() for c in system.connections) == \
         sorted(c.key() for c in python_built().connections)
     angle = next(c for c in system.connections if c.key() == ("P2", "theta", "Spring",
@@ -167,7 +168,7 @@ def test_run_and_describe_read_an_osp_structure(tmp_path: Path,
                                                 capsys: pytest.CaptureFixture[str]) -> None:
     path = write_osp(tmp_path)
     assert main(["run", str(path), "--quiet"]) == 0
-    assert f"Completed '{tmp_path.name}': t in [0.0, 0.5] s, dt = 0.01 s" in \
-        capsys.readouterr().out
+    assert f"Completed '{tmp_path.name}': t in [0.0, 0.5] s, dt = 0.01 s, algorithm = " \
+           "JacobiAlgorithm" in capsys.readouterr().out
     assert main(["describe", str(path)]) == 0
     assert "  Spring.tau2 [N.m] -> P2.torque [N.m]" in capsys.readouterr().out

@@ -341,8 +341,16 @@ CYCLE = """<ssd:System name="s">
 def test_system_connectors_in_a_cycle_are_an_error_naming_them(tmp_path: Path) -> None:
     """It looped forever before (issue 20, item 8)."""
     with pytest.raises(SSPError, match=r"<Connection> \(line \d+\): the system connectors "
-                                       r"x -> y -> x form a cycle"):
+                                       r"(x -> y -> x|y -> x -> y) form a cycle"):
         loaded(tmp_path, CYCLE)
+
+
+def test_a_cycle_that_drives_no_component_is_an_error_too(tmp_path: Path) -> None:
+    alone = CYCLE.replace('<ssd:Connection startConnector="x" endElement="Gain" '
+                          'endConnector="u"/>', "")
+    with pytest.raises(SSPError, match=r"the system connectors (x -> y -> x|y -> x -> y) "
+                                       r"form a cycle"):
+        loaded(tmp_path, alone)
 
 
 UNKNOWN_END = ('<ssd:System name="s"><ssd:Elements><ssd:Component name="Gain" '

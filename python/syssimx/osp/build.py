@@ -1,7 +1,8 @@
 """A System from the records of an OSP system structure: one FMU component per simulator with
 its initial values, and the connections libcosim makes of it (the direction of a variable
 connection from the variables' causalities, variable groups paired element by element, a
-LinearTransformation function as the connection's factor and offset)."""
+LinearTransformation function as the connection's factor and offset). The algorithm is
+Jacobi, as libcosim's fixedStep: every simulator steps on the outputs of the step before."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from urllib.parse import parse_qs, unquote, urlparse
 from ..components.fmu import FMUComponent
 from ..errors import ConfigurationError
 from ..ssp.unsupported import Unsupported
+from ..system.algorithms import JacobiAlgorithm
 from ..system.connection import Connection
 from ..system.system import System
 from .document import Document, Endpoint, Link, Simulator
@@ -34,6 +36,7 @@ def build(document: Document, unsupported: Unsupported) -> tuple[System, list[Po
     name = document.path.parent.name if document.path.name == "OspSystemStructure.xml" \
         else document.path.stem
     system = System(name or document.path.stem)
+    system.set_algorithm(JacobiAlgorithm())
     builder = _Builder(document, system, unsupported)
     for simulator in document.simulators:
         builder.add(simulator)

@@ -210,6 +210,7 @@ class _Walk:
         entries = []
         for end, link in self.links.items():
             if end[0] not in self.components:
+                self.driver(end, link)  # only to find a cycle that no component is on
                 continue  # a system connector: followed from the component connectors it drives
             connector = self.components[end[0]].connectors.get(end[1])
             driver, bound = self.driver(end, link)
