@@ -3,9 +3,13 @@
 
 from __future__ import annotations
 
+import sys
 import warnings
+from pathlib import Path
 
 from .errors import SSPError, SSPWarning
+
+_PACKAGE = str(Path(__file__).resolve().parents[1])
 
 
 class Unsupported:
@@ -26,11 +30,21 @@ class Unsupported:
             return
         self.seen.add(kind)
         warnings.warn(f"{kind} is not supported and is ignored: {where}", self.warning,
-                      stacklevel=4)
+                      stacklevel=_callers_level())
 
     def ignore(self, problem: str, consequence: str) -> None:
         """Something the file names does not exist (`problem` says what and where): left out
         (`consequence` says what is) with a warning, refused under strict."""
         if self.strict:
             raise self.error(f"{problem} (strict)")
-        warnings.warn(f"{problem}; {consequence}", self.warning, stacklevel=4)
+        warnings.warn(f"{problem}; {consequence}", self.warning, stacklevel=_callers_level())
+
+
+def _callers_level() -> int:
+    """The stacklevel that attributes a warning to the first caller outside syssimx (the
+    user's load or read), however deep in the reader it was found."""
+    level, frame = 1, sys._getframe(2)  # level 1: the method that calls warnings.warn
+    while frame is not None and frame.f_code.co_filename.startswith(_PACKAGE):
+        level += 1
+        frame = frame.f_back
+    return level + 1
