@@ -380,3 +380,13 @@ def test_a_connection_to_an_undeclared_system_connector_warns_naming_it(tmp_path
     assert len(caught) == 1
     assert caught[0].endswith("endConnector 'u' names no connector of the root system; the "
                               "connection is left out")
+
+
+def test_a_connection_to_a_component_left_out_says_so(tmp_path: Path) -> None:
+    text = UNKNOWN_END.replace(
+        "</ssd:Elements>", '<ssd:Component name="Nobody" type="application/x-ssp-package" '
+                           'source="resources/gain.fmu"/></ssd:Elements>')
+    _, caught, _ = loaded(tmp_path, text)
+    assert [m.split(": ")[-1] for m in caught] == [
+        "<Component 'Nobody'> (line 3)",
+        "endElement 'Nobody' is a component syssimx leaves out; the connection is left out"]

@@ -103,6 +103,7 @@ class _Walk:
         self.unsupported = unsupported
         self.components: dict[str, ComponentEntry] = {}
         self.systems: set[str] = set()
+        self.left_out: set[str] = set()  # elements syssimx does not read (non-FMU components)
         self.system_connectors: dict[tuple[str, str], str] = {}  # (system, name) -> kind
         self.connector_values: dict[tuple[str, str], ParameterValue] = {}
         self.links: dict[tuple[str, str], _Link] = {}
@@ -134,6 +135,7 @@ class _Walk:
             elif element.get("type", FMU_TYPE) != FMU_TYPE:
                 self.unsupported.warn(f"component type {element.get('type')!r}",
                                       self.where(element))
+                self.left_out.add(child)
             else:
                 self.component(element, child, depth + 1)
         for connection in system.iterfind("ssd:Connections/ssd:Connection", NS):
@@ -195,6 +197,8 @@ class _Walk:
         owner = f"system {system!r}" if system else "the root system"
         if endpoint[0] in self.components or endpoint[0].startswith("#dictionary"):
             return ""
+        if endpoint[0] in self.left_out:
+            return f"{role}Element {element!r} is a component syssimx leaves out"
         if element and endpoint[0] not in self.systems:
             return f"{role}Element {element!r} names no element of {owner}"
         if endpoint not in self.system_connectors:
