@@ -4,7 +4,11 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Protocol
+
+if TYPE_CHECKING:
+    from .ssp.experiment import Experiment
+    from .system.system import System
 
 SSP_SUFFIXES = (".ssp", ".ssd")
 OSP_SUFFIXES = (".xml",)
@@ -18,8 +22,18 @@ def is_system_file(path: str | Path) -> bool:
     return path.suffix.lower() in SSP_SUFFIXES + OSP_SUFFIXES
 
 
-def read_system_file(path: str | Path, strict: bool = False) -> Any:
-    """The imported system and experiment (`.system`, `.experiment`) of an SSP or OSP file."""
+class SystemFile(Protocol):
+    """What a front-end reads from a file: the system and the experiment it proposes."""
+
+    @property
+    def system(self) -> System: ...
+
+    @property
+    def experiment(self) -> Experiment: ...
+
+
+def read_system_file(path: str | Path, strict: bool = False) -> SystemFile:
+    """The imported system and experiment of an SSP or OSP file."""
     if Path(path).suffix.lower() in SSP_SUFFIXES:
         from .ssp import read
 
