@@ -68,10 +68,23 @@ def test_the_folder_of_a_structure_loads_it(tmp_path: Path) -> None:
     assert len(load(tmp_path).connections) == 6
 
 
+ECCO = """<EccoConfiguration>
+    <SafetyFactor>0.99</SafetyFactor>
+    <StepSize>0.0001</StepSize>
+    <MinimumStepSize>0.00001</MinimumStepSize>
+    <MaximumStepSize>0.01</MaximumStepSize>
+    <RelativeTolerance>1e-6</RelativeTolerance>
+  </EccoConfiguration>
+</OspSystemStructure>"""
+
+
 def test_ecco_runs_at_the_base_step_with_one_warning(tmp_path: Path) -> None:
-    path = write_osp(tmp_path, structure("ecco"))
+    """Its configuration is kept (for the adaptive step), the run uses BaseStepSize."""
+    path = write_osp(tmp_path, structure("ecco").replace("</OspSystemStructure>", ECCO))
     imported, caught = read_quietly(path)
     assert imported.algorithm == "ecco" and imported.experiment.step_size == 0.01
+    assert imported.ecco == {"SafetyFactor": 0.99, "StepSize": 1e-4, "MinimumStepSize": 1e-5,
+                             "MaximumStepSize": 0.01, "RelativeTolerance": 1e-6}
     assert caught == [f"<Algorithm> ecco (libcosim's energy-based adaptive step) is not "
                       f"supported and is ignored: {path}: runs with the fixed step "
                       "BaseStepSize 0.01"]

@@ -75,6 +75,7 @@ class Document:
     functions: dict[str, Function]
     links: list[Link]
     ignored: list[str] = field(default_factory=list)  # top-level elements not read
+    ecco: dict[str, float] = field(default_factory=dict)  # <EccoConfiguration>, by element
 
 
 def structure_file(path: str | Path) -> Path:
@@ -113,7 +114,9 @@ def read_document(path: Path) -> Document:
         {f.name: f for f in (reader.function(e) for e in
                              root.iterfind(f"{_tag('Functions')}/*"))},
         [reader.link(e) for e in root.iterfind(f"{_tag('Connections')}/*")
-         if isinstance(e.tag, str)], ignored)
+         if isinstance(e.tag, str)], ignored,
+        {_local(e): reader.parsed(float, e.text, reader.where(e), _local(e))
+         for e in root.iterfind(f"{_tag('EccoConfiguration')}/*") if isinstance(e.tag, str)})
 
 
 def _tag(name: str) -> str:

@@ -16,12 +16,14 @@ from .errors import OSPError, OSPWarning
 @dataclass(frozen=True)
 class OSPImported:
     """A system read from an OSP system structure, the experiment it proposes (StartTime,
-    EndTime, BaseStepSize), its <Algorithm> and its power bonds."""
+    EndTime, BaseStepSize), its <Algorithm>, its power bonds and its <EccoConfiguration>
+    (SafetyFactor, StepSize, MinimumStepSize, ... by element name)."""
 
     system: System
     experiment: Experiment
     algorithm: str
     power_bonds: list[PowerBond]
+    ecco: dict[str, float]
 
 
 def load(path: str | Path, strict: bool = False) -> System:
@@ -43,4 +45,5 @@ def read(path: str | Path, strict: bool = False) -> OSPImported:
                          f"{document.base_step}")
     system, bonds = build(document, unsupported)
     return OSPImported(system, Experiment(document.start_time, document.end_time,
-                                          document.base_step), document.algorithm, bonds)
+                                          document.base_step), document.algorithm, bonds,
+                       document.ecco)
