@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import sys
+import warnings
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -50,3 +51,16 @@ def working_directory_importable() -> Iterator[None]:
         yield
     finally:
         sys.path[:] = saved
+
+
+@contextmanager
+def warnings_as_lines() -> Iterator[None]:
+    """The warnings given inside (reading an SSP or OSP file names what it leaves out), each
+    printed as one line on stderr, as the command line prints its errors."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            yield
+        finally:
+            for warning in caught:
+                print(f"syssimx: warning: {warning.message}", file=sys.stderr)

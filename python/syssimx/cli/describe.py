@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any, TextIO
 
-from .common import choose, is_ssp, working_directory_importable
+from .common import choose, is_ssp, warnings_as_lines, working_directory_importable
 
 
 def add_command(commands: Any) -> None:
@@ -26,7 +26,8 @@ def run_describe(args: argparse.Namespace, out: TextIO) -> None:
     if is_ssp(args.config):
         from ..system_files import read_system_file
 
-        imported = read_system_file(args.config, strict=args.strict)
+        with warnings_as_lines():
+            imported = read_system_file(args.config, strict=args.strict)
         if args.initialize:
             imported.system.initialize(choose(None, imported.experiment.start_time, 0.0))
         out.write(imported.system.describe() + "\n")

@@ -8,7 +8,13 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from ..system.algorithm_table import ALGORITHM_NAMES, algorithm_class
-from .common import CommandError, choose, is_ssp, working_directory_importable
+from .common import (
+    CommandError,
+    choose,
+    is_ssp,
+    warnings_as_lines,
+    working_directory_importable,
+)
 
 
 def add_command(commands: Any) -> None:
@@ -84,7 +90,8 @@ def _run_ssp(args: argparse.Namespace, options: dict[str, Any]) -> Any:
     FMPy's output interval for the run's length."""
     from ..system_files import read_system_file
 
-    imported = read_system_file(args.config, strict=args.strict)
+    with warnings_as_lines():
+        imported = read_system_file(args.config, strict=args.strict)
     experiment = imported.experiment
     t0 = choose(args.t0, experiment.start_time, 0.0)
     tf = args.tf if args.tf is not None else experiment.stop_time
