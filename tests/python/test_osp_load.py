@@ -185,3 +185,12 @@ def test_run_and_describe_read_an_osp_structure(tmp_path: Path,
            "JacobiAlgorithm" in capsys.readouterr().out
     assert main(["describe", str(path)]) == 0
     assert "  Spring.tau2 [N.m] -> P2.torque [N.m]" in capsys.readouterr().out
+
+
+def test_the_front_ends_are_attributes_of_the_package() -> None:
+    """`syssimx.ssp.load` and `syssimx.osp.load` as the documentation writes them, imported on
+    first use."""
+    import syssimx
+
+    assert syssimx.osp.load is load
+    assert syssimx.ssp.load.__module__ == "syssimx.ssp.load"
