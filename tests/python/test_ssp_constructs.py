@@ -390,3 +390,21 @@ def test_a_connection_to_a_component_left_out_says_so(tmp_path: Path) -> None:
     assert [m.split(": ")[-1] for m in caught] == [
         "<Component 'Nobody'> (line 3)",
         "endElement 'Nobody' is a component syssimx leaves out; the connection is left out"]
+
+
+def test_a_parameter_set_of_version_2_is_read_as_its_ssp_1_constructs(tmp_path: Path) -> None:
+    ssv = ('<ssv:ParameterSet xmlns:ssv="http://ssp-standard.org/SSP1/'
+           'SystemStructureParameterValues" version="2.0" name="p"><ssv:Parameters>'
+           '<ssv:Parameter name="k"><ssv:Float64 value="1"/><ssv:Real value="4"/>'
+           '</ssv:Parameter></ssv:Parameters></ssv:ParameterSet>')
+    text = ('<ssd:System name="s"><ssd:Elements><ssd:Component name="Gain" '
+            'source="resources/gain.fmu"><ssd:ParameterBindings><ssd:ParameterBinding '
+            'source="p.ssv"/></ssd:ParameterBindings></ssd:Component></ssd:Elements>'
+            '</ssd:System>')
+    path = write_ssp(tmp_path / "t.ssp", ssd(text), {"p.ssv": ssv}, ("gain",))
+    with pytest.warns(SSPWarning) as caught:
+        system = load(path)
+    assert [str(w.message) for w in caught] == [
+        f"SSP 2.0 element <Float64> is not supported and is ignored: {path}:p.ssv: <Float64> "
+        "(line 1), read as SSP 1.0"]
+    assert system.components["Gain"].user_parameters() == {"k": 4.0}
