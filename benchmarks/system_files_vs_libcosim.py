@@ -7,7 +7,9 @@ deviation of the same signals, and what libcosim makes of the users' samples.
 2. An SSD written here with SSP constructs (a binding that sets an input's start, a
    LinearTransformation; then also a parameter mapped to two targets): syssimx.ssp.read
    against CosimExecution.from_ssp_file, with the closed form (A.y = k 14, B.y = k (2 A.y + 3)).
-3. With --samples: libcosim's own crane (OspSystemStructure_Bond.xml: variable groups from
+3. With --samples: OMSimulator's LinearTransformation (an SSD of version 2.0; a copy with the
+   Open Simulation Platform's step annotation, without which libcosim does not run it), and
+   libcosim's own crane (OspSystemStructure_Bond.xml: variable groups from
    its OspModelDescription files; a copy without the FMI 1.0 identity simulators and the
    simulators' own step sizes, its FMUs' modelDescription declared UTF-8), 10 steps of 1e-4 s;
    then each SSD and OSP file of the samples opened by libcosim in a process of its own
@@ -173,6 +175,24 @@ def compare(title: str, signals: list[tuple[str, str]], ours: np.ndarray,
               f"(range {np.ptp(ours[:, column]):.3g})")
 
 
+def with_osp_step(source: Path, folder: Path) -> Path:
+    """A copy of the SSD folder `source` whose DefaultExperiment has the OSP step annotation
+    (libcosim reads the osp prefix only when the root element declares it)."""
+    shutil.copytree(source, folder)
+    ssd = folder / "SystemStructure.ssd"
+    text = ssd.read_text().replace(
+        "<ssd:SystemStructureDescription ",
+        '<ssd:SystemStructureDescription '
+        'xmlns:osp="http://opensimulationplatform.com/SSP/OSPAnnotations" ', 1)
+    text = re.sub(r"<ssd:DefaultExperiment ([^>]*)/>",
+                  r'<ssd:DefaultExperiment \1><ssd:Annotations><ssc:Annotation '
+                  r'type="com.opensimulationplatform"><osp:Algorithm>'
+                  rf'<osp:FixedStepAlgorithm baseStepSize="{STEP}"/></osp:Algorithm>'
+                  r"</ssc:Annotation></ssd:Annotations></ssd:DefaultExperiment>", text)
+    ssd.write_text(text)
+    return folder
+
+
 def samples(python: str, root: Path) -> None:
     print(f"libcosim on the users' samples ({root}):")
     files = sorted(p for p in root.rglob("*") if p.suffix == ".ssd" or (
@@ -222,6 +242,12 @@ def main() -> None:
                   f"{ours[-1, 0]:g}, {ours[-1, 1]:g}; libcosim {theirs[-1, 0]:g}, "
                   f"{theirs[-1, 1]:g}")
         if args.samples is not None:
+            omsimulator = with_osp_step(args.samples.resolve() / "omsimulator" /
+                                        "LinearTransformation", folder / "oms")
+            signals = [("Gain1", "y"), ("Add1", "y")]
+            compare("OMSimulator's LinearTransformation (SSP 2.0), 50 steps of 0.01 s:",
+                    signals, syssimx(read_ssp(omsimulator / "SystemStructure.ssd"), signals),
+                    libcosim(args.libcosimpy_python, "ssp", omsimulator, signals, folder))
             crane = utf8_crane(args.samples.resolve(), folder / "crane", step_sizes=False)
             signals = [("CraneController", f"p_Crane.e[{i}]") for i in (1, 2, 3)] + \
                 [("KnuckleBoomCrane", f"p_Crane.f[{i}]") for i in (1, 2, 3)]
