@@ -194,3 +194,17 @@ def test_the_front_ends_are_attributes_of_the_package() -> None:
 
     assert syssimx.osp.load is load
     assert syssimx.ssp.load.__module__ == "syssimx.ssp.load"
+
+
+def test_entities_are_not_resolved(tmp_path: Path) -> None:
+    """A structure is data: an external entity is not fetched (its text stays empty)."""
+    secret = tmp_path / "secret.txt"
+    secret.write_text("0.5")
+    path = tmp_path / "e.xml"
+    path.write_text(f'<?xml version="1.0"?>\n<!DOCTYPE OspSystemStructure [<!ENTITY step '
+                    f'SYSTEM "file://{secret}">]>\n<OspSystemStructure xmlns="{NAMESPACE}" '
+                    'version="0.1"><BaseStepSize>&step;</BaseStepSize><Simulators/>'
+                    '</OspSystemStructure>')
+    with pytest.raises(OSPError, match=re.escape(f"{path}: <BaseStepSize> (line 3): "
+                                                 "BaseStepSize '' is not a float value")):
+        load(path)
