@@ -160,6 +160,7 @@ def test_a_local_proxy_fmu_runs_isolated_and_a_remote_one_is_refused(tmp_path: P
      r"'Spring' \(.*\) has no parameter or input 'kk'"),
     (('<Algorithm>fixedStep', '<Algorithm>fastest'),
      r"<Algorithm> 'fastest' is not one of fixedStep, ecco"),
+    (('<BaseStepSize>0.01', '<BaseStepSize>0'), r"<BaseStepSize> 0.0 must be positive"),
 ])
 def test_bad_input_is_an_osp_error_naming_file_and_element(tmp_path: Path,
                                                            change: tuple[str, str],

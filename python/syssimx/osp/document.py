@@ -104,12 +104,15 @@ def read_document(path: Path) -> Document:
     reader = _Reader(path)
     ignored = [f"<{_local(e)}> (line {e.sourceline})" for e in root
                if isinstance(e.tag, str) and _local(e) not in _READ]
+    base_step = reader.number(root, "BaseStepSize")
+    if base_step is not None and not base_step > 0:
+        raise OSPError(f"{path}: <BaseStepSize> {base_step} must be positive")
     algorithm = (reader.text(root, "Algorithm") or "fixedStep").strip()
     if algorithm not in ("fixedStep", "ecco"):
         raise OSPError(f"{path}: <Algorithm> {algorithm!r} is not one of fixedStep, ecco")
     return Document(
         path, reader.number(root, "StartTime") or 0.0, reader.number(root, "EndTime"),
-        reader.number(root, "BaseStepSize"), algorithm,
+        base_step, algorithm,
         [reader.simulator(e) for e in root.iterfind(f"{_tag('Simulators')}/{_tag('Simulator')}")],
         {f.name: f for f in (reader.function(e) for e in
                              root.iterfind(f"{_tag('Functions')}/*"))},
