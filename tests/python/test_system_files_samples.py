@@ -18,22 +18,49 @@ from syssimx.ssp import Experiment, read
 ENCODING = "encoding ISO-8859-1 is not supported (FMI 2.0 requires UTF-8)"  # 20-sim's crane FMUs
 FMI1 = "FMI version 1.0 is not supported"  # libcosim's identity.fmu
 NO_STOP_TIME = "give --tf: the file has no stop time"
+ISOLATED_FMI1 = "the FMU host process speaks FMI 2.0 only"  # a proxy FMU of FMI 1.0
 
-# every SSD, SSP and OSP system structure among the samples, and what `syssimx run` does
+# every SSD, SSP and OSP system structure among the samples, and what `syssimx run` does: None
+# when it runs, else the reason it gives
 OUTCOMES = {
-    "libcosim/msmi/OspSystemStructure.xml": ENCODING,
-    "libcosim/msmi/OspSystemStructure_Bond.xml": ENCODING,
+    "libcosim/msmi/OspSystemStructure.xml": NO_STOP_TIME,
+    "libcosim/msmi/OspSystemStructure_Bond.xml": NO_STOP_TIME,
     "libcosim/msmi/OspSystemStructure_Dahlquist.xml": NO_STOP_TIME,
     "libcosim/msmi/OspSystemStructure_Dahlquist_proxyfmu.xml": NO_STOP_TIME,
-    "libcosim/msmi/OspSystemStructure_EndTime.xml": ENCODING,
-    "libcosim/msmi/OspSystemStructure_proxyfmu.xml": ENCODING,
+    "libcosim/msmi/OspSystemStructure_EndTime.xml": None,
+    "libcosim/msmi/OspSystemStructure_proxyfmu.xml": ISOLATED_FMI1,
     "libcosim/msmi/msmi2.xml": "not an OSP system structure: its root element is <MSMI>",
-    "libcosim/ssp/linear_transformation/SystemStructure.ssd": FMI1,
+    "libcosim/ssp/linear_transformation/SystemStructure.ssd": NO_STOP_TIME,
     "omsimulator/LinearTransformation/SystemStructure.ssd": None,
     "omsimulator/importParameterMappingInline/SystemStructure.ssd": None,
     "omsimulator/import_export_parameters1/SystemStructure.ssd": None,
     "omsimulator/toplevelparameter1/SystemStructure.ssd": None,
 }
+CRANE_FILES = [name for name in OUTCOMES if name.startswith("libcosim/msmi/OspSystemStructure")
+               and "Dahlquist" not in name]
+
+
+def refused(fmu: Path) -> str:
+    """Why syssimx cannot read the FMU ("" when it can)."""
+    from syssimx import FMUComponent
+
+    try:
+        FMUComponent("probe", fmu).free()
+    except ConfigurationError as exc:
+        return str(exc)
+    return ""
+
+
+def expected_outcome(name: str) -> str | None:
+    """OUTCOMES, or the refusal a sample gets while syssimx cannot read FMI 1.0 FMUs or
+    20-sim's ISO-8859-1 modelDescriptions (both arrive with the FMI 1.0 back-end)."""
+    root = samples_root() / "libcosim"
+    if name in CRANE_FILES and refused(root / "fmi2" / "CraneController.fmu"):
+        return ENCODING
+    if (name in CRANE_FILES or "linear_transformation" in name) \
+            and FMI1 in refused(root / "fmi1" / "identity.fmu"):
+        return FMI1
+    return OUTCOMES[name]
 
 
 def system_files(root: Path) -> list[str]:
@@ -58,7 +85,7 @@ def test_run_runs_or_refuses_in_one_line(name: str, capsys: pytest.CaptureFixtur
     out, err = capsys.readouterr()
     lines = err.splitlines()
     assert all(line.startswith("syssimx: warning: ") for line in lines[:-1])
-    reason = OUTCOMES[name]
+    reason = expected_outcome(name)
     if reason is None:
         assert code == 0, err
         assert out.startswith("Completed ")
