@@ -41,6 +41,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "python")
 from osp_files import write_osp
 from ssp_samples import utf8_crane
 from syssimx import JacobiAlgorithm, fmus
+from syssimx.errors import ConfigurationError
 from syssimx.osp import read as read_osp
 from syssimx.ssp import read as read_ssp
 
@@ -184,11 +185,16 @@ def with_osp_step(source: Path, folder: Path) -> Path:
         "<ssd:SystemStructureDescription ",
         '<ssd:SystemStructureDescription '
         'xmlns:osp="http://opensimulationplatform.com/SSP/OSPAnnotations" ', 1)
-    text = re.sub(r"<ssd:DefaultExperiment ([^>]*)/>",
-                  r'<ssd:DefaultExperiment \1><ssd:Annotations><ssc:Annotation '
-                  r'type="com.opensimulationplatform"><osp:Algorithm>'
-                  rf'<osp:FixedStepAlgorithm baseStepSize="{STEP}"/></osp:Algorithm>'
-                  r"</ssc:Annotation></ssd:Annotations></ssd:DefaultExperiment>", text)
+    annotated = ('<ssd:DefaultExperiment{}><ssd:Annotations><ssc:Annotation '
+                 'type="com.opensimulationplatform"><osp:Algorithm>'
+                 f'<osp:FixedStepAlgorithm baseStepSize="{STEP}"/></osp:Algorithm>'
+                 '</ssc:Annotation></ssd:Annotations></ssd:DefaultExperiment>')
+    if "<ssd:DefaultExperiment" in text:
+        text = re.sub(r"<ssd:DefaultExperiment( [^>]*)/>",
+                      lambda match: annotated.format(match.group(1)), text)
+    else:
+        text = text.replace("</ssd:SystemStructureDescription>",
+                            annotated.format("") + "</ssd:SystemStructureDescription>")
     ssd.write_text(text)
     return folder
 
@@ -248,6 +254,19 @@ def main() -> None:
             compare("OMSimulator's LinearTransformation (SSP 2.0), 50 steps of 0.01 s:",
                     signals, syssimx(read_ssp(omsimulator / "SystemStructure.ssd"), signals),
                     libcosim(args.libcosimpy_python, "ssp", omsimulator, signals, folder))
+            # libcosim's own SSD: the FMI 1.0 identity.fmu, two .ssv files, a transformation
+            shutil.copytree(args.samples / "libcosim" / "fmi1", folder / "libcosim" / "fmi1")
+            identity = with_osp_step(args.samples / "libcosim" / "ssp" / "linear_transformation",
+                                     folder / "libcosim" / "ssp" / "linear_transformation")
+            signals = [("identity1", "realOut"), ("identity2", "realOut")]
+            try:
+                ours = syssimx(read_ssp(identity / "SystemStructure.ssd"), signals)
+            except ConfigurationError as exc:
+                print(f"libcosim's linear_transformation SSD: syssimx cannot read it: {exc}")
+            else:
+                compare("libcosim's linear_transformation SSD (FMI 1.0), 50 steps of 0.01 s:",
+                        signals, ours,
+                        libcosim(args.libcosimpy_python, "ssp", identity, signals, folder))
             crane = utf8_crane(args.samples.resolve(), folder / "crane", step_sizes=False)
             signals = [("CraneController", f"p_Crane.e[{i}]") for i in (1, 2, 3)] + \
                 [("KnuckleBoomCrane", f"p_Crane.f[{i}]") for i in (1, 2, 3)]

@@ -175,8 +175,10 @@ def read_or_skip(path: Path) -> Any:
 
 
 def test_libcosims_linear_transformation_ssd() -> None:
-    """Two .ssv files bind identity1.realIn (2, then 4: the later wins); identity2.realIn =
-    1.3 identity1.realOut + 50 = 55.2 (the identity FMU's realOut is its realIn)."""
+    """Two .ssv files bind identity1.realIn, 2 then 4: the SSP standard gives the later binding
+    priority (libcosim instead takes the first as its default parameter set and the second as
+    a named alternative, so its own test expects 2); identity2.realIn = 1.3 identity1.realOut
+    + 50 = 55.2 (the identity FMU's realOut is its realIn)."""
     imported = read_or_skip(samples_root() / "libcosim/ssp/linear_transformation/"
                             "SystemStructure.ssd")
     system = imported.system
