@@ -143,6 +143,25 @@ def test_a_local_proxy_fmu_runs_isolated_and_a_remote_one_is_refused(tmp_path: P
         load(path)
 
 
+def test_a_proxy_fmu_the_isolated_host_cannot_run_runs_in_process(tmp_path: Path) -> None:
+    """The host process speaks FMI 2.0: a proxy FMU of FMI 3.0 runs in syssimx's process."""
+    from syssimx import fmus
+
+    (tmp_path / "fmus").mkdir()
+    (tmp_path / "fmus" / "gain_fmi3.fmu").write_bytes(Path(fmus.path("gain_fmi3")).read_bytes())
+    path = tmp_path / "p.xml"
+    path.write_text(f'<OspSystemStructure xmlns="{NAMESPACE}" version="0.1"><BaseStepSize>0.1'
+                    '</BaseStepSize><Simulators><Simulator name="G" '
+                    'source="proxyfmu://localhost?file=fmus/gain_fmi3.fmu"/></Simulators>'
+                    '</OspSystemStructure>')
+    imported, caught = read_quietly(path)
+    assert not imported.system.components["G"].isolated
+    assert caught == [f"a proxy FMU server (proxyfmu://) for an FMI 3.0 FMU is not supported "
+                      f"and is ignored: {path}: <Simulator 'G'> (line 1): the FMU runs in "
+                      "syssimx's process (a host process of syssimx's own runs FMI 2.0 FMUs "
+                      "only)"]
+
+
 @pytest.mark.parametrize(("change", "problem"), [
     (('name="omega2"', 'name="nothing"'),
      r"<VariableConnection> \(line \d+\): 'Spring' \(.*torsion_spring.fmu\) has no input or "

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from urllib.parse import parse_qs, unquote, urlparse
 
-from ..components.fmu import FMUComponent
+from ..components.fmu import FMUComponent, read_fmu
 from ..errors import ConfigurationError
 from ..ssp.unsupported import Unsupported
 from ..system.algorithms import JacobiAlgorithm
@@ -57,7 +57,8 @@ class _Builder:
         self.bonds: dict[str, list[tuple[tuple[str, str], tuple[str, str]]]] = {}
 
     def add(self, simulator: Simulator) -> None:
-        path, isolated = self.source(simulator)
+        path, proxy = self.source(simulator)
+        isolated = proxy and self.can_isolate(path, simulator)
         try:
             component = FMUComponent(simulator.name, path, isolated=isolated)
             self.system.add_component(component)
@@ -75,8 +76,25 @@ class _Builder:
         if description is not None:
             self.groups[simulator.name] = read_groups(description)
 
+    def can_isolate(self, path: Path, simulator: Simulator) -> bool:
+        """Whether a proxy FMU runs in a host process of syssimx's own (isolated=True runs FMI
+        2.0 FMUs); another FMI version runs in process. One warning each way."""
+        try:
+            version = str(read_fmu(path).description.fmiVersion)
+        except ConfigurationError as exc:
+            raise OSPError(f"{simulator.where}: {exc}") from exc
+        if version == "2.0":
+            self.unsupported.warn("a proxy FMU server (proxyfmu://)",
+                                  f"{simulator.where}: the FMU runs in a host process of "
+                                  "syssimx's own (isolated=True)")
+            return True
+        self.unsupported.warn(f"a proxy FMU server (proxyfmu://) for an FMI {version} FMU",
+                              f"{simulator.where}: the FMU runs in syssimx's process (a host "
+                              "process of syssimx's own runs FMI 2.0 FMUs only)")
+        return False
+
     def source(self, simulator: Simulator) -> tuple[Path, bool]:
-        """The FMU file, and whether it runs in a host process of its own (a proxy FMU)."""
+        """The FMU file, and whether it is a proxy FMU (run in a process of its own)."""
         base = self.document.path.parent
         uri = urlparse(simulator.source)
         if uri.scheme == "proxyfmu":
@@ -87,9 +105,6 @@ class _Builder:
             files = parse_qs(uri.query).get("file")
             if not files:
                 raise OSPError(f"{simulator.where}: source {simulator.source!r} names no file")
-            self.unsupported.warn("a proxy FMU server (proxyfmu://)",
-                                  f"{simulator.where}: the FMU runs in a host process of "
-                                  "syssimx's own (isolated=True)")
             return self.existing(base / files[0], simulator), True
         if uri.scheme == "file":
             return self.existing(Path(unquote(uri.path)), simulator), False
