@@ -5,6 +5,7 @@ tests give OMSimulator's printed numbers."""
 from __future__ import annotations
 
 import warnings
+from functools import cache
 from pathlib import Path
 from typing import Any
 
@@ -39,6 +40,7 @@ CRANE_FILES = [name for name in OUTCOMES if name.startswith("libcosim/msmi/OspSy
                and "Dahlquist" not in name]
 
 
+@cache
 def refused(fmu: Path) -> str:
     """Why syssimx cannot read the FMU ("" when it can)."""
     from syssimx import FMUComponent
