@@ -201,12 +201,12 @@ class _Builder:
                 self.unsupported.warn(f"function <{function.kind}>",
                                       f"{function.where}: its signal connections are left out")
                 continue
-            ends = [self.signals.get((function.name, s)) for s in ("in", "out")]
-            if ends[0] is None or ends[1] is None:
+            into = self.signals.get((function.name, "in"))
+            out_of = self.signals.get((function.name, "out"))
+            if into is None or out_of is None:
                 raise OSPError(f"{function.where}: the function needs a <SignalConnection> "
                                "to its signal 'in' and one from 'out'")
-            (source, where), (target, _) = ends  # type: ignore[misc]
-            self.connect(source, target, where, factor=function.factor,
+            self.connect(into[0], out_of[0], into[1], factor=function.factor,
                          offset=function.offset)
         for (function_name, signal), (_, where) in self.signals.items():
             if function_name not in self.document.functions:
@@ -217,15 +217,13 @@ class _Builder:
 def _set_start(component: FMUComponent, name: str, value: float | int | bool | str,
                where: str) -> None:
     """An initial value: an input's start or a parameter's value."""
+    if name not in component.input_specs and name not in component.info.parameters:
+        raise OSPError(f"{where}: {component.name!r} ({component.fmu_path}) has no parameter "
+                       f"or input {name!r}")
     try:
         if name in component.input_specs:
             component.set_inputs({name: value})
-        elif name in component.info.parameters:
-            component.set_parameters(**{name: value})
         else:
-            raise OSPError(f"{where}: {component.name!r} ({component.fmu_path}) has no "
-                           f"parameter or input {name!r}")
+            component.set_parameters(**{name: value})
     except (ConfigurationError, TypeError, ValueError) as exc:
-        if isinstance(exc, OSPError):
-            raise
         raise OSPError(f"{where}: {exc}") from exc
