@@ -38,7 +38,8 @@ def _describe(error: Exception, args: argparse.Namespace) -> str:
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="syssimx",
-        description="Hybrid co-simulation of FMI 2.0 Co-Simulation FMUs.",
+        description="Hybrid co-simulation of FMI 1.0, 2.0 and 3.0 FMUs (Co-Simulation and "
+                    "Model Exchange).",
     )
     parser.add_argument("--version", action="version", version=f"syssimx {__version__}")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
