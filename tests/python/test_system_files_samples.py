@@ -5,19 +5,15 @@ tests give OMSimulator's printed numbers."""
 from __future__ import annotations
 
 import warnings
-from functools import cache
 from pathlib import Path
 from typing import Any
 
 import pytest
-from ssp_samples import samples_root, utf8_crane
+from ssp_samples import available_samples
 from syssimx import System
 from syssimx.cli import main
-from syssimx.errors import ConfigurationError
 from syssimx.ssp import Experiment, read
 
-ENCODING = "encoding ISO-8859-1 is not supported (FMI 2.0 requires UTF-8)"  # 20-sim's crane FMUs
-FMI1 = "FMI version 1.0 is not supported"  # libcosim's identity.fmu
 NO_STOP_TIME = "give --tf: the file has no stop time"
 
 # every SSD, SSP and OSP system structure among the samples, and what `syssimx run` does: None
@@ -36,34 +32,6 @@ OUTCOMES = {
     "omsimulator/import_export_parameters1/SystemStructure.ssd": None,
     "omsimulator/toplevelparameter1/SystemStructure.ssd": None,
 }
-CRANE_FILES = [name for name in OUTCOMES if name.startswith("libcosim/msmi/OspSystemStructure")
-               and "Dahlquist" not in name]
-
-
-@cache
-def refused(fmu: Path) -> str:
-    """Why syssimx cannot read the FMU ("" when it can)."""
-    from syssimx import FMUComponent
-
-    try:
-        FMUComponent("probe", fmu).free()
-    except ConfigurationError as exc:
-        return str(exc)
-    return ""
-
-
-def expected_outcome(name: str) -> str | None:
-    """OUTCOMES, or the refusal a sample gets while syssimx cannot read FMI 1.0 FMUs or
-    20-sim's ISO-8859-1 modelDescriptions (both arrive with the FMI 1.0 back-end)."""
-    root = samples_root() / "libcosim"
-    if name in CRANE_FILES and refused(root / "fmi2" / "CraneController.fmu"):
-        return ENCODING
-    if (name in CRANE_FILES or "linear_transformation" in name) \
-            and FMI1 in refused(root / "fmi1" / "identity.fmu"):
-        return FMI1
-    return OUTCOMES[name]
-
-
 def system_files(root: Path) -> list[str]:
     """The system files among the samples: SSDs, SSPs and the XML files that are not FMU or
     OSP model descriptions, schemas or OMSimulator's signal filters."""
@@ -75,18 +43,18 @@ def system_files(root: Path) -> list[str]:
 
 
 def test_the_samples_are_the_files_listed() -> None:
-    assert system_files(samples_root()) == sorted(OUTCOMES)
+    assert system_files(available_samples()) == sorted(OUTCOMES)
 
 
 @pytest.mark.parametrize("name", sorted(OUTCOMES))
 def test_run_runs_or_refuses_in_one_line(name: str, capsys: pytest.CaptureFixture[str]) -> None:
     """What is left out is one warning line each; a refusal is one error line, the last."""
-    path = samples_root() / name
+    path = available_samples() / name
     code = main(["run", str(path), "--quiet"])
     out, err = capsys.readouterr()
     lines = err.splitlines()
     assert all(line.startswith("syssimx: warning: ") for line in lines[:-1])
-    reason = expected_outcome(name)
+    reason = OUTCOMES[name]
     if reason is None:
         assert code == 0, err
         assert out.startswith("Completed ")
@@ -100,7 +68,7 @@ def test_run_runs_or_refuses_in_one_line(name: str, capsys: pytest.CaptureFixtur
 def imported(name: str) -> tuple[System, Experiment]:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        result = read(samples_root() / "omsimulator" / name / "SystemStructure.ssd")
+        result = read(available_samples() / "omsimulator" / name / "SystemStructure.ssd")
     system = result.system
     system.initialize(0.0)
     system.run(0.0, result.experiment.stop_time, result.experiment.step_size or 0.01)
@@ -151,7 +119,7 @@ def test_an_inline_mapping_onto_system_connectors_loads_without_complaint() -> N
     """importParameterMappingInline binds values (one source mapped to several targets) to
     connectors of systems that hold no component: nothing to warn about but OMSimulator's
     own annotations."""
-    path = samples_root() / "omsimulator/importParameterMappingInline/SystemStructure.ssd"
+    path = available_samples() / "omsimulator/importParameterMappingInline/SystemStructure.ssd"
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         system = read(path).system
@@ -160,19 +128,12 @@ def test_an_inline_mapping_onto_system_connectors_loads_without_complaint() -> N
         "annotation type 'org.openmodelica'"]
 
 
-def read_or_skip(path: Path) -> Any:
-    """The import of a sample whose FMUs need the FMI 1.0 back-end or non-UTF-8
-    modelDescriptions (20-sim's ISO-8859-1): skipped while syssimx refuses those."""
+def read_quietly(path: Path) -> Any:
     from syssimx.system_files import read_system_file
 
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            return read_system_file(path)
-    except ConfigurationError as exc:
-        if ENCODING in str(exc) or FMI1 in str(exc):
-            pytest.skip(f"the sample's FMUs are not readable yet: {exc}")
-        raise
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return read_system_file(path)
 
 
 def test_libcosims_linear_transformation_ssd() -> None:
@@ -180,7 +141,7 @@ def test_libcosims_linear_transformation_ssd() -> None:
     priority (libcosim instead takes the first as its default parameter set and the second as
     a named alternative, so its own test expects 2); identity2.realIn = 1.3 identity1.realOut
     + 50 = 55.2 (the identity FMU's realOut is its realIn)."""
-    imported = read_or_skip(samples_root() / "libcosim/ssp/linear_transformation/"
+    imported = read_quietly(available_samples() / "libcosim/ssp/linear_transformation/"
                             "SystemStructure.ssd")
     system = imported.system
     assert system.components["identity1"].input_start("realIn") == 4.0
@@ -188,15 +149,6 @@ def test_libcosims_linear_transformation_ssd() -> None:
     system.run(0.0, 0.3, 0.1)
     assert value(system, "identity1", "realOut") == 4.0
     assert value(system, "identity2", "realIn") == pytest.approx(55.2, rel=1e-15)
-
-
-def test_libcosims_crane_variable_groups() -> None:
-    """OspSystemStructure_Bond.xml as it is (the identity simulators and the ISO-8859-1
-    modelDescriptions included): the connections of the UTF-8 copy below."""
-    imported = read_or_skip(samples_root() / "libcosim/msmi/OspSystemStructure_Bond.xml")
-    assert {c.key() for c in imported.system.connections} == CRANE_CONNECTIONS
-    assert set(imported.system.components) == {"CraneController", "KnuckleBoomCrane",
-                                               "TrueIdentity", "OneIdentity"}
 
 
 CRANE_CONNECTIONS = (
@@ -208,22 +160,24 @@ CRANE_CONNECTIONS = (
        for i in (1, 2, 3)})
 
 
-def test_the_crane_variable_groups_on_a_utf8_copy(tmp_path: Path) -> None:
-    """The groups of the crane's OspModelDescription files joined element by element (the
-    nested Force and LinearVelocity groups of the linear mechanical port included), each from
-    the side whose variable is an output; the simulators' stepSize is named once."""
+def test_libcosims_crane_variable_groups() -> None:
+    """OspSystemStructure_Bond.xml joins the groups of the crane's OspModelDescription files
+    (the controller's beside the structure, the crane's beside its FMU) element by element,
+    the nested Force and LinearVelocity groups of the linear mechanical port included, each
+    from the side whose variable is an output; the simulators' stepSize is named once."""
     from syssimx.osp import OSPWarning
     from syssimx.osp import read as read_osp
 
-    path = utf8_crane(samples_root(), tmp_path)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        imported = read_osp(path)
+        imported = read_osp(available_samples() / "libcosim/msmi/OspSystemStructure_Bond.xml")
     assert [str(w.message).split(" is not")[0] for w in caught
             if w.category is OSPWarning] == [
         "a simulator's own stepSize (libcosim steps it every stepSize/BaseStepSize base "
         "steps)"]
     system = imported.system
+    assert set(system.components) == {"CraneController", "KnuckleBoomCrane", "TrueIdentity",
+                                      "OneIdentity"}
     assert {c.key() for c in system.connections} == CRANE_CONNECTIONS
     assert system.components["CraneController"].user_parameters() == {"cl1_min": 2.2,
                                                                       "cl1_max": 3.8}
