@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any, TextIO
 
+from ..system.component_classes import add_allow_module_option
 from .common import choose, is_ssp, warnings_as_lines, working_directory_importable
 
 
@@ -17,6 +18,7 @@ def add_command(commands: Any) -> None:
                           help="initialize the system first (at run.t0, else 0)")
     describe.add_argument("--strict", action="store_true",
                           help="SSP/OSP: refuse what run --strict refuses")
+    add_allow_module_option(describe)
     describe.set_defaults(run=run_describe)
 
 
@@ -33,7 +35,7 @@ def run_describe(args: argparse.Namespace, out: TextIO) -> None:
         out.write(imported.system.describe() + "\n")
         return
     with working_directory_importable():
-        system = build_system(args.config)
+        system = build_system(args.config, allowed_modules=args.allowed_modules)
     if args.initialize:
         run = load_config(args.config).get("run") or {}
         system.initialize(float(run.get("t0", 0.0)) if isinstance(run, dict) else 0.0)

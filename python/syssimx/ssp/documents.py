@@ -55,10 +55,23 @@ def parse(path: Path, kind: str, shown: str, unsupported: Unsupported) -> Any:
     version = root.get("version", "")
     if version.startswith("2."):
         return _as_version_1(root, kind, shown, unsupported)
-    if not validate(root, kind):
+    if not _checked(root, kind, shown):
         raise SSPError(f"{shown}: not a valid {kind.upper()} file (SSP 1.0 schema): "
                        f"{_first_errors(kind)}")
     return root
+
+
+def _checked(root: Any, kind: str, shown: str) -> bool:
+    """Whether `root` satisfies the schema; a document the schema cannot check (an entity
+    left unresolved in content, for one) is an SSPError naming the file."""
+    from lxml import etree
+
+    try:
+        return validate(root, kind)
+    except etree.Error as exc:
+        raise SSPError(f"{shown}: cannot be checked against the SSP 1.0 schema "
+                       f"({type(exc).__name__}: {exc}); entity references and DOCTYPE "
+                       "declarations are not read in SSP files") from exc
 
 
 def _first_errors(kind: str) -> str:
@@ -92,7 +105,7 @@ def _as_version_1(root: Any, kind: str, shown: str, unsupported: Unsupported) ->
     prune(root)
     version = root.get("version")
     root.set("version", "1.0")  # the pattern of the 1.0 schema: 1.x
-    valid = validate(root, kind)
+    valid = _checked(root, kind, shown)
     root.set("version", version)
     if not valid:
         raise SSPError(f"{shown}: not a valid {kind.upper()} file (version {version} read as "
