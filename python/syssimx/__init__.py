@@ -43,6 +43,7 @@ _MODULES = {
     "Port": ".core",
     "PortSpec": ".core",
     "PortType": ".core",
+    "Reinitialize": ".components",
     "SimulationError": ".errors",
     "SimulationResult": ".system",
     "SimulationTimeoutError": ".errors",
