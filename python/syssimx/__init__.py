@@ -56,6 +56,8 @@ _MODULES = {
     "Termination": ".system",
     "ZenoError": ".errors",
     "algorithms": ".algorithms",
+    "osp": ".osp",  # OSP system structures: syssimx.osp.load(path)
+    "ssp": ".ssp",  # SSP files: syssimx.ssp.load(path)
 }
 
 __all__ = [*_MODULES, "__version__", "__version_info__"]

@@ -46,13 +46,20 @@ def test_options_override_the_experiment(tmp_path: Path,
         in capsys.readouterr().out
 
 
-def test_an_ssp_without_stop_time_or_step_asks_for_them(
+def test_an_ssp_without_stop_time_asks_for_it(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     path = coupled_pendulums(JacobiAlgorithm()).to_ssp(tmp_path / "p.ssp")
     assert main(["run", str(path), "--quiet"]) == 1
-    assert capsys.readouterr().err == (
-        f"syssimx: error: {path}: give --tf and --dt: the SSP has no stop time in its "
-        "DefaultExperiment\n")
+    assert capsys.readouterr().err == f"syssimx: error: {path}: give --tf: the file has no " \
+                                      "stop time\n"
+
+
+def test_an_ssp_without_step_runs_at_fmpys_output_interval(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """fmpy.util.auto_interval(2.0) = 0.004 (500 round steps), as `simulate` does."""
+    path = coupled_pendulums(JacobiAlgorithm()).to_ssp(tmp_path / "p.ssp", 0.0, 2.0)
+    assert main(["run", str(path), "--quiet"]) == 0
+    assert "t in [0.0, 2.0] s, dt = 0.004 s" in capsys.readouterr().out
 
 
 def test_describe_an_ssp(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

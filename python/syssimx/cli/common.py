@@ -4,14 +4,13 @@ from __future__ import annotations
 
 import os
 import sys
+import warnings
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
 from .. import fmus
-
-SSP_SUFFIXES = (".ssp", ".ssd")
 
 
 class CommandError(Exception):
@@ -30,7 +29,10 @@ def resolve_fmu(name_or_path: str) -> Path:
 
 
 def is_ssp(path: str) -> bool:
-    return Path(path).suffix.lower() in SSP_SUFFIXES
+    """An SSP (.ssp, .ssd) or OSP (.xml, or a folder holding OspSystemStructure.xml) file."""
+    from ..system_files import is_system_file
+
+    return is_system_file(path)
 
 
 def choose(given: float | None, default: Any, fallback: float) -> float:
@@ -49,3 +51,16 @@ def working_directory_importable() -> Iterator[None]:
         yield
     finally:
         sys.path[:] = saved
+
+
+@contextmanager
+def warnings_as_lines() -> Iterator[None]:
+    """The warnings given inside (reading an SSP or OSP file names what it leaves out), each
+    printed as one line on stderr, as the command line prints its errors."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        try:
+            yield
+        finally:
+            for warning in caught:
+                print(f"syssimx: warning: {warning.message}", file=sys.stderr)

@@ -11,13 +11,19 @@ from ..atomic_file import write_or_fallback
 from ..partial_results import run_keeping_partial
 from ..system.algorithm_table import ALGORITHM_NAMES, algorithm_class
 from ..system.component_classes import add_allow_module_option
-from .common import CommandError, choose, is_ssp, working_directory_importable
+from .common import (
+    CommandError,
+    choose,
+    is_ssp,
+    warnings_as_lines,
+    working_directory_importable,
+)
 
 
 def add_command(commands: Any) -> None:
     run = commands.add_parser("run", help="build, initialize and run a system description")
-    run.add_argument("config", help="a YAML or JSON system description, or an SSP (.ssp "
-                     "archive or .ssd file)")
+    run.add_argument("config", help="a YAML or JSON system description, an SSP (.ssp "
+                     "archive or .ssd file) or an OSP system structure (.xml)")
     run.add_argument("--t0", type=float, default=None, help="start time in s (default: the "
                      "description's run.t0)")
     run.add_argument("--tf", type=float, default=None, help="end time in s (default: run.tf)")
@@ -39,6 +45,9 @@ def add_command(commands: Any) -> None:
                           "else 1)")
     run.add_argument("--quiet", action="store_true",
                      help="no progress bar (there is none either when not on a terminal)")
+    run.add_argument("--strict", action="store_true",
+                     help="SSP/OSP: refuse what the file names that does not exist or that "
+                          "syssimx does not support (default: one warning each, left out)")
     add_allow_module_option(run)
     run.set_defaults(run=run_config)
 
@@ -108,20 +117,23 @@ def _choose_algorithm(system: Any, args: argparse.Namespace) -> None:
 
 
 def _run_ssp(args: argparse.Namespace, options: dict[str, Any]) -> Any:
-    """An SSP's system over its default experiment (start 0 when it has none); the stop time
-    and the step come from the experiment, the OSP fixed-step annotation, or the options."""
-    from ..ssp import read
+    """A system file's system (SSP or OSP) over its default experiment (start 0 when it has
+    none); the stop time and the step come from the options, the file, else the step is
+    FMPy's output interval for the run's length."""
+    from ..system_files import read_system_file
 
-    imported = read(args.config)
+    with warnings_as_lines():
+        imported = read_system_file(args.config, strict=args.strict)
     experiment = imported.experiment
     t0 = choose(args.t0, experiment.start_time, 0.0)
     tf = args.tf if args.tf is not None else experiment.stop_time
+    if tf is None:
+        raise CommandError(f"{args.config}: give --tf: the file has no stop time")
     dt = args.dt if args.dt is not None else experiment.step_size
-    if tf is None or dt is None:
-        missing = " and ".join(o for o, v in (("--tf", tf), ("--dt", dt)) if v is None)
-        raise CommandError(f"{args.config}: give {missing}: the SSP has no "
-                           + ("stop time in its DefaultExperiment" if tf is None else
-                              "step size (an OSP FixedStepAlgorithm baseStepSize annotation)"))
+    if dt is None:
+        from fmpy.util import auto_interval
+
+        dt = float(auto_interval(float(tf) - t0))
     _choose_algorithm(imported.system, args)
     imported.system.initialize(t0)
     return imported.system.run(t0, float(tf), float(dt), **options)

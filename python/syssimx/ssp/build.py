@@ -10,26 +10,28 @@ from ..core.port import PortType
 from ..errors import ConfigurationError
 from ..system.connection import Connection
 from ..system.system import System
-from ..units import DIMENSIONLESS_SPELLINGS, quantity, to_unit
+from ..units import DIMENSIONLESS_SPELLINGS, is_quantity, magnitude_in, quantity, to_unit
 from .errors import SSPError
+from .parameters import ParameterValue
 from .structure import ComponentEntry, Connector, Structure
-from .units import defined_conversion
+from .units import UnitDefinition, defined_conversion, si_expression
+from .unsupported import Unsupported
 
 # the SSP connector types each FMU variable type may be declared as
 _SSP_TYPES = {PortType.REAL: {"Real"}, PortType.INT: {"Integer", "Enumeration"},
               PortType.BOOL: {"Boolean"}, PortType.STRING: {"String"}}
 
 
-def build(structure: Structure) -> System:
+def build(structure: Structure, unsupported: Unsupported) -> System:
     system = System(structure.name)
     for entry in structure.components.values():
         try:
-            component = FMUComponent(entry.path, entry.source)
+            component = FMUComponent(entry.path, entry.source, interface=entry.interface)
         except ConfigurationError as exc:
             raise SSPError(f"{entry.label}: {exc}") from exc
         for connector in entry.connectors.values():
             _check_connector(component, connector)
-        _set_parameters(component, entry)
+        _set_values(component, entry, structure.units, unsupported)
         system.add_component(component)
     for c in structure.connections:
         src_spec = system.components[c.src[0]].output_specs.get(c.src[1])
@@ -82,13 +84,52 @@ def _differ(a: str, b: str) -> bool:
         return a != b
 
 
-def _set_parameters(component: FMUComponent, entry: ComponentEntry) -> None:
+def _set_values(component: FMUComponent, entry: ComponentEntry,
+                units: dict[str, UnitDefinition], unsupported: Unsupported) -> None:
+    """Each bound value, in order (a later one wins): a parameter's value or an input's
+    start; a value for neither is left out (one warning, an error under strict)."""
     for value in entry.parameters:
-        number: Any = value.value
-        if value.unit and isinstance(number, float) \
-                and value.unit.strip() not in DIMENSIONLESS_SPELLINGS:
-            number = quantity(number, value.unit)
+        is_input = value.name in component.input_specs
+        if not is_input and value.name not in component.info.parameters:
+            unsupported.ignore(f"{value.where}: component {component.name!r} has no parameter "
+                               f"or input {value.name!r}", "the value is ignored")
+            continue
+        target = component.input_specs[value.name].unit if is_input \
+            else component.info.parameters[value.name].unit
         try:
-            component.set_parameters(**{value.name: number})
-        except (ConfigurationError, ValueError) as exc:
+            number = _in_units(value, units, target)
+            if is_input:
+                spec = component.input_specs[value.name]
+                component.set_inputs({value.name: magnitude_in(number, spec.unit)
+                                      if is_quantity(number) else number})
+            else:
+                component.set_parameters(**{value.name: number})
+        except (ConfigurationError, ValueError, TypeError) as exc:
             raise SSPError(f"{value.where}: {exc}") from exc
+        except Exception as exc:  # pint's own errors (a dimension mismatch, an unknown unit)
+            if type(exc).__module__.split(".")[0] != "pint":
+                raise
+            raise SSPError(f"{value.where}: {component.name}.{value.name}: "
+                           f"{exc or type(exc).__name__}") from exc
+
+
+def _in_units(value: ParameterValue, units: dict[str, UnitDefinition],
+              target: str | None) -> Any:
+    """The value in the FMU variable's unit `target`, or a pint quantity in its own unit
+    for the FMU component to convert. A unit the parameter set or the SSD defines (ssc:Units,
+    to SI base units) converts by that definition, else by pint from its name."""
+    number: Any = value.value
+    if not value.unit or not isinstance(number, float) \
+            or value.unit.strip() in DIMENSIONLESS_SPELLINGS or value.unit == target:
+        return number
+    definition = value.definition or units.get(value.unit)
+    if definition is None:
+        return quantity(number, value.unit)
+    si = definition.factor * number + definition.offset
+    defined_target = units.get(target) if target else None
+    if defined_target is None:
+        return quantity(si, si_expression(definition.exponents))
+    if defined_target.exponents != definition.exponents:
+        raise ValueError(f"unit {value.unit!r} and the FMU's unit {target!r} measure "
+                         "different quantities")
+    return (si - defined_target.offset) / defined_target.factor

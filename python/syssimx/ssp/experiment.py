@@ -1,4 +1,4 @@
-"""The default experiment of an SSP: start and stop time, and a fixed step size."""
+"""The default experiment of an SSP or OSP file: start and stop time, and a fixed step size."""
 
 from __future__ import annotations
 
@@ -7,8 +7,9 @@ from dataclasses import dataclass
 
 @dataclass(frozen=True)
 class Experiment:
-    """None where the SSP gives no value. `step_size` comes from a known tool annotation
-    (the Open Simulation Platform's FixedStepAlgorithm baseStepSize)."""
+    """None where the file gives no value. In an SSP `step_size` comes from a known tool
+    annotation (the Open Simulation Platform's FixedStepAlgorithm baseStepSize, OMSimulator's
+    FixedStepMaster stepSize); in an OSP system structure it is the BaseStepSize."""
 
     start_time: float | None = None
     stop_time: float | None = None

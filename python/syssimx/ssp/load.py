@@ -23,18 +23,20 @@ class Imported:
     experiment: Experiment
 
 
-def load(path: str | Path) -> System:
+def load(path: str | Path, strict: bool = False) -> System:
     """The System an .ssp or .ssd file describes, not initialized. Each unsupported element
-    gives one SSPWarning naming it; a problem is an SSPError naming the file and the element."""
-    return read(path).system
+    and each name that names nothing gives one SSPWarning naming it (an SSPError with
+    `strict`); a problem is an SSPError naming the file and the element."""
+    return read(path, strict).system
 
 
-def read(path: str | Path) -> Imported:
+def read(path: str | Path, strict: bool = False) -> Imported:
     """The system and the default experiment (start, stop, fixed step) of an .ssp or .ssd."""
     package = open_package(path)
+    unsupported = Unsupported(strict)
     try:
-        structure = read_structure(package, Unsupported())
-        system = build(structure)
+        structure = read_structure(package, unsupported)
+        system = build(structure, unsupported)
     except BaseException:
         if package.temporary is not None:
             shutil.rmtree(package.temporary, ignore_errors=True)

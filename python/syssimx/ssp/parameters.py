@@ -13,6 +13,7 @@ from typing import Any
 from .archive import Package, resolve
 from .documents import NS, element_label, local_name, parse
 from .errors import SSPError
+from .units import UnitDefinition, read_units
 from .unsupported import Unsupported
 
 _TYPES = ("Real", "Integer", "Boolean", "String", "Enumeration")
@@ -28,6 +29,7 @@ class ParameterValue:
     value: float | int | bool | str
     unit: str | None
     where: str  # the file and element it came from
+    definition: UnitDefinition | None = None  # `unit` as the parameter set defines it
 
 
 def read_bindings(element: Any, package: Package,
@@ -43,22 +45,29 @@ def read_bindings(element: Any, package: Package,
         source = binding.get("source")
         if source is not None:
             path = resolve(package, source, element_label(binding))
-            sets = [(parse(path, "ssv", package.shown(path)), package.shown(path))]
+            sets = [(parse(path, "ssv", package.shown(path), unsupported),
+                     package.shown(path))]
         else:
             sets = [(s, where) for s in binding.iterfind("ssd:ParameterValues/ssv:ParameterSet",
                                                          NS)]
         mapping = _mapping(binding, package, unsupported)
         prefix = binding.get("prefix", "")
         for parameter_set, origin in sets:
+            units = read_units(parameter_set, "ssv")
             for parameter in parameter_set.iterfind("ssv:Parameters/ssv:Parameter", NS):
-                value = _value(parameter, origin, unsupported)
+                value = _value(parameter, origin, units, unsupported)
                 if value is None:
                     continue
-                values.append(_mapped(value, mapping, prefix))
+                values.extend(_mapped(value, mapping, prefix))
     return values
 
 
-def _value(parameter: Any, origin: str, unsupported: Unsupported) -> ParameterValue | None:
+# XML Schema booleans: true, false, 1, 0 (OMSimulator and libcosim write both forms)
+BOOLEANS = {"true": True, "false": False, "1": True, "0": False}
+
+
+def _value(parameter: Any, origin: str, units: dict[str, UnitDefinition],
+           unsupported: Unsupported) -> ParameterValue | None:
     name = parameter.get("name")
     where = f"{origin}: {element_label(parameter)}"
     for kind in _TYPES:
@@ -69,11 +78,12 @@ def _value(parameter: Any, origin: str, unsupported: Unsupported) -> ParameterVa
         try:
             value: float | int | bool | str = {
                 "Real": float, "Integer": int, "Enumeration": int, "String": str,
-                "Boolean": lambda t: {"true": True, "false": False}[t.strip()],
+                "Boolean": lambda t: BOOLEANS[t.strip()],
             }[kind](text)
         except (KeyError, ValueError, TypeError) as exc:
             raise SSPError(f"{where}: {kind} value {text!r} is not a {kind.lower()}") from exc
-        return ParameterValue(name, value, typed.get("unit"), where)
+        unit = typed.get("unit")
+        return ParameterValue(name, value, unit, where, units.get(unit) if unit else None)
     kinds = [local_name(child) for child in parameter]
     unsupported.warn(f"parameter type {kinds[0] if kinds else 'none'!r}", where)
     return None
@@ -87,15 +97,16 @@ class _Entry:
 
 
 def _mapping(binding: Any, package: Package,
-             unsupported: Unsupported) -> dict[str, _Entry]:
-    mapping: dict[str, _Entry] = {}
+             unsupported: Unsupported) -> dict[str, list[_Entry]]:
+    """Each source name with every entry that maps it (a source may have several targets)."""
+    mapping: dict[str, list[_Entry]] = {}
     for element in binding.iterfind("ssd:ParameterMapping", NS):
         source = element.get("source")
         shown = package.shown(package.ssd)
         if source is not None:
             path = resolve(package, source, element_label(element))
             shown = package.shown(path)
-            root = parse(path, "ssm", shown)
+            root = parse(path, "ssm", shown, unsupported)
         else:
             root = element.find("ssm:ParameterMapping", NS)
             if root is None:
@@ -105,20 +116,27 @@ def _mapping(binding: Any, package: Package,
             for name in _MAP_TRANSFORMATIONS:
                 if entry.find(f"ssc:{name}", NS) is not None:
                     unsupported.warn(f"ssc:{name}", f"{shown}: {element_label(entry)}")
-            mapping[entry.get("source")] = _Entry(
+            mapping.setdefault(entry.get("source"), []).append(_Entry(
                 entry.get("target"),
                 float(linear.get("factor", 1.0)) if linear is not None else 1.0,
-                float(linear.get("offset", 0.0)) if linear is not None else 0.0)
+                float(linear.get("offset", 0.0)) if linear is not None else 0.0))
     return mapping
 
 
-def _mapped(value: ParameterValue, mapping: dict[str, _Entry], prefix: str) -> ParameterValue:
-    entry = mapping.get(value.name)
-    name, number = value.name, value.value
-    if entry is not None:
-        name = entry.target
-        if isinstance(number, float):
-            number = entry.factor * number + entry.offset
+def _mapped(value: ParameterValue, mapping: dict[str, list[_Entry]],
+            prefix: str) -> list[ParameterValue]:
+    """`value` under each name the mapping gives it (its own when it maps nothing)."""
+    entries = mapping.get(value.name)
+    if entries is None:
+        return [_unprefixed(value, value.name, value.value, prefix)]
+    return [_unprefixed(value, entry.target,
+                        entry.factor * value.value + entry.offset
+                        if isinstance(value.value, float) else value.value, prefix)
+            for entry in entries]
+
+
+def _unprefixed(value: ParameterValue, name: str, number: float | int | bool | str,
+                prefix: str) -> ParameterValue:
     if prefix and name.startswith(prefix):
         name = name[len(prefix):]
-    return ParameterValue(name, number, value.unit, value.where)
+    return ParameterValue(name, number, value.unit, value.where, value.definition)

@@ -20,10 +20,11 @@ class UnitDefinition:
     offset: float
 
 
-def read_units(root: Any) -> dict[str, UnitDefinition]:
-    """The ssc:Unit definitions of an SSD, by name."""
+def read_units(root: Any, prefix: str = "ssd") -> dict[str, UnitDefinition]:
+    """The ssc:Unit definitions of an SSD (or, with `prefix` "ssv", of a parameter set), by
+    name."""
     units = {}
-    for unit in root.iterfind("ssd:Units/ssc:Unit", NS):
+    for unit in root.iterfind(f"{prefix}:Units/ssc:Unit", NS):
         base = unit.find("ssc:BaseUnit", NS)
         units[unit.get("name")] = UnitDefinition(
             unit.get("name"), tuple(int(base.get(e, 0)) for e in _EXPONENTS),
@@ -41,3 +42,10 @@ def defined_conversion(units: dict[str, UnitDefinition], src: str | None,
     if a.exponents != b.exponents:
         raise ValueError(f"units {src!r} and {dst!r} measure different quantities")
     return a.factor / b.factor, (a.offset - b.offset) / b.factor
+
+
+def si_expression(exponents: tuple[int, ...]) -> str:
+    """The SI base units with `exponents` (in _EXPONENTS order) as pint reads them."""
+    factors = [f"{unit}**{power}" for unit, power in zip(_EXPONENTS, exponents, strict=True)
+               if power]
+    return "*".join(factors) or "dimensionless"
