@@ -67,7 +67,7 @@ class CommandError(Exception):
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line with ``argv`` (default: sys.argv[1:]); returns the exit code."""
-    parser = _parser()
+    parser = build_parser()
     try:
         args = parser.parse_args(argv)
     except SystemExit as exit_request:  # argparse has printed usage or help already
@@ -88,7 +88,9 @@ def _describe(error: Exception, args: argparse.Namespace) -> str:
     return f"{type(error).__name__} (with no message) in 'syssimx {args.command}{subject}'"
 
 
-def _parser() -> argparse.ArgumentParser:
+def build_parser() -> argparse.ArgumentParser:
+    """The parser of the `syssimx` command line, with a subcommand per command (also what the
+    documentation's command-line reference is generated from)."""
     parser = argparse.ArgumentParser(
         prog="syssimx",
         description="Hybrid co-simulation of FMI 2.0 Co-Simulation FMUs.",

@@ -1,0 +1,73 @@
+"""Sphinx configuration of the syssimx documentation (MyST Markdown, notebooks executed by
+MyST-NB at every build, the API reference generated from the docstrings)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import syssimx
+
+DOCS = Path(__file__).resolve().parent
+sys.path.insert(0, str(DOCS / "_ext"))
+
+project = "syssimx"
+author = "the syssimx developers"
+copyright = "2026, the syssimx developers"  # noqa: A001 (Sphinx's name)
+release = syssimx.__version__
+version = ".".join(release.split(".")[:2])
+
+extensions = [
+    "myst_nb",
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.napoleon",
+    "sphinx.ext.mathjax",
+    "cli_reference",
+]
+
+exclude_patterns = ["_build", "jupyter_execute", "**.ipynb_checkpoints"]
+
+# Markdown and notebooks: every notebook (a page with a kernelspec) runs at every build, in a
+# temporary folder, and an error in any cell fails the build
+myst_enable_extensions = ["colon_fence", "deflist", "dollarmath", "amsmath"]
+myst_heading_anchors = 3
+nb_execution_mode = "force"
+nb_execution_raise_on_error = True
+nb_execution_show_tb = True
+nb_execution_timeout = 600
+nb_execution_in_temp = True
+nb_merge_streams = True
+
+# API reference: numpy-style docstrings, one page per public name
+autosummary_generate = True
+autosummary_imported_members = False
+autodoc_default_options = {"members": True, "show-inheritance": True}
+autodoc_member_order = "bysource"
+autodoc_typehints = "signature"
+autodoc_preserve_defaults = False
+napoleon_google_docstring = False
+napoleon_numpy_docstring = True
+napoleon_use_rtype = False
+
+nitpicky = True
+# types from outside syssimx that the offline build cannot link (no intersphinx inventories)
+nitpick_ignore_regex = [
+    ("py:.*", r"(numpy|np|pint|pandas|pd|xarray|xr|dask|distributed|networkx|graphviz|"
+              r"matplotlib|scipy|fmpy|cffi|collections|typing|pathlib|os|types|logging|"
+              r"argparse|concurrent|enum|dataclasses|io)\..*"),
+    ("py:.*", r"(Any|Callable|Iterable|Iterator|Mapping|Sequence|MutableMapping|Path|"
+              r"NDArray|ndarray|Quantity|Unit|DataFrame|Dataset|Client|Figure|Axes|Digraph|"
+              r"TextIO|Self|Literal|ClassVar|Generator|EllipsisType|PathLike|"
+              r"Future|LocalCluster|UnitRegistry|ModuleType|Namespace|ArgumentParser|"
+              r"optional|default|array_like|callable|file-like)"),
+]
+
+html_theme = "sphinx_book_theme"
+html_title = f"syssimx {release}"
+html_theme_options = {
+    "show_toc_level": 2,
+    "home_page_in_toc": True,
+    "use_download_button": False,
+}
+html_last_updated_fmt = None
