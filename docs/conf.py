@@ -24,9 +24,11 @@ extensions = [
     "sphinx.ext.napoleon",
     "sphinx.ext.mathjax",
     "cli_reference",
+    "public_names",
 ]
 
 exclude_patterns = ["_build", "jupyter_execute", "**.ipynb_checkpoints"]
+templates_path = ["_templates"]
 
 # Markdown and notebooks: every notebook (a page with a kernelspec) runs at every build, in a
 # temporary folder, and an error in any cell fails the build
@@ -46,14 +48,15 @@ autodoc_default_options = {"members": True, "show-inheritance": True}
 autodoc_member_order = "bysource"
 autodoc_typehints = "signature"
 autodoc_preserve_defaults = False
-napoleon_google_docstring = False
+# numpy style is the norm; older docstrings in Google style ("Args:") render as well
+napoleon_google_docstring = True
 napoleon_numpy_docstring = True
 napoleon_use_rtype = False
 
 nitpicky = True
 # types from outside syssimx that the offline build cannot link (no intersphinx inventories)
 nitpick_ignore_regex = [
-    ("py:.*", r"(numpy|np|pint|pandas|pd|xarray|xr|dask|distributed|networkx|graphviz|"
+    ("py:.*", r"(numpy|np|nx|pint|pandas|pd|xarray|xr|dask|distributed|networkx|graphviz|"
               r"matplotlib|scipy|fmpy|cffi|collections|typing|pathlib|os|types|logging|"
               r"argparse|concurrent|enum|dataclasses|io)\..*"),
     ("py:.*", r"(Any|Callable|Iterable|Iterator|Mapping|Sequence|MutableMapping|Path|"
@@ -61,6 +64,13 @@ nitpick_ignore_regex = [
               r"TextIO|Self|Literal|ClassVar|Generator|EllipsisType|PathLike|"
               r"Future|LocalCluster|UnitRegistry|ModuleType|Namespace|ArgumentParser|"
               r"optional|default|array_like|callable|file-like)"),
+]
+
+# classes public methods return whose names are not exported (reached through the objects)
+nitpick_ignore = [
+    ("py:class", "ComponentHistory"),
+    ("py:class", "syssimx.system.results.HistoryView"),
+    ("py:class", "syssimx.components.switch_regions.RegionBoundary"),
 ]
 
 html_theme = "sphinx_book_theme"

@@ -54,8 +54,8 @@ class EnsembleResult:
     # ------------------------------------------------------------------ xarray
     @property
     def dataset(self) -> Any:
-        """member x sample: each member's own time axis (see the module's description), the
-        parameters as member coordinates, the events as member x event variables, and per
+        """The xarray Dataset, member x sample: each member's own time axis (see the module's
+        description), the parameters as member coordinates, the events as member x event variables, and per
         member its status, error, termination, worker, wall time and run statistics (-1 for
         a member whose run did not complete)."""
         if self._dataset is None:
@@ -163,7 +163,8 @@ class EnsembleResult:
 
     @property
     def events(self) -> Any:
-        """One row per member and event: member, the parameters, time, micro, source."""
+        """The located events as a DataFrame, one row per member and event (member, the
+        parameters, time, micro, source)."""
         import pandas as pd
 
         rows = [{"member": m.index, **{n: m.parameters[n] for n in self.parameters},
