@@ -38,7 +38,7 @@ esac
 echo "== a fresh virtual environment, the repaired wheel and binary dependencies only"
 "$python" -m venv "$work/venv"
 "$work/venv/bin/python" -m pip install -q --disable-pip-version-check --only-binary=:all: \
-  "$repaired"
+  "$repaired" >"$work/pip.log" 2>&1 || { cat "$work/pip.log"; exit 1; }
 
 # From here on only the fresh environment is on the path: no compiler, no meson, no ninja.
 fresh() { env -i HOME="$work" PATH="$work/venv/bin" LANG=C.UTF-8 "$@"; }
