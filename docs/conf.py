@@ -52,6 +52,7 @@ autodoc_preserve_defaults = False
 napoleon_google_docstring = True
 napoleon_numpy_docstring = True
 napoleon_use_rtype = False
+napoleon_use_ivar = True  # "Attributes:" as fields: dataclass fields have entries of their own
 
 nitpicky = True
 # types from outside syssimx that the offline build cannot link (no intersphinx inventories)

@@ -38,6 +38,8 @@ from .core.port import PortType
 from .graph.analysis import feedthrough_from_model_description
 from .system.csv_export import write_wide
 
+__all__ = ["build_parser", "main"]
+
 if TYPE_CHECKING:
     from .components.table_source import TableSource
 

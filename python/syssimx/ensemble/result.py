@@ -55,9 +55,9 @@ class EnsembleResult:
     @property
     def dataset(self) -> Any:
         """The xarray Dataset, member x sample: each member's own time axis (see the module's
-        description), the parameters as member coordinates, the events as member x event variables, and per
-        member its status, error, termination, worker, wall time and run statistics (-1 for
-        a member whose run did not complete)."""
+        description), the parameters as member coordinates, the events as member x event
+        variables, and per member its status, error, termination, worker, wall time and run
+        statistics (-1 for a member whose run did not complete)."""
         if self._dataset is None:
             self._dataset = self._build_dataset()
         return self._dataset
