@@ -54,10 +54,12 @@ class EnsembleResult:
     # ------------------------------------------------------------------ xarray
     @property
     def dataset(self) -> Any:
-        """The xarray Dataset, member x sample: each member's own time axis (see the module's
-        description), the parameters as member coordinates, the events as member x event
-        variables, and per member its status, error, termination, worker, wall time and run
-        statistics (-1 for a member whose run did not complete)."""
+        """The results as an xarray Dataset, member x sample.
+
+        Each member keeps its own time axis (see the module's description); the parameters are
+        member coordinates, the events member x event variables, and per member there are its
+        status, error, termination, worker, wall time and run statistics (-1 for a member whose
+        run did not complete)."""
         if self._dataset is None:
             self._dataset = self._build_dataset()
         return self._dataset
