@@ -62,7 +62,7 @@ nitpick_ignore_regex = [
               r"argparse|concurrent|enum|dataclasses|io)\..*"),
     ("py:.*", r"(Any|Callable|Iterable|Iterator|Mapping|Sequence|MutableMapping|Path|"
               r"NDArray|ndarray|Quantity|Unit|DataFrame|Dataset|Client|Figure|Axes|Digraph|"
-              r"TextIO|Self|Literal|ClassVar|Generator|EllipsisType|PathLike|"
+              r"TextIO|Self|Literal|ClassVar|InitVar|Generator|EllipsisType|PathLike|"
               r"Future|LocalCluster|UnitRegistry|ModuleType|Namespace|ArgumentParser|"
               r"optional|default|array_like|callable|file-like)"),
 ]
