@@ -132,3 +132,23 @@ def test_a_bad_description_is_one_line_naming_file_and_entry(
     assert captured.err.startswith(f"syssimx: error: {config}")
     assert "run" in captured.err and "dt" in captured.err
     assert len(captured.err.splitlines()) == 1
+
+
+def test_run_accepts_every_algorithm_a_description_accepts(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]):
+    """One table of algorithms: `--algorithm ijcsa` runs what `algorithm: {type: ijcsa}` runs."""
+    out = tmp_path / "ijcsa.csv"
+    assert main(["run", str(EXAMPLES / "coupled_pendulums.yaml"), "--tf", "0.2",
+                 "--algorithm", "ijcsa", "-o", str(out)]) == 0
+    summary = COMPLETED.fullmatch(capsys.readouterr().out.splitlines()[0])
+    assert summary is not None and summary.group("algorithm") == "IJCSAAlgorithm"
+    config = tmp_path / "ijcsa.yaml"
+    config.write_text((EXAMPLES / "coupled_pendulums.yaml").read_text()
+                      .replace("{type: gauss_seidel}", "{type: ijcsa}"))
+    described = build_system(config)
+    described.initialize(0.0)
+    reference = described.run(0.0, 0.2, 0.01)
+    assert reference.algorithm == "IJCSAAlgorithm"
+    for (name, port), (times, values, _) in read_long(out).items():
+        assert times == reference[name][0].tolist()
+        assert values == reference[name][1][port].tolist()

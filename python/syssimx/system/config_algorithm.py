@@ -5,24 +5,12 @@ or a mapping of the same form."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from typing import Any
 
-from .algorithms import (
-    Algorithm,
-    GaussSeidelAlgorithm,
-    HybridAlgorithm,
-    IJCSAAlgorithm,
-    JacobiAlgorithm,
-)
+from .algorithm_table import ALGORITHM_NAMES, algorithm_class
+from .algorithms import Algorithm, HybridAlgorithm
 from .config_source import Source
 
-ALGORITHMS: dict[str, Callable[..., Algorithm]] = {
-    "jacobi": JacobiAlgorithm,
-    "gauss_seidel": GaussSeidelAlgorithm,
-    "hybrid": HybridAlgorithm,
-    "ijcsa": IJCSAAlgorithm,
-}
 COUPLING_KEYS = ("coupling", "gauss_seidel_algorithm")
 
 
@@ -32,8 +20,8 @@ def build_algorithm(source: Source, entry: Any, label: str = "algorithm") -> Alg
     if not isinstance(entry, dict):
         raise source.error(label, f"must be a mapping with a 'type', got {entry!r}", entry)
     kind = entry.get("type")
-    if kind not in ALGORITHMS:
-        raise source.error(label, f"unknown type {kind!r}; types: {sorted(ALGORITHMS)}", entry)
+    if kind not in ALGORITHM_NAMES:
+        raise source.error(label, f"unknown type {kind!r}; types: {sorted(ALGORITHM_NAMES)}", entry)
     options = {k: v for k, v in entry.items() if k != "type"}
     if kind == "hybrid":
         for key in COUPLING_KEYS:
@@ -43,7 +31,7 @@ def build_algorithm(source: Source, entry: Any, label: str = "algorithm") -> Alg
                     raise source.error(f"{label}.{key}", "the coupling of a hybrid algorithm "
                                        "is jacobi, gauss_seidel or ijcsa", entry)
     try:
-        algorithm = ALGORITHMS[kind](**options)
+        algorithm = algorithm_class(kind)(**options)
         algorithm.validate()
     except (TypeError, ValueError) as exc:
         raise source.error(label, f"invalid options for {kind!r}: {exc}", entry) from exc

@@ -1,0 +1,51 @@
+"""What several commands share: their error type, finding an FMU, SSP files, defaults."""
+
+from __future__ import annotations
+
+import os
+import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any
+
+from .. import fmus
+
+SSP_SUFFIXES = (".ssp", ".ssd")
+
+
+class CommandError(Exception):
+    """A failure the user can act on: printed as one line, exit code 1."""
+
+
+def resolve_fmu(name_or_path: str) -> Path:
+    path = Path(name_or_path)
+    if path.is_file():
+        return path
+    if path.suffix == "" and name_or_path in fmus.available():
+        return Path(fmus.path(name_or_path))
+    bundled = ", ".join(fmus.available()) or "none"
+    raise CommandError(f"no FMU file {name_or_path!r} and no bundled FMU of that name "
+                       f"(bundled: {bundled})")
+
+
+def is_ssp(path: str) -> bool:
+    return Path(path).suffix.lower() in SSP_SUFFIXES
+
+
+def choose(given: float | None, default: Any, fallback: float) -> float:
+    if given is not None:
+        return float(given)
+    return float(default) if default is not None else fallback
+
+
+@contextmanager
+def working_directory_importable() -> Iterator[None]:
+    """Component classes ("module:Class") are also found in the working directory, as with
+    SysSimX's command line: a console script's sys.path does not have it."""
+    saved = list(sys.path)
+    sys.path.insert(0, os.getcwd())
+    try:
+        yield
+    finally:
+        sys.path[:] = saved

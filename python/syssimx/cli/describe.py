@@ -1,0 +1,37 @@
+"""`syssimx describe`: the structure of a system description or SSP."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any, TextIO
+
+from .common import choose, is_ssp, working_directory_importable
+
+
+def add_command(commands: Any) -> None:
+    describe = commands.add_parser("describe", help="print the structure of a system "
+                                   "description: components, connections, order, loops")
+    describe.add_argument("config", help="a YAML or JSON system description, or an SSP "
+                          "(.ssp archive or .ssd file)")
+    describe.add_argument("--initialize", action="store_true",
+                          help="initialize the system first (at run.t0, else 0)")
+    describe.set_defaults(run=run_describe)
+
+
+def run_describe(args: argparse.Namespace, out: TextIO) -> None:
+    from ..system.loader import build_system, load_config
+
+    if is_ssp(args.config):
+        from ..ssp import read
+
+        imported = read(args.config)
+        if args.initialize:
+            imported.system.initialize(choose(None, imported.experiment.start_time, 0.0))
+        out.write(imported.system.describe() + "\n")
+        return
+    with working_directory_importable():
+        system = build_system(args.config)
+    if args.initialize:
+        run = load_config(args.config).get("run") or {}
+        system.initialize(float(run.get("t0", 0.0)) if isinstance(run, dict) else 0.0)
+    out.write(system.describe() + "\n")
