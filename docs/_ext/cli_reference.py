@@ -24,7 +24,7 @@ def _commands(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentPar
 def _help(parser: argparse.ArgumentParser) -> str:
     """argparse's help at a fixed width (it follows the terminal's otherwise)."""
     saved = os.environ.get("COLUMNS")
-    os.environ["COLUMNS"] = "92"
+    os.environ["COLUMNS"] = "78"
     try:
         return parser.format_help()
     finally:
