@@ -91,6 +91,7 @@ class Port:
             _DEFAULTS[spec.type] if value is None else spec.coerce(value))
 
     def set(self, value: Any, t: float | None = None) -> None:
+        """Set the port's value (converted to its type), at time `t` if given."""
         self._raw = self.spec.coerce(value)
         if t is not None:
             self.t_last = t
@@ -100,6 +101,7 @@ class Port:
         return self._reader() if self._reader is not None else self._raw
 
     def get(self, as_unit: str | None = None) -> Any:
+        """The value: a pint quantity where the port has a unit (in `as_unit` if given)."""
         value = self.spec.present(self.raw())
         if as_unit is not None and is_quantity(value):
             return value.to(to_unit(as_unit))
@@ -107,6 +109,7 @@ class Port:
 
     @property
     def value(self) -> Any:
+        """The value, as get() returns it."""
         return self.get()
 
     def __repr__(self) -> str:

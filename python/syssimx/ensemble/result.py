@@ -44,6 +44,8 @@ class EnsembleResult:
 
     @property
     def failed(self) -> list[MemberResult]:
+        """The members that did not complete, each with its status, reason and the samples it
+        recorded before."""
         return [member for member in self.members if not member.ok]
 
     @property
