@@ -57,8 +57,10 @@ class System:
     # ------------------------------------------------------------------ algorithm
     @property
     def algorithm(self) -> Algorithm:
-        """The master algorithm the next initialize uses: the one set, else Gauss-Seidel; a
-        system with event indicators gets a HybridAlgorithm around its coupling."""
+        """The master algorithm the next initialize uses.
+
+        The one set, else Gauss-Seidel; a system with event indicators gets a HybridAlgorithm
+        around its coupling."""
         if not isinstance(self._algorithm, HybridAlgorithm) and self._has_indicators():
             chosen = self._algorithm if self._algorithm_chosen else default_coupling()
             assert isinstance(chosen, JacobiAlgorithm)
