@@ -244,7 +244,7 @@ class SimulationResult:
 
     @property
     def histories(self) -> dict[str, tuple[np.ndarray, dict[str, np.ndarray]]]:
-        """Every component's samples, {name: (t, {port: values})}."""
+        """Every component's samples, ``{name: (t, {port: values})}``."""
         return {name: self._history[name] for name in self._history}
 
     def __getitem__(self, component: str) -> tuple[np.ndarray, dict[str, np.ndarray]]:
