@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pytest
 from syssimx import FMUComponent, FMUFileError, fmus
-from syssimx.components import model_description
-from syssimx.components.model_description import read_fmu
+from syssimx.fmu import info as model_description
+from syssimx.fmu.info import read_fmu
 
 
 @pytest.fixture

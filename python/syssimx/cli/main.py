@@ -40,8 +40,8 @@ def build_parser() -> argparse.ArgumentParser:
     what the documentation's command-line reference is generated from)."""
     parser = argparse.ArgumentParser(
         prog="syssimx",
-        description="Hybrid co-simulation of FMUs (FMI 2.0 and 3.0, Co-Simulation and Model "
-                    "Exchange).",
+        description="Hybrid co-simulation of FMI 1.0, 2.0 and 3.0 FMUs (Co-Simulation and "
+                    "Model Exchange).",
     )
     parser.add_argument("--version", action="version", version=f"syssimx {__version__}")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")

@@ -6,8 +6,8 @@ import argparse
 from pathlib import Path
 from typing import Any, TextIO
 
-from ..components.model_description import INTERFACES
 from ..core.literal import literal
+from ..fmu.info import INTERFACES
 from ..system.csv_export import write_wide
 from .common import CommandError, choose, resolve_fmu
 from .simulate_input import communication_points, connect_input, run_through
@@ -70,7 +70,7 @@ def _event(text: str) -> tuple[str, int]:
 
 def run_simulate(args: argparse.Namespace, out: TextIO) -> None:
     from .. import FMUComponent, JacobiAlgorithm, System
-    from ..components.model_description import read_fmu
+    from ..fmu.info import read_fmu
 
     path = resolve_fmu(args.fmu)
     md = read_fmu(path).description  # what the component reads too: read once, by syssimx
