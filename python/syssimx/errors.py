@@ -62,3 +62,16 @@ class AlgebraicLoopError(SimulationError):
 class EngineMismatchError(SysSimXError, ImportError):
     """The engine library and its cffi module come from different engine headers (a stale
     build): calls between them could pass the wrong arguments."""
+
+
+class RunInterrupted(KeyboardInterrupt):
+    """Ctrl-C (SIGINT) stopped a run or a sweep. `partial_result` holds what was finished (a
+    SimulationResult up to the last completed step, or an EnsembleResult of the finished
+    members, the others marked failed); `partial` is always True. A KeyboardInterrupt, so code
+    that stops on Ctrl-C still does."""
+
+    partial = True
+
+    def __init__(self, message: str, partial_result: object) -> None:
+        super().__init__(message)
+        self.partial_result = partial_result

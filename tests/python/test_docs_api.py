@@ -20,8 +20,8 @@ API_INDEX = Path(__file__).resolve().parents[2] / "docs" / "api" / "index.rst"
 # the packages and modules whose names are public; the version attributes are described in the
 # reference's text (they are strings, not objects with a page)
 PUBLIC = ["syssimx", "syssimx.algorithms", "syssimx.components", "syssimx.core",
-          "syssimx.system", "syssimx.ensemble", "syssimx.ssp", "syssimx.graph", "syssimx.fmus",
-          "syssimx.errors", "syssimx.viz.plot", "syssimx.cli"]
+          "syssimx.system", "syssimx.ensemble", "syssimx.ssp", "syssimx.graph", "syssimx.fmu",
+          "syssimx.fmus", "syssimx.errors", "syssimx.viz.plot", "syssimx.cli"]
 DESCRIBED_IN_TEXT = {"__version__", "__version_info__"}
 
 

@@ -7,7 +7,10 @@ import sys
 from pathlib import Path
 from typing import Any, TextIO
 
+from ..atomic_file import write_or_fallback
+from ..partial_results import run_keeping_partial
 from ..system.algorithm_table import ALGORITHM_NAMES, algorithm_class
+from ..system.component_classes import add_allow_module_option
 from .common import CommandError, choose, is_ssp, working_directory_importable
 
 
@@ -30,10 +33,27 @@ def add_command(commands: Any) -> None:
                           "else 1)")
     run.add_argument("--quiet", action="store_true",
                      help="no progress bar (there is none either when not on a terminal)")
+    add_allow_module_option(run)
     run.set_defaults(run=run_config)
 
 
 def run_config(args: argparse.Namespace, out: TextIO) -> None:
+    result, interrupted = run_keeping_partial(lambda: _config_result(args))
+    verb = "Completed" if interrupted is None else "Interrupted (what was finished)"
+    out.write(f"{verb} '{result.system_name}': t in [{result.t0}, {result.tf}] s, "
+              f"dt = {result.dt} s, algorithm = {result.algorithm}, "
+              f"wall time = {result.wall_time:.3f} s\n")
+    termination = result.termination
+    if termination is not None:  # a component asked to stop: the end of the run, not a failure
+        out.write(f"{termination}\n")
+    if args.output is not None:
+        write_or_fallback(args.output, result.to_csv)
+        out.write(f"Results written to {args.output}\n")
+    if interrupted is not None:
+        raise interrupted
+
+
+def _config_result(args: argparse.Namespace) -> Any:
     bar = not args.quiet and sys.stdout.isatty() and sys.stderr.isatty()
     options = {"progress": True} if bar else {}
     if is_ssp(args.config):
@@ -45,22 +65,16 @@ def run_config(args: argparse.Namespace, out: TextIO) -> None:
         with working_directory_importable():
             if args.algorithm is None and args.threads is None:
                 result = run_from_config(args.config, t0=args.t0, tf=args.tf, dt=args.dt,
-                                         progress=options.get("progress"))
+                                         progress=options.get("progress"),
+                                         allowed_modules=args.allowed_modules)
             else:
                 settings = run_settings(Source(Path(args.config)), read_file(args.config),
                                         {"t0": args.t0, "tf": args.tf, "dt": args.dt})
-                system = build_system(args.config)
+                system = build_system(args.config, allowed_modules=args.allowed_modules)
                 _choose_algorithm(system, args)
                 system.initialize(settings["t0"])
                 result = system.run(settings["t0"], settings["tf"], settings["dt"], **options)
-    out.write(f"Completed '{result.system_name}': t in [{result.t0}, {result.tf}] s, "
-              f"dt = {result.dt} s, algorithm = {result.algorithm}, "
-              f"wall time = {result.wall_time:.3f} s\n")
-    termination = result.termination
-    if termination is not None:  # a component asked to stop: the end of the run, not a failure
-        out.write(f"{termination}\n")
-    if args.output is not None:
-        out.write(f"Results written to {result.to_csv(args.output)}\n")
+    return result
 
 
 def _choose_algorithm(system: Any, args: argparse.Namespace) -> None:

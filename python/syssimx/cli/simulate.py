@@ -6,8 +6,10 @@ import argparse
 from pathlib import Path
 from typing import Any, TextIO
 
+from ..atomic_file import write_or_fallback
 from ..core.literal import literal
 from ..fmu.info import INTERFACES
+from ..partial_results import run_keeping_partial
 from ..system.csv_export import write_wide
 from .common import CommandError, choose, resolve_fmu
 from .simulate_input import communication_points, connect_input, run_through
@@ -102,14 +104,16 @@ def run_simulate(args: argparse.Namespace, out: TextIO) -> None:
                                    md.coSimulation.canHandleVariableCommunicationStepSize):
             events = source.event_times().tolist()
     system.initialize(t0)
-    result = run_through(system, communication_points(t0, tf, dt, events), dt) if events \
-        else system.run(t0, tf, dt)
+    result, interrupted = run_keeping_partial(
+        lambda: run_through(system, communication_points(t0, tf, dt, events), dt) if events
+        else system.run(t0, tf, dt))
 
     t, values = result[component.name]
     columns = {name: values[name] for name, spec in component.output_specs.items()
                if name in values and str(getattr(spec.type, "value", spec.type)) != "event"}
     if args.output is not None:
-        write_wide(args.output, t, columns, result.units[component.name])
+        write_or_fallback(args.output, lambda path: write_wide(path, t, columns,
+                                                               result.units[component.name]))
         out.write(f"wrote {len(t)} samples of {len(columns)} outputs to {args.output}\n")
     if args.plot is not None:
         from ..viz.plot import plot_result
@@ -128,6 +132,8 @@ def run_simulate(args: argparse.Namespace, out: TextIO) -> None:
     if args.output is None:
         for name, series in columns.items():
             out.write(f"{name} = {series[-1]:.12g} at t = {t[-1]:.12g}\n")
+    if interrupted is not None:
+        raise interrupted
 
 
 def _experiment(args: argparse.Namespace, experiment: Any, fixed_step: str | None = None

@@ -7,6 +7,8 @@ import argparse
 from pathlib import Path
 from typing import Any, TextIO
 
+from ..system.component_classes import add_allow_module_option
+
 
 def add_command(commands: Any) -> None:
     sweep = commands.add_parser("sweep", help="run a system once per parameter set, in "
@@ -40,6 +42,7 @@ def add_command(commands: Any) -> None:
                             "sample) or .nc (the xarray dataset)")
     sweep.add_argument("--quiet", action="store_true", dest="no_progress",
                        help="no progress bar")
+    add_allow_module_option(sweep)
     sweep.set_defaults(run=run_sweep)
 
 

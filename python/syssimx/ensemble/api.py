@@ -7,12 +7,12 @@ import uuid
 from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
-from ..errors import ConfigurationError
+from ..errors import ConfigurationError, RunInterrupted
 from .cluster import ensemble_client
 from .member import MemberTask
 from .members import ParameterSet, parameter_sets
 from .result import EnsembleResult
-from .runner import run_members
+from .runner import MembersInterrupted, run_members
 from .sampling import draw
 from .system_source import SystemFile, system_source
 
@@ -70,7 +70,15 @@ def _run(system: Any, sets: list[ParameterSet], t0: float | None, tf: float | No
     tasks = [MemberTask(index, values, settings["t0"], settings["tf"], settings["dt"], kept,
                         member_timeout, ensemble=ensemble) for index, values in enumerate(sets)]
     start = time.perf_counter()
-    with ensemble_client(client, scheduler, workers) as running_on:
-        members = run_members(running_on, build, tasks, member_timeout, progress)
+    try:
+        with ensemble_client(client, scheduler, workers) as running_on:
+            members = run_members(running_on, build, tasks, member_timeout, progress)
+    except MembersInterrupted as stop:  # what was finished, on the exception
+        partial = EnsembleResult(stop.results, list(sets[0]), settings["t0"], settings["tf"],
+                                 settings["dt"], time.perf_counter() - start)
+        done = sum(member.error_type != "KeyboardInterrupt" for member in stop.results)
+        raise RunInterrupted(f"the ensemble was interrupted: {done} of {len(stop.results)} "
+                             "members had finished (partial_result holds them)",
+                             partial) from stop
     return EnsembleResult(members, list(sets[0]), settings["t0"], settings["tf"],
                           settings["dt"], time.perf_counter() - start)

@@ -180,22 +180,25 @@ class EnsembleResult:
     def write(self, path: str | Path) -> Path:
         """Write by suffix: .csv and .parquet the tidy table (parquet needs pyarrow or
         fastparquet), .nc the dataset (netCDF; scipy writes it when netCDF4 is absent)."""
+        from ..atomic_file import atomic_path
+
         target = Path(path)
         suffix = target.suffix.lower()
-        if suffix == ".csv":
-            self.to_dataframe().to_csv(target, index=False)
-        elif suffix == ".parquet":
-            try:
-                self.to_dataframe().to_parquet(target, index=False)
-            except ImportError as error:
-                raise ConfigurationError(f"{target}: writing parquet needs pyarrow or "
-                                         f"fastparquet ({error}); write .csv or .nc "
-                                         "instead") from error
-        elif suffix == ".nc":
-            self._netcdf_dataset().to_netcdf(target)
-        else:
+        if suffix not in WRITERS:
             raise ConfigurationError(f"{target}: unknown result format {suffix!r}; use one of "
                                      f"{', '.join(WRITERS)}")
+        with atomic_path(target) as temporary:  # whole or not at all
+            if suffix == ".csv":
+                self.to_dataframe().to_csv(temporary, index=False)
+            elif suffix == ".parquet":
+                try:
+                    self.to_dataframe().to_parquet(temporary, index=False)
+                except ImportError as error:
+                    raise ConfigurationError(f"{target}: writing parquet needs pyarrow or "
+                                             f"fastparquet ({error}); write .csv or .nc "
+                                             "instead") from error
+            else:
+                self._netcdf_dataset().to_netcdf(temporary)
         return target
 
     def _netcdf_dataset(self) -> Any:

@@ -20,6 +20,8 @@ from typing import Any
 
 import numpy as np
 
+from ..atomic_file import atomic_path
+
 LONG_HEADER = ("component", "port", "time", "value", "unit")
 NO_UNIT = "-"  # the unit row's mark for a port without a unit
 
@@ -64,7 +66,7 @@ def _cells(values: np.ndarray) -> list[Any]:
 def _write(path: str | Path, header: Sequence[Sequence[str]], rows: Iterable[Sequence[Any]]
            ) -> Path:
     target = Path(path)
-    with target.open("w", newline="") as stream:
+    with atomic_path(target) as temporary, temporary.open("w", newline="") as stream:
         writer = csv.writer(stream, lineterminator="\n")
         writer.writerows(header)
         writer.writerows(rows)

@@ -67,7 +67,10 @@ def plot_result(
     if title:
         figure.suptitle(str(title))
     if path is not None:
-        figure.savefig(Path(path), format="png", dpi=110)
+        from ..atomic_file import atomic_path
+
+        with atomic_path(path) as temporary:
+            figure.savefig(temporary, format="png", dpi=110)
     return figure
 
 
