@@ -72,6 +72,13 @@ nitpick_ignore = [
     ("py:class", "ComponentHistory"),
     ("py:class", "syssimx.system.results.HistoryView"),
     ("py:class", "syssimx.components.switch_regions.RegionBoundary"),
+    # the parts of an FMUInfo (syssimx.fmu): the modelDescription as read, its variables
+    ("py:class", "ModelDescription"),
+    ("py:class", "ScalarVariable"),
+    ("py:class", "FMI3Variable"),
+    ("py:class", "Parameter"),
+    ("py:class", "FMUInterface"),
+    ("py:class", "Standard"),
 ]
 
 html_theme = "sphinx_book_theme"
