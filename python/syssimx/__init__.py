@@ -40,6 +40,7 @@ _MODULES = {
     "Port": ".core",
     "PortSpec": ".core",
     "PortType": ".core",
+    "Reinitialize": ".components",
     "SimulationError": ".errors",
     "SimulationResult": ".system",
     "SimulationTimeoutError": ".errors",

@@ -65,6 +65,7 @@ typedef struct {
     long set_values;   /* fmi2Set* calls, any type */
     long instantiate;
     long directional_derivative; /* fmi2GetDirectionalDerivative calls */
+    long reset;        /* fmi2Reset calls, ssx_fmu_initialize's reuse of a live instance too */
 } ssx_fmu_counters;
 
 void ssx_fmu_free(ssx_fmu *fmu); /* terminates/frees a live instance, then unloads */
@@ -170,8 +171,9 @@ typedef struct {
     double stop_time;
 } ssx_fmu_experiment;
 
-/* A fresh instance ready to step: instantiate (a live instance is freed first), set up the
- * experiment, enter initialization mode, write `starts` (NULL: none) by type, call
+/* An instance ready to step from its start values: a live instance is reset (fmi2Reset,
+ * fmi3Reset: the FMU is as just instantiated, its FMU states stay valid), else, or when the
+ * reset fails, instantiated (a live instance is freed first); then set up the experiment, enter initialization mode, write `starts` (NULL: none) by type, call
  * in_initialization_mode(user) when it is not NULL (it may write more values; nonzero fails
  * the call and its caller keeps the reason), exit initialization mode. Returns the highest
  * status of the sequence (0 OK or 1 Warning), else the status of the call that failed (-1:
@@ -344,6 +346,17 @@ int ssx_add_model_exchange_component(ssx_system *sys, const char *name, ssx_fmu 
                                      int can_get_set_state, int n_states,
                                      int n_event_indicators);
 int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks);
+/* A declarative event handler of an FMU component, run by the engine when an event reaches it
+ * (a handle_events hook, when set, runs instead): the FMU starts again at the event time t from
+ * its start values, as ssx_fmu_initialize does (a reset, else a new instance), set up with
+ * `experiment` (its start time becomes t), `starts` written in initialization mode (copied
+ * now; NULL: none), then each Real value reference vr[k] set to scale[k] * output[source[k]]
+ * + offset[k] (the component's outputs at the event, source[k] an output index), then every
+ * input holding a value; the outputs are read after. experiment NULL removes the handler. */
+int ssx_set_restart_handler(ssx_system *sys, int component, const ssx_fmu_experiment *experiment,
+                            const ssx_fmu_values *starts, const unsigned int *vr,
+                            const int *source, const double *scale, const double *offset,
+                            size_t n);
 
 /* Ports. vr is the FMU value reference (ignored for Python components). start is written to
  * the FMU input at initialization when the input is unconnected; NaN (FMU components only)
@@ -351,6 +364,9 @@ int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks);
  * the port's index. */
 int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned int vr);
 int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned int vr, double start);
+/* Before initializing a system again (its plan reused): every input's start value, the
+ * components' inputs in order, n in all; each input holds its start again, as when added. */
+int ssx_reset_inputs(ssx_system *sys, const double *starts, size_t n);
 double *ssx_outputs(ssx_system *sys, int component); /* n_outputs current values */
 double *ssx_inputs(ssx_system *sys, int component);  /* n_inputs current values */
 
@@ -463,6 +479,9 @@ int ssx_set_run_output_interval(ssx_system *sys, int grid_steps);
 typedef struct ssx_history_block ssx_history_block;
 ssx_history_block *ssx_history_retain(ssx_system *sys);
 void ssx_history_release(ssx_history_block *block);
+/* A component's samples in a retained block (ssx_history_values at the time of the retain):
+ * read later, after the system is gone, as long as the block is held. */
+const double *ssx_history_block_values(const ssx_history_block *block, int component);
 
 size_t ssx_event_count(const ssx_system *sys);
 int ssx_event_get(const ssx_system *sys, size_t index, ssx_event_record *out);

@@ -255,6 +255,41 @@ int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned 
     return c->n_inputs++;
 }
 
+int ssx_reset_inputs(ssx_system *sys, const double *starts, size_t n)
+{
+    size_t total = 0;
+    for (int i = 0; i < sys->n_components; ++i) {
+        total += (size_t)sys->components[i]->n_inputs;
+    }
+    if (total != n || (n > 0 && starts == NULL)) {
+        return fail_config(sys, -1, -1, NAN,
+                           "system '%s': %zu input start values given for %zu inputs", sys->name,
+                           n, total);
+    }
+    /* checked whole before any is written: a refusal leaves every input as it was */
+    const double *start = starts;
+    for (int i = 0; i < sys->n_components; ++i) {
+        ssx_component *c = sys->components[i];
+        for (int k = 0; k < c->n_inputs; ++k, ++start) {
+            if (isinf(*start) || (isnan(*start) && c->fmu == NULL)) {
+                return fail_config(sys, i, -1, NAN,
+                                   "component '%s': the start value of input %d must be finite "
+                                   "(NaN, the FMU's own value, exists for FMU components only)",
+                                   c->name, k);
+            }
+        }
+    }
+    start = starts;
+    for (int i = 0; i < sys->n_components; ++i) {
+        ssx_component *c = sys->components[i];
+        for (int k = 0; k < c->n_inputs; ++k, ++start) {
+            c->inputs[k] = *start;
+            c->input_starts[k] = *start;
+        }
+    }
+    return 0;
+}
+
 double *ssx_outputs(ssx_system *sys, int component)
 {
     ssx_component *c = system_component(sys, component);
