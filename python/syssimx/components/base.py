@@ -77,7 +77,7 @@ class CoSimComponent:
 
     @property
     def t(self) -> float:
-        """The component's time: what it set last, or where its System's last run ended when
+        """The component's time, the one it set last or where its System's last run ended when
         that came later (a run does not touch every component)."""
         binding = self._binding
         if binding is not None and binding.plan.runs > self._t_runs:
