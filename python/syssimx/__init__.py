@@ -44,6 +44,7 @@ _MODULES = {
     "SimulationError": ".errors",
     "SimulationResult": ".system",
     "SimulationTimeoutError": ".errors",
+    "StepControl": ".system",
     "SwitchRegions": ".components",
     "SysSimXError": ".errors",
     "System": ".system",

@@ -52,6 +52,12 @@ struct ssx_component {
     void *data;   /* the kind's own data (a table source's table), freed by ops->release */
     int can_snapshot;
     int provides_directional_derivatives; /* FMU components only */
+    /* FMU components: the modelDescription's canInterpolateInputs and maxOutputDerivativeOrder,
+     * and (input_order.h) per input its first and second time derivative over the coming
+     * step, NULL while inputs are held */
+    int can_interpolate_inputs;
+    int max_output_derivative_order;
+    double *input_derivatives;
     int calling_thread_only; /* ssx_set_calling_thread_only */
 
     ssx_port *output_ports;

@@ -245,6 +245,8 @@ static const struct {
     [SLOT_GET_STATE] = {COUNTED(get_state), 0},
     [SLOT_SET_STATE] = {COUNTED(set_state), 1},
     [SLOT_DIRECTIONAL_DERIVATIVE] = {COUNTED(directional_derivative), 0},
+    [SLOT_SET_INPUT_DERIVATIVES] = {COUNTED(set_values), 0},
+    [SLOT_GET_OUTPUT_DERIVATIVES] = {COUNTED(get_values), 0},
     [SLOT_RESET] = {COUNTED(reset), 1},
     [SLOT_GET_STRING] = {COUNTED(get_values), 0},
     [SLOT_GET_BINARY] = {COUNTED(get_values), 0},
@@ -518,6 +520,19 @@ int ssx_fmu_get_directional_derivative(ssx_fmu *fmu, const unsigned int *unknown
 {
     return CHECKED(fmu, SLOT_DIRECTIONAL_DERIVATIVE, directional_derivative, unknowns,
                    n_unknowns, knowns, n_knowns, dv_known, dv_unknown);
+}
+
+int ssx_fmu_set_real_input_derivatives(ssx_fmu *fmu, const unsigned int *vr, size_t n,
+                                       const int *order, const double *values)
+{
+    return CHECKED(fmu, SLOT_SET_INPUT_DERIVATIVES, set_input_derivatives, vr, n, order, values);
+}
+
+int ssx_fmu_get_real_output_derivatives(ssx_fmu *fmu, const unsigned int *vr, size_t n,
+                                        const int *order, double *values)
+{
+    return CHECKED(fmu, SLOT_GET_OUTPUT_DERIVATIVES, get_output_derivatives, vr, n, order,
+                   values);
 }
 
 int ssx_fmu_get_terminated(ssx_fmu *fmu, int *terminated)

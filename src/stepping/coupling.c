@@ -6,6 +6,7 @@
 
 #include "algebraic_loop.h"
 #include "error.h"
+#include "input_order.h"
 #include "parallel_step.h"
 
 typedef int (*coupled_step)(ssx_system *sys, double t, double h);
@@ -99,13 +100,13 @@ static int prepare_links(ssx_system *sys)
     return 0;
 }
 
-void coupling_propagate_inputs(ssx_system *sys, const ssx_component *c)
+void coupling_propagate_inputs(ssx_system *sys, ssx_component *c)
 {
-    (void)sys;
     const ssx_input_link *links = c->links;
     for (int i = 0; i < c->n_links; ++i) {
         c->inputs[links[i].input] = links[i].scale * *links[i].source + links[i].offset;
     }
+    input_order_propagate(sys, c);
 }
 
 static ssx_component *member(ssx_system *sys, const ssx_group *g, int m)
@@ -200,6 +201,7 @@ static int step_jacobi(ssx_system *sys, double t, double h)
 
 int coupling_settle(ssx_system *sys, double t)
 {
+    input_order_forget(sys); /* the outputs may jump here */
     for (int gi = 0; gi < sys->n_groups; ++gi) {
         const ssx_group *g = &sys->groups[gi];
         for (int m = 0; m < g->size; ++m) {

@@ -196,12 +196,14 @@ class EnginePlan:
                           provides_directional_derivative: bool,
                           value_reference: Callable[[str], int], hooks: set[str],
                           model_exchange: tuple[int, int] | None = None, *,
-                          calling_thread_only: bool = False) -> None:
+                          calling_thread_only: bool = False,
+                          interpolation: tuple[bool, int] = (False, 0)) -> None:
         """An FMU the engine steps itself; `hooks` lists what the component's Python
         overrides (none for a plain FMUComponent). `model_exchange`: the engine integrates it,
         with (continuous states, event indicators), at the tolerance the instance is set up
-        with. `calling_thread_only` keeps its steps on the thread that runs the system. The
-        system borrows the loaded FMU."""
+        with. `calling_thread_only` keeps its steps on the thread that runs the system.
+        `interpolation`: (canInterpolateInputs, maxOutputDerivativeOrder) as the engine may use
+        them. The system borrows the loaded FMU."""
         name, index = component.name, self.index[component.name]
         self._borrowed_fmus.append(fmu)
         if model_exchange is None:
@@ -214,6 +216,8 @@ class EnginePlan:
         self.check(lib().ssx_set_directional_derivatives(
             self.sys, index, int(provides_directional_derivative)),
             f"{name}: directional derivatives")
+        self.check(lib().ssx_set_interpolation(self.sys, index, int(interpolation[0]),
+                                               interpolation[1]), f"{name}: interpolation")
         if calling_thread_only:
             self.check(lib().ssx_set_calling_thread_only(self.sys, index, 1),
                        f"{name}: calling thread only")

@@ -334,11 +334,21 @@ class FMUComponent(CoSimComponent):
         model_exchange = (self.info.number_of_states, self.info.number_of_event_indicators) \
             if self.model_exchange else None
         once_per_process = self.fmu_interface.can_be_instantiated_only_once_per_process
+        interface = self.fmu_interface
+        # an isolated FMU's host forwards neither input nor output derivatives
+        direct = not self.isolated and not self.model_exchange
+        output_order = interface.max_output_derivative_order if direct else 0
+        if str(self.info.description.fmiVersion).startswith("3.") and \
+                any(self.info.feedthrough.values()):
+            # FMI 3.0 gives an FMU no input derivatives: the derivative of an output that
+            # depends directly on inputs misses their motion (the coupling history serves)
+            output_order = 0
         plan.add_fmu_component(
             self, self._fmu, self.can_get_set_state,
-            self.fmu_interface.provides_directional_derivative,
+            interface.provides_directional_derivative,
             self.value_reference, self._python_hooks(engine_steps=True), model_exchange,
-            calling_thread_only=once_per_process and not self.isolated)
+            calling_thread_only=once_per_process and not self.isolated,
+            interpolation=(direct and interface.can_interpolate_inputs, output_order))
 
     def _python_hooks(self, engine_steps: bool) -> set[str]:
         """A handler the engine runs (an engine restart) needs no Python hook."""

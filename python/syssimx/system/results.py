@@ -100,6 +100,13 @@ class Statistics:
     directional_derivatives: int  # fmi2GetDirectionalDerivative calls for loop Jacobians
     own_events: int = 0  # events components handled inside their own steps (no rollback)
     termination: Termination | None = None
+    # error-controlled communication steps (StepControl); zero without it
+    accepted_steps: int = 0
+    rejected_steps: int = 0  # taken again, shorter, after a rollback
+    smallest_step: float = 0.0
+    largest_step: float = 0.0
+    largest_error: float = 0.0  # the largest weighted coupling error of an accepted step
+    mean_error: float = 0.0  # over the accepted steps
 
     def __str__(self) -> str:
         lines = [f"macro steps: {self.macro_steps}",
@@ -110,6 +117,10 @@ class Statistics:
                  f"events handled by components themselves: {self.own_events}",
                  f"loop solves: {self.loop_solves}, iterations: {self.loop_iterations}, "
                  f"directional derivatives: {self.directional_derivatives}"]
+        if self.accepted_steps:
+            lines.append(f"step control: {self.accepted_steps} accepted, {self.rejected_steps} "
+                         f"rejected, steps {self.smallest_step:.3g}..{self.largest_step:.3g}, "
+                         f"errors mean {self.mean_error:.3g}, largest {self.largest_error:.3g}")
         if self.termination is not None:
             lines.append(f"terminated: {self.termination}")
         return "\n".join(lines)
@@ -153,7 +164,10 @@ def read_statistics(plan: EnginePlan, events: Sequence[EventRecord],
                       int(raw.localization_iterations), int(raw.loop_iterations),
                       int(raw.loop_solves),
                       tuple(e.iterations for e in events if not e.own),
-                      int(raw.directional_derivatives), int(raw.own_events), termination)
+                      int(raw.directional_derivatives), int(raw.own_events), termination,
+                      int(raw.accepted_steps), int(raw.rejected_steps), float(raw.smallest_step),
+                      float(raw.largest_step), float(raw.largest_error),
+                      float(raw.error_sum) / raw.accepted_steps if raw.accepted_steps else 0.0)
 
 
 class HistoryView:

@@ -257,6 +257,11 @@ class System:
         plan.check(lib().ssx_set_loop_jacobian(
             plan.sys, loop_jacobians()[coupling.loop_jacobian]), "loop Jacobian")
         plan.check(lib().ssx_set_threads(plan.sys, coupling.threads), "threads")
+        plan.check(lib().ssx_set_input_order(plan.sys, coupling.input_order), "input order")
+        if coupling.step_control is not None:
+            plan.check(lib().ssx_set_step_control(plan.sys,
+                                                  coupling.step_control.engine_struct()),
+                       "step control")
         if isinstance(algorithm, HybridAlgorithm):
             plan.check(lib().ssx_set_hybrid_options(
                 plan.sys, algorithm.tol_time, algorithm.tol_value, algorithm.max_iter,

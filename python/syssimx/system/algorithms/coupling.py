@@ -10,6 +10,7 @@ from typing import ClassVar
 from ...bridge.options import engine_refusal
 from ...engine import defaults, enum_name, enum_values, ffi, lib
 from .signature import EngineDefaults
+from .step_control import StepControl
 
 JACOBIAN_PREFIX = "SSX_JACOBIAN_"
 
@@ -44,6 +45,14 @@ class JacobiAlgorithm:
         workers, see ``ssx_set_threads``). Python components and FMUs that declare
         canBeInstantiatedOnlyOncePerProcess stay on the calling thread; the results are those
         of one thread.
+    input_order : int
+        0 holds every input over a communication step; 1 or 2 hands FMUs that declare
+        canInterpolateInputs the first (and second) time derivative of each connected Real
+        input, from the driving FMU's output derivatives where it declares them, else from the
+        last communication points (see ``ssx_set_input_order``).
+    step_control : StepControl or None
+        A StepControl chooses the communication steps by the coupling error; None steps on the
+        run's grid.
     """
 
     tolerance: float = field(default_factory=lambda: defaults().loop_tolerance)
@@ -53,6 +62,8 @@ class JacobiAlgorithm:
     loop_jacobian: str = field(default_factory=lambda: enum_name(
         "ssx_loop_jacobian", JACOBIAN_PREFIX, defaults().loop_jacobian))
     threads: int = field(default_factory=lambda: defaults().threads)
+    input_order: int = field(default_factory=lambda: defaults().input_order)
+    step_control: StepControl | None = None
     engine_coupling: ClassVar[str] = "SSX_JACOBI"  # the ssx_coupling it runs as
     __signature__ = EngineDefaults()
 
@@ -74,6 +85,18 @@ class JacobiAlgorithm:
         refusal = engine_refusal(lambda system: lib().ssx_set_threads(system, self.threads))
         if refusal is not None:
             raise ValueError(f"{self.name}: {refusal}")
+        if isinstance(self.input_order, bool) or not isinstance(self.input_order, int):
+            raise ValueError(f"{self.name}: input_order must be an integer, got "
+                             f"{self.input_order!r}")
+        refusal = engine_refusal(lambda system: lib().ssx_set_input_order(system,
+                                                                          self.input_order))
+        if refusal is not None:
+            raise ValueError(f"{self.name}: {refusal}")
+        if self.step_control is not None:
+            if not isinstance(self.step_control, StepControl):
+                raise ValueError(f"{self.name}: step_control must be a StepControl or None, "
+                                 f"got {self.step_control!r}")
+            self.step_control.validate(self.name)
 
 
 @dataclass
