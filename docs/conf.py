@@ -72,6 +72,7 @@ nitpick_ignore = [
     ("py:class", "ComponentHistory"),
     ("py:class", "syssimx.system.results.HistoryView"),
     ("py:class", "syssimx.components.switch_regions.RegionBoundary"),
+    ("py:class", "syssimx.components.restart.Term"),
     # the parts of an FMUInfo (syssimx.fmu): the modelDescription as read, its variables
     ("py:class", "ModelDescription"),
     ("py:class", "ScalarVariable"),
