@@ -33,6 +33,13 @@ echo "== installing the Python dependencies"
 .venv/bin/python -m pip install -q --disable-pip-version-check --upgrade pip
 .venv/bin/python -m pip install -q --disable-pip-version-check -r scripts/requirements.txt
 
-echo "== building and installing syssimx"
+# Before 0.5.0 this project was installed under the distribution name "syssimx", which is
+# SysSimX's on PyPI; a virtual environment made by an older checkout still has it
+if .venv/bin/python -m pip show syssimx 2>/dev/null | grep -qx "Version: 0.1.0"; then
+  echo "== removing this project's old distribution 'syssimx' 0.1.0"
+  .venv/bin/python -m pip uninstall -y -q syssimx
+fi
+
+echo "== building and installing syssimx (distribution syssimx-engine)"
 .venv/bin/python -m pip install -q --disable-pip-version-check --no-build-isolation \
   -Cbuild-dir=build/release .

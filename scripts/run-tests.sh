@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs and builds syssimx, then runs every test: the C tests (meson test) in the release
 # build and again under AddressSanitizer, a bounded fuzz run of the modelDescription reader,
-# the Python tests (pytest) and the linter.
+# the linter, the documentation build (warnings are errors, every notebook executed) and the
+# Python tests (pytest, which also runs the examples of the documentation's Markdown pages).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 bash "$root/scripts/install.sh"
@@ -35,6 +36,12 @@ LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libubsan.s
 
 echo "== ruff"
 ruff check python tests examples benchmarks
+
+echo "== documentation"
+# A fresh build: Sphinx reports a page's warnings only when it reads the page. Internal links
+# are checked (-n); links to the web are not (no network here).
+rm -rf build/docs docs/api/generated
+python -m sphinx -W --keep-going -n -q -b html docs build/docs/html
 
 echo "== pytest"
 # pytest exits 5 when it collected nothing: that is a failure here too.

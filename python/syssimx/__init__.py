@@ -18,9 +18,6 @@ from .bridge.standalone import register_system_class
 if TYPE_CHECKING:
     from .system.system import System as SystemClass
 
-__version__ = "0.1.0"
-__version_info__ = tuple(int(part) for part in __version__.split("."))
-
 _MODULES = {
     "AlgebraicLoopError": ".errors",
     "CoSimComponent": ".components",
@@ -58,9 +55,11 @@ _MODULES = {
     "algorithms": ".algorithms",
     "osp": ".osp",  # OSP system structures: syssimx.osp.load(path)
     "ssp": ".ssp",  # SSP files: syssimx.ssp.load(path)
+    "__version__": "._version",
+    "__version_info__": "._version",
 }
 
-__all__ = [*_MODULES, "__version__", "__version_info__"]
+__all__ = list(_MODULES)
 
 __getattr__, __dir__ = lazy_names(__name__, _MODULES)
 

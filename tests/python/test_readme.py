@@ -21,3 +21,30 @@ def test_readme_example_runs_and_locates_the_event(tmp_path, monkeypatch) -> Non
     assert result.events[0].t == pytest.approx(EXACT_EVENT_TIME, abs=1e-8)
     assert result.statistics.localization_iterations <= 10
     assert (tmp_path / "pendulum.png").stat().st_size > 10_000
+
+
+def test_the_readme_is_a_front_page():
+    text = README.read_text()
+    lines = text.splitlines()
+    assert len(lines) < 150
+    # the two commands come first
+    first_block = re.search(r"```sh\n(.*?)```", text, re.S)
+    assert first_block and text.index(first_block.group(0)) < text.index("\n## ")
+    assert first_block.group(1).splitlines()[:2] == [
+        line for line in first_block.group(1).splitlines()
+        if line.startswith(("bash scripts/run-main.sh", "bash scripts/run-tests.sh"))]
+    # the platforms are said before the first section, the install names the distribution and
+    # the clash with SysSimX
+    assert "Linux x86-64" in text[:text.index("\n## ")]
+    install = text[text.index("## Install"):]
+    assert "syssimx-engine" in install and "SysSimX 0.4.3" in install
+    assert "side by side" in install and "libsundials-dev" in install
+
+
+def test_the_readmes_links_point_at_files_of_the_repository():
+    root = README.parent
+    targets = re.findall(r"\]\(([^)#]+)\)", README.read_text())
+    local = [target for target in targets if "://" not in target]
+    assert len(local) >= 8
+    missing = [target for target in local if not (root / target).exists()]
+    assert not missing

@@ -20,6 +20,6 @@ One module per command (`info`, `fmu_list`, `simulate`, `run`, `describe`, `swee
 adding its parser and its function; `main` puts them together.
 """
 
-from .main import main
+from .main import build_parser, main
 
-__all__ = ["main"]
+__all__ = ["build_parser", "main"]

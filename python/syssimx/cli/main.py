@@ -15,7 +15,7 @@ COMMANDS = (info, fmu_list, simulate, run, describe, sweep)
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line with ``argv`` (default: sys.argv[1:]); returns the exit code."""
-    parser = _parser()
+    parser = build_parser()
     try:
         args = parser.parse_args(argv)
     except SystemExit as exit_request:  # argparse has printed usage or help already
@@ -40,7 +40,9 @@ def _describe(error: Exception, args: argparse.Namespace) -> str:
     return f"{type(error).__name__} (with no message) in 'syssimx {args.command}{subject}'"
 
 
-def _parser() -> argparse.ArgumentParser:
+def build_parser() -> argparse.ArgumentParser:
+    """The parser of the `syssimx` command line, one subcommand per module of COMMANDS (also
+    what the documentation's command-line reference is generated from)."""
     parser = argparse.ArgumentParser(
         prog="syssimx",
         description="Hybrid co-simulation of FMI 1.0, 2.0 and 3.0 FMUs (Co-Simulation and "

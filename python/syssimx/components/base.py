@@ -77,7 +77,7 @@ class CoSimComponent:
 
     @property
     def t(self) -> float:
-        """The component's time: what it set last, or where its System's last run ended when
+        """The component's time, the one it set last or where its System's last run ended when
         that came later (a run does not touch every component)."""
         binding = self._binding
         if binding is not None and binding.plan.runs > self._t_runs:
@@ -109,6 +109,7 @@ class CoSimComponent:
         return [n for n, s in self.output_specs.items() if s.type in ENGINE_TYPES]
 
     def engine_inputs(self) -> list[str]:
+        """The names of the inputs the engine moves values into (every non-event input)."""
         return [n for n, s in self.input_specs.items() if s.type in ENGINE_TYPES]
 
     def why_no_port(self, name: str) -> str:
@@ -137,6 +138,7 @@ class CoSimComponent:
         return deepcopy(self._parameter_defaults or {})
 
     def set_parameters(self, **parameters: Any) -> None:
+        """Set parameters by name; they apply from the next initialize (or reinitialize)."""
         self._remember_default_parameters()
         for name, value in parameters.items():
             if name not in self.parameters:
@@ -146,6 +148,7 @@ class CoSimComponent:
             self.parameters[name] = value
 
     def get_parameters(self, *names: str) -> dict[str, Any]:
+        """The parameters named (all of them when none is named), by name."""
         unknown = [n for n in names if n not in self.parameters]
         if unknown:
             raise ConfigurationError(f"component {self.name!r} has no parameter {unknown[0]!r}; "
@@ -154,6 +157,7 @@ class CoSimComponent:
 
     # ---------------------------------------------------------------- inputs / outputs
     def set_inputs(self, signals: Mapping[str, Any], t: float | None = None) -> None:
+        """Set inputs by name: numbers, or pint quantities converted to the input's unit."""
         self._sync_ports()
         for name, value in signals.items():
             if name not in self.inputs:
@@ -164,6 +168,7 @@ class CoSimComponent:
             self._binding.plan.write_inputs(self)
 
     def get_outputs(self) -> dict[str, Any]:
+        """The current outputs by name, as pint quantities where the port has a unit."""
         self._sync_ports()
         return {name: port.get() for name, port in self.outputs.items()}
 
@@ -245,12 +250,17 @@ class CoSimComponent:
         a subclass may override this to keep extra data of its own."""
 
     def snapshot_state(self) -> Any:
+        """Override with restore_state to give the component rollback: return anything that
+        captures its state now."""
         raise NotImplementedError(f"{self.name}: snapshot_state is not implemented")
 
     def restore_state(self, snapshot: Any, t: float) -> None:
+        """Override with snapshot_state: return to `snapshot`, taken at time `t`."""
         raise NotImplementedError(f"{self.name}: restore_state is not implemented")
 
     def can_rollback(self) -> bool:
+        """Whether the hybrid algorithm can restore this component (needed by event
+        indicators)."""
         return _overrides(self, "snapshot_state") and _overrides(self, "restore_state")
 
     def why_no_rollback(self) -> str:

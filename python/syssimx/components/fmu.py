@@ -124,6 +124,7 @@ class FMUComponent(CoSimComponent):
 
     @property
     def can_get_set_state(self) -> bool:
+        """Whether the FMU declares canGetAndSetFMUstate (its own state save and restore)."""
         return self.fmu_interface.can_get_set_state
 
     @property
@@ -168,6 +169,7 @@ class FMUComponent(CoSimComponent):
         return float(self._input_starts[name]) if name in self._inputs_set else math.nan
 
     def value_reference(self, name: str) -> int:
+        """The FMU's value reference of the variable `name`."""
         known = self.info.value_references.get(name)
         return int(self.info.variables[name].valueReference) if known is None else known
 
@@ -408,14 +410,18 @@ class FMUComponent(CoSimComponent):
         self._require_binding().plan.read_outputs(self)
 
     def snapshot_state(self) -> Any:
+        """The FMU's state now (fmi2GetFMUstate / fmi3GetFMUState)."""
         return self.instance.getFMUstate()
 
     def restore_state(self, snapshot: Any, t: float) -> None:
+        """Return the FMU to `snapshot`, a state it had at time `t`."""
         self.instance.setFMUstate(snapshot)
         self.t = t
         self._update_output_states(t)
 
     def can_rollback(self) -> bool:
+        """Whether the FMU can save and restore its state, or a subclass overrides
+        snapshot_state and restore_state."""
         return self.can_get_set_state or super().can_rollback()
 
     def why_no_rollback(self) -> str:
@@ -465,6 +471,7 @@ class FMUComponent(CoSimComponent):
         return self._binding
 
     def reset(self) -> None:
+        """Free the FMU instance and forget the run: a later initialize starts afresh."""
         if self.instance.alive():
             self.instance.freeInstance()
         super().reset()

@@ -95,6 +95,7 @@ class Port:
         self._plain = not (self._real and spec.unit)
 
     def set(self, value: Any, t: float | None = None) -> None:
+        """Set the port's value (converted to its type), at time `t` if given."""
         self._raw = value if type(value) is float and self._real else self.spec.coerce(value)
         if t is not None:
             self.t_last = t
@@ -104,6 +105,7 @@ class Port:
         return self._reader() if self._reader is not None else self._raw
 
     def get(self, as_unit: str | None = None) -> Any:
+        """The value: a pint quantity where the port has a unit (in `as_unit` if given)."""
         if self._plain and self._reader is None:
             return self._raw
         value = self.spec.present(self.raw())
@@ -113,6 +115,7 @@ class Port:
 
     @property
     def value(self) -> Any:
+        """The value, as get() returns it."""
         return self.get()
 
     def __repr__(self) -> str:

@@ -66,6 +66,7 @@ class MemberResult:
 
     @property
     def ok(self) -> bool:
+        """Whether the member's run completed."""
         return self.status == "ok"
 
 

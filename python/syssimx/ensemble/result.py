@@ -44,6 +44,8 @@ class EnsembleResult:
 
     @property
     def failed(self) -> list[MemberResult]:
+        """The members that did not complete, each with its status, reason and the samples it
+        recorded before."""
         return [member for member in self.members if not member.ok]
 
     @property
@@ -54,10 +56,12 @@ class EnsembleResult:
     # ------------------------------------------------------------------ xarray
     @property
     def dataset(self) -> Any:
-        """member x sample: each member's own time axis (see the module's description), the
-        parameters as member coordinates, the events as member x event variables, and per
-        member its status, error, termination, worker, wall time and run statistics (-1 for
-        a member whose run did not complete)."""
+        """The results as an xarray Dataset, member x sample.
+
+        Each member keeps its own time axis (see the module's description); the parameters are
+        member coordinates, the events member x event variables, and per member there are its
+        status, error, termination, worker, wall time and run statistics (-1 for a member whose
+        run did not complete)."""
         if self._dataset is None:
             self._dataset = self._build_dataset()
         return self._dataset
@@ -163,7 +167,8 @@ class EnsembleResult:
 
     @property
     def events(self) -> Any:
-        """One row per member and event: member, the parameters, time, micro, source."""
+        """The located events as a DataFrame, one row per member and event (member, the
+        parameters, time, micro, source)."""
         import pandas as pd
 
         rows = [{"member": m.index, **{n: m.parameters[n] for n in self.parameters},

@@ -58,8 +58,8 @@ class FMUInstance:
 
     @property
     def generation(self) -> int:
-        """The instantiations so far (a reset keeps the instance: its FMU states stay valid);
-        -1 once the FMU is released."""
+        """The instantiations so far (a reset keeps the instance, so its FMU states stay
+        valid); -1 once the FMU is released."""
         if self._fmu is None:
             return -1
         self._get_counters(self._fmu, self._counters)

@@ -23,6 +23,7 @@ class Connection:
     convert_units: bool = True
 
     def key(self) -> tuple[str, str, str, str]:
+        """(source component, source port, destination component, destination port)."""
         return (self.src_comp, self.src_port, self.dst_comp, self.dst_port)
 
 

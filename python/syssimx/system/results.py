@@ -227,10 +227,12 @@ class SimulationResult:
 
     @property
     def component_names(self) -> list[str]:
+        """The names of the components with recorded samples."""
         return list(self._history)
 
     @property
     def histories(self) -> dict[str, tuple[np.ndarray, dict[str, np.ndarray]]]:
+        """Every component's samples, ``{name: (t, {port: values})}``."""
         return {name: self._history[name] for name in self._history}
 
     def __getitem__(self, component: str) -> tuple[np.ndarray, dict[str, np.ndarray]]:

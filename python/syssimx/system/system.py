@@ -65,6 +65,10 @@ class System:
     # ------------------------------------------------------------------ algorithm
     @property
     def algorithm(self) -> Algorithm:
+        """The master algorithm the next initialize uses.
+
+        The one set, else Gauss-Seidel; a system with event indicators gets a HybridAlgorithm
+        around its coupling."""
         if not isinstance(self._algorithm, HybridAlgorithm) and self._has_indicators():
             chosen = self._algorithm if self._algorithm_chosen else default_coupling()
             assert isinstance(chosen, JacobiAlgorithm)
@@ -77,6 +81,8 @@ class System:
         self.set_algorithm(algorithm)
 
     def set_algorithm(self, algorithm: Algorithm) -> None:
+        """Use `algorithm` (a JacobiAlgorithm, GaussSeidelAlgorithm or HybridAlgorithm) from
+        the next initialize on; its options are checked now."""
         if not isinstance(algorithm, JacobiAlgorithm | HybridAlgorithm):
             raise ConfigurationError(f"{self.name}: unknown algorithm {algorithm!r}; use "
                                      "JacobiAlgorithm, GaussSeidelAlgorithm or HybridAlgorithm")
@@ -89,6 +95,7 @@ class System:
 
     # ------------------------------------------------------------------ building
     def add_component(self, component: CoSimComponent) -> None:
+        """Add a component; its name must be unique in the system."""
         if not isinstance(component, CoSimComponent):
             raise ConfigurationError(f"{self.name}: {component!r} is not a CoSimComponent")
         if component.name in self.components:
@@ -143,6 +150,8 @@ class System:
         self.is_initialized = False
 
     def add_event_connection(self, connection: EventConnection) -> None:
+        """Route an event indicator of one component to an event input of another (or the
+        same): when the indicator fires, that input's handler runs."""
         src, dst = self._component(connection.src_comp), self._component(connection.dst_comp)
         where = "{}.{} -> {}.{}".format(*connection.key())
         if connection.src_port not in src.event_indicators:
@@ -464,6 +473,8 @@ class System:
         return write_ssp(self, path, Experiment(start_time, stop_time, step_size))
 
     def describe(self) -> str:
+        """The system's structure as text: components and their ports with units, connections,
+        event connections, execution order and algebraic loops."""
         from ..graph.describe import describe_system
 
         return describe_system(self)

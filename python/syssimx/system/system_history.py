@@ -40,9 +40,11 @@ class SystemHistory:
         self._system = weakref.ref(system) if system is not None else None
 
     def get_event_history(self, component: str, event: str) -> list[DenseTime]:
+        """The instants at which `component`'s indicator `event` fired."""
         return [e.time for e in self.events if (e.component, e.event) == (component, event)]
 
     def get_all_event_histories(self) -> dict[tuple[str, str], list[DenseTime]]:
+        """The instants of every indicator that fired: {(component, event): [DenseTime]}."""
         histories: dict[tuple[str, str], list[DenseTime]] = {}
         for e in self.events:
             histories.setdefault((e.component, e.event), []).append(e.time)

@@ -9,6 +9,7 @@ from typing import ClassVar
 
 from ...bridge.options import engine_refusal
 from ...engine import defaults, enum_name, enum_values, ffi, lib
+from .signature import EngineDefaults
 from .step_control import StepControl
 
 JACOBIAN_PREFIX = "SSX_JACOBIAN_"
@@ -21,22 +22,38 @@ def loop_jacobians() -> dict[str, int]:
 
 @dataclass
 class JacobiAlgorithm:
-    """Every component steps from the inputs of the start of the macro step.
+    """Jacobi coupling: every component steps from the inputs of the start of the macro step.
 
-    tolerance, max_iter and damping configure the solution of algebraic loops at each
-    communication point. loop_jacobian: "auto" takes Newton's Jacobian from
-    fmi2GetDirectionalDerivative for the inputs of FMUs that provide it and from finite
-    differences elsewhere; "finite_differences" uses finite differences throughout.
-    threads: FMU components step on this many threads in C (the calling thread and
-    threads - 1 workers, see ssx_set_threads); Python components and FMUs that declare
-    canBeInstantiatedOnlyOncePerProcess stay on the calling thread, and the results are those
-    of one thread.
+    Every default is the engine's (``ssx_get_defaults``), and the engine judges the values.
 
-    input_order: 0 holds every input over a communication step; 1 or 2 hands FMUs that
-    declare canInterpolateInputs the first (and second) time derivative of each connected Real
-    input, from the driving FMU's output derivatives where it declares them, else from the
-    last communication points (see ssx_set_input_order). step_control: a StepControl chooses
-    the communication steps by the coupling error; None steps on the run's grid."""
+    Parameters
+    ----------
+    tolerance : float
+        Newton's tolerance for the algebraic loops solved at each communication point.
+    max_iter : int
+        Newton iterations per loop solve.
+    damping : float
+        Newton's step factor, 0 < damping <= 1.
+    name : str
+        The algorithm's name in reports.
+    loop_jacobian : str
+        ``"auto"`` takes Newton's Jacobian from ``fmi2GetDirectionalDerivative`` for the inputs
+        of FMUs that provide it and from finite differences elsewhere;
+        ``"finite_differences"`` uses finite differences throughout.
+    threads : int
+        FMU components step on this many threads in C (the calling thread and threads - 1
+        workers, see ``ssx_set_threads``). Python components and FMUs that declare
+        canBeInstantiatedOnlyOncePerProcess stay on the calling thread; the results are those
+        of one thread.
+    input_order : int
+        0 holds every input over a communication step; 1 or 2 hands FMUs that declare
+        canInterpolateInputs the first (and second) time derivative of each connected Real
+        input, from the driving FMU's output derivatives where it declares them, else from the
+        last communication points (see ``ssx_set_input_order``).
+    step_control : StepControl or None
+        A StepControl chooses the communication steps by the coupling error; None steps on the
+        run's grid.
+    """
 
     tolerance: float = field(default_factory=lambda: defaults().loop_tolerance)
     max_iter: int = field(default_factory=lambda: defaults().loop_max_iterations)
@@ -48,6 +65,7 @@ class JacobiAlgorithm:
     input_order: int = field(default_factory=lambda: defaults().input_order)
     step_control: StepControl | None = None
     engine_coupling: ClassVar[str] = "SSX_JACOBI"  # the ssx_coupling it runs as
+    __signature__ = EngineDefaults()
 
     def coupling_value(self) -> int:
         return int(getattr(lib(), self.engine_coupling))

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 from ...bridge.options import engine_refusal
 from ...engine import defaults, enum_name, enum_values, lib
 from .coupling import JacobiAlgorithm, default_coupling
+from .signature import EngineDefaults
 
 if TYPE_CHECKING:
     from ..event_record import EventRecord
@@ -29,26 +30,46 @@ def locator_methods() -> dict[str, int]:
 
 @dataclass
 class HybridAlgorithm:
-    """Options of the hybrid algorithm.
+    """Options of the hybrid algorithm: events located by rollback, handled between steps.
 
-    tol_time: width of the final bracket around an event; tol_value: |indicator| accepted as
-    zero; max_iter: localization iterations per event; max_microsteps: handling rounds at one
-    instant before a ZenoError; record_internal_steps: also record the localization trials;
-    method: "illinois" (default: Illinois held within two iterations of bisection's count),
-    "bisection" or "illinois_unguarded" (Illinois alone, for comparison); zeno_min_interval: two
-    firings of one indicator closer than this are chattering (0: the engine's default rule, see
-    ssx_set_hybrid_options); coupling: the continuous coupling between events.
+    Every default is the engine's (``ssx_get_defaults``), and the engine judges the values.
 
-    SysSimX's options, accepted with their meaning; each works around a fault of SysSimX's
-    algorithm that the engine does not have. sign_tolerance (>= 0): SysSimX treats
-    |indicator| below it as zero so that values resting near zero do not fire again; the
-    engine tracks each indicator's side, so a handled crossing fires again only on a real
-    crossing (no effect here). max_deferrals (>= 0): SysSimX holds back a located event that
-    its accepted trajectory has not reached yet; the engine locates on the accepted
-    trajectory itself, so no event is ever premature (no effect here). raise_on_missed_event:
-    SysSimX warns, or raises when true, when its accepted trajectory crosses where its trial
-    did not; the two are the same trajectory here, so `missed_events` stays empty.
-    gauss_seidel_algorithm: SysSimX's name of `coupling`.
+    Parameters
+    ----------
+    tol_time : float
+        Width in seconds of the final bracket around an event.
+    tol_value : float
+        An indicator whose absolute value is below this counts as zero.
+    max_iter : int
+        Localization iterations per event.
+    max_microsteps : int
+        Handling rounds at one instant (superdense time) before a ZenoError.
+    record_internal_steps : bool
+        Also record the localization trials in the history.
+    method : str
+        ``"illinois"`` (Illinois held within two iterations of bisection's count),
+        ``"bisection"`` or ``"illinois_unguarded"`` (Illinois alone, for comparison).
+    zeno_min_interval : float
+        Two firings of one indicator closer than this are chattering (0: the engine's default
+        rule, see ``ssx_set_hybrid_options``).
+    coupling : JacobiAlgorithm or GaussSeidelAlgorithm
+        The continuous coupling between events.
+    name : str
+        The algorithm's name in reports.
+    sign_tolerance : float
+        SysSimX's option (>= 0): SysSimX treats an indicator below it as zero so that values
+        resting near zero do not fire again. The engine tracks each indicator's side, so a
+        handled crossing fires again only on a real crossing: no effect here.
+    max_deferrals : int
+        SysSimX's option (>= 0): SysSimX holds back a located event that its accepted
+        trajectory has not reached yet. The engine locates on the accepted trajectory itself,
+        so no event is ever premature: no effect here.
+    raise_on_missed_event : bool
+        SysSimX's option: SysSimX warns, or raises when true, when its accepted trajectory
+        crosses where its trial did not. The two are the same trajectory here, so
+        ``missed_events`` stays empty.
+    gauss_seidel_algorithm : JacobiAlgorithm or GaussSeidelAlgorithm, optional
+        SysSimX's name of ``coupling`` (also an attribute).
     """
 
     tol_time: float = field(default_factory=lambda: defaults().tol_time)
@@ -66,6 +87,7 @@ class HybridAlgorithm:
     raise_on_missed_event: bool = False
     gauss_seidel_algorithm: InitVar[JacobiAlgorithm | None] = None
     missed_events: list = field(init=False, default_factory=list, repr=False)
+    __signature__ = EngineDefaults()
 
     def __post_init__(self, gauss_seidel_algorithm: JacobiAlgorithm | None) -> None:
         if gauss_seidel_algorithm is not None:

@@ -14,8 +14,8 @@ from ...engine import defaults, ffi, lib
 @dataclass
 class StepControl:
     """Chooses the communication steps inside each interval of the run's grid (dt) by the
-    coupling error: the largest over the connections of |driver output at t + h - the input's
-    value at t + h| / (atol + rtol |output|), the difference between what an input was given
+    coupling error: the largest over the connections of abs(driver output at t + h - the input's
+    value at t + h) / (atol + rtol abs(output)), the difference between what an input was given
     over the step and what its driver really reached.
 
     rollback=True: a step whose error exceeds 1 is taken again with a shorter step, from the

@@ -1,0 +1,92 @@
+"""Sphinx configuration of the syssimx documentation (MyST Markdown, notebooks executed by
+MyST-NB at every build, the API reference generated from the docstrings)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import syssimx
+
+DOCS = Path(__file__).resolve().parent
+sys.path.insert(0, str(DOCS / "_ext"))
+
+project = "syssimx"
+author = "the syssimx developers"
+copyright = "2026, the syssimx developers"  # noqa: A001 (Sphinx's name)
+release = syssimx.__version__
+version = ".".join(release.split(".")[:2])
+
+extensions = [
+    "myst_nb",
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.napoleon",
+    "sphinx.ext.mathjax",
+    "cli_reference",
+    "public_names",
+]
+
+exclude_patterns = ["_build", "jupyter_execute", "**.ipynb_checkpoints"]
+templates_path = ["_templates"]
+
+# Markdown and notebooks: every notebook (a page with a kernelspec) runs at every build, in a
+# temporary folder, and an error in any cell fails the build
+myst_enable_extensions = ["colon_fence", "deflist", "dollarmath", "amsmath"]
+myst_heading_anchors = 3
+nb_execution_mode = "force"
+nb_execution_raise_on_error = True
+nb_execution_show_tb = True
+nb_execution_timeout = 600
+nb_execution_in_temp = True
+nb_merge_streams = True
+
+# API reference: numpy-style docstrings, one page per public name
+autosummary_generate = True
+autosummary_imported_members = False
+autodoc_default_options = {"members": True, "show-inheritance": True}
+autodoc_member_order = "bysource"
+autodoc_typehints = "signature"
+autodoc_preserve_defaults = False
+# numpy style is the norm; older docstrings in Google style ("Args:") render as well
+napoleon_google_docstring = True
+napoleon_numpy_docstring = True
+napoleon_use_rtype = False
+napoleon_use_ivar = True  # "Attributes:" as fields: dataclass fields have entries of their own
+
+nitpicky = True
+# types from outside syssimx that the offline build cannot link (no intersphinx inventories)
+nitpick_ignore_regex = [
+    ("py:.*", r"(numpy|np|nx|pint|pandas|pd|xarray|xr|dask|distributed|networkx|graphviz|"
+              r"matplotlib|scipy|fmpy|cffi|collections|typing|pathlib|os|types|logging|"
+              r"argparse|concurrent|enum|dataclasses|io)\..*"),
+    ("py:.*", r"(Any|Callable|Iterable|Iterator|Mapping|Sequence|MutableMapping|Path|"
+              r"NDArray|ndarray|Quantity|Unit|DataFrame|Dataset|Client|Figure|Axes|Digraph|"
+              r"TextIO|Self|Literal|ClassVar|InitVar|Generator|EllipsisType|PathLike|"
+              r"Future|LocalCluster|UnitRegistry|ModuleType|Namespace|ArgumentParser|"
+              r"optional|default|array_like|callable|file-like)"),
+]
+
+# classes public methods return whose names are not exported (reached through the objects)
+nitpick_ignore = [
+    ("py:class", "ComponentHistory"),
+    ("py:class", "syssimx.system.results.HistoryView"),
+    ("py:class", "syssimx.components.switch_regions.RegionBoundary"),
+    ("py:class", "syssimx.components.restart.Term"),
+    # the parts of an FMUInfo (syssimx.fmu): the modelDescription as read, its variables
+    ("py:class", "ModelDescription"),
+    ("py:class", "ScalarVariable"),
+    ("py:class", "FMI3Variable"),
+    ("py:class", "Parameter"),
+    ("py:class", "FMUInterface"),
+    ("py:class", "Standard"),
+]
+
+html_theme = "sphinx_book_theme"
+html_title = f"syssimx {release}"
+html_theme_options = {
+    "show_toc_level": 2,
+    "home_page_in_toc": True,
+    "use_download_button": False,
+}
+html_last_updated_fmt = None
