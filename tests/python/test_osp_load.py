@@ -78,17 +78,28 @@ ECCO = """<EccoConfiguration>
 </OspSystemStructure>"""
 
 
-def test_ecco_runs_at_the_base_step_with_one_warning(tmp_path: Path) -> None:
-    """Its configuration is kept (for the adaptive step), the run uses BaseStepSize."""
+def test_ecco_adapts_the_step_to_the_coupling_error_with_one_warning(tmp_path: Path) -> None:
+    """<Algorithm>ecco runs Jacobi with non-iterative step control bounded by the
+    <EccoConfiguration>; ECCO's energy-residual controller is named as not read."""
     path = write_osp(tmp_path, structure("ecco").replace("</OspSystemStructure>", ECCO))
     imported, caught = read_quietly(path)
     assert imported.algorithm == "ecco" and imported.experiment.step_size == 0.01
     assert imported.ecco == {"SafetyFactor": 0.99, "StepSize": 1e-4, "MinimumStepSize": 1e-5,
                              "MaximumStepSize": 0.01, "RelativeTolerance": 1e-6}
-    assert caught == [f"<Algorithm> ecco (libcosim's energy-based adaptive step) is not "
-                      f"supported and is ignored: {path}: runs with the fixed step "
-                      "BaseStepSize 0.01"]
-    with pytest.raises(OSPError, match=r"<Algorithm> ecco .* is not supported \(strict\)"):
+    control = imported.system.algorithm.step_control
+    assert type(imported.system.algorithm) is JacobiAlgorithm and not control.rollback
+    assert (control.safety, control.initial_step, control.min_step, control.max_step,
+            control.rtol) == (0.99, 1e-4, 1e-5, 0.01, 1e-6)
+    assert len(caught) == 1 and caught[0].startswith(
+        "<Algorithm> ecco's energy-residual PI controller is not supported and is ignored: ")
+    assert "ProportionalGain" in caught[0]
+    system = imported.system
+    system.initialize(0.0)
+    statistics = system.run(0.0, 0.1, 0.01).statistics
+    # the steps adapted inside the grid: more accepted steps than grid intervals, none rejected
+    assert statistics.accepted_steps > 10 and statistics.rejected_steps == 0
+    assert statistics.smallest_step < statistics.largest_step <= 0.01 + 1e-12
+    with pytest.raises(OSPError, match=r"<Algorithm> ecco's .* is not supported \(strict\)"):
         read(path, strict=True)
 
 
