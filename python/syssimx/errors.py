@@ -62,3 +62,8 @@ class AlgebraicLoopError(SimulationError):
 class EngineMismatchError(SysSimXError, ImportError):
     """The engine library and its cffi module come from different engine headers (a stale
     build): calls between them could pass the wrong arguments."""
+
+
+class MissingDependencyError(SysSimXError, ModuleNotFoundError):
+    """An optional library a feature needs is not installed; the message names the extra that
+    installs it."""

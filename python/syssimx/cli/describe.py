@@ -8,7 +8,7 @@ from typing import Any, TextIO
 from .common import choose, is_ssp, working_directory_importable
 
 
-def add_command(commands: Any) -> None:
+def add_command(commands: Any) -> argparse.ArgumentParser:
     describe = commands.add_parser("describe", help="print the structure of a system "
                                    "description: components, connections, order, loops")
     describe.add_argument("config", help="a YAML or JSON system description, or an SSP "
@@ -16,6 +16,7 @@ def add_command(commands: Any) -> None:
     describe.add_argument("--initialize", action="store_true",
                           help="initialize the system first (at run.t0, else 0)")
     describe.set_defaults(run=run_describe)
+    return describe
 
 
 def run_describe(args: argparse.Namespace, out: TextIO) -> None:

@@ -7,6 +7,7 @@ import sys
 from collections.abc import Sequence
 
 from .. import __version__
+from ..core.suggest import did_you_mean
 from . import describe, fmu_list, info, run, simulate, sweep
 
 COMMANDS = (info, fmu_list, simulate, run, describe, sweep)
@@ -16,7 +17,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line with ``argv`` (default: sys.argv[1:]); returns the exit code."""
     parser = _parser()
     try:
-        args = parser.parse_args(argv)
+        args, unknown = parser.parse_known_args(argv)
+        if unknown:  # the subcommand's usage, not the top level's, with the close options
+            command_parser = getattr(args, "command_parser", parser)
+            command_parser.error(_unrecognized(command_parser, unknown))
     except SystemExit as exit_request:  # argparse has printed usage or help already
         return int(exit_request.code or 0)
     try:
@@ -35,13 +39,25 @@ def _describe(error: Exception, args: argparse.Namespace) -> str:
     return f"{type(error).__name__} (with no message) in 'syssimx {args.command}{subject}'"
 
 
+def _unrecognized(parser: argparse.ArgumentParser, unknown: list[str]) -> str:
+    message = f"unrecognized arguments: {' '.join(unknown)}"
+    options = [o for action in parser._actions for o in action.option_strings]
+    for word in unknown:
+        if word.startswith("--"):
+            message += did_you_mean(word.split("=")[0], options)
+    return message
+
+
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="syssimx",
-        description="Hybrid co-simulation of FMI 2.0 Co-Simulation FMUs.",
+        description="Hybrid co-simulation of FMUs (FMI 2.0 and 3.0, Co-Simulation and Model "
+                    "Exchange): inspect an FMU, simulate it with FMPy's options, run, describe "
+                    "or sweep a system description or an SSP.",
     )
     parser.add_argument("--version", action="version", version=f"syssimx {__version__}")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     for command in COMMANDS:
-        command.add_command(commands)
+        command_parser = command.add_command(commands)
+        command_parser.set_defaults(command_parser=command_parser)
     return parser

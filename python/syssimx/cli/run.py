@@ -9,19 +9,17 @@ from typing import Any, TextIO
 
 from ..system.algorithm_table import ALGORITHM_NAMES, algorithm_class
 from .common import CommandError, choose, is_ssp, working_directory_importable
+from .options import add_output_file, add_run_limits, add_time_options
 
 
-def add_command(commands: Any) -> None:
+def add_command(commands: Any) -> argparse.ArgumentParser:
     run = commands.add_parser("run", help="build, initialize and run a system description")
     run.add_argument("config", help="a YAML or JSON system description, or an SSP (.ssp "
                      "archive or .ssd file)")
-    run.add_argument("--t0", type=float, default=None, help="start time in s (default: the "
-                     "description's run.t0)")
-    run.add_argument("--tf", type=float, default=None, help="end time in s (default: run.tf)")
-    run.add_argument("--dt", type=float, default=None, help="macro step in s (default: run.dt)")
-    run.add_argument("--output", "-o", type=Path, default=None, metavar="CSV",
-                     help="write the results to this CSV file (long: component, port, time, "
-                          "value, unit)")
+    add_time_options(run, "the description's run entry; for an SSP its DefaultExperiment")
+    add_output_file(run, "write the results to this CSV file (long: component, port, time, "
+                         "micro, value, unit)")
+    add_run_limits(run)
     run.add_argument("--algorithm", choices=ALGORITHM_NAMES, default=None,
                      help="the master algorithm (default: the description's; for an SSP "
                           "gauss_seidel)")
@@ -31,36 +29,63 @@ def add_command(commands: Any) -> None:
     run.add_argument("--quiet", action="store_true",
                      help="no progress bar (there is none either when not on a terminal)")
     run.set_defaults(run=run_config)
+    return run
 
 
 def run_config(args: argparse.Namespace, out: TextIO) -> None:
+    from ..errors import SimulationTimeoutError
+
     bar = not args.quiet and sys.stdout.isatty() and sys.stderr.isatty()
-    options = {"progress": True} if bar else {}
+    options: dict[str, Any] = {"progress": True} if bar else {}
+    options.update({k: v for k, v in (("timeout", args.timeout),
+                                      ("output_interval", args.output_interval))
+                    if v is not None})
     if is_ssp(args.config):
-        result = _run_ssp(args, options)
+        system, (t0, tf, dt) = _prepare_ssp(args)
     else:
         from ..system.config_source import Source, read_file
-        from ..system.loader import build_system, run_from_config, run_settings
+        from ..system.loader import build_system, run_settings
 
         with working_directory_importable():
-            if args.algorithm is None and args.threads is None:
-                result = run_from_config(args.config, t0=args.t0, tf=args.tf, dt=args.dt,
-                                         progress=options.get("progress"))
-            else:
-                settings = run_settings(Source(Path(args.config)), read_file(args.config),
-                                        {"t0": args.t0, "tf": args.tf, "dt": args.dt})
-                system = build_system(args.config)
-                _choose_algorithm(system, args)
-                system.initialize(settings["t0"])
-                result = system.run(settings["t0"], settings["tf"], settings["dt"], **options)
+            settings = run_settings(Source(Path(args.config)), read_file(args.config),
+                                    {"t0": args.start_time, "tf": args.stop_time,
+                                     "dt": args.step_size})
+            system = build_system(args.config)
+            _choose_algorithm(system, args)
+            t0, tf, dt = settings["t0"], settings["tf"], settings["dt"]
+    system.initialize(t0)
+    try:
+        result = system.run(t0, tf, dt, **options)
+    except SimulationTimeoutError as error:  # what was recorded is written first
+        if args.output is not None:
+            from ..system.results import SimulationResult
+
+            written = SimulationResult.from_system(system, t0, tf, dt).to_csv(args.output)
+            raise CommandError(f"{error} (--timeout {args.timeout:g} s); the samples up to "
+                               f"there are written to {written}") from error
+        raise
     out.write(f"Completed '{result.system_name}': t in [{result.t0}, {result.tf}] s, "
               f"dt = {result.dt} s, algorithm = {result.algorithm}, "
               f"wall time = {result.wall_time:.3f} s\n")
+    if len(result.events):
+        out.write(_event_summary(result.events) + "\n")
     termination = result.termination
     if termination is not None:  # a component asked to stop: the end of the run, not a failure
         out.write(f"{termination}\n")
     if args.output is not None:
         out.write(f"Results written to {result.to_csv(args.output)}\n")
+
+
+EVENTS_LISTED = 5
+
+
+def _event_summary(events: Any) -> str:
+    """"Events: 3 (first at t = 0.465 P.wall_hit, ...)": the count and the first few."""
+    shown = ", ".join(f"t = {e.t:.10g} {e.component}.{e.event}"
+                      for e in events[:EVENTS_LISTED])
+    more = ", ..." if len(events) > EVENTS_LISTED else ""
+    first = "at" if len(events) == 1 else f"first {min(len(events), EVENTS_LISTED)} at"
+    return f"Events: {len(events)} ({first} {shown}{more})"
 
 
 def _choose_algorithm(system: Any, args: argparse.Namespace) -> None:
@@ -75,21 +100,22 @@ def _choose_algorithm(system: Any, args: argparse.Namespace) -> None:
     system.set_algorithm(algorithm)
 
 
-def _run_ssp(args: argparse.Namespace, options: dict[str, Any]) -> Any:
-    """An SSP's system over its default experiment (start 0 when it has none); the stop time
-    and the step come from the experiment, the OSP fixed-step annotation, or the options."""
+def _prepare_ssp(args: argparse.Namespace) -> tuple[Any, tuple[float, float, float]]:
+    """An SSP's system and its times: over its default experiment (start 0 when it has none);
+    the stop time and the step come from the experiment, the OSP fixed-step annotation, or
+    the options."""
     from ..ssp import read
 
     imported = read(args.config)
     experiment = imported.experiment
-    t0 = choose(args.t0, experiment.start_time, 0.0)
-    tf = args.tf if args.tf is not None else experiment.stop_time
-    dt = args.dt if args.dt is not None else experiment.step_size
+    t0 = choose(args.start_time, experiment.start_time, 0.0)
+    tf = args.stop_time if args.stop_time is not None else experiment.stop_time
+    dt = args.step_size if args.step_size is not None else experiment.step_size
     if tf is None or dt is None:
-        missing = " and ".join(o for o, v in (("--tf", tf), ("--dt", dt)) if v is None)
+        missing = " and ".join(o for o, v in (("--stop-time", tf), ("--step-size", dt))
+                               if v is None)
         raise CommandError(f"{args.config}: give {missing}: the SSP has no "
                            + ("stop time in its DefaultExperiment" if tf is None else
                               "step size (an OSP FixedStepAlgorithm baseStepSize annotation)"))
     _choose_algorithm(imported.system, args)
-    imported.system.initialize(t0)
-    return imported.system.run(t0, float(tf), float(dt), **options)
+    return imported.system, (t0, float(tf), float(dt))

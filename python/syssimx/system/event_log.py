@@ -59,3 +59,21 @@ class EventLog(list["EventRecord"]):
 
     def get(self, key: tuple[str, str], default: Any = None) -> Any:
         return self._by_source().get(key, default)
+
+    def trials(self) -> Any:
+        """Every localization trial in a table (needs pandas): one row per trial, columns
+        event (the index in this log), component, name, trial, t, a, b, value."""
+        from ..extras import require
+
+        pd = require("pandas", "EventLog.trials")
+        rows = [(index, record.component, record.event, number, trial.t, trial.a, trial.b,
+                 trial.value)
+                for index, record in enumerate(self)
+                for number, trial in enumerate(record.trials)]
+        return pd.DataFrame(rows, columns=["event", "component", "name", "trial", "t", "a",
+                                           "b", "value"])
+
+    def _repr_html_(self) -> str:
+        from .result_display import events_html
+
+        return events_html(self, limit=None)

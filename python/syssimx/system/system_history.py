@@ -78,7 +78,8 @@ class SystemHistory:
         target = Path(filepath)
         target.parent.mkdir(parents=True, exist_ok=True)
         if long_format:
-            return csv_export.write_long(target, chosen, units)
+            return csv_export.write_long(target, chosen, units,
+                                         self._recording_system()._plan.history().micro())
         t = next(iter(chosen.values()))[0] if chosen else np.empty(0)
         signals = {f"{n}.{p}": v for n, (_, ports) in chosen.items() for p, v in ports.items()}
         signal_units = {f"{n}.{p}": units[n][p] for n, (_, ports) in chosen.items()

@@ -6,6 +6,7 @@ pyplot's global figure list.
 
 from __future__ import annotations
 
+import io
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -13,6 +14,17 @@ from typing import Any
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+
+
+class ResultFigure(Figure):
+    """A matplotlib Figure that a notebook shows as an image by itself: without pyplot, no
+    `%matplotlib inline` registers a display for it."""
+
+    def _repr_png_(self) -> bytes:
+        buffer = io.BytesIO()
+        self.savefig(buffer, format="png", dpi=90)
+        return buffer.getvalue()
+
 
 EVENT_LINE = {"color": "#c0392b", "linestyle": "--", "linewidth": 1.0, "alpha": 0.8}
 
@@ -23,7 +35,10 @@ def plot_result(
     path: str | Path | None = None,
     events: bool = True,
 ) -> Figure:
-    """Plot ``signals`` ("Component.port") of ``result``; write a PNG when ``path`` is given.
+    """Plot ``signals`` ("Component.port") of ``result``; write an image when ``path`` is given,
+    in the format its suffix names (.png, .svg, .pdf, ...; PNG without one), as matplotlib does.
+    The figure is returned, kept out of pyplot's list of figures (so it is not shown twice),
+    and a notebook displays it as the last value of a cell.
 
     Signals sharing a unit share a subplot; a signal without a unit gets its own. With
     ``events``, every event instant of the run is a dashed vertical line.
@@ -33,7 +48,7 @@ def plot_result(
             optionally ``units`` ({component: {port: unit}}) and ``events`` (records with
             ``t``, ``component``, ``name``).
         signals: what to plot, e.g. ``["P.theta", "P.omega"]``.
-        path: where to write the PNG.
+        path: where to write the image.
         events: mark the event instants.
 
     Raises:
@@ -48,7 +63,7 @@ def plot_result(
             (signal, t, values, unit)
         )
 
-    figure = Figure(figsize=(8.0, 1.0 + 2.4 * len(panels)), layout="constrained")
+    figure = ResultFigure(figsize=(8.0, 1.0 + 2.4 * len(panels)), layout="constrained")
     FigureCanvasAgg(figure)
     axes = figure.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
     instants = _event_instants(result) if events else []
@@ -67,7 +82,7 @@ def plot_result(
     if title:
         figure.suptitle(str(title))
     if path is not None:
-        figure.savefig(Path(path), format="png", dpi=110)
+        figure.savefig(Path(path), dpi=110)
     return figure
 
 
