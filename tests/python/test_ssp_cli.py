@@ -51,8 +51,8 @@ def test_an_ssp_without_stop_time_or_step_asks_for_them(
     path = coupled_pendulums(JacobiAlgorithm()).to_ssp(tmp_path / "p.ssp")
     assert main(["run", str(path), "--quiet"]) == 1
     assert capsys.readouterr().err == (
-        f"syssimx: error: {path}: give --stop-time and --step-size: the SSP has no stop time in its "
-        "DefaultExperiment\n")
+        f"syssimx: error: {path}: give --stop-time and --step-size: the SSP has no stop time "
+        "in its DefaultExperiment\n")
 
 
 def test_describe_an_ssp(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
