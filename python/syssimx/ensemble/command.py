@@ -12,6 +12,7 @@ from typing import Any, TextIO
 from ..errors import ConfigurationError, SimulationError
 from .api import sweep
 from .members import Scalar, parse_values
+from .result import check_writer
 from .system_source import SYSTEM_FILE_SUFFIXES, ShippedFunction
 
 
@@ -28,6 +29,8 @@ def parameter_values(text: str) -> tuple[str, list[Scalar]]:
 
 def run_sweep(args: argparse.Namespace, out: TextIO) -> None:
     """Run the sweep the arguments describe, write the results, list the failed members."""
+    if args.output is not None:
+        check_writer(args.output)  # before the members run: their work is never lost
     result = sweep(resolve_system(args.system), dict(args.parameters), mode=args.mode,
                    t0=args.start_time, tf=args.stop_time, dt=args.step_size,
                    scheduler=args.scheduler, workers=args.workers,

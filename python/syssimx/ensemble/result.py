@@ -10,16 +10,20 @@ event instants between grid points are left out of that view only.
 
 from __future__ import annotations
 
+import importlib.util
+import os
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from ..errors import ConfigurationError
+from ..errors import ConfigurationError, MissingDependencyError
+from ..extras import install_hint, require
 from .member import STATISTICS, MemberResult
 
 WRITERS = (".csv", ".parquet", ".nc")
+MEMBERS_SHOWN = 10  # members listed in a notebook's table; the rest are counted
 
 
 class EnsembleResult:
@@ -35,6 +39,24 @@ class EnsembleResult:
     def __repr__(self) -> str:
         return (f"EnsembleResult({len(self.members)} members, {len(self.failed)} failed, "
                 f"parameters={self.parameters}, wall_time={self.wall_time:.3g} s)")
+
+    def _repr_html_(self) -> str:
+        """Members, failures and parameters, then the first members' values and status."""
+        from ..system.result_display import html_table
+
+        summary = html_table(("members", "ok", "failed", "parameters", "t0 [s]", "tf [s]",
+                              "dt [s]", "wall time [s]"),
+                             [(len(self), len(self) - len(self.failed), len(self.failed),
+                               ", ".join(self.parameters), self.t0, self.tf, self.dt,
+                               f"{self.wall_time:.3g}")])
+        shown = self.members[:MEMBERS_SHOWN]
+        rows: list[list[Any]] = [[m.index, *(m.parameters[p] for p in self.parameters),
+                                  m.status, m.time.size, m.error or ""] for m in shown]
+        if len(self.members) > MEMBERS_SHOWN:
+            rows.append(["…", *([""] * len(self.parameters)), "",
+                         "", f"{len(self.members) - MEMBERS_SHOWN} more"])
+        members = html_table(("member", *self.parameters, "status", "samples", "error"), rows)
+        return f"<div>{summary}{members}</div>"
 
     def __len__(self) -> int:
         return len(self.members)
@@ -63,7 +85,7 @@ class EnsembleResult:
         return self._dataset
 
     def _build_dataset(self) -> Any:
-        import xarray as xr
+        xr = require("xarray", "EnsembleResult.dataset")
 
         count = len(self.members)
         samples = max((m.time.size for m in self.members), default=0)
@@ -114,7 +136,7 @@ class EnsembleResult:
         """member x time on the common grid t0 + k*dt (tf last): at each grid time the first
         sample a member recorded there (before an event handled at that instant); NaN where a
         member has no sample (it failed or stopped earlier)."""
-        import xarray as xr
+        xr = require("xarray", "EnsembleResult.grid")
 
         grid = _grid(self.t0, self.tf, self.dt)
         tolerance = 1e-9 * self.dt
@@ -142,7 +164,7 @@ class EnsembleResult:
         """The tidy table: one row per member and sample; columns member, the parameters,
         status, time, micro and one per output. A member that recorded nothing has one row
         (its status and error) with NaN samples."""
-        import pandas as pd
+        pd = require("pandas", "EnsembleResult.to_dataframe")
 
         frames = []
         for member in self.members:
@@ -164,7 +186,7 @@ class EnsembleResult:
     @property
     def events(self) -> Any:
         """One row per member and event: member, the parameters, time, micro, source."""
-        import pandas as pd
+        pd = require("pandas", "EnsembleResult.events")
 
         rows = [{"member": m.index, **{n: m.parameters[n] for n in self.parameters},
                  "time": t, "micro": micro, "source": source}
@@ -187,7 +209,7 @@ class EnsembleResult:
                                          f"fastparquet ({error}); write .csv or .nc "
                                          "instead") from error
         elif suffix == ".nc":
-            self._netcdf_dataset().to_netcdf(target)
+            self._netcdf_dataset().to_netcdf(target, engine=netcdf_engine())
         else:
             raise ConfigurationError(f"{target}: unknown result format {suffix!r}; use one of "
                                      f"{', '.join(WRITERS)}")
@@ -207,6 +229,40 @@ class EnsembleResult:
             if dataset[name].dtype == object:
                 dataset[name] = dataset[name].astype(str)
         return dataset
+
+
+def netcdf_engine() -> str:
+    """xarray's engine for .nc files: h5netcdf (the ensemble extra's, netCDF4 files), else
+    scipy's netCDF3 writer."""
+    for engine, modules in (("h5netcdf", ("h5netcdf", "h5py")), ("scipy", ("scipy",))):
+        if all(importlib.util.find_spec(m) is not None for m in modules):
+            return engine
+    raise MissingDependencyError(f"writing .nc files needs h5netcdf (or scipy): "
+                                 f"{install_hint('h5netcdf')}", name="h5netcdf")
+
+
+def check_writer(path: str | Path) -> Path:
+    """Before an ensemble runs: the file it will write has a known format whose writer is
+    installed, in a folder that exists, so that no member's work is lost at the end."""
+    target = Path(path)
+    suffix = target.suffix.lower()
+    if suffix not in WRITERS:
+        raise ConfigurationError(f"{target}: unknown result format {suffix!r}; use one of "
+                                 f"{', '.join(WRITERS)}")
+    require("pandas", f"writing {target.name}")
+    if suffix == ".nc":
+        require("xarray", f"writing {target.name}")
+        netcdf_engine()
+    if suffix == ".parquet" and not any(importlib.util.find_spec(m) is not None
+                                        for m in ("pyarrow", "fastparquet")):
+        raise MissingDependencyError(f"writing {target.name} needs pyarrow or fastparquet: "
+                                     f"{install_hint('pyarrow')}", name="pyarrow")
+    folder = target.parent if str(target.parent) else Path(".")
+    if not folder.is_dir():
+        raise ConfigurationError(f"{target}: no folder {str(folder)!r} to write into")
+    if not os.access(folder, os.W_OK):
+        raise ConfigurationError(f"{target}: the folder {str(folder)!r} is not writable")
+    return target
 
 
 def _column(members: Sequence[MemberResult], name: str) -> np.ndarray:

@@ -353,11 +353,17 @@ class System:
 
         return describe_system(self)
 
-    def _repr_svg_(self) -> str:
-        """Jupyter shows the system as its graph (graphviz is imported only here: optional)."""
-        from ..viz.system_graph_visualizer import system_svg
+    def _repr_svg_(self) -> str | None:
+        """Jupyter shows the system as its graph (graphviz is imported only here: optional).
+        A display never raises: without graphviz or its `dot` program this is None, and
+        Jupyter shows the text repr."""
+        try:
+            from ..viz.system_graph_visualizer import system_svg
 
-        return system_svg(self)
+            return system_svg(self)
+        except (ImportError, RuntimeError) as error:
+            logger.debug("%s: shown as text: %s", self.name, error)
+            return None
 
     def reset(self) -> None:
         """Drop the engine system; components keep their parameters."""
