@@ -12,8 +12,21 @@ class SysSimXError(Exception):
         return text or (type(self).__doc__ or type(self).__name__).strip().splitlines()[0]
 
 
+class SysSimXWarning(UserWarning):
+    """Something syssimx did that a user may not expect, and went on: a last step shorter than
+    dt, a parameter set after initialize that waits for the next one."""
+
+
 class ConfigurationError(SysSimXError, ValueError):
     """Bad input found before anything runs: unknown names, wrong types, bad units or times."""
+
+
+class ConfigurationTypeError(ConfigurationError, TypeError):
+    """A value of the wrong type for a port, a parameter or an option (also a TypeError)."""
+
+
+class BundledFMUNotFoundError(ConfigurationError, FileNotFoundError):
+    """No FMU of that name is bundled with syssimx (also a FileNotFoundError)."""
 
 
 class FMUFileError(ConfigurationError):

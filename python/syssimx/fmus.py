@@ -8,6 +8,8 @@
 from __future__ import annotations
 
 from ._paths import fmu_dir
+from .core.suggest import did_you_mean
+from .errors import BundledFMUNotFoundError
 
 
 def available() -> list[str]:
@@ -20,6 +22,8 @@ def path(name: str) -> str:
     """Absolute path of the bundled FMU `name`, e.g. "pendulum_euler"."""
     candidate = fmu_dir() / f"{name}.fmu"
     if not candidate.is_file():
-        known = ", ".join(available()) or "none"
-        raise FileNotFoundError(f"no bundled FMU named {name!r} in {fmu_dir()}; available: {known}")
+        names = available()
+        raise BundledFMUNotFoundError(
+            f"no bundled FMU named {name!r}{did_you_mean(name, names)}; "
+            f"syssimx.fmus.available() lists the {len(names)} bundled FMUs")
     return str(candidate)

@@ -84,7 +84,7 @@ def test_timeout_writes_the_samples_and_fails(tmp_path: Path,
 
 @pytest.mark.parametrize(("argv", "message"), [
     (["--start-values", "theta0"], "--start-values takes name-value pairs"),
-    (["--output-variables", "thetta"], "did you mean 'theta'?"),
+    (["--output-variables", "thetta"], "(did you mean 'theta'?); outputs: theta, omega"),
     (["--fmi-type", "Both"], "expected one of auto, CoSimulation, ModelExchange"),
 ])
 def test_bad_fmpy_flag_values_are_named(argv: list[str], message: str,
@@ -98,7 +98,7 @@ def test_an_unknown_flag_shows_the_subcommands_usage_and_the_close_flag(
     assert main(["simulate", "pendulum_euler", "--stop-tme", "1"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("usage: syssimx simulate ")
-    assert "unrecognized arguments: --stop-tme 1; did you mean '--stop-time'" in err
+    assert "unrecognized arguments: --stop-tme 1 (did you mean '--stop-time'" in err
     assert main(["run", "x.yaml", "--output-fil", "o.csv", "--t1", "2"]) == 2
     assert capsys.readouterr().err.startswith("usage: syssimx run ")
 

@@ -118,7 +118,7 @@ def run_simulate(args: argparse.Namespace, out: TextIO) -> None:
     for variable, direction in args.events:
         if variable not in component.output_specs:
             raise CommandError(f"--event {variable}: not an output of {path.name}"
-                               f"{did_you_mean(variable, component.output_specs)} outputs: "
+                               f"{did_you_mean(variable, component.output_specs)}; outputs: "
                                f"{', '.join(component.output_specs)}")
         component.add_event_indicator(_event_name(variable), variable=variable,
                                       direction=direction)
@@ -181,7 +181,7 @@ def _written_outputs(component: Any, chosen: list[str] | None, fmu_name: str) ->
     for name in chosen:
         if name not in outputs:
             raise CommandError(f"--output-variables {name}: not an output of {fmu_name}"
-                               f"{did_you_mean(name, outputs)} outputs: {', '.join(outputs)}")
+                               f"{did_you_mean(name, outputs)}; outputs: {', '.join(outputs)}")
     return list(dict.fromkeys(chosen))
 
 
@@ -200,6 +200,7 @@ def _experiment(args: argparse.Namespace, experiment: Any, fixed_step: str | Non
         dt = float(fixed_step if fixed_step is not None else experiment.stepSize)
         while dt > 0 and (tf - t0) / dt > 1000:  # FMPy's output interval for a long experiment
             dt *= 2
+        dt = min(dt, tf - t0)  # FMPy makes one step of a run shorter than the experiment's
     else:
         from fmpy.util import auto_interval
 

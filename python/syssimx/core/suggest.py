@@ -15,8 +15,8 @@ def close_matches(name: str, choices: Iterable[str], count: int = 3) -> list[str
 
 
 def did_you_mean(name: str, choices: Iterable[str]) -> str:
-    """"; did you mean 'x'?" (or "'x' or 'y'") when a valid name is close, else ""."""
+    """" (did you mean 'x'?)" (or "'x' or 'y'") when a valid name is close, else ""."""
     matches = close_matches(name, choices)
     if not matches:
         return ""
-    return "; did you mean " + " or ".join(repr(m) for m in matches) + "?"
+    return " (did you mean " + " or ".join(repr(m) for m in matches) + "?)"

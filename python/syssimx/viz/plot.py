@@ -15,6 +15,9 @@ import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from ..core.suggest import did_you_mean
+from ..errors import ConfigurationError
+
 
 class ResultFigure(Figure):
     """A matplotlib Figure that a notebook shows as an image by itself: without pyplot, no
@@ -52,10 +55,11 @@ def plot_result(
         events: mark the event instants.
 
     Raises:
-        ValueError: no signals, or a signal names an unknown component or port.
+        ConfigurationError (a ValueError): no signals, or a signal names an unknown
+            component or port.
     """
     if not signals:
-        raise ValueError("plot_result needs at least one signal, e.g. 'Pendulum.theta'")
+        raise ConfigurationError("plot_result needs at least one signal, e.g. 'Pendulum.theta'")
     series = [_series(result, signal) for signal in signals]
     panels: dict[str, list[tuple[str, np.ndarray, np.ndarray, str | None]]] = {}
     for signal, (t, values, unit) in zip(signals, series, strict=True):
@@ -91,10 +95,13 @@ def _series(result: Any, signal: str) -> tuple[np.ndarray, np.ndarray, str | Non
     try:
         t, values = result[component]
     except KeyError:
-        raise ValueError(f"signal {signal!r}: no component {component!r} in the result") from None
+        names = getattr(result, "component_names", None) or []
+        raise ConfigurationError(f"signal {signal!r}: no component {component!r} in the result"
+                                 f"{did_you_mean(component, names)}") from None
     if port not in values:
         known = ", ".join(values) or "none"
-        raise ValueError(f"signal {signal!r}: {component!r} has no port {port!r}; ports: {known}")
+        raise ConfigurationError(f"signal {signal!r}: {component!r} has no port {port!r}"
+                                 f"{did_you_mean(port, values)}; ports: {known}")
     units = getattr(result, "units", None) or {}
     unit = units.get(component, {}).get(port)
     return np.asarray(t, dtype=float), np.asarray(values[port], dtype=float), unit or None
@@ -109,7 +116,7 @@ def _split_signal(result: Any, signal: str) -> tuple[str, str]:
         return name, signal[len(name) + 1 :]
     component, dot, port = signal.partition(".")
     if not dot or not component or not port:
-        raise ValueError(f"signal {signal!r} is not of the form 'Component.port'")
+        raise ConfigurationError(f"signal {signal!r} is not of the form 'Component.port'")
     return component, port
 
 

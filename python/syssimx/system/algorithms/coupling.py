@@ -9,6 +9,7 @@ from typing import ClassVar
 
 from ...bridge.options import engine_refusal
 from ...engine import defaults, enum_name, enum_values, ffi, lib
+from ...errors import ConfigurationError
 
 JACOBIAN_PREFIX = "SSX_JACOBIAN_"
 
@@ -46,18 +47,20 @@ class JacobiAlgorithm:
     def validate(self) -> None:
         jacobians = tuple(loop_jacobians())
         if self.loop_jacobian not in jacobians:
-            raise ValueError(f"{self.name}: loop_jacobian must be one of {jacobians}, "
+            raise ConfigurationError(f"{self.name}: loop_jacobian must be one of {jacobians}, "
                              f"got {self.loop_jacobian!r}")
         if engine_refusal(lambda system: lib().ssx_set_loop_options(
                 system, self.tolerance, self.max_iter, self.damping)) is not None:
-            raise ValueError(f"{self.name}: tolerance > 0, max_iter >= 1 and 0 < damping <= 1 "
+            raise ConfigurationError(
+                f"{self.name}: tolerance > 0, max_iter >= 1 and 0 < damping <= 1 "
                              f"are required (got {self.tolerance}, {self.max_iter}, "
                              f"{self.damping})")
         if isinstance(self.threads, bool) or not isinstance(self.threads, int):
-            raise ValueError(f"{self.name}: threads must be an integer, got {self.threads!r}")
+            raise ConfigurationError(
+                f"{self.name}: threads must be an integer, got {self.threads!r}")
         refusal = engine_refusal(lambda system: lib().ssx_set_threads(system, self.threads))
         if refusal is not None:
-            raise ValueError(f"{self.name}: {refusal}")
+            raise ConfigurationError(f"{self.name}: {refusal}")
 
 
 @dataclass
