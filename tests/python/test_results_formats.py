@@ -213,3 +213,18 @@ def test_visualizer_from_syssimx_writes_files_as_syssimx(tmp_path: Path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["graph", "graph.svg"]
     assert (tmp_path / "graph.svg").read_text().lstrip().startswith("<?xml")
     assert (tmp_path / "graph").read_text().startswith("digraph")
+
+
+def test_fmpys_csv_reads_back_as_results(tmp_path: Path):
+    """A CSV FMPy wrote (quoted names, time first) is read as a result of its file's stem."""
+    from fmpy import simulate_fmu
+
+    fmpy_result = simulate_fmu(syssimx.fmus.path("pendulum_euler"), stop_time=0.2,
+                               output_interval=0.05)
+    write_csv(tmp_path / "Pendulum.csv", fmpy_result)
+    assert (tmp_path / "Pendulum.csv").read_text().startswith('"time","theta"')
+    loaded = syssimx.system.SystemHistory.load_csv(tmp_path / "Pendulum.csv")
+    assert list(loaded) == ["Pendulum"]
+    np.testing.assert_array_equal(loaded["Pendulum"]["theta"]["values"], fmpy_result["theta"])
+    np.testing.assert_array_equal(loaded["Pendulum"]["omega"]["time"], fmpy_result["time"])
+    assert loaded["Pendulum"]["theta"]["unit"] is None

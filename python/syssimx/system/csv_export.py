@@ -24,6 +24,8 @@ from typing import Any
 
 import numpy as np
 
+from ..errors import ConfigurationError
+
 LONG_HEADER = ("component", "port", "time", "micro", "value", "unit")
 # the long layout of files written before it had a micro column
 _LONG_HEADER_WITHOUT_MICRO = ("component", "port", "time", "value", "unit")
@@ -85,7 +87,9 @@ def _write(path: str | Path, header: Sequence[Sequence[str]], rows: Iterable[Seq
 
 
 def read_samples(path: Path) -> dict[str, dict[str, dict[str, Any]]]:
-    """A file in the long layout or the wide layout with a unit row, as
+    """A file in the long layout, the wide layout with a unit row, or FMPy's CSV (time, then a
+    column per variable: "Comp.port" names a component, a plain name is a port of the
+    component named by the file's stem), as
     {component: {port: {"time": ndarray, "values": ndarray, "unit": str | None}}}."""
     if not path.is_file():
         raise FileNotFoundError(f"no results file {str(path)!r}")
@@ -95,8 +99,12 @@ def read_samples(path: Path) -> dict[str, dict[str, dict[str, Any]]]:
         return _read_long(rows[1:], micro=len(rows[0]) == len(LONG_HEADER))
     if len(rows) >= 2 and rows[0][:1] == ["time"] and rows[1][:1] == ["s"]:
         return _read_wide_with_units(rows)
-    raise ValueError(f"{path}: neither the long layout (header {','.join(LONG_HEADER)}) nor "
-                     "the wide layout with a unit row (time,Comp.port,... then s,unit,...)")
+    if rows and rows[0][:1] == ["time"]:  # FMPy's CSV: no unit row
+        names = [n if "." in n else f"{path.stem}.{n}" for n in rows[0]]
+        return _read_wide_with_units([names, ["s", *[NO_UNIT] * (len(names) - 1)], *rows[1:]])
+    raise ConfigurationError(f"{path}: neither the long layout (header "
+                             f"{','.join(LONG_HEADER)}), the wide layout with a unit row "
+                             "(time,Comp.port,... then s,unit,...) nor FMPy's CSV (time,...)")
 
 
 def _read_long(rows: list[list[str]], micro: bool) -> dict[str, dict[str, dict[str, Any]]]:
