@@ -16,7 +16,7 @@ EXTRAS = {
     "dask": "ensemble",
     "distributed": "ensemble",
     "xarray": "ensemble",
-    "h5netcdf": "ensemble",
+    "scipy": "ensemble",  # the .nc writer
 }
 
 

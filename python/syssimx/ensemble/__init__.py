@@ -9,7 +9,8 @@
 
 Each member runs in a Dask worker process (an embedded LocalCluster by default, or any
 distributed cluster); a member that fails, hangs or crashes its worker is reported with its
-reason and the others finish. Needs the `ensemble` extra (dask, distributed, xarray, h5netcdf).
+reason and the others finish. Needs the `ensemble` extra (dask, distributed, xarray, and
+scipy for .nc files).
 """
 
 from .api import monte_carlo, sweep

@@ -232,13 +232,13 @@ class EnsembleResult:
 
 
 def netcdf_engine() -> str:
-    """xarray's engine for .nc files: h5netcdf (the ensemble extra's, netCDF4 files), else
-    scipy's netCDF3 writer."""
-    for engine, modules in (("h5netcdf", ("h5netcdf", "h5py")), ("scipy", ("scipy",))):
+    """xarray's engine for .nc files: scipy's netCDF3 writer (the ensemble extra's: faster and
+    smaller files than h5netcdf's, benchmarks/netcdf_backends.py), else h5netcdf's netCDF4."""
+    for engine, modules in (("scipy", ("scipy",)), ("h5netcdf", ("h5netcdf", "h5py"))):
         if all(importlib.util.find_spec(m) is not None for m in modules):
             return engine
-    raise MissingDependencyError(f"writing .nc files needs h5netcdf (or scipy): "
-                                 f"{install_hint('h5netcdf')}", name="h5netcdf")
+    raise MissingDependencyError(f"writing .nc files needs scipy (or h5netcdf): "
+                                 f"{install_hint('scipy')}", name="scipy")
 
 
 def check_writer(path: str | Path) -> Path:
