@@ -58,7 +58,8 @@ def fmu_host() -> Path:
 
 
 def engine_header() -> Path:
-    for candidate in (_PACKAGE_DIR / ENGINE_HEADER, _SOURCE_ROOT / "src" / ENGINE_HEADER):
+    source_header = _SOURCE_ROOT / "src" / "include" / ENGINE_HEADER
+    for candidate in (_PACKAGE_DIR / ENGINE_HEADER, source_header):
         if candidate.is_file():
             return candidate
     raise FileNotFoundError(f"the engine header {ENGINE_HEADER} was not found")

@@ -1,0 +1,558 @@
+/* The FMI 3.0 back-ends of the FMU binding, Co-Simulation and Model Exchange: the fmi3
+ * functions, which of them a binary must export for each interface, and adapters that call
+ * each with its fmi3 type.
+ *
+ * The engine speaks in three port types; FMI 3.0 has eleven numeric ones: the value table
+ * (fmu_fmi3_values.c) turns one engine call into one fmi3 call per FMI 3.0 type met.
+ *
+ * FMI 3.0 passes the experiment to fmi3EnterInitializationMode and returns doStep's news in
+ * out-arguments: the instance the binding holds is this back-end's context, which keeps both
+ * beside the FMU's own instance. */
+#include "fmu_fmi3.h"
+
+/* The rows both interfaces share: required, then optional. */
+#define FMI3_COMMON_ROWS                                                                      \
+    {"fmi3FreeInstance", SLOT_FREE_INSTANCE, 1},                                              \
+    /* the experiment is kept until fmi3EnterInitializationMode, which takes it */            \
+    {"fmi3EnterInitializationMode", SLOT_SETUP_EXPERIMENT, 1},                                \
+    {"fmi3EnterInitializationMode", SLOT_ENTER_INITIALIZATION_MODE, 1},                       \
+    {"fmi3ExitInitializationMode", SLOT_EXIT_INITIALIZATION_MODE, 1},                         \
+    {"fmi3Terminate", SLOT_TERMINATE, 1},                                                     \
+    {"fmi3Reset", SLOT_RESET, 1},                                                             \
+    {"fmi3GetFloat64", SLOT_GET_REAL, 1},                                                     \
+    {"fmi3GetInt32", SLOT_GET_INTEGER, 1},                                                    \
+    {"fmi3GetBoolean", SLOT_GET_BOOLEAN, 1},                                                  \
+    {"fmi3SetFloat64", SLOT_SET_REAL, 1},                                                     \
+    {"fmi3SetInt32", SLOT_SET_INTEGER, 1},                                                    \
+    {"fmi3SetBoolean", SLOT_SET_BOOLEAN, 1},                                                  \
+    {"fmi3GetFloat32", SLOT_GET_FLOAT32, 1},                                                  \
+    {"fmi3GetInt8", SLOT_GET_INT8, 1},                                                        \
+    {"fmi3GetUInt8", SLOT_GET_UINT8, 1},                                                      \
+    {"fmi3GetInt16", SLOT_GET_INT16, 1},                                                      \
+    {"fmi3GetUInt16", SLOT_GET_UINT16, 1},                                                    \
+    {"fmi3GetUInt32", SLOT_GET_UINT32, 1},                                                    \
+    {"fmi3GetInt64", SLOT_GET_INT64, 1},                                                      \
+    {"fmi3GetUInt64", SLOT_GET_UINT64, 1},                                                    \
+    {"fmi3SetFloat32", SLOT_SET_FLOAT32, 1},                                                  \
+    {"fmi3SetInt8", SLOT_SET_INT8, 1},                                                        \
+    {"fmi3SetUInt8", SLOT_SET_UINT8, 1},                                                      \
+    {"fmi3SetInt16", SLOT_SET_INT16, 1},                                                      \
+    {"fmi3SetUInt16", SLOT_SET_UINT16, 1},                                                    \
+    {"fmi3SetUInt32", SLOT_SET_UINT32, 1},                                                    \
+    {"fmi3SetInt64", SLOT_SET_INT64, 1},                                                      \
+    {"fmi3SetUInt64", SLOT_SET_UINT64, 1},                                                    \
+    {"fmi3GetString", SLOT_GET_STRING, 1},                                                    \
+    {"fmi3SetString", SLOT_SET_STRING, 1},                                                    \
+    {"fmi3GetBinary", SLOT_GET_BINARY, 1},                                                    \
+    {"fmi3SetBinary", SLOT_SET_BINARY, 1},                                                    \
+    {"fmi3EnterEventMode", SLOT_ENTER_EVENT_MODE, 1},                                         \
+    {"fmi3UpdateDiscreteStates", SLOT_NEW_DISCRETE_STATES, 1},
+/* capabilities an FMU may lack (FMI 3.0 has every binary export them; be lenient) */
+#define FMI3_OPTIONAL_ROWS                                                                    \
+    {"fmi3GetFMUState", SLOT_GET_STATE, 0},                                                   \
+    {"fmi3SetFMUState", SLOT_SET_STATE, 0},                                                   \
+    {"fmi3FreeFMUState", SLOT_FREE_STATE, 0},                                                 \
+    {"fmi3SerializedFMUStateSize", SLOT_SERIALIZED_STATE_SIZE, 0},                            \
+    {"fmi3SerializeFMUState", SLOT_SERIALIZE_STATE, 0},                                       \
+    {"fmi3DeserializeFMUState", SLOT_DESERIALIZE_STATE, 0},                                   \
+    {"fmi3GetDirectionalDerivative", SLOT_DIRECTIONAL_DERIVATIVE, 0},
+
+static const ssx_fmu_function_row fmi3_functions[] = {
+    {"fmi3InstantiateCoSimulation", SLOT_INSTANTIATE, 1},
+    FMI3_COMMON_ROWS
+    {"fmi3DoStep", SLOT_DO_STEP, 1},
+    /* doStep's out-arguments say what FMI 2.0 asks status functions for */
+    {"fmi3DoStep", SLOT_GET_TERMINATED, 1},
+    {"fmi3DoStep", SLOT_GET_LAST_SUCCESSFUL_TIME, 1},
+    {"fmi3EnterStepMode", SLOT_ENTER_STEP_MODE, 1},
+    FMI3_OPTIONAL_ROWS
+};
+
+/* Model Exchange: the common functions, the ones of the interface instead of fmi3DoStep. */
+static const ssx_fmu_function_row fmi3_model_exchange_functions[] = {
+    {"fmi3InstantiateModelExchange", SLOT_INSTANTIATE, 1},
+    FMI3_COMMON_ROWS
+    {"fmi3SetTime", SLOT_SET_TIME, 1},
+    {"fmi3SetContinuousStates", SLOT_SET_CONTINUOUS_STATES, 1},
+    {"fmi3GetContinuousStates", SLOT_GET_CONTINUOUS_STATES, 1},
+    {"fmi3GetContinuousStateDerivatives", SLOT_GET_DERIVATIVES, 1},
+    {"fmi3GetEventIndicators", SLOT_GET_EVENT_INDICATORS, 1},
+    {"fmi3GetNominalsOfContinuousStates", SLOT_GET_NOMINALS_OF_CONTINUOUS_STATES, 1},
+    {"fmi3EnterContinuousTimeMode", SLOT_ENTER_CONTINUOUS_TIME_MODE, 1},
+    {"fmi3CompletedIntegratorStep", SLOT_COMPLETED_INTEGRATOR_STEP, 1},
+    {"fmi3GetNumberOfContinuousStates", SLOT_GET_NUMBER_OF_CONTINUOUS_STATES, 1},
+    {"fmi3GetNumberOfEventIndicators", SLOT_GET_NUMBER_OF_EVENT_INDICATORS, 1},
+    FMI3_OPTIONAL_ROWS
+};
+
+#define FMI3_NAME(name) "fmi3" #name,
+static const char *const fmi3_status_names[] = {SSX_STATUS_NAMES(FMI3_NAME)};
+
+/* Rounds of fmi3UpdateDiscreteStates after initialization before it counts as chattering. */
+enum { INITIAL_UPDATE_ROUNDS = 1000 };
+
+static void release_context(void *context)
+{
+    fmi3_values_free(context);
+}
+
+/* ------------------------------------------------------------------ messages */
+
+static void logger(fmi3InstanceEnvironment environment, fmi3Status status, fmi3String category,
+                   fmi3String message)
+{
+    (void)status;
+    (void)category;
+    if (environment != NULL && message != NULL) {
+        fmi3_say(environment, "%s", message);
+    }
+}
+
+/* ------------------------------------------------------------------ life cycle */
+
+static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
+                         const char *instance_name, const char *token, const char *resource_path,
+                         int logging_on)
+{
+    fmi3_context *ctx = context;
+    ctx->fmu = fmu;
+    ctx->outcome = (ssx_step_outcome){0};
+    /* the logger's environment is the context, whose first use is to reach the fmu */
+    ctx->instance = FMI3(fn, SLOT_INSTANTIATE, fmi3InstantiateCoSimulationTYPE)(
+        instance_name, token, resource_path, fmi3False, logging_on ? fmi3True : fmi3False,
+        ctx->event_mode_used ? fmi3True : fmi3False,
+        ctx->early_return_allowed ? fmi3True : fmi3False, NULL, 0, ctx,
+        (fmi3LogMessageCallback)logger, NULL);
+    if (ctx->instance == NULL && ctx->event_mode_used) {
+        /* Some FMUs declare hasEventMode and then refuse it (the Reference FMUs' Roberts):
+         * without event mode the FMU handles its events inside doStep, which FMI 3.0 allows
+         * any importer to choose. */
+        ctx->event_mode_used = 0;
+        ctx->instance = FMI3(fn, SLOT_INSTANTIATE, fmi3InstantiateCoSimulationTYPE)(
+            instance_name, token, resource_path, fmi3False, logging_on ? fmi3True : fmi3False,
+            fmi3False, ctx->early_return_allowed ? fmi3True : fmi3False, NULL, 0, ctx,
+            (fmi3LogMessageCallback)logger, NULL);
+    }
+    return ctx->instance != NULL ? ctx : NULL;
+}
+
+static void free_instance(const ssx_fmu_function *fn, void *instance)
+{
+    fmi3_context *ctx = instance;
+    FMI3(fn, SLOT_FREE_INSTANCE, fmi3FreeInstanceTYPE)(ctx->instance);
+    ctx->instance = NULL;
+}
+
+static int setup_experiment(const ssx_fmu_function *fn, void *instance, int tolerance_defined,
+                            double tolerance, double start_time, int stop_time_defined,
+                            double stop_time)
+{
+    (void)fn;
+    fmi3_context *ctx = instance;
+    ctx->tolerance_defined = tolerance_defined;
+    ctx->tolerance = tolerance;
+    ctx->start_time = start_time;
+    ctx->stop_time_defined = stop_time_defined;
+    ctx->stop_time = stop_time;
+    return fmi3OK;
+}
+
+static int enter_initialization_mode(const ssx_fmu_function *fn, void *instance)
+{
+    fmi3_context *ctx = instance;
+    return (int)FMI3(fn, SLOT_ENTER_INITIALIZATION_MODE, fmi3EnterInitializationModeTYPE)(
+        ctx->instance, ctx->tolerance_defined ? fmi3True : fmi3False, ctx->tolerance,
+        ctx->start_time, ctx->stop_time_defined ? fmi3True : fmi3False, ctx->stop_time);
+}
+
+/* With eventModeUsed the instance leaves initialization in event mode: its discrete states are
+ * settled at the start time before stepping begins, as part of initializing it. */
+static int exit_initialization_mode(const ssx_fmu_function *fn, void *instance)
+{
+    fmi3_context *ctx = instance;
+    int status =
+        (int)FMI3(fn, SLOT_EXIT_INITIALIZATION_MODE, fmi3ExitInitializationModeTYPE)(ctx->instance);
+    if (!ctx->event_mode_used || status > fmi3Warning) {
+        return status;
+    }
+    fmi3Boolean again = fmi3True;
+    for (int round = 0; again; ++round) {
+        if (round == INITIAL_UPDATE_ROUNDS) {
+            fmi3_say(ctx,
+                "fmi3UpdateDiscreteStates still asked for another round after %d rounds "
+                "at the start time %.17g (chattering)",
+                INITIAL_UPDATE_ROUNDS, ctx->start_time);
+            return fmi3Error;
+        }
+        fmi3Boolean terminate = fmi3False, nominals = fmi3False, values = fmi3False;
+        fmi3Boolean next_defined = fmi3False;
+        fmi3Float64 next = 0.0;
+        status =
+            worse_status(status,
+                  (int)FMI3(fn, SLOT_NEW_DISCRETE_STATES, fmi3UpdateDiscreteStatesTYPE)(
+                      ctx->instance, &again, &terminate, &nominals, &values, &next_defined, &next));
+        if (status > fmi3Warning) {
+            return status;
+        }
+        if (terminate) {
+            fmi3_say(ctx,
+                "the FMU asked to terminate the simulation during initialization "
+                "(fmi3UpdateDiscreteStates at t=%.17g)",
+                ctx->start_time);
+            return fmi3Error;
+        }
+    }
+    return worse_status(status, (int)FMI3(fn, SLOT_ENTER_STEP_MODE, fmi3EnterStepModeTYPE)(ctx->instance));
+}
+
+static int terminate(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI3(fn, SLOT_TERMINATE, fmi3TerminateTYPE)(((fmi3_context *)instance)->instance);
+}
+
+static int reset(const ssx_fmu_function *fn, void *instance)
+{
+    fmi3_context *ctx = instance;
+    /* the reset FMU holds its start values again */
+    fmi3_values_reset(ctx);
+    return (int)FMI3(fn, SLOT_RESET, fmi3ResetTYPE)(ctx->instance);
+}
+
+
+static int get_real(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                    double *values)
+{
+    return fmi3_get_values(fn, instance, SSX_REAL, vr, n, values);
+}
+
+static int get_integer(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                       int *values)
+{
+    return fmi3_get_values(fn, instance, SSX_INTEGER, vr, n, values);
+}
+
+static int get_boolean(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                       int *values)
+{
+    return fmi3_get_values(fn, instance, SSX_BOOLEAN, vr, n, values);
+}
+
+static int set_real(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                    const double *values)
+{
+    return fmi3_set_values(fn, instance, SSX_REAL, vr, n, values);
+}
+
+static int set_integer(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                       const int *values)
+{
+    return fmi3_set_values(fn, instance, SSX_INTEGER, vr, n, values);
+}
+
+static int set_boolean(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                       const int *values)
+{
+    return fmi3_set_values(fn, instance, SSX_BOOLEAN, vr, n, values);
+}
+
+static int get_string(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                      const char **values)
+{
+    return (int)FMI3(fn, SLOT_GET_STRING, fmi3GetStringTYPE)(((fmi3_context *)instance)->instance,
+                                                             vr, n, values, n);
+}
+
+static int set_string(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                      const char *const *values)
+{
+    return (int)FMI3(fn, SLOT_SET_STRING, fmi3SetStringTYPE)(((fmi3_context *)instance)->instance,
+                                                             vr, n, values, n);
+}
+
+static int get_binary(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                      size_t *sizes, const unsigned char **values)
+{
+    return (int)FMI3(fn, SLOT_GET_BINARY, fmi3GetBinaryTYPE)(((fmi3_context *)instance)->instance,
+                                                             vr, n, sizes, values, n);
+}
+
+static int set_binary(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
+                      const size_t *sizes, const unsigned char *const *values)
+{
+    return (int)FMI3(fn, SLOT_SET_BINARY, fmi3SetBinaryTYPE)(((fmi3_context *)instance)->instance,
+                                                             vr, n, sizes, values, n);
+}
+
+static const char *variable_name(const void *context, unsigned int vr)
+{
+    return fmi3_variable_name(context, vr);
+}
+
+/* ------------------------------------------------------------------ stepping and events */
+
+static int do_step(const ssx_fmu_function *fn, void *instance, double t, double h,
+                   int no_set_state_prior)
+{
+    fmi3_context *ctx = instance;
+    fmi3Boolean event = fmi3False, terminate = fmi3False, early = fmi3False;
+    fmi3Float64 reached = t;
+    int status = (int)FMI3(fn, SLOT_DO_STEP, fmi3DoStepTYPE)(
+        ctx->instance, t, h, no_set_state_prior ? fmi3True : fmi3False, &event, &terminate, &early,
+        &reached);
+    ctx->outcome = (ssx_step_outcome){
+        .reported = 1,
+        .event_handling_needed = ctx->event_mode_used && event,
+        .terminate_simulation = terminate != fmi3False,
+        .early_return = ctx->early_return_allowed && early,
+        .last_successful_time = reached,
+    };
+    return status;
+}
+
+static void step_outcome(void *instance, ssx_step_outcome *outcome)
+{
+    *outcome = ((const fmi3_context *)instance)->outcome;
+}
+
+static int get_terminated(const ssx_fmu_function *fn, void *instance, int *terminated)
+{
+    (void)fn;
+    *terminated = ((const fmi3_context *)instance)->outcome.terminate_simulation;
+    return fmi3OK;
+}
+
+static int get_last_successful_time(const ssx_fmu_function *fn, void *instance, double *time)
+{
+    (void)fn;
+    *time = ((const fmi3_context *)instance)->outcome.last_successful_time;
+    return fmi3OK;
+}
+
+static int enter_event_mode(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI3(fn, SLOT_ENTER_EVENT_MODE,
+                     fmi3EnterEventModeTYPE)(((fmi3_context *)instance)->instance);
+}
+
+static int new_discrete_states(const ssx_fmu_function *fn, void *instance, ssx_fmu_event_info *info)
+{
+    fmi3Boolean again = fmi3False, terminate = fmi3False, nominals = fmi3False;
+    fmi3Boolean values = fmi3False, next_defined = fmi3False;
+    fmi3Float64 next = 0.0;
+    int status = (int)FMI3(fn, SLOT_NEW_DISCRETE_STATES, fmi3UpdateDiscreteStatesTYPE)(
+        ((fmi3_context *)instance)->instance, &again, &terminate, &nominals, &values, &next_defined,
+        &next);
+    *info = (ssx_fmu_event_info){
+        .new_discrete_states_needed = again != fmi3False,
+        .terminate_simulation = terminate != fmi3False,
+        .nominals_changed = nominals != fmi3False,
+        .values_changed = values != fmi3False,
+        .next_event_time_defined = next_defined != fmi3False,
+        .next_event_time = next,
+    };
+    return status;
+}
+
+static int enter_step_mode(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI3(fn, SLOT_ENTER_STEP_MODE,
+                     fmi3EnterStepModeTYPE)(((fmi3_context *)instance)->instance);
+}
+
+/* ------------------------------------------------------------------ states and derivatives */
+
+static int get_state(const ssx_fmu_function *fn, void *instance, void **state)
+{
+    return (int)FMI3(fn, SLOT_GET_STATE, fmi3GetFMUStateTYPE)(((fmi3_context *)instance)->instance,
+                                                              state);
+}
+
+static int set_state(const ssx_fmu_function *fn, void *instance, void *state)
+{
+    fmi3_context *ctx = instance;
+    /* the restored instance has not stepped yet: no step's news apply to it */
+    ctx->outcome = (ssx_step_outcome){0};
+    return (int)FMI3(fn, SLOT_SET_STATE, fmi3SetFMUStateTYPE)(ctx->instance, state);
+}
+
+static int free_state(const ssx_fmu_function *fn, void *instance, void **state)
+{
+    return (int)FMI3(fn, SLOT_FREE_STATE,
+                     fmi3FreeFMUStateTYPE)(((fmi3_context *)instance)->instance, state);
+}
+
+static int serialized_state_size(const ssx_fmu_function *fn, void *instance, void *state,
+                                 size_t *size)
+{
+    return (int)FMI3(fn, SLOT_SERIALIZED_STATE_SIZE, fmi3SerializedFMUStateSizeTYPE)(
+        ((fmi3_context *)instance)->instance, state, size);
+}
+
+static int serialize_state(const ssx_fmu_function *fn, void *instance, void *state, char *bytes,
+                           size_t size)
+{
+    return (int)FMI3(fn, SLOT_SERIALIZE_STATE, fmi3SerializeFMUStateTYPE)(
+        ((fmi3_context *)instance)->instance, state, (fmi3Byte *)bytes, size);
+}
+
+static int deserialize_state(const ssx_fmu_function *fn, void *instance, const char *bytes,
+                             size_t size, void **state)
+{
+    return (int)FMI3(fn, SLOT_DESERIALIZE_STATE, fmi3DeserializeFMUStateTYPE)(
+        ((fmi3_context *)instance)->instance, (const fmi3Byte *)bytes, size, state);
+}
+
+static int directional_derivative(const ssx_fmu_function *fn, void *instance,
+                                  const unsigned int *unknowns, size_t n_unknowns,
+                                  const unsigned int *knowns, size_t n_knowns,
+                                  const double *dv_known, double *dv_unknown)
+{
+    return (int)FMI3(fn, SLOT_DIRECTIONAL_DERIVATIVE, fmi3GetDirectionalDerivativeTYPE)(
+        ((fmi3_context *)instance)->instance, unknowns, n_unknowns, knowns, n_knowns, dv_known,
+        n_knowns, dv_unknown, n_unknowns);
+}
+
+/* ------------------------------------------------------------------ Model Exchange */
+
+static void *instantiate_model_exchange(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
+                                        const char *instance_name, const char *token,
+                                        const char *resource_path, int logging_on)
+{
+    fmi3_context *ctx = context;
+    ctx->fmu = fmu;
+    ctx->outcome = (ssx_step_outcome){0};
+    ctx->instance = FMI3(fn, SLOT_INSTANTIATE, fmi3InstantiateModelExchangeTYPE)(
+        instance_name, token, resource_path, fmi3False, logging_on ? fmi3True : fmi3False, ctx,
+        (fmi3LogMessageCallback)logger);
+    return ctx->instance != NULL ? ctx : NULL;
+}
+
+/* The instance leaves initialization in event mode; the engine's Model Exchange component
+ * runs the event iteration that follows, as for FMI 2.0. */
+static int exit_initialization_mode_model_exchange(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI3(fn, SLOT_EXIT_INITIALIZATION_MODE, fmi3ExitInitializationModeTYPE)(
+        ((fmi3_context *)instance)->instance);
+}
+
+static int set_time(const ssx_fmu_function *fn, void *instance, double time)
+{
+    return (int)FMI3(fn, SLOT_SET_TIME, fmi3SetTimeTYPE)(((fmi3_context *)instance)->instance,
+                                                         time);
+}
+
+static int set_continuous_states(const ssx_fmu_function *fn, void *instance, const double *x,
+                                 size_t nx)
+{
+    return (int)FMI3(fn, SLOT_SET_CONTINUOUS_STATES, fmi3SetContinuousStatesTYPE)(
+        ((fmi3_context *)instance)->instance, x, nx);
+}
+
+static int get_continuous_states(const ssx_fmu_function *fn, void *instance, double *x,
+                                 size_t nx)
+{
+    return (int)FMI3(fn, SLOT_GET_CONTINUOUS_STATES, fmi3GetContinuousStatesTYPE)(
+        ((fmi3_context *)instance)->instance, x, nx);
+}
+
+static int get_derivatives(const ssx_fmu_function *fn, void *instance, double *dx, size_t nx)
+{
+    return (int)FMI3(fn, SLOT_GET_DERIVATIVES, fmi3GetContinuousStateDerivativesTYPE)(
+        ((fmi3_context *)instance)->instance, dx, nx);
+}
+
+static int get_event_indicators(const ssx_fmu_function *fn, void *instance, double *z,
+                                size_t nz)
+{
+    return (int)FMI3(fn, SLOT_GET_EVENT_INDICATORS, fmi3GetEventIndicatorsTYPE)(
+        ((fmi3_context *)instance)->instance, z, nz);
+}
+
+static int get_nominals_of_continuous_states(const ssx_fmu_function *fn, void *instance,
+                                             double *nominals, size_t nx)
+{
+    return (int)FMI3(fn, SLOT_GET_NOMINALS_OF_CONTINUOUS_STATES,
+                     fmi3GetNominalsOfContinuousStatesTYPE)(((fmi3_context *)instance)->instance,
+                                                            nominals, nx);
+}
+
+static int enter_continuous_time_mode(const ssx_fmu_function *fn, void *instance)
+{
+    return (int)FMI3(fn, SLOT_ENTER_CONTINUOUS_TIME_MODE, fmi3EnterContinuousTimeModeTYPE)(
+        ((fmi3_context *)instance)->instance);
+}
+
+static int completed_integrator_step(const ssx_fmu_function *fn, void *instance,
+                                     int no_set_state_prior, int *enter_event_mode,
+                                     int *terminate_simulation)
+{
+    fmi3Boolean enter = fmi3False, terminate = fmi3False;
+    int status = (int)FMI3(fn, SLOT_COMPLETED_INTEGRATOR_STEP, fmi3CompletedIntegratorStepTYPE)(
+        ((fmi3_context *)instance)->instance, no_set_state_prior ? fmi3True : fmi3False, &enter,
+        &terminate);
+    *enter_event_mode = enter != fmi3False;
+    *terminate_simulation = terminate != fmi3False;
+    return status;
+}
+
+static int get_number_of_continuous_states(const ssx_fmu_function *fn, void *instance,
+                                           size_t *n)
+{
+    return (int)FMI3(fn, SLOT_GET_NUMBER_OF_CONTINUOUS_STATES,
+                     fmi3GetNumberOfContinuousStatesTYPE)(((fmi3_context *)instance)->instance, n);
+}
+
+static int get_number_of_event_indicators(const ssx_fmu_function *fn, void *instance, size_t *n)
+{
+    return (int)FMI3(fn, SLOT_GET_NUMBER_OF_EVENT_INDICATORS,
+                     fmi3GetNumberOfEventIndicatorsTYPE)(((fmi3_context *)instance)->instance, n);
+}
+
+/* The adapters both interfaces share. */
+#define FMI3_ADAPTERS                                                                         \
+    .version = "FMI 3.0", .status_names = fmi3_status_names,                                  \
+    .context_size = sizeof(fmi3_context), .free_instance = free_instance,                     \
+    .setup_experiment = setup_experiment,                                                     \
+    .enter_initialization_mode = enter_initialization_mode, .terminate = terminate,           \
+    .reset = reset, .get_real = get_real, .get_integer = get_integer,                         \
+    .get_boolean = get_boolean, .set_real = set_real, .set_integer = set_integer,             \
+    .set_boolean = set_boolean, .get_state = get_state, .set_state = set_state,               \
+    .free_state = free_state, .serialized_state_size = serialized_state_size,                 \
+    .serialize_state = serialize_state, .deserialize_state = deserialize_state,               \
+    .directional_derivative = directional_derivative, .get_string = get_string,               \
+    .set_string = set_string, .get_binary = get_binary, .set_binary = set_binary,             \
+    .enter_event_mode = enter_event_mode, .new_discrete_states = new_discrete_states,         \
+    .variable_name = variable_name, .release_context = release_context
+
+const ssx_fmu_backend ssx_fmi3_model_exchange_backend = {
+    FMI3_ADAPTERS,
+    .standard = "FMI 3.0 Model Exchange",
+    .functions = fmi3_model_exchange_functions,
+    .n_functions = sizeof fmi3_model_exchange_functions / sizeof fmi3_model_exchange_functions[0],
+    .instantiate = instantiate_model_exchange,
+    .exit_initialization_mode = exit_initialization_mode_model_exchange,
+    .set_time = set_time,
+    .set_continuous_states = set_continuous_states,
+    .get_continuous_states = get_continuous_states,
+    .get_derivatives = get_derivatives,
+    .get_event_indicators = get_event_indicators,
+    .get_nominals_of_continuous_states = get_nominals_of_continuous_states,
+    .enter_continuous_time_mode = enter_continuous_time_mode,
+    .completed_integrator_step = completed_integrator_step,
+    .get_number_of_continuous_states = get_number_of_continuous_states,
+    .get_number_of_event_indicators = get_number_of_event_indicators,
+};
+
+const ssx_fmu_backend ssx_fmi3_backend = {
+    FMI3_ADAPTERS,
+    .standard = "FMI 3.0 Co-Simulation",
+    .functions = fmi3_functions,
+    .n_functions = sizeof fmi3_functions / sizeof fmi3_functions[0],
+    .instantiate = instantiate,
+    .exit_initialization_mode = exit_initialization_mode,
+    .do_step = do_step,
+    .get_terminated = get_terminated,
+    .get_last_successful_time = get_last_successful_time,
+    .enter_step_mode = enter_step_mode,
+    .step_outcome = step_outcome,
+};

@@ -1,0 +1,81 @@
+/* The FMI 3.0 back-ends' instance (fmu_fmi3.c) and its value table (fmu_fmi3_values.c): the
+ * type of every value reference, the FMU's arrays, and the conversion between the engine's
+ * three port types and FMI 3.0's eleven. */
+#ifndef SSX_FMU_FMI3_H
+#define SSX_FMU_FMI3_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fmu_backend.h"
+
+#include "fmi3Functions.h"
+
+typedef struct {
+    unsigned int vr; /* the engine's: the FMU's for a scalar, the element's own in an array */
+    unsigned char type;
+    const char *name; /* into the context's name pool */
+    size_t array;     /* 1 + the index of its array among the context's, 0 for a scalar */
+    size_t element;   /* its position in the array (row-major) */
+} variable;
+
+/* An FMU array variable: read and written whole, one fmi3Get/Set call per engine call. */
+typedef struct {
+    unsigned int vr; /* the FMU's */
+    unsigned char type;
+    size_t size;
+    void *start;  /* the start values given at load */
+    void *values; /* the values last written, start until then: a write completes with them */
+    void *read;   /* the values last read */
+    int fresh;    /* read during this engine call */
+    int pending;  /* written during this engine call, not yet sent */
+} array;
+
+typedef struct {
+    fmi3Instance instance; /* the FMU's; NULL until instantiated */
+    ssx_fmu *fmu;          /* the environment of log messages */
+    variable *variables;   /* sorted by value reference */
+    size_t n_variables;
+    char *names;
+    array *arrays;
+    size_t n_arrays;
+    int event_mode_used;
+    int early_return_allowed;
+    /* the experiment, kept for fmi3EnterInitializationMode */
+    int tolerance_defined;
+    double tolerance;
+    double start_time;
+    int stop_time_defined;
+    double stop_time;
+    ssx_step_outcome outcome;
+    /* one type's part of a batch: value references, positions in the engine's call, values */
+    unsigned int *part_vr;
+    size_t *part_at;
+    uint64_t *part_values; /* 8 bytes per value hold any numeric type */
+    size_t part_capacity;
+} fmi3_context;
+
+/* The function in `slot` with its fmi3 type (ISO C converts between function pointer types). */
+#define FMI3(fn, slot, type) ((type *)(fn)[slot])
+
+static inline int worse_status(int a, int b)
+{
+    return a > b ? a : b;
+}
+
+/* A message in the FMU's log, as the instance's own. */
+void fmi3_say(fmi3_context *ctx, const char *format, ...);
+
+/* The engine's get or set of `port` type: one fmi3 call per FMI 3.0 type among the scalars of
+ * vr, one per array among its elements. */
+int fmi3_get_values(const ssx_fmu_function *fn, fmi3_context *ctx, ssx_value_type port,
+                    const unsigned int *vr, size_t n, void *out);
+int fmi3_set_values(const ssx_fmu_function *fn, fmi3_context *ctx, ssx_value_type port,
+                    const unsigned int *vr, size_t n, const void *in);
+/* The name of the variable vr (NULL when the table has none). */
+const char *fmi3_variable_name(const fmi3_context *ctx, unsigned int vr);
+/* After fmi3Reset: the arrays hold their start values again. */
+void fmi3_values_reset(fmi3_context *ctx);
+void fmi3_values_free(fmi3_context *ctx);
+
+#endif
