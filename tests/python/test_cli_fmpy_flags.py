@@ -131,3 +131,24 @@ def test_run_lists_the_first_five_of_many_events(capsys: pytest.CaptureFixture[s
     line = capsys.readouterr().out.splitlines()[1]
     count = int(re.match(r"Events: (\d+) \(first 5 at ", line).group(1))
     assert count > 5 and line.endswith(", ...)") and line.count("P.wall_hit") == 5
+
+
+def test_run_takes_the_output_interval_and_keeps_the_event_instants(tmp_path: Path):
+    out = tmp_path / "wall.csv"
+    assert main(["run", str(EXAMPLES / "pendulum_wall.yaml"), "--output-interval", "0.25",
+                 "--output-file", str(out)]) == 0
+    rows = [line.split(",") for line in out.read_text().splitlines()[1:]]
+    theta = [(float(r[2]), int(r[3])) for r in rows if r[:2] == ["P", "theta"]]
+    event = next(t for t, micro in theta if micro == 1)
+    assert abs(event - EXACT_WALL_TIME) < 1e-8
+    assert theta == [(0.0, 0), (0.25, 0), (event, 0), (event, 1), (0.5, 0), (0.75, 0), (1.0, 0)]
+
+
+def test_run_timeout_writes_the_samples_and_fails(tmp_path: Path,
+                                                 capsys: pytest.CaptureFixture[str]):
+    out = tmp_path / "long.csv"
+    assert main(["run", str(EXAMPLES / "pendulum_wall.yaml"), "--stop-time", "1e5",
+                 "--step-size", "1e-4", "--timeout", "0.3", "--output-file", str(out)]) == 1
+    err = capsys.readouterr().err
+    assert "exceeded timeout=0.3 s" in err and f"written to {out}" in err
+    assert len(out.read_text().splitlines()) > 10
