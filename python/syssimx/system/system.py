@@ -109,13 +109,13 @@ class System:
 
         if connection.src_port not in src.output_specs:
             raise ConfigurationError(f"{where()}: {src.name!r} has no output "
-                                     f"{connection.src_port!r}{src.why_no_port(connection.src_port)}"
-                                     f"{did_you_mean(connection.src_port, src.output_specs)}"
+                                     f"{connection.src_port!r}"
+                                     f"{_why_not(src, connection.src_port, src.output_specs)}"
                                      f"; outputs: {sorted(src.output_specs)}")
         if connection.dst_port not in dst.input_specs:
             raise ConfigurationError(f"{where()}: {dst.name!r} has no input "
-                                     f"{connection.dst_port!r}{dst.why_no_port(connection.dst_port)}"
-                                     f"{did_you_mean(connection.dst_port, dst.input_specs)}"
+                                     f"{connection.dst_port!r}"
+                                     f"{_why_not(dst, connection.dst_port, dst.input_specs)}"
                                      f"; inputs: {sorted(dst.input_specs)}")
         src_spec = src.output_specs[connection.src_port]
         dst_spec = dst.input_specs[connection.dst_port]
@@ -387,6 +387,11 @@ def _time_value(system: str, label: str, value: object) -> float:
             or not math.isfinite(value):
         raise ConfigurationError(f"{system}: {label} must be a finite number, got {value!r}")
     return float(value)
+
+
+def _why_not(component: CoSimComponent, port: str, ports: Any) -> str:
+    """Why a known name is no port, else the close port names."""
+    return component.why_no_port(port) or did_you_mean(port, ports)
 
 
 def _check_step(system: str, t0: float, tf: float, dt: float) -> None:
