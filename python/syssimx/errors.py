@@ -25,6 +25,15 @@ class ConfigurationTypeError(ConfigurationError, TypeError):
     """A value of the wrong type for a port, a parameter or an option (also a TypeError)."""
 
 
+class UnknownNameError(ConfigurationError, KeyError):
+    """A name a result or a history does not hold: a component, a port, an event (also a
+    KeyError, as for a mapping)."""
+
+    def __str__(self) -> str:
+        # KeyError quotes its message; this one reads as the other errors do
+        return BaseException.__str__(self) or SysSimXError.__str__(self)
+
+
 class BundledFMUNotFoundError(ConfigurationError, FileNotFoundError):
     """No FMU of that name is bundled with syssimx (also a FileNotFoundError)."""
 

@@ -124,3 +124,15 @@ def test_no_stale_fmi_2_0_co_simulation_only_words():
                                capture_output=True, text=True, check=True, env=environment,
                                cwd=Path(syssimx.__file__).parents[1]).stdout
     assert "FMI 2.0 and 3.0, Co-Simulation and Model Exchange" in " ".join(help_text.split())
+
+
+def test_a_result_names_what_it_does_not_hold_as_a_key_error():
+    system = pendulum_system()
+    system.initialize(0.0)
+    result = system.run(0.0, 0.1, 0.05)
+    with pytest.raises(KeyError) as raised:
+        result["p"]
+    assert isinstance(raised.value, SysSimXError)
+    assert str(raised.value) == "no component 'p' (did you mean 'P'?); components: ['P']"
+    with pytest.raises(SysSimXError, match=r"recorded no port 'thetta' \(did you mean 'theta'"):
+        system.history.save_csv("unused.csv", port_names={"P": ["thetta"]})

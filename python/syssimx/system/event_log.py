@@ -10,6 +10,8 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any, SupportsIndex, overload
 
+from ..errors import UnknownNameError
+
 if TYPE_CHECKING:
     from ..core.events import DenseTime
     from .results import EventRecord
@@ -38,7 +40,7 @@ class EventLog(list["EventRecord"]):
         if isinstance(key, tuple):
             histories = self._by_source()
             if key not in histories:
-                raise KeyError(f"no event {key!r}; events: {sorted(histories)}")
+                raise UnknownNameError(f"no event {key!r}; events: {sorted(histories)}")
             return histories[key]
         return super().__getitem__(key)
 

@@ -11,8 +11,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ..core.events import DenseTime
+from ..core.suggest import did_you_mean
 from ..engine import enum_name, ffi, lib
-from ..errors import ConfigurationError
+from ..errors import ConfigurationError, UnknownNameError
 from ..extras import require
 from . import csv_export
 from .event_log import EventLog
@@ -200,7 +201,9 @@ class HistoryView:
 
     def __getitem__(self, component: str) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         if component not in self._data:
-            raise KeyError(f"no component {component!r}; components: {sorted(self._data)}")
+            raise UnknownNameError(f"no component {component!r}"
+                                   f"{did_you_mean(component, self._data)}; components: "
+                                   f"{sorted(self._data)}")
         return self._data[component]
 
     def __iter__(self) -> Iterator[str]:
