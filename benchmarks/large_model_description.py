@@ -43,7 +43,7 @@ elif kind == "fmpy":
     description = read_model_description(path, validate=False)
     count = len(description.modelVariables)
 elif kind == "read_fmu":
-    from syssimx.components.model_description import read_fmu
+    from syssimx.fmu.info import read_fmu
     count = len(read_fmu(path).variables)
 else:
     from syssimx import FMUComponent

@@ -1,5 +1,6 @@
 /* The describe tool: writes modelDescription.xml for the model and back-end it is linked with.
- * Usage: describe <modelIdentifier> <output.xml> [2.0|3.0] (the FMI version, 2.0 by default).
+ * Usage: describe <modelIdentifier> <output.xml> [2.0|3.0|1.0-cs|1.0-me] (the FMI version, 2.0
+ * by default; FMI 1.0 describes one interface).
  * It fails on an inconsistent table, so a broken model cannot be packaged. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -141,9 +142,13 @@ static int write_description(FILE *out, const char *model_identifier)
 
 int main(int argc, char **argv)
 {
-    int fmi3 = argc == 4 && strcmp(argv[3], "3.0") == 0;
-    if (argc < 3 || argc > 4 || (argc == 4 && !fmi3 && strcmp(argv[3], "2.0") != 0)) {
-        fprintf(stderr, "usage: %s <modelIdentifier> <output.xml> [2.0|3.0]\n", argv[0]);
+    const char *version = argc == 4 ? argv[3] : "2.0";
+    int fmi3 = strcmp(version, "3.0") == 0;
+    int fmi1_cs = strcmp(version, "1.0-cs") == 0, fmi1_me = strcmp(version, "1.0-me") == 0;
+    if (argc < 3 || argc > 4 ||
+        !(fmi3 || fmi1_cs || fmi1_me || strcmp(version, "2.0") == 0)) {
+        fprintf(stderr, "usage: %s <modelIdentifier> <output.xml> [2.0|3.0|1.0-cs|1.0-me]\n",
+                argv[0]);
         return 2;
     }
     FILE *out = fopen(argv[2], "w");
@@ -151,7 +156,9 @@ int main(int argc, char **argv)
         perror(argv[2]);
         return 1;
     }
-    int written = fmi3 ? write_description_fmi3(out, argv[1]) : write_description(out, argv[1]);
+    int written = fmi3                ? write_description_fmi3(out, argv[1])
+                  : fmi1_cs || fmi1_me ? write_description_fmi1(out, argv[1], fmi1_cs)
+                                       : write_description(out, argv[1]);
     int failed = written != 0;
     failed |= fclose(out) != 0;
     if (failed)

@@ -1,4 +1,4 @@
-/* What the FMI 2.0 and FMI 3.0 modelDescription writers of the describe tool share. */
+/* What the modelDescription writers of the describe tool (FMI 1.0, 2.0, 3.0) share. */
 #ifndef SYSSIMX_DESCRIBE_XML_H
 #define SYSSIMX_DESCRIBE_XML_H
 
@@ -29,5 +29,7 @@ void write_default_experiment(FILE *out);
 
 /* The FMI 3.0 modelDescription (describe_fmi3.c); -1 when the table is inconsistent. */
 int write_description_fmi3(FILE *out, const char *model_identifier);
+/* The FMI 1.0 modelDescription of one interface (describe_fmi1.c); -1 likewise. */
+int write_description_fmi1(FILE *out, const char *model_identifier, int co_simulation);
 
 #endif

@@ -11,8 +11,8 @@ import xml.etree.ElementTree as ElementTree
 import zipfile
 from pathlib import Path
 
-# FMI 2.0 names the platform "linux64", FMI 3.0 by its platform tuple
-PLATFORM_FOLDERS = {"2.0": "linux64", "3.0": "x86_64-linux"}
+# FMI 1.0 and 2.0 name the platform "linux64", FMI 3.0 by its platform tuple
+PLATFORM_FOLDERS = {"1.0": "linux64", "2.0": "linux64", "3.0": "x86_64-linux"}
 
 
 def package(description: Path, binary: Path, model_identifier: str, output: Path) -> None:

@@ -710,8 +710,7 @@ int ssx_add_model_exchange_component(ssx_system *sys, const char *name, ssx_fmu 
                            "component '%s': %s", label,
                            fmu == NULL ? "no FMU given"
                                        : "the FMU was not loaded for Model Exchange "
-                                         "(ssx_fmu_load_model_exchange or "
-                                         "ssx_fmu_load_fmi3_model_exchange)");
+                                         "(ssx_fmu_load with SSX_MODEL_EXCHANGE)");
     }
     if (n_states < 0 || n_event_indicators < 0) {
         return fail_config(sys, -1, -1, NAN,

@@ -1,7 +1,7 @@
 /* What an FMI version adds to the FMU binding. The binding (fmu_binding.c) is version-neutral:
  * it loads the binary, resolves the back-end's function table, keeps the instance, its states
- * and counters, and checks every call in one place. A back-end (fmu_fmi2.c, fmu_fmi3.c) names
- * its standard's functions and calls them with their own types. */
+ * and counters, and checks every call in one place. A back-end (fmu_fmi1.c, fmu_fmi2.c,
+ * fmu_fmi3.c) names its standard's functions and calls them with their own types. */
 #ifndef SSX_FMU_BACKEND_H
 #define SSX_FMU_BACKEND_H
 
@@ -99,6 +99,7 @@ typedef struct {
  * calls an adapter only when its slot is filled and an instance is live. */
 typedef struct {
     const char *standard; /* "FMI 2.0 Co-Simulation", for messages */
+    ssx_fmu_interface interface;
     const char *version;  /* "FMI 2.0", for messages */
     const char *const *status_names; /* the standard's name of each status ("fmi2OK", ...) */
     const ssx_fmu_function_row *functions;
@@ -184,6 +185,10 @@ typedef struct {
     void (*step_outcome)(void *instance, ssx_step_outcome *outcome);
     /* the name of the variable vr, NULL when unknown; NULL: the back-end keeps no names */
     const char *(*variable_name)(const void *context, unsigned int vr);
+    /* keeps what the back-end needs from the load spec in its zeroed context (-1, the reason
+     * in error, on failure); NULL: nothing */
+    int (*prepare)(void *context, const ssx_fmu_load_spec *spec, char *error,
+                   size_t error_size);
     /* frees what the back-end put into its context at load; NULL: nothing */
     void (*release_context)(void *context);
 } ssx_fmu_backend;
@@ -196,12 +201,10 @@ extern const ssx_fmu_backend ssx_fmi3_backend;
 /* FMI 3.0 Model Exchange: fmi3InstantiateModelExchange, the Model Exchange functions instead
  * of fmi3DoStep and step mode; the same context and value adapters as Co-Simulation. */
 extern const ssx_fmu_backend ssx_fmi3_model_exchange_backend;
-
-/* The FMI 3.0 back-end's load-time facts, into its zeroed context: the type of every value
- * reference the engine gets or sets (copied) and how the FMU is instantiated. Fails (-1, the
- * reason in error) when out of memory or when a type is not an ssx_fmi3_type. */
-int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *error,
-                     size_t error_size);
+/* FMI 1.0 Co-Simulation (fmiInstantiateSlave ... fmiDoStep) and Model Exchange
+ * (fmiInstantiateModel ... fmiEventUpdate): no FMU state, no directional derivatives. */
+extern const ssx_fmu_backend ssx_fmi1_backend;
+extern const ssx_fmu_backend ssx_fmi1_model_exchange_backend;
 
 /* For a back-end's logger: what the FMU logged, a printf format with its arguments. */
 void ssx_fmu_log(ssx_fmu *fmu, const char *format, va_list args);

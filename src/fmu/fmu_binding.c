@@ -130,121 +130,96 @@ static void unload(void *library, ssx_remote *remote)
     }
 }
 
-/* host_path NULL: dlopen the binary into this process; otherwise run it in a host process. */
-static ssx_fmu *load(const ssx_fmu_backend *backend, const char *host_path, double step_timeout,
-                     const char *binary_path, const char *model_identifier, const char *guid,
-                     const char *resource_uri, const char *instance_name, int logging_on,
-                     char *error, size_t error_size)
+/* The back-end of each standard's interfaces (NULL: not one syssimx runs). */
+static const ssx_fmu_backend *backend_of(const ssx_fmu_load_spec *spec)
 {
-    if (binary_path == NULL || model_identifier == NULL) {
-        snprintf(error, error_size, "ssx_fmu_load: binary path and model identifier are required");
+    static const ssx_fmu_backend *const backends[][2] = {
+        [SSX_FMI1] = {&ssx_fmi1_backend, &ssx_fmi1_model_exchange_backend},
+        [SSX_FMI2] = {&ssx_fmi2_backend, &ssx_fmi2_model_exchange_backend},
+        [SSX_FMI3] = {&ssx_fmi3_backend, &ssx_fmi3_model_exchange_backend},
+    };
+    size_t n_versions = sizeof backends / sizeof backends[0];
+    if ((size_t)spec->version >= n_versions ||
+        (spec->interface != SSX_CO_SIMULATION && spec->interface != SSX_MODEL_EXCHANGE)) {
+        return NULL;
+    }
+    return backends[spec->version][spec->interface];
+}
+
+/* A spec the binding cannot load from, named; NULL when it can. */
+static const char *unusable(const ssx_fmu_load_spec *spec, const ssx_fmu_backend *backend)
+{
+    if (spec->binary_path == NULL || spec->model_identifier == NULL) {
+        return "the binary path and the model identifier are required";
+    }
+    if (backend == NULL) {
+        return "the FMI version or interface is not one syssimx runs";
+    }
+    if (spec->host_path != NULL && backend != &ssx_fmi2_backend) {
+        return "only FMI 2.0 Co-Simulation FMUs run in a host process";
+    }
+    return NULL;
+}
+
+ssx_fmu *ssx_fmu_load(const ssx_fmu_load_spec *spec, char *error, size_t error_size)
+{
+    if (spec == NULL) {
+        snprintf(error, error_size, "ssx_fmu_load: no load spec");
+        return NULL;
+    }
+    const ssx_fmu_backend *backend = backend_of(spec);
+    const char *problem = unusable(spec, backend);
+    if (problem != NULL) {
+        snprintf(error, error_size, "ssx_fmu_load: %s", problem);
         return NULL;
     }
     ssx_fmu *fmu = calloc(1, sizeof *fmu);
     if (fmu == NULL) {
-        snprintf(error, error_size, "out of memory loading %s", binary_path);
+        snprintf(error, error_size, "out of memory loading %s", spec->binary_path);
         return NULL;
     }
     fmu->backend = backend;
     fmu->last_call = "";
-    if (host_path != NULL) {
-        fmu->remote = ssx_remote_start(host_path, binary_path, model_identifier, step_timeout,
-                                       error, error_size);
+    if (spec->host_path != NULL) {
+        fmu->remote = ssx_remote_start(spec->host_path, spec->binary_path,
+                                       spec->model_identifier, spec->step_timeout, error,
+                                       error_size);
         if (fmu->remote == NULL) {
             free(fmu);
             return NULL;
         }
     } else {
-        fmu->library = dlopen(binary_path, RTLD_NOW | RTLD_LOCAL);
+        fmu->library = dlopen(spec->binary_path, RTLD_NOW | RTLD_LOCAL);
         if (fmu->library == NULL) {
             const char *reason = dlerror();
-            snprintf(error, error_size, "cannot load the FMU binary %s: %s", binary_path,
+            snprintf(error, error_size, "cannot load the FMU binary %s: %s", spec->binary_path,
                      reason != NULL ? reason : "unknown dlopen failure");
             free(fmu);
             return NULL;
         }
     }
-    if (resolve_functions(fmu, binary_path, model_identifier, error, error_size) != 0) {
+    if (resolve_functions(fmu, spec->binary_path, spec->model_identifier, error,
+                          error_size) != 0) {
         ssx_fmu_free(fmu);
         return NULL;
     }
     fmu->context = calloc(1, backend->context_size);
-    fmu->guid = duplicate(guid);
-    fmu->resource_uri = duplicate(resource_uri);
-    fmu->instance_name = duplicate(instance_name != NULL ? instance_name : model_identifier);
+    fmu->guid = duplicate(spec->guid);
+    fmu->resource_uri = duplicate(spec->resource_location);
+    fmu->instance_name = duplicate(spec->instance_name != NULL ? spec->instance_name
+                                                               : spec->model_identifier);
     if (fmu->context == NULL || fmu->guid == NULL || fmu->resource_uri == NULL ||
         fmu->instance_name == NULL) {
-        snprintf(error, error_size, "out of memory loading %s", binary_path);
+        snprintf(error, error_size, "out of memory loading %s", spec->binary_path);
         ssx_fmu_free(fmu);
         return NULL;
     }
-    fmu->logging_on = logging_on;
-    return fmu;
-}
-
-ssx_fmu *ssx_fmu_load(const char *binary_path, const char *model_identifier, const char *guid,
-                      const char *resource_uri, const char *instance_name, int logging_on,
-                      char *error, size_t error_size)
-{
-    return load(&ssx_fmi2_backend, NULL, 0.0, binary_path, model_identifier, guid, resource_uri,
-                instance_name, logging_on, error, error_size);
-}
-
-ssx_fmu *ssx_fmu_load_model_exchange(const char *binary_path, const char *model_identifier,
-                                     const char *guid, const char *resource_uri,
-                                     const char *instance_name, int logging_on, char *error,
-                                     size_t error_size)
-{
-    return load(&ssx_fmi2_model_exchange_backend, NULL, 0.0, binary_path, model_identifier, guid,
-                resource_uri, instance_name, logging_on, error, error_size);
-}
-
-static ssx_fmu *load_fmi3(const ssx_fmu_backend *backend, const char *binary_path,
-                          const char *model_identifier, const char *instantiation_token,
-                          const char *resource_path, const char *instance_name, int logging_on,
-                          const ssx_fmi3_variables *variables, char *error, size_t error_size)
-{
-    ssx_fmu *fmu = load(backend, NULL, 0.0, binary_path, model_identifier, instantiation_token,
-                        resource_path, instance_name, logging_on, error, error_size);
-    if (fmu != NULL && ssx_fmi3_prepare(fmu->context, variables, error, error_size) != 0) {
+    fmu->logging_on = spec->logging_on;
+    if (backend->prepare != NULL && backend->prepare(fmu->context, spec, error, error_size) != 0) {
         ssx_fmu_free(fmu);
         return NULL;
     }
     return fmu;
-}
-
-ssx_fmu *ssx_fmu_load_fmi3(const char *binary_path, const char *model_identifier,
-                           const char *instantiation_token, const char *resource_path,
-                           const char *instance_name, int logging_on,
-                           const ssx_fmi3_variables *variables, char *error, size_t error_size)
-{
-    return load_fmi3(&ssx_fmi3_backend, binary_path, model_identifier, instantiation_token,
-                     resource_path, instance_name, logging_on, variables, error, error_size);
-}
-
-ssx_fmu *ssx_fmu_load_fmi3_model_exchange(const char *binary_path, const char *model_identifier,
-                                          const char *instantiation_token,
-                                          const char *resource_path, const char *instance_name,
-                                          int logging_on, const ssx_fmi3_variables *variables,
-                                          char *error, size_t error_size)
-{
-    return load_fmi3(&ssx_fmi3_model_exchange_backend, binary_path, model_identifier,
-                     instantiation_token, resource_path, instance_name, logging_on, variables,
-                     error, error_size);
-}
-
-ssx_fmu *ssx_fmu_load_isolated(const char *host_path, double step_timeout,
-                               const char *binary_path, const char *model_identifier,
-                               const char *guid, const char *resource_uri,
-                               const char *instance_name, int logging_on, char *error,
-                               size_t error_size)
-{
-    if (host_path == NULL) {
-        snprintf(error, error_size, "ssx_fmu_load_isolated: the FMU host's path is required");
-        return NULL;
-    }
-    return load(&ssx_fmi2_backend, host_path, step_timeout, binary_path, model_identifier, guid,
-                resource_uri, instance_name, logging_on, error, error_size);
 }
 
 /* ------------------------------------------------------------------ the checked call */
@@ -666,8 +641,7 @@ int ssx_fmu_experiment_tolerance(const ssx_fmu *fmu, double *tolerance)
 
 int ssx_fmu_is_model_exchange(const ssx_fmu *fmu)
 {
-    return fmu != NULL && (fmu->backend == &ssx_fmi2_model_exchange_backend ||
-                           fmu->backend == &ssx_fmi3_model_exchange_backend);
+    return fmu != NULL && fmu->backend->interface == SSX_MODEL_EXCHANGE;
 }
 
 /* ------------------------------------------------------------------ states */

@@ -52,9 +52,8 @@ typedef struct {
     int next_event_time_defined;
     double next_event_time;
 } ssx_fmu_event_info;
-/* The Model Exchange calls of an FMU loaded by ssx_fmu_load_model_exchange or
- * ssx_fmu_load_fmi3_model_exchange, checked like every
- * other call; each returns the status, or -1. Event mode (enter, new discrete states) serves an
+/* The Model Exchange calls of an FMU loaded with SSX_MODEL_EXCHANGE, checked like every other
+ * call; each returns the status, or -1. Event mode (enter, new discrete states) serves an
  * FMI 3.0 Co-Simulation instance made with eventModeUsed too, with fmi3EnterStepMode to leave
  * it. */
 int ssx_fmu_set_time(ssx_fmu *fmu, double time);

@@ -348,6 +348,7 @@ static int completed_integrator_step(const ssx_fmu_function *fn, void *instance,
 const ssx_fmu_backend ssx_fmi2_model_exchange_backend = {
     FMI2_ADAPTERS,
     .standard = "FMI 2.0 Model Exchange",
+    .interface = SSX_MODEL_EXCHANGE,
     .functions = fmi2_model_exchange_functions,
     .n_functions = sizeof fmi2_model_exchange_functions / sizeof fmi2_model_exchange_functions[0],
     .instantiate = instantiate_model_exchange,
@@ -366,6 +367,7 @@ const ssx_fmu_backend ssx_fmi2_model_exchange_backend = {
 const ssx_fmu_backend ssx_fmi2_backend = {
     FMI2_ADAPTERS,
     .standard = "FMI 2.0 Co-Simulation",
+    .interface = SSX_CO_SIMULATION,
     .functions = fmi2_functions,
     .n_functions = sizeof fmi2_functions / sizeof fmi2_functions[0],
     .instantiate = instantiate,

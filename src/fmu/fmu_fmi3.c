@@ -91,6 +91,12 @@ static const char *const fmi3_status_names[] = {SSX_STATUS_NAMES(FMI3_NAME)};
 /* Rounds of fmi3UpdateDiscreteStates after initialization before it counts as chattering. */
 enum { INITIAL_UPDATE_ROUNDS = 1000 };
 
+/* The load spec's type table (ssx_fmi3_prepare) */
+static int prepare(void *context, const ssx_fmu_load_spec *spec, char *error, size_t error_size)
+{
+    return ssx_fmi3_prepare(context, spec->fmi3_variables, error, error_size);
+}
+
 static void release_context(void *context)
 {
     fmi3_values_free(context);
@@ -522,11 +528,12 @@ static int get_number_of_event_indicators(const ssx_fmu_function *fn, void *inst
     .directional_derivative = directional_derivative, .get_string = get_string,               \
     .set_string = set_string, .get_binary = get_binary, .set_binary = set_binary,             \
     .enter_event_mode = enter_event_mode, .new_discrete_states = new_discrete_states,         \
-    .variable_name = variable_name, .release_context = release_context
+    .variable_name = variable_name, .prepare = prepare, .release_context = release_context
 
 const ssx_fmu_backend ssx_fmi3_model_exchange_backend = {
     FMI3_ADAPTERS,
     .standard = "FMI 3.0 Model Exchange",
+    .interface = SSX_MODEL_EXCHANGE,
     .functions = fmi3_model_exchange_functions,
     .n_functions = sizeof fmi3_model_exchange_functions / sizeof fmi3_model_exchange_functions[0],
     .instantiate = instantiate_model_exchange,
@@ -546,6 +553,7 @@ const ssx_fmu_backend ssx_fmi3_model_exchange_backend = {
 const ssx_fmu_backend ssx_fmi3_backend = {
     FMI3_ADAPTERS,
     .standard = "FMI 3.0 Co-Simulation",
+    .interface = SSX_CO_SIMULATION,
     .functions = fmi3_functions,
     .n_functions = sizeof fmi3_functions / sizeof fmi3_functions[0],
     .instantiate = instantiate,

@@ -77,5 +77,10 @@ const char *fmi3_variable_name(const fmi3_context *ctx, unsigned int vr);
 /* After fmi3Reset: the arrays hold their start values again. */
 void fmi3_values_reset(fmi3_context *ctx);
 void fmi3_values_free(fmi3_context *ctx);
+/* The load-time facts, into the zeroed context: the type of every value reference the engine
+ * gets or sets (copied) and how the FMU is instantiated. Fails (-1, the reason in error) when
+ * out of memory or when a type is not an ssx_fmi3_type. */
+int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *error,
+                     size_t error_size);
 
 #endif

@@ -67,21 +67,7 @@ typedef struct {
     long directional_derivative; /* fmi2GetDirectionalDerivative calls */
 } ssx_fmu_counters;
 
-/* dlopen(binary_path, RTLD_NOW | RTLD_LOCAL) and resolve the fmi2 functions (prefixed with
- * model_identifier when unprefixed names are missing). On failure returns NULL and writes the
- * reason into error. Does not instantiate. */
-ssx_fmu *ssx_fmu_load(const char *binary_path, const char *model_identifier, const char *guid,
-                      const char *resource_uri, const char *instance_name, int logging_on,
-                      char *error, size_t error_size);
-void ssx_fmu_free(ssx_fmu *fmu); /* terminates/frees a live instance, then dlclose */
-/* Like ssx_fmu_load, for the FMU's Model Exchange interface (model_identifier: the
- * ModelExchange element's): the instance is an fmi2ModelExchange one, the binary must export
- * the Model Exchange functions (fmi2DoStep is neither needed nor called). Its component is
- * added with ssx_add_model_exchange_component. */
-ssx_fmu *ssx_fmu_load_model_exchange(const char *binary_path, const char *model_identifier,
-                                     const char *guid, const char *resource_uri,
-                                     const char *instance_name, int logging_on, char *error,
-                                     size_t error_size);
+void ssx_fmu_free(ssx_fmu *fmu); /* terminates/frees a live instance, then unloads */
 
 /* FMI 3.0 Co-Simulation. The engine keeps its three port types: Float64 and Float32 variables
  * are Real ports, Int8 ... UInt64 Integer ports (a value outside the int range fails the call
@@ -118,23 +104,35 @@ typedef struct {
     const double *start;
 } ssx_fmi3_variables;
 
-/* Like ssx_fmu_load for an FMI 3.0 Co-Simulation binary: resolves the fmi3 functions; the
- * instantiation token and resource path (a directory ending in '/') as FMI 3.0 defines them.
- * The variables are copied. */
-ssx_fmu *ssx_fmu_load_fmi3(const char *binary_path, const char *model_identifier,
-                           const char *instantiation_token, const char *resource_path,
-                           const char *instance_name, int logging_on,
-                           const ssx_fmi3_variables *variables, char *error, size_t error_size);
-/* Like ssx_fmu_load_fmi3, for the FMU's FMI 3.0 Model Exchange interface (model_identifier:
- * the ModelExchange element's): the instance is made by fmi3InstantiateModelExchange, the
- * binary must export the Model Exchange functions (fmi3DoStep is neither needed nor called),
- * and the event_mode_used and early_return_allowed of `variables` do not apply. Its component
- * is added with ssx_add_model_exchange_component. */
-ssx_fmu *ssx_fmu_load_fmi3_model_exchange(const char *binary_path, const char *model_identifier,
-                                          const char *instantiation_token,
-                                          const char *resource_path, const char *instance_name,
-                                          int logging_on, const ssx_fmi3_variables *variables,
-                                          char *error, size_t error_size);
+/* The FMI standard and the interface a binary is loaded as. */
+typedef enum { SSX_FMI1 = 1, SSX_FMI2 = 2, SSX_FMI3 = 3 } ssx_fmi_version;
+typedef enum { SSX_CO_SIMULATION = 0, SSX_MODEL_EXCHANGE = 1 } ssx_fmu_interface;
+
+/* What loading a binary needs. The texts and the variables are copied. */
+typedef struct {
+    ssx_fmi_version version;
+    ssx_fmu_interface interface; /* a Model Exchange instance is integrated by the engine: its
+                                  * component is added with ssx_add_model_exchange_component */
+    const char *binary_path;
+    const char *model_identifier; /* the interface's: names the binary and prefixes names */
+    const char *guid;             /* FMI 3.0: the instantiation token */
+    /* what the standard passes at instantiation: FMI 2.0 the resources folder's URI, FMI 3.0
+     * its path ending in '/', FMI 1.0 Co-Simulation the URI of the extracted archive */
+    const char *resource_location;
+    const char *instance_name; /* NULL: the model identifier */
+    int logging_on;
+    /* non-NULL: the binary runs in a host process (the syssimx-fmu-host executable installed
+     * beside the engine library; FMI 2.0 Co-Simulation only), see Isolation below */
+    const char *host_path;
+    double step_timeout;
+    const ssx_fmi3_variables *fmi3_variables; /* FMI 3.0 only */
+} ssx_fmu_load_spec;
+
+/* Loads the binary (dlopen RTLD_NOW | RTLD_LOCAL, or in a host process) and resolves the
+ * functions of the spec's standard and interface (prefixed with the model identifier, as
+ * "<id>_<name>", when unprefixed names are missing; FMI 1.0 always prefixes). Does not
+ * instantiate. On failure returns NULL and writes the reason into error. */
+ssx_fmu *ssx_fmu_load(const ssx_fmu_load_spec *spec, char *error, size_t error_size);
 /* fmi3Get/SetString and fmi3Get/SetBinary (FMI 3.0 only: other FMUs refuse them). The texts
  * and bytes read stay valid until the next call on the FMU. */
 int ssx_fmu_get_string(ssx_fmu *fmu, const unsigned int *vr, size_t n, const char **values);
@@ -331,18 +329,17 @@ const ssx_error *ssx_last_error(const ssx_system *sys);
 
 int ssx_add_fmu_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_get_set_state);
 int ssx_add_python_component(ssx_system *sys, const char *name, int can_snapshot);
-/* A Model Exchange FMU (loaded by ssx_fmu_load_model_exchange or
- * ssx_fmu_load_fmi3_model_exchange, initialized by ssx_fmu_initialize) that the engine
- * integrates with CVODE between communication points: n_states continuous states
- * (ModelStructure/Derivatives), n_event_indicators (numberOfEventIndicators, FMI 3.0's
- * ModelStructure/EventIndicator); an FMI 3.0 instance that counts others fails its first
- * step. The relative tolerance is the one the instance was set up with
- * (ssx_fmu_experiment's), else model_exchange_tolerance of ssx_defaults; the absolute
- * tolerances are it times the states' nominals. Its state, time and step events are handled
- * inside its steps at their own time and recorded as its own events (ssx_own_event_kind); a
- * request to terminate ends the run as for a Co-Simulation FMU. Its snapshots hold the FMU
- * state (fmi2GetFMUstate, when can_get_set_state) and the engine's copy of the continuous
- * states; ports are added as for any FMU component. */
+/* A Model Exchange FMU (loaded with interface SSX_MODEL_EXCHANGE, initialized by
+ * ssx_fmu_initialize) that the engine integrates with CVODE between communication points:
+ * n_states continuous states (ModelStructure/Derivatives; FMI 1.0: numberOfContinuousStates),
+ * n_event_indicators (numberOfEventIndicators, FMI 3.0's ModelStructure/EventIndicator); an
+ * FMI 3.0 instance that counts others fails its first step. The relative tolerance is the
+ * one the instance was set up with (ssx_fmu_experiment's), else model_exchange_tolerance of
+ * ssx_defaults; the absolute tolerances are it times the states' nominals. Its state, time and
+ * step events are handled inside its steps at their own time and recorded as its own events
+ * (ssx_own_event_kind); a request to terminate ends the run as for a Co-Simulation FMU. Its
+ * snapshots hold the FMU state (fmi2GetFMUstate, when can_get_set_state) and the engine's copy
+ * of the continuous states; ports are added as for any FMU component. */
 int ssx_add_model_exchange_component(ssx_system *sys, const char *name, ssx_fmu *fmu,
                                      int can_get_set_state, int n_states,
                                      int n_event_indicators);
@@ -476,18 +473,12 @@ void ssx_get_statistics(const ssx_system *sys, ssx_statistics *out);
 /* ------------------------------------------------------------------------------------------
  * Isolation: an FMU whose binary runs in a process of its own.
  * ------------------------------------------------------------------------------------------ */
-/* Like ssx_fmu_load, but the binary is loaded by a host process (host_path: the syssimx-fmu-host
- * executable installed beside the engine library) and every fmi2 call is forwarded to it, FMU
- * states included. A crash, abort or exit inside the FMU fails the call with fmi2Fatal and the
- * FMU's last message says how the process ended (the signal); this process goes on. With
- * step_timeout > 0, a call that has not returned after step_timeout seconds kills the host and
- * fails the same way. The next ssx_fmu_instantiate starts a new host; ssx_fmu_free ends it and
- * waits for it. */
-ssx_fmu *ssx_fmu_load_isolated(const char *host_path, double step_timeout,
-                               const char *binary_path, const char *model_identifier,
-                               const char *guid, const char *resource_uri,
-                               const char *instance_name, int logging_on, char *error,
-                               size_t error_size);
+/* An FMU loaded with a host_path runs its binary in a host process and every fmi2 call is
+ * forwarded to it, FMU states included. A crash, abort or exit inside the FMU fails the call
+ * with fmi2Fatal and the FMU's last message says how the process ended (the signal); this
+ * process goes on. With step_timeout > 0, a call that has not returned after step_timeout
+ * seconds kills the host and fails the same way. The next ssx_fmu_instantiate starts a new
+ * host; ssx_fmu_free ends it and waits for it. */
 
 /* ------------------------------------------------------------------------------------------
  * Table sources: a component whose outputs are the columns of a time table, evaluated in C
@@ -507,8 +498,8 @@ int ssx_add_table_column(ssx_system *sys, int component, ssx_value_type type, in
 int ssx_table_values(ssx_system *sys, int component, double t, int after_event, double *values);
 
 /* ------------------------------------------------------------------------------------------
- * modelDescription.xml (FMI 2.0), read into compact arrays: one pass over the text, no tree,
- * no object per variable. The reader is a small XML tokenizer for what a modelDescription
+ * modelDescription.xml (FMI 2.0 and 1.0), read into compact arrays: one pass over the text,
+ * no tree, no object per variable. The reader is a small XML tokenizer for what a modelDescription
  * uses (elements, attributes in either quote, the five predefined entities, character
  * references, comments, processing instructions, CDATA skipped; UTF-8 only, no DOCTYPE).
  * Elements count only at their place in the schema (fmiModelDescription/CoSimulation,
@@ -516,7 +507,10 @@ int ssx_table_values(ssx_system *sys, int component, double t, int after_event, 
  * are ignored. It refuses what would make syssimx exchange wrong data: two variables of one
  * name, a value reference outside 0..2**32-1, a start that is not a value of the variable's
  * type, an undefined declaredType, a causality/variability pair FMI 2.0 forbids, a
- * ModelStructure index that names no variable.
+ * ModelStructure index that names no variable. FMI 1.0 is read in FMI 2.0's words: a
+ * parameter is causality parameter and variability fixed, internal and none are local, a
+ * negated alias is local (no port), initial is absent, each output depends on everything, and
+ * the Capabilities of Implementation/CoSimulation_* are kept (their presence: Co-Simulation).
  * ------------------------------------------------------------------------------------------ */
 /* The words of FMI 2.0 a variable is described by; SSX_MD_NONE: absent. */
 typedef enum {
@@ -534,7 +528,7 @@ typedef enum {
 typedef enum {
     SSX_MD_OK = 0,
     SSX_MD_NOT_XML,                /* line, detail */
-    SSX_MD_NOT_FMI2,               /* text: the fmiVersion, NULL when absent */
+    SSX_MD_NOT_FMI2,               /* neither 2.0 nor 1.0; text: the fmiVersion (NULL: none) */
     SSX_MD_NO_FMI_ROOT,            /* the root element is not an fmiModelDescription */
     SSX_MD_TYPE_WITHOUT_ELEMENT,   /* subject: the SimpleType's name (NULL when absent) */
     SSX_MD_VARIABLE_WITHOUT_NAME,  /* text: its valueReference (NULL when absent) */

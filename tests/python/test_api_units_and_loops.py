@@ -18,7 +18,7 @@ from syssimx import (
     System,
     units,
 )
-from syssimx.components.model_description import read_fmu
+from syssimx.fmu.info import read_fmu
 
 DESCRIPTION = """<?xml version="1.0" encoding="UTF-8"?>
 <fmiModelDescription fmiVersion="2.0" modelName="Typed" guid="{typed}">

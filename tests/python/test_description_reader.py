@@ -16,8 +16,8 @@ import pytest
 from fixture_fmus import fmu_path
 from fmpy import read_model_description
 from syssimx import Connection, FMUComponent, System, fmus, units
-from syssimx.components.description_reader import read_description
 from syssimx.errors import ConfigurationError, FMUFileError
+from syssimx.fmu.description import read_description
 
 
 def reference_fmus() -> list[Path]:
@@ -35,7 +35,7 @@ INTERFACE_FIELDS = ("modelIdentifier", "canGetAndSetFMUstate", "canSerializeFMUs
 
 def both(path: Path):
     with zipfile.ZipFile(path) as archive, archive.open("modelDescription.xml") as stream:
-        ours = read_description(stream, path)
+        ours = read_description(stream, path).description
     return ours, read_model_description(str(path), validate=False)
 
 
@@ -62,10 +62,34 @@ def assert_same(path: Path) -> None:
             (None if fmpys.dependencies is None else [v.name for v in fmpys.dependencies])
 
 
-# the FMI 2.0 builds; their FMI 3.0 twins (stem_fmi3) join when the reader reads FMI 3.0
-@pytest.mark.parametrize("name", [n for n in fmus.available() if not n.endswith("_fmi3")])
+# the FMI 2.0 builds; their FMI 3.0 twins (stem_fmi3) are read by FMPy, the FMI 1.0 ones
+# (stem_fmi1, stem_fmi1_me) below
+@pytest.mark.parametrize("name", [n for n in fmus.available()
+                                  if not n.endswith(("_fmi3", "_fmi1", "_fmi1_me"))])
 def test_our_fmus_read_as_fmpy_reads_them(name: str):
     assert_same(Path(fmus.path(name)))
+
+
+@pytest.mark.parametrize("name", [n for n in fmus.available() if n.endswith(("_fmi1", "_fmi1_me"))])
+def test_fmi1_builds_read_as_fmpy_reads_them(name: str):
+    """FMI 1.0 in FMI 2.0's words, as FMPy reads it: parameters, internal variables as locals,
+    no initial; the interface from Implementation; every output depending on every input."""
+    ours, theirs = both(Path(fmus.path(name)))
+    assert ours.fmiVersion == theirs.fmiVersion == "1.0"
+    for name_ in ("modelName", "guid", "description", "numberOfContinuousStates",
+                  "numberOfEventIndicators"):
+        assert getattr(ours, name_) == getattr(theirs, name_), name_
+    for part in ("coSimulation", "modelExchange"):
+        mine, fmpys = getattr(ours, part), getattr(theirs, part)
+        assert (mine is None) == (fmpys is None), part
+        assert getattr(mine, "modelIdentifier", None) == getattr(fmpys, "modelIdentifier", None)
+    assert len(ours.modelVariables) == len(theirs.modelVariables)
+    for mine, fmpys in zip(ours.modelVariables, theirs.modelVariables, strict=True):
+        for field in VARIABLE_FIELDS:
+            assert getattr(mine, field) == getattr(fmpys, field), (mine.name, field)
+    outputs = [v.name for v in ours.modelVariables if v.causality == "output"]
+    assert [u.variable.name for u in ours.outputs] == outputs
+    assert all(u.dependencies is None for u in ours.outputs)
 
 
 def test_reference_fmus_read_as_fmpy_reads_them():
@@ -225,8 +249,8 @@ def test_a_large_description_reads_as_fmpy_reads_it(tmp_path: Path):
 
 
 def test_only_ports_become_objects_the_rest_is_looked_up_by_name(tmp_path: Path):
-    from syssimx.components.model_description import read_fmu
-    from syssimx.components.variable_table import ScalarVariable
+    from syssimx.fmu.info import read_fmu
+    from syssimx.fmu.variable_table import ScalarVariable
 
     count = 20000
     path = gain_with_description(tmp_path, large_description(count))
@@ -268,7 +292,7 @@ MINIMAL = """<?xml version="1.0" encoding="UTF-8"?>
 
 def read_text(text: str | bytes):
     data = text.encode() if isinstance(text, str) else text
-    return read_description(io.BytesIO(data), "m.fmu")
+    return read_description(io.BytesIO(data), "m.fmu").description
 
 
 @pytest.mark.parametrize(("old", "new", "message"), [
@@ -294,9 +318,8 @@ def read_text(text: str | bytes):
     ("</ModelVariables>", "</ModelVariable>", "not well-formed XML: line 9: end tag "
                                               "</ModelVariable> does not match <ModelVariables> "
                                               "of line 6"),
-    ('encoding="UTF-8"', 'encoding="ISO-8859-1"', "not well-formed XML: line 1: encoding "
-                                                  "ISO-8859-1 is not supported (FMI 2.0 "
-                                                  "requires UTF-8)"),
+    ('encoding="UTF-8"', 'encoding="x-unknown"', "its XML declaration names the encoding "
+                                                 "'x-unknown', which Python does not know"),
     ('<fmiModelDescription', '<!DOCTYPE m [<!ENTITY a "aaaaaaaaaa">]>\n<fmiModelDescription',
      "not well-formed XML: line 2: a DOCTYPE is not accepted in a modelDescription"),
     ('modelName="m"', 'modelName="&a;"', "not well-formed XML: line 2: '&a...' is neither a "
@@ -318,8 +341,63 @@ def test_bytes_that_are_not_utf8_are_refused():
         read_text(MINIMAL.encode().replace(b'modelName="m"', b'modelName="\xe9"'))
 
 
+def test_a_declared_encoding_is_read():
+    text = MINIMAL.replace('encoding="UTF-8"', 'encoding="ISO-8859-1"').replace(
+        'modelName="m"', 'modelName="Gefäß"')
+    assert read_text(text.encode("latin-1")).modelName == "Gefäß"
+
+
 @pytest.mark.parametrize("start", ["INF", "-inf", "NaN", " 1e5 ", ".5", "5.", "+1E-3"])
 def test_real_starts_python_reads_are_accepted(start: str):
     description = read_text(MINIMAL.replace('start="1"', f'start="{start}"'))
     assert description.modelVariables[0].start == start
     float(start)
+
+
+FMI1 = """<?xml version="1.0" encoding="UTF-8"?>
+<fmiModelDescription fmiVersion="1.0" modelName="m" modelIdentifier="m_id" guid="{g}"
+    numberOfContinuousStates="2" numberOfEventIndicators="1">
+  <ModelVariables>
+    <ScalarVariable name="u" valueReference="0" causality="input"><Real start="1"/>
+    </ScalarVariable>
+    <ScalarVariable name="k" valueReference="1" variability="parameter"><Real start="2"/>
+    </ScalarVariable>
+    <ScalarVariable name="y" valueReference="2" causality="output"><Real/></ScalarVariable>
+    <ScalarVariable name="minus_y" valueReference="2" causality="output" alias="negatedAlias">
+      <Real/></ScalarVariable>
+  </ModelVariables>
+</fmiModelDescription>
+"""
+
+
+def test_fmi1_without_implementation_is_model_exchange():
+    description = read_text(FMI1)
+    assert description.fmiVersion == "1.0"
+    assert description.coSimulation is None
+    assert description.modelExchange.modelIdentifier == "m_id"
+    assert not description.modelExchange.canGetAndSetFMUstate
+    assert (description.numberOfContinuousStates, description.numberOfEventIndicators) == (2, 1)
+    causalities = {v.name: (v.causality, v.variability) for v in description.modelVariables}
+    assert causalities == {"u": ("input", "continuous"), "k": ("parameter", "fixed"),
+                           "y": ("output", "continuous"),
+                           "minus_y": ("local", "continuous")}  # a negated alias is no port
+    assert [u.variable.name for u in description.outputs] == ["y"]
+
+
+def test_fmi1_with_implementation_is_co_simulation():
+    text = FMI1.replace("</fmiModelDescription>", """  <Implementation><CoSimulation_Tool>
+    <Capabilities canHandleVariableCommunicationStepSize="true"/>
+    <Model entryPoint="fmu://tool" type="application/x-tool"/>
+  </CoSimulation_Tool></Implementation>
+</fmiModelDescription>""")
+    description = read_text(text)
+    assert description.modelExchange is None
+    assert description.coSimulation.modelIdentifier == "m_id"
+    assert description.coSimulation.canHandleVariableCommunicationStepSize
+
+
+def test_other_fmi_versions_are_refused_naming_what_runs():
+    with pytest.raises(FMUFileError, match=r"^m\.fmu: FMI version 4\.0 is not supported "
+                       r"\(syssimx runs FMI 1\.0, FMI 2\.0 and FMI 3\.0 Co-Simulation and "
+                       r"Model Exchange FMUs\)$"):
+        read_text(MINIMAL.replace('fmiVersion="2.0"', 'fmiVersion="4.0"'))

@@ -15,8 +15,8 @@ from pathlib import Path
 
 import pytest
 from syssimx import FMUComponent, fmus
-from syssimx.components.archive import SIZE_LIMIT_VARIABLE
 from syssimx.errors import ConfigurationError, FMUFileError
+from syssimx.fmu.archive import SIZE_LIMIT_VARIABLE
 
 GAIN = Path(fmus.path("gain"))
 BINARY = "binaries/linux64/gain.so"
@@ -128,8 +128,12 @@ CASES: dict[str, tuple[Build, str]] = {
     "binary that is not a library": (garbage_binary, "cannot load binaries/linux64/gain.so"),
     "malformed XML": (lambda tmp: edited(tmp, "</ModelVariables>", "</ModelVariable>"),
                       "not well-formed XML"),
+    # FMI 1.0 is read in its own words: FMI 2.0's causality "parameter" is not one of them
     "FMI 1.0": (lambda tmp: edited(tmp, 'fmiVersion="2.0"', 'fmiVersion="1.0"'),
-                "FMI version 1.0 is not supported"),
+                "variable 'k': causality='parameter' with variability='fixed' is not allowed"),
+    "FMI 4.0": (lambda tmp: edited(tmp, 'fmiVersion="2.0"', 'fmiVersion="4.0"'),
+                "FMI version 4.0 is not supported (syssimx runs FMI 1.0, FMI 2.0 and FMI 3.0 "
+                "Co-Simulation and Model Exchange FMUs)"),
     # FMI 3.0 is read by its own reader, which finds ScalarVariables where it expects <Float64>
     "FMI 3.0": (lambda tmp: edited(tmp, 'fmiVersion="2.0"', 'fmiVersion="3.0"'),
                 "modelDescription.xml declares FMI 3.0 but is not a readable FMI 3.0 "

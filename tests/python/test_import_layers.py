@@ -62,3 +62,16 @@ def test_bridge_imports_neither_components_nor_system():
 def test_system_builds_on_components_and_bridge():
     system = _imports_of("system")
     assert _reaching(system, "components") and _reaching(system, "bridge")
+
+
+def test_fmu_files_build_on_neither_components_nor_system():
+    """The FMU seam (archive, description, loading, instance) knows no component kind."""
+    fmu = _imports_of("fmu")
+    assert _reaching(fmu, "components") + _reaching(fmu, "system") == []
+
+
+def test_components_keep_only_component_kinds():
+    """What reads, extracts and loads FMU files lives in syssimx.fmu."""
+    kinds = {path.stem for path in (PACKAGE / "components").glob("*.py")}
+    assert not kinds & {"archive", "extraction", "model_description", "description_reader",
+                        "description_fmi3", "fmu_instance", "variable_table", "fmi3_arrays"}

@@ -114,7 +114,7 @@ def test_set_parameters_after_initialize_applies_at_the_next_initialize():
 
 
 def test_no_stale_fmi_2_0_co_simulation_only_words():
-    assert "FMI 2.0 and 3.0" in syssimx.__doc__
+    assert "FMI 1.0, 2.0 and 3.0" in syssimx.__doc__
     description = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["description"]
     assert "3.0" in description and "Model Exchange" in description
     environment = dict(os.environ)
@@ -123,7 +123,8 @@ def test_no_stale_fmi_2_0_co_simulation_only_words():
     help_text = subprocess.run([sys.executable, "-m", "syssimx.cli", "--help"],
                                capture_output=True, text=True, check=True, env=environment,
                                cwd=Path(syssimx.__file__).parents[1]).stdout
-    assert "FMI 2.0 and 3.0, Co-Simulation and Model Exchange" in " ".join(help_text.split())
+    assert "FMI 1.0, 2.0 and 3.0, Co-Simulation and Model Exchange" \
+        in " ".join(help_text.split())
 
 
 def test_a_result_names_what_it_does_not_hold_as_a_key_error():

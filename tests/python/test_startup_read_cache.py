@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 from fixture_fmus import fmu_path
 from syssimx import FMUComponent, FMUFileError, fmus
-from syssimx.components import model_description
-from syssimx.components.model_description import read_fmu
+from syssimx.fmu import info as model_description
+from syssimx.fmu.info import read_fmu
 
 
 @pytest.fixture

@@ -78,7 +78,7 @@ def _read_description(path: Path) -> Any:
     except Exception as error:  # fmpy raises many kinds for a broken archive
         raise CommandError(f"{path} is not a readable FMU: {error}") from error
     if md.fmiVersion.startswith("3.") and md.coSimulation is not None:
-        from ..components.description_fmi3 import provides_directional_derivatives
+        from ..fmu.description_fmi3 import provides_directional_derivatives
 
         md.coSimulation.providesDirectionalDerivative = provides_directional_derivatives(path)
     return md

@@ -51,7 +51,7 @@ def _unrecognized(parser: argparse.ArgumentParser, unknown: list[str]) -> str:
 def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="syssimx",
-        description="Hybrid co-simulation of FMUs (FMI 2.0 and 3.0, Co-Simulation and Model "
+        description="Hybrid co-simulation of FMUs (FMI 1.0, 2.0 and 3.0, Co-Simulation and Model "
                     "Exchange): inspect an FMU, simulate it with FMPy's options, run, describe "
                     "or sweep a system description or an SSP.",
     )

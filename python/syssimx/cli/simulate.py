@@ -6,10 +6,10 @@ import argparse
 from pathlib import Path
 from typing import Any, TextIO
 
-from ..components.model_description import INTERFACES
 from ..core.literal import literal
 from ..core.port import PortType
 from ..core.suggest import did_you_mean
+from ..fmu.info import INTERFACES
 from ..system.csv_export import write_wide
 from .common import CommandError, choose, resolve_fmu
 from .options import add_output_file, add_run_limits, add_time_options
@@ -100,8 +100,8 @@ def _event(text: str) -> tuple[str, int]:
 
 def run_simulate(args: argparse.Namespace, out: TextIO) -> None:
     from .. import FMUComponent, JacobiAlgorithm, SimulationResult, System
-    from ..components.model_description import read_fmu
     from ..errors import SimulationTimeoutError
+    from ..fmu.info import read_fmu
 
     path = resolve_fmu(args.fmu)
     md = read_fmu(path).description  # what the component reads too: read once, by syssimx

@@ -8,8 +8,8 @@ _MODULES = {
     "ComponentCheckpoint": ".base",
     "FEMComponent": ".optional",
     "FMUComponent": ".fmu",
-    "FMUInstance": ".fmu_instance",
-    "FMUState": ".fmu_instance",
+    "FMUInstance": "..fmu.instance",  # the instance proxy lives with the FMU seam
+    "FMUState": "..fmu.instance",
     "ModeSwitchEvent": ".multi",
     "MultiComponent": ".multi",
     "OpenSimComponent": ".optional",

@@ -241,6 +241,11 @@ class CoSimComponent:
     def can_rollback(self) -> bool:
         return _overrides(self, "snapshot_state") and _overrides(self, "restore_state")
 
+    def why_no_rollback(self) -> str:
+        """Why the component can never roll back, whatever a subclass overrides ("" when it
+        could)."""
+        return ""
+
     def get_state(self) -> dict[str, dict[str, Any]]:
         """Outputs and parameters as {name: {"value", "unit"}}."""
         state = {name: {"value": port.raw(), "unit": port.spec.unit}

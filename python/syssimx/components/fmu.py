@@ -1,6 +1,7 @@
 """FMUComponent: an FMI 2.0 FMU stepped by the engine, through its Co-Simulation interface
 (fmi2DoStep) or its Model Exchange interface (integrated by the engine with CVODE), and the
-same for an FMI 3.0 FMU.
+same for an FMI 3.0 and an FMI 1.0 FMU (syssimx.fmu reads the archive and decides the
+version; an FMI 1.0 FMU has no FMU state, so it cannot be rolled back).
 
 Plain use costs no Python per step: the engine calls the FMU directly, rolls it back with
 fmi2Get/SetFMUstate for event localization and evaluates variable indicators in C. Overriding
@@ -34,17 +35,12 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .. import units
-from .._paths import fmu_host
 from ..core.port import Port, PortSpec, PortType
 from ..core.suggest import did_you_mean
-from ..engine import ffi, lib
-from ..errors import ConfigurationError, FMUFileError, SysSimXWarning
-from ..units import is_quantity, magnitude_in
-from .base import CoSimComponent
-from .extraction import extractions
-from .fmi3_arrays import ArrayElement
-from .fmu_instance import FMUInstance
-from .model_description import (
+from ..engine import lib
+from ..errors import ConfigurationError, SysSimXWarning
+from ..fmu.extraction import extractions
+from ..fmu.info import (
     INTERFACES,
     PORT_TYPES,
     FMUInfo,
@@ -53,13 +49,18 @@ from .model_description import (
     read_fmu,
     variable_unit,
 )
+from ..fmu.instance import FMUInstance
+from ..fmu.loading import load
+from ..units import is_quantity, magnitude_in
+from .base import CoSimComponent
 
 if TYPE_CHECKING:
     from ..bridge.plan import EnginePlan
 
 
 class FMUComponent(CoSimComponent):
-    """An FMI 2.0 FMU (linux64 binary) or an FMI 3.0 FMU (x86_64-linux) as a component."""
+    """An FMI 1.0 or 2.0 FMU (linux64 binary) or an FMI 3.0 FMU (x86_64-linux) as a
+    component."""
 
     def __init__(self, name: str, fmu_path: str | Path, group: str | None = None,
                  tolerance: float | None = None, *, isolated: bool = False,
@@ -80,10 +81,10 @@ class FMUComponent(CoSimComponent):
         self.step_timeout = step_timeout
         self.info: FMUInfo = read_fmu(fmu_path)
         self.fmu_path = str(self.info.path)
-        if isolated and self.info.is_fmi3:
+        if isolated and not self.info.standard.isolatable:
             raise ConfigurationError(f"component {name!r}: isolated=True is not supported for "
-                                     f"FMI 3.0 FMUs ({self.fmu_path}): the FMU host process "
-                                     "speaks FMI 2.0 only")
+                                     f"{self.info.standard.name} FMUs ({self.fmu_path}): the "
+                                     "FMU host process speaks FMI 2.0 only")
         self.fmu_interface: FMUInterface = _chosen_interface(self.info, name, interface)
         if isolated and self.model_exchange:
             raise ConfigurationError(
@@ -104,9 +105,9 @@ class FMUComponent(CoSimComponent):
         self._parameters_set: set[str] = set()  # named in set_parameters: written even if equal
         self._input_starts = dict(self.info.input_starts)  # set_inputs changes the copy
         self._inputs_set: set[str] = set()
-        fmu, self._unzip_dir, extraction_key = _load(self.info, self.fmu_interface, name,
-                                                     isolated, step_timeout)
-        self.instance = FMUInstance(fmu, name, fmi3=self.info.is_fmi3)
+        fmu, self._unzip_dir, extraction_key = load(self.info, self.fmu_interface, name,
+                                                    isolated, step_timeout)
+        self.instance = FMUInstance(fmu, name, self.info.standard.function_prefix)
         # resolved now: a finalizer must not be the first to look up a library function
         self._finalizer = weakref.finalize(self, _release, lib().ssx_fmu_free, self.instance,
                                            self._unzip_dir, extraction_key)
@@ -370,19 +371,23 @@ class FMUComponent(CoSimComponent):
     def can_rollback(self) -> bool:
         return self.can_get_set_state or super().can_rollback()
 
+    def why_no_rollback(self) -> str:
+        standard = self.info.standard
+        if standard.has_fmu_state:
+            return ""
+        return (f"{self.info.path.name} is an {standard.name} FMU, and {standard.name} has no "
+                "FMU state to save and restore")
+
     def get_state(self) -> dict[str, dict[str, Any]]:
         """Outputs, parameters and the other non-fixed, non-local variables, read from the FMU
         (one fmi2Get call per value type)."""
-        getters = {PortType.REAL: self.instance.getReal, PortType.INT: self.instance.getInteger,
-                   PortType.BOOL: self.instance.getBoolean}
-        if self.info.is_fmi3:
-            getters.update({"String": self.instance.getString,
-                            "Binary": self.instance.getBinary})
+        getters: dict[Any, Any] = {PortType.REAL: self.instance.getReal,
+                                   PortType.INT: self.instance.getInteger,
+                                   PortType.BOOL: self.instance.getBoolean}
+        texts = {"String": self.instance.getString, "Binary": self.instance.getBinary}
+        getters.update({kind: texts[kind] for kind in self.info.standard.text_types})
         by_type: dict[str, list[Any]] = {}
-        # an FMI 3.0 FMU's variables with its arrays as elements
-        table = self.info.variables.values() if self.info.is_fmi3 \
-            else self.info.description.modelVariables
-        for variable in table:
+        for variable in self.info.all_variables:
             kind = PORT_TYPES.get(variable.type, variable.type)
             if (variable.variability != "fixed" and variable.causality != "local"
                     and kind in getters and not getattr(variable, "dimensions", None)):
@@ -474,76 +479,6 @@ def _chosen_interface(info: FMUInfo, name: str, interface: str) -> FMUInterface:
         raise ConfigurationError(f"component {name!r}: {info.path.name} has no {interface} "
                                  f"interface (it has {', '.join(info.interfaces)})")
     return info.interfaces[interface]
-
-
-def _load(info: FMUInfo, interface: FMUInterface, name: str, isolated: bool,
-          step_timeout: float | None) -> tuple[Any, Path, tuple[str, int, int] | None]:
-    """Extract the archive (shared where FMI allows) and load the interface's binary into the
-    engine, or into a host process of its own when isolated (no instance yet)."""
-    host = str(fmu_host()).encode() if isolated else None
-    once_per_process = interface.can_be_instantiated_only_once_per_process
-    # every isolated FMU has a process of its own, so it may share the extraction
-    unzip_dir, key = extractions.acquire(info.path, shareable=isolated or not once_per_process)
-    binary_name = info.binary_name(interface.name)
-    binary = extractions.binary(unzip_dir, binary_name)
-    if binary is None:
-        extractions.release(unzip_dir, key)
-        raise FMUFileError(f"{info.path}: {binary_name} is not a file inside the "
-                           "extracted archive; refused to load it")
-    error = ffi.new("char[1024]")
-    if info.is_fmi3:
-        handle = _load_fmi3(info, interface, binary, unzip_dir, name, error)
-    else:
-        arguments = (str(binary).encode(), interface.model_identifier.encode(),
-                     info.description.guid.encode(), (unzip_dir / "resources").as_uri().encode(),
-                     name.encode(), 0, error, 1024)
-        if host is not None:
-            handle = lib().ssx_fmu_load_isolated(host, step_timeout or 0.0, *arguments)
-        elif interface.name == "model-exchange":
-            handle = lib().ssx_fmu_load_model_exchange(*arguments)
-        else:
-            handle = lib().ssx_fmu_load(*arguments)
-    if handle == ffi.NULL:
-        extractions.release(unzip_dir, key)
-        raise FMUFileError(f"{info.path}: cannot load {binary_name}: "
-                           f"{ffi.string(error).decode(errors='replace')}")
-    return handle, unzip_dir, key
-
-
-def _load_fmi3(info: FMUInfo, interface: FMUInterface, binary: Path, unzip_dir: Path,
-               name: str, error: Any) -> Any:
-    """ssx_fmu_load_fmi3 (or its Model Exchange twin) with the FMU's type table. Co-Simulation:
-    event mode when the FMU has it, early return when it may return early: its events are then
-    handled at their time."""
-    model_exchange = interface.name == "model-exchange"
-    cosimulation = info.description.coSimulation
-    rows = info.fmi3_variables
-    # the struct does not keep what it points at alive: these locals do, until the engine
-    # copied them
-    texts = [ffi.new("char[]", row.name.encode()) for row in rows]
-    refs = ffi.new("unsigned int[]", [row.value_reference for row in rows])
-    codes = ffi.new("unsigned char[]", [row.type_code for row in rows])
-    names = ffi.new("const char *[]", texts)
-    fields = {"vr": refs, "type": codes, "name": names, "n": len(rows),
-              "event_mode_used": not model_exchange and bool(cosimulation.hasEventMode),
-              "early_return_allowed": not model_exchange and bool(
-                  cosimulation.canReturnEarlyAfterIntermediateUpdate
-                  or cosimulation.mightReturnEarlyFromDoStep)}
-    if any(row.element is not None for row in rows):  # array elements: where each lies
-        elements = [row.element or ArrayElement(row.value_reference, 0, 0, 0.0)
-                    for row in rows]
-        fields.update({
-            "fmu_vr": ffi.new("unsigned int[]", [e.array_vr for e in elements]),
-            "element": ffi.new("size_t[]", [e.position for e in elements]),
-            "size": ffi.new("size_t[]", [e.size for e in elements]),
-            "start": ffi.new("double[]", [e.start for e in elements])})
-    variables = ffi.new("ssx_fmi3_variables *", fields)
-    # FMI 3.0 gives the resources as a directory path ending in a separator
-    resources = f"{unzip_dir / 'resources'}/"
-    load = lib().ssx_fmu_load_fmi3_model_exchange if model_exchange else lib().ssx_fmu_load_fmi3
-    return load(str(binary).encode(), interface.model_identifier.encode(),
-                info.description.guid.encode(), resources.encode(), name.encode(), 0, variables,
-                error, 1024)
 
 
 def _release(free_fmu: Any, instance: FMUInstance, unzip_dir: Path,

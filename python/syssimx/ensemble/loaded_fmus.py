@@ -14,8 +14,8 @@ import ctypes
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..components.extraction import extractions
 from ..components.fmu import FMUComponent
+from ..fmu.extraction import extractions
 from ..system.system import System
 
 

@@ -12,8 +12,8 @@ import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..components.archive import extract
 from ..errors import FMUFileError
+from ..fmu.archive import extract
 from .errors import SSPError
 
 SSD_NAME = "SystemStructure.ssd"

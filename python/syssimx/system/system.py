@@ -165,7 +165,13 @@ class System:
                     f"{listener.name!r} receives {connection.src_comp}.{connection.src_port} "
                     "but handles no events: override _handle_events_internal or call "
                     f"add_event_handler({connection.dst_port!r}, handler)")
+        hybrid = any(c.event_indicators for c in self.components.values())
         for component in self.components.values():
+            reason = component.why_no_rollback() if hybrid else ""
+            if reason and not component.can_rollback():
+                raise ConfigurationError(
+                    f"{component.name!r} cannot roll back, which locating events needs (the "
+                    f"system has event indicators): {reason}")
             if component.event_indicators and not component.can_rollback():
                 raise ConfigurationError(
                     f"{component.name!r} has event indicators but cannot roll back: its FMU "

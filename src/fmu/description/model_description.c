@@ -1,6 +1,7 @@
-/* modelDescription.xml of FMI 2.0 into compact arrays (the contract is in syssimx_engine.h):
- * the FMI model layer over the XML tokenizer (xml_tokenizer.c), its texts kept in the string
- * store (string_store.c).
+/* modelDescription.xml of FMI 2.0 and FMI 1.0 into compact arrays (the contract is in
+ * syssimx_engine.h): the FMI model layer over the XML tokenizer (xml_tokenizer.c), its texts
+ * kept in the string store (string_store.c). FMI 1.0's variables are told in FMI 2.0's words
+ * (see fmi1_words).
  *
  * Read top-down: the API, the model layer (which elements count where, the checks of a
  * variable), the values, the errors, then the arrays handed to the ssx_md.
@@ -47,6 +48,7 @@ typedef struct {
     bool open;
     size_t line;
     slice name, value_reference, causality, variability, initial, description;
+    slice alias; /* FMI 1.0 */
     int type; /* SSX_MD_NONE until the type element */
     slice start, unit, declared_type;
 } variable_parts;
@@ -56,6 +58,7 @@ typedef struct {
     xml_tokenizer xml;
     /* the model layer */
     bool fmi_root;
+    bool fmi1; /* the root declares fmiVersion 1.0 */
     slice section, subsection; /* the open elements at depth 2 and 3 */
     variable_parts variable;
     bool in_type, type_has_element;
@@ -85,6 +88,7 @@ static bool end_element(void *user);
 static bool finish_variable(reader *r);
 static bool finish_type(reader *r);
 static bool read_unknown(reader *r, size_t line);
+static bool push_output(reader *r, uint32_t index);
 static bool keep_attributes(reader *r, slice tag);
 static bool store(reader *r, slice text, uint32_t *offset);
 static bool view(reader *r, slice value, slice *text);
@@ -201,9 +205,10 @@ static bool start_element(void *user, slice tag, size_t line)
                 if (!view(r, r->xml.attributes[i].value, &version)) {
                     return false;
                 }
-                return slice_is(version, "2.0") ? true
-                                          : fail(r, SSX_MD_NOT_FMI2, line, NULL, version,
-                                                 (slice){0});
+                r->fmi1 = slice_is(version, "1.0");
+                return slice_is(version, "2.0") || r->fmi1
+                           ? true
+                           : fail(r, SSX_MD_NOT_FMI2, line, NULL, version, (slice){0});
             }
         }
         /* before reading variables of another schema */
@@ -234,9 +239,12 @@ static bool start_element(void *user, slice tag, size_t line)
                     v->initial = value;
                 } else if (slice_is(name, "description")) {
                     v->description = value;
+                } else if (slice_is(name, "alias")) {
+                    v->alias = value;
                 }
             }
-        } else if (slice_is(tag, "SimpleType") && slice_is(r->section, "TypeDefinitions")) {
+        } else if (slice_is(tag, r->fmi1 ? "Type" : "SimpleType") &&
+                   slice_is(r->section, "TypeDefinitions")) {
             r->in_type = true;
             r->type_has_element = false;
             r->type_line = line;
@@ -275,6 +283,9 @@ static bool start_element(void *user, slice tag, size_t line)
         }
         if (r->in_type) {
             return r->type_has_element ? true : finish_type(r);
+        }
+        if (r->fmi1 && slice_is(tag, "Capabilities") && slice_is(r->section, "Implementation")) {
+            return keep_attributes(r, tag); /* of CoSimulation_StandAlone or _Tool */
         }
         if (slice_is(tag, "Unknown") && slice_is(r->subsection, "Outputs") &&
             slice_is(r->section, "ModelStructure")) {
@@ -328,6 +339,9 @@ static bool finish_type(reader *r)
         return out_of_memory(r);
     }
     slice tag = r->xml.open[r->xml.depth - 1].name;
+    if (r->fmi1 && tag.length > 4 && memcmp(tag.at + tag.length - 4, "Type", 4) == 0) {
+        tag.length -= 4; /* FMI 1.0's RealType is FMI 2.0's Real */
+    }
     slice unit = {0}, quantity = {0};
     for (size_t i = 0; i < r->xml.attribute_count; ++i) {
         slice name = r->xml.attributes[i].name;
@@ -390,6 +404,45 @@ static bool word_attribute(reader *r, slice value, int fallback, int first, int 
             *word = candidate;
         }
     }
+    return true;
+}
+
+/* FMI 1.0's causality (input, output, internal, none) and variability (constant, parameter,
+ * discrete, continuous) in FMI 2.0's words: a parameter is a fixed parameter (FMI 1.0 sets it
+ * before initialization only), internal and none are local. A negated alias is local too: its
+ * value reference reads the value it negates, so it can be no port. An unknown word is
+ * SSX_MD_NONE (the caller refuses the combination). */
+static bool fmi1_words(reader *r, const variable_parts *v, int *causality, int *variability)
+{
+    /* a view lasts until the next one: each is judged at once */
+    slice text = {"internal", 8, true};
+    if (v->causality.at != NULL && !view(r, v->causality, &text)) {
+        return false;
+    }
+    bool input = slice_is(text, "input"), output = slice_is(text, "output");
+    bool known = input || output || slice_is(text, "internal") || slice_is(text, "none");
+    text = (slice){"continuous", 10, true};
+    if (v->variability.at != NULL && !view(r, v->variability, &text)) {
+        return false;
+    }
+    bool parameter = slice_is(text, "parameter");
+    *variability = parameter                      ? SSX_MD_FIXED
+                   : slice_is(text, "constant")   ? SSX_MD_CONSTANT
+                   : slice_is(text, "discrete")   ? SSX_MD_DISCRETE
+                   : slice_is(text, "continuous") ? SSX_MD_CONTINUOUS
+                                                  : SSX_MD_NONE;
+    text = (slice){0};
+    if (v->alias.at != NULL && !view(r, v->alias, &text)) {
+        return false;
+    }
+    bool negated = slice_is(text, "negatedAlias");
+    *causality = !known                ? SSX_MD_NONE
+                 : negated             ? SSX_MD_LOCAL
+                 : parameter && output ? SSX_MD_LOCAL
+                 : parameter           ? SSX_MD_PARAMETER
+                 : input               ? SSX_MD_INPUT
+                 : output              ? SSX_MD_OUTPUT
+                                       : SSX_MD_LOCAL;
     return true;
 }
 
@@ -457,12 +510,15 @@ static bool finish_variable(reader *r)
     }
 
     int causality, variability, initial;
-    if (!word_attribute(r, v->causality, SSX_MD_LOCAL, SSX_MD_PARAMETER, SSX_MD_INDEPENDENT,
-                        &causality) ||
-        !word_attribute(r, v->variability, SSX_MD_CONTINUOUS, SSX_MD_CONSTANT,
-                        SSX_MD_CONTINUOUS, &variability) ||
-        !word_attribute(r, v->initial, SSX_MD_NONE, SSX_MD_EXACT, SSX_MD_CALCULATED,
-                        &initial)) {
+    if (r->fmi1 ? !fmi1_words(r, v, &causality, &variability)
+                : (!word_attribute(r, v->causality, SSX_MD_LOCAL, SSX_MD_PARAMETER,
+                                   SSX_MD_INDEPENDENT, &causality) ||
+                   !word_attribute(r, v->variability, SSX_MD_CONTINUOUS, SSX_MD_CONSTANT,
+                                   SSX_MD_CONTINUOUS, &variability))) {
+        return false;
+    }
+    if (!word_attribute(r, r->fmi1 ? none : v->initial, SSX_MD_NONE, SSX_MD_EXACT,
+                        SSX_MD_CALCULATED, &initial)) {
         return false;
     }
     subject = r->strings.text + name; /* the pool may have moved */
@@ -476,7 +532,9 @@ static bool finish_variable(reader *r)
                     v->causality.at != NULL ? v->causality : local,
                     v->variability.at != NULL ? v->variability : continuous);
     }
-    if (initial == SSX_MD_NONE && v->initial.at != NULL) {
+    if (r->fmi1) {
+        initial = SSX_MD_NONE; /* FMI 1.0 has no initial; the table only judged the words */
+    } else if (initial == SSX_MD_NONE && v->initial.at != NULL) {
         return fail(r, SSX_MD_BAD_INITIAL, line, subject, v->initial, none);
     }
 
@@ -484,6 +542,9 @@ static bool finish_variable(reader *r)
     if (!store(r, v->description, &description) ||
         !store(r, v->type == SSX_MD_REAL ? v->unit : none, &unit)) {
         return false;
+    }
+    if (r->fmi1 && causality == SSX_MD_OUTPUT && !push_output(r, (uint32_t)r->count)) {
+        return false; /* FMI 1.0 has no ModelStructure: an output depends on every input */
     }
     size_t k = r->count++;
     r->name[k] = name;
@@ -522,24 +583,9 @@ static bool read_unknown(reader *r, size_t line)
     }
     r->strings.size = scratch;
     size_t k = r->output_count;
-    if (array_reserve((void **)&r->output, &r->output_capacity, k + 1, sizeof *r->output, 64)) {
-        return out_of_memory(r);
+    if (!push_output(r, (uint32_t)(value - 1))) {
+        return false;
     }
-    size_t capacity = r->output_capacity;
-    void *first = realloc(r->first_dependency, capacity * sizeof *r->first_dependency);
-    if (first != NULL) {
-        r->first_dependency = first;
-    }
-    void *counts = realloc(r->dependency_count, capacity * sizeof *r->dependency_count);
-    if (counts != NULL) {
-        r->dependency_count = counts;
-    }
-    if (first == NULL || counts == NULL) {
-        return out_of_memory(r);
-    }
-    r->output[k] = (uint32_t)(value - 1);
-    r->first_dependency[k] = r->dependency_total;
-    r->dependency_count[k] = -1;
     if (dependencies.at != NULL) {
         if (!store(r, dependencies, &scratch)) {
             return false;
@@ -572,6 +618,31 @@ static bool read_unknown(reader *r, size_t line)
         r->dependency_count[k] = count;
         r->strings.size = scratch;
     }
+    return true;
+}
+
+/* An output (its variable's index) depending on everything until its dependencies are read. */
+static bool push_output(reader *r, uint32_t index)
+{
+    size_t k = r->output_count;
+    if (array_reserve((void **)&r->output, &r->output_capacity, k + 1, sizeof *r->output, 64)) {
+        return out_of_memory(r);
+    }
+    size_t capacity = r->output_capacity;
+    void *first = realloc(r->first_dependency, capacity * sizeof *r->first_dependency);
+    if (first != NULL) {
+        r->first_dependency = first;
+    }
+    void *counts = realloc(r->dependency_count, capacity * sizeof *r->dependency_count);
+    if (counts != NULL) {
+        r->dependency_count = counts;
+    }
+    if (first == NULL || counts == NULL) {
+        return out_of_memory(r);
+    }
+    r->output[k] = index;
+    r->first_dependency[k] = r->dependency_total;
+    r->dependency_count[k] = -1;
     r->output_count = k + 1;
     return true;
 }

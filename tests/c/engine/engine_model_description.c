@@ -1,6 +1,7 @@
 /* The modelDescription reader: a document read into its arrays (entities, quotes, comments,
  * CDATA, defaults of initial, dependencies), malformed XML named by its line, hostile nesting,
- * and a little fuzzing: tens of thousands of mutations of a valid document, each read without
+ * FMI 1.0 in FMI 2.0's words, and a little fuzzing: tens of thousands of mutations of a valid
+ * FMI 2.0 and a valid FMI 1.0 document, each read without
  * a memory error (run under AddressSanitizer) and either accepted or refused with a reason. */
 #include <string.h>
 
@@ -33,6 +34,34 @@ static const char DOCUMENT[] =
     "  <ModelStructure>\n"
     "    <Outputs><Unknown index=\"2\" dependencies=\" 1\t3 \"/></Outputs>\n"
     "  </ModelStructure>\n"
+    "</fmiModelDescription>\n";
+
+/* FMI 1.0: a parameter is a variability, internal a causality, the types are <Type> with a
+ * RealType; no ModelStructure; Co-Simulation under Implementation. */
+static const char DOCUMENT_FMI1[] =
+    "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+    "<fmiModelDescription fmiVersion=\"1.0\" modelName=\"m\" modelIdentifier=\"m\" "
+    "guid=\"{g}\" numberOfContinuousStates=\"1\">\n"
+    "  <TypeDefinitions>\n"
+    "    <Type name=\"Angle\"><RealType quantity=\"angle\" unit=\"rad\"/></Type>\n"
+    "  </TypeDefinitions>\n"
+    "  <ModelVariables>\n"
+    "    <ScalarVariable name=\"u\" valueReference=\"0\" causality=\"input\">\n"
+    "      <Real declaredType=\"Angle\" start=\"1\" fixed=\"true\"/>\n"
+    "    </ScalarVariable>\n"
+    "    <ScalarVariable name=\"k\" valueReference=\"1\" variability=\"parameter\">"
+    "<Real start=\"2\"/></ScalarVariable>\n"
+    "    <ScalarVariable name=\"y\" valueReference=\"2\" causality=\"output\">\n"
+    "      <Real/><DirectDependency><Name>u</Name></DirectDependency>\n"
+    "    </ScalarVariable>\n"
+    "    <ScalarVariable name=\"z\" valueReference=\"2\" causality=\"output\" "
+    "alias=\"negatedAlias\"><Real/></ScalarVariable>\n"
+    "    <ScalarVariable name=\"x\" valueReference=\"3\" causality=\"none\" "
+    "variability=\"discrete\"><Integer/></ScalarVariable>\n"
+    "  </ModelVariables>\n"
+    "  <Implementation><CoSimulation_StandAlone>\n"
+    "    <Capabilities canHandleVariableCommunicationStepSize=\"true\"/>\n"
+    "  </CoSimulation_StandAlone></Implementation>\n"
     "</fmiModelDescription>\n";
 
 static const char *text(const ssx_md *md, uint32_t offset)
@@ -75,6 +104,39 @@ static void reads_a_document(void)
 }
 
 /* The reading of `document` stops with `problem` at `line`; for XML, detail says `detail`. */
+static void reads_fmi1_in_fmi2_words(void)
+{
+    ssx_md *md = ssx_md_read(DOCUMENT_FMI1, strlen(DOCUMENT_FMI1));
+    CHECK(md != NULL);
+    CHECK(md->error.problem == SSX_MD_OK);
+    CHECK(md->variable_count == 5);
+    CHECK(md->causality[0] == SSX_MD_INPUT && md->variability[0] == SSX_MD_CONTINUOUS);
+    CHECK(md->causality[1] == SSX_MD_PARAMETER && md->variability[1] == SSX_MD_FIXED);
+    CHECK(md->causality[2] == SSX_MD_OUTPUT);
+    CHECK(md->causality[3] == SSX_MD_LOCAL); /* a negated alias is no port */
+    CHECK(md->causality[4] == SSX_MD_LOCAL && md->variability[4] == SSX_MD_DISCRETE);
+    for (size_t i = 0; i < md->variable_count; ++i) {
+        CHECK(md->initial[i] == SSX_MD_NONE); /* FMI 1.0 has none */
+    }
+    CHECK(strcmp(text(md, md->types[0].type), "Real") == 0);
+    CHECK(strcmp(text(md, md->types[0].unit), "rad") == 0 && md->declared_type[0] == 0);
+    /* no ModelStructure: the output depends on everything */
+    CHECK(md->output_count == 1 && md->output[0] == 2 && md->dependency_count[0] == -1);
+    int capabilities = 0;
+    for (size_t i = 0; i < md->attribute_count; ++i) {
+        capabilities += strcmp(text(md, md->attributes[i].element), "Capabilities") == 0;
+    }
+    CHECK(capabilities == 1);
+    ssx_md_free(md);
+    /* a word FMI 1.0 does not have */
+    const char *bad = "<fmiModelDescription fmiVersion=\"1.0\"><ModelVariables>"
+                      "<ScalarVariable name=\"v\" valueReference=\"0\" causality=\"local\">"
+                      "<Real/></ScalarVariable></ModelVariables></fmiModelDescription>";
+    md = ssx_md_read(bad, strlen(bad));
+    CHECK(md->error.problem == SSX_MD_BAD_COMBINATION && strcmp(md->error.text, "local") == 0);
+    ssx_md_free(md);
+}
+
 static void refused(const char *document, ssx_md_problem problem, size_t line, const char *detail)
 {
     ssx_md *md = ssx_md_read(document, strlen(document));
@@ -191,17 +253,17 @@ static uint32_t next_random(uint32_t *state)
     return *state = x;
 }
 
-static void survives_mutations(void)
+static void survives_mutations(const char *document)
 {
     static const char SPECIAL[] = "<>&;#x\"'/=!?-[]\n\t\x80\xC3\xFF\0";
-    size_t size = strlen(DOCUMENT);
+    size_t size = strlen(document);
     char *mutant = malloc(2 * size);
     CHECK(mutant != NULL);
     uint32_t state = 2463534242u;
     size_t refused_count = 0;
     for (int round = 0; round < 40000; ++round) {
         size_t n = size;
-        memcpy(mutant, DOCUMENT, size);
+        memcpy(mutant, document, size);
         int edits = 1 + (int)(next_random(&state) % 3);
         for (int e = 0; e < edits && n > 0; ++e) {
             size_t at = next_random(&state) % n;
@@ -258,9 +320,11 @@ static void survives_mutations(void)
 int main(void)
 {
     reads_a_document();
+    reads_fmi1_in_fmi2_words();
     names_what_is_malformed();
     names_decoded_texts();
     refuses_hostile_shapes();
-    survives_mutations();
+    survives_mutations(DOCUMENT);
+    survives_mutations(DOCUMENT_FMI1);
     return 0;
 }

@@ -39,23 +39,34 @@ static ssx_fmu *load_as(const char *stem, int model_exchange)
 {
     const built_fmu *b = built(stem);
     char error[512];
-    ssx_fmu *fmu = model_exchange ? ssx_fmu_load_model_exchange(b->binary, stem, b->guid, "", stem,
-                                                                0, error, sizeof error)
-                                  : ssx_fmu_load(b->binary, stem, b->guid, "", stem, 0, error,
-                                                 sizeof error);
-    return loaded(fmu, stem, error);
+    ssx_fmu_load_spec spec = {.version = SSX_FMI2,
+                              .interface = model_exchange ? SSX_MODEL_EXCHANGE : SSX_CO_SIMULATION,
+                              .binary_path = b->binary, .model_identifier = stem,
+                              .guid = b->guid, .resource_location = "", .instance_name = stem};
+    return loaded(ssx_fmu_load(&spec, error, sizeof error), stem, error);
 }
 
 ssx_fmu *load_fmi3_fmu(const char *stem, const ssx_fmi3_variables *variables, int model_exchange)
 {
     const built_fmu *b = built(stem);
     char error[512];
-    ssx_fmu *fmu = model_exchange
-                       ? ssx_fmu_load_fmi3_model_exchange(b->binary, stem, b->guid, "", stem, 0,
-                                                          variables, error, sizeof error)
-                       : ssx_fmu_load_fmi3(b->binary, stem, b->guid, "", stem, 0, variables,
-                                           error, sizeof error);
-    return loaded(fmu, stem, error);
+    ssx_fmu_load_spec spec = {.version = SSX_FMI3,
+                              .interface = model_exchange ? SSX_MODEL_EXCHANGE : SSX_CO_SIMULATION,
+                              .binary_path = b->binary, .model_identifier = stem,
+                              .guid = b->guid, .resource_location = "", .instance_name = stem,
+                              .fmi3_variables = variables};
+    return loaded(ssx_fmu_load(&spec, error, sizeof error), stem, error);
+}
+
+ssx_fmu *load_fmi1_fmu(const char *stem, const char *model_identifier, int model_exchange)
+{
+    const built_fmu *b = built(stem);
+    char error[512];
+    ssx_fmu_load_spec spec = {.version = SSX_FMI1,
+                              .interface = model_exchange ? SSX_MODEL_EXCHANGE : SSX_CO_SIMULATION,
+                              .binary_path = b->binary, .model_identifier = model_identifier,
+                              .guid = b->guid, .resource_location = "", .instance_name = stem};
+    return loaded(ssx_fmu_load(&spec, error, sizeof error), stem, error);
 }
 
 ssx_fmu *load_fmu(const char *stem)

@@ -76,6 +76,9 @@ ssx_fmu *load_model_exchange_fmu(const char *stem);
 /* One of the FMI 3.0 builds (e.g. "bouncing_ball_cvode_fmi3") with its variables' types, for
  * Co-Simulation or Model Exchange; exits on failure. */
 ssx_fmu *load_fmi3_fmu(const char *stem, const ssx_fmi3_variables *variables, int model_exchange);
+/* One of the FMI 1.0 builds (e.g. "pendulum_cvode_fmi1", or "..._fmi1_me" for Model Exchange),
+ * loaded with the model identifier of its binary; exits on failure. */
+ssx_fmu *load_fmi1_fmu(const char *stem, const char *model_identifier, int model_exchange);
 /* ssx_fmu_initialize at time t with n Real start values (tolerance <= 0 leaves the tolerance
  * undefined). Returns its status: 0 (or 1, a warning) when the FMU is ready to step. */
 int start_fmu(ssx_fmu *fmu, double t, double tolerance, const unsigned int *vr,

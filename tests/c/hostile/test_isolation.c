@@ -48,11 +48,11 @@ static ssx_fmu *load(const char *host, double step_timeout, const char *binary,
                      const char *model_identifier, const char *guid)
 {
     char error[1024];
-    ssx_fmu *fmu = host != NULL
-                       ? ssx_fmu_load_isolated(host, step_timeout, binary, model_identifier,
-                                               guid, "", "F", 0, error, sizeof error)
-                       : ssx_fmu_load(binary, model_identifier, guid, "", "F", 0, error,
-                                      sizeof error);
+    ssx_fmu_load_spec spec = {.version = SSX_FMI2, .interface = SSX_CO_SIMULATION,
+                              .binary_path = binary, .model_identifier = model_identifier,
+                              .guid = guid, .resource_location = "", .instance_name = "F",
+                              .host_path = host, .step_timeout = step_timeout};
+    ssx_fmu *fmu = ssx_fmu_load(&spec, error, sizeof error);
     if (fmu == NULL) {
         fprintf(stderr, "cannot load %s: %s\n", binary, error);
         exit(1);
@@ -192,8 +192,11 @@ static void test_same_results_isolated(const char *host)
 static void test_missing_binary(const char *host)
 {
     char error[1024];
-    CHECK(ssx_fmu_load_isolated(host, 0.0, "/nonexistent/missing.so", "missing", "", "", "F",
-                                0, error, sizeof error) == NULL);
+    ssx_fmu_load_spec spec = {.version = SSX_FMI2, .interface = SSX_CO_SIMULATION,
+                              .binary_path = "/nonexistent/missing.so",
+                              .model_identifier = "missing", .guid = "",
+                              .resource_location = "", .instance_name = "F", .host_path = host};
+    CHECK(ssx_fmu_load(&spec, error, sizeof error) == NULL);
     CHECK(strncmp(error, "cannot load the FMU binary /nonexistent/missing.so: ", 52) == 0);
 }
 

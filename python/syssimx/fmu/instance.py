@@ -46,10 +46,10 @@ def _free_state(free_state: Any, instance: FMUInstance, generation: int, handle:
 class FMUInstance:
     """Proxy with FMU2Slave's methods; `mode` is "none", "instantiated", "init" or "step"."""
 
-    def __init__(self, fmu: Any, component_name: str, fmi3: bool = False) -> None:
+    def __init__(self, fmu: Any, component_name: str, function_prefix: str = "fmi2") -> None:
         self._fmu = fmu
         self.component_name = component_name
-        self.fmi3 = fmi3  # the engine names each call by its standard: messages use its name
+        self._function_prefix = function_prefix  # of the FMU's standard: "fmi2", "fmi3", ...
         self.mode = "none"
         self.generation = 0  # bumped whenever the live instance is freed or replaced
         self._free_state_function = lib().ssx_fmu_free_state
@@ -89,8 +89,11 @@ class FMUInstance:
 
     def _check(self, status: int, call: str) -> int:
         if status > 1 or status < 0:
-            if self.fmi3:
-                call = string(lib().ssx_fmu_last_call(self.fmu)) or call
+            # the engine names the call by the FMU's standard ("fmi3GetFloat64", ...); a call
+            # outside the FMU's interface has no name there: this proxy's, in the standard's
+            named = string(lib().ssx_fmu_last_call(self.fmu))
+            call = named if named.startswith(self._function_prefix) \
+                else call.replace("fmi2", self._function_prefix, 1)
             message = string(lib().ssx_fmu_last_message(self.fmu))
             raise FMUError(f"{self.component_name}: {call} returned {status_name(status)}"
                            + (f": {message}" if message else ""),

@@ -15,9 +15,11 @@ inputs, outputs and parameters. Numeric and Boolean arrays become one port per e
 from __future__ import annotations
 
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NamedTuple
 
+from ..engine import ffi
 from ..errors import FMUFileError
+from .fmi3_arrays import ArrayElement
 
 if TYPE_CHECKING:  # fmpy is imported by the first read, not with syssimx
     from fmpy.model_description import ModelDescription
@@ -29,8 +31,14 @@ FMI3_TYPE_CODES = {"Float64": 0, "Float32": 1, "Int8": 2, "UInt8": 3, "Int16": 4
 _PORT_CAUSALITIES = ("input", "output", "parameter")
 
 
-def is_fmi3(version: str | None) -> bool:
-    return version is not None and version.startswith("3.")
+class FMI3Variable(NamedTuple):
+    """A row of the engine's FMI 3.0 table: engine value reference, ssx_fmi3_type code, name,
+    and for an array element where it lies (None for a scalar)."""
+
+    value_reference: int
+    type_code: int
+    name: str
+    element: ArrayElement | None
 
 
 def read_fmi3_description(path: Path) -> ModelDescription:
@@ -90,3 +98,42 @@ def _check_variable(variable: Any, path: Path) -> None:
         raise FMUFileError(f"{path}: variable {variable.name!r} is a {variable.type} array "
                            f"({variable.causality}): String and Binary arrays are not "
                            "supported (numeric and Boolean arrays are)")
+
+
+def engine_rows(variables: Any, elements: dict[int, ArrayElement]) -> list[FMI3Variable]:
+    """The engine's FMI 3.0 type table: each numeric or Boolean scalar once per value
+    reference (an alias shares its variable's), array elements among them; arrays no port
+    carries (locals) are left out."""
+    table: dict[int, FMI3Variable] = {}
+    for variable in variables:
+        code = FMI3_TYPE_CODES.get(variable.type)
+        if code is not None and not variable.dimensions:
+            vr = variable.valueReference
+            table.setdefault(vr, FMI3Variable(vr, code, variable.name, elements.get(vr)))
+    return list(table.values())
+
+
+def engine_variables(rows: list[FMI3Variable], cosimulation: Any,
+                     model_exchange: bool) -> tuple[Any, list[Any]]:
+    """The ssx_fmi3_variables of `rows` and of how a Co-Simulation instance is made (event
+    mode when the FMU has it, early return when it may return early), and what it points at:
+    the struct does not keep that alive, the caller does until the engine copied it."""
+    texts = [ffi.new("char[]", row.name.encode()) for row in rows]
+    arrays = {"vr": ffi.new("unsigned int[]", [row.value_reference for row in rows]),
+              "type": ffi.new("unsigned char[]", [row.type_code for row in rows]),
+              "name": ffi.new("const char *[]", texts)}
+    fields: dict[str, Any] = {
+        **arrays, "n": len(rows),
+        "event_mode_used": not model_exchange and bool(cosimulation.hasEventMode),
+        "early_return_allowed": not model_exchange and bool(
+            cosimulation.canReturnEarlyAfterIntermediateUpdate
+            or cosimulation.mightReturnEarlyFromDoStep)}
+    if any(row.element is not None for row in rows):  # array elements: where each lies
+        elements = [row.element or ArrayElement(row.value_reference, 0, 0, 0.0)
+                    for row in rows]
+        fields.update({
+            "fmu_vr": ffi.new("unsigned int[]", [e.array_vr for e in elements]),
+            "element": ffi.new("size_t[]", [e.position for e in elements]),
+            "size": ffi.new("size_t[]", [e.size for e in elements]),
+            "start": ffi.new("double[]", [e.start for e in elements])})
+    return ffi.new("ssx_fmi3_variables *", fields), [texts, fields]

@@ -10,8 +10,9 @@ fmpy's attribute names (`modelVariables`, `valueReference`, `coSimulation.modelI
 variability "continuous", `initial` from FMI's table), so code written against fmpy's objects
 reads these unchanged.
 
-It reads FMI 2.0 in UTF-8 only (anything else is refused at the root element or the XML
-declaration); an FMI 3.0 description is handed to description_fmi3.py. It also refuses, as
+The engine reads UTF-8 (description.py decodes any other encoding first) and stops at the root
+element of another FMI version: description.py then hands the archive to that version's
+standard (standards.py). It also refuses, as
 FMPy's validation does, what would make syssimx exchange wrong data: two variables of one
 name, a value reference outside 0..2**32-1, a start that is not a value of the variable's type,
 an undefined declaredType, a ModelStructure index that names no variable.
@@ -22,13 +23,12 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import IO, TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..engine import ffi, lib
 from ..errors import FMUFileError
-from .description_fmi3 import is_fmi3, read_fmi3_description
 from .variable_table import VariableTable, words
 
 # fmpy's classes are imported by the first read, not with syssimx: importing fmpy costs about as
@@ -45,30 +45,36 @@ _COSIMULATION_FLAGS = ("canHandleVariableCommunicationStepSize", "canInterpolate
                        "canRunAsynchronuously")
 _ROOT_TEXT = ("fmiVersion", "modelName", "guid", "description", "author", "version", "copyright",
               "license", "generationTool", "generationDateAndTime", "variableNamingConvention")
-_CHUNK = 2**20
 
 
-def read_description(stream: IO[bytes], where: str | Path) -> ModelDescription:
-    """Read modelDescription.xml from `stream`; FMUFileError naming `where` if it is unusable.
-    An FMI 3.0 description is read from the archive `where` by description_fmi3.
+def engine_description(text: bytes | bytearray, where: str | Path) -> Any:
+    """The engine's reading of the UTF-8 modelDescription `text` (ssx_md, freed with it). Check
+    its error.problem: a description of another FMI version stops at the root element.
 
     No entity but XML's five predefined ones is resolved, no DTD accepted and nothing fetched
     from the network.
     """
-    text = bytearray()
-    while chunk := stream.read(_CHUNK):
-        text += chunk
     engine = lib()
     md = engine.ssx_md_read(ffi.from_buffer(text), len(text))
-    del text  # the engine copied what it keeps
     if md == ffi.NULL:
         raise MemoryError(f"{where}: no memory to read modelDescription.xml")
-    md = ffi.gc(md, engine.ssx_md_free)
-    if md.error.problem == engine.SSX_MD_NOT_FMI2 and is_fmi3(_optional(md.error.text)):
-        return read_fmi3_description(Path(where))
-    if md.error.problem != engine.SSX_MD_OK:
-        raise FMUFileError(_message(md.error, str(where)))
-    return _description(md, str(where))
+    return ffi.gc(md, engine.ssx_md_free)
+
+
+def declared_version(md: Any) -> str | None:
+    """The fmiVersion the root element declares (None: none)."""
+    if md.error.problem == lib().SSX_MD_NOT_FMI2:
+        return _optional(md.error.text)
+    for k in range(md.attribute_count):
+        kept = md.attributes[k]
+        if (_text(md, kept.element), _text(md, kept.name)) == ("fmiModelDescription",
+                                                                "fmiVersion"):
+            return _text(md, kept.value)
+    return None
+
+
+def _text(md: Any, offset: int) -> str | None:
+    return ffi.string(md.strings + offset).decode() if offset else None
 
 
 # ------------------------------------------------------------------------------ errors
@@ -125,19 +131,36 @@ def _value_types() -> tuple[str, ...]:
     return words()[engine.SSX_MD_REAL:engine.SSX_MD_ENUMERATION + 1]
 
 
+def problem_message(md: Any, where: str | Path) -> str | None:
+    """Why the engine stopped reading `md` (None: it did not, or at a root element of another
+    FMI version, which declared_version tells)."""
+    if md.error.problem in (lib().SSX_MD_OK, lib().SSX_MD_NOT_FMI2):
+        return None
+    return _message(md.error, str(where))
+
+
 def _message(error: Any, where: str) -> str:
     problem = _Problem(_optional(error.subject), _optional(error.text), _optional(error.other),
                        words()[error.word], int(error.line), int(error.count),
                        ffi.string(error.detail).decode("utf-8", "replace"))
     kind = ffi.string(ffi.cast("ssx_md_problem", error.problem))
-    if kind == "SSX_MD_NOT_FMI2":
-        return (f"{where}: FMI version {problem.text} is not supported (syssimx runs FMI 2.0 "
-                "and FMI 3.0 Co-Simulation and Model Exchange FMUs)")
     return f"{where}: modelDescription.xml: {_MESSAGES[kind](problem)}"
 
 
 # ------------------------------------------------------------------------------ the description
-def _description(md: Any, where: str) -> ModelDescription:
+def kept_attributes(md: Any) -> dict[str | None, dict[str | None, str | None]]:
+    """The attributes the engine kept (root, interfaces, DefaultExperiment), by element."""
+    elements: dict[str | None, dict[str | None, str | None]] = {}
+    for k in range(md.attribute_count):
+        kept = md.attributes[k]
+        elements.setdefault(_text(md, kept.element), {})[_text(md, kept.name)] = \
+            _text(md, kept.value)
+    return elements
+
+
+def describe(md: Any, where: str | Path) -> ModelDescription:
+    """fmpy's objects of what the engine read (md read without a problem)."""
+    where = str(where)
     from fmpy.model_description import (
         CoSimulation,
         DefaultExperiment,
@@ -147,12 +170,9 @@ def _description(md: Any, where: str) -> ModelDescription:
     )
 
     def text(offset: int) -> str | None:
-        return ffi.string(md.strings + offset).decode() if offset else None
+        return _text(md, offset)
 
-    elements: dict[str | None, dict[str | None, str | None]] = {}
-    for k in range(md.attribute_count):
-        kept = md.attributes[k]
-        elements.setdefault(text(kept.element), {})[text(kept.name)] = text(kept.value)
+    elements = kept_attributes(md)
     description = ModelDescription()
     root = elements.get("fmiModelDescription", {})
     for name in _ROOT_TEXT:
@@ -161,9 +181,9 @@ def _description(md: Any, where: str) -> ModelDescription:
     description.numberOfContinuousStates = int(md.derivative_count)
     description.numberOfEventIndicators = _count(root.get("numberOfEventIndicators"), where)
     if "CoSimulation" in elements:
-        description.coSimulation = _interface(CoSimulation(), elements["CoSimulation"])
+        description.coSimulation = interface_flags(CoSimulation(), elements["CoSimulation"])
     if "ModelExchange" in elements:
-        description.modelExchange = _interface(ModelExchange(), elements["ModelExchange"])
+        description.modelExchange = interface_flags(ModelExchange(), elements["ModelExchange"])
     if "DefaultExperiment" in elements:
         experiment = elements["DefaultExperiment"]
         description.defaultExperiment = DefaultExperiment(
@@ -194,7 +214,7 @@ def _count(text: str | None, where: str) -> int:
     return count
 
 
-def _interface(interface: Any, attributes: dict[str | None, str | None]) -> Any:
+def interface_flags(interface: Any, attributes: dict[str | None, str | None]) -> Any:
     from fmpy.model_description import CoSimulation
 
     interface.modelIdentifier = attributes.get("modelIdentifier")

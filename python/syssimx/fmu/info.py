@@ -9,10 +9,9 @@ from __future__ import annotations
 import logging
 import math
 import os
-import sys
 import zipfile
 import zlib
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple
@@ -22,9 +21,9 @@ from ..errors import FMUFileError
 from ..graph.analysis import feedthrough_from_model_description
 from ..units import plainly_readable, to_unit
 from .archive import open_archive
-from .description_fmi3 import FMI3_TYPE_CODES, is_fmi3
-from .description_reader import read_description
-from .fmi3_arrays import ArrayElement, expand_arrays
+from .description import Described, read_description
+from .description_fmi3 import FMI3Variable
+from .standards import Standard
 from .variable_table import ScalarVariable
 
 if TYPE_CHECKING:
@@ -39,22 +38,6 @@ PORT_TYPES = {"Real": PortType.REAL, "Integer": PortType.INT, "Enumeration": Por
                "Boolean": PortType.BOOL, "Float64": PortType.REAL, "Float32": PortType.REAL,
                **dict.fromkeys(("Int8", "UInt8", "Int16", "UInt16", "Int32"), PortType.INT),
                **dict.fromkeys(("UInt32", "Int64", "UInt64"), PortType.REAL)}
-# FMI 3.0 values that are no port: settable as parameters, readable, never connected
-TEXT_TYPES = ("String", "Binary")
-
-PLATFORM = "linux64" if sys.platform.startswith("linux") else sys.platform
-# FMI 3.0 names the platform by architecture and system
-PLATFORM_FMI3 = "x86_64-linux" if sys.platform.startswith("linux") else sys.platform
-
-
-class FMI3Variable(NamedTuple):
-    """A row of the engine's FMI 3.0 table: engine value reference, ssx_fmi3_type code, name,
-    and for an array element where it lies (None for a scalar)."""
-
-    value_reference: int
-    type_code: int
-    name: str
-    element: ArrayElement | None
 
 
 class Parameter(NamedTuple):
@@ -106,24 +89,21 @@ class FMUInfo:
     # ModelStructure/EventIndicator)
     number_of_states: int = 0
     number_of_event_indicators: int = 0
-    fmi_version: str = "2.0"
+    standard: Standard = field(default_factory=Standard)  # the FMI version's
     # FMI 3.0: every scalar the engine may get or set (array elements among them), the String
     # and Binary outputs, which no port carries, and each structural parameter with the
     # arrays it sizes
     fmi3_variables: list[FMI3Variable] = field(default_factory=list)
     text_outputs: dict[str, ScalarVariable] = field(default_factory=dict)
     structural_parameters: dict[str, list[str]] = field(default_factory=dict)
-
-    @property
-    def is_fmi3(self) -> bool:
-        return is_fmi3(self.fmi_version)
+    # every variable (FMI 3.0: its array ports as elements), made when iterated
+    all_variables: Iterable[Any] = ()
 
     def binary_name(self, interface: str | None = None) -> str:
         """The binary of `interface` (None: the one "auto" takes)."""
         identifier = self.model_identifier if interface is None \
             else self.interfaces[interface].model_identifier
-        platform = PLATFORM_FMI3 if self.is_fmi3 else PLATFORM
-        return f"binaries/{platform}/{identifier}.so"
+        return self.standard.binary_name(identifier)
 
 
 def variable_unit(variable: ScalarVariable) -> str | None:
@@ -202,39 +182,32 @@ def _read_fmu(path: Path) -> FMUInfo:
         names = set(archive.namelist())
         if "modelDescription.xml" not in names:
             raise FMUFileError(f"{path} is not an FMU: the archive has no modelDescription.xml")
-        description = _read_description(archive, path)
-        fmi3 = is_fmi3(description.fmiVersion)
+        standard, description = _read_description(archive, path)
         interfaces = _interfaces(description, path)
         first = interfaces[next(n for n in INTERFACES if n in interfaces)]
-        table = description.modelVariables
-        expanded = expand_arrays(description, path) if fmi3 else None
-        if expanded is not None:
-            table = expanded.variables
+        # only the ports become objects: a large model's locals stay in the reader's arrays
+        variables = standard.variables(description, path)
         info = FMUInfo(path=path, description=description,
                        model_identifier=first.model_identifier,
                        can_get_set_state=first.can_get_set_state,
-                       variables=({v.name: v for v in table} if fmi3 else table.by_name()),
+                       variables=variables.by_name,
                        default_tolerance=_default_tolerance(description, path),
                        interfaces=interfaces,
                        number_of_states=description.numberOfContinuousStates,
                        number_of_event_indicators=description.numberOfEventIndicators,
-                       fmi_version=description.fmiVersion)
+                       standard=standard, fmi3_variables=variables.engine_rows,
+                       structural_parameters=variables.structural)
         if info.binary_name() not in names:
-            raise FMUFileError(f"{path} has no {PLATFORM_FMI3 if fmi3 else PLATFORM} binary "
+            raise FMUFileError(f"{path} has no {standard.platform} binary "
                                f"({info.binary_name()} missing)")
-    # only these become objects: a large model's locals stay in the reader's arrays
-    ports = ([v for v in table if v.causality in _PORT_CAUSALITIES] if fmi3
-             else table.with_causality(*_PORT_CAUSALITIES))
-    if expanded is not None:
-        info.fmi3_variables = _fmi3_variables(table, expanded.elements)
-        info.structural_parameters = expanded.structural
-    _collect_ports_and_parameters(info, ports)
-    _collect_feedthrough(info, [v for v in ports if v.causality in ("input", "output")],
-                         expanded.outputs if expanded is not None else description.outputs)
+    info.all_variables = variables.all
+    _collect_ports_and_parameters(info, variables.ports)
+    _collect_feedthrough(info, [v for v in variables.ports if v.causality in ("input", "output")],
+                         variables.outputs)
     return info
 
 
-def _read_description(archive: zipfile.ZipFile, path: Path) -> ModelDescription:
+def _read_description(archive: zipfile.ZipFile, path: Path) -> Described:
     try:
         with archive.open("modelDescription.xml") as stream:
             return read_description(stream, path)
@@ -284,7 +257,6 @@ def _model_identifier(identifier: str | None, path: Path, element: str) -> str:
     return identifier
 
 
-_PORT_CAUSALITIES = ("input", "output", "parameter")  # locals are no ports
 _INPUT_DEFAULTS = {PortType.REAL: 0.0, PortType.INT: 0, PortType.BOOL: False}
 
 
@@ -294,7 +266,7 @@ def _collect_ports_and_parameters(info: FMUInfo, ports: list[ScalarVariable]) ->
     for variable in ports:  # repeats a few units many times)
         kind = PORT_TYPES.get(variable.type)
         if kind is None:
-            if info.is_fmi3 and variable.type in TEXT_TYPES:
+            if variable.type in info.standard.text_types:
                 info.value_references[variable.name] = variable.valueReference
                 _collect_text(info, variable)
             continue  # FMI 2.0 String variables have no place among doubles
@@ -337,19 +309,6 @@ def _collect_text(info: FMUInfo, variable: ScalarVariable) -> None:
     info.parameters[variable.name] = Parameter(
         variable.name, variable.valueReference, PortType.STRING, None,
         variable.causality == "input" or variable.variability == "tunable", start, variable.type)
-
-
-def _fmi3_variables(variables: Any, elements: dict[int, ArrayElement]) -> list[FMI3Variable]:
-    """The engine's FMI 3.0 type table: each numeric or Boolean scalar once per value
-    reference (an alias shares its variable's), array elements among them; arrays no port
-    carries (locals) are left out."""
-    table: dict[int, FMI3Variable] = {}
-    for variable in variables:
-        code = FMI3_TYPE_CODES.get(variable.type)
-        if code is not None and not variable.dimensions:
-            vr = variable.valueReference
-            table.setdefault(vr, FMI3Variable(vr, code, variable.name, elements.get(vr)))
-    return list(table.values())
 
 
 def _collect_feedthrough(info: FMUInfo, inputs_and_outputs: list[ScalarVariable],
