@@ -8,7 +8,9 @@ cd "$root"
 
 as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
 
-apt_packages=(build-essential pkg-config libsundials-dev graphviz python3-venv)
+# clang and its runtimes: the fuzz target of the modelDescription reader (scripts/fuzz.sh)
+apt_packages=(build-essential pkg-config libsundials-dev graphviz python3-venv clang
+              libclang-rt-14-dev)
 missing=()
 for package in "${apt_packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" \

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs and builds syssimx, then runs every test: the C tests (meson test) in the release
-# build and again under AddressSanitizer, the Python tests (pytest) and the linter.
+# build and again under AddressSanitizer, a bounded fuzz run of the modelDescription reader,
+# the Python tests (pytest) and the linter.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 bash "$root/scripts/install.sh"
@@ -14,7 +15,12 @@ echo "== meson test (AddressSanitizer)"
 if [ ! -f build/asan/build.ninja ]; then
   meson setup build/asan -Db_sanitize=address,undefined -Db_lundef=false --buildtype=debug >/dev/null
 fi
-ASAN_OPTIONS=detect_leaks=1 meson test -C build/asan --print-errorlogs
+# UBSan stops at its first report: undefined behaviour is a failure, not a line in a log
+ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+  meson test -C build/asan --print-errorlogs
+
+echo "== fuzz the modelDescription reader (libFuzzer, ASan, UBSan; ${FUZZ_SECONDS:-90} s)"
+bash "$root/scripts/fuzz.sh"
 
 echo "== pytest memory tests (AddressSanitizer engine and FMUs)"
 # Python itself is not instrumented: the sanitizer runtimes are preloaded, Python's own

@@ -89,3 +89,16 @@ class EngineMismatchError(SysSimXError, ImportError):
 class MissingDependencyError(SysSimXError, ModuleNotFoundError):
     """An optional library a feature needs is not installed; the message names the extra that
     installs it."""
+
+
+class RunInterrupted(KeyboardInterrupt):
+    """Ctrl-C (SIGINT) stopped a run or a sweep. `partial_result` holds what was finished (a
+    SimulationResult up to the last completed step, or an EnsembleResult of the finished
+    members, the others marked failed); `partial` is always True. A KeyboardInterrupt, so code
+    that stops on Ctrl-C still does."""
+
+    partial = True
+
+    def __init__(self, message: str, partial_result: object) -> None:
+        super().__init__(message)
+        self.partial_result = partial_result

@@ -14,7 +14,7 @@
 #include "system.h"
 
 /* The status every standard gives a step it could not complete (fmi2Discard, fmi3Discard). */
-enum { STATUS_DISCARD = 2 };
+enum { STATUS_DISCARD = 2, STATUS_ERROR = 3 };
 
 /* The standard's name of the call in `slot` of c's FMU, for messages. */
 static const char *call_name(const ssx_component *c, ssx_fmu_slot slot)
@@ -256,6 +256,14 @@ static int step_on(ssx_system *sys, ssx_component *c, double t, double t_end,
     int stuck = 0; /* returns in a row that did not advance */
     for (;;) {
         double reached = outcome.early_return ? outcome.last_successful_time : t_end;
+        if (!(reached >= from - close && reached <= t_end + close)) {
+            /* an FMU that claims to have gone past the step (or before it, or NaN) would be
+             * read at a time it never reached */
+            return fail_status(sys, c, from, STATUS_ERROR,
+                               "component '%s': %s from t=%.17g returned early at "
+                               "lastSuccessfulTime=%.17g, outside the step's end t=%.17g",
+                               c->name, call_name(c, SLOT_DO_STEP), from, reached, t_end);
+        }
         int terminate = outcome.terminate_simulation;
         if (!terminate && outcome.event_handling_needed &&
             handle_own_event(sys, c, reached, &terminate) != 0) {

@@ -69,7 +69,10 @@ typedef struct {
     double warm_at;
     long warm_epoch;
     ssx_component *c; /* for the callbacks */
+    const int *allow_non_finite; /* the system's setting, read by the callbacks */
     /* set by a CVODE callback whose FMU call failed, reported when CVODE returns */
+    long non_finite_indicator; /* -1, or the indicator that was NaN or infinite */
+    double non_finite_value;
     int failed_status;
     const char *failed_call;
     double failed_time;
@@ -129,7 +132,18 @@ static int indicators(sunrealtype t, N_Vector y, sunrealtype *z, void *user)
         return -1;
     }
     int status = ssx_fmu_get_event_indicators(me->c->fmu, z, me->nz);
-    return fmi_ok(status) ? 0 : callback_failed(me, status, SLOT_GET_EVENT_INDICATORS, t);
+    if (!fmi_ok(status)) {
+        return callback_failed(me, status, SLOT_GET_EVENT_INDICATORS, t);
+    }
+    for (size_t i = 0; !*me->allow_non_finite && i < me->nz; ++i) {
+        if (!isfinite(z[i])) { /* CVODE would never see it cross: the event would be lost */
+            me->non_finite_indicator = (long)i;
+            me->non_finite_value = z[i];
+            me->failed_time = t;
+            return -1;
+        }
+    }
+    return 0;
 }
 
 static void cvode_error(int code, const char *module, const char *function, char *message,
@@ -150,6 +164,14 @@ static int fail_cvode(ssx_system *sys, ssx_component *c, me_data *me, double t, 
         const char *failed = me->failed_call;
         me->failed_call = NULL;
         return fail_fmi(sys, c, me->failed_time, me->failed_status, failed);
+    }
+    if (me->non_finite_indicator >= 0) {
+        long i = me->non_finite_indicator;
+        me->non_finite_indicator = -1;
+        return fail(sys, c->index, -1, me->failed_time,
+                    "component '%s': event indicator %ld (of %zu) is %g at t=%.17g (non-finite "
+                    "values stop the run unless they are allowed)",
+                    c->name, i, me->nz, me->non_finite_value, me->failed_time);
     }
     return fail(sys, c->index, -1, t, "component '%s': %s failed at t=%.17g with %s%s%s",
                 c->name, call, t, CVodeGetReturnFlagName(flag),
@@ -732,6 +754,8 @@ int ssx_add_model_exchange_component(ssx_system *sys, const char *name, ssx_fmu 
     }
     ssx_component *c = sys->components[index];
     me->c = c;
+    me->allow_non_finite = &sys->allow_non_finite;
+    me->non_finite_indicator = -1;
     c->data = me;
     return index;
 }

@@ -278,8 +278,19 @@ static int set_string(const ssx_fmu_function *fn, void *instance, const unsigned
 static int get_binary(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,
                       size_t *sizes, const unsigned char **values)
 {
-    return (int)FMI3(fn, SLOT_GET_BINARY, fmi3GetBinaryTYPE)(((fmi3_context *)instance)->instance,
-                                                             vr, n, sizes, values, n);
+    fmi3_context *ctx = instance;
+    int status = (int)FMI3(fn, SLOT_GET_BINARY, fmi3GetBinaryTYPE)(ctx->instance, vr, n, sizes,
+                                                                   values, n);
+    for (size_t k = 0; status <= fmi3Warning && k < n; ++k) {
+        if (values[k] == NULL && sizes[k] != 0) {
+            /* the caller would read sizes[k] bytes from address 0 on: never hand that on */
+            const char *name = fmi3_variable_name(ctx, vr[k]);
+            fmi3_say(ctx, "fmi3GetBinary returned no data (NULL) with a size of %zu bytes for %s "
+                     "(value reference %u)", sizes[k], name != NULL ? name : "a variable", vr[k]);
+            return fmi3Error;
+        }
+    }
+    return status;
 }
 
 static int set_binary(const ssx_fmu_function *fn, void *instance, const unsigned int *vr, size_t n,

@@ -6,6 +6,8 @@
 #include "component.h"
 #include "coupling.h"
 #include "error.h"
+#include "fmu_binding.h"
+#include "fmu_remote.h"
 #include "indicator.h"
 #include "system.h"
 
@@ -91,6 +93,24 @@ static int stopped_by_monitor(ssx_system *sys, double t)
                      "system '%s': the run was stopped by its monitor at t=%.17g", sys->name, t);
 }
 
+/* An isolated FMU's call waits on its host's socket: the monitor (Ctrl-C, the run's timeout)
+ * is asked while it waits, as between steps. */
+static int stop_requested_by_monitor(void *user)
+{
+    ssx_system *sys = user;
+    return sys->monitor.call != NULL ? sys->monitor.call(sys->monitor.user, sys->time) : 0;
+}
+
+static void watch_isolated_fmus(ssx_system *sys, int (*stop)(void *user))
+{
+    for (int i = 0; i < sys->n_components; ++i) {
+        ssx_fmu *fmu = sys->components[i]->fmu;
+        if (fmu != NULL) {
+            ssx_remote_set_watch(ssx_fmu_remote(fmu), stop, sys);
+        }
+    }
+}
+
 static int run_grid(ssx_system *sys, double t0, double tf, double dt, long n_steps)
 {
     double t = t0;
@@ -162,7 +182,9 @@ int ssx_run(ssx_system *sys, double t0, double tf, double dt)
     if (recording_run_start(sys, (size_t)n_steps, tf) != 0) {
         return -1;
     }
+    watch_isolated_fmus(sys, stop_requested_by_monitor);
     int status = run_grid(sys, t0, tf, dt, n_steps);
+    watch_isolated_fmus(sys, NULL);
     recording_run_end(sys);
     return status;
 }

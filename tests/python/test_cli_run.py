@@ -66,7 +66,7 @@ def test_run_overrides_the_description_and_quiet_prints_only_the_summary(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]):
     out = tmp_path / "quickstart.csv"
     argv = ["run", str(EXAMPLES / "quickstart.json"), "--t0", "0", "--tf", "2", "--dt", "0.5",
-            "-o", str(out), "--quiet"]
+            "-o", str(out), "--quiet", "--allow-module", "quickstart"]
     assert main(argv) == 0
     captured = capsys.readouterr()
     summary = COMPLETED.fullmatch(captured.out.splitlines()[0])
@@ -84,7 +84,7 @@ def test_run_overrides_the_description_and_quiet_prints_only_the_summary(
 def test_run_without_output_writes_no_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                                            capsys: pytest.CaptureFixture[str]):
     monkeypatch.chdir(tmp_path)
-    assert main(["run", str(EXAMPLES / "quickstart.yaml")]) == 0
+    assert main(["run", str(EXAMPLES / "quickstart.yaml"), "--allow-module", "quickstart"]) == 0
     lines = capsys.readouterr().out.splitlines()
     assert len(lines) == 1 and lines[0].startswith("Completed 'QuickstartSystem': t in [0.0, 5.0]")
     assert list(tmp_path.iterdir()) == []
@@ -103,7 +103,7 @@ def test_component_classes_are_found_in_the_working_directory(
                       .replace('"quickstart:', '"my_blocks:'))
     monkeypatch.chdir(work)
     monkeypatch.setattr(sys, "path", [p for p in sys.path if p not in ("", str(work))])
-    assert main(["run", str(config), "--quiet"]) == 0
+    assert main(["run", str(config), "--quiet", "--allow-module", "my_blocks"]) == 0
     assert capsys.readouterr().out.startswith("Completed 'QuickstartSystem'")
     assert str(work) not in sys.path  # only while the command runs
 

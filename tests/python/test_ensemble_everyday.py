@@ -19,8 +19,9 @@ xr = pytest.importorskip("xarray")
 from syssimx.cli import main  # noqa: E402
 from syssimx.ensemble.main_guard import GUARD  # noqa: E402
 from syssimx.ensemble.progress import ProgressBar  # noqa: E402
-from syssimx.ensemble.result import check_writer, netcdf_engine  # noqa: E402
+from syssimx.ensemble.result import WRITERS, netcdf_engine  # noqa: E402
 from syssimx.errors import ConfigurationError  # noqa: E402
+from syssimx.output_check import check_output  # noqa: E402
 
 PYTHON_DIR = Path(syssimx.__file__).resolve().parents[1]
 
@@ -76,10 +77,10 @@ def test_the_writer_is_checked_before_the_members_run(tmp_path: Path, capsys):
     assert main(["sweep", "system.yaml", "--param", "P.theta0=1", "--quiet",
                  "-o", str(missing_folder)]) == 1
     # the system file is not even opened: the output is judged first
-    assert capsys.readouterr().err == (f"syssimx: error: {missing_folder}: no folder "
-                                       f"'{missing_folder.parent}' to write into\n")
-    with pytest.raises(ConfigurationError, match=r"unknown result format '\.xlsx'"):
-        check_writer(tmp_path / "out.xlsx")
+    assert capsys.readouterr().err == (f"syssimx: error: output {missing_folder}: the folder "
+                                       f"{missing_folder.parent} does not exist\n")
+    with pytest.raises(ConfigurationError, match=r"unknown format '\.xlsx'"):
+        check_output(tmp_path / "out.xlsx", "output", WRITERS)
 
 
 def test_netcdf_is_written_by_the_ensemble_extras_writer(tmp_path: Path, capsys):

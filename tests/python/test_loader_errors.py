@@ -49,12 +49,18 @@ BUILD_ERRORS = {
         ", line 2: components[0] 'A': class 'quickstart.LinearSource' is not of the form "
         "'module.path:ClassName'",
     "components:\n  - name: A\n    class: 'no_such_module_here:Thing'\n":
-        ", line 2: components[0] 'A': cannot import module 'no_such_module_here': No module "
-        "named 'no_such_module_here'",
+        ", line 2: components[0] 'A': module 'no_such_module_here' is not allowed: a system file "
+        "may name classes of syssimx and of modules you allow (importing a module runs its "
+        "code); allow it with --allow-module no_such_module_here or "
+        "allowed_modules=['no_such_module_here']",
     "components:\n  - name: A\n    class: 'quickstart:Nothing'\n":
         ", line 2: components[0] 'A': module 'quickstart' has no 'Nothing'",
     "components:\n  - name: A\n    class: 'pathlib:Path'\n":
-        ", line 2: components[0] 'A': pathlib:Path is not a CoSimComponent",
+        ", line 2: components[0] 'A': module 'pathlib' is not allowed: a system file may name "
+        "classes of syssimx and of modules you allow (importing a module runs its code); allow "
+        "it with --allow-module pathlib or allowed_modules=['pathlib']",
+    "components:\n  - name: A\n    class: 'quickstart:System'\n":
+        ", line 2: components[0] 'A': quickstart:System is not a CoSimComponent",
     "components:\n  - name: A\n    class: 'quickstart:LinearSource'\n    args: {c: 1}\n":
         ", line 2: components[0] 'A': cannot construct quickstart:LinearSource with args "
         "{'c': 1}: LinearSource.__init__() got an unexpected keyword argument 'c'",
@@ -149,7 +155,7 @@ def write(tmp_path: Path, text: str, name: str = "system.yaml") -> Path:
 def test_a_bad_entry_is_named_with_its_file_and_line(tmp_path: Path, text: str, message: str):
     path = write(tmp_path, text)
     with pytest.raises(ConfigError) as caught:
-        build_system(path)
+        build_system(path, allowed_modules=["quickstart"])
     assert str(caught.value) == f"{path}{message}"
 
 
@@ -158,7 +164,7 @@ def test_a_bad_entry_is_named_with_its_file_and_line(tmp_path: Path, text: str, 
 def test_a_bad_run_entry_is_named(tmp_path: Path, text: str, message: str):
     path = write(tmp_path, text)
     with pytest.raises(ConfigError) as caught:
-        run_from_config(path)
+        run_from_config(path, allowed_modules=["quickstart"])
     assert str(caught.value) == f"{path}{message}"
 
 

@@ -27,7 +27,7 @@ def as_json(tmp_path: Path, name: str) -> Path:
 
 @pytest.mark.parametrize("file", ["quickstart.yaml", "quickstart.json"])
 def test_quickstart_description_gives_12_25_at_t_5(file: str):
-    result = run_from_config(EXAMPLES / file)
+    result = run_from_config(EXAMPLES / file, allowed_modules=["quickstart"])
     t, data = result["Integrator"]
     assert len(t) == 51 and t[-1] == 5.0
     assert data["y"][-1] == pytest.approx(12.25, abs=1e-12)
@@ -40,7 +40,8 @@ def test_quickstart_yaml_and_json_describe_the_same_system():
 
 
 def test_run_arguments_override_the_run_entry():
-    result = run_from_config(EXAMPLES / "quickstart.yaml", tf=2.0, dt=0.5)
+    result = run_from_config(EXAMPLES / "quickstart.yaml", tf=2.0, dt=0.5,
+                             allowed_modules=["quickstart"])
     t, data = result["Integrator"]
     # Euler of y' = t with h = 0.5: 0.5 * (0 + 0.5 + 1.0 + 1.5) = 1.5
     assert list(t) == [0.0, 0.5, 1.0, 1.5, 2.0]
@@ -133,7 +134,7 @@ def test_a_class_from_a_module_beside_the_description(tmp_path: Path):
     path = tmp_path / "clock.yaml"
     path.write_text("components:\n  - {name: C, class: 'my_blocks_beside:Clock', "
                     "args: {rate: 3.0}}\nrun: {t0: 0, tf: 1, dt: 0.25}\n")
-    t, values = run_from_config(path)["C"]
+    t, values = run_from_config(path, allowed_modules=["my_blocks_beside"])["C"]
     np.testing.assert_array_equal(values["t"], 3.0 * t)
 
 

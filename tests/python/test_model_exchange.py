@@ -215,7 +215,7 @@ def test_the_loader_reads_interface(tmp_path: Path):
                       "    class: 'quickstart:LinearSource'\n    interface: model-exchange\n")
     with pytest.raises(ConfigurationError, match="'interface' chooses an FMU's interface: it "
                        "needs 'fmu'"):
-        build_system(config)
+        build_system(config, allowed_modules=["quickstart"])
 
 
 def model_exchange_only(tmp_path: Path) -> Path:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 from typing import Any, TextIO
 
+from ..system.component_classes import add_allow_module_option
 from .common import choose, is_ssp, working_directory_importable
 
 
@@ -15,6 +16,7 @@ def add_command(commands: Any) -> argparse.ArgumentParser:
                           "(.ssp archive or .ssd file)")
     describe.add_argument("--initialize", action="store_true",
                           help="initialize the system first (at run.t0, else 0)")
+    add_allow_module_option(describe)
     describe.set_defaults(run=run_describe)
     return describe
 
@@ -31,7 +33,7 @@ def run_describe(args: argparse.Namespace, out: TextIO) -> None:
         out.write(imported.system.describe() + "\n")
         return
     with working_directory_importable():
-        system = build_system(args.config)
+        system = build_system(args.config, allowed_modules=args.allowed_modules)
     if args.initialize:
         run = load_config(args.config).get("run") or {}
         system.initialize(float(run.get("t0", 0.0)) if isinstance(run, dict) else 0.0)

@@ -8,6 +8,7 @@ from collections.abc import Sequence
 
 from .. import __version__
 from ..core.suggest import did_you_mean
+from ..output_check import check_command_outputs
 from . import describe, fmu_list, info, run, simulate, sweep
 
 COMMANDS = (info, fmu_list, simulate, run, describe, sweep)
@@ -24,7 +25,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as exit_request:  # argparse has printed usage or help already
         return int(exit_request.code or 0)
     try:
+        check_command_outputs(args)  # before anything runs: results are never computed in vain
         args.run(args, sys.stdout)
+    except KeyboardInterrupt as stop:  # what was finished has been written by the command
+        print(f"syssimx: interrupted{': ' + str(stop) if str(stop) else ''}", file=sys.stderr)
+        return 130
     except Exception as error:  # the command line shows messages, never tracebacks
         print(f"syssimx: error: {_describe(error, args)}", file=sys.stderr)
         return 1

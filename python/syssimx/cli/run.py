@@ -7,7 +7,10 @@ import sys
 from pathlib import Path
 from typing import Any, TextIO
 
+from ..atomic_file import write_or_fallback
+from ..partial_results import run_keeping_partial
 from ..system.algorithm_table import ALGORITHM_NAMES, algorithm_class
+from ..system.component_classes import add_allow_module_option
 from .common import CommandError, choose, is_ssp, working_directory_importable
 from .options import add_output_file, add_run_limits, add_time_options
 
@@ -28,43 +31,33 @@ def add_command(commands: Any) -> argparse.ArgumentParser:
                           "else 1)")
     run.add_argument("--quiet", action="store_true",
                      help="no progress bar (there is none either when not on a terminal)")
+    add_allow_module_option(run)
     run.set_defaults(run=run_config)
     return run
 
 
 def run_config(args: argparse.Namespace, out: TextIO) -> None:
     from ..errors import SimulationTimeoutError
+    from ..system.results import SimulationResult
 
     bar = not args.quiet and sys.stdout.isatty() and sys.stderr.isatty()
     options: dict[str, Any] = {"progress": True} if bar else {}
     options.update({k: v for k, v in (("timeout", args.timeout),
                                       ("output_interval", args.output_interval))
                     if v is not None})
-    if is_ssp(args.config):
-        system, (t0, tf, dt) = _prepare_ssp(args)
-    else:
-        from ..system.config_source import Source, read_file
-        from ..system.loader import build_system, run_settings
-
-        with working_directory_importable():
-            settings = run_settings(Source(Path(args.config)), read_file(args.config),
-                                    {"t0": args.start_time, "tf": args.stop_time,
-                                     "dt": args.step_size})
-            system = build_system(args.config)
-            _choose_algorithm(system, args)
-            t0, tf, dt = settings["t0"], settings["tf"], settings["dt"]
+    system, (t0, tf, dt) = _prepare_ssp(args) if is_ssp(args.config) else _prepare_config(args)
     system.initialize(t0)
     try:
-        result = system.run(t0, tf, dt, **options)
+        result, interrupted = run_keeping_partial(lambda: system.run(t0, tf, dt, **options))
     except SimulationTimeoutError as error:  # what was recorded is written first
-        if args.output is not None:
-            from ..system.results import SimulationResult
-
-            written = SimulationResult.from_system(system, t0, tf, dt).to_csv(args.output)
-            raise CommandError(f"{error} (--timeout {args.timeout:g} s); the samples up to "
-                               f"there are written to {written}") from error
-        raise
-    out.write(f"Completed '{result.system_name}': t in [{result.t0}, {result.tf}] s, "
+        if args.output is None:
+            raise
+        recorded = SimulationResult.from_system(system, t0, tf, dt)
+        written = write_or_fallback(args.output, recorded.to_csv)
+        raise CommandError(f"{error} (--timeout {args.timeout:g} s); the samples up to there "
+                           f"are written to {written}") from error
+    verb = "Completed" if interrupted is None else "Interrupted (what was finished)"
+    out.write(f"{verb} '{result.system_name}': t in [{result.t0}, {result.tf}] s, "
               f"dt = {result.dt} s, algorithm = {result.algorithm}, "
               f"wall time = {result.wall_time:.3f} s\n")
     if len(result.events):
@@ -73,7 +66,25 @@ def run_config(args: argparse.Namespace, out: TextIO) -> None:
     if termination is not None:  # a component asked to stop: the end of the run, not a failure
         out.write(f"{termination}\n")
     if args.output is not None:
-        out.write(f"Results written to {result.to_csv(args.output)}\n")
+        write_or_fallback(args.output, result.to_csv)
+        out.write(f"Results written to {args.output}\n")
+    if interrupted is not None:
+        raise interrupted
+
+
+def _prepare_config(args: argparse.Namespace) -> tuple[Any, tuple[float, float, float]]:
+    """A system description's system and its times: the run entry, each replaced by an
+    option given."""
+    from ..system.config_source import Source, read_file
+    from ..system.loader import build_system, run_settings
+
+    with working_directory_importable():
+        settings = run_settings(Source(Path(args.config)), read_file(args.config),
+                                {"t0": args.start_time, "tf": args.stop_time,
+                                 "dt": args.step_size})
+        system = build_system(args.config, allowed_modules=args.allowed_modules)
+        _choose_algorithm(system, args)
+    return system, (settings["t0"], settings["tf"], settings["dt"])
 
 
 EVENTS_LISTED = 5

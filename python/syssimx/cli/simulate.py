@@ -6,10 +6,12 @@ import argparse
 from pathlib import Path
 from typing import Any, TextIO
 
+from ..atomic_file import write_or_fallback
 from ..core.literal import literal
 from ..core.port import PortType
 from ..core.suggest import did_you_mean
 from ..fmu.info import INTERFACES
+from ..partial_results import run_keeping_partial
 from ..system.csv_export import write_wide
 from .common import CommandError, choose, resolve_fmu
 from .options import add_output_file, add_run_limits, add_time_options
@@ -140,16 +142,18 @@ def run_simulate(args: argparse.Namespace, out: TextIO) -> None:
         limits["output_interval"] = args.output_interval
     timed_out = None
     try:
-        result = run_through(system, communication_points(t0, tf, dt, events), dt,
-                             args.timeout) if events else system.run(t0, tf, dt, **limits)
+        result, interrupted = run_keeping_partial(
+            lambda: run_through(system, communication_points(t0, tf, dt, events), dt,
+                                args.timeout) if events else system.run(t0, tf, dt, **limits))
     except SimulationTimeoutError as error:  # the samples up to there are written first
-        timed_out = error
+        timed_out, interrupted = error, None
         result = SimulationResult.from_system(system, t0, tf, dt)
 
     t, values = result[component.name]
     columns = {name: values[name] for name in written if name in values}
     if args.output is not None:
-        write_wide(args.output, t, columns, result.units[component.name] if args.units else {})
+        units = result.units[component.name] if args.units else {}
+        write_or_fallback(args.output, lambda path: write_wide(path, t, columns, units))
         out.write(f"wrote {len(t)} samples of {len(columns)} outputs to {args.output}\n")
     if timed_out is not None:
         raise CommandError(f"{timed_out} (--timeout {args.timeout:g} s)")
@@ -170,6 +174,8 @@ def run_simulate(args: argparse.Namespace, out: TextIO) -> None:
     if args.output is None:
         for name, series in columns.items():
             out.write(f"{name} = {series[-1]:.12g} at t = {t[-1]:.12g}\n")
+    if interrupted is not None:
+        raise interrupted
 
 
 def _written_outputs(component: Any, chosen: list[str] | None, fmu_name: str) -> list[str]:

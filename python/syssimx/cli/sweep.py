@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 from typing import Any, TextIO
 
+from ..system.component_classes import add_allow_module_option
 from .options import add_output_file, add_time_options
 
 
@@ -35,6 +36,7 @@ def add_command(commands: Any) -> argparse.ArgumentParser:
                            "sample) or .nc (the xarray dataset)")
     sweep.add_argument("--quiet", action="store_true", dest="no_progress",
                        help="no progress bar")
+    add_allow_module_option(sweep)
     sweep.set_defaults(run=run_sweep)
     return sweep
 

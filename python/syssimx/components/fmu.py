@@ -38,7 +38,7 @@ from .. import units
 from ..core.port import Port, PortSpec, PortType
 from ..core.suggest import did_you_mean
 from ..engine import lib
-from ..errors import ConfigurationError, SysSimXWarning
+from ..errors import ConfigurationError, FMUError, SysSimXWarning
 from ..fmu.extraction import extractions
 from ..fmu.info import (
     INTERFACES,
@@ -394,12 +394,22 @@ class FMUComponent(CoSimComponent):
                 by_type.setdefault(kind, []).append(variable)
         state: dict[str, dict[str, Any]] = {}
         for kind, variables in by_type.items():
-            values = getters[kind]([v.valueReference for v in variables])
+            if kind == "Binary":  # one call each: the engine's refusal then names the variable
+                values = [self._binary_value(v) for v in variables]
+            else:
+                values = getters[kind]([v.valueReference for v in variables])
             for variable, value in zip(variables, values, strict=True):
                 state[variable.name] = {"value": value, "unit": variable_unit(variable)}
         for name, value in self.parameters.items():
             state.setdefault(name, {"value": value, "unit": self.info.parameters[name].unit})
         return state
+
+    def _binary_value(self, variable: Any) -> bytes:
+        try:
+            return self.instance.getBinary([variable.valueReference])[0]
+        except FMUError as error:
+            raise FMUError(f"{error} (variable {variable.name!r})", component=error.component,
+                           status=error.status, fmu_message=error.fmu_message) from error
 
     def _require_binding(self) -> Any:
         if self._binding is None:

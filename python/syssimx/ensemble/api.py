@@ -7,13 +7,13 @@ import uuid
 from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
-from ..errors import ConfigurationError
+from ..errors import ConfigurationError, RunInterrupted
 from .cluster import ensemble_client
 from .main_guard import check_main_guard
 from .member import MemberTask
 from .members import ParameterSet, parameter_sets
 from .result import EnsembleResult
-from .runner import run_members
+from .runner import MembersInterrupted, run_members
 from .sampling import draw
 from .system_source import SystemFile, system_source
 
@@ -73,7 +73,15 @@ def _run(function: str, system: Any, sets: list[ParameterSet], t0: float | None,
     if client is None and scheduler is None:  # worker processes started from this script
         check_main_guard(function)
     start = time.perf_counter()
-    with ensemble_client(client, scheduler, workers) as running_on:
-        members = run_members(running_on, build, tasks, member_timeout, progress)
+    try:
+        with ensemble_client(client, scheduler, workers) as running_on:
+            members = run_members(running_on, build, tasks, member_timeout, progress)
+    except MembersInterrupted as stop:  # what was finished, on the exception
+        partial = EnsembleResult(stop.results, list(sets[0]), settings["t0"], settings["tf"],
+                                 settings["dt"], time.perf_counter() - start)
+        done = sum(member.error_type != "KeyboardInterrupt" for member in stop.results)
+        raise RunInterrupted(f"the ensemble was interrupted: {done} of {len(stop.results)} "
+                             "members had finished (partial_result holds them)",
+                             partial) from stop
     return EnsembleResult(members, list(sets[0]), settings["t0"], settings["tf"],
                           settings["dt"], time.perf_counter() - start)

@@ -33,6 +33,12 @@ EMBEDDED_SCHEDULER_CONFIG = {
 }
 
 
+# Every socket of the embedded cluster (scheduler, workers, nannies, the dashboard) listens on
+# loopback only: the dashboard shows the workers, their memory and local folders to anyone who
+# reaches it. A cluster of the user's own (client=, scheduler=) is theirs to expose.
+LOOPBACK = "127.0.0.1"
+
+
 def cores() -> int:
     """The cores this process may run on."""
     return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") \
@@ -69,8 +75,19 @@ def ensemble_client(client: Any = None, scheduler: str | None = None,
         raise ConfigurationError(f"workers must be a positive integer, got {workers!r}")
     # The workers' stream handlers are silenced; their nannies still keep the INFO lines
     # (how a worker died) that a crashed member's reason is read from.
-    with dask.config.set(EMBEDDED_SCHEDULER_CONFIG), \
-            LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
-                         dashboard_address=":0", silence_logs=logging.CRITICAL) as cluster, \
-            Client(cluster) as local:
-        yield local
+    try:
+        with dask.config.set(EMBEDDED_SCHEDULER_CONFIG), \
+                LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
+                             host=LOOPBACK, dashboard_address=f"{LOOPBACK}:0",
+                             silence_logs=logging.CRITICAL) as cluster, \
+                Client(cluster) as local:
+            yield local
+    finally:
+        # a worker killed by a signal (a member's crash, the nanny's SIGTERM) left its FMU
+        # extractions: their owner is gone now
+        import tempfile
+        from pathlib import Path
+
+        from ..fmu.extraction import remove_stale_folders
+
+        remove_stale_folders(Path(tempfile.gettempdir()))

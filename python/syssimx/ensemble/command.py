@@ -9,11 +9,12 @@ import sys
 from pathlib import Path
 from typing import Any, TextIO
 
+from ..atomic_file import write_or_fallback
 from ..errors import ConfigurationError, SimulationError
+from ..partial_results import run_keeping_partial
 from .api import sweep
 from .members import Scalar, parse_values
-from .result import check_writer
-from .system_source import SYSTEM_FILE_SUFFIXES, ShippedFunction
+from .system_source import SYSTEM_FILE_SUFFIXES, ShippedFunction, system_source
 
 
 def parameter_values(text: str) -> tuple[str, list[Scalar]]:
@@ -29,15 +30,18 @@ def parameter_values(text: str) -> tuple[str, list[Scalar]]:
 
 def run_sweep(args: argparse.Namespace, out: TextIO) -> None:
     """Run the sweep the arguments describe, write the results, list the failed members."""
+    system = resolve_system(args.system)
+    if isinstance(system, str):  # a system file: its classes come from the allowed modules
+        system = system_source(system, tuple(args.allowed_modules or ()))
+    result, interrupted = run_keeping_partial(lambda: sweep(
+        system, dict(args.parameters), mode=args.mode, t0=args.start_time,
+        tf=args.stop_time, dt=args.step_size, scheduler=args.scheduler, workers=args.workers,
+        member_timeout=args.member_timeout, progress=not args.no_progress))
     if args.output is not None:
-        check_writer(args.output)  # before the members run: their work is never lost
-    result = sweep(resolve_system(args.system), dict(args.parameters), mode=args.mode,
-                   t0=args.start_time, tf=args.stop_time, dt=args.step_size,
-                   scheduler=args.scheduler, workers=args.workers,
-                   member_timeout=args.member_timeout, progress=not args.no_progress)
-    if args.output is not None:
-        result.write(args.output)
+        write_or_fallback(args.output, result.write)
         out.write(f"wrote {len(result)} members to {args.output}\n")
+    if interrupted is not None:
+        raise interrupted
     failed = result.failed
     out.write(f"{len(result)} members, {len(result) - len(failed)} ok, {len(failed)} failed, "
               f"in {result.wall_time:.3g} s\n")

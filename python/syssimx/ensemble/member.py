@@ -19,6 +19,7 @@ import numpy as np
 
 from ..errors import ConfigurationError, SysSimXWarning
 from ..system.system import System
+from .leftovers import end_left_children
 from .loaded_fmus import loaded_fmus
 from .members import ParameterSet, split_name
 from .reused_system import reused_system, user_values
@@ -100,8 +101,12 @@ def run_member(build: SystemSource, task: MemberTask) -> MemberResult:
 
 
 def run_chunk(build: SystemSource, tasks: list[MemberTask]) -> list[MemberResult]:
-    """Run members one after another here (one Dask task for several short members)."""
-    return [run_member(build, task) for task in tasks]
+    """Run members one after another here (one Dask task for several short members); then
+    end the processes their FMUs forked and left (leftovers.py)."""
+    end_left_children()  # the first call notes the worker's own children
+    results = [run_member(build, task) for task in tasks]
+    end_left_children()
+    return results
 
 
 def _announce(task: MemberTask) -> None:

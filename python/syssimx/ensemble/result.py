@@ -11,7 +11,6 @@ event instants between grid points are left out of that view only.
 from __future__ import annotations
 
 import importlib.util
-import os
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -23,6 +22,9 @@ from ..extras import install_hint, require
 from .member import STATISTICS, MemberResult
 
 WRITERS = (".csv", ".parquet", ".nc")
+# xarray's engines for .nc files, in order of preference, and the modules each needs
+NETCDF_ENGINES = (("scipy", ("scipy",)), ("netcdf4", ("netCDF4",)),
+                  ("h5netcdf", ("h5netcdf", "h5py")))
 MEMBERS_SHOWN = 10  # members listed in a notebook's table; the rest are counted
 
 
@@ -196,23 +198,26 @@ class EnsembleResult:
 
     def write(self, path: str | Path) -> Path:
         """Write by suffix: .csv and .parquet the tidy table (parquet needs pyarrow or
-        fastparquet), .nc the dataset (netCDF; scipy writes it when netCDF4 is absent)."""
+        fastparquet), .nc the dataset (netCDF, by netcdf_engine())."""
+        from ..atomic_file import atomic_path
+
         target = Path(path)
         suffix = target.suffix.lower()
-        if suffix == ".csv":
-            self.to_dataframe().to_csv(target, index=False)
-        elif suffix == ".parquet":
-            try:
-                self.to_dataframe().to_parquet(target, index=False)
-            except ImportError as error:
-                raise ConfigurationError(f"{target}: writing parquet needs pyarrow or "
-                                         f"fastparquet ({error}); write .csv or .nc "
-                                         "instead") from error
-        elif suffix == ".nc":
-            self._netcdf_dataset().to_netcdf(target, engine=netcdf_engine())
-        else:
+        if suffix not in WRITERS:
             raise ConfigurationError(f"{target}: unknown result format {suffix!r}; use one of "
                                      f"{', '.join(WRITERS)}")
+        with atomic_path(target) as temporary:  # whole or not at all
+            if suffix == ".csv":
+                self.to_dataframe().to_csv(temporary, index=False)
+            elif suffix == ".parquet":
+                try:
+                    self.to_dataframe().to_parquet(temporary, index=False)
+                except ImportError as error:
+                    raise ConfigurationError(f"{target}: writing parquet needs pyarrow or "
+                                             f"fastparquet ({error}); write .csv or .nc "
+                                             "instead") from error
+            else:
+                self._netcdf_dataset().to_netcdf(temporary, engine=netcdf_engine())
         return target
 
     def _netcdf_dataset(self) -> Any:
@@ -233,36 +238,13 @@ class EnsembleResult:
 
 def netcdf_engine() -> str:
     """xarray's engine for .nc files: scipy's netCDF3 writer (the ensemble extra's: faster and
-    smaller files than h5netcdf's, benchmarks/netcdf_backends.py), else h5netcdf's netCDF4."""
-    for engine, modules in (("scipy", ("scipy",)), ("h5netcdf", ("h5netcdf", "h5py"))):
+    smaller files than h5netcdf's, benchmarks/netcdf_backends.py), else netCDF4's or h5netcdf's
+    where one of them is installed instead."""
+    for engine, modules in NETCDF_ENGINES:
         if all(importlib.util.find_spec(m) is not None for m in modules):
             return engine
     raise MissingDependencyError(f"writing .nc files needs scipy (or h5netcdf): "
                                  f"{install_hint('scipy')}", name="scipy")
-
-
-def check_writer(path: str | Path) -> Path:
-    """Before an ensemble runs: the file it will write has a known format whose writer is
-    installed, in a folder that exists, so that no member's work is lost at the end."""
-    target = Path(path)
-    suffix = target.suffix.lower()
-    if suffix not in WRITERS:
-        raise ConfigurationError(f"{target}: unknown result format {suffix!r}; use one of "
-                                 f"{', '.join(WRITERS)}")
-    require("pandas", f"writing {target.name}")
-    if suffix == ".nc":
-        require("xarray", f"writing {target.name}")
-        netcdf_engine()
-    if suffix == ".parquet" and not any(importlib.util.find_spec(m) is not None
-                                        for m in ("pyarrow", "fastparquet")):
-        raise MissingDependencyError(f"writing {target.name} needs pyarrow or fastparquet: "
-                                     f"{install_hint('pyarrow')}", name="pyarrow")
-    folder = target.parent if str(target.parent) else Path(".")
-    if not folder.is_dir():
-        raise ConfigurationError(f"{target}: no folder {str(folder)!r} to write into")
-    if not os.access(folder, os.W_OK):
-        raise ConfigurationError(f"{target}: the folder {str(folder)!r} is not writable")
-    return target
 
 
 def _column(members: Sequence[MemberResult], name: str) -> np.ndarray:

@@ -170,10 +170,22 @@ def run_members(client: Any, build: SystemSource, tasks: Sequence[MemberTask],
     try:
         for suspect in ensemble.run(tasks, chunk_size(len(tasks), ensemble.workers)):
             ensemble.run([suspect], 0)
+    except KeyboardInterrupt as stop:  # Ctrl-C: the finished members are kept
+        raise MembersInterrupted([ensemble.results.get(task.index) or MemberResult(
+            task.index, task.parameters, "failed", "interrupted (Ctrl-C) before it finished",
+            "KeyboardInterrupt") for task in tasks]) from stop
     finally:
         bar.close()
         client.unsubscribe_topic(ensemble.topic)
     return [ensemble.results[task.index] for task in tasks]
+
+
+class MembersInterrupted(KeyboardInterrupt):
+    """Ctrl-C during run_members: every member's result, the unfinished ones failed."""
+
+    def __init__(self, results: list[MemberResult]) -> None:
+        super().__init__("interrupted")
+        self.results = results
 
 
 class _Watchdog(threading.Thread):

@@ -23,14 +23,16 @@ SystemSource = Callable[[], System]
 @dataclass(frozen=True)
 class SystemFile:
     """A YAML/JSON system description, read in the worker (the file and the FMUs it names
-    must be on a path every worker sees)."""
+    must be on a path every worker sees). allowed_modules: where its `class:` entries may come
+    from besides syssimx (see system/component_classes.py)."""
 
     path: str
+    allowed_modules: tuple[str, ...] = ()
 
     def __call__(self) -> System:
         from ..system.loader import build_system
 
-        return build_system(self.path)
+        return build_system(self.path, allowed_modules=self.allowed_modules)
 
     def run_settings(self) -> dict[str, float]:
         """The description's `run` entry (t0, tf, dt), read here in the client."""
@@ -64,8 +66,10 @@ class ShippedFunction:
         return cloudpickle.loads(self.payload)()
 
 
-def system_source(system: Any) -> SystemSource:
+def system_source(system: Any, allowed_modules: tuple[str, ...] = ()) -> SystemSource:
     """A system file path (str or Path ending in .yaml, .yml or .json) or a callable."""
+    if isinstance(system, SystemFile):
+        return system
     if isinstance(system, str | Path):
         path = Path(system)
         if path.suffix.lower() not in SYSTEM_FILE_SUFFIXES:
@@ -73,7 +77,7 @@ def system_source(system: Any) -> SystemSource:
                                      f"{', '.join(SYSTEM_FILE_SUFFIXES)}")
         if not path.is_file():
             raise ConfigurationError(f"{path}: no such system file")
-        return SystemFile(str(path.resolve()))
+        return SystemFile(str(path.resolve()), allowed_modules)
     if isinstance(system, System):
         raise ConfigurationError("an ensemble needs a function that builds the System (each "
                                  "member builds its own in a worker process), not a System")

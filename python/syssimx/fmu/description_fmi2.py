@@ -31,6 +31,9 @@ from ..engine import ffi, lib
 from ..errors import FMUFileError
 from .variable_table import VariableTable, words
 
+# declared event indicators of one FMU: each costs the engine memory before the first step
+MAX_EVENT_INDICATORS = 1_000_000
+
 # fmpy's classes are imported by the first read, not with syssimx: importing fmpy costs about as
 # much as importing the rest of syssimx.
 if TYPE_CHECKING:
@@ -201,16 +204,21 @@ def describe(md: Any, where: str | Path) -> ModelDescription:
 
 
 def _count(text: str | None, where: str) -> int:
-    """numberOfEventIndicators: absent means none (FMI 2.0's default)."""
+    """numberOfEventIndicators: absent means none (FMI 2.0's default); at most
+    MAX_EVENT_INDICATORS, checked before anything is allocated for them."""
     if text is None:
         return 0
     try:
         count = int(text)
     except ValueError:
         count = -1
+    shown = repr(text) if len(text) <= 40 else repr(text[:40]) + "..."
     if count < 0:
-        raise FMUFileError(f"{where}: modelDescription.xml: numberOfEventIndicators={text!r} is "
+        raise FMUFileError(f"{where}: modelDescription.xml: numberOfEventIndicators={shown} is "
                            "not a non-negative integer")
+    if count > MAX_EVENT_INDICATORS:
+        raise FMUFileError(f"{where}: modelDescription.xml: numberOfEventIndicators={shown} is "
+                           f"beyond syssimx's limit of {MAX_EVENT_INDICATORS}")
     return count
 
 

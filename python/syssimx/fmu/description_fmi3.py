@@ -10,10 +10,15 @@ refuses, naming the file and the element: scheduled execution only, any Clock va
 partitions need a scheduler syssimx does not have), and String or Binary arrays among the
 inputs, outputs and parameters. Numeric and Boolean arrays become one port per element
 (fmi3_arrays.py).
+
+A description is data: every value reference, dimension and start value is checked here, and
+an FMUFileError names the file and the variable, before anything is sized by it. The arrays of
+one FMU hold at most MAX_ARRAY_ELEMENTS elements together (each element is a port).
 """
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple
 
@@ -29,6 +34,13 @@ FMI3_TYPE_CODES = {"Float64": 0, "Float32": 1, "Int8": 2, "UInt8": 3, "Int16": 4
                    "Int32": 6, "UInt32": 7, "Int64": 8, "UInt64": 9, "Boolean": 10,
                    "Enumeration": 8}  # FMI 3.0 enumerations are exchanged as Int64
 _PORT_CAUSALITIES = ("input", "output", "parameter")
+MAX_ARRAY_ELEMENTS = 100_000  # all arrays of one FMU together
+MAX_VALUE_REFERENCE = 2**32 - 1
+_INTEGER_RANGES = {"Int8": (-2**7, 2**7 - 1), "UInt8": (0, 2**8 - 1),
+                   "Int16": (-2**15, 2**15 - 1), "UInt16": (0, 2**16 - 1),
+                   "Int32": (-2**31, 2**31 - 1), "UInt32": (0, 2**32 - 1),
+                   "Int64": (-2**63, 2**63 - 1), "UInt64": (0, 2**64 - 1),
+                   "Enumeration": (-2**63, 2**63 - 1)}
 
 
 class FMI3Variable(NamedTuple):
@@ -52,8 +64,20 @@ def read_fmi3_description(path: Path) -> ModelDescription:
         raise FMUFileError(f"{path}: modelDescription.xml declares FMI 3.0 but is not a "
                            f"readable FMI 3.0 description ({type(exc).__name__}: {exc})"
                            ) from exc
+    seen: set[str] = set()
+    elements = 0
     for variable in description.modelVariables:
+        if variable.name in seen:
+            raise FMUFileError(f"{path}: two variables are named {_quoted(variable.name)} (FMI "
+                               "3.0 requires unique names)")
+        seen.add(variable.name)
         _check_variable(variable, path)
+        if variable.dimensions:
+            elements += math.prod(variable.shape)
+            if elements > MAX_ARRAY_ELEMENTS:
+                raise FMUFileError(f"{path}: array {_quoted(variable.name)} of shape "
+                                   f"{tuple(variable.shape)} takes the FMU's array elements "
+                                   f"past syssimx's limit of {MAX_ARRAY_ELEMENTS}")
     if description.coSimulation is None and description.modelExchange is None:
         if description.scheduledExecution is not None:
             raise FMUFileError(f"{path}: FMI 3.0 Scheduled Execution is not supported (syssimx "
@@ -61,6 +85,8 @@ def read_fmi3_description(path: Path) -> ModelDescription:
                                "clocks)")
         raise FMUFileError(f"{path}: the FMI 3.0 description declares neither CoSimulation nor "
                            "ModelExchange")
+    if not description.instantiationToken:
+        raise FMUFileError(f"{path}: the FMI 3.0 description has no instantiationToken")
     # fmpy keeps FMI 3.0's token under both names; syssimx passes it where FMI 2.0 has the guid
     description.guid = description.instantiationToken
     # the engine's references of array elements are not the FMU's: with array ports the
@@ -90,6 +116,18 @@ def provides_directional_derivatives(path: Path, element: str = "CoSimulation") 
 
 
 def _check_variable(variable: Any, path: Path) -> None:
+    name = _quoted(variable.name)
+    vr = variable.valueReference
+    if not isinstance(vr, int) or not 0 <= vr <= MAX_VALUE_REFERENCE:
+        raise FMUFileError(f"{path}: variable {name} has valueReference {_quoted(vr)}; FMI 3.0 "
+                           f"value references are 0 to {MAX_VALUE_REFERENCE}")
+    for extent, dimension in zip(variable.shape or (), variable.dimensions or (), strict=False):
+        if extent < 0:
+            source = f"structural parameter {_quoted(dimension.variable.name)}" \
+                if dimension.variable is not None else "its start"
+            raise FMUFileError(f"{path}: variable {name} has a dimension of {extent} (from "
+                               f"{source}); a dimension is 0 or more")
+    _check_start(variable, path)
     if variable.type == "Clock":
         raise FMUFileError(f"{path}: variable {variable.name!r} is a Clock: clocked FMI 3.0 FMUs "
                            "(clocks, model partitions) are not supported")
@@ -98,6 +136,47 @@ def _check_variable(variable: Any, path: Path) -> None:
         raise FMUFileError(f"{path}: variable {variable.name!r} is a {variable.type} array "
                            f"({variable.causality}): String and Binary arrays are not "
                            "supported (numeric and Boolean arrays are)")
+
+
+def _check_start(variable: Any, path: Path) -> None:
+    """The start value parses as the variable's type: each element's for an array."""
+    if variable.start is None or variable.type in ("String", "Clock"):
+        return
+    text = str(variable.start)
+    if variable.type == "Binary":
+        hex_digits = "".join(text.split())
+        if len(hex_digits) % 2 or any(c not in "0123456789abcdefABCDEF" for c in hex_digits):
+            raise FMUFileError(f"{path}: variable {_quoted(variable.name)}: Binary start "
+                               f"{_quoted(text)} is not an even number of hexadecimal digits")
+        return
+    for value in text.split():  # an array's count of values: fmi3_arrays.py
+        if not _parses(variable.type, value):
+            raise FMUFileError(f"{path}: variable {_quoted(variable.name)}: start "
+                               f"{_quoted(value)} is not a {variable.type} value")
+
+
+def _parses(fmi_type: str, text: str) -> bool:
+    if fmi_type in ("Float64", "Float32"):
+        try:
+            float(text)
+        except ValueError:
+            return False
+        return True
+    if fmi_type == "Boolean":
+        return text in ("true", "false", "1", "0")
+    if fmi_type in _INTEGER_RANGES:
+        low, high = _INTEGER_RANGES[fmi_type]
+        try:
+            return low <= int(text) <= high
+        except ValueError:
+            return False
+    return True
+
+
+def _quoted(value: Any) -> str:
+    """repr of a name or value from the file, cut short: a message never grows with it."""
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
 
 
 def engine_rows(variables: Any, elements: dict[int, ArrayElement]) -> list[FMI3Variable]:

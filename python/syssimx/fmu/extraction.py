@@ -5,19 +5,32 @@ canBeInstantiatedOnlyOncePerProcess. Sharing one extraction means the dynamic lo
 binary once: 100 components of one FMU then step through one copy of its code instead of 100
 (measured: 2.3x faster for 100 pendulums). An FMU that may be instantiated only once per process
 gets a private extraction each time, so each instance has its own copy of the binary's globals.
-Every extraction folder is removed by its last user, on a failed extraction, and at exit.
+Every extraction folder is removed by its last user, on a failed extraction, at exit, and on
+SIGTERM and SIGHUP (where nobody else handles them). Beside each folder `syssimx_X` lies
+`syssimx_X.owner`, the owning process's id and start time: the first extraction of a process
+removes the folders whose owner is gone (killed by SIGKILL, or by a signal someone else
+handled), and those left without an owner file for a day by versions before it.
 """
 
 from __future__ import annotations
 
 import atexit
+import os
 import shutil
+import signal
+import socket
 import tempfile
 import threading
+import time
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from .archive import extract
+
+PREFIX = "syssimx_"
+OWNER_SUFFIX = ".owner"
+ORPHAN_AGE = 24 * 3600.0  # seconds: a folder without an owner file is that old when stale
 
 
 @dataclass
@@ -36,6 +49,7 @@ class ExtractionCache:
         self._directories: set[Path] = set()  # every folder not yet removed, private ones too
         # folder -> member -> its resolved path, checked once per extraction
         self._binaries: dict[Path, dict[str, Path]] = {}
+        self._swept = False
         atexit.register(self.remove_all)
 
     def acquire(self, archive: Path, shareable: bool) -> tuple[Path, tuple[str, int, int] | None]:
@@ -75,19 +89,131 @@ class ExtractionCache:
                 del self._entries[key]
         self._directories.discard(directory)
         self._binaries.pop(directory, None)
-        shutil.rmtree(directory, ignore_errors=True)
+        _remove(directory)
 
     def _extract(self, archive: Path) -> Path:
-        directory = Path(tempfile.mkdtemp(prefix="syssimx_"))
-        extract(archive, directory)  # removes the folder if it fails
+        if not self._swept:
+            self._swept = True
+            remove_stale_folders(Path(tempfile.gettempdir()))
+            _remove_on_signals(self)
+        directory = Path(tempfile.mkdtemp(prefix=PREFIX))
+        try:
+            _owner_file(directory).write_text(_owner_line())
+            extract(archive, directory)  # removes the folder if it fails
+        except BaseException:
+            _remove(directory)
+            raise
         self._directories.add(directory)
         return directory
 
     def remove_all(self) -> None:
         """Remove every extraction folder (at exit: the binaries are no longer needed)."""
         for directory in list(self._directories):
-            shutil.rmtree(directory, ignore_errors=True)
+            _remove(directory)
         self._directories.clear()
+
+
+def _owner_file(directory: Path) -> Path:
+    return directory.with_name(directory.name + OWNER_SUFFIX)
+
+
+def _remove(directory: Path) -> None:
+    shutil.rmtree(directory, ignore_errors=True)
+    _owner_file(directory).unlink(missing_ok=True)
+
+
+def _process_stat(pid: int) -> list[str]:
+    """The fields of /proc/<pid>/stat after the command's name ([] when unknown): [0] is the
+    state, [19] the start time in clock ticks since boot."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except (OSError, IndexError):
+        return []
+
+
+def _start_time(pid: int) -> str:
+    """The process's start time ("" when unknown): with its id, it tells the owner from a later
+    process that got the same id."""
+    fields = _process_stat(pid)
+    return fields[19] if len(fields) > 19 else ""
+
+
+def _here() -> str:
+    """This machine and PID namespace: a process id means something only there (a container
+    sharing the temporary folder counts its processes apart)."""
+    try:
+        namespace = os.readlink("/proc/self/ns/pid")
+    except OSError:
+        namespace = "?"
+    return f"{socket.gethostname()}/{namespace}".replace(" ", "_")
+
+
+def _owner_line() -> str:
+    return f"{os.getpid()} {_start_time(os.getpid()) or '?'} {_here()}\n"
+
+
+def _owner_alive(owner: Path) -> bool:
+    try:
+        pid_text, *rest = owner.read_text().split()
+        pid = int(pid_text)
+    except (OSError, ValueError):
+        return True  # being written, or not ours to judge
+    started = [rest[0]] if rest and rest[0] != "?" else []
+    if len(rest) > 1 and rest[1] != _here():
+        return True  # another machine's or container's process: not ours to judge
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True  # another user's process: alive
+    fields = _process_stat(pid)
+    if fields and fields[0] in ("Z", "X"):
+        return False  # ended, not yet reaped by its parent
+    now_started = fields[19] if len(fields) > 19 else ""
+    return not started or now_started in ("", started[0])
+
+
+def remove_stale_folders(temporary: Path) -> list[Path]:
+    """Remove the extraction folders in `temporary` whose owning process is gone, and those
+    without an owner file older than ORPHAN_AGE; returns the folders removed."""
+    removed = []
+    try:
+        candidates = [p for p in temporary.iterdir() if p.name.startswith(PREFIX)]
+    except OSError:
+        return removed
+    now = time.time()
+    for path in candidates:
+        try:
+            if path.name.endswith(OWNER_SUFFIX):
+                folder = path.with_name(path.name[:-len(OWNER_SUFFIX)])
+                stale = path.stat().st_uid == os.getuid() and not _owner_alive(path)
+            else:
+                folder = path
+                stale = (path.is_dir() and not _owner_file(path).exists()
+                         and path.stat().st_uid == os.getuid()
+                         and now - path.stat().st_mtime > ORPHAN_AGE)
+        except OSError:
+            continue
+        if stale:
+            _remove(folder)
+            removed.append(folder)
+    return removed
+
+
+def _remove_on_signals(cache: ExtractionCache) -> None:
+    """SIGTERM and SIGHUP end the process without atexit: where they still have their default
+    action, remove the folders first, then end by the same signal."""
+    def remove_then_end(signum: int, _frame: Any) -> None:
+        cache.remove_all()
+        signal.signal(signum, signal.SIG_DFL)
+        os.kill(os.getpid(), signum)
+
+    if threading.current_thread() is not threading.main_thread():
+        return  # signal handlers are the main thread's to set
+    for signum in (signal.SIGTERM, signal.SIGHUP):
+        if signal.getsignal(signum) == signal.SIG_DFL:
+            signal.signal(signum, remove_then_end)
 
 
 extractions = ExtractionCache()

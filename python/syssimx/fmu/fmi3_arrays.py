@@ -44,11 +44,28 @@ class ExpandedVariables(NamedTuple):
     structural: dict[str, list[str]]
 
 
+class ElementVariable:
+    """One element of an array variable, read like a scalar variable: its own name, engine
+    value reference and start, everything else the array's. Small and made without copying
+    the array's variable (attrs.evolve of FMPy's variable cost about 0.3 ms per element)."""
+
+    __slots__ = ("array", "name", "start", "valueReference")
+    dimensions: tuple[Any, ...] = ()
+    shape: tuple[int, ...] = ()
+
+    def __init__(self, array: Any, name: str, value_reference: int, start: str | None) -> None:
+        self.array = array
+        self.name = name
+        self.valueReference = value_reference
+        self.start = start
+
+    def __getattr__(self, attribute: str) -> Any:  # only for what the element does not hold
+        return getattr(self.array, attribute)
+
+
 def expand_arrays(description: Any, path: Path) -> ExpandedVariables:
     """The FMI 3.0 `description`'s variables with array ports expanded (FMUFileError naming the
     file and variable when an array cannot be)."""
-    import attrs
-
     table = description.modelVariables
     next_vr = max((v.valueReference for v in table), default=-1) + 1
     variables: list[Any] = []
@@ -72,8 +89,7 @@ def expand_arrays(description: Any, path: Path) -> ExpandedVariables:
         for position, index in enumerate(itertools.product(*(range(d) for d in shape))):
             name = f"{variable.name}[{','.join(map(str, index))}]"
             text = None if starts is None else starts[position]
-            parts.append(attrs.evolve(variable, name=name, valueReference=next_vr, start=text,
-                                      dimensions=[], shape=()))
+            parts.append(ElementVariable(variable, name, next_vr, text))
             elements[next_vr] = ArrayElement(variable.valueReference, position, size,
                                              _number(text, variable.type))
             next_vr += 1

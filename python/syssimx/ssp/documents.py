@@ -48,7 +48,13 @@ def parse(path: Path, kind: str, shown: str) -> Any:
         root = etree.parse(str(path), parser).getroot()
     except (etree.XMLSyntaxError, OSError) as exc:
         raise SSPError(f"{shown}: malformed XML: {exc}") from exc
-    if not validate(root, kind):
+    try:
+        valid = validate(root, kind)
+    except etree.Error as exc:  # an entity left unresolved in content, for one
+        raise SSPError(f"{shown}: cannot be checked against the SSP 1.0 schema "
+                       f"({type(exc).__name__}: {exc}); entity references and DOCTYPE "
+                       "declarations are not read in SSP files") from exc
+    if not valid:
         errors = "; ".join(f"line {e.line}: {e.message}" for e in list(_schema(kind).error_log)[:3])
         raise SSPError(f"{shown}: not a valid {kind.upper()} file (SSP 1.0 schema): {errors}")
     return root

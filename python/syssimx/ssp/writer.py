@@ -56,7 +56,10 @@ def write_ssp(system: System, path: str | Path, experiment: Experiment | None = 
         raise SSPError(f"{path}: the structure written for {system.name!r} does not satisfy "
                        "the SSP schema")
     text = etree.tostring(root, xml_declaration=True, encoding="UTF-8", pretty_print=True)
-    with zipfile.ZipFile(path, "w", zipfile.ZIP_DEFLATED) as archive:
+    from ..atomic_file import atomic_path
+
+    with atomic_path(path) as temporary, \
+            zipfile.ZipFile(temporary, "w", zipfile.ZIP_DEFLATED) as archive:
         archive.writestr(SSD_NAME, text)
         for source, name in fmus.items():
             archive.write(source, name)

@@ -9,7 +9,7 @@ from typing import Any
 
 from .algorithm_table import ALGORITHM_NAMES, algorithm_class
 from .algorithms import Algorithm, HybridAlgorithm
-from .config_source import Source
+from .config_source import Source, quoted
 
 COUPLING_KEYS = ("coupling", "gauss_seidel_algorithm")
 
@@ -18,7 +18,7 @@ def build_algorithm(source: Source, entry: Any, label: str = "algorithm") -> Alg
     if isinstance(entry, str):
         entry = {"type": entry}
     if not isinstance(entry, dict):
-        raise source.error(label, f"must be a mapping with a 'type', got {entry!r}", entry)
+        raise source.error(label, f"must be a mapping with a 'type', got {quoted(entry)}", entry)
     kind = entry.get("type")
     if kind not in ALGORITHM_NAMES:
         raise source.error(label, f"unknown type {kind!r}; types: {sorted(ALGORITHM_NAMES)}", entry)

@@ -4,16 +4,14 @@ handlers that restart the component from its outputs."""
 
 from __future__ import annotations
 
-import importlib
-import importlib.util
-import sys
 from pathlib import Path
 from typing import Any
 
 from ..components.base import CoSimComponent
 from ..errors import ConfigurationError
+from .component_classes import resolve_component_class
 from .config_handlers import reinitialize_handler
-from .config_source import Source, kind
+from .config_source import Source, kind, quoted
 
 COMPONENT_KEYS = ("name", "class", "fmu", "interface", "args", "parameters",
                   "event_indicators", "event_handlers")
@@ -27,11 +25,11 @@ def build_component(source: Source, index: int, entry: Any) -> CoSimComponent:
     label = f"components[{index}]"
     if not isinstance(entry, dict):
         raise source.error(label, f"must be a mapping with 'name' and 'class' (or 'fmu'), got "
-                           f"{kind(entry)} {entry!r}", entry)
+                           f"{kind(entry)} {quoted(entry)}", entry)
     name = entry.get("name")
     if not isinstance(name, str) or not name:
         raise source.error(label, "needs a 'name' (a non-empty string)", entry)
-    label = f"{label} {name!r}"
+    label = f"{label} {quoted(name)}"
     unknown = sorted(set(entry) - set(COMPONENT_KEYS))
     if unknown:
         raise source.error(label, f"unknown key(s) {unknown}; known: {list(COMPONENT_KEYS)}",
@@ -57,16 +55,14 @@ def build_component(source: Source, index: int, entry: Any) -> CoSimComponent:
     else:
         raise source.error(label, "needs 'class' (\"module:Class\") or 'fmu' (a bundled FMU "
                            "name or a path to an .fmu file)", entry)
-    cls = _resolve_class(source, label, entry, spec)
+    cls = resolve_component_class(source, label, entry, spec)  # checked before it is called
     if "fmu_path" in args:
         args["fmu_path"] = _fmu_path(source, label, entry, args["fmu_path"])
     try:
         component = cls(name=name, **args)
     except (TypeError, ValueError, OSError, ConfigurationError) as exc:
-        raise source.error(label, f"cannot construct {spec} with args {args}: {exc}",
-                           entry) from exc
-    if not isinstance(component, CoSimComponent):
-        raise source.error(label, f"{spec} is not a CoSimComponent", entry)
+        raise source.error(label, f"cannot construct {spec} with args {quoted(args)}: "
+                           f"{exc}", entry) from exc
     parameters = _mapping(source, label, entry, "parameters")
     try:
         component.set_parameters(**parameters)
@@ -85,7 +81,7 @@ def _mapping(source: Source, label: str, entry: dict, key: str) -> dict[str, Any
         return {}
     if not isinstance(value, dict):
         raise source.error(label, f"'{key}' must be a mapping, got {kind(value)} "
-                           f"{value!r}", entry)
+                           f"{quoted(value)}", entry)
     return dict(value)
 
 
@@ -98,55 +94,10 @@ def _sequence(source: Source, label: str, entry: dict, key: str) -> list[Any]:
     return value
 
 
-def _resolve_class(source: Source, label: str, entry: dict, spec: Any) -> type:
-    """"module.path:Class". A module not importable from sys.path is also looked for as a
-    .py file beside the description."""
-    if not isinstance(spec, str) or spec.count(":") != 1 or not all(spec.split(":")):
-        raise source.error(label, f"class {spec!r} is not of the form 'module.path:ClassName'",
-                           entry)
-    module_name, class_name = spec.split(":")
-    try:
-        module = importlib.import_module(module_name)
-    except ModuleNotFoundError as exc:
-        module = _module_beside(source, module_name)
-        if module is None:
-            raise source.error(label, f"cannot import module {module_name!r}: {exc}",
-                               entry) from exc
-    except ImportError as exc:
-        raise source.error(label, f"cannot import module {module_name!r}: {exc}",
-                           entry) from exc
-    cls = getattr(module, class_name, None)
-    if cls is None:
-        raise source.error(label, f"module {module_name!r} has no {class_name!r}", entry)
-    if not isinstance(cls, type):
-        raise source.error(label, f"{spec!r} is not a class", entry)
-    return cls
-
-
-def _module_beside(source: Source, module_name: str) -> Any:
-    """The module `a.b` from <description folder>/a/b.py, or None."""
-    path = source.directory.joinpath(*module_name.split(".")).with_suffix(".py")
-    if source.path is None or not path.is_file():
-        return None
-    if module_name in sys.modules:
-        return sys.modules[module_name]
-    spec = importlib.util.spec_from_file_location(module_name, path)
-    if spec is None or spec.loader is None:
-        return None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[module_name] = module
-    try:
-        spec.loader.exec_module(module)
-    except BaseException:
-        del sys.modules[module_name]
-        raise
-    return module
-
-
 def _fmu_path(source: Source, label: str, entry: dict, value: Any) -> str:
     """A bundled FMU's name (syssimx.fmus.path), or a path (relative to the description)."""
     if not isinstance(value, str | Path) or not str(value):
-        raise source.error(label, f"the FMU must be a name or a path, got {value!r}", entry)
+        raise source.error(label, f"the FMU must be a name or a path, got {quoted(value)}", entry)
     text = str(value)
     if not text.endswith(".fmu") and "/" not in text:
         from .. import fmus
@@ -190,7 +141,7 @@ def _add_handler(source: Source, label: str, component: CoSimComponent, entry: A
     restart = entry["reinitialize"]
     if not isinstance(restart, dict) or not restart:
         raise source.error(label, "'reinitialize' must map parameters to outputs or numbers, "
-                           f"e.g. {{omega0: -omega}}; got {restart!r}", entry)
+                           f"e.g. {{omega0: -omega}}; got {quoted(restart)}", entry)
     try:
         handler = reinitialize_handler(component, restart)
         component.add_event_handler(str(entry["input"]), handler)

@@ -24,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from ..atomic_file import atomic_path
 from ..errors import ConfigurationError
 
 LONG_HEADER = ("component", "port", "time", "micro", "value", "unit")
@@ -79,7 +80,7 @@ def _cells(values: np.ndarray) -> list[Any]:
 def _write(path: str | Path, header: Sequence[Sequence[str]], rows: Iterable[Sequence[Any]]
            ) -> Path:
     target = Path(path)
-    with target.open("w", newline="") as stream:
+    with atomic_path(target) as temporary, temporary.open("w", newline="") as stream:
         writer = csv.writer(stream, lineterminator="\n")
         writer.writerows(header)
         writer.writerows(rows)

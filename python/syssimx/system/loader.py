@@ -13,20 +13,23 @@
     algorithm: {type: gauss_seidel}              # jacobi | gauss_seidel | hybrid | ijcsa, options
     run: {t0: 0.0, tf: 5.0, dt: 0.1}
 
-A class is "module.path:Class" (importable, or a .py file beside the description). Every
-error is a ConfigError naming the file, the entry (and its YAML line) and what is wrong.
+A class is "module.path:Class" (importable, or a .py file beside the description), of syssimx
+or of a module the caller allows (component_classes.py: a file never imports anything else).
+Every error is a ConfigError naming the file, the entry (and its YAML line) and what is wrong.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
 from ..errors import ConfigurationError
+from .component_classes import allowed_modules as checked_modules
 from .config_algorithm import build_algorithm
 from .config_components import build_component
-from .config_source import ConfigError, Source, kind, read_file
+from .config_source import ConfigError, Source, kind, quoted, read_file
 from .connection import Connection, EventConnection
 from .results import SimulationResult
 from .system import System
@@ -43,9 +46,12 @@ def load_config(path: str | Path) -> dict[str, Any]:
     return read_file(path)
 
 
-def build_system(config: dict[str, Any] | str | Path) -> System:
-    """The System a description (a mapping, or a YAML/JSON file) declares, not initialized."""
-    return _build(*_open(config))
+def build_system(config: dict[str, Any] | str | Path, *,
+                 allowed_modules: Iterable[str] | None = None) -> System:
+    """The System a description (a mapping, or a YAML/JSON file) declares, not initialized.
+    `class:` entries may name CoSimComponent subclasses of syssimx and of `allowed_modules`
+    (module names; a package allows its submodules): no other module is imported."""
+    return _build(*_open(config, allowed_modules))
 
 
 def _build(source: Source, config: dict[str, Any]) -> System:
@@ -63,7 +69,7 @@ def _build(source: Source, config: dict[str, Any]) -> System:
         try:
             system.add_component(component)
         except ConfigurationError as exc:
-            raise source.error(f"components[{index}] {component.name!r}", str(exc),
+            raise source.error(f"components[{index}] {quoted(component.name)}", str(exc),
                                entry) from exc
     for key, connect in (("connections", _connect), ("event_connections", _connect_event)):
         entries = config.get(key) or []
@@ -82,9 +88,11 @@ def _build(source: Source, config: dict[str, Any]) -> System:
 
 def run_from_config(config: dict[str, Any] | str | Path, t0: float | None = None,
                     tf: float | None = None, dt: float | None = None,
-                    progress: Any = None) -> SimulationResult:
-    """Build, initialize and run a description; t0, tf and dt override its `run` entry."""
-    source, config = _open(config)
+                    progress: Any = None, *,
+                    allowed_modules: Iterable[str] | None = None) -> SimulationResult:
+    """Build, initialize and run a description; t0, tf and dt override its `run` entry.
+    allowed_modules: as for build_system."""
+    source, config = _open(config, allowed_modules)
     settings = run_settings(source, config, {"t0": t0, "tf": tf, "dt": dt})
     system = _build(source, config)
     system.initialize(settings["t0"])
@@ -97,7 +105,7 @@ def run_settings(source: Source, config: dict[str, Any],
     """t0, tf and dt: the `run` entry, each replaced by an override that is not None."""
     run = config.get("run") or {}
     if not isinstance(run, dict):
-        raise source.error("run", f"must be a mapping {{t0, tf, dt}}, got {run!r}", config)
+        raise source.error("run", f"must be a mapping {{t0, tf, dt}}, got {quoted(run)}", config)
     unknown = sorted(set(run) - set(RUN_KEYS))
     if unknown:
         raise source.error("run", f"unknown key(s) {unknown}; known: {list(RUN_KEYS)}", run)
@@ -110,27 +118,33 @@ def run_settings(source: Source, config: dict[str, Any],
         value = settings[key]
         if isinstance(value, bool) or not isinstance(value, int | float) \
                 or not math.isfinite(value):
-            raise source.error(f"run.{key}", f"must be a finite number, got {value!r}", run)
+            raise source.error(f"run.{key}", f"must be a finite number, got {quoted(value)}", run)
         settings[key] = float(value)
     return settings
 
 
-def _open(config: dict[str, Any] | str | Path) -> tuple[Source, dict[str, Any]]:
+def _open(config: dict[str, Any] | str | Path, allowed_modules: Iterable[str] | None
+          ) -> tuple[Source, dict[str, Any]]:
+    try:
+        allowed = checked_modules(allowed_modules)
+    except ValueError as exc:
+        raise ConfigError(str(exc)) from exc
     if isinstance(config, str | Path):
-        return Source(Path(config)), read_file(config)
+        return Source(Path(config), allowed), read_file(config)
     if not isinstance(config, dict):
         raise ConfigError(f"a system description is a mapping or a file path, got "
                           f"{kind(config)}")
-    return Source(), config
+    return Source(None, allowed), config
 
 
 def _system_name(source: Source, config: dict[str, Any]) -> str:
     system = config.get("system") or {}
     if not isinstance(system, dict) or set(system) - {"name"}:
-        raise source.error("system", f"must be a mapping {{name: ...}}, got {system!r}", config)
+        raise source.error("system", f"must be a mapping {{name: ...}}, got {quoted(system)}",
+                           config)
     name = system.get("name", "System")
     if not isinstance(name, str) or not name:
-        raise source.error("system.name", f"must be a non-empty string, got {name!r}", system)
+        raise source.error("system.name", f"must be a non-empty string, got {quoted(name)}", system)
     return name
 
 
@@ -144,13 +158,13 @@ def _endpoint(source: Source, label: str, entry: dict, key: str) -> tuple[str, s
     if isinstance(value, str) and "." in value.strip(".") and value[0] != ".":
         component, port = value.split(".", 1)
         return component, port
-    raise source.error(label, f"{key} {value!r} is neither 'Component.port' nor "
+    raise source.error(label, f"{key} {quoted(value)} is neither 'Component.port' nor "
                        "{component: ..., port: ...}", entry)
 
 
 def _checked_entry(source: Source, label: str, entry: Any) -> tuple[str, str, str, str]:
     if not isinstance(entry, dict) or set(entry) != {"src", "dst"}:
-        raise source.error(label, f"must be a mapping {{src, dst}}, got {entry!r}", entry)
+        raise source.error(label, f"must be a mapping {{src, dst}}, got {quoted(entry)}", entry)
     return (*_endpoint(source, label, entry, "src"), *_endpoint(source, label, entry, "dst"))
 
 

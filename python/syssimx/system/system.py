@@ -17,7 +17,7 @@ from ..components.base import CoSimComponent
 from ..core.port import PortType
 from ..core.suggest import did_you_mean
 from ..engine import ffi, lib
-from ..errors import ConfigurationError, SysSimXWarning
+from ..errors import ConfigurationError, RunInterrupted, SysSimXWarning
 from ..graph.analysis import analyze
 from ..units import conversion
 from .algorithms import Algorithm, HybridAlgorithm, JacobiAlgorithm
@@ -315,7 +315,15 @@ class System:
         if status < 0:
             if reports is not None:
                 reports.close()
-            raise_failure(plan)
+            try:
+                raise_failure(plan)
+            except KeyboardInterrupt as stop:  # Ctrl-C: the steps completed are the result
+                for component in self.components.values():
+                    component.t = self.t
+                partial = SimulationResult.from_system(self, t0, self.t, dt, wall)
+                raise RunInterrupted(f"system {self.name!r}: the run was interrupted at "
+                                     f"t={self.t:.12g} (partial_result holds the samples up "
+                                     "to there)", partial) from stop
         if reports is not None:
             reports.finish(self.t)
         self.termination = read_termination(plan)

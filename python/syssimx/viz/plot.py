@@ -86,7 +86,11 @@ def plot_result(
     if title:
         figure.suptitle(str(title))
     if path is not None:
-        figure.savefig(Path(path), dpi=110)
+        from ..atomic_file import atomic_path
+
+        # the temporary file has the target's suffix: matplotlib takes the format from it
+        with atomic_path(path) as temporary:
+            figure.savefig(temporary, dpi=110)
     return figure
 
 

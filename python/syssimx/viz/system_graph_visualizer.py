@@ -58,12 +58,16 @@ class SystemGraphVisualizer:
         target = Path(path)
         drawing = self.graph()
         suffix = target.suffix.lstrip(".").lower()
-        if suffix in ("gv", "dot"):
-            target.write_text(drawing.source)
-            return target
         if not suffix:
             raise ValueError(f"cannot tell the picture format from {str(target)!r}: add a suffix")
-        return _render(drawing, target.with_suffix(""), suffix)
+        from ..atomic_file import atomic_path
+
+        with atomic_path(target) as temporary:
+            if suffix in ("gv", "dot"):
+                temporary.write_text(drawing.source)
+            else:
+                _render(drawing, temporary.with_suffix(""), suffix)
+        return target
 
 
 def system_svg(system: Any) -> str:

@@ -147,7 +147,7 @@ size_t ssx_md_join(const ssx_md *md, const uint32_t *offsets, size_t n, char *ou
     for (size_t i = 0; i < n; ++i) {
         const char *text = md->strings + offsets[i];
         size_t length = strlen(text) + (i + 1 < n); /* the separator */
-        if (size + length <= out_size) {
+        if (length > 0 && size + length <= out_size) { /* out may be NULL when it sizes */
             memcpy(out + size, text, length); /* the NUL of the text separates it */
         }
         size += length;

@@ -244,6 +244,9 @@ static bool read_end_tag(xml_tokenizer *r)
         return fail_xml(r, r->line, "expected '>' after '</%.*s'", shown(tag), tag.at);
     }
     ++r->at;
+    if (r->depth == 0) { /* the root's place: nothing is open to close */
+        return fail_xml(r, line, "end tag </%.*s> without a start tag", shown(tag), tag.at);
+    }
     open_element top = r->open[r->depth - 1];
     if (tag.length != top.name.length || memcmp(tag.at, top.name.at, tag.length) != 0) {
         return fail_xml(r, line, "end tag </%.*s> does not match <%.*s> of line %zu",

@@ -46,6 +46,7 @@ struct ssx_remote {
     int read_status;
     int read_ready;
     char gone[512]; /* why the host ended, "" while it runs */
+    remote_watch watch; /* asked while a call waits: the engine's run stops it */
 };
 
 /* ------------------------------------------------------------------ the host process */
@@ -113,7 +114,9 @@ static void close_host(ssx_remote *r, char *how, size_t how_size)
         r->socket = -1;
     }
     if (r->pid > 0) {
+        pid_t group = r->pid; /* the host leads its process group (spawn_host) */
         reap(r, how, how_size);
+        kill(-group, SIGKILL); /* whatever the FMU forked is ended with it */
     }
 }
 
@@ -298,11 +301,17 @@ static int lost(ssx_remote *r, remote_call call, remote_receive_result why)
 {
     char how[256];
     if (why == TIMED_OUT) {
-        kill(r->pid, SIGKILL);
+        kill(-r->pid, SIGKILL);
         close_host(r, how, sizeof how);
         snprintf(r->gone, sizeof r->gone,
                  "%s did not return within the step timeout of %g s: the FMU process was "
                  "killed", remote_call_names[call], r->call_timeout);
+    } else if (why == STOPPED) {
+        kill(-r->pid, SIGKILL);
+        close_host(r, how, sizeof how);
+        snprintf(r->gone, sizeof r->gone,
+                 "the run was stopped (an interrupt or its timeout) while %s was running: the "
+                 "FMU process was killed", remote_call_names[call]);
     } else {
         close_host(r, how, sizeof how);
         snprintf(r->gone, sizeof r->gone, "the FMU process %s in %s", how,
@@ -329,15 +338,16 @@ static int call(ssx_remote *r, remote_request *rq, void *out, size_t out_size, u
     }
     for (;;) {
         remote_reply reply;
-        remote_receive_result got = remote_receive(r->socket, &reply, sizeof reply, deadline,
-                                                   r->pid);
+        remote_receive_result got = remote_receive_watched(r->socket, &reply, sizeof reply,
+                                                           deadline, r->pid, &r->watch);
         /* a reply the host would never send (the FMU wrote to the socket itself) ends it */
         if (got == RECEIVED && (reply.payload >= SIZE_MAX / 2 ||
                                 reserve(r, (size_t)reply.payload + 1) != 0)) {
             got = PEER_GONE;
         }
         if (got == RECEIVED) {
-            got = remote_receive(r->socket, r->buffer, (size_t)reply.payload, deadline, r->pid);
+            got = remote_receive_watched(r->socket, r->buffer, (size_t)reply.payload, deadline,
+                                         r->pid, &r->watch);
         }
         if (got != RECEIVED) {
             return lost(r, rq->call, got);
@@ -680,4 +690,11 @@ void *ssx_remote_function(const ssx_remote *r, const char *name)
         }
     }
     return NULL;
+}
+
+void ssx_remote_set_watch(ssx_remote *r, int (*stop)(void *user), void *user)
+{
+    if (r != NULL) {
+        r->watch = (remote_watch){stop, user};
+    }
 }

@@ -20,6 +20,11 @@ void ssx_remote_stop(ssx_remote *remote);
  * one: how an isolated FMU recovers from fmi2Fatal without calling the broken instance again. */
 void ssx_remote_restart(ssx_remote *remote);
 
+/* While a call waits for the host, stop(user) is asked about every 100 ms (stop NULL: never);
+ * nonzero kills the host and its process group, and the call fails with fmi2Fatal. The engine
+ * sets it for a run, so that Ctrl-C and a run's timeout reach an FMU stuck in a call. */
+void ssx_remote_set_watch(ssx_remote *remote, int (*stop)(void *user), void *user);
+
 /* The forwarding implementation of the fmi2 function `name`, as dlsym would return it, or NULL
  * when the binary does not export it. The instance fmi2Instantiate returns is the remote
  * itself; its callbacks' componentEnvironment must be the ssx_fmu that owns the remote. A host

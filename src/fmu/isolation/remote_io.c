@@ -40,9 +40,9 @@ int remote_send(int fd, const void *head, size_t head_size, const void *payload,
 }
 
 /* Milliseconds from now to the deadline, at least 0, at most the peer check interval. */
-static int wait_slice(const struct timespec *deadline, int peer)
+static int wait_slice(const struct timespec *deadline, int peer, int watched)
 {
-    int slice = peer > 0 ? 100 : -1;
+    int slice = peer > 0 || watched ? 100 : -1;
     if (deadline == NULL) {
         return slice;
     }
@@ -78,6 +78,14 @@ static int peer_ended(int peer)
 remote_receive_result remote_receive(int fd, void *data, size_t size,
                                      const struct timespec *deadline, int peer)
 {
+    return remote_receive_watched(fd, data, size, deadline, peer, NULL);
+}
+
+remote_receive_result remote_receive_watched(int fd, void *data, size_t size,
+                                             const struct timespec *deadline, int peer,
+                                             const remote_watch *watch)
+{
+    int watched = watch != NULL && watch->stop != NULL;
     char *at = data;
     while (size > 0) {
         ssize_t got = recv(fd, at, size, MSG_DONTWAIT);
@@ -99,12 +107,15 @@ remote_receive_result remote_receive(int fd, void *data, size_t size,
             return TIMED_OUT;
         }
         struct pollfd readable = {.fd = fd, .events = POLLIN};
-        int ready = poll(&readable, 1, wait_slice(deadline, peer));
+        int ready = poll(&readable, 1, wait_slice(deadline, peer, watched));
         if (ready < 0 && errno != EINTR) {
             return PEER_GONE;
         }
         if (ready == 0 && peer > 0 && peer_ended(peer)) {
             return PEER_GONE;
+        }
+        if (ready == 0 && watched && watch->stop(watch->user) != 0) {
+            return STOPPED;
         }
     }
     return RECEIVED;

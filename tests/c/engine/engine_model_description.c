@@ -99,6 +99,9 @@ static void reads_a_document(void)
     CHECK(ssx_md_join(md, md->name, 4, NULL, 0) == 7); /* three separators */
     CHECK(ssx_md_join(md, md->name, 4, joined, sizeof joined) == 7);
     CHECK(memcmp(joined, "u\0y\0p\0t", 7) == 0);
+    /* an empty text alone copies nothing: out may be NULL (UBSan: memcpy to NULL) */
+    uint32_t empty = 0;
+    CHECK(ssx_md_join(md, &empty, 1, NULL, 0) == 0);
     CHECK(strcmp(ssx_md_word_text(SSX_MD_CALCULATED_PARAMETER), "calculatedParameter") == 0);
     ssx_md_free(md);
 }
@@ -192,6 +195,10 @@ static void names_what_is_malformed(void)
     refused("<!DOCTYPE a [<!ENTITY b 'c'>]><a/>", SSX_MD_NOT_XML, 1,
             "a DOCTYPE is not accepted in a modelDescription");
     refused("<a/>", SSX_MD_NO_FMI_ROOT, 1, NULL);
+    /* an end tag where the root element belongs: nothing is open (it read before the stack) */
+    refused("</a>", SSX_MD_NOT_XML, 1, "end tag </a> without a start tag");
+    refused("<!-- c -->\n</fmiModelDescription>", SSX_MD_NOT_XML, 2,
+            "end tag </fmiModelDescription> without a start tag");
     refused("<fmiModelDescription fmiVersion='3.0'/>", SSX_MD_NOT_FMI2, 1, NULL);
 }
 

@@ -1,19 +1,24 @@
 /* A hostile FMI 2.0 Co-Simulation FMU for the isolation tests: y = time, until the first
  * doStep that ends after fail_time, which misbehaves as the parameter `mode` says:
  *   0 behaves, 1 segfaults, 2 aborts, 3 calls _exit(3), 4 never returns (a busy loop),
- *   5 logs the format "%s%s%n" without its arguments and returns fmi2Error.
+ *   5 logs the format "%s%s%n" without its arguments and returns fmi2Error,
+ *   6 forks a child that lives on (it waits for signals; its process id goes to the file
+ *     named by SYSSIMX_TEST_CHILD_PID_FILE) and goes on behaving, once.
  * Written against the FMI 2.0 API directly (not the framework of fmu-src/): the framework
  * never calls the logger with a bad format, and that is the point here. */
+#define _DEFAULT_SOURCE /* fork, pause */
 #include <signal.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/types.h>
 #include <unistd.h>
 
 #include "fmi2Functions.h"
 
 enum { VR_Y, VR_MODE, VR_FAIL_TIME };
-enum { BEHAVE, SEGFAULT, ABORT, EXIT, ENDLESS_LOOP, BAD_LOG_FORMAT };
+enum { BEHAVE, SEGFAULT, ABORT, EXIT, ENDLESS_LOOP, BAD_LOG_FORMAT, FORK_CHILD };
 
 typedef struct {
     double time;
@@ -152,9 +157,31 @@ fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t
     return n == 0 ? fmi2OK : fmi2Error;
 }
 
+/* A child that outlives the FMU unless someone ends it. */
+static void fork_child(void)
+{
+    pid_t child = fork();
+    if (child != 0) {
+        return;
+    }
+    const char *pid_file = getenv("SYSSIMX_TEST_CHILD_PID_FILE");
+    FILE *out = pid_file != NULL ? fopen(pid_file, "w") : NULL;
+    if (out != NULL) {
+        fprintf(out, "%d\n", (int)getpid());
+        fclose(out);
+    }
+    for (;;) {
+        pause();
+    }
+}
+
 static void misbehave(hostile *h)
 {
     switch (h->mode) {
+    case FORK_CHILD:
+        fork_child();
+        h->mode = BEHAVE;
+        break;
     case SEGFAULT: {
         volatile int *volatile target = NULL; /* volatile: no trap, no dropped store */
         *target = 1;

@@ -150,6 +150,12 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
     *terminateSimulation = fmi3False;
     *earlyReturn = fmi3False;
     *lastSuccessfulTime = self->time;
+#ifdef FMI3_MISBEHAVES
+    if (currentCommunicationPoint >= 0.45) { /* claims a time past the step's end */
+        *earlyReturn = fmi3True;
+        *lastSuccessfulTime = self->time + communicationStepSize;
+    }
+#endif
     return fmi3OK;
 }
 
@@ -395,6 +401,13 @@ NO_VARIABLES(String)
 fmi3Status fmi3GetBinary(fmi3Instance instance, const fmi3ValueReference vr[], size_t n,
                          size_t valueSizes[], fmi3Binary values[], size_t nValues)
 {
+#ifdef FMI3_MISBEHAVES
+    if (n == 1 && nValues == 1 && vr[0] == 11) { /* "blob": no data, but a size */
+        values[0] = NULL;
+        valueSizes[0] = 4096;
+        return fmi3OK;
+    }
+#endif
     (void)valueSizes, (void)values, (void)nValues;
     return no_variable(instance, "fmi3GetBinary", vr, n);
 }

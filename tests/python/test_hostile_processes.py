@@ -1,0 +1,275 @@
+"""Processes, sockets and folders a run leaves (issue 20, items 10, 18, 19, 20): the embedded
+cluster listens on loopback only; Ctrl-C and a run's timeout reach an isolated FMU stuck in a
+call; extraction folders go on SIGTERM and SIGHUP, and stale ones at the next start; what an
+FMU forks ends with its host, or with its sweep member.
+
+The misbehaving FMU is tests/c/hostile (mode 4 never returns from fmi2DoStep, mode 6 forks a
+child that lives on and writes its process id to SYSSIMX_TEST_CHILD_PID_FILE)."""
+
+from __future__ import annotations
+
+import functools
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import threading
+import time
+from pathlib import Path
+
+import pytest
+from syssimx import FMUComponent, System, fmus
+from syssimx.errors import RunInterrupted, SimulationTimeoutError
+from syssimx.fmu.extraction import ORPHAN_AGE, remove_stale_folders
+from test_isolation import child_processes, hostile_fmu
+
+ENDLESS_LOOP, FORK_CHILD = 4, 6
+
+
+def alive(pid: int) -> bool:
+    """Whether the process runs (a zombie has ended)."""
+    try:
+        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except OSError:
+        return False
+    return state not in ("Z", "X")
+
+
+def read_pid(path: Path, timeout: float = 30.0) -> int:
+    deadline = time.monotonic() + timeout
+    while not (path.is_file() and path.read_text().strip()):
+        assert time.monotonic() < deadline, f"{path} was never written"
+        time.sleep(0.05)
+    return int(path.read_text())
+
+
+def hung_system() -> tuple[System, FMUComponent]:
+    hostile = FMUComponent("H", hostile_fmu(), isolated=True)
+    hostile.set_parameters(mode=ENDLESS_LOOP, fail_time=0.25)
+    system = System("hung")
+    system.add_component(hostile)
+    system.initialize(0.0)
+    return system, hostile
+
+
+def test_a_run_timeout_kills_an_isolated_fmu_stuck_in_a_call():
+    """Before: only step_timeout could stop it; timeout=2 waited for ever."""
+    before = child_processes()
+    system, hostile = hung_system()
+    started = time.monotonic()
+    with pytest.raises(SimulationTimeoutError):
+        system.run(0.0, 1.0, 0.1, timeout=2.0)
+    assert time.monotonic() - started < 15
+    t, _ = system.get_history()["H"]
+    assert t[-1] == pytest.approx(0.2)  # the samples before the stuck step are kept
+    assert child_processes() <= before  # the host is gone, reaped
+    hostile.free()
+
+
+def test_ctrl_c_kills_an_isolated_fmu_stuck_in_a_call():
+    before = child_processes()
+    system, hostile = hung_system()
+    timer = threading.Timer(1.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    started = time.monotonic()
+    try:
+        with pytest.raises(RunInterrupted) as caught:
+            system.run(0.0, 1.0, 0.1)
+    finally:
+        timer.cancel()
+    assert time.monotonic() - started < 15
+    t, _ = caught.value.partial_result["H"]
+    assert t[-1] == pytest.approx(0.2)
+    assert child_processes() <= before
+    hostile.free()
+
+
+def test_what_an_isolated_fmu_forks_ends_with_its_host(tmp_path: Path,
+                                                      monkeypatch: pytest.MonkeyPatch):
+    pid_file = tmp_path / "child.pid"
+    monkeypatch.setenv("SYSSIMX_TEST_CHILD_PID_FILE", str(pid_file))
+    hostile = FMUComponent("H", hostile_fmu(), isolated=True)
+    hostile.set_parameters(mode=FORK_CHILD, fail_time=0.05)
+    system = System("forks")
+    system.add_component(hostile)
+    system.initialize(0.0)
+    system.run(0.0, 0.2, 0.1)
+    child = read_pid(pid_file)
+    assert alive(child)
+    hostile.free()
+    deadline = time.monotonic() + 10
+    while alive(child) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not alive(child)
+
+
+def forking_system(path: str) -> System:
+    hostile = FMUComponent("H", path)
+    hostile.set_parameters(mode=FORK_CHILD, fail_time=0.05)
+    system = System("forks")
+    system.add_component(hostile)
+    return system
+
+
+def test_a_sweep_worker_ends_what_a_member_forked(tmp_path: Path,
+                                                  monkeypatch: pytest.MonkeyPatch):
+    pytest.importorskip("distributed")
+    from syssimx.ensemble import sweep
+
+    pid_file = tmp_path / "child.pid"
+    monkeypatch.setenv("SYSSIMX_TEST_CHILD_PID_FILE", str(pid_file))  # the workers inherit it
+    result = sweep(functools.partial(forking_system, hostile_fmu()), {"H.fail_time": [0.05]},
+                   t0=0.0, tf=0.2, dt=0.1, workers=1, progress=False)
+    assert result.members[0].ok
+    child = read_pid(pid_file)
+    deadline = time.monotonic() + 10
+    while alive(child) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not alive(child)
+
+
+def listening_addresses(pids: set[int]) -> set[str]:
+    import psutil
+
+    addresses = set()
+    for pid in pids:
+        try:
+            connections = psutil.Process(pid).net_connections(kind="inet")
+        except (psutil.NoSuchProcess, psutil.AccessDenied):
+            continue
+        addresses |= {c.laddr.ip for c in connections if c.status == psutil.CONN_LISTEN}
+    return addresses
+
+
+def test_every_socket_of_a_sweep_listens_on_loopback():
+    """Before: the dashboard listened on 0.0.0.0."""
+    pytest.importorskip("distributed")
+    psutil = pytest.importorskip("psutil")
+    from syssimx.ensemble import sweep
+    from syssimx.ensemble.cluster import ensemble_client
+
+    with ensemble_client(workers=1) as client:
+        result = sweep(pendulum_system, {"P.theta0": [0.1, 0.2]}, t0=0.0, tf=0.1, dt=0.05,
+                       client=client, progress=False)
+        assert all(member.ok for member in result.members)
+        me = psutil.Process()
+        pids = {me.pid, *(child.pid for child in me.children(recursive=True))}
+        addresses = listening_addresses(pids)
+    assert addresses, "no listening socket found: the test would prove nothing"
+    assert addresses <= {"127.0.0.1", "::1"}, addresses
+
+
+def pendulum_system() -> System:
+    """A pendulum: a member that forks nothing."""
+    system = System("pendulum")
+    system.add_component(FMUComponent("P", fmus.path("pendulum_euler")))
+    return system
+
+
+@pytest.mark.parametrize(("signum", "isolated"), [(signal.SIGTERM, False),
+                                                  (signal.SIGHUP, False),
+                                                  (signal.SIGTERM, True)])
+def test_a_signal_removes_the_extraction_folders(tmp_path: Path, signum: int, isolated: bool):
+    """Before: SIGTERM and SIGHUP left the syssimx_* folders behind."""
+    script = textwrap.dedent(f"""
+        import sys, tempfile, time
+        tempfile.tempdir = {str(tmp_path)!r}
+        from syssimx import FMUComponent
+        component = FMUComponent("G", {hostile_fmu()!r}, isolated={isolated})
+        print(component._unzip_dir, flush=True)
+        while True:
+            time.sleep(0.05)
+    """)
+    process = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                               text=True)
+    try:
+        folder = Path(process.stdout.readline().strip())
+        assert folder.is_dir() and folder.parent == tmp_path
+        process.send_signal(signum)
+        assert process.wait(timeout=60) == -signum
+    finally:
+        process.kill()
+        process.stdout.close()
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_stale_extraction_folders_are_removed_at_start_up(tmp_path: Path):
+    """Folders whose owner ended without removing them (SIGKILL) go at the next extraction;
+    a live owner's stay, and so do a young folder without an owner file (being made) and one
+    owned in another machine or container (its process ids are not ours to judge)."""
+    ended = subprocess.Popen(["true"])
+    ended.wait()
+    stale, live = tmp_path / "syssimx_stale", tmp_path / "syssimx_live"
+    old_orphan, young_orphan = tmp_path / "syssimx_old", tmp_path / "syssimx_young"
+    elsewhere = tmp_path / "syssimx_elsewhere"
+    for folder in (stale, live, old_orphan, young_orphan, elsewhere):
+        folder.mkdir()
+        (folder / "binary.so").write_bytes(b"x")
+    (tmp_path / "syssimx_stale.owner").write_text(f"{ended.pid} 1\n")
+    (tmp_path / "syssimx_live.owner").write_text(f"{os.getpid()}\n")
+    (tmp_path / "syssimx_elsewhere.owner").write_text(f"{ended.pid} 1 another-host/pid:[1]\n")
+    two_days_ago = time.time() - 2 * ORPHAN_AGE
+    os.utime(old_orphan, (two_days_ago, two_days_ago))
+    removed = remove_stale_folders(tmp_path)
+    assert sorted(removed) == [old_orphan, stale]
+    assert sorted(p.name for p in tmp_path.iterdir()) == [
+        "syssimx_elsewhere", "syssimx_elsewhere.owner", "syssimx_live", "syssimx_live.owner",
+        "syssimx_young"]
+
+
+def test_a_killed_process_s_folder_goes_at_the_next_start(tmp_path: Path):
+    script = textwrap.dedent(f"""
+        import tempfile, time
+        tempfile.tempdir = {str(tmp_path)!r}
+        from syssimx import FMUComponent, fmus
+        component = FMUComponent("G", fmus.path("gain"))
+        print(component._unzip_dir, flush=True)
+        time.sleep(600)
+    """)
+    process = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE,
+                               text=True)
+    try:
+        folder = Path(process.stdout.readline().strip())
+        process.kill()  # SIGKILL: nothing of the process runs
+        process.wait(timeout=60)
+    finally:
+        process.stdout.close()
+    assert folder.is_dir()
+    successor = textwrap.dedent(f"""
+        import tempfile
+        tempfile.tempdir = {str(tmp_path)!r}
+        from syssimx import FMUComponent, fmus
+        component = FMUComponent("G", fmus.path("gain"))
+        print(component._unzip_dir)
+    """)
+    done = subprocess.run([sys.executable, "-c", successor], capture_output=True, text=True,
+                          timeout=120, check=True)
+    assert not folder.exists() and done.stdout.strip() != str(folder)
+    assert list(tmp_path.iterdir()) == []
+
+
+
+def extracting_then_terminated() -> System:
+    """A member whose worker ends by SIGTERM after extracting its FMU: nothing of Python's
+    exit (atexit) runs in the worker."""
+    system = System("terminated")
+    system.add_component(FMUComponent("P", fmus.path("pendulum_euler")))
+    os.kill(os.getpid(), signal.SIGTERM)
+    time.sleep(30)
+    return system
+
+
+def test_a_sweep_removes_what_its_killed_workers_extracted(tmp_path: Path,
+                                                           monkeypatch: pytest.MonkeyPatch):
+    pytest.importorskip("distributed")
+    import tempfile
+
+    from syssimx.ensemble import sweep
+
+    monkeypatch.setenv("TMPDIR", str(tmp_path))  # the workers' temporary folder
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))  # and this process's
+    result = sweep(extracting_then_terminated, {"P.theta0": [0.1]}, t0=0.0, tf=0.1, dt=0.05,
+                   workers=1, progress=False)
+    assert not result.members[0].ok
+    assert [p.name for p in tmp_path.iterdir() if p.name.startswith("syssimx_")] == []
