@@ -8,6 +8,7 @@
 
 #include "describe_xml.h"
 #include "fmu_guid.h"
+#include "fmu_interpolation.h"
 #include "fmu_solver.h"
 #include "model.h"
 
@@ -125,9 +126,9 @@ static int write_description(FILE *out, const char *model_identifier)
     fprintf(out,
             "  <CoSimulation modelIdentifier=\"%s\" canHandleVariableCommunicationStepSize=\"true\"\n"
             "    canGetAndSetFMUstate=\"true\" canSerializeFMUstate=\"true\"\n"
-            "    canNotUseMemoryManagementFunctions=\"true\" canInterpolateInputs=\"false\"\n"
-            "    providesDirectionalDerivative=\"%s\"/>\n",
-            model_identifier, directional);
+            "    canNotUseMemoryManagementFunctions=\"true\" canInterpolateInputs=\"true\"\n"
+            "    maxOutputDerivativeOrder=\"%d\" providesDirectionalDerivative=\"%s\"/>\n",
+            model_identifier, FMU_MAX_OUTPUT_DERIVATIVE_ORDER, directional);
     write_units(out, &list);
     write_log_categories(out, fmu_log_category_descriptions);
     write_default_experiment(out);

@@ -6,6 +6,7 @@
 #include "describe_xml.h"
 #include "fmi3_instance.h"
 #include "fmu_guid.h"
+#include "fmu_interpolation.h"
 #include "fmu_solver.h"
 
 static const char *const type_names[] = {"Float64", "Int32", "Boolean"};
@@ -45,6 +46,8 @@ static void write_variable(FILE *out, const model_variable *v, size_t vr)
         fprintf(out, " unit=\"%s\"", v->unit);
     if (v->derivative_of >= 0)
         fprintf(out, " derivative=\"%d\"", v->derivative_of);
+    if (fmi3_intermediate_input(v))
+        fputs(" intermediateUpdate=\"true\"", out);
     if (v->initial == INITIAL_EXACT || v->causality == CAUSALITY_INPUT)
         write_start(out, v);
     fputs("/>\n", out);
@@ -126,10 +129,14 @@ static void write_co_simulation(FILE *out, const char *model_identifier)
             model_identifier);
     if (fmu_model.partial_derivative != NULL)
         fputs(" providesDirectionalDerivatives=\"true\"", out);
+    /* Output derivatives from the model's equations; the inputs follow the importer's answers
+     * to intermediate update inside a step. */
+    fprintf(out, "\n    maxOutputDerivativeOrder=\"%d\" providesIntermediateUpdate=\"true\"",
+            FMU_MAX_OUTPUT_DERIVATIVE_ORDER);
     /* With event mode the FMU returns early at each internal event of its own accord
-     * (mightReturnEarlyFromDoStep). It calls no intermediate update (providesIntermediateUpdate
-     * stays false), so canReturnEarlyAfterIntermediateUpdate promises nothing beyond that; it
-     * is declared for importers that look for it next to hasEventMode. */
+     * (mightReturnEarlyFromDoStep). Its intermediate updates never offer an early return, so
+     * canReturnEarlyAfterIntermediateUpdate promises nothing beyond that; it is declared for
+     * importers that look for it next to hasEventMode. */
     if (has_events)
         fputs("\n    hasEventMode=\"true\" canReturnEarlyAfterIntermediateUpdate=\"true\"", out);
     if (returns_early)

@@ -14,7 +14,16 @@ typedef struct {
     int event_mode_used;
     int early_return_allowed;
     int model_exchange; /* made by fmi3InstantiateModelExchange */
+    fmi3IntermediateUpdateCallback intermediate_update; /* NULL: the importer asked for none */
 } fmi3_instance;
+
+/* The variables an importer may set in Intermediate Update Mode (intermediateUpdate="true"):
+ * the continuous Float64 inputs. */
+static inline int fmi3_intermediate_input(const model_variable *v)
+{
+    return v->type == TYPE_REAL && v->causality == CAUSALITY_INPUT &&
+           v->variability == VARIABILITY_CONTINUOUS;
+}
 
 /* The FMI 3.0 states this FMU goes through. Co-Simulation's Event Mode is step mode of the
  * framework with in_event_mode set; Model Exchange's is the framework's event phase, and

@@ -81,6 +81,7 @@ fmi3Status fmi3SetDebugLogging(fmi3Instance instance, fmi3Boolean loggingOn, siz
 /* Why the FMU cannot be instantiated with these arguments, or NULL. */
 static const char *refusal(fmi3String instanceName, fmi3String instantiationToken,
                            const char *guid, fmi3Boolean eventModeUsed,
+                           const fmi3ValueReference requiredIntermediateVariables[],
                            size_t nRequiredIntermediateVariables)
 {
     if (instanceName == NULL || instanceName[0] == '\0')
@@ -90,8 +91,14 @@ static const char *refusal(fmi3String instanceName, fmi3String instantiationToke
     if (eventModeUsed && fmu_model.n_event_indicators == 0)
         return "eventModeUsed is true but this FMU has no event mode (hasEventMode=\"false\": "
                "the model has no internal events)";
-    if (nRequiredIntermediateVariables > 0)
-        return "no variable of this FMU provides intermediate access";
+    if (nRequiredIntermediateVariables > 0 && requiredIntermediateVariables == NULL)
+        return "requiredIntermediateVariables is NULL";
+    for (size_t i = 0; i < nRequiredIntermediateVariables; ++i) {
+        fmi3ValueReference vr = requiredIntermediateVariables[i];
+        if (!(vr < fmu_model.n_variables && fmi3_intermediate_input(&fmu_model.variables[vr])))
+            return "a required intermediate variable is not a continuous Float64 input (only "
+                   "those provide intermediate access)";
+    }
     return NULL;
 }
 
@@ -99,7 +106,9 @@ static const char *refusal(fmi3String instanceName, fmi3String instantiationToke
  * callback; `function` names the call in messages. */
 static fmi3_instance *create(const char *function, fmi3String instanceName,
                              fmi3String instantiationToken, fmi3Boolean loggingOn,
-                             fmi3Boolean eventModeUsed, size_t nRequiredIntermediateVariables,
+                             fmi3Boolean eventModeUsed,
+                             const fmi3ValueReference requiredIntermediateVariables[],
+                             size_t nRequiredIntermediateVariables,
                              fmi3InstanceEnvironment instanceEnvironment,
                              fmi3LogMessageCallback logMessage)
 {
@@ -115,7 +124,7 @@ static fmi3_instance *create(const char *function, fmi3String instanceName,
     char guid[FMU_GUID_LENGTH];
     fmu_guid(guid);
     const char *reason = refusal(instanceName, instantiationToken, guid, eventModeUsed,
-                                 nRequiredIntermediateVariables);
+                                 requiredIntermediateVariables, nRequiredIntermediateVariables);
     if (reason != NULL) {
         fmu_error(&reporter.core, "%s: %s", function, reason);
         return NULL;
@@ -130,6 +139,16 @@ static fmi3_instance *create(const char *function, fmi3String instanceName,
     return inst;
 }
 
+/* Intermediate update: the importer sets the inputs for time t. */
+static void ask_importer_for_inputs(fmu_instance *core, double t)
+{
+    fmi3_instance *inst = (fmi3_instance *)core;
+    fmi3Boolean early_return_requested = fmi3False;
+    fmi3Float64 early_return_time = t;
+    inst->intermediate_update(inst->environment, t, fmi3True, fmi3False, fmi3False, fmi3False,
+                              &early_return_requested, &early_return_time);
+}
+
 fmi3Instance fmi3InstantiateCoSimulation(
     fmi3String instanceName, fmi3String instantiationToken, fmi3String resourcePath,
     fmi3Boolean visible, fmi3Boolean loggingOn, fmi3Boolean eventModeUsed,
@@ -139,13 +158,17 @@ fmi3Instance fmi3InstantiateCoSimulation(
 {
     (void)resourcePath; /* the models need no resources */
     (void)visible;
-    (void)requiredIntermediateVariables;
-    (void)intermediateUpdate; /* providesIntermediateUpdate="false": never called */
     fmi3_instance *inst = create("fmi3InstantiateCoSimulation", instanceName, instantiationToken,
-                                 loggingOn, eventModeUsed, nRequiredIntermediateVariables,
-                                 instanceEnvironment, logMessage);
+                                 loggingOn, eventModeUsed, requiredIntermediateVariables,
+                                 nRequiredIntermediateVariables, instanceEnvironment, logMessage);
     if (inst == NULL)
         return NULL;
+    /* Asked back only by an importer that named inputs it will set in intermediate update: the
+     * call comes at every evaluation of the model inside a step. */
+    if (intermediateUpdate != NULL && nRequiredIntermediateVariables > 0) {
+        inst->intermediate_update = intermediateUpdate;
+        inst->core.intermediate_update = ask_importer_for_inputs;
+    }
     inst->event_mode_used = eventModeUsed;
     inst->early_return_allowed = earlyReturnAllowed;
     /* the importer handles internal events only when it can also be told of them early */
@@ -163,7 +186,7 @@ fmi3Instance fmi3InstantiateModelExchange(fmi3String instanceName,
     (void)resourcePath;
     (void)visible;
     fmi3_instance *inst = create("fmi3InstantiateModelExchange", instanceName, instantiationToken,
-                                 loggingOn, fmi3False, 0, instanceEnvironment, logMessage);
+                                 loggingOn, fmi3False, NULL, 0, instanceEnvironment, logMessage);
     if (inst == NULL)
         return NULL;
     inst->model_exchange = 1;

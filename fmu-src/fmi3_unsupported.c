@@ -1,4 +1,4 @@
-/* FMI 3.0 functions this FMU exports but does not support: Scheduled Execution, clocks, configuration mode, dependencies at run time, adjoint and output
+/* FMI 3.0 functions this FMU exports but does not support: Scheduled Execution, clocks, configuration mode, dependencies at run time, and adjoint
  * derivatives. Each returns fmi3Error (or NULL) with a message naming the call. */
 #include "fmi3_instance.h"
 #include "fmu_log.h"
@@ -142,15 +142,6 @@ fmi3Status fmi3SetShiftFraction(fmi3Instance instance, const fmi3ValueReference 
 fmi3Status fmi3EvaluateDiscreteStates(fmi3Instance instance)
 {
     return unsupported(instance, "fmi3EvaluateDiscreteStates");
-}
-
-fmi3Status fmi3GetOutputDerivatives(fmi3Instance instance,
-                                    const fmi3ValueReference valueReferences[],
-                                    size_t nValueReferences, const fmi3Int32 orders[],
-                                    fmi3Float64 values[], size_t nValues)
-{
-    (void)valueReferences, (void)nValueReferences, (void)orders, (void)values, (void)nValues;
-    return unsupported(instance, "fmi3GetOutputDerivatives");
 }
 
 fmi3Status fmi3ActivateModelPartition(fmi3Instance instance, fmi3ValueReference clockReference,

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fmu_interpolation.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
@@ -102,6 +103,10 @@ void fmu_instance_free(fmu_instance *inst)
     free(inst->z_after);
     free(inst->fired);
     free(inst->z_previous);
+    free(inst->input_derivatives);
+    free(inst->input_base);
+    free(inst->values_scratch);
+    free(inst->x_scratch);
     free(inst->name);
     free(inst);
 }
@@ -118,8 +123,13 @@ static int allocate_arrays(fmu_instance *inst)
     inst->z_after = calloc(n_indicators + 1, sizeof(double));
     inst->fired = calloc(n_indicators + 1, sizeof(int));
     inst->z_previous = calloc(n_indicators + 1, sizeof(double));
+    inst->input_derivatives = calloc(2 * inst->n_variables + 1, sizeof(double));
+    inst->input_base = calloc(inst->n_variables + 1, sizeof(double));
+    inst->values_scratch = calloc(inst->n_variables + 1, sizeof(double));
+    inst->x_scratch = calloc(2 * n_states + 1, sizeof(double));
     return inst->values && inst->x && inst->dx && inst->z_before && inst->z_after && inst->fired &&
-           inst->z_previous;
+           inst->z_previous && inst->input_derivatives && inst->input_base &&
+           inst->values_scratch && inst->x_scratch;
 }
 
 fmu_instance *fmu_instance_create(const fmu_instance *reporter, size_t size, const char *function)
@@ -187,6 +197,7 @@ void fmu_reset(fmu_instance *inst)
     inst->phase = PHASE_INSTANTIATED;
     inst->event_pending = 0;
     inst->in_event_mode = 0;
+    fmu_clear_input_derivatives(inst);
     fmu_apply_start_values(inst);
     fmu_solver_invalidate(inst);
 }

@@ -36,6 +36,13 @@ typedef enum {
 #define PHASES_NOMINALS \
     (PHASE_BIT(PHASE_INSTANTIATED) | PHASES_EVENT_OR_CONTINUOUS | PHASE_BIT(PHASE_TERMINATED))
 
+/* How the inputs move inside a step (fmu_interpolation.h). */
+typedef enum {
+    INPUTS_HELD,                /* constant, as set */
+    INPUTS_POLYNOMIAL,          /* along the derivatives the importer set */
+    INPUTS_INTERMEDIATE_UPDATE  /* as the importer answers FMI 3.0's intermediate update */
+} input_motion_kind;
+
 typedef struct {
     fmi2CallbackLogger logger;
     fmi2ComponentEnvironment environment;
@@ -81,6 +88,20 @@ typedef struct fmu_instance {
     int importer_handles_events;
     int event_pending;
     int in_event_mode;
+
+    /* Higher-order inputs (fmu_interpolation.h): per variable its first and second time
+     * derivative (nonzero for Real inputs only), the inputs at the step's start, and FMI 3.0's
+     * intermediate update (NULL when the importer gave no callback). Not part of the FMU state:
+     * a restored state holds its inputs until the importer sets derivatives again. */
+    input_motion_kind input_motion;
+    int has_input_derivatives;
+    double *input_derivatives; /* 2 per variable: first, then second derivatives */
+    double *input_base;
+    double step_start;
+    void (*intermediate_update)(struct fmu_instance *inst, double t);
+    /* scratch for output derivatives: variable values and 2 * n_states */
+    double *values_scratch;
+    double *x_scratch;
 
     void *solver;            /* back-end data */
 } fmu_instance;

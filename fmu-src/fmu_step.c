@@ -2,6 +2,7 @@
 
 #include <math.h>
 
+#include "fmu_interpolation.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
@@ -49,8 +50,11 @@ fmi2Status fmu_do_step(fmu_instance *inst, const char *function, double t, doubl
     /* a model that asks to stop inside the step is integrated up to that time only */
     double t_until = fmin(t_end, fmu_stop_time(inst));
     fmi2Status status = fmi2OK;
-    if (t_until > inst->time)
+    if (t_until > inst->time) {
+        fmu_inputs_begin_step(inst);
         status = fmu_solver_step(inst, t_until);
+        fmu_inputs_end_step(inst, inst->time);
+    }
     fmu_refresh_outputs(inst);
     return status;
 }

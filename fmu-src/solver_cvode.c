@@ -10,6 +10,7 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "fmu_interpolation.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
@@ -45,6 +46,7 @@ typedef struct {
 static int right_hand_side(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
 {
     fmu_instance *inst = user;
+    fmu_inputs_at(inst, t);
     inst->model->derivatives(inst->values, t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
     return 0;
 }
@@ -52,6 +54,7 @@ static int right_hand_side(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
 static int indicators(sunrealtype t, N_Vector y, sunrealtype *z, void *user)
 {
     fmu_instance *inst = user;
+    fmu_inputs_at(inst, t);
     inst->model->event_indicators(inst->values, t, N_VGetArrayPointer(y), z);
     return 0;
 }

@@ -6,6 +6,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "fmu_interpolation.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
@@ -94,12 +95,14 @@ fmi2Status fmu_solver_step(fmu_instance *inst, double t_end)
         if (t_next >= t_end - 1e-9 * h)
             t_next = t_end;
         double step = t_next - t;
+        fmu_inputs_at(inst, t);
         model->derivatives(inst->values, t, inst->x, inst->dx);
         for (size_t i = 0; i < n; ++i)
             data->x_next[i] = inst->x[i] + step * inst->dx[i];
         double fraction = 2.0;
         if (model->n_event_indicators > 0) {
             model->event_indicators(inst->values, t, inst->x, inst->z_before);
+            fmu_inputs_at(inst, t_next);
             model->event_indicators(inst->values, t_next, data->x_next, inst->z_after);
             fraction = earliest_crossing(inst);
         }

@@ -7,7 +7,7 @@ use, and refused if it was built from another header than the module.
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache, lru_cache
 from importlib.machinery import SourceFileLoader
 from types import ModuleType
 from typing import Any
@@ -60,9 +60,11 @@ def status_name(status: int) -> str:
     return str(status) if name == ffi.NULL else ffi.string(name).decode()
 
 
+@cache
 def enum_values(ctype: str, prefix: str) -> dict[str, int]:
     """An enum of the header by lower-case name without its prefix, in value order:
-    enum_values("ssx_locator", "SSX_") maps "illinois" to SSX_ILLINOIS."""
+    enum_values("ssx_locator", "SSX_") maps "illinois" to SSX_ILLINOIS. The one dict per enum:
+    read it, never change it."""
     return {name.removeprefix(prefix).lower(): value
             for value, name in sorted(ffi.typeof(ctype).elements.items())}
 

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "error.h"
+#include "restart_handler.h"
 #include "system.h"
 
 int component_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
@@ -87,7 +88,8 @@ int component_handle_events(ssx_system *sys, ssx_component *c, const int *indica
                             double t)
 {
     if (c->hooks.handle_events == NULL) {
-        return 0; /* built-in: the component has no discrete reaction of its own */
+        /* built-in: the declarative restart, else no discrete reaction of its own */
+        return c->restart != NULL ? restart_handle(sys, c, t) : 0;
     }
     return c->hooks.handle_events(c->hooks.user, indicators, n, t) == 0
                ? 0
@@ -180,6 +182,9 @@ static void free_prepared(ssx_component *c)
     free(c->real_scratch);
     free(c->int_scratch);
     free(c->inputs_written);
+    free(c->links);
+    c->links = NULL;
+    c->n_links = 0;
     c->real_scratch = NULL;
     c->int_scratch = NULL;
     c->inputs_written = NULL;
@@ -232,6 +237,7 @@ void component_free(ssx_component *c)
     }
     free_prepared(c);
     own_event_list_free(&c->own_events);
+    restart_free(c->restart);
     free(c->name);
     free(c->output_ports);
     free(c->outputs);

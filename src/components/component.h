@@ -22,6 +22,15 @@ typedef struct {
     void (*release)(ssx_component *c); /* frees c->data; NULL when the kind keeps none */
 } ssx_component_ops;
 
+/* A driven input, resolved for the coupling loop: inputs[input] = scale * *source + offset,
+ * source pointing at the driving output (valid from one initialization to the next). */
+typedef struct {
+    int input;
+    const double *source;
+    double scale;
+    double offset;
+} ssx_input_link;
+
 /* Ports of one value type, batched for a single fmi2Get/Set call. */
 typedef struct {
     unsigned int *vr;
@@ -43,6 +52,12 @@ struct ssx_component {
     void *data;   /* the kind's own data (a table source's table), freed by ops->release */
     int can_snapshot;
     int provides_directional_derivatives; /* FMU components only */
+    /* FMU components: the modelDescription's canInterpolateInputs and maxOutputDerivativeOrder,
+     * and (input_order.h) per input its first and second time derivative over the coming
+     * step, NULL while inputs are held */
+    int can_interpolate_inputs;
+    int max_output_derivative_order;
+    double *input_derivatives;
     int calling_thread_only; /* ssx_set_calling_thread_only */
 
     ssx_port *output_ports;
@@ -53,6 +68,8 @@ struct ssx_component {
     double *input_starts;
     int *input_driver; /* connection index driving each input, or -1 */
     int n_inputs;
+    ssx_input_link *links; /* the driven inputs, built with the schedule (coupling.c) */
+    int n_links;
 
     ssx_port_batch output_batch[3]; /* by ssx_value_type, built at initialization */
     ssx_port_batch input_batch[3];
@@ -71,6 +88,8 @@ struct ssx_component {
     double *saved_inputs[SSX_SNAPSHOT_SLOTS];
     /* events handled inside its steps, until the master accepts them (own_events.h) */
     ssx_own_event_list own_events;
+    /* its declarative event handler (restart_handler.h), NULL for none */
+    struct ssx_restart *restart;
 };
 
 extern const ssx_component_ops ssx_fmu_component_ops;

@@ -10,6 +10,7 @@
 #include "error.h"
 #include "fmu_backend.h"
 #include "fmu_binding.h"
+#include "input_order.h"
 #include "parallel_step.h"
 #include "system.h"
 
@@ -90,11 +91,18 @@ static int integer_out_of_range(ssx_system *sys, ssx_component *c, unsigned int 
                 INT_MIN, INT_MAX);
 }
 
+static int write_values(ssx_system *sys, ssx_component *c);
+
 static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
 {
-    if (fmu_component_inputs_unchanged(c)) {
-        return 0;
+    if (!fmu_component_inputs_unchanged(c) && write_values(sys, c) != 0) {
+        return -1;
     }
+    return input_order_write(sys, c);
+}
+
+static int write_values(ssx_system *sys, ssx_component *c)
+{
     const ssx_port_batch *real = &c->input_batch[SSX_REAL];
     if (real->n > 0) {
         for (size_t i = 0; i < real->n; ++i) {

@@ -63,7 +63,8 @@ typedef struct {
     double *nominals;
     me_state now;
     me_state saved[SSX_SNAPSHOT_SLOTS];
-    long generation;   /* the instance whose event iteration after initialization is done */
+    long generation;   /* the start of the instance (ssx_fmu_starts) whose event iteration after
+                        * initialization is done */
     /* where CVODE's history is valid to go on from (NAN: start afresh), and the FMU's values
      * epoch then (ssx_fmu_values_epoch: unchanged, no input was written) */
     double warm_at;
@@ -296,7 +297,7 @@ static int check_count(ssx_system *sys, ssx_component *c, double t, ssx_fmu_slot
  * instance: the FMU may have been instantiated again (reinitialize) since the last step. */
 static int start_instance(ssx_system *sys, ssx_component *c, me_data *me, double t)
 {
-    long generation = ssx_fmu_generation(c->fmu);
+    long generation = ssx_fmu_starts(c->fmu);
     if (me->generation == generation) {
         return 0;
     }

@@ -35,6 +35,8 @@ typedef enum {
     SLOT_SERIALIZE_STATE,
     SLOT_DESERIALIZE_STATE,
     SLOT_DIRECTIONAL_DERIVATIVE,
+    SLOT_SET_INPUT_DERIVATIVES,  /* FMI 2.0 only: FMI 3.0 has intermediate update instead */
+    SLOT_GET_OUTPUT_DERIVATIVES,
     SLOT_GET_TERMINATED,
     SLOT_GET_LAST_SUCCESSFUL_TIME,
     /* Model Exchange */
@@ -146,6 +148,12 @@ typedef struct {
                                   const unsigned int *unknowns, size_t n_unknowns,
                                   const unsigned int *knowns, size_t n_knowns,
                                   const double *dv_known, double *dv_unknown);
+    int (*set_input_derivatives)(const ssx_fmu_function *fn, void *instance,
+                                 const unsigned int *vr, size_t n, const int *order,
+                                 const double *values);
+    int (*get_output_derivatives)(const ssx_fmu_function *fn, void *instance,
+                                  const unsigned int *vr, size_t n, const int *order,
+                                  double *values);
     int (*get_terminated)(const ssx_fmu_function *fn, void *instance, int *terminated);
     int (*get_last_successful_time)(const ssx_fmu_function *fn, void *instance, double *time);
     /* Model Exchange, and event mode for FMI 3.0 Co-Simulation too (NULL in a back-end

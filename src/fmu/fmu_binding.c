@@ -18,7 +18,19 @@
 #include "fmu_remote.h"
 
 struct ssx_fmu {
+    /* what every doStep touches, together at the start: one cache line where thousands of
+     * FMUs step in turn (the function tables below span several) */
     const ssx_fmu_backend *backend;
+    void *instance;
+    const char *last_call; /* the last call made or refused, "" before any */
+    /* the call that returned Fatal, or NULL: after it FMI allows no call at all, not even
+     * freeing the instance, so the instance and its states are abandoned (instance NULL) and
+     * the library stays loaded */
+    const char *fatal_call;
+    long values_epoch; /* see ssx_fmu_values_epoch */
+    long generation;
+    long starts; /* see ssx_fmu_starts */
+    ssx_fmu_counters counters;
     ssx_fmu_function fn[SLOT_COUNT]; /* NULL: the binary lacks the function */
     const char *names[SLOT_COUNT];   /* the standard's name of each slot, for messages */
     void *context;                   /* the back-end's, outlives every instance */
@@ -32,19 +44,10 @@ struct ssx_fmu {
      * uses */
     int tolerance_defined;
     double tolerance;
-    void *instance;
-    const char *last_call;     /* the last call made or refused, "" before any */
-    /* the call that returned Fatal, or NULL: after it FMI allows no call at all, not even
-     * freeing the instance, so the instance and its states are abandoned (instance NULL) and
-     * the library stays loaded */
-    const char *fatal_call;
-    long generation;
-    long values_epoch; /* see ssx_fmu_values_epoch */
     /* FMU states handed out by the live instance, freed with it */
     void **states;
     size_t n_states;
     size_t states_capacity;
-    ssx_fmu_counters counters;
     char last_message[1024];
 };
 
@@ -242,7 +245,9 @@ static const struct {
     [SLOT_GET_STATE] = {COUNTED(get_state), 0},
     [SLOT_SET_STATE] = {COUNTED(set_state), 1},
     [SLOT_DIRECTIONAL_DERIVATIVE] = {COUNTED(directional_derivative), 0},
-    [SLOT_RESET] = {0, 1},
+    [SLOT_SET_INPUT_DERIVATIVES] = {COUNTED(set_values), 0},
+    [SLOT_GET_OUTPUT_DERIVATIVES] = {COUNTED(get_values), 0},
+    [SLOT_RESET] = {COUNTED(reset), 1},
     [SLOT_GET_STRING] = {COUNTED(get_values), 0},
     [SLOT_GET_BINARY] = {COUNTED(get_values), 0},
     [SLOT_SET_STRING] = {COUNTED(set_values), 1},
@@ -425,6 +430,7 @@ int ssx_fmu_instantiate(ssx_fmu *fmu)
                                               fmu->guid, fmu->resource_uri, fmu->logging_on);
     (void)finish(fmu, SLOT_INSTANTIATE, 0);
     fmu->generation++;
+    fmu->starts++;
     if (fmu->instance == NULL) {
         if (fmu->last_message[0] == '\0') {
             snprintf(fmu->last_message, sizeof fmu->last_message, "%s returned NULL",
@@ -458,7 +464,11 @@ int ssx_fmu_exit_initialization_mode(ssx_fmu *fmu)
 
 int ssx_fmu_reset(ssx_fmu *fmu)
 {
-    return CHECKED0(fmu, SLOT_RESET, reset);
+    int status = CHECKED0(fmu, SLOT_RESET, reset);
+    if (status == 0 || status == 1) { /* OK or Warning */
+        fmu->starts++;
+    }
+    return status;
 }
 
 int ssx_fmu_terminate(ssx_fmu *fmu)
@@ -510,6 +520,19 @@ int ssx_fmu_get_directional_derivative(ssx_fmu *fmu, const unsigned int *unknown
 {
     return CHECKED(fmu, SLOT_DIRECTIONAL_DERIVATIVE, directional_derivative, unknowns,
                    n_unknowns, knowns, n_knowns, dv_known, dv_unknown);
+}
+
+int ssx_fmu_set_real_input_derivatives(ssx_fmu *fmu, const unsigned int *vr, size_t n,
+                                       const int *order, const double *values)
+{
+    return CHECKED(fmu, SLOT_SET_INPUT_DERIVATIVES, set_input_derivatives, vr, n, order, values);
+}
+
+int ssx_fmu_get_real_output_derivatives(ssx_fmu *fmu, const unsigned int *vr, size_t n,
+                                        const int *order, double *values)
+{
+    return CHECKED(fmu, SLOT_GET_OUTPUT_DERIVATIVES, get_output_derivatives, vr, n, order,
+                   values);
 }
 
 int ssx_fmu_get_terminated(ssx_fmu *fmu, int *terminated)
@@ -799,6 +822,11 @@ const char *ssx_fmu_function_name(const ssx_fmu *fmu, int slot)
 long ssx_fmu_generation(const ssx_fmu *fmu)
 {
     return fmu != NULL ? fmu->generation : 0;
+}
+
+long ssx_fmu_starts(const ssx_fmu *fmu)
+{
+    return fmu != NULL ? fmu->starts : 0;
 }
 
 long ssx_fmu_values_epoch(const ssx_fmu *fmu)

@@ -5,8 +5,12 @@
 #include "syssimx_engine.h"
 
 /* Counts instantiations: FMU states of an earlier instance are invalid (the binding frees them
- * when their instance goes away), so a holder compares generations before reusing a state. */
+ * when their instance goes away), so a holder compares generations before reusing a state. A
+ * reset keeps the instance and its generation. */
 long ssx_fmu_generation(const ssx_fmu *fmu);
+/* Counts the starts of an instance from its start values: instantiations and resets. A Model
+ * Exchange holder runs its first event iteration again when it changed. */
+long ssx_fmu_starts(const ssx_fmu *fmu);
 /* Counts the calls that may change the instance's inputs: fmi2Set*, fmi2SetFMUstate, fmi2Reset
  * and instantiation. Unchanged since a holder's own write, the instance still holds what the
  * holder wrote, so writing the same values again can be skipped. */

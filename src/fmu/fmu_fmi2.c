@@ -30,7 +30,9 @@
     {"fmi2SerializedFMUstateSize", SLOT_SERIALIZED_STATE_SIZE, 0},                            \
     {"fmi2SerializeFMUstate", SLOT_SERIALIZE_STATE, 0},                                       \
     {"fmi2DeSerializeFMUstate", SLOT_DESERIALIZE_STATE, 0},                                   \
-    {"fmi2GetDirectionalDerivative", SLOT_DIRECTIONAL_DERIVATIVE, 0},
+    {"fmi2GetDirectionalDerivative", SLOT_DIRECTIONAL_DERIVATIVE, 0},                         \
+    {"fmi2SetRealInputDerivatives", SLOT_SET_INPUT_DERIVATIVES, 0},                           \
+    {"fmi2GetRealOutputDerivatives", SLOT_GET_OUTPUT_DERIVATIVES, 0},
 
 static const ssx_fmu_function_row fmi2_functions[] = {
     FMI2_COMMON_ROWS
@@ -237,6 +239,22 @@ static int directional_derivative(const ssx_fmu_function *fn, void *instance,
         instance, unknowns, n_unknowns, knowns, n_knowns, dv_known, dv_unknown);
 }
 
+static int set_input_derivatives(const ssx_fmu_function *fn, void *instance,
+                                 const unsigned int *vr, size_t n, const int *order,
+                                 const double *values)
+{
+    return (int)FMI2(fn, SLOT_SET_INPUT_DERIVATIVES, fmi2SetRealInputDerivativesTYPE)(
+        instance, vr, n, order, values);
+}
+
+static int get_output_derivatives(const ssx_fmu_function *fn, void *instance,
+                                  const unsigned int *vr, size_t n, const int *order,
+                                  double *values)
+{
+    return (int)FMI2(fn, SLOT_GET_OUTPUT_DERIVATIVES, fmi2GetRealOutputDerivativesTYPE)(
+        instance, vr, n, order, values);
+}
+
 static int get_terminated(const ssx_fmu_function *fn, void *instance, int *terminated)
 {
     fmi2Boolean value = fmi2False;
@@ -343,7 +361,9 @@ static int completed_integrator_step(const ssx_fmu_function *fn, void *instance,
     .set_boolean = set_boolean, .get_state = get_state, .set_state = set_state,               \
     .free_state = free_state, .serialized_state_size = serialized_state_size,                 \
     .serialize_state = serialize_state, .deserialize_state = deserialize_state,               \
-    .directional_derivative = directional_derivative
+    .directional_derivative = directional_derivative,                                          \
+    .set_input_derivatives = set_input_derivatives,                                            \
+    .get_output_derivatives = get_output_derivatives
 
 const ssx_fmu_backend ssx_fmi2_model_exchange_backend = {
     FMI2_ADAPTERS,

@@ -65,6 +65,9 @@ static const ssx_fmu_function_row fmi3_functions[] = {
     {"fmi3DoStep", SLOT_GET_TERMINATED, 1},
     {"fmi3DoStep", SLOT_GET_LAST_SUCCESSFUL_TIME, 1},
     {"fmi3EnterStepMode", SLOT_ENTER_STEP_MODE, 1},
+    {"fmi3GetOutputDerivatives", SLOT_GET_OUTPUT_DERIVATIVES, 0},
+    /* input derivatives move the intermediate inputs within fmi3DoStep */
+    {"fmi3DoStep", SLOT_SET_INPUT_DERIVATIVES, 1},
     FMI3_OPTIONAL_ROWS
 };
 
@@ -116,19 +119,49 @@ static void logger(fmi3InstanceEnvironment environment, fmi3Status status, fmi3S
 
 /* ------------------------------------------------------------------ life cycle */
 
+/* Intermediate update: inside a step with moving inputs, the FMU asks for them at `time`. */
+static void answer_intermediate_update(fmi3InstanceEnvironment environment, fmi3Float64 time,
+                                       fmi3Boolean set_requested, fmi3Boolean get_allowed,
+                                       fmi3Boolean step_finished, fmi3Boolean can_return_early,
+                                       fmi3Boolean *early_return_requested,
+                                       fmi3Float64 *early_return_time)
+{
+    (void)get_allowed, (void)step_finished, (void)can_return_early, (void)early_return_time;
+    fmi3_context *ctx = environment;
+    if (early_return_requested != NULL) {
+        *early_return_requested = fmi3False;
+    }
+    if (!set_requested || !ctx->moving) {
+        return;
+    }
+    size_t n = ctx->n_intermediate;
+    const double *base = ctx->intermediate_base, *first = base + n, *second = first + n;
+    double *values = (double *)second + n;
+    double tau = time - ctx->step_start;
+    for (size_t j = 0; j < n; ++j) {
+        values[j] = base[j] + tau * (first[j] + 0.5 * tau * second[j]);
+    }
+    /* a refusal shows in the step's own status and log */
+    (void)FMI3(ctx->fn, SLOT_SET_REAL, fmi3SetFloat64TYPE)(ctx->instance, ctx->intermediate_vr,
+                                                           n, values, n);
+}
+
 static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
                          const char *instance_name, const char *token, const char *resource_path,
                          int logging_on)
 {
     fmi3_context *ctx = context;
     ctx->fmu = fmu;
+    ctx->fn = fn;
     ctx->outcome = (ssx_step_outcome){0};
+    size_t n_moving = ctx->n_intermediate;
+    fmi3IntermediateUpdateCallback update = n_moving > 0 ? answer_intermediate_update : NULL;
     /* the logger's environment is the context, whose first use is to reach the fmu */
     ctx->instance = FMI3(fn, SLOT_INSTANTIATE, fmi3InstantiateCoSimulationTYPE)(
         instance_name, token, resource_path, fmi3False, logging_on ? fmi3True : fmi3False,
         ctx->event_mode_used ? fmi3True : fmi3False,
-        ctx->early_return_allowed ? fmi3True : fmi3False, NULL, 0, ctx,
-        (fmi3LogMessageCallback)logger, NULL);
+        ctx->early_return_allowed ? fmi3True : fmi3False, ctx->intermediate_vr, n_moving, ctx,
+        (fmi3LogMessageCallback)logger, update);
     if (ctx->instance == NULL && ctx->event_mode_used) {
         /* Some FMUs declare hasEventMode and then refuse it (the Reference FMUs' Roberts):
          * without event mode the FMU handles its events inside doStep, which FMI 3.0 allows
@@ -136,8 +169,8 @@ static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu
         ctx->event_mode_used = 0;
         ctx->instance = FMI3(fn, SLOT_INSTANTIATE, fmi3InstantiateCoSimulationTYPE)(
             instance_name, token, resource_path, fmi3False, logging_on ? fmi3True : fmi3False,
-            fmi3False, ctx->early_return_allowed ? fmi3True : fmi3False, NULL, 0, ctx,
-            (fmi3LogMessageCallback)logger, NULL);
+            fmi3False, ctx->early_return_allowed ? fmi3True : fmi3False, ctx->intermediate_vr,
+            n_moving, ctx, (fmi3LogMessageCallback)logger, update);
     }
     return ctx->instance != NULL ? ctx : NULL;
 }
@@ -307,15 +340,62 @@ static const char *variable_name(const void *context, unsigned int vr)
 
 /* ------------------------------------------------------------------ stepping and events */
 
+/* FMI 3.0 has no input derivatives: the derivatives given for the intermediate inputs move
+ * them in the next step, through intermediate update. */
+static int set_input_derivatives(const ssx_fmu_function *fn, void *instance,
+                                 const unsigned int *vr, size_t n, const int *order,
+                                 const double *values)
+{
+    (void)fn;
+    fmi3_context *ctx = instance;
+    size_t m = ctx->n_intermediate;
+    for (size_t i = 0; i < n; ++i) {
+        size_t j = 0;
+        while (j < m && ctx->intermediate_vr[j] != vr[i]) {
+            ++j;
+        }
+        if (j == m || order[i] < 1 || order[i] > 2) {
+            return fmi3Error; /* not an intermediate input, or no such order */
+        }
+        ctx->intermediate_base[(size_t)order[i] * m + j] = values[i];
+    }
+    return fmi3OK;
+}
+
+/* Moving inputs start the step from the values the FMU holds. */
+static int start_moving(const ssx_fmu_function *fn, fmi3_context *ctx, double t)
+{
+    size_t m = ctx->n_intermediate;
+    int any = 0;
+    for (size_t j = m; j < 3 * m; ++j) {
+        any |= ctx->intermediate_base[j] != 0.0;
+    }
+    if (!any) {
+        return fmi3OK;
+    }
+    int status = (int)FMI3(fn, SLOT_GET_REAL, fmi3GetFloat64TYPE)(
+        ctx->instance, ctx->intermediate_vr, m, ctx->intermediate_base, m);
+    ctx->moving = status <= fmi3Warning;
+    ctx->step_start = t;
+    return status;
+}
+
 static int do_step(const ssx_fmu_function *fn, void *instance, double t, double h,
                    int no_set_state_prior)
 {
     fmi3_context *ctx = instance;
     fmi3Boolean event = fmi3False, terminate = fmi3False, early = fmi3False;
     fmi3Float64 reached = t;
+    if (ctx->n_intermediate > 0) {
+        int started = start_moving(fn, ctx, t);
+        if (started > fmi3Warning) {
+            return started;
+        }
+    }
     int status = (int)FMI3(fn, SLOT_DO_STEP, fmi3DoStepTYPE)(
         ctx->instance, t, h, no_set_state_prior ? fmi3True : fmi3False, &event, &terminate, &early,
         &reached);
+    ctx->moving = 0;
     ctx->outcome = (ssx_step_outcome){
         .reported = 1,
         .event_handling_needed = ctx->event_mode_used && event,
@@ -429,6 +509,14 @@ static int directional_derivative(const ssx_fmu_function *fn, void *instance,
         n_knowns, dv_unknown, n_unknowns);
 }
 
+static int get_output_derivatives(const ssx_fmu_function *fn, void *instance,
+                                  const unsigned int *vr, size_t n, const int *order,
+                                  double *values)
+{
+    return (int)FMI3(fn, SLOT_GET_OUTPUT_DERIVATIVES, fmi3GetOutputDerivativesTYPE)(
+        ((fmi3_context *)instance)->instance, vr, n, order, values, n);
+}
+
 /* ------------------------------------------------------------------ Model Exchange */
 
 static void *instantiate_model_exchange(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
@@ -536,7 +624,9 @@ static int get_number_of_event_indicators(const ssx_fmu_function *fn, void *inst
     .set_boolean = set_boolean, .get_state = get_state, .set_state = set_state,               \
     .free_state = free_state, .serialized_state_size = serialized_state_size,                 \
     .serialize_state = serialize_state, .deserialize_state = deserialize_state,               \
-    .directional_derivative = directional_derivative, .get_string = get_string,               \
+    .directional_derivative = directional_derivative,                                         \
+    .get_output_derivatives = get_output_derivatives,                                         \
+    .set_input_derivatives = set_input_derivatives, .get_string = get_string,               \
     .set_string = set_string, .get_binary = get_binary, .set_binary = set_binary,             \
     .enter_event_mode = enter_event_mode, .new_discrete_states = new_discrete_states,         \
     .variable_name = variable_name, .prepare = prepare, .release_context = release_context

@@ -48,6 +48,14 @@ typedef struct {
     int stop_time_defined;
     double stop_time;
     ssx_step_outcome outcome;
+    /* intermediate update (ssx_fmi3_variables): the inputs, their values at the step's start
+     * and first and second derivatives, and values scratch; moving while a step uses them */
+    unsigned int *intermediate_vr;
+    size_t n_intermediate;
+    double *intermediate_base; /* 4 * n_intermediate: base, first, second, scratch */
+    int moving;
+    double step_start;
+    const ssx_fmu_function *fn; /* for the callback */
     /* one type's part of a batch: value references, positions in the engine's call, values */
     unsigned int *part_vr;
     size_t *part_at;

@@ -154,6 +154,20 @@ int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *e
         ctx->event_mode_used = variables->event_mode_used != 0;
         ctx->early_return_allowed = variables->early_return_allowed != 0;
     }
+    size_t n_moving = variables != NULL && variables->intermediate_vr != NULL
+                          ? variables->n_intermediate
+                          : 0;
+    if (n_moving > 0) {
+        ctx->intermediate_vr = malloc(n_moving * sizeof *ctx->intermediate_vr);
+        ctx->intermediate_base = calloc(4 * n_moving, sizeof *ctx->intermediate_base);
+        if (ctx->intermediate_vr == NULL || ctx->intermediate_base == NULL) {
+            snprintf(error, error_size, "out of memory keeping %zu intermediate inputs", n_moving);
+            return -1;
+        }
+        memcpy(ctx->intermediate_vr, variables->intermediate_vr,
+               n_moving * sizeof *ctx->intermediate_vr);
+        ctx->n_intermediate = n_moving;
+    }
     return 0;
 }
 
@@ -176,6 +190,8 @@ void fmi3_values_free(fmi3_context *ctx)
     free(ctx->part_vr);
     free(ctx->part_at);
     free(ctx->part_values);
+    free(ctx->intermediate_vr);
+    free(ctx->intermediate_base);
 }
 
 void fmi3_values_reset(fmi3_context *ctx)

@@ -27,6 +27,21 @@ static int write_starts(ssx_fmu *fmu, const ssx_fmu_values *v, int *highest)
                     highest));
 }
 
+/* A live instance is reset rather than instantiated again: the FMU keeps its allocations (a
+ * CVODE integrator's memory, its FMU states) and the call costs a fraction of an instantiation.
+ * An instance that refuses the reset (a broken one, or one in a state that forbids it) is
+ * replaced. */
+static int start_instance(ssx_fmu *fmu)
+{
+    if (ssx_fmu_is_instantiated(fmu) && !ssx_fmu_is_dead(fmu)) {
+        int status = ssx_fmu_reset(fmu);
+        if (status == 0 || status == 1) {
+            return status;
+        }
+    }
+    return ssx_fmu_instantiate(fmu);
+}
+
 int ssx_fmu_initialize(ssx_fmu *fmu, const ssx_fmu_experiment *experiment,
                        const ssx_fmu_values *starts, int (*in_initialization_mode)(void *user),
                        void *user)
@@ -36,7 +51,7 @@ int ssx_fmu_initialize(ssx_fmu *fmu, const ssx_fmu_experiment *experiment,
     }
     const ssx_fmu_experiment *e = experiment;
     int highest = 0;
-    if (!went_on(ssx_fmu_instantiate(fmu), &highest) ||
+    if (!went_on(start_instance(fmu), &highest) ||
         !went_on(ssx_fmu_setup_experiment(fmu, e->tolerance_defined, e->tolerance, e->start_time,
                                           e->stop_time_defined, e->stop_time),
                  &highest) ||

@@ -44,6 +44,12 @@ typedef struct {
     /* CVODE's relative tolerance for a Model Exchange FMU set up without one (FMPy's) */
     double model_exchange_tolerance;
     int threads; /* threads that step FMU components (ssx_set_threads) */
+    int input_order; /* ssx_set_input_order */
+    /* ssx_set_step_control (off by default) */
+    double step_rtol;
+    double step_atol;
+    double step_min;
+    double step_safety;
 } ssx_defaults;
 void ssx_get_defaults(ssx_defaults *out);
 
@@ -65,6 +71,7 @@ typedef struct {
     long set_values;   /* fmi2Set* calls, any type */
     long instantiate;
     long directional_derivative; /* fmi2GetDirectionalDerivative calls */
+    long reset;        /* fmi2Reset calls, ssx_fmu_initialize's reuse of a live instance too */
 } ssx_fmu_counters;
 
 void ssx_fmu_free(ssx_fmu *fmu); /* terminates/frees a live instance, then unloads */
@@ -102,6 +109,13 @@ typedef struct {
     const size_t *element;
     const size_t *size;
     const double *start;
+    /* Co-Simulation with providesIntermediateUpdate: the scalar Float64 inputs the FMU lets the
+     * importer set in intermediate update (intermediateUpdate="true"). With any, the instance
+     * is made with them as requiredIntermediateVariables, and ssx_fmu_set_real_input_derivatives
+     * moves them inside each step: the callback answers with their Taylor polynomial from the
+     * communication point. NULL / 0: none. */
+    const unsigned int *intermediate_vr;
+    size_t n_intermediate;
 } ssx_fmi3_variables;
 
 /* The FMI standard and the interface a binary is loaded as. */
@@ -170,8 +184,9 @@ typedef struct {
     double stop_time;
 } ssx_fmu_experiment;
 
-/* A fresh instance ready to step: instantiate (a live instance is freed first), set up the
- * experiment, enter initialization mode, write `starts` (NULL: none) by type, call
+/* An instance ready to step from its start values: a live instance is reset (fmi2Reset,
+ * fmi3Reset: the FMU is as just instantiated, its FMU states stay valid), else, or when the
+ * reset fails, instantiated (a live instance is freed first); then set up the experiment, enter initialization mode, write `starts` (NULL: none) by type, call
  * in_initialization_mode(user) when it is not NULL (it may write more values; nonzero fails
  * the call and its caller keeps the reason), exit initialization mode. Returns the highest
  * status of the sequence (0 OK or 1 Warning), else the status of the call that failed (-1:
@@ -201,6 +216,12 @@ int ssx_fmu_deserialize_state(ssx_fmu *fmu, const char *bytes, size_t size, void
 int ssx_fmu_get_directional_derivative(ssx_fmu *fmu, const unsigned int *unknowns, size_t n_unknowns,
                                        const unsigned int *knowns, size_t n_knowns,
                                        const double *dv_known, double *dv_unknown);
+/* Input and output derivatives (FMI 2.0 canInterpolateInputs, maxOutputDerivativeOrder; FMI
+ * 3.0 has output derivatives only). */
+int ssx_fmu_set_real_input_derivatives(ssx_fmu *fmu, const unsigned int *vr, size_t n,
+                                       const int *order, const double *values);
+int ssx_fmu_get_real_output_derivatives(ssx_fmu *fmu, const unsigned int *vr, size_t n,
+                                        const int *order, double *values);
 int ssx_fmu_reset(ssx_fmu *fmu);
 int ssx_fmu_terminate(ssx_fmu *fmu);
 /* 1 once a call returned fmi2Fatal: every later call is refused without reaching the FMU (FMI
@@ -255,6 +276,13 @@ typedef struct {
     long loop_solves;
     long directional_derivatives; /* fmi2GetDirectionalDerivative calls for loop Jacobians */
     long own_events;             /* events components handled inside their own steps */
+    /* error-controlled communication steps (ssx_set_step_control) */
+    long accepted_steps;
+    long rejected_steps;         /* retried after a restore with a smaller step */
+    double smallest_step;        /* of the accepted steps; 0 before any */
+    double largest_step;
+    double largest_error;        /* the largest weighted coupling error of an accepted step */
+    double error_sum;            /* of the accepted steps' errors: their mean is this / accepted */
 } ssx_statistics;
 
 /* Who found an event: the master, by an indicator's crossing (located by rollback), or a
@@ -344,6 +372,17 @@ int ssx_add_model_exchange_component(ssx_system *sys, const char *name, ssx_fmu 
                                      int can_get_set_state, int n_states,
                                      int n_event_indicators);
 int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks);
+/* A declarative event handler of an FMU component, run by the engine when an event reaches it
+ * (a handle_events hook, when set, runs instead): the FMU starts again at the event time t from
+ * its start values, as ssx_fmu_initialize does (a reset, else a new instance), set up with
+ * `experiment` (its start time becomes t), `starts` written in initialization mode (copied
+ * now; NULL: none), then each Real value reference vr[k] set to scale[k] * output[source[k]]
+ * + offset[k] (the component's outputs at the event, source[k] an output index), then every
+ * input holding a value; the outputs are read after. experiment NULL removes the handler. */
+int ssx_set_restart_handler(ssx_system *sys, int component, const ssx_fmu_experiment *experiment,
+                            const ssx_fmu_values *starts, const unsigned int *vr,
+                            const int *source, const double *scale, const double *offset,
+                            size_t n);
 
 /* Ports. vr is the FMU value reference (ignored for Python components). start is written to
  * the FMU input at initialization when the input is unconnected; NaN (FMU components only)
@@ -351,6 +390,9 @@ int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks);
  * the port's index. */
 int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned int vr);
 int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned int vr, double start);
+/* Before initializing a system again (its plan reused): every input's start value, the
+ * components' inputs in order, n in all; each input holds its start again, as when added. */
+int ssx_reset_inputs(ssx_system *sys, const double *starts, size_t n);
 double *ssx_outputs(ssx_system *sys, int component); /* n_outputs current values */
 double *ssx_inputs(ssx_system *sys, int component);  /* n_inputs current values */
 
@@ -407,6 +449,41 @@ int ssx_set_directional_derivatives(ssx_system *sys, int component, int provided
  * hook) come from fmi2GetDirectionalDerivative, the others from finite differences.
  * SSX_JACOBIAN_FINITE_DIFFERENCES: every column from finite differences. */
 int ssx_set_loop_jacobian(ssx_system *sys, ssx_loop_jacobian jacobian);
+/* Higher-order inputs. Order 0 (the default) holds every input over a communication step.
+ * Order 1 or 2 passes the first (and second) time derivative of each connected Real input to
+ * the FMUs that declare canInterpolateInputs (fmi2SetRealInputDerivatives): interpolated
+ * between a Gauss-Seidel driver's outputs at t and t + h when it steps first, else extrapolated
+ * from t with the driver's output derivatives where it declares maxOutputDerivativeOrder >= 1,
+ * or from the outputs at the last communication points. Inputs of FMUs that cannot
+ * interpolate, and of algebraic loop members, are held. Applies at the next ssx_initialize. */
+enum { SSX_MAX_INPUT_ORDER = 2 };
+int ssx_set_input_order(ssx_system *sys, int order);
+/* What an FMU component's modelDescription declares: canInterpolateInputs and
+ * maxOutputDerivativeOrder; both off until set. */
+int ssx_set_interpolation(ssx_system *sys, int component, int can_interpolate_inputs,
+                          int max_output_derivative_order);
+/* Error-controlled communication steps: the steps inside each interval of the run's grid (dt)
+ * are chosen by the coupling error, the largest over the connections of
+ * |driver output at t + h - input value reached at t + h| / (atol + rtol |output|).
+ * rollback: a step whose error exceeds 1 is taken again, from a restored state, with a smaller
+ * step (every component must save and restore its state); without rollback the step is kept
+ * and only the next ones shrink (non-iterative, as libcosim's ECCO). The next step is the
+ * last times safety * error^(-1/(order + 1)), within [min_step, max_step] (max_step 0: no bound
+ * but the grid) and at most 5 times longer; initial_step <= 0 starts with a tenth of the grid
+ * step times max(rtol, atol)^(1/(order + 1)). Events are still located to tol_time inside the
+ * steps. Applies at the next ssx_initialize. */
+typedef struct {
+    int enabled;
+    int rollback;
+    double rtol;
+    double atol;
+    double min_step;
+    double max_step;
+    double initial_step;
+    double safety;
+} ssx_step_control;
+int ssx_set_step_control(ssx_system *sys, const ssx_step_control *control);
+
 /* Hybrid mode is active whenever an indicator exists. Two firings of one indicator closer than
  * zeno_min_interval are chattering (a Zeno error). zeno_min_interval <= 0: closer than ten times
  * tol_time, or closer than a tenth of the communication step once the intervals stop shrinking
@@ -463,6 +540,9 @@ int ssx_set_run_output_interval(ssx_system *sys, int grid_steps);
 typedef struct ssx_history_block ssx_history_block;
 ssx_history_block *ssx_history_retain(ssx_system *sys);
 void ssx_history_release(ssx_history_block *block);
+/* A component's samples in a retained block (ssx_history_values at the time of the retain):
+ * read later, after the system is gone, as long as the block is held. */
+const double *ssx_history_block_values(const ssx_history_block *block, int component);
 
 size_t ssx_event_count(const ssx_system *sys);
 int ssx_event_get(const ssx_system *sys, size_t index, ssx_event_record *out);

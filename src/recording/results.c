@@ -55,6 +55,14 @@ ssx_history_block *ssx_history_retain(ssx_system *sys)
     return history_block(sys) != NULL ? history_block_retain(history_block(sys)) : NULL;
 }
 
+const double *ssx_history_block_values(const ssx_history_block *block, int component)
+{
+    if (block == NULL || component < 0 || component >= block->n_components) {
+        return NULL;
+    }
+    return block->values[component].data;
+}
+
 void ssx_history_release(ssx_history_block *block)
 {
     history_block_release(block);

@@ -9,6 +9,7 @@
 #include "fmu_binding.h"
 #include "fmu_remote.h"
 #include "indicator.h"
+#include "input_order.h"
 #include "system.h"
 
 /* Steps beyond this would not fit the history's size arithmetic. */
@@ -59,7 +60,7 @@ int ssx_initialize(ssx_system *sys, double t0)
     own_events_clear(sys);
     sys->stepping_hybrid = system_is_hybrid(sys);
     if (check_components(sys) != 0 || coupling_prepare(sys) != 0 ||
-        master_algorithm_choose(sys) != 0) {
+        input_order_prepare(sys) != 0 || master_algorithm_choose(sys) != 0) {
         return -1;
     }
     for (int i = 0; i < sys->n_components; ++i) {

@@ -8,9 +8,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "adaptive.h"
 #include "array.h"
 #include "coupling.h"
 #include "error.h"
+#include "input_order.h"
 #include "parallel_step.h"
 
 void ssx_get_defaults(ssx_defaults *out)
@@ -28,7 +30,12 @@ void ssx_get_defaults(ssx_defaults *out)
                           .zeno_min_interval = 0.0,
                           .output_interval = 1,
                           .model_exchange_tolerance = 1e-5,
-                          .threads = 1};
+                          .threads = 1,
+                          .input_order = 0,
+                          .step_rtol = 1e-4,
+                          .step_atol = 1e-4,
+                          .step_min = 1e-9,
+                          .step_safety = 0.9};
 }
 
 ssx_system *ssx_system_new(const char *name)
@@ -57,6 +64,14 @@ ssx_system *ssx_system_new(const char *name)
                                        .record_internal_steps = 0,
                                        .locator = d.locator,
                                        .zeno_min_interval = d.zeno_min_interval};
+    sys->input_order = d.input_order;
+    sys->step_control = (ssx_step_control){.enabled = 0,
+                                           .rollback = 1,
+                                           .rtol = d.step_rtol,
+                                           .atol = d.step_atol,
+                                           .min_step = d.step_min,
+                                           .max_step = 0.0,
+                                           .safety = d.step_safety};
     sys->termination.component = -1;
     recording_init(&sys->recording, d.output_interval);
     clear_error(sys);
@@ -68,6 +83,8 @@ void ssx_system_free(ssx_system *sys)
     if (sys == NULL) {
         return;
     }
+    input_order_free(sys); /* before the components whose inputs it moves */
+    adaptive_free(sys);
     for (int i = 0; i < sys->n_components; ++i) {
         component_free(sys->components[i]);
     }
@@ -253,6 +270,41 @@ int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned 
     c->input_driver[c->n_inputs] = -1;
     structure_changed(sys);
     return c->n_inputs++;
+}
+
+int ssx_reset_inputs(ssx_system *sys, const double *starts, size_t n)
+{
+    size_t total = 0;
+    for (int i = 0; i < sys->n_components; ++i) {
+        total += (size_t)sys->components[i]->n_inputs;
+    }
+    if (total != n || (n > 0 && starts == NULL)) {
+        return fail_config(sys, -1, -1, NAN,
+                           "system '%s': %zu input start values given for %zu inputs", sys->name,
+                           n, total);
+    }
+    /* checked whole before any is written: a refusal leaves every input as it was */
+    const double *start = starts;
+    for (int i = 0; i < sys->n_components; ++i) {
+        ssx_component *c = sys->components[i];
+        for (int k = 0; k < c->n_inputs; ++k, ++start) {
+            if (isinf(*start) || (isnan(*start) && c->fmu == NULL)) {
+                return fail_config(sys, i, -1, NAN,
+                                   "component '%s': the start value of input %d must be finite "
+                                   "(NaN, the FMU's own value, exists for FMU components only)",
+                                   c->name, k);
+            }
+        }
+    }
+    start = starts;
+    for (int i = 0; i < sys->n_components; ++i) {
+        ssx_component *c = sys->components[i];
+        for (int k = 0; k < c->n_inputs; ++k, ++start) {
+            c->inputs[k] = *start;
+            c->input_starts[k] = *start;
+        }
+    }
+    return 0;
 }
 
 double *ssx_outputs(ssx_system *sys, int component)
@@ -575,5 +627,81 @@ int ssx_set_run_output_interval(ssx_system *sys, int grid_steps)
                            sys->name, grid_steps);
     }
     sys->recording.run_output_interval = grid_steps;
+    return 0;
+}
+
+int system_snapshot(ssx_system *sys, int slot)
+{
+    for (int i = 0; i < sys->n_components; ++i) {
+        if (component_snapshot(sys, sys->components[i], slot) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int system_restore(ssx_system *sys, int slot, double t)
+{
+    for (int i = 0; i < sys->n_components; ++i) {
+        if (component_restore(sys, sys->components[i], slot, t) != 0) {
+            return -1;
+        }
+    }
+    return record_state_restored(sys, t);
+}
+
+int ssx_set_input_order(ssx_system *sys, int order)
+{
+    if (order < 0 || order > SSX_MAX_INPUT_ORDER) {
+        return fail_config(sys, -1, -1, NAN,
+                           "system '%s': the input order is 0, 1 or 2, not %d", sys->name, order);
+    }
+    sys->input_order = order;
+    return 0;
+}
+
+int ssx_set_interpolation(ssx_system *sys, int component, int can_interpolate_inputs,
+                          int max_output_derivative_order)
+{
+    ssx_component *c = system_component(sys, component);
+    if (c == NULL) {
+        return -1;
+    }
+    if (max_output_derivative_order < 0) {
+        return fail_config(sys, component, -1, NAN,
+                           "component '%s': maxOutputDerivativeOrder %d is negative", c->name,
+                           max_output_derivative_order);
+    }
+    if (c->fmu == NULL && (can_interpolate_inputs || max_output_derivative_order > 0)) {
+        return fail_config(sys, component, -1, NAN,
+                           "component '%s' is not an FMU component: it neither interpolates "
+                           "inputs nor has output derivatives",
+                           c->name);
+    }
+    c->can_interpolate_inputs = can_interpolate_inputs != 0;
+    c->max_output_derivative_order = max_output_derivative_order;
+    return 0;
+}
+
+int ssx_set_step_control(ssx_system *sys, const ssx_step_control *control)
+{
+    if (control == NULL) {
+        return fail_config(sys, -1, -1, NAN, "step control: no options given");
+    }
+    ssx_step_control sc = *control;
+    if (sc.enabled &&
+        !(sc.rtol >= 0.0 && sc.atol >= 0.0 && sc.rtol + sc.atol > 0.0 && isfinite(sc.rtol) &&
+          isfinite(sc.atol) && sc.min_step > 0.0 && isfinite(sc.min_step) &&
+          (sc.max_step == 0.0 || sc.max_step >= sc.min_step) && isfinite(sc.max_step) &&
+          isfinite(sc.initial_step) && sc.safety > 0.0 &&
+          sc.safety <= 1.0)) {
+        return fail_config(sys, -1, -1, NAN,
+                           "system '%s': step control needs rtol >= 0 and atol >= 0 (not both "
+                           "0), 0 < min_step <= max_step (finite; 0: no maximum) and 0 < safety <= "
+                           "1; got "
+                           "rtol=%g atol=%g min_step=%g max_step=%g safety=%g",
+                           sys->name, sc.rtol, sc.atol, sc.min_step, sc.max_step, sc.safety);
+    }
+    sys->step_control = sc;
     return 0;
 }

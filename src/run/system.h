@@ -77,6 +77,10 @@ struct ssx_system {
     ssx_coupling coupling;
     int threads;                    /* ssx_set_threads */
     struct parallel_plan *parallel; /* built at ssx_initialize when threads > 1 */
+    int input_order;                /* ssx_set_input_order */
+    ssx_step_control step_control;  /* ssx_set_step_control */
+    struct input_motion *input_motion;      /* input_order.h, at ssx_initialize */
+    struct adaptive_workspace *adaptive;    /* adaptive.h, at ssx_initialize */
     /* chosen at ssx_initialize */
     const ssx_master_algorithm *algorithm;
     int (*coupled_step)(ssx_system *sys, double t, double h); /* the coupling's step */
@@ -102,5 +106,8 @@ ssx_component *system_component(ssx_system *sys, int index); /* NULL with the er
 int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
                          const ssx_component_ops *ops);
 int system_is_hybrid(const ssx_system *sys);
+/* Every component's snapshot into slot, or back from it at time t (observers are told). */
+int system_snapshot(ssx_system *sys, int slot);
+int system_restore(ssx_system *sys, int slot, double t);
 
 #endif

@@ -1,6 +1,7 @@
 /* The table of master algorithms. */
 #include "algorithm.h"
 
+#include "adaptive.h"
 #include "coupling.h"
 #include "hybrid.h"
 #include "system.h"
@@ -16,16 +17,19 @@ static int plain_step(ssx_system *sys, double t, double t_next)
     return record_grid_point(sys, t_next);
 }
 
-enum { PLAIN, HYBRID };
+enum { PLAIN, HYBRID, ADAPTIVE };
 
 static const ssx_master_algorithm ALGORITHMS[] = {
     [PLAIN] = {NULL, plain_step},
     [HYBRID] = {hybrid_prepare, hybrid_step},
+    /* events inside adaptive steps too */
+    [ADAPTIVE] = {adaptive_prepare, adaptive_step},
 };
 
 int master_algorithm_choose(ssx_system *sys)
 {
-    const ssx_master_algorithm *algorithm = &ALGORITHMS[system_is_hybrid(sys) ? HYBRID : PLAIN];
+    int chosen = sys->step_control.enabled ? ADAPTIVE : system_is_hybrid(sys) ? HYBRID : PLAIN;
+    const ssx_master_algorithm *algorithm = &ALGORITHMS[chosen];
     sys->algorithm = algorithm;
     return algorithm->prepare != NULL ? algorithm->prepare(sys) : 0;
 }

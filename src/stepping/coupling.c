@@ -6,6 +6,7 @@
 
 #include "algebraic_loop.h"
 #include "error.h"
+#include "input_order.h"
 #include "parallel_step.h"
 
 typedef int (*coupled_step)(ssx_system *sys, double t, double h);
@@ -28,9 +29,11 @@ int coupling_known(int coupling)
 
 static int prepare_schedule(ssx_system *sys);
 
+static int prepare_links(ssx_system *sys);
+
 int coupling_prepare(ssx_system *sys)
 {
-    if (prepare_schedule(sys) != 0 || parallel_prepare(sys) != 0) {
+    if (prepare_schedule(sys) != 0 || prepare_links(sys) != 0 || parallel_prepare(sys) != 0) {
         return -1;
     }
     sys->coupled_step = COUPLED_STEPS[sys->coupling][sys->parallel != NULL];
@@ -69,16 +72,41 @@ static int prepare_schedule(ssx_system *sys)
     return 0;
 }
 
-void coupling_propagate_inputs(ssx_system *sys, const ssx_component *c)
+/* Each component's driven inputs as one array of links straight to the driving outputs: the
+ * coupling loop reads no connection table and skips the undriven inputs. */
+static int prepare_links(ssx_system *sys)
 {
-    for (int i = 0; i < c->n_inputs; ++i) {
-        int driver = c->input_driver[i];
-        if (driver >= 0) {
-            const ssx_connection *k = &sys->connections[driver];
-            c->inputs[i] = k->scale * sys->components[k->src_component]->outputs[k->src_output] +
-                           k->offset;
+    for (int i = 0; i < sys->n_components; ++i) {
+        ssx_component *c = sys->components[i];
+        free(c->links);
+        c->links = malloc(((size_t)c->n_inputs + 1) * sizeof *c->links);
+        c->n_links = 0;
+        if (c->links == NULL) {
+            return fail(sys, i, -1, sys->time, "out of memory preparing the inputs of '%s'",
+                        c->name);
+        }
+        for (int k = 0; k < c->n_inputs; ++k) {
+            int driver = c->input_driver[k];
+            if (driver >= 0) {
+                const ssx_connection *link = &sys->connections[driver];
+                c->links[c->n_links++] = (ssx_input_link){
+                    .input = k,
+                    .source = &sys->components[link->src_component]->outputs[link->src_output],
+                    .scale = link->scale,
+                    .offset = link->offset};
+            }
         }
     }
+    return 0;
+}
+
+void coupling_propagate_inputs(ssx_system *sys, ssx_component *c)
+{
+    const ssx_input_link *links = c->links;
+    for (int i = 0; i < c->n_links; ++i) {
+        c->inputs[links[i].input] = links[i].scale * *links[i].source + links[i].offset;
+    }
+    input_order_propagate(sys, c);
 }
 
 static ssx_component *member(ssx_system *sys, const ssx_group *g, int m)
@@ -173,6 +201,7 @@ static int step_jacobi(ssx_system *sys, double t, double h)
 
 int coupling_settle(ssx_system *sys, double t)
 {
+    input_order_forget(sys); /* the outputs may jump here */
     for (int gi = 0; gi < sys->n_groups; ++gi) {
         const ssx_group *g = &sys->groups[gi];
         for (int m = 0; m < g->size; ++m) {

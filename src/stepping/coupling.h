@@ -11,7 +11,7 @@ int coupling_known(int coupling);
  * was set. */
 int coupling_prepare(ssx_system *sys);
 /* dst input = scale * src output + offset for every driven input of component c. */
-void coupling_propagate_inputs(ssx_system *sys, const ssx_component *c);
+void coupling_propagate_inputs(ssx_system *sys, ssx_component *c);
 /* Writes component c's inputs to it and steps it from t to t + h (counted). */
 int coupling_step_member(ssx_system *sys, ssx_component *c, double t, double h);
 /* Steps every component from t to t + h with the coupling chosen by coupling_prepare. */

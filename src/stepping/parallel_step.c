@@ -12,11 +12,16 @@
 #include "error.h"
 #include "worker_pool.h"
 
-/* Handing a batch to the workers costs a wake-up and moving its FMUs' data between cores: a few
- * microseconds on an idle machine, tens on a busy one. A batch whose FMUs together step in less
- * time than this steps on the calling thread (benchmarks/parallel_stepping.py: 100 gain FMUs
- * step in about 10 us and do not gain from a second thread). */
+/* Handing work to a thread costs a wake-up and moving its FMUs' data between cores: a few
+ * microseconds on an idle machine, tens on a busy one. So each thread a batch is shared with
+ * must get at least this much of its measured work: a batch of less steps on the calling
+ * thread alone, a larger one on as many threads as it has such shares (benchmarks/
+ * parallel_stepping.py: 100 gain FMUs step in about 10 us and do not gain from a second
+ * thread). */
 #define SHARED_WORK_MIN_S 20e-6
+/* Slices per thread sharing a batch: each thread steps contiguous components (one claim per
+ * slice, not per FMU), with a few slices each to even out FMUs of unequal cost. */
+enum { SLICES_PER_THREAD = 2 };
 
 /* What one thread left behind after its tasks of a batch. */
 typedef struct {
@@ -35,6 +40,7 @@ struct parallel_plan {
     ssx_component **tasks;  /* the current batch's components that step on the pool */
     int *owner;             /* the thread that stepped each task */
     int n_tasks;
+    int n_slices;           /* the batch's tasks in this many contiguous slices */
     thread_report *reports; /* one per thread, 0 the calling thread's */
     int running;            /* a batch is being stepped by the pool */
     double task_seconds;    /* recent cost of one pool task (a moving average), < 0 unknown */
@@ -238,18 +244,32 @@ static void note_task_cost(parallel_plan *p, double seconds_per_task)
 
 static void step_one(void *context, int k, int thread);
 
-/* The calling thread times its own tasks: what one task costs, without the waiting. */
-static void step_task(void *context, int k, int thread)
+/* One slice of the batch's tasks, contiguous. The calling thread times its own slices: what
+ * one task costs, without the waiting. */
+static void step_slice(void *context, int slice, int thread)
 {
     parallel_plan *p = context;
-    if (thread != 0) {
+    int first = (int)((long)slice * p->n_tasks / p->n_slices);
+    int end = (int)((long)(slice + 1) * p->n_tasks / p->n_slices);
+    double start = thread == 0 ? seconds_now() : 0.0;
+    for (int k = first; k < end; ++k) {
         step_one(context, k, thread);
-        return;
     }
-    double start = seconds_now();
-    step_one(context, k, thread);
-    p->caller_seconds += seconds_now() - start;
-    p->caller_tasks++;
+    if (thread == 0) {
+        p->caller_seconds += seconds_now() - start;
+        p->caller_tasks += end - first;
+    }
+}
+
+/* How many threads the batch pays off on: one per SHARED_WORK_MIN_S of its measured work, at
+ * least one, at most the system's (unknown cost: all, to measure it). */
+static int threads_paying_off(const parallel_plan *p)
+{
+    if (p->task_seconds < 0.0) {
+        return p->threads;
+    }
+    double shares = p->task_seconds * p->n_tasks / SHARED_WORK_MIN_S;
+    return shares >= p->threads ? p->threads : shares < 1.0 ? 1 : (int)shares;
 }
 
 static void step_one(void *context, int k, int thread)
@@ -318,9 +338,12 @@ int parallel_step(ssx_system *sys, const int *members, int n, double t, double h
             }
         }
     }
-    int shared = p != NULL && p->n_tasks >= 2 &&
-                 (p->task_seconds < 0.0 || p->task_seconds * p->n_tasks >= SHARED_WORK_MIN_S);
-    if (!shared) {
+    int sharing = 1;
+    if (p != NULL && p->n_tasks >= 2) {
+        sharing = threads_paying_off(p);
+        sharing = sharing < p->n_tasks ? sharing : p->n_tasks;
+    }
+    if (sharing < 2) {
         int timed = p != NULL && p->n_tasks >= 2; /* a batch that might be shared next time */
         double start = timed ? seconds_now() : 0.0;
         for (int m = 0; m < n; ++m) {
@@ -346,7 +369,9 @@ int parallel_step(ssx_system *sys, const int *members, int n, double t, double h
     p->caller_seconds = 0.0;
     p->caller_tasks = 0;
     p->running = 1;
-    worker_pool_run(p->pool, step_task, p, p->n_tasks);
+    p->n_slices = sharing * SLICES_PER_THREAD < p->n_tasks ? sharing * SLICES_PER_THREAD
+                                                            : p->n_tasks;
+    worker_pool_run(p->pool, step_slice, p, p->n_slices);
     p->running = 0;
     note_task_cost(p, p->caller_seconds / p->caller_tasks);
     return replay(sys, members, n, t, h);

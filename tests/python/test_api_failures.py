@@ -79,7 +79,23 @@ def test_state_of_a_replaced_instance_is_refused():
     pendulum = FMUComponent("P", fmus.path("pendulum_euler"))
     pendulum.initialize(0.0)
     state = pendulum.instance.getFMUstate()
+    pendulum.instance.freeInstance()
     pendulum.reinitialize(0.0, theta0=0.1)
     with pytest.raises(FMUError, match="freed or replaced"):
         pendulum.instance.setFMUstate(state)
     assert pendulum.get_outputs()["theta"].magnitude == pytest.approx(0.1)
+
+
+def test_state_survives_the_reset_of_reinitialize():
+    """reinitialize resets the live instance (fmi2Reset): FMI keeps its FMU states valid."""
+    pendulum = FMUComponent("P", fmus.path("pendulum_euler"))
+    pendulum.set_parameters(theta0=0.5)
+    pendulum.initialize(0.0)
+    state = pendulum.instance.getFMUstate()
+    pendulum.reinitialize(0.0, theta0=0.1)
+    assert pendulum.instance.counters()["instantiate"] == 1
+    assert pendulum.get_outputs()["theta"].magnitude == 0.1
+    pendulum.instance.setFMUstate(state)
+    theta = pendulum.value_reference("theta")
+    assert pendulum.instance.getReal([theta])[0] == 0.5
+    pendulum.instance.freeFMUstate(state)

@@ -1,8 +1,13 @@
-"""How an ensemble's members are cut into Dask tasks (no cluster needed)."""
+"""How an ensemble's members are cut into Dask tasks, and how a task's results travel as one
+block (no cluster needed)."""
 
 from __future__ import annotations
 
-from syssimx.ensemble import MemberTask
+import numpy as np
+import pendulum_wall
+from syssimx.ensemble import MemberResult, MemberTask
+from syssimx.ensemble.block import pack, run_block
+from syssimx.ensemble.member import run_member
 from syssimx.ensemble.runner import chunk_size, split
 
 
@@ -26,3 +31,36 @@ def test_only_a_chunks_first_member_announces_its_start_unless_the_watchdog_time
         [["topic", None, None, None]] * 2
     watched = split(tasks(8), 4, 2, "topic", every_member=True)
     assert all(task.topic == "topic" for chunk in watched for task in chunk)
+
+
+def _seed() -> object:
+    return pendulum_wall.build("euler")[0]
+
+
+def test_a_block_gives_back_each_members_result_to_the_bit() -> None:
+    """Three seed members in one block, one of them failing before it recorded anything:
+    each MemberResult cut from the block equals the member run alone."""
+    members = [MemberTask(0, {"P.theta0": 0.3}, 0.0, 1.0, 0.05, ensemble="block"),
+               MemberTask(1, {"P.nothing": 1.0}, 0.0, 1.0, 0.05, ensemble="block"),
+               MemberTask(2, {"P.theta0": 0.5}, 0.0, 1.0, 0.05, ensemble="block")]
+    block = run_block(_seed, members)
+    assert len(block) == 3 and len(block.others) == 1  # the failed member travels alone
+    got = {r.index: r for r in block.results({t.index: t.parameters for t in members})}
+    for task in members:
+        alone: MemberResult = run_member(_seed, task)
+        mine = got[task.index]
+        assert (mine.status, mine.error_type, mine.events, mine.statistics,
+                mine.termination, mine.parameters) == \
+            (alone.status, alone.error_type, alone.events, alone.statistics,
+             alone.termination, task.parameters)
+        assert np.array_equal(mine.time, alone.time) and np.array_equal(mine.micro, alone.micro)
+        assert mine.outputs.keys() == alone.outputs.keys()
+        for name, series in alone.outputs.items():
+            assert np.array_equal(mine.outputs[name], series)
+    assert got[1].status == "failed" and "nothing" in got[1].error
+    assert got[0].events[0][0] != got[2].events[0][0]  # the block kept them apart
+
+
+def test_an_empty_block() -> None:
+    block = pack([])
+    assert len(block) == 0 and block.results({}) == []

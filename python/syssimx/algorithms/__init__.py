@@ -1,5 +1,6 @@
 """The master algorithms under SysSimX's namespace (`syssimx.algorithms`, also
-`syssimx.system.algorithms`): Jacobi, Gauss-Seidel, IJCSA and the hybrid algorithm."""
+`syssimx.system.algorithms`): Jacobi, Gauss-Seidel, IJCSA and the hybrid algorithm, and the
+step control a coupling may take."""
 
 from ..system.algorithms import (
     Algorithm,
@@ -7,7 +8,8 @@ from ..system.algorithms import (
     HybridAlgorithm,
     IJCSAAlgorithm,
     JacobiAlgorithm,
+    StepControl,
 )
 
 __all__ = ["Algorithm", "GaussSeidelAlgorithm", "HybridAlgorithm", "IJCSAAlgorithm",
-           "JacobiAlgorithm"]
+           "JacobiAlgorithm", "StepControl"]

@@ -39,9 +39,11 @@ class HistoryArrays:
         need it (a finalizer must not look up a library function)."""
         engine = lib()
         self.length = int(engine.ssx_history_length(sys))
-        self._sys = sys
         raw = engine.ssx_history_retain(sys) if self.length > 0 else ffi.NULL
         self._block = ffi.gc(raw, release) if raw != ffi.NULL else None
+        # the block's buffers, read now: the arrays need nothing of the system afterwards
+        self._time = engine.ssx_history_time(sys)
+        self._micro = engine.ssx_history_micro(sys)
 
     def _view(self, pointer: Any, shape: tuple[int, ...], typestr: str) -> np.ndarray:
         if self._block is None or 0 in shape:
@@ -49,12 +51,14 @@ class HistoryArrays:
         return np.asarray(_BufferOwner(self._block, _address(pointer), shape, typestr))
 
     def time(self) -> np.ndarray:
-        return self._view(lib().ssx_history_time(self._sys), (self.length,), "<f8")
+        return self._view(self._time, (self.length,), "<f8")
 
     def micro(self) -> np.ndarray:
-        return self._view(lib().ssx_history_micro(self._sys), (self.length,), "<i4")
+        return self._view(self._micro, (self.length,), "<i4")
 
     def values(self, component: int, columns: int) -> np.ndarray:
-        """The component's samples x outputs matrix."""
-        return self._view(lib().ssx_history_values(self._sys, component), (self.length, columns),
-                          "<f8")
+        """The component's samples x outputs matrix (also after the system is gone)."""
+        if self._block is None:
+            return np.empty((self.length, columns))
+        return self._view(lib().ssx_history_block_values(self._block, component),
+                          (self.length, columns), "<f8")

@@ -74,8 +74,19 @@ class CallbackFailure:
     error: BaseException
 
 
+def bind(component: Component, binding: Binding | None) -> None:
+    """Set where a component lives; a plan the component leaves remembers it (its System then
+    refuses to run before initializing again)."""
+    old = component._binding
+    if old is not None and (binding is None or old.plan is not binding.plan) \
+            and old.plan.left is None:
+        old.plan.left = component.name
+    component._binding = binding
+
+
 class EnginePlan:
-    """The engine system of one System; rebuilt by every System.initialize."""
+    """The engine system of one System; rebuilt by System.initialize when the System's
+    structure changed, else started again (`restart`)."""
 
     def __init__(self, name: str, components: Mapping[str, Component]) -> None:
         raw = lib().ssx_system_new(name.encode())
@@ -102,9 +113,33 @@ class EnginePlan:
         self.indicators: list[tuple[str, str]] = []  # engine index -> (component, event)
         self.indicator_index: dict[tuple[str, str], int] = {}
         self.failure: CallbackFailure | None = None
+        # the first component that was bound elsewhere since (initialized in another System)
+        self.left: str | None = None
+        # the System's time after its last run; components read it (their `t`) when they have
+        # not set a time of their own since that run (see CoSimComponent.t)
+        self.time = 0.0
+        self.runs = 0
+        # components that may switch models (MultiComponent): what a result asks for switches
+        self.switching = [n for n, c in components.items() if hasattr(c, "switch_events")]
+        self.options: tuple[Any, ...] | None = None  # the algorithm's options the engine holds
+        self._recorded: dict[str, RecordedComponent] | None = None
         self._do_step = lib().ssx_component_do_step
         for component in components.values():
             component._add_to_plan(self)
+
+    def restart(self) -> None:
+        """Before the System initializes again on this plan: every input holds its start value
+        (read now, as when the plan was built), no failure is pending."""
+        starts = [c.input_start(port) for name, c in self.components.items()
+                  for port in self.inputs[name]]
+        self.check(lib().ssx_reset_inputs(self.sys, ffi.new("double[]", starts), len(starts)),
+                   f"{self.name}: input start values")
+        self.failure = None
+
+    def ran(self, t: float) -> None:
+        """A run ended at t: every component's time is t until it sets its own."""
+        self.time = t
+        self.runs += 1
 
     # ------------------------------------------------------------------ callbacks
     def callback(self, signature: str, body: Callable[..., int], error: int,
@@ -161,12 +196,14 @@ class EnginePlan:
                           provides_directional_derivative: bool,
                           value_reference: Callable[[str], int], hooks: set[str],
                           model_exchange: tuple[int, int] | None = None, *,
-                          calling_thread_only: bool = False) -> None:
+                          calling_thread_only: bool = False,
+                          interpolation: tuple[bool, int] = (False, 0)) -> None:
         """An FMU the engine steps itself; `hooks` lists what the component's Python
         overrides (none for a plain FMUComponent). `model_exchange`: the engine integrates it,
         with (continuous states, event indicators), at the tolerance the instance is set up
-        with. `calling_thread_only` keeps its steps on the thread that runs the system. The
-        system borrows the loaded FMU."""
+        with. `calling_thread_only` keeps its steps on the thread that runs the system.
+        `interpolation`: (canInterpolateInputs, maxOutputDerivativeOrder) as the engine may use
+        them. The system borrows the loaded FMU."""
         name, index = component.name, self.index[component.name]
         self._borrowed_fmus.append(fmu)
         if model_exchange is None:
@@ -179,6 +216,8 @@ class EnginePlan:
         self.check(lib().ssx_set_directional_derivatives(
             self.sys, index, int(provides_directional_derivative)),
             f"{name}: directional derivatives")
+        self.check(lib().ssx_set_interpolation(self.sys, index, int(interpolation[0]),
+                                               interpolation[1]), f"{name}: interpolation")
         if calling_thread_only:
             self.check(lib().ssx_set_calling_thread_only(self.sys, index, 1),
                        f"{name}: calling thread only")
@@ -199,10 +238,24 @@ class EnginePlan:
 
     def _bind(self, component: Component, hooks: set[str], is_fmu: bool) -> None:
         index = self.index[component.name]
-        component._binding = Binding(self, index)
+        bind(component, Binding(self, index))
         struct = _HookBuilder(self, component, is_fmu).build(hooks)
         if struct is not None:  # the engine copies the struct; the callbacks are kept above
             self.check(lib().ssx_set_hooks(self.sys, index, struct), f"{component.name}: hooks")
+
+    def set_restart(self, component: Component, tolerance: float | None, starts: Any,
+                    targets: list[int], sources: list[int], gains: list[float]) -> None:
+        """The component's events are handled by the engine (ssx_set_restart_handler): a
+        restart with `starts` (an ssx_fmu_values, copied by the engine) and each Real target =
+        gain * its source output."""
+        experiment = ffi.new("ssx_fmu_experiment *", {
+            "tolerance_defined": tolerance is not None, "tolerance": tolerance or 0.0})
+        n = len(targets)
+        self.check(lib().ssx_set_restart_handler(
+            self.sys, self.index[component.name], experiment, starts,
+            ffi.new("unsigned int[]", targets), ffi.new("int[]", sources),
+            ffi.new("double[]", gains), ffi.new("double[]", n), n),
+            f"{component.name}: event handler")
 
     def add_table(self, component: Component, time: np.ndarray,
                   columns: Mapping[str, np.ndarray], hold: set[str]) -> None:
@@ -332,25 +385,59 @@ class EnginePlan:
     def component_history(self, component: Component, arrays: HistoryArrays | None = None
                           ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
         """(time, {output: values}) of one component, without a copy (Real outputs)."""
-        arrays = arrays if arrays is not None else self.history()
-        t = arrays.time()
-        names = self.outputs[component.name]
-        matrix = arrays.values(self.index[component.name], len(names))
-        columns = {}
-        for j, name in enumerate(names):
-            kind = component.output_specs[name].type
-            column = matrix[:, j]
-            columns[name] = (column.astype(np.int64) if kind == PortType.INT
-                             else column != 0.0 if kind == PortType.BOOL else column)
-        return t, columns
+        return recorded_columns(self.recorded()[component.name],
+                                arrays if arrays is not None else self.history())
+
+    def recorded(self) -> dict[str, RecordedComponent]:
+        """What each component records, found once per plan: results read it without the
+        plan or its components (a result outlives both)."""
+        if self._recorded is None:
+            self._recorded = {}
+            for name, c in self.components.items():
+                outputs = tuple(self.outputs[name])
+                events = tuple(c.event_indicators)
+                self._recorded[name] = RecordedComponent(
+                    self.index[name], outputs, tuple(c.output_specs[p].type for p in outputs),
+                    events, {p: c.output_specs[p].unit for p in (*outputs, *events)})
+        return self._recorded
+
+
+@dataclass(frozen=True)
+class RecordedComponent:
+    """Where a component's samples are and what they are: its engine index, its outputs with
+    their types, its event columns, and the unit of each."""
+
+    index: int
+    outputs: tuple[str, ...]
+    types: tuple[PortType, ...]
+    events: tuple[str, ...]
+    units: dict[str, str | None]
+
+
+def recorded_columns(recorded: RecordedComponent, arrays: HistoryArrays
+                     ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """(time, {output: values}) of one component in `arrays`, without a copy (Real outputs;
+    Integer and Boolean ones converted)."""
+    matrix = arrays.values(recorded.index, len(recorded.outputs))
+    columns = {}
+    for j, (name, kind) in enumerate(zip(recorded.outputs, recorded.types, strict=True)):
+        column = matrix[:, j]
+        columns[name] = (column.astype(np.int64) if kind == PortType.INT
+                         else column != 0.0 if kind == PortType.BOOL else column)
+    return arrays.time(), columns
 
 
 def typed(kind: PortType, value: float) -> float | int | bool:
-    if kind == PortType.INT:
-        return round(value)
-    if kind == PortType.BOOL:
-        return value != 0.0
-    return float(value)
+    return _FROM_ENGINE[kind](value)
+
+
+def _is_true(value: float) -> bool:
+    return value != 0.0
+
+
+# an engine value (a double) as the value of a port of each type
+_FROM_ENGINE: dict[PortType, Callable[[float], float | int | bool]] = {
+    PortType.REAL: float, PortType.INT: round, PortType.BOOL: _is_true}
 
 
 class _HookBuilder:
@@ -362,6 +449,15 @@ class _HookBuilder:
         self.is_fmu = is_fmu  # the engine owns the ports and steps the FMU itself
         self.snapshots: dict[int, Any] = {}
         self.where: str | None = None  # a more precise place, set while a hook runs
+        # what a Python component's step moves, found once: the engine's port arrays (they
+        # stay where they are once the component's ports are added) and, in engine order, the
+        # port names with the conversion of an engine value to the port's type
+        index = plan.index[component.name]
+        self.engine_inputs = lib().ssx_inputs(plan.sys, index)
+        self.engine_outputs = lib().ssx_outputs(plan.sys, index)
+        self.input_names = [(name, _FROM_ENGINE[component.input_specs[name].type])
+                            for name in plan.inputs[component.name]]
+        self.output_names = list(enumerate(plan.outputs[component.name]))
 
     def _guard(self, where: str, body: Callable[..., None], time_arg: int | None
                ) -> Callable[..., int]:
@@ -402,22 +498,46 @@ class _HookBuilder:
             if field not in hooks:
                 continue
             signature, where, body, time_arg = callbacks[field]
+            guarded = self._python_step() if field == "do_step" and not self.is_fmu \
+                else self._guard(where, body, time_arg)
             callback = plan.callback(
-                signature, self._guard(where, body, time_arg), -1,
+                signature, guarded, -1,
                 lambda exc, where=where: plan.fail(c, self.where or where,
                                                    float(engine_time(plan.sys)), exc))
             setattr(struct[0], field, callback)
         return struct
 
     def _do_step(self, t: float, dt: float) -> None:
+        """An FMU component's overridden step (the engine moves its ports)."""
         c = self.component
-        if not self.is_fmu:
-            self.plan.pull_inputs(c)
         c._do_step_internal(t, dt)
         c.t = t + dt
-        c._update_output_states(c.t)
-        if not self.is_fmu:
-            self.plan.push_outputs(c)
+        c._update_output_states(t + dt)
+
+    def _python_step(self) -> Callable[[Any, float, float], int]:
+        """The do_step callback of a Python component, the one hook that runs every step:
+        engine inputs into its input ports, its step, its output ports into the engine, with
+        what it needs looked up once."""
+        plan, c = self.plan, self.component
+        inputs, outputs = self.engine_inputs, self.engine_outputs
+        input_names, output_names = list(enumerate(self.input_names)), self.output_names
+
+        def step(_user: Any, t: float, dt: float) -> int:
+            try:
+                ports = c.inputs
+                for i, (name, convert) in input_names:
+                    ports[name]._raw = convert(inputs[i])
+                c._do_step_internal(t, dt)
+                c.t = t + dt
+                c._update_output_states(t + dt)
+                ports = c.outputs
+                for i, name in output_names:
+                    outputs[i] = ports[name].raw()
+                return 0
+            except BaseException as exc:  # kept and re-raised by System.run
+                plan.fail(c, "do_step", t, exc)
+                return -1
+        return step
 
     def _evaluate_outputs(self, t: float) -> None:
         c = self.component

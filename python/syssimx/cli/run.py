@@ -26,6 +26,12 @@ def add_command(commands: Any) -> argparse.ArgumentParser:
     run.add_argument("--algorithm", choices=ALGORITHM_NAMES, default=None,
                      help="the master algorithm (default: the description's; for an SSP "
                           "gauss_seidel)")
+    run.add_argument("--input-order", type=int, default=None, choices=(0, 1, 2),
+                     help="hold inputs over a step (0) or pass their first (1) or second (2) "
+                          "derivatives to FMUs that interpolate inputs")
+    run.add_argument("--step-tolerance", type=float, default=None, metavar="TOL",
+                     help="choose the communication steps by the coupling error, with rtol = "
+                          "atol = TOL (rollback); the grid dt stays the output grid")
     run.add_argument("--threads", type=int, default=None, metavar="N",
                      help="step the FMU components on N threads (default: the description's, "
                           "else 1)")
@@ -99,15 +105,27 @@ def _event_summary(events: Any) -> str:
     return f"Events: {len(events)} ({first} {shown}{more})"
 
 
+def _algorithm_options_given(args: argparse.Namespace) -> bool:
+    return any(getattr(args, name) is not None
+               for name in ("algorithm", "threads", "input_order", "step_tolerance"))
+
+
 def _choose_algorithm(system: Any, args: argparse.Namespace) -> None:
-    """--algorithm replaces the description's algorithm; --threads sets its threads."""
-    if args.algorithm is None and args.threads is None:
+    """--algorithm replaces the description's algorithm; --threads, --input-order and
+    --step-tolerance set its coupling's."""
+    if not _algorithm_options_given(args):
         return
     algorithm = algorithm_class(args.algorithm)() if args.algorithm is not None \
         else system.algorithm
+    coupling = getattr(algorithm, "coupling", algorithm)  # a hybrid algorithm's coupling
     if args.threads is not None:
-        coupling = getattr(algorithm, "coupling", algorithm)  # a hybrid algorithm's coupling
         coupling.threads = args.threads
+    if args.input_order is not None:
+        coupling.input_order = args.input_order
+    if args.step_tolerance is not None:
+        from ..system.algorithms import StepControl
+
+        coupling.step_control = StepControl(rtol=args.step_tolerance, atol=args.step_tolerance)
     system.set_algorithm(algorithm)
 
 

@@ -13,6 +13,7 @@ _MODULES = {
     "ModeSwitchEvent": ".multi",
     "MultiComponent": ".multi",
     "OpenSimComponent": ".optional",
+    "Reinitialize": ".restart",
     "SwitchRegions": ".switch_regions",
     "TableSource": ".table_source",
 }

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..bridge.plan import bind
 from ..bridge.standalone import StandaloneSystem, standalone_system
 from ..core.events import EventIndicator
 from ..core.port import Port, PortSpec, PortType
@@ -67,13 +68,28 @@ class CoSimComponent:
         self.event_handlers: dict[str, list[EventHandler]] = {}
         # event name -> the EVENT inputs it arrives on (set by the System from its connections)
         self._event_routes: dict[str, set[str]] = {}
-        self.t: float = 0.0
         self._binding: Binding | None = None
+        self.t = 0.0
         self._private_system: StandaloneSystem | None = None
         self._parameter_defaults: dict[str, Any] | None = None  # see get_default_parameters
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.name!r})"
+
+    @property
+    def t(self) -> float:
+        """The component's time: what it set last, or where its System's last run ended when
+        that came later (a run does not touch every component)."""
+        binding = self._binding
+        if binding is not None and binding.plan.runs > self._t_runs:
+            return binding.plan.time
+        return self._t
+
+    @t.setter
+    def t(self, value: float) -> None:
+        self._t = value
+        binding = self._binding
+        self._t_runs = binding.plan.runs if binding is not None else 0
 
     # ---------------------------------------------------------------- ports
     def _make_port(self, spec: PortSpec) -> Port:
@@ -428,7 +444,7 @@ class CoSimComponent:
         """Forget the run: a later initialize starts from scratch."""
         self.t = 0.0
         self._private_system = None
-        self._binding = None
+        bind(self, None)
 
     def free(self) -> None:
         """Release what the component holds (nothing for a pure Python component)."""

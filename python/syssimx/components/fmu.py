@@ -49,10 +49,11 @@ from ..fmu.info import (
     read_fmu,
     variable_unit,
 )
-from ..fmu.instance import FMUInstance
+from ..fmu.instance import FMUInstance, start_values
 from ..fmu.loading import load
 from ..units import is_quantity, magnitude_in
-from .base import CoSimComponent
+from .base import CoSimComponent, _overrides
+from .restart import Reinitialize, Term
 
 if TYPE_CHECKING:
     from ..bridge.plan import EnginePlan
@@ -295,6 +296,7 @@ class FMUComponent(CoSimComponent):
                                                   self.info.default_tolerance)
         self.reinitialize(t0)
         self._set_event_ports(t0, None)
+        self._set_engine_restart()
 
     def reinitialize(self, t: float, **start_values: Any) -> None:
         """Fresh instance at time t (one engine call): instantiate, setupExperiment(t),
@@ -341,11 +343,67 @@ class FMUComponent(CoSimComponent):
         model_exchange = (self.info.number_of_states, self.info.number_of_event_indicators) \
             if self.model_exchange else None
         once_per_process = self.fmu_interface.can_be_instantiated_only_once_per_process
+        interface = self.fmu_interface
+        # an isolated FMU's host forwards neither input nor output derivatives
+        direct = not self.isolated and not self.model_exchange
+        output_order = interface.max_output_derivative_order if direct else 0
+        if str(self.info.description.fmiVersion).startswith("3.") and \
+                any(self.info.feedthrough.values()):
+            # FMI 3.0 gives an FMU no input derivatives: the derivative of an output that
+            # depends directly on inputs misses their motion (the coupling history serves)
+            output_order = 0
         plan.add_fmu_component(
             self, self._fmu, self.can_get_set_state,
-            self.fmu_interface.provides_directional_derivative,
+            interface.provides_directional_derivative,
             self.value_reference, self._python_hooks(engine_steps=True), model_exchange,
-            calling_thread_only=once_per_process and not self.isolated)
+            calling_thread_only=once_per_process and not self.isolated,
+            interpolation=(direct and interface.can_interpolate_inputs, output_order))
+
+    def _python_hooks(self, engine_steps: bool) -> set[str]:
+        """A handler the engine runs (an engine restart) needs no Python hook."""
+        hooks = super()._python_hooks(engine_steps)
+        if self._engine_restart() is not None:
+            hooks.discard("handle_events")
+        return hooks
+
+    def _engine_restart(self) -> dict[str, Term] | None:
+        """The terms of the Reinitialize the engine runs for this component's events, or None
+        where Python must handle them: a class of the user's that overrides how events or
+        starts are handled, several handlers or EVENT inputs, an event that arrives elsewhere,
+        a value for a parameter that is not Real, an FMU with String or Binary parameters (the
+        engine writes numbers only). Decided by what the plan is compiled from, so it holds
+        for every initialize on that plan."""
+        handlers = [h for port in self.event_handlers.values() for h in port]
+        if len(handlers) != 1 or not isinstance(handlers[0], Reinitialize) \
+                or any(_overrides(self, hook) for hook in _EVENT_HOOKS):
+            return None
+        (port,) = (p for p, found in self.event_handlers.items() if found)
+        if any(routes != {port} for routes in self._event_routes.values()):
+            return None
+        terms = handlers[0].terms(self)
+        if any(self.info.parameters[p].type != PortType.REAL for p in terms) or any(
+                parameter.type == PortType.STRING for parameter in self.info.parameters.values()):
+            return None
+        return terms
+
+    def _set_engine_restart(self) -> None:
+        """Hand the engine this initialize's restart: the start values the user set, the
+        constant terms among them, and the terms read from the outputs at the event."""
+        terms = self._engine_restart()
+        binding = self._binding
+        if terms is None or binding is None:
+            return
+        plan = binding.plan
+        from_outputs = {p: t for p, t in terms.items() if t.output is not None}
+        starts = {n: v for n, v in self._parameter_starts(step_mode=False).items()
+                  if n not in from_outputs}
+        starts.update({p: t.gain for p, t in terms.items() if t.output is None})
+        outputs = plan.outputs[self.name]
+        values, _arrays = start_values(self._by_type(starts))  # alive until the engine copied
+        plan.set_restart(self, self._experiment_tolerance, values,
+                         [self.value_reference(p) for p in from_outputs],
+                         [outputs.index(t.output) for t in from_outputs.values()],
+                         [t.gain for t in from_outputs.values()])
 
     # ---------------------------------------------------------------- hooks (engine built-ins)
     def _do_step_internal(self, t: float, dt: float) -> None:
@@ -428,6 +486,11 @@ class FMUComponent(CoSimComponent):
         self.reset()
         self._finalizer()
 
+
+# What a class of the user's may override that changes how an event is handled: the engine then
+# leaves the handling to Python
+_EVENT_HOOKS = ("_handle_events_internal", "_update_output_states", "reinitialize",
+                "_apply_parameters_starts", "_apply_input_starts", "_set_event_input")
 
 # Integer ports cross the FMI boundary as C ints (FMI 3.0 UInt32 and 64-bit integers are Real
 # ports, exact up to 2**53)

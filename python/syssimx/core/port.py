@@ -94,9 +94,13 @@ class Port:
         self._reader = reader
         self._raw: float | int | bool | str = (
             _DEFAULTS[spec.type] if value is None else spec.coerce(value))
+        # a REAL port takes a float as it is, and one without a unit shows its plain value:
+        # what a Python component's step does per port, without the general conversion
+        self._real = spec.type == PortType.REAL
+        self._plain = not (self._real and spec.unit)
 
     def set(self, value: Any, t: float | None = None) -> None:
-        self._raw = self.spec.coerce(value)
+        self._raw = value if type(value) is float and self._real else self.spec.coerce(value)
         if t is not None:
             self.t_last = t
 
@@ -105,6 +109,8 @@ class Port:
         return self._reader() if self._reader is not None else self._raw
 
     def get(self, as_unit: str | None = None) -> Any:
+        if self._plain and self._reader is None:
+            return self._raw
         value = self.spec.present(self.raw())
         if as_unit is not None and is_quantity(value):
             return value.to(to_unit(as_unit))

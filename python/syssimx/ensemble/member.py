@@ -19,7 +19,6 @@ import numpy as np
 
 from ..errors import ConfigurationError, SysSimXWarning
 from ..system.system import System
-from .leftovers import end_left_children
 from .loaded_fmus import loaded_fmus
 from .members import ParameterSet, split_name
 from .reused_system import reused_system, user_values
@@ -79,12 +78,14 @@ def run_member(build: SystemSource, task: MemberTask) -> MemberResult:
     start = time.perf_counter()
     worker = f"{socket.gethostname()}:{os.getpid()}"
     system: System | None = None
+    initialized = False  # a kept System holds the previous member's samples until then
     result = MemberResult(task.index, task.parameters, "ok", worker=worker)
     try:
         system = reused_system.take(task.ensemble, build)
         loaded_fmus.keep(system)
         _set_parameters(system, task.parameters)
         before_run = user_values(system)
+        initialized = True
         system.initialize(task.t0)
         run = system.run(task.t0, task.tf, task.dt, timeout=task.timeout)
         result.statistics = {name: int(getattr(run.statistics, name)) for name in STATISTICS}
@@ -92,21 +93,12 @@ def run_member(build: SystemSource, task: MemberTask) -> MemberResult:
     except Exception as error:  # the member's failure is its result; other members go on
         result.status, result.error_type = "failed", type(error).__name__
         result.error = f"{type(error).__name__}: {error}"
-    if system is not None:
+    if system is not None and initialized:
         _record(result, system, task.outputs)
         if result.ok:  # a failed member's System is dropped (an FMU may be broken)
             reused_system.give_back(task.ensemble, system, before_run)
     result.wall_time = time.perf_counter() - start
     return result
-
-
-def run_chunk(build: SystemSource, tasks: list[MemberTask]) -> list[MemberResult]:
-    """Run members one after another here (one Dask task for several short members); then
-    end the processes their FMUs forked and left (leftovers.py)."""
-    end_left_children()  # the first call notes the worker's own children
-    results = [run_member(build, task) for task in tasks]
-    end_left_children()
-    return results
 
 
 def _announce(task: MemberTask) -> None:

@@ -3,8 +3,8 @@
 Building a System (reading model descriptions, loading FMUs, making components, and often an
 initialize the member does again) was 40% of a seed-scenario member's time. A worker builds
 it once per ensemble instead, and for each member sets the member's parameters on it and
-initializes it again (a fresh FMU instance, a fresh engine plan, a fresh history:
-System.initialize starts every run from scratch).
+initializes it again: System.initialize starts every run from scratch (each FMU instance reset
+to its start values, a fresh history) on the engine plan it compiled for the first member.
 
 What a member could leave behind is in its components' user values: the parameters and inputs
 that initialize writes. Every member of an ensemble sets the same names, so the next member
@@ -54,7 +54,7 @@ class ReusedSystem:
         its run left the user values as they were before it (`before_run`, user_values)."""
         if ensemble is None or not reusable(system) or user_values(system) != before_run:
             return
-        system.reset()  # frees the FMU instances and the history until the next member
+        # kept as it is: the next member's initialize resets the FMU instances in place
         self._ensemble, self._system = ensemble, system
 
 

@@ -1,8 +1,8 @@
 """Running members as Dask tasks and turning every outcome into a MemberResult.
 
 Short members share a task (chunk_size), so the scheduler's cost per task is paid once for
-several. A member's own failures come back as its result (member.py). Two faults need the
-client:
+several, and a task's results come back as one block (block.py). A member's own failures come
+back as its result (member.py). Two faults need the client:
 - a member still running `member_timeout` (+ KILL_GRACE) seconds after it started is stuck
   where its run's own timeout cannot reach (inside an FMU call): its task is cancelled and its
   worker process restarted (the worker's nanny starts a fresh one);
@@ -16,6 +16,7 @@ Every other member's result is kept and the ensemble finishes.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import signal
 import threading
@@ -25,8 +26,9 @@ from collections.abc import Sequence
 from dataclasses import replace
 from typing import Any
 
+from .block import run_block
 from .cluster import check_processes
-from .member import MemberResult, MemberTask, run_chunk
+from .member import MemberResult, MemberTask
 from .progress import ProgressBar
 from .system_source import SystemSource
 
@@ -87,6 +89,9 @@ class _Ensemble:
         self.client, self.build, self.member_timeout, self.bar = client, build, \
             member_timeout, bar
         self.workers = max(1, len(client.nthreads()))
+        # one function object for every task: Dask serializes it once, not per task
+        self.task = functools.partial(run_block, build)
+        self.parameters: dict[int, Any] = {}  # by member index
         self.topic = f"syssimx-ensemble-{uuid.uuid4().hex}"
         self.starts = _Starts()
         self.results: dict[int, MemberResult] = {}
@@ -103,7 +108,7 @@ class _Ensemble:
         chunks = split(tasks, max(size, 1), self.workers, self.topic,
                        every_member=self.member_timeout is not None)
         futures = self.client.map(
-            run_chunk, [self.build] * len(chunks), chunks,
+            self.task, chunks,
             key=[f"syssimx-members-{c[0].index}-{self.topic[-8:]}-{self._attempt}"
                  for c in chunks], pure=False)
         by_key = {future.key: chunk for future, chunk in zip(futures, chunks, strict=True)}
@@ -114,7 +119,7 @@ class _Ensemble:
             for future, outcome in as_completed(futures, with_results=True, raise_errors=False):
                 chunk = by_key[future.key]
                 if future.status == "finished":
-                    self._keep(outcome)
+                    self._keep(outcome.results(self.parameters))
                 elif future.status == "cancelled":  # the watchdog stopped one of its members
                     assert watchdog is not None
                     self._keep([watchdog.stopped[t.index] for t in chunk
@@ -166,6 +171,7 @@ def run_members(client: Any, build: SystemSource, tasks: Sequence[MemberTask],
     check_processes(client)
     bar = ProgressBar(len(tasks), progress)
     ensemble = _Ensemble(client, build, member_timeout, bar)
+    ensemble.parameters = {task.index: task.parameters for task in tasks}
     client.subscribe_topic(ensemble.topic, ensemble.starts.record)
     try:
         for suspect in ensemble.run(tasks, chunk_size(len(tasks), ensemble.workers)):

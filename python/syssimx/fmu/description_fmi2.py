@@ -229,6 +229,10 @@ def interface_flags(interface: Any, attributes: dict[str | None, str | None]) ->
     cosimulation = isinstance(interface, CoSimulation)
     for name in _INTERFACE_FLAGS + (_COSIMULATION_FLAGS if cosimulation else ()):
         setattr(interface, name, attributes.get(name) in ("true", "1"))
+    if cosimulation:
+        # lenient like the flags: a value that is no count means no output derivatives
+        order = (attributes.get("maxOutputDerivativeOrder") or "0").strip()
+        interface.maxOutputDerivativeOrder = int(order) if order.isdigit() else 0
     return interface
 
 

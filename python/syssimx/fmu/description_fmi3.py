@@ -104,15 +104,36 @@ def read_fmi3_description(path: Path) -> ModelDescription:
 def provides_directional_derivatives(path: Path, element: str = "CoSimulation") -> bool:
     """FMI 3.0 spells the flag providesDirectionalDerivatives, which FMPy 0.3 does not read;
     `element`: the interface's (CoSimulation or ModelExchange)."""
+    found = _description_root(path).find(element)
+    return found is not None and found.get("providesDirectionalDerivatives") in ("true", "1")
+
+
+def intermediate_inputs(path: Path) -> list[int]:
+    """Value references of the scalar continuous Float64 inputs with intermediateUpdate="true"
+    (an attribute FMPy 0.3 does not read): FMI 3.0 moves inputs inside a step by intermediate
+    update, which the engine answers for these as FMI 2.0's input derivatives."""
+    variables = _description_root(path).find("ModelVariables")
+    if variables is None:
+        return []
+    found = []
+    for variable in variables.findall("Float64"):
+        if variable.get("causality") == "input" and variable.get("intermediateUpdate") in \
+                ("true", "1") and variable.find("Dimension") is None and \
+                variable.get("variability", "continuous") == "continuous":
+            reference = variable.get("valueReference", "")
+            if reference.isdigit():
+                found.append(int(reference))
+    return found
+
+
+def _description_root(path: Path) -> Any:
     import zipfile
 
     from lxml import etree
 
     parser = etree.XMLParser(resolve_entities=False, no_network=True)
     with zipfile.ZipFile(path) as archive:
-        root = etree.fromstring(archive.read("modelDescription.xml"), parser)
-    found = root.find(element)
-    return found is not None and found.get("providesDirectionalDerivatives") in ("true", "1")
+        return etree.fromstring(archive.read("modelDescription.xml"), parser)
 
 
 def _check_variable(variable: Any, path: Path) -> None:
@@ -192,11 +213,12 @@ def engine_rows(variables: Any, elements: dict[int, ArrayElement]) -> list[FMI3V
     return list(table.values())
 
 
-def engine_variables(rows: list[FMI3Variable], cosimulation: Any,
-                     model_exchange: bool) -> tuple[Any, list[Any]]:
+def engine_variables(rows: list[FMI3Variable], cosimulation: Any, model_exchange: bool,
+                     intermediate: tuple[int, ...] = ()) -> tuple[Any, list[Any]]:
     """The ssx_fmi3_variables of `rows` and of how a Co-Simulation instance is made (event
-    mode when the FMU has it, early return when it may return early), and what it points at:
-    the struct does not keep that alive, the caller does until the engine copied it."""
+    mode when the FMU has it, early return when it may return early, the inputs it moves by
+    intermediate update), and what it points at: the struct does not keep that alive, the
+    caller does until the engine copied it."""
     texts = [ffi.new("char[]", row.name.encode()) for row in rows]
     arrays = {"vr": ffi.new("unsigned int[]", [row.value_reference for row in rows]),
               "type": ffi.new("unsigned char[]", [row.type_code for row in rows]),
@@ -207,6 +229,9 @@ def engine_variables(rows: list[FMI3Variable], cosimulation: Any,
         "early_return_allowed": not model_exchange and bool(
             cosimulation.canReturnEarlyAfterIntermediateUpdate
             or cosimulation.mightReturnEarlyFromDoStep)}
+    if intermediate and not model_exchange:  # inputs the engine moves inside a step
+        fields.update({"intermediate_vr": ffi.new("unsigned int[]", list(intermediate)),
+                       "n_intermediate": len(intermediate)})
     if any(row.element is not None for row in rows):  # array elements: where each lies
         elements = [row.element or ArrayElement(row.value_reference, 0, 0, 0.0)
                     for row in rows]

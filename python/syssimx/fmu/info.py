@@ -63,6 +63,10 @@ class FMUInterface(NamedTuple):
     can_get_set_state: bool
     provides_directional_derivative: bool
     can_be_instantiated_only_once_per_process: bool
+    # Co-Simulation only (FMI 2.0 input derivatives; output derivatives in 2.0 and 3.0)
+    can_interpolate_inputs: bool = False
+    max_output_derivative_order: int = 0
+    intermediate_inputs: tuple[int, ...] = ()  # FMI 3.0: inputs moved by intermediate update
 
 
 INTERFACES = ("co-simulation", "model-exchange")  # "auto" takes the first the FMU has
@@ -234,13 +238,28 @@ def _default_tolerance(description: ModelDescription, path: Path) -> float | Non
 def _interfaces(description: ModelDescription, path: Path) -> dict[str, FMUInterface]:
     """The interfaces the FMU declares; none at all is an error."""
     interfaces = {}
+    fmi3 = str(description.fmiVersion).startswith("3.")
+    # input and output derivatives reach the engine through FMI 2.0's and 3.0's back-ends only
+    derivatives = fmi3 or str(description.fmiVersion).startswith("2.")
     for name, element, part in (("co-simulation", "CoSimulation", description.coSimulation),
                                 ("model-exchange", "ModelExchange", description.modelExchange)):
-        if part is not None:
-            interfaces[name] = FMUInterface(
-                name, _model_identifier(part.modelIdentifier, path, element),
-                bool(part.canGetAndSetFMUstate), bool(part.providesDirectionalDerivative),
-                bool(part.canBeInstantiatedOnlyOncePerProcess))
+        if part is None:
+            continue
+        cosimulation = element == "CoSimulation"
+        moving: tuple[int, ...] = ()
+        if cosimulation and fmi3 and getattr(part, "providesIntermediateUpdate", False):
+            from .description_fmi3 import intermediate_inputs
+
+            moving = tuple(intermediate_inputs(path))
+        interpolates = bool(moving) if fmi3 else derivatives and cosimulation and \
+            bool(getattr(part, "canInterpolateInputs", False))
+        interfaces[name] = FMUInterface(
+            name, _model_identifier(part.modelIdentifier, path, element),
+            bool(part.canGetAndSetFMUstate), bool(part.providesDirectionalDerivative),
+            bool(part.canBeInstantiatedOnlyOncePerProcess), interpolates,
+            int(getattr(part, "maxOutputDerivativeOrder", 0) or 0)
+            if cosimulation and derivatives else 0,
+            moving)
     if not interfaces:
         raise FMUFileError(f"{path}: the modelDescription declares neither CoSimulation nor "
                            "ModelExchange")

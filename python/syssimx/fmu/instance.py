@@ -51,8 +51,19 @@ class FMUInstance:
         self.component_name = component_name
         self._function_prefix = function_prefix  # of the FMU's standard: "fmi2", "fmi3", ...
         self.mode = "none"
-        self.generation = 0  # bumped whenever the live instance is freed or replaced
+        # resolved and allocated now: finalizers read the generation
         self._free_state_function = lib().ssx_fmu_free_state
+        self._get_counters = lib().ssx_fmu_get_counters
+        self._counters = ffi.new("ssx_fmu_counters *")
+
+    @property
+    def generation(self) -> int:
+        """The instantiations so far (a reset keeps the instance: its FMU states stay valid);
+        -1 once the FMU is released."""
+        if self._fmu is None:
+            return -1
+        self._get_counters(self._fmu, self._counters)
+        return int(self._counters.instantiate)
 
     @property
     def fmu(self) -> Any:
@@ -72,7 +83,6 @@ class FMUInstance:
         if self._fmu is None:
             return
         self.mode = "none"
-        self.generation += 1
         fmu, self._fmu = self._fmu, None
         free_fmu(fmu)
 
@@ -85,7 +95,7 @@ class FMUInstance:
         lib().ssx_fmu_get_counters(self.fmu, raw)
         return {name: int(getattr(raw, name)) for name in
                 ("do_step", "get_state", "set_state", "get_values", "set_values", "instantiate",
-                 "directional_derivative")}
+                 "directional_derivative", "reset")}
 
     def _check(self, status: int, call: str) -> int:
         if status > 1 or status < 0:
@@ -104,15 +114,15 @@ class FMUInstance:
     def initialize(self, start_time: float, tolerance: float | None = None,
                    starts: Values | None = None,
                    in_initialization_mode: Callable[[], None] | None = None) -> None:
-        """A fresh instance ready to step, in one engine call: instantiate, setupExperiment,
+        """An instance ready to step, in one engine call: reset (a live instance) or
+        instantiate, setupExperiment,
         enterInitializationMode, write `starts`, call `in_initialization_mode` (it may write
         more through this proxy; what it raises is raised here), exitInitializationMode."""
-        self.generation += 1
         self.mode = "init"  # what the FMU is in while in_initialization_mode runs
         experiment = ffi.new("ssx_fmu_experiment *", {
             "start_time": start_time, "tolerance_defined": tolerance is not None,
             "tolerance": tolerance or 0.0})
-        values, _arrays = _values(starts or {})  # the arrays live as long as this call
+        values, _arrays = start_values(starts or {})  # the arrays live as long as this call
         raised: list[BaseException] = []
 
         def during(_user: Any) -> int:
@@ -136,7 +146,6 @@ class FMUInstance:
 
     def instantiate(self, visible: bool = False, callbacks: Any = None,
                     loggingOn: bool = False) -> None:  # noqa: N803 (FMPy's names)
-        self.generation += 1
         self.mode = "none"
         self._check(lib().ssx_fmu_instantiate(self.fmu), "fmi2Instantiate")
         self.mode = "instantiated"
@@ -168,14 +177,12 @@ class FMUInstance:
 
     def reset(self) -> None:
         self._check(lib().ssx_fmu_reset(self.fmu), "fmi2Reset")
-        self.generation += 1
         self.mode = "instantiated"
 
     def terminate(self) -> None:
         self._check(lib().ssx_fmu_terminate(self.fmu), "fmi2Terminate")
 
     def freeInstance(self) -> None:  # noqa: N802
-        self.generation += 1
         self.mode = "none"
         self._check(lib().ssx_fmu_free_instance(self.fmu), "fmi2FreeInstance")
 
@@ -297,7 +304,7 @@ class FMUInstance:
     deserializeFMUState = deserializeFMUstate  # noqa: N815
 
 
-def _values(starts: Values) -> tuple[Any, list[Any]]:
+def start_values(starts: Values) -> tuple[Any, list[Any]]:
     """The ssx_fmu_values of `starts`, and the arrays it points at (keep them alive)."""
     values = ffi.new("ssx_fmu_values *")
     keep: list[Any] = [values]

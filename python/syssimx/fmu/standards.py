@@ -164,7 +164,8 @@ class FMI3(Standard):
         when it may return early: its events are then handled at their time."""
         return description_fmi3.engine_variables(
             info.fmi3_variables, info.description.coSimulation,
-            model_exchange=interface.name == "model-exchange")
+            model_exchange=interface.name == "model-exchange",
+            intermediate=interface.intermediate_inputs)
 
 
 STANDARDS: tuple[Standard, ...] = (FMI1(), Standard(), FMI3())

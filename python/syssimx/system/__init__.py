@@ -14,6 +14,7 @@ _MODULES = {
     "LocalizationTrial": ".results",
     "SimulationResult": ".results",
     "Statistics": ".results",
+    "StepControl": ".algorithms",
     "System": ".system",
     "SystemHistory": ".system_history",
     "Termination": ".termination",

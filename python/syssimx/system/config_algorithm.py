@@ -1,14 +1,15 @@
 """The `algorithm` entry of a description: {type: jacobi|gauss_seidel|hybrid|ijcsa, options}.
 
 A hybrid algorithm's coupling (`coupling` or SysSimX's `gauss_seidel_algorithm`) is a type name
-or a mapping of the same form."""
+or a mapping of the same form. A coupling's `step_control` is a mapping of StepControl's options
+(`{rtol: 1e-5, atol: 1e-5, rollback: false}`); `{}` takes every default."""
 
 from __future__ import annotations
 
 from typing import Any
 
 from .algorithm_table import ALGORITHM_NAMES, algorithm_class
-from .algorithms import Algorithm, HybridAlgorithm
+from .algorithms import Algorithm, HybridAlgorithm, StepControl
 from .config_source import Source, quoted
 
 COUPLING_KEYS = ("coupling", "gauss_seidel_algorithm")
@@ -31,6 +32,8 @@ def build_algorithm(source: Source, entry: Any, label: str = "algorithm") -> Alg
                     raise source.error(f"{label}.{key}", "the coupling of a hybrid algorithm "
                                        "is jacobi, gauss_seidel or ijcsa", entry)
     try:
+        if isinstance(options.get("step_control"), dict):
+            options["step_control"] = StepControl(**options["step_control"])
         algorithm = algorithm_class(kind)(**options)
         algorithm.validate()
     except (TypeError, ValueError) as exc:

@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..bridge.plan import recorded_columns
 from ..core.events import DenseTime
 from ..core.suggest import did_you_mean
 from ..engine import enum_name, ffi, lib
@@ -108,6 +109,13 @@ class Statistics:
     directional_derivatives: int  # fmi2GetDirectionalDerivative calls for loop Jacobians
     own_events: int = 0  # events components handled inside their own steps (no rollback)
     termination: Termination | None = None
+    # error-controlled communication steps (StepControl); zero without it
+    accepted_steps: int = 0
+    rejected_steps: int = 0  # taken again, shorter, after a rollback
+    smallest_step: float = 0.0
+    largest_step: float = 0.0
+    largest_error: float = 0.0  # the largest weighted coupling error of an accepted step
+    mean_error: float = 0.0  # over the accepted steps
 
     def __str__(self) -> str:
         lines = [f"macro steps: {self.macro_steps}",
@@ -118,6 +126,10 @@ class Statistics:
                  f"events handled by components themselves: {self.own_events}",
                  f"loop solves: {self.loop_solves}, iterations: {self.loop_iterations}, "
                  f"directional derivatives: {self.directional_derivatives}"]
+        if self.accepted_steps:
+            lines.append(f"step control: {self.accepted_steps} accepted, {self.rejected_steps} "
+                         f"rejected, steps {self.smallest_step:.3g}..{self.largest_step:.3g}, "
+                         f"errors mean {self.mean_error:.3g}, largest {self.largest_error:.3g}")
         if self.termination is not None:
             lines.append(f"terminated: {self.termination}")
         return "\n".join(lines)
@@ -166,29 +178,30 @@ def read_statistics(plan: EnginePlan, events: Sequence[EventRecord],
                       int(raw.localization_iterations), int(raw.loop_iterations),
                       int(raw.loop_solves),
                       tuple(e.iterations for e in events if not e.own),
-                      int(raw.directional_derivatives), int(raw.own_events), termination)
+                      int(raw.directional_derivatives), int(raw.own_events), termination,
+                      int(raw.accepted_steps), int(raw.rejected_steps), float(raw.smallest_step),
+                      float(raw.largest_step), float(raw.largest_error),
+                      float(raw.error_sum) / raw.accepted_steps if raw.accepted_steps else 0.0)
 
 
 class HistoryView:
     """Per-component (t, {port: values}) of the samples recorded when it was made: read-only
     numpy arrays over the engine's buffers, valid and unchanged for as long as they live (the
-    engine records later samples elsewhere)."""
+    engine records later samples elsewhere). A component's arrays are made when first asked
+    for, so a run's result costs nothing per component; the view holds neither the plan nor
+    the components (it outlives them)."""
 
     def __init__(self, plan: EnginePlan, events: Sequence[EventRecord]) -> None:
-        arrays = plan.history()
-        self._micro = arrays.micro()
+        self._recorded = plan.recorded()
+        self._events = events
+        self._arrays = plan.history()
+        self._micro = self._arrays.micro()
         self._data: dict[str, tuple[np.ndarray, dict[str, np.ndarray]]] = {}
-        for name, component in plan.components.items():
-            t, values = plan.component_history(component, arrays)
-            for event in component.event_indicators:
-                values[event] = self._event_column(t, name, event, events)
-            self._data[name] = (t, values)
 
-    def _event_column(self, t: np.ndarray, component: str, event: str,
-                      events: Sequence[EventRecord]) -> np.ndarray:
+    def _event_column(self, t: np.ndarray, component: str, event: str) -> np.ndarray:
         """EVENT output: True on the sample taken right after the event was handled."""
         column = np.zeros(len(t), dtype=bool)
-        for e in events:
+        for e in self._events:
             if (e.component, e.event) == (component, event):
                 # samples are in time order: look only at those taken at the event's instant
                 first, end = np.searchsorted(t, e.t, "left"), np.searchsorted(t, e.t, "right")
@@ -200,21 +213,43 @@ class HistoryView:
         return self._micro
 
     def __getitem__(self, component: str) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-        if component not in self._data:
+        data = self._data.get(component)
+        if data is not None:
+            return data
+        recorded = self._recorded.get(component)
+        if recorded is None:
             raise UnknownNameError(f"no component {component!r}"
-                                   f"{did_you_mean(component, self._data)}; components: "
-                                   f"{sorted(self._data)}")
-        return self._data[component]
+                                   f"{did_you_mean(component, self._recorded)}; components: "
+                                   f"{sorted(self._recorded)}")
+        t, values = recorded_columns(recorded, self._arrays)
+        for event in recorded.events:
+            values[event] = self._event_column(t, component, event)
+        data = self._data[component] = (t, values)
+        return data
 
     def __iter__(self) -> Iterator[str]:
-        return iter(self._data)
+        return iter(self._recorded)
 
 
-def recorded_units(plan: EnginePlan, components: dict[str, Any]
-                   ) -> dict[str, dict[str, str | None]]:
+class RecordedUnits(Mapping[str, dict[str, str | None]]):
     """{component: {port: unit or None}} of every recorded port (outputs and event columns)."""
-    return {n: {p: c.output_specs[p].unit for p in [*plan.outputs[n], *c.event_indicators]}
-            for n, c in components.items()}
+
+    def __init__(self, plan: EnginePlan) -> None:
+        self._recorded = plan.recorded()
+
+    def __getitem__(self, name: str) -> dict[str, str | None]:
+        return self._recorded[name].units
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._recorded)
+
+    def __len__(self) -> int:
+        return len(self._recorded)
+
+
+def recorded_units(plan: EnginePlan) -> RecordedUnits:
+    """{component: {port: unit or None}} of every recorded port (outputs and event columns)."""
+    return RecordedUnits(plan)
 
 
 class SimulationResult:
@@ -226,7 +261,7 @@ class SimulationResult:
 
     def __init__(self, system_name: str, algorithm: str, history: HistoryView,
                  events: Sequence[EventRecord], statistics: Statistics,
-                 units: dict[str, dict[str, str | None]], t0: float, tf: float, dt: float,
+                 units: Mapping[str, dict[str, str | None]], t0: float, tf: float, dt: float,
                  wall_time: float, mode_switches: dict[str, tuple[Any, ...]] | None = None
                  ) -> None:
         self.system_name = system_name
@@ -248,9 +283,10 @@ class SimulationResult:
         if plan is None:
             raise ConfigurationError(f"{system.name}: nothing recorded yet; call initialize")
         events = system.history.events
-        return cls(system.name, type(system.algorithm).__name__, HistoryView(plan, events),
+        return cls(system.name, type(system._run_algorithm(plan)).__name__,
+                   HistoryView(plan, events),
                    events, read_statistics(plan, events, system.termination),
-                   recorded_units(plan, system.components), t0, tf, dt, wall_time,
+                   recorded_units(plan), t0, tf, dt, wall_time,
                    system._mode_switches())
 
     @property

@@ -16,7 +16,7 @@ from ..bridge.plan import EnginePlan
 from ..components.base import CoSimComponent
 from ..core.port import PortType
 from ..core.suggest import did_you_mean
-from ..engine import ffi, lib
+from ..engine import defaults, ffi, lib
 from ..errors import ConfigurationError, RunInterrupted, SysSimXWarning
 from ..graph.analysis import analyze
 from ..units import conversion
@@ -52,6 +52,7 @@ class System:
         self._algorithm: Algorithm = default_coupling()
         self._algorithm_chosen = False
         self._plan: EnginePlan | None = None
+        self._plan_structure: tuple[Any, ...] | None = None  # what _plan was compiled from
 
     def __repr__(self) -> str:
         return f"System({self.name!r}, components={list(self.components)})"
@@ -206,8 +207,44 @@ class System:
                 f"{self.name}: schedule")
         return plan
 
+    def _structure(self) -> tuple[Any, ...]:
+        """What the engine plan is compiled from: the components (by identity and class) with
+        their port and feedthrough counts, their handlers and their indicators, the connections and
+        the event connections. Equal before two initializes, the plan is reused. Cheap: it is
+        taken at every initialize."""
+        components = tuple(
+            (name, id(c), type(c), len(c.input_specs), len(c.output_specs),
+             len(c.direct_feedthrough),
+             tuple(id(h) for hs in c.event_handlers.values() for h in hs)
+             if c.event_handlers else (),
+             tuple(c.event_indicators.values()) if c.event_indicators else ())
+            for name, c in self.components.items())
+        connections = tuple((*c.key(), c.factor, c.offset, c.convert_units)
+                            for c in self.connections)
+        return components, connections, tuple(c.key() for c in self.event_connections)
+
+    def _reusable_plan(self) -> EnginePlan | None:
+        """The plan of the last initialize when nothing it was compiled from changed and every
+        component is still bound to it, else None."""
+        plan = self._plan
+        if plan is None or plan.left is not None or self._plan_structure != self._structure():
+            return None
+        return plan
+
+    def _run_algorithm(self, plan: EnginePlan) -> Algorithm:
+        """The algorithm, found without looking at every component: a plan with indicators
+        runs the hybrid algorithm (what `algorithm` makes of a coupling one)."""
+        if plan.indicators and not isinstance(self._algorithm, HybridAlgorithm):
+            return self.algorithm
+        return self._algorithm
+
     def _push_options(self, plan: EnginePlan) -> None:
-        algorithm = self.algorithm
+        """The algorithm's options into the engine, checked first; nothing to do when the
+        plan holds them already (a reused plan, a second run)."""
+        algorithm = self._run_algorithm(plan)
+        options = _options(algorithm)
+        if options == plan.options:
+            return
         algorithm.validate()
         coupling = algorithm.coupling if isinstance(algorithm, HybridAlgorithm) else algorithm
         plan.check(lib().ssx_set_coupling(plan.sys, coupling.coupling_value()), "coupling")
@@ -216,12 +253,18 @@ class System:
         plan.check(lib().ssx_set_loop_jacobian(
             plan.sys, loop_jacobians()[coupling.loop_jacobian]), "loop Jacobian")
         plan.check(lib().ssx_set_threads(plan.sys, coupling.threads), "threads")
+        plan.check(lib().ssx_set_input_order(plan.sys, coupling.input_order), "input order")
+        if coupling.step_control is not None:
+            plan.check(lib().ssx_set_step_control(plan.sys,
+                                                  coupling.step_control.engine_struct()),
+                       "step control")
         if isinstance(algorithm, HybridAlgorithm):
             plan.check(lib().ssx_set_hybrid_options(
                 plan.sys, algorithm.tol_time, algorithm.tol_value, algorithm.max_iter,
                 algorithm.max_microsteps, int(algorithm.record_internal_steps),
                 algorithm.locator(), algorithm.zeno_min_interval),
                 "hybrid options")
+        plan.options = options
 
     # ------------------------------------------------------------------ running
     def initialize(self, t0: float = 0.0, tolerance: float | None = None, *,
@@ -236,15 +279,19 @@ class System:
         last point of each run and every event instant; 1 records every point (None keeps the
         engine's default, every point)."""
         t0 = _time_value(self.name, "t0", t0)
-        plan = self._compile()
-        self._plan = plan
+        plan = self._reusable_plan()
+        if plan is None:
+            structure = self._structure()
+            plan = self._compile()
+            self._plan, self._plan_structure = plan, structure
+        else:
+            plan.restart()
         self._push_options(plan)
-        if allow_non_finite is not None:
-            plan.check(lib().ssx_set_allow_non_finite(plan.sys, int(bool(allow_non_finite))),
-                       "allow_non_finite")
-        if output_interval is not None:
-            plan.check(lib().ssx_set_output_interval(plan.sys, output_interval),
-                       "output_interval")
+        plan.check(lib().ssx_set_allow_non_finite(plan.sys, int(bool(allow_non_finite))),
+                   "allow_non_finite")
+        plan.check(lib().ssx_set_output_interval(
+            plan.sys, defaults().output_interval if output_interval is None else output_interval),
+            "output_interval")
         self.termination = None
         start_tables(self.components, self.connections, plan, t0)
         for component in self.components.values():
@@ -292,11 +339,10 @@ class System:
                                      f"t={self.t}")
         reports = run_progress(progress, self.name, t0, tf)
         plan = self._plan
-        for component in self.components.values():
-            if component._binding is None or component._binding.plan is not plan:
-                raise ConfigurationError(
-                    f"{self.name}: component {component.name!r} was initialized elsewhere since "
-                    "this system's initialize; call initialize again")
+        if plan.left is not None:
+            raise ConfigurationError(
+                f"{self.name}: component {plan.left!r} was initialized elsewhere since "
+                "this system's initialize; call initialize again")
         self._push_options(plan)
         plan.check(lib().ssx_set_run_output_interval(plan.sys, grid_steps), "output_interval")
         logger.info("Starting simulation run from t=%s to t=%s with dt=%s", t0, tf, dt)
@@ -330,9 +376,8 @@ class System:
         if self.termination is not None:
             plan.failure = None  # what a hook raised because the component stopped
             logger.info("%s: %s; the run ends at t=%s", self.name, self.termination, self.t)
-        for component in self.components.values():
-            component.t = self.t
-        algorithm = self.algorithm
+        plan.ran(self.t)
+        algorithm = self._run_algorithm(plan)
         if isinstance(algorithm, HybridAlgorithm):
             log_events([e for e in events if e.t >= t0], algorithm.method)
         logger.info("Simulation completed in %.2f seconds", wall)
@@ -340,8 +385,9 @@ class System:
 
     def _mode_switches(self) -> dict[str, tuple[Any, ...]]:
         """{component: (ModeSwitchEvent, ...)} of the components that switched models."""
-        return {n: c.history.mode_switch_events for n, c in self.components.items()
-                if c.history.mode_switch_events}
+        names = self._plan.switching if self._plan is not None else self.components
+        switches = {n: self.components[n].history.mode_switch_events for n in names}
+        return {n: events for n, events in switches.items() if events}
 
     # ------------------------------------------------------------------ results
     def get_history(self) -> dict[str, Any]:
@@ -387,12 +433,24 @@ class System:
 
     def reset(self) -> None:
         """Drop the engine system; components keep their parameters."""
-        self._plan = None
+        self._plan = self._plan_structure = None
         self.is_initialized = False
         self.history = SystemHistory(system=self)
         self.termination = None
         for component in self.components.values():
             component.reset()
+
+
+def _options(algorithm: Algorithm) -> tuple[Any, ...]:
+    """An algorithm's options as values (its coupling's included): equal, the engine holds
+    them already."""
+    coupling = algorithm.coupling if isinstance(algorithm, HybridAlgorithm) else None
+    return (type(algorithm), *(v for v in vars(algorithm).values() if type(v) in _OPTION_TYPES),
+            type(coupling),
+            *(vars(coupling).values() if coupling is not None else ()))
+
+
+_OPTION_TYPES = frozenset((float, int, str, bool, type(None)))
 
 
 def _time_value(system: str, label: str, value: object) -> float:

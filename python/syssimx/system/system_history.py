@@ -50,7 +50,7 @@ class SystemHistory:
         system = self._recording_system()
         recorded = system.get_history()
         return ({name: recorded[name] for name in system.components},
-                recorded_units(system._plan, system.components))
+                recorded_units(system._plan))
 
     def get_port_trajectory(self, component: str, port: str, as_unit: str | None = None
                             ) -> tuple[np.ndarray, np.ndarray]:

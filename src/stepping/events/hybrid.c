@@ -15,7 +15,7 @@
 #include "indicator.h"
 #include "locator.h"
 
-enum { MACRO_SLOT = 0, PROBE_SLOT = 1 };
+enum { PROBE_SLOT = 1 };
 /* Fraction of the macro step over which the probe follows a handled state. */
 #define PROBE_HORIZON 0.1
 /* Event intervals that shrink at least this much each are on their way to an accumulation
@@ -44,30 +44,10 @@ typedef struct {
     int *turned_back; /* the first probe moved a fired indicator towards its near side */
 } instant_work;
 
-static int snapshot_all(ssx_system *sys, int slot)
-{
-    for (int i = 0; i < sys->n_components; ++i) {
-        if (component_snapshot(sys, sys->components[i], slot) != 0) {
-            return -1;
-        }
-    }
-    return 0;
-}
-
-static int restore_all(ssx_system *sys, int slot, double t)
-{
-    for (int i = 0; i < sys->n_components; ++i) {
-        if (component_restore(sys, sys->components[i], slot, t) != 0) {
-            return -1;
-        }
-    }
-    return record_state_restored(sys, t);
-}
-
 /* The whole system from the macro snapshot at a0 to time t: one restore, one coupled step. */
 static int step_from_snapshot(ssx_system *sys, double a0, double t)
 {
-    if (restore_all(sys, MACRO_SLOT, a0) != 0 || coupling_step(sys, a0, t - a0) != 0) {
+    if (system_restore(sys, MACRO_SLOT, a0) != 0 || coupling_step(sys, a0, t - a0) != 0) {
         return -1;
     }
     return indicators_evaluate(sys, t);
@@ -247,7 +227,7 @@ static int near_zero(const instant_work *w, int i)
  * delta_max); the state goes back to b after each. */
 static int probe(ssx_system *sys, double b, double delta_max, instant_work *w)
 {
-    if (snapshot_all(sys, PROBE_SLOT) != 0) {
+    if (system_snapshot(sys, PROBE_SLOT) != 0) {
         return -1;
     }
     double delta = 10.0 * sys->hybrid.tol_time;
@@ -265,7 +245,7 @@ static int probe(ssx_system *sys, double b, double delta_max, instant_work *w)
             }
             settled &= !near_zero(w, i) || fabs(s->value) > w->band[i];
         }
-        if (restore_all(sys, PROBE_SLOT, b) != 0) {
+        if (system_restore(sys, PROBE_SLOT, b) != 0) {
             return -1;
         }
         if (settled || delta >= delta_max) {
@@ -579,48 +559,75 @@ int hybrid_prepare(ssx_system *sys)
     return 0;
 }
 
+int hybrid_begin_piece(ssx_system *sys, double a0, double t_end, hybrid_piece *piece)
+{
+    sys->time = a0;
+    if (resolve_zero_start(sys, a0, t_end) != 0) {
+        return -1;
+    }
+    *piece = (hybrid_piece){.a0 = a0,
+                            .do_steps_before = sys->stats.do_step_calls,
+                            .restores_before = sys->stats.state_restores};
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        sys->brackets[i].z_left = sys->indicator_states[i].value;
+    }
+    return 0;
+}
+
+int hybrid_end_piece(ssx_system *sys, const hybrid_piece *piece, double t_end, double grid_step,
+                     double *reached, int *event)
+{
+    *reached = t_end;
+    *event = 0;
+    if (indicators_evaluate(sys, t_end) != 0) {
+        return -1;
+    }
+    if (!any_fires(sys)) {
+        for (int i = 0; i < sys->n_indicators; ++i) {
+            indicator_follow(&sys->indicator_states[i], sys->indicator_states[i].value);
+        }
+        sys->time = t_end;
+        return own_events_commit(sys, t_end);
+    }
+    event_bracket br = {.a0 = piece->a0,
+                        .t_end = t_end,
+                        .grid_step = grid_step,
+                        .do_steps_before = piece->do_steps_before,
+                        .restores_before = piece->restores_before};
+    if (locate(sys, &br) != 0 || own_events_commit(sys, br.b) != 0) {
+        return -1;
+    }
+    sys->time = br.b;
+    instant_work w;
+    if (work_init(&w, sys, br.b) != 0) {
+        return -1;
+    }
+    int status = handle_instant(sys, &br, &w, 1);
+    work_free(&w);
+    *reached = br.b;
+    *event = 1;
+    return status;
+}
+
 int hybrid_step(ssx_system *sys, double t, double t_next)
 {
     double a0 = t;
     while (a0 < t_next) {
-        sys->time = a0;
-        if (resolve_zero_start(sys, a0, t_next) != 0) {
-            return -1;
-        }
-        event_bracket br = {.a0 = a0,
-                            .t_end = t_next,
-                            .grid_step = t_next - t,
-                            .do_steps_before = sys->stats.do_step_calls,
-                            .restores_before = sys->stats.state_restores};
-        for (int i = 0; i < sys->n_indicators; ++i) {
-            sys->brackets[i].z_left = sys->indicator_states[i].value;
-        }
-        if (snapshot_all(sys, MACRO_SLOT) != 0 || coupling_step(sys, a0, t_next - a0) != 0 ||
-            indicators_evaluate(sys, t_next) != 0) {
+        hybrid_piece piece;
+        if (hybrid_begin_piece(sys, a0, t_next, &piece) != 0 ||
+            system_snapshot(sys, MACRO_SLOT) != 0 || coupling_step(sys, a0, t_next - a0) != 0) {
             return -1;
         }
         sys->stats.macro_steps++;
-        if (!any_fires(sys)) {
-            for (int i = 0; i < sys->n_indicators; ++i) {
-                indicator_follow(&sys->indicator_states[i], sys->indicator_states[i].value);
-            }
-            sys->time = t_next;
-            return own_events_commit(sys, t_next) != 0 ? -1 : record_grid_point(sys, t_next);
-        }
-        if (locate(sys, &br) != 0 || own_events_commit(sys, br.b) != 0) {
+        double reached;
+        int event;
+        if (hybrid_end_piece(sys, &piece, t_next, t_next - t, &reached, &event) != 0) {
             return -1;
         }
-        sys->time = br.b;
-        instant_work w;
-        if (work_init(&w, sys, br.b) != 0) {
-            return -1;
+        if (!event) {
+            return record_grid_point(sys, t_next);
         }
-        int status = handle_instant(sys, &br, &w, 1);
-        work_free(&w);
-        if (status != 0) {
-            return -1;
-        }
-        a0 = br.b;
+        a0 = reached;
     }
     return 0;
 }

@@ -9,4 +9,21 @@ int hybrid_prepare(ssx_system *sys);
 /* Advances the system from t to t_next, locating and handling every event in between. */
 int hybrid_step(ssx_system *sys, double t, double t_next);
 
+/* The snapshot slot of a macro piece's start: localization restores it. */
+enum { MACRO_SLOT = 0 };
+
+/* A macro piece for an algorithm that chooses its own steps (adaptive.h): begin at a0 (an
+ * indicator starting on zero is resolved there), then take the MACRO_SLOT snapshot and the
+ * coupled step to t_end, then end the piece: the earliest crossing in it is located to
+ * tol_time and handled. *reached is where the system is then (t_end, or the event's instant,
+ * *event set); the grid point is not recorded. */
+typedef struct {
+    double a0;
+    long do_steps_before; /* statistics at the piece's start, for the event's cost */
+    long restores_before;
+} hybrid_piece;
+int hybrid_begin_piece(ssx_system *sys, double a0, double t_end, hybrid_piece *piece);
+int hybrid_end_piece(ssx_system *sys, const hybrid_piece *piece, double t_end, double grid_step,
+                     double *reached, int *event);
+
 #endif

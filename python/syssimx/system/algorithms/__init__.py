@@ -3,8 +3,9 @@
 from .coupling import GaussSeidelAlgorithm, JacobiAlgorithm
 from .hybrid import HybridAlgorithm
 from .ijcsa import IJCSAAlgorithm
+from .step_control import StepControl
 
 Algorithm = JacobiAlgorithm | GaussSeidelAlgorithm | HybridAlgorithm
 
 __all__ = ["Algorithm", "GaussSeidelAlgorithm", "HybridAlgorithm", "IJCSAAlgorithm",
-           "JacobiAlgorithm"]
+           "JacobiAlgorithm", "StepControl"]

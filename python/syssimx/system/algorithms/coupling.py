@@ -10,6 +10,7 @@ from typing import ClassVar
 from ...bridge.options import engine_refusal
 from ...engine import defaults, enum_name, enum_values, ffi, lib
 from ...errors import ConfigurationError
+from .step_control import StepControl
 
 JACOBIAN_PREFIX = "SSX_JACOBIAN_"
 
@@ -30,7 +31,13 @@ class JacobiAlgorithm:
     threads: FMU components step on this many threads in C (the calling thread and
     threads - 1 workers, see ssx_set_threads); Python components and FMUs that declare
     canBeInstantiatedOnlyOncePerProcess stay on the calling thread, and the results are those
-    of one thread."""
+    of one thread.
+
+    input_order: 0 holds every input over a communication step; 1 or 2 hands FMUs that
+    declare canInterpolateInputs the first (and second) time derivative of each connected Real
+    input, from the driving FMU's output derivatives where it declares them, else from the
+    last communication points (see ssx_set_input_order). step_control: a StepControl chooses
+    the communication steps by the coupling error; None steps on the run's grid."""
 
     tolerance: float = field(default_factory=lambda: defaults().loop_tolerance)
     max_iter: int = field(default_factory=lambda: defaults().loop_max_iterations)
@@ -39,6 +46,8 @@ class JacobiAlgorithm:
     loop_jacobian: str = field(default_factory=lambda: enum_name(
         "ssx_loop_jacobian", JACOBIAN_PREFIX, defaults().loop_jacobian))
     threads: int = field(default_factory=lambda: defaults().threads)
+    input_order: int = field(default_factory=lambda: defaults().input_order)
+    step_control: StepControl | None = None
     engine_coupling: ClassVar[str] = "SSX_JACOBI"  # the ssx_coupling it runs as
 
     def coupling_value(self) -> int:
@@ -61,6 +70,18 @@ class JacobiAlgorithm:
         refusal = engine_refusal(lambda system: lib().ssx_set_threads(system, self.threads))
         if refusal is not None:
             raise ConfigurationError(f"{self.name}: {refusal}")
+        if isinstance(self.input_order, bool) or not isinstance(self.input_order, int):
+            raise ConfigurationError(f"{self.name}: input_order must be an integer, got "
+                             f"{self.input_order!r}")
+        refusal = engine_refusal(lambda system: lib().ssx_set_input_order(system,
+                                                                          self.input_order))
+        if refusal is not None:
+            raise ConfigurationError(f"{self.name}: {refusal}")
+        if self.step_control is not None:
+            if not isinstance(self.step_control, StepControl):
+                raise ConfigurationError(f"{self.name}: step_control must be a StepControl or "
+                                         f"None, got {self.step_control!r}")
+            self.step_control.validate(self.name)
 
 
 @dataclass

@@ -1,0 +1,176 @@
+"""The fixed cost of a run: short members on a reused System against FMPy's reuse loop, and
+what `System.run` costs in Python as the component count grows.
+
+1. Members of 20 steps (dt 0.05, theta0 changed per member) of one pendulum FMU, in one process:
+   - syssimx, reused System: set_parameters, initialize, run, read the arrays (the plan is
+     compiled once; each initialize resets the FMU instance: fmi2Reset, starts, init mode);
+   - syssimx, rebuilt: the same with `system.reset()` before each initialize (a fresh plan and a
+     fresh instance per member: what every initialize did before plans were reused);
+   - FMPy's reuse loop: one FMU2Slave, `reset` between members, setupExperiment, start value,
+     initialization mode, 20 doStep + getReal of the outputs into a list.
+   Median CPU microseconds per member of `--repeats` rounds of `--members` members (CPU time,
+   not wall time: on a shared machine the wall counts the other processes' turns too), and
+   ratios to FMPy.
+2. `System.run` of one step on a chain-free system of N `gain` FMUs (N = 100, 1000, 10000):
+   the wall of `System.run` against `ssx_run` called directly on the same engine system for
+   the same step; the difference is the Python cost per call, printed per call and per
+   component; and the Python function calls one `System.run` makes (counted by a profile
+   hook: a figure the machine's load does not move).
+
+    python benchmarks/run_cost.py [--members 200] [--repeats 5] [--components 100,1000,10000]
+"""
+
+from __future__ import annotations
+
+import argparse
+import functools
+import statistics
+import sys
+import time
+from collections.abc import Callable
+
+import numpy as np
+from syssimx import FMUComponent, System, fmus
+from syssimx.engine import lib
+
+DT, STEPS = 0.05, 20
+
+
+def syssimx_members(fmu: str, rebuild: bool) -> Callable[[np.ndarray], list[np.ndarray]]:
+    pendulum = FMUComponent("P", fmus.path(fmu))
+    system = System("member")
+    system.add_component(pendulum)
+
+    def run(thetas: np.ndarray) -> list[np.ndarray]:
+        out = []
+        for theta in thetas:
+            if rebuild:
+                system.reset()
+            pendulum.set_parameters(theta0=float(theta))
+            system.initialize(0.0)
+            result = system.run(0.0, STEPS * DT, DT)
+            out.append(result["P"][1]["theta"])
+        return out
+    return run
+
+
+def fmpy_members(fmu: str) -> Callable[[np.ndarray], list[np.ndarray]]:
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Slave
+
+    path = fmus.path(fmu)
+    description = read_model_description(path)
+    unzipdir = extract(path)
+    refs = {v.name: v.valueReference for v in description.modelVariables}
+    slave = FMU2Slave(guid=description.guid, unzipDirectory=unzipdir,
+                      modelIdentifier=description.coSimulation.modelIdentifier,
+                      instanceName="P")
+    slave.instantiate()
+    theta0, outputs = [refs["theta0"]], [refs["theta"], refs["omega"]]
+
+    def run(thetas: np.ndarray) -> list[np.ndarray]:
+        out = []
+        for theta in thetas:
+            slave.reset()
+            slave.setupExperiment(startTime=0.0)
+            slave.enterInitializationMode()
+            slave.setReal(theta0, [float(theta)])
+            slave.exitInitializationMode()
+            rows = [slave.getReal(outputs)]
+            t = 0.0
+            for k in range(1, STEPS + 1):
+                slave.doStep(t, DT)
+                t = k * DT
+                rows.append(slave.getReal(outputs))
+            out.append(np.array(rows)[:, 0])
+        return out
+    return run
+
+
+def member_costs(members: int, repeats: int) -> None:
+    thetas = np.linspace(0.2, 0.6, members)
+    print(f"1. members of {STEPS} steps (dt {DT}), {members} members per round, median of "
+          f"{repeats} rounds, in turns")
+    print(f"{'FMU':<16} {'path':<26} {'CPU us/member':>14} {'/ FMPy':>8}")
+    for fmu in ("pendulum_euler", "pendulum_cvode"):
+        paths = {"syssimx, reused System": syssimx_members(fmu, rebuild=False),
+                 "syssimx, rebuilt": syssimx_members(fmu, rebuild=True),
+                 "FMPy reuse loop": fmpy_members(fmu)}
+        times: dict[str, list[float]] = {name: [] for name in paths}
+        finals: dict[str, list[float]] = {}
+        for name, run in paths.items():  # warm-up, and the final angles compared
+            finals[name] = [float(series[-1]) for series in run(thetas[:5])]
+        for _ in range(repeats):
+            for name, run in paths.items():
+                start = time.process_time()
+                run(thetas)
+                times[name].append((time.process_time() - start) / members * 1e6)
+        fmpy = statistics.median(times["FMPy reuse loop"])
+        for name, samples in times.items():
+            cost = statistics.median(samples)
+            print(f"{fmu:<16} {name:<26} {cost:14.1f} {cost / fmpy:8.2f}")
+        reference = np.array(finals["FMPy reuse loop"])
+        for name, values in finals.items():
+            print(f"{'':<16} {name:<26} max |theta(1 s) - FMPy's| = "
+                  f"{np.max(np.abs(np.array(values) - reference)):.1e}")
+
+
+def python_calls_of(call: Callable[[], object]) -> int:
+    """The Python functions `call` runs (C functions not counted)."""
+    counted = 0
+
+    def count(_frame: object, event: str, _argument: object) -> None:
+        nonlocal counted
+        counted += event == "call"
+
+    sys.setprofile(count)
+    try:
+        call()
+    finally:
+        sys.setprofile(None)
+    return counted
+
+
+def run_call_cost(counts: list[int], repeats: int) -> None:
+    print(f"\n2. System.run of one step (dt 1e-3) on N uncoupled gain FMUs, median of {repeats}")
+    print(f"{'N':>6} {'System.run us':>14} {'ssx_run us':>11} {'Python us':>10} "
+          f"{'Python us/component':>20} {'Python calls':>13}")
+    for count in counts:
+        system = System("gains")
+        for i in range(count):
+            system.add_component(FMUComponent(f"G{i}", fmus.path("gain")))
+        system.initialize(0.0)
+        plan = system._plan
+        assert plan is not None
+        t, python_calls, engine_calls = 0.0, [], []
+        for _ in range(repeats):
+            start = time.perf_counter()
+            system.run(t, t + 1e-3, 1e-3)
+            python_calls.append(time.perf_counter() - start)
+            t = system.t
+            start = time.perf_counter()
+            lib().ssx_run(plan.sys, t, t + 1e-3, 1e-3)
+            engine_calls.append(time.perf_counter() - start)
+            t += 1e-3
+            system.t = t
+        whole, engine = statistics.median(python_calls), statistics.median(engine_calls)
+        calls = python_calls_of(functools.partial(system.run, system.t, system.t + 1e-3, 1e-3))
+        print(f"{count:6d} {whole * 1e6:14.1f} {engine * 1e6:11.1f} "
+              f"{(whole - engine) * 1e6:10.1f} {(whole - engine) / count * 1e6:20.3f} "
+              f"{calls:13d}")
+        for component in system.components.values():
+            component.free()
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--members", type=int, default=200)
+    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--components", default="100,1000,10000")
+    args = parser.parse_args()
+    member_costs(args.members, args.repeats)
+    run_call_cost([int(n) for n in args.components.split(",")], args.repeats)
+
+
+if __name__ == "__main__":
+    main()

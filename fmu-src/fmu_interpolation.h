@@ -1,0 +1,50 @@
+/* Higher-order inputs and output derivatives for every interface.
+ *
+ * Inputs: an importer may give the first and second time derivatives of Real inputs
+ * (fmi2SetRealInputDerivatives); a step then drives each such input along its Taylor polynomial
+ * from the communication point, and after the step the polynomial goes on from the step's end
+ * (the value at the end becomes the input, the first derivative follows the second) until the
+ * importer sets new derivatives. FMI 3.0 has no input derivatives: there the importer answers an
+ * intermediate update callback with the input values at the time the FMU asks for
+ * (intermediate_update below).
+ *
+ * Outputs: the first time derivative of an output at the current point, along the trajectory
+ * (the states move with their derivatives, the inputs with their derivatives, time with time),
+ * computed from the model's equations by a central difference of the output function. */
+#ifndef SYSSIMX_FMU_INTERPOLATION_H
+#define SYSSIMX_FMU_INTERPOLATION_H
+
+#include "fmu_instance.h"
+
+/* The highest input derivative order accepted and the output derivative order served (declared
+ * as maxOutputDerivativeOrder). */
+#define FMU_MAX_INPUT_DERIVATIVE_ORDER 2
+#define FMU_MAX_OUTPUT_DERIVATIVE_ORDER 1
+
+/* Stores derivative order[i] of input vr[i]; `function` names the call in messages. */
+fmi2Status fmu_set_input_derivatives(fmu_instance *inst, const char *function,
+                                     const fmi2ValueReference vr[], size_t nvr,
+                                     const int order[], const double value[]);
+/* Forgets every input derivative (reset, a restored state). */
+void fmu_clear_input_derivatives(fmu_instance *inst);
+
+/* Derivative order[i] of output vr[i] at the instance's time into value[i]. */
+fmi2Status fmu_get_output_derivatives(fmu_instance *inst, const char *function,
+                                      const fmi2ValueReference vr[], size_t nvr,
+                                      const int order[], double value[]);
+
+/* Called by fmu_do_step around the back-end's integration from t to t_end. */
+void fmu_inputs_begin_step(fmu_instance *inst);
+void fmu_inputs_end_step(fmu_instance *inst, double t_end);
+
+void fmu_inputs_follow(fmu_instance *inst, double t);
+
+/* The back-ends call this before evaluating the model at time t inside a step: the inputs take
+ * their interpolated values at t. Inline: it runs at every right-hand side evaluation. */
+static inline void fmu_inputs_at(fmu_instance *inst, double t)
+{
+    if (inst->input_motion != INPUTS_HELD)
+        fmu_inputs_follow(inst, t);
+}
+
+#endif

@@ -1,0 +1,150 @@
+#include "adaptive.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "coupling.h"
+#include "error.h"
+#include "hybrid.h"
+#include "input_order.h"
+
+/* Bounds on how much one step may change the next: a controller that jumps further trusts an
+ * error estimate beyond what one step tells. */
+#define MAX_GROWTH 5.0
+#define MAX_SHRINK 0.2
+/* Errors below this count as this small: the growth factor stays finite. */
+#define SMALLEST_ERROR 1e-10
+
+struct adaptive_workspace {
+    double proposed; /* the next step's length; 0 before the first */
+};
+
+int adaptive_prepare(ssx_system *sys)
+{
+    adaptive_free(sys);
+    sys->adaptive = calloc(1, sizeof *sys->adaptive);
+    if (sys->adaptive == NULL) {
+        return fail(sys, -1, -1, sys->time, "out of memory preparing the step control");
+    }
+    if (system_is_hybrid(sys)) {
+        return hybrid_prepare(sys);
+    }
+    return 0;
+}
+
+void adaptive_free(ssx_system *sys)
+{
+    free(sys->adaptive);
+    sys->adaptive = NULL;
+}
+
+/* The factor the error asks of the step: the coupling error of held inputs grows like h, of
+ * order-p inputs like h^(p + 1). */
+static double step_factor(const ssx_system *sys, double error)
+{
+    double exponent = -1.0 / (double)(sys->input_order + 1);
+    double factor = sys->step_control.safety * pow(fmax(error, SMALLEST_ERROR), exponent);
+    return fmin(MAX_GROWTH, fmax(MAX_SHRINK, factor));
+}
+
+/* Without an initial step: a tenth of the grid interval, shortened as the tolerance asks of
+ * an error that grows like h^(order + 1) (a step taken without rollback is kept, so the first
+ * one had better be within tolerance). */
+static double first_step(const ssx_system *sys, double grid_step)
+{
+    double tolerance = fmin(1.0, fmax(sys->step_control.rtol, sys->step_control.atol));
+    return 0.1 * grid_step * pow(tolerance, 1.0 / (double)(sys->input_order + 1));
+}
+
+static double clamp_step(const ssx_step_control *sc, double h)
+{
+    double longest = sc->max_step > 0.0 ? sc->max_step : INFINITY;
+    return fmin(longest, fmax(sc->min_step, h));
+}
+
+static void count_accepted(ssx_system *sys, double h, double error)
+{
+    ssx_statistics *st = &sys->stats;
+    st->smallest_step = st->accepted_steps == 0 ? h : fmin(st->smallest_step, h);
+    st->largest_step = fmax(st->largest_step, h);
+    st->largest_error = fmax(st->largest_error, error);
+    st->error_sum += error;
+    st->accepted_steps++;
+}
+
+/* One accepted step from a, at most to t_next; *reached is where it ends (before t_next at an
+ * event). */
+static int accepted_step(ssx_system *sys, double a, double t_next, double *reached, int *event)
+{
+    const ssx_step_control *sc = &sys->step_control;
+    struct adaptive_workspace *w = sys->adaptive;
+    int hybrid = system_is_hybrid(sys);
+    int restorable = sc->rollback || hybrid;
+    hybrid_piece piece;
+    if (hybrid && hybrid_begin_piece(sys, a, t_next, &piece) != 0) {
+        return -1;
+    }
+    double room = t_next - a;
+    double h = fmin(w->proposed, room);
+    /* a remainder shorter than the smallest step joins this one */
+    if (room - h < fmax(sc->min_step, 1e-9 * room)) {
+        h = room;
+    }
+    int cut_by_grid = h < w->proposed;
+    double error;
+    for (;;) {
+        if ((restorable && system_snapshot(sys, MACRO_SLOT) != 0) ||
+            coupling_step(sys, a, h) != 0) {
+            return -1;
+        }
+        error = input_order_error(sys);
+        if (!(error > 1.0) || !sc->rollback || h <= sc->min_step) {
+            break;
+        }
+        if (system_restore(sys, MACRO_SLOT, a) != 0) {
+            return -1;
+        }
+        sys->stats.rejected_steps++;
+        h = fmax(sc->min_step, h * step_factor(sys, error));
+        cut_by_grid = 0;
+    }
+    sys->stats.macro_steps++;
+    count_accepted(sys, h, error);
+    double factor = step_factor(sys, error);
+    /* a step the grid cut short says nothing about how long the next may grow */
+    if (!(cut_by_grid && factor >= 1.0)) {
+        w->proposed = clamp_step(sc, h * factor);
+    }
+    double t_end = h == room ? t_next : a + h;
+    if (hybrid) {
+        return hybrid_end_piece(sys, &piece, t_end, h, reached, event);
+    }
+    *reached = t_end;
+    *event = 0;
+    sys->time = t_end;
+    return own_events_commit(sys, t_end);
+}
+
+int adaptive_step(ssx_system *sys, double t, double t_next)
+{
+    struct adaptive_workspace *w = sys->adaptive;
+    const ssx_step_control *sc = &sys->step_control;
+    if (!(w->proposed > 0.0)) {
+        w->proposed = clamp_step(sc, sc->initial_step > 0.0 ? sc->initial_step
+                                                            : first_step(sys, t_next - t));
+    }
+    double a = t;
+    int event = 0;
+    while (a < t_next) {
+        double reached;
+        if (accepted_step(sys, a, t_next, &reached, &event) != 0) {
+            return -1;
+        }
+        if (sys->termination.component >= 0) {
+            return 0;
+        }
+        a = reached;
+    }
+    /* an event at t_next itself recorded its samples there already */
+    return event ? 0 : record_grid_point(sys, t_next);
+}

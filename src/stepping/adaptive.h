@@ -1,0 +1,16 @@
+/* Error-controlled communication steps (ssx_set_step_control): the master algorithm that
+ * chooses each coupled step's length from the coupling error of the last one (input_order.h),
+ * with rollback (a step over tolerance is taken again, shorter) or without (only the next steps
+ * adapt). Its state is its own workspace. */
+#ifndef SSX_ADAPTIVE_H
+#define SSX_ADAPTIVE_H
+
+#include "system.h"
+
+int adaptive_prepare(ssx_system *sys);
+/* Covers the grid interval [t, t_next] with accepted steps; events inside are located and
+ * handled as the hybrid algorithm does. Records the grid point t_next. */
+int adaptive_step(ssx_system *sys, double t, double t_next);
+void adaptive_free(ssx_system *sys);
+
+#endif

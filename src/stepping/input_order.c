@@ -1,0 +1,422 @@
+#include "input_order.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "coupling.h"
+#include "error.h"
+#include "fmu_backend.h"
+#include "fmu_binding.h"
+
+/* Communication points kept per component: three give a second-order extrapolation. */
+enum { HISTORY = 3 };
+
+typedef struct {
+    double t[HISTORY];   /* newest first */
+    double *y[HISTORY];  /* the outputs at t[k] */
+    int count;
+    double *slope;       /* output derivatives at the step's start, read from the FMU */
+    int has_slope;
+    /* for writing input derivatives: value references, orders and values of the Real inputs */
+    unsigned int *write_vr;
+    int *write_order;
+    double *write_values;
+    size_t n_write;
+} component_track;
+
+struct input_motion {
+    int n_components; /* as prepared */
+    int order;
+    int stepping; /* inside a coupled step from t over h */
+    double t;
+    double h;
+    double error; /* of the last coupled step */
+    int (*base_step)(ssx_system *sys, double t, double h);
+    component_track *tracks;
+    unsigned char *interpolated; /* per connection: its driver steps first (Gauss-Seidel) */
+    unsigned char *held;         /* per component: a loop member, its inputs held */
+};
+
+static int tracked_step(ssx_system *sys, double t, double h);
+
+void input_order_free(ssx_system *sys)
+{
+    struct input_motion *w = sys->input_motion;
+    if (w == NULL) {
+        return;
+    }
+    for (int i = 0; i < w->n_components; ++i) {
+        component_track *tr = &w->tracks[i];
+        for (int k = 0; k < HISTORY; ++k) {
+            free(tr->y[k]);
+        }
+        free(tr->slope);
+        free(tr->write_vr);
+        free(tr->write_order);
+        free(tr->write_values);
+        free(sys->components[i]->input_derivatives);
+        sys->components[i]->input_derivatives = NULL;
+    }
+    free(w->tracks);
+    free(w->interpolated);
+    free(w->held);
+    free(w);
+    sys->input_motion = NULL;
+}
+
+static int interpolates(const ssx_system *sys, const ssx_component *c)
+{
+    return sys->input_order > 0 && c->can_interpolate_inputs && c->fmu != NULL &&
+           c->input_batch[SSX_REAL].n > 0;
+}
+
+static int prepare_track(ssx_system *sys, struct input_motion *w, int i)
+{
+    ssx_component *c = sys->components[i];
+    component_track *tr = &w->tracks[i];
+    size_t n_out = (size_t)c->n_outputs + 1;
+    for (int k = 0; k < HISTORY; ++k) {
+        tr->y[k] = calloc(n_out, sizeof(double));
+        if (tr->y[k] == NULL) {
+            return -1;
+        }
+    }
+    tr->slope = calloc(n_out, sizeof(double));
+    if (tr->slope == NULL) {
+        return -1;
+    }
+    if (!interpolates(sys, c)) {
+        return 0;
+    }
+    size_t n_real = c->input_batch[SSX_REAL].n;
+    size_t n_write = n_real * (size_t)sys->input_order;
+    c->input_derivatives = calloc(2 * (size_t)c->n_inputs + 1, sizeof(double));
+    tr->write_vr = malloc(n_write * sizeof *tr->write_vr);
+    tr->write_order = malloc(n_write * sizeof *tr->write_order);
+    tr->write_values = malloc(n_write * sizeof *tr->write_values);
+    if (c->input_derivatives == NULL || tr->write_vr == NULL || tr->write_order == NULL ||
+        tr->write_values == NULL) {
+        return -1;
+    }
+    for (int order = 1; order <= sys->input_order; ++order) {
+        for (size_t j = 0; j < n_real; ++j) {
+            size_t at = (size_t)(order - 1) * n_real + j;
+            tr->write_vr[at] = c->input_batch[SSX_REAL].vr[j];
+            tr->write_order[at] = order;
+        }
+    }
+    tr->n_write = n_write;
+    return 0;
+}
+
+/* Which connections interpolate (their driver steps before the input's owner in the same
+ * Gauss-Seidel step) and which components are loop members. */
+static void classify(ssx_system *sys, struct input_motion *w, int *position)
+{
+    for (int gi = 0; gi < sys->n_groups; ++gi) {
+        const ssx_group *g = &sys->groups[gi];
+        for (int m = 0; m < g->size; ++m) {
+            int c = sys->order[g->first + m];
+            position[c] = gi;
+            w->held[c] = (unsigned char)g->is_loop;
+        }
+    }
+    for (int k = 0; k < sys->n_connections; ++k) {
+        const ssx_connection *cn = &sys->connections[k];
+        w->interpolated[k] = sys->coupling == SSX_GAUSS_SEIDEL &&
+                             position[cn->src_component] < position[cn->dst_component];
+    }
+}
+
+int input_order_prepare(ssx_system *sys)
+{
+    input_order_free(sys);
+    if (sys->input_order == 0 && !sys->step_control.enabled) {
+        return 0;
+    }
+    struct input_motion *w = calloc(1, sizeof *w);
+    int *position = malloc(((size_t)sys->n_components + 1) * sizeof *position);
+    if (w != NULL) {
+        w->tracks = calloc((size_t)sys->n_components + 1, sizeof *w->tracks);
+        w->interpolated = calloc((size_t)sys->n_connections + 1, 1);
+        w->held = calloc((size_t)sys->n_components + 1, 1);
+    }
+    sys->input_motion = w;
+    if (w != NULL) {
+        w->n_components = sys->n_components;
+    }
+    int ok = w != NULL && position != NULL && w->tracks != NULL && w->interpolated != NULL &&
+             w->held != NULL;
+    for (int i = 0; ok && i < sys->n_components; ++i) {
+        ok = prepare_track(sys, w, i) == 0;
+    }
+    if (!ok) {
+        free(position);
+        input_order_free(sys);
+        return fail(sys, -1, -1, sys->time, "out of memory preparing the input order");
+    }
+    classify(sys, w, position);
+    free(position);
+    w->order = sys->input_order;
+    w->base_step = sys->coupled_step;
+    sys->coupled_step = tracked_step;
+    return 0;
+}
+
+void input_order_forget(ssx_system *sys)
+{
+    struct input_motion *w = sys->input_motion;
+    if (w == NULL) {
+        return;
+    }
+    for (int i = 0; i < sys->n_components; ++i) {
+        w->tracks[i].count = 0;
+        w->tracks[i].has_slope = 0;
+    }
+}
+
+double input_order_error(const ssx_system *sys)
+{
+    return sys->input_motion != NULL ? sys->input_motion->error : 0.0;
+}
+
+/* The outputs at t become the newest history point; points at or after t (a step taken again
+ * after a restore) are dropped first. */
+static void remember(component_track *tr, const ssx_component *c, double t)
+{
+    double tiny = 1e-12 * fmax(1.0, fabs(t));
+    while (tr->count > 0 && tr->t[0] >= t - tiny) {
+        double *y = tr->y[0];
+        memmove(&tr->t[0], &tr->t[1], (HISTORY - 1) * sizeof tr->t[0]);
+        memmove(&tr->y[0], &tr->y[1], (HISTORY - 1) * sizeof tr->y[0]);
+        tr->y[HISTORY - 1] = y;
+        tr->count--;
+    }
+    double *y = tr->y[HISTORY - 1];
+    memmove(&tr->t[1], &tr->t[0], (HISTORY - 1) * sizeof tr->t[0]);
+    memmove(&tr->y[1], &tr->y[0], (HISTORY - 1) * sizeof tr->y[0]);
+    tr->t[0] = t;
+    tr->y[0] = y;
+    memcpy(y, c->outputs, (size_t)c->n_outputs * sizeof(double));
+    if (tr->count < HISTORY) {
+        tr->count++;
+    }
+}
+
+static int read_slopes(ssx_system *sys, ssx_component *c, component_track *tr, double t)
+{
+    const ssx_port_batch *real = &c->output_batch[SSX_REAL];
+    tr->has_slope = 0;
+    if (c->fmu == NULL || c->max_output_derivative_order < 1 || real->n == 0) {
+        return 0;
+    }
+    for (size_t j = 0; j < real->n; ++j) {
+        c->int_scratch[j] = 1;
+    }
+    int status = ssx_fmu_get_real_output_derivatives(c->fmu, real->vr, real->n, c->int_scratch,
+                                                     c->real_scratch);
+    if (!fmi_ok(status)) {
+        return fail_fmi(sys, c, t, status,
+                        ssx_fmu_function_name(c->fmu, SLOT_GET_OUTPUT_DERIVATIVES));
+    }
+    for (size_t j = 0; j < real->n; ++j) {
+        tr->slope[real->port[j]] = c->real_scratch[j];
+    }
+    tr->has_slope = 1;
+    return 0;
+}
+
+/* The history and the output derivatives at the step's start, in schedule order: each FMU
+ * gets its inputs' values and derivatives at t first, so its direct-feedthrough outputs are
+ * those of the drivers' outputs at t (under Jacobi they were computed from the inputs the last
+ * step extrapolated to t: an offset no shorter step could shrink) and move with its inputs. */
+static int begin_step(ssx_system *sys, struct input_motion *w, double t, double h)
+{
+    w->stepping = 0;
+    for (int i = 0; i < sys->n_components; ++i) {
+        remember(&w->tracks[i], sys->components[i], t);
+    }
+    for (int s = 0; s < sys->n_components; ++s) {
+        int i = sys->order[s];
+        ssx_component *c = sys->components[i];
+        component_track *tr = &w->tracks[i];
+        if (c->ops != &ssx_fmu_component_ops) {
+            continue;
+        }
+        if (!w->held[i] && c->n_inputs > 0) {
+            coupling_propagate_inputs(sys, c);
+            if (component_write_inputs(sys, c) != 0 || component_read_outputs(sys, c) != 0) {
+                return -1;
+            }
+            memcpy(tr->y[0], c->outputs, (size_t)c->n_outputs * sizeof(double));
+        }
+        if (w->order > 0 && read_slopes(sys, c, tr, t) != 0) {
+            return -1;
+        }
+    }
+    w->stepping = 1;
+    w->t = t;
+    w->h = h;
+    return 0;
+}
+
+/* Derivatives at the newest point from the older history points (Newton's divided
+ * differences); d2 only for order 2 with three points. */
+static void history_slope(const component_track *tr, int output, double t, double y, int order,
+                          double *d1, double *d2)
+{
+    double tiny = 1e-12 * fmax(1.0, fabs(t));
+    int k = 0;
+    while (k < tr->count && tr->t[k] >= t - tiny) {
+        ++k; /* the point at t itself is y */
+    }
+    *d1 = *d2 = 0.0;
+    if (k >= tr->count) {
+        return;
+    }
+    double t1 = tr->t[k], y1 = tr->y[k][output];
+    double f01 = (y - y1) / (t - t1);
+    *d1 = f01;
+    if (order < 2 || k + 1 >= tr->count) {
+        return;
+    }
+    double t2 = tr->t[k + 1], y2 = tr->y[k + 1][output];
+    double f12 = (y1 - y2) / (t1 - t2);
+    double f012 = (f01 - f12) / (t - t2);
+    *d1 = f01 + f012 * (t - t1);
+    *d2 = 2.0 * f012;
+}
+
+/* Driver output `output` of component `src` over the coming step: its value at the step's
+ * start and derivatives there. */
+static double driver_polynomial(const ssx_system *sys, const struct input_motion *w,
+                                int connection, double *d1, double *d2)
+{
+    const ssx_connection *cn = &sys->connections[connection];
+    const ssx_component *src = sys->components[cn->src_component];
+    const component_track *tr = &w->tracks[cn->src_component];
+    int o = cn->src_output;
+    double y = src->outputs[o];
+    int real = src->output_ports[o].type == SSX_REAL;
+    *d1 = *d2 = 0.0;
+    if (!real) {
+        return y;
+    }
+    if (w->stepping && w->interpolated[connection] && tr->count > 0) {
+        /* the driver is already at t + h: interpolate between its outputs at t and t + h */
+        double y0 = tr->y[0][o], h = w->h;
+        double secant = (y - y0) / h;
+        *d1 = secant;
+        if (w->order >= 2 && tr->count > 1) {
+            double back = (y0 - tr->y[1][o]) / (tr->t[0] - tr->t[1]);
+            double curvature = (secant - back) / (h + tr->t[0] - tr->t[1]);
+            *d1 = secant - curvature * h;
+            *d2 = 2.0 * curvature;
+        }
+        return y0;
+    }
+    double t = w->stepping ? w->t : tr->count > 0 ? tr->t[0] : 0.0;
+    if (tr->has_slope) {
+        *d1 = tr->slope[o];
+        if (w->order >= 2 && tr->count > 1 && w->stepping) {
+            /* the second derivative that puts the previous point on the parabola */
+            double dt = tr->t[1] - t;
+            *d2 = 2.0 * (tr->y[1][o] - y - *d1 * dt) / (dt * dt);
+        }
+        return y;
+    }
+    history_slope(tr, o, t, y, w->order, d1, d2);
+    return y;
+}
+
+void input_order_propagate(ssx_system *sys, ssx_component *c)
+{
+    struct input_motion *w = sys->input_motion;
+    if (w == NULL || c->input_derivatives == NULL) {
+        return;
+    }
+    int held = w->held[c->index];
+    for (int i = 0; i < c->n_inputs; ++i) {
+        double *d = &c->input_derivatives[2 * i];
+        int k = c->input_driver[i];
+        d[0] = d[1] = 0.0;
+        if (k < 0 || held || c->input_ports[i].type != SSX_REAL) {
+            continue;
+        }
+        const ssx_connection *cn = &sys->connections[k];
+        double d1, d2;
+        double y = driver_polynomial(sys, w, k, &d1, &d2);
+        c->inputs[i] = cn->scale * y + cn->offset;
+        d[0] = cn->scale * d1;
+        d[1] = w->order >= 2 ? cn->scale * d2 : 0.0;
+    }
+}
+
+int input_order_write(ssx_system *sys, ssx_component *c)
+{
+    struct input_motion *w = sys->input_motion;
+    if (w == NULL || c->input_derivatives == NULL) {
+        return 0;
+    }
+    component_track *tr = &w->tracks[c->index];
+    const ssx_port_batch *real = &c->input_batch[SSX_REAL];
+    for (size_t at = 0; at < tr->n_write; ++at) {
+        int port = real->port[at % real->n];
+        tr->write_values[at] = c->input_derivatives[2 * port + tr->write_order[at] - 1];
+    }
+    int status = ssx_fmu_set_real_input_derivatives(c->fmu, tr->write_vr, tr->n_write,
+                                                    tr->write_order, tr->write_values);
+    if (!fmi_ok(status)) {
+        return fail_fmi(sys, c, sys->time, status,
+                        ssx_fmu_function_name(c->fmu, SLOT_SET_INPUT_DERIVATIVES));
+    }
+    return 0;
+}
+
+/* After the step: each input at the value its polynomial reached at t + h (what the FMU holds),
+ * and the coupling error against the drivers' outputs there. */
+static double end_step(ssx_system *sys, struct input_motion *w)
+{
+    double h = w->h, error = 0.0;
+    int measured = sys->step_control.enabled;
+    double rtol = sys->step_control.rtol, atol = sys->step_control.atol;
+    for (int ci = 0; ci < sys->n_components; ++ci) {
+        ssx_component *c = sys->components[ci];
+        if (w->held[ci]) {
+            continue;
+        }
+        for (int i = 0; i < c->n_inputs; ++i) {
+            int k = c->input_driver[i];
+            if (k < 0) {
+                continue;
+            }
+            if (c->input_derivatives != NULL) {
+                const double *d = &c->input_derivatives[2 * i];
+                c->inputs[i] += h * (d[0] + 0.5 * h * d[1]);
+            }
+            const ssx_connection *cn = &sys->connections[k];
+            if (!measured) {
+                continue;
+            }
+            double y = cn->scale * sys->components[cn->src_component]->outputs[cn->src_output] +
+                       cn->offset;
+            double weighted = fabs(y - c->inputs[i]) / (atol + rtol * fabs(y));
+            error = weighted > error ? weighted : error;
+        }
+    }
+    w->stepping = 0;
+    return error;
+}
+
+static int tracked_step(ssx_system *sys, double t, double h)
+{
+    struct input_motion *w = sys->input_motion;
+    if (begin_step(sys, w, t, h) != 0) {
+        w->stepping = 0;
+        return -1;
+    }
+    int status = w->base_step(sys, t, h);
+    w->error = end_step(sys, w);
+    return status;
+}

@@ -1,0 +1,34 @@
+/* What inputs do over a macro step, and how far they are off at its end.
+ *
+ * Input order 0 holds every input constant over a step. Order 1 or 2 hands each connected Real
+ * input of an FMU that declares canInterpolateInputs the first (and second) time derivative of
+ * its polynomial over the step: under Gauss-Seidel a driver that already stepped gives an
+ * interpolation between its outputs at t and t + h, any other driver an extrapolation from t,
+ * with derivatives from the driver's output derivatives where it declares
+ * maxOutputDerivativeOrder >= 1, else from the coupling history (the outputs at the last
+ * communication points; an event starts it again). Inputs of an FMU that cannot interpolate are
+ * held, as are those of an algebraic loop's members (the loop is solved at t + h).
+ *
+ * With a workspace, each coupled step also measures the coupling error: for every connection
+ * the difference between the driver's output at t + h and the value the input reached there,
+ * weighted by the step control's tolerances (the error-controlled algorithm reads it). */
+#ifndef SSX_INPUT_ORDER_H
+#define SSX_INPUT_ORDER_H
+
+#include "system.h"
+
+/* Sets up the workspace for the system as built, after coupling_prepare: needed for input
+ * order >= 1 or error-controlled steps; it wraps the coupling's step. */
+int input_order_prepare(ssx_system *sys);
+void input_order_free(ssx_system *sys);
+/* The derivatives of c's driven Real inputs over the coming step, after their values are set
+ * (coupling_propagate_inputs); may move those values to the polynomial's start. */
+void input_order_propagate(ssx_system *sys, ssx_component *c);
+/* Writes c's input derivatives to its FMU (fmi2SetRealInputDerivatives). */
+int input_order_write(ssx_system *sys, ssx_component *c);
+/* The outputs changed at an instant (an event): the coupling history starts again. */
+void input_order_forget(ssx_system *sys);
+/* The weighted coupling error of the last coupled step (0 without a workspace). */
+double input_order_error(const ssx_system *sys);
+
+#endif
