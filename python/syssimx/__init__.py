@@ -1,4 +1,5 @@
-"""syssimx: hybrid co-simulation of FMI 1.0, 2.0 and 3.0 FMUs, run by a C engine.
+"""syssimx: hybrid co-simulation of FMUs (FMI 1.0, 2.0 and 3.0, Co-Simulation and Model
+Exchange), run by a C engine.
 
 Build a System of FMUComponent and CoSimComponent objects, connect them, optionally add event
 indicators and event connections, then initialize and run. The SysSimX API is kept.

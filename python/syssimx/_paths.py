@@ -7,6 +7,7 @@ SYSSIMX_BUILD_DIR to a meson build directory of this repository uses that build 
 
 from __future__ import annotations
 
+import json
 import os
 from pathlib import Path
 
@@ -62,6 +63,16 @@ def engine_header() -> Path:
         if candidate.is_file():
             return candidate
     raise FileNotFoundError(f"the engine header {ENGINE_HEADER} was not found")
+
+
+def installed_from_build() -> set[str] | None:
+    """The files a meson build (SYSSIMX_BUILD_DIR) installs, by their path in the build; None
+    for an installed package or a build without meson's introspection data."""
+    build = build_dir()
+    listing = build / "meson-info" / "intro-installed.json" if build else None
+    if listing is None or not listing.is_file():
+        return None
+    return {str(Path(built).resolve()) for built in json.loads(listing.read_text())}
 
 
 def fmu_dir() -> Path:

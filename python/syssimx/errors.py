@@ -12,8 +12,30 @@ class SysSimXError(Exception):
         return text or (type(self).__doc__ or type(self).__name__).strip().splitlines()[0]
 
 
+class SysSimXWarning(UserWarning):
+    """Something syssimx did that a user may not expect, and went on: a last step shorter than
+    dt, a parameter set after initialize that waits for the next one."""
+
+
 class ConfigurationError(SysSimXError, ValueError):
     """Bad input found before anything runs: unknown names, wrong types, bad units or times."""
+
+
+class ConfigurationTypeError(ConfigurationError, TypeError):
+    """A value of the wrong type for a port, a parameter or an option (also a TypeError)."""
+
+
+class UnknownNameError(ConfigurationError, KeyError):
+    """A name a result or a history does not hold: a component, a port, an event (also a
+    KeyError, as for a mapping)."""
+
+    def __str__(self) -> str:
+        # KeyError quotes its message; this one reads as the other errors do
+        return BaseException.__str__(self) or SysSimXError.__str__(self)
+
+
+class BundledFMUNotFoundError(ConfigurationError, FileNotFoundError):
+    """No FMU of that name is bundled with syssimx (also a FileNotFoundError)."""
 
 
 class FMUFileError(ConfigurationError):
@@ -62,6 +84,11 @@ class AlgebraicLoopError(SimulationError):
 class EngineMismatchError(SysSimXError, ImportError):
     """The engine library and its cffi module come from different engine headers (a stale
     build): calls between them could pass the wrong arguments."""
+
+
+class MissingDependencyError(SysSimXError, ModuleNotFoundError):
+    """An optional library a feature needs is not installed; the message names the extra that
+    installs it."""
 
 
 class RunInterrupted(KeyboardInterrupt):

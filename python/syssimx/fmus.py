@@ -7,19 +7,28 @@
 
 from __future__ import annotations
 
-from ._paths import fmu_dir
+from ._paths import fmu_dir, installed_from_build
+from .core.suggest import did_you_mean
+from .errors import BundledFMUNotFoundError
 
 
 def available() -> list[str]:
-    """Names of the bundled FMUs (file names without .fmu), sorted."""
+    """Names of the bundled FMUs (file names without .fmu), sorted. In a meson build (see
+    SYSSIMX_BUILD_DIR) those the build installs: its test fixtures are no bundled FMUs."""
     directory = fmu_dir()
-    return sorted(p.stem for p in directory.glob("*.fmu")) if directory.is_dir() else []
+    if not directory.is_dir():
+        return []
+    installed = installed_from_build()
+    return sorted(p.stem for p in directory.glob("*.fmu")
+                  if installed is None or str(p.resolve()) in installed)
 
 
 def path(name: str) -> str:
     """Absolute path of the bundled FMU `name`, e.g. "pendulum_euler"."""
     candidate = fmu_dir() / f"{name}.fmu"
-    if not candidate.is_file():
-        known = ", ".join(available()) or "none"
-        raise FileNotFoundError(f"no bundled FMU named {name!r} in {fmu_dir()}; available: {known}")
+    if name not in available():
+        names = available()
+        raise BundledFMUNotFoundError(
+            f"no bundled FMU named {name!r}{did_you_mean(name, names)}; "
+            f"syssimx.fmus.available() lists the {len(names)} bundled FMUs")
     return str(candidate)

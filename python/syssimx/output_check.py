@@ -15,7 +15,7 @@ from .errors import ConfigurationError
 # suffix -> the modules of which one must be importable to write it, and what to install
 _WRITERS: dict[str, tuple[tuple[str, ...], str]] = {
     ".parquet": (("pyarrow", "fastparquet"), "pyarrow or fastparquet"),
-    ".nc": (("netCDF4", "scipy"), "netCDF4 or scipy"),
+    ".nc": (("scipy", "netCDF4", "h5netcdf"), 'scipy (pip install "syssimx[ensemble]")'),
 }
 
 

@@ -12,6 +12,8 @@ import sys
 from functools import cache, lru_cache
 from typing import TYPE_CHECKING, Any
 
+from .errors import ConfigurationError
+
 if TYPE_CHECKING:
     import pint
 
@@ -95,7 +97,7 @@ def to_unit(unit: str) -> pint.Unit:
         return registry().Unit(pint_expression(unit))
     except Exception as exc:  # whatever pint raises, the unit is unreadable
         reason = str(exc) or type(exc).__name__
-        raise ValueError(f"unit {unit!r} is unknown to pint ({reason})") from exc
+        raise ConfigurationError(f"unit {unit!r} is unknown to pint ({reason})") from exc
 
 
 @lru_cache(maxsize=512)

@@ -6,10 +6,10 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
 import pytest
+from fixture_fmus import fmu_path
 from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
 from fmpy.model_description import ScalarVariable
-from syssimx import fmus
 
 
 @dataclass
@@ -60,7 +60,7 @@ def open_fmu(tmp_path) -> Iterator[OpenFunction]:
         initialize: bool = True,
         guid: str | None = None,
     ) -> OpenFMU:
-        path = fmus.path(name)
+        path = fmu_path(name)
         description = read_model_description(path)
         unzipped = extract(path, unzipdir=tmp_path / f"{name}-{len(opened)}")
         slave = FMU2Slave(

@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from fixture_fmus import fmu_path
 from syssimx import Connection, FMUComponent, FMUError, SimulationError, System, fmus
 
 
 def failing_system(fail_time: float) -> System:
-    failing = FMUComponent("Bad", fmus.path("failing"))
+    failing = FMUComponent("Bad", fmu_path("failing"))
     failing.set_parameters(fail_time=fail_time)
     system = System("S")
     system.add_component(failing)
@@ -33,7 +34,7 @@ def test_fmu_error_mid_run_names_component_time_status_and_message():
 
 def test_failure_inside_a_coupled_system_names_the_failing_component():
     system = failing_system(0.17)
-    copy = FMUComponent("Copy", fmus.path("failing"))
+    copy = FMUComponent("Copy", fmu_path("failing"))
     system.add_component(copy)
     system.add_connection(Connection("Copy", "y", "Bad", "u"))
     system.initialize(0.0)
@@ -44,7 +45,7 @@ def test_failure_inside_a_coupled_system_names_the_failing_component():
 
 
 def test_proxy_raises_with_the_fmu_message_above_warning():
-    failing = FMUComponent("Bad", fmus.path("failing"))
+    failing = FMUComponent("Bad", fmu_path("failing"))
     failing.set_parameters(fail_time=0.0)
     failing.initialize(0.0)
     with pytest.raises(FMUError, match=r"fmi2DoStep returned Error: .*fail_time") as info:

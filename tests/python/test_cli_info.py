@@ -82,7 +82,9 @@ def test_runtime_failures_exit_1_with_one_line(
     assert main(["info", "no_such_model"]) == 1
     error = capsys.readouterr().err
     assert error == ("syssimx: error: no FMU file 'no_such_model' and no bundled FMU of that "
-                     "name (bundled: spring)\n")
+                     "name; 'syssimx fmus' lists the 1 bundled FMUs\n")
+    assert main(["info", "sprung"]) == 1
+    assert "of that name (did you mean 'spring'?); " in capsys.readouterr().err
     not_a_zip = tmp_path / "broken.fmu"
     not_a_zip.write_text("not an archive")
     assert main(["info", str(not_a_zip)]) == 1

@@ -24,9 +24,9 @@ def read_long(path: Path) -> dict[tuple[str, str], tuple[list[float], list[float
     """{(component, port): (times, values, unit)} of a long CSV."""
     with path.open(newline="") as stream:
         rows = list(csv.reader(stream))
-    assert rows[0] == ["component", "port", "time", "value", "unit"]
+    assert rows[0] == ["component", "port", "time", "micro", "value", "unit"]
     table: dict[tuple[str, str], tuple[list[float], list[float], str]] = {}
-    for component, port, time, value, unit in rows[1:]:
+    for component, port, time, _, value, unit in rows[1:]:
         times, values, _ = table.setdefault((component, port), ([], [], unit))
         times.append(float(time))
         values.append(float(value))

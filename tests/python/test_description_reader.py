@@ -13,6 +13,7 @@ from pathlib import Path
 
 import pint
 import pytest
+from fixture_fmus import fmu_path
 from fmpy import read_model_description
 from syssimx import Connection, FMUComponent, System, fmus, units
 from syssimx.errors import ConfigurationError, FMUFileError
@@ -114,7 +115,7 @@ def test_units_pint_cannot_read_give_a_message(unit: str):
 
 def test_an_fmu_with_unit_dash_loads_and_runs(caplog: pytest.LogCaptureFixture):
     with caplog.at_level(logging.WARNING):
-        dash = FMUComponent("D", fmus.path("unit_dash"))
+        dash = FMUComponent("D", fmu_path("unit_dash"))
     assert caplog.messages == []
     assert dash.output_specs["y"].unit == "-"
     dash.set_inputs({"u": 1.5})
@@ -127,8 +128,8 @@ def test_an_fmu_with_unit_dash_loads_and_runs(caplog: pytest.LogCaptureFixture):
 
 def test_a_dimensionless_port_connects_to_dimensionless_not_to_metres():
     system = System("dash")
-    system.add_component(FMUComponent("A", fmus.path("unit_dash")))
-    system.add_component(FMUComponent("B", fmus.path("unit_dash")))
+    system.add_component(FMUComponent("A", fmu_path("unit_dash")))
+    system.add_component(FMUComponent("B", fmu_path("unit_dash")))
     system.add_component(FMUComponent("G", fmus.path("gain")))
     system.add_connection(Connection("A", "y", "B", "u"))
     with pytest.raises(ConfigurationError, match="incompatible units '-' and 'm'"):

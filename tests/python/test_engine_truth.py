@@ -4,6 +4,7 @@ judges option values, and a failure's exception follows the engine's error kind.
 from __future__ import annotations
 
 import pytest
+from fixture_fmus import fmu_path
 from syssimx import (
     AlgebraicLoopError,
     FMUComponent,
@@ -12,7 +13,6 @@ from syssimx import (
     JacobiAlgorithm,
     SimulationError,
     System,
-    fmus,
 )
 from syssimx.engine import defaults, enum_values
 
@@ -50,7 +50,7 @@ def test_the_engine_judges_hybrid_options():
 
 
 def non_finite_system(name: str) -> System:
-    broken = FMUComponent(name, fmus.path("failing"))
+    broken = FMUComponent(name, fmu_path("failing"))
     broken.set_parameters(fail_time=0.5, failure=4)  # 4: a NaN output from fail_time on
     broken.set_inputs({"u": 2.0})
     system = System("S")

@@ -13,6 +13,7 @@ from collections.abc import Iterator
 
 import numpy as np
 import pytest
+from fixture_fmus import fmu_path
 
 pytest.importorskip("distributed")
 pytest.importorskip("xarray")
@@ -35,7 +36,7 @@ def client() -> Iterator[object]:
 def failing_system() -> System:
     """The failing FMU (y = u) fed a constant input: it fails after fail_time as `failure`
     says (0 error, 1 fatal, 2 discard, 3 read failure, 4 NaN)."""
-    failing = FMUComponent("F", fmus.path("failing"))
+    failing = FMUComponent("F", fmu_path("failing"))
     failing.set_inputs({"u": 2.0})
     system = System("failing")
     system.add_component(failing)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from fixture_fmus import fmu_path
 
 pytest.importorskip("xarray")
 from scipy import stats
@@ -166,9 +167,9 @@ def test_an_ensemble_without_its_run_or_with_a_system_object_fails_before_starti
 
 
 def terminating_system():
-    from syssimx import FMUComponent, System, fmus
+    from syssimx import FMUComponent, System
 
-    ramp = FMUComponent("R", fmus.path("terminating"))
+    ramp = FMUComponent("R", fmu_path("terminating"))
     system = System("ramp")
     system.add_component(ramp)
     return system

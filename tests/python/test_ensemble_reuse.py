@@ -12,6 +12,7 @@ import coupled_pendulums
 import numpy as np
 import pendulum_wall
 import pytest
+from fixture_fmus import fmu_path
 from syssimx import (
     CoSimComponent,
     FMUComponent,
@@ -93,7 +94,7 @@ def test_coupled_pendulums_varying_two_components_on_one_system() -> None:
 def failing_system() -> System:
     """The failing FMU (y = u) fed a constant input: it fails after fail_time as `failure`
     says (0 error, 1 fatal, 2 discard, 3 read failure, 4 NaN)."""
-    failing = FMUComponent("F", fmus.path("failing"))
+    failing = FMUComponent("F", fmu_path("failing"))
     failing.set_inputs({"u": 2.0})
     system = System("failing")
     system.add_component(failing)

@@ -17,6 +17,7 @@ from pathlib import Path
 import fmpy
 import numpy as np
 import pytest
+from fixture_fmus import FIXTURES, fmu_path
 from fmpy import extract, read_model_description
 from fmpy.fmi3 import FMU3Slave
 from fmpy.model_description import ModelVariable
@@ -27,6 +28,8 @@ from syssimx import fmus
 FMU_BUILDS = re.search(r"^fmu_builds = \[\n(.*?)^\]", (
     Path(__file__).resolve().parents[2] / "models" / "meson.build").read_text(), re.M | re.S)
 BUILT = re.findall(r"^\s*\['(\w+)',", FMU_BUILDS.group(1), re.M) if FMU_BUILDS else []
+SHIPPED = BUILT
+BUILT = [*SHIPPED, *FIXTURES]  # the toolchain builds the test fixtures the same way
 
 # fmi3Functions.h declares 75 functions; an FMI 3.0 FMU exports all of them and nothing else
 FMI3_FUNCTION_COUNT = 75
@@ -72,7 +75,7 @@ def open_fmu3(tmp_path) -> Iterator[Callable[..., OpenFMU3]]:
     def open_one(stem: str, starts: dict[str, float] | None = None,
                  tolerance: float | None = None, event_mode: bool = False,
                  initialize: bool = True) -> OpenFMU3:
-        path = fmus.path(stem + "_fmi3")
+        path = fmu_path(stem + "_fmi3")
         description = read_model_description(path)
         slave = FMU3Slave(guid=description.guid,
                           unzipDirectory=extract(path, unzipdir=tmp_path / f"{stem}-{len(opened)}"),
@@ -103,26 +106,26 @@ def open_fmu3(tmp_path) -> Iterator[Callable[..., OpenFMU3]]:
 
 def co_simulation_attributes(stem: str) -> dict[str, str]:
     """The attributes of <CoSimulation> as written (FMPy renames FMI 3.0's capability flags)."""
-    with zipfile.ZipFile(fmus.path(stem + "_fmi3")) as archive:
+    with zipfile.ZipFile(fmu_path(stem + "_fmi3")) as archive:
         root = ElementTree.fromstring(archive.read("modelDescription.xml"))
     return dict(root.find("CoSimulation").attrib)
 
 
 # ------------------------------------------------------------------------------ the builds
 def test_every_model_has_an_fmi3_build() -> None:
-    assert BUILT, "no fmu_builds list found in models/meson.build"
-    assert {stem + "_fmi3" for stem in BUILT} <= set(fmus.available())
+    assert SHIPPED, "no fmu_builds list found in models/meson.build"
+    assert {stem + "_fmi3" for stem in SHIPPED} <= set(fmus.available())
 
 
 @pytest.mark.parametrize("stem", BUILT)
 def test_fmpy_finds_no_problem(stem: str) -> None:
-    assert validate_fmu(fmus.path(stem + "_fmi3")) == []
+    assert validate_fmu(fmu_path(stem + "_fmi3")) == []
 
 
 @pytest.mark.parametrize("stem", BUILT)
 def test_description_declares_the_fmi3_interface(stem: str) -> None:
-    fmi2 = read_model_description(fmus.path(stem))
-    fmi3 = read_model_description(fmus.path(stem + "_fmi3"))
+    fmi2 = read_model_description(fmu_path(stem))
+    fmi3 = read_model_description(fmu_path(stem + "_fmi3"))
     assert fmi3.fmiVersion == "3.0"
     assert fmi3.coSimulation.modelIdentifier == stem + "_fmi3"
     assert fmi3.guid == fmi2.guid  # the instantiationToken is the model's GUID
@@ -154,7 +157,7 @@ def test_internal_events_declare_event_mode_and_early_return() -> None:
     with_events = {"bouncing_ball_euler", "bouncing_ball_cvode", "pendulum_contact_euler",
                    "pendulum_contact_cvode", "sliding_mass"}
     for stem in BUILT:
-        description = read_model_description(fmus.path(stem + "_fmi3"))
+        description = read_model_description(fmu_path(stem + "_fmi3"))
         flags = co_simulation_attributes(stem)
         events = stem in with_events
         assert flags.get("hasEventMode", "false") == str(events).lower(), stem
@@ -165,14 +168,14 @@ def test_internal_events_declare_event_mode_and_early_return() -> None:
         assert len(description.eventIndicators) == int(events), stem
         assert flags.get("mightReturnEarlyFromDoStep", "false") == \
             str(events or stem == "terminating").lower(), stem
-    ball = read_model_description(fmus.path("bouncing_ball_cvode_fmi3"))
+    ball = read_model_description(fmu_path("bouncing_ball_cvode_fmi3"))
     assert ball.eventIndicators[0].variable.name == "event_indicator_0"
     assert [v.name for v in ball.modelVariables if v.causality == "independent"] == ["time"]
 
 
 @pytest.mark.parametrize("stem", ["pendulum_euler", "pendulum_cvode", "bouncing_ball_cvode"])
 def test_binary_exports_only_fmi3_and_needs_only_libc_and_libm(stem: str, tmp_path) -> None:
-    unzipped = extract(fmus.path(stem + "_fmi3"), unzipdir=tmp_path / stem)
+    unzipped = extract(fmu_path(stem + "_fmi3"), unzipdir=tmp_path / stem)
     binary = f"{unzipped}/binaries/x86_64-linux/{stem}_fmi3.so"
     symbols = subprocess.run(
         ["nm", "-D", "--defined-only", binary], check=True, capture_output=True, text=True
@@ -194,8 +197,8 @@ def test_simulate_fmu_gives_the_fmi2_results(stem: str) -> None:
     CVODE alike: the same model and back-end code runs). terminating asks to stop at t = 1:
     FMI 2.0 says so with a discarded step, FMI 3.0 with terminateSimulation and an early return
     at the stop time."""
-    fmi2 = fmpy.simulate_fmu(fmus.path(stem))
-    fmi3 = fmpy.simulate_fmu(fmus.path(stem + "_fmi3"), early_return_allowed=True)
+    fmi2 = fmpy.simulate_fmu(fmu_path(stem))
+    fmi3 = fmpy.simulate_fmu(fmu_path(stem + "_fmi3"), early_return_allowed=True)
     assert fmi3.dtype.names == fmi2.dtype.names
     assert len(fmi3) == len(fmi2) > 10
     for name in fmi2.dtype.names:
@@ -205,7 +208,7 @@ def test_simulate_fmu_gives_the_fmi2_results(stem: str) -> None:
 def test_with_event_mode_the_results_are_those_of_internal_handling() -> None:
     """Events applied by the importer at the returned time continue the trajectory exactly as
     the FMU's own handling does: the grid samples of both runs are identical."""
-    path = fmus.path("bouncing_ball_cvode_fmi3")
+    path = fmu_path("bouncing_ball_cvode_fmi3")
     internal = fmpy.simulate_fmu(path, relative_tolerance=1e-10)
     external = fmpy.simulate_fmu(path, relative_tolerance=1e-10, use_event_mode=True,
                                  early_return_allowed=True)
@@ -388,7 +391,7 @@ def test_event_mode_calls_follow_the_state_machine(open_fmu3) -> None:
 
 
 def test_event_mode_needs_internal_events(tmp_path) -> None:
-    path = fmus.path("pendulum_cvode_fmi3")
+    path = fmu_path("pendulum_cvode_fmi3")
     description = read_model_description(path)
     slave = FMU3Slave(guid=description.guid, unzipDirectory=extract(path, unzipdir=tmp_path),
                       modelIdentifier=description.coSimulation.modelIdentifier,
@@ -421,7 +424,7 @@ def test_step_refusals_map_onto_fmi3_statuses(open_fmu3, failure: int, status: i
 @pytest.mark.parametrize("early_return_allowed", [True, False])
 def test_termination_ends_the_step_at_the_stop_time(tmp_path,
                                                     early_return_allowed: bool) -> None:
-    path = fmus.path("terminating_fmi3")
+    path = fmu_path("terminating_fmi3")
     description = read_model_description(path)
     slave = FMU3Slave(guid=description.guid, unzipDirectory=extract(path, unzipdir=tmp_path),
                       modelIdentifier=description.coSimulation.modelIdentifier,
@@ -451,20 +454,20 @@ def test_directional_derivatives_are_those_of_the_fmi2_build(open_fmu3, open_fmu
 # ------------------------------------------------------------------------------ Model Exchange
 @pytest.mark.parametrize("stem", BUILT)
 def test_model_exchange_is_declared_beside_co_simulation(stem: str) -> None:
-    description = read_model_description(fmus.path(stem + "_fmi3"))
+    description = read_model_description(fmu_path(stem + "_fmi3"))
     me, cs = description.modelExchange, description.coSimulation
     assert me.modelIdentifier == cs.modelIdentifier == stem + "_fmi3"
     assert me.canGetAndSetFMUstate and me.canSerializeFMUstate  # FMPy keeps FMI 2.0 spelling
     assert not me.needsCompletedIntegratorStep
     assert description.numberOfContinuousStates == \
-        read_model_description(fmus.path(stem)).numberOfContinuousStates
+        read_model_description(fmu_path(stem)).numberOfContinuousStates
 
 
 @pytest.mark.parametrize("stem", [s for s in BUILT if s != "failing"])
 def test_fmpy_integrates_the_model_exchange_build_as_the_fmi2_one(stem: str) -> None:
     """The same model code behind both versions' Model Exchange calls: FMPy's CVODE takes the
     same steps and finds the same events, to the last bit."""
-    fmi2, fmi3 = (fmpy.simulate_fmu(fmus.path(name), fmi_type="ModelExchange", solver="CVode",
+    fmi2, fmi3 = (fmpy.simulate_fmu(fmu_path(name), fmi_type="ModelExchange", solver="CVode",
                                     relative_tolerance=1e-8)
                   for name in (stem, stem + "_fmi3"))
     assert fmi3.dtype.names == fmi2.dtype.names
@@ -478,7 +481,7 @@ def test_bouncing_ball_as_model_exchange_through_syssimx_bounces_at_the_closed_f
     from syssimx import FMUComponent, System
     from test_fmu_bouncing_ball import closed_form_bounces
 
-    ball = FMUComponent("B", fmus.path("bouncing_ball_cvode_fmi3"), interface="model-exchange",
+    ball = FMUComponent("B", fmu_path("bouncing_ball_cvode_fmi3"), interface="model-exchange",
                         tolerance=1e-12)
     system = System("ball")
     system.add_component(ball)

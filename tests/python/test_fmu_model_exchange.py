@@ -14,11 +14,11 @@ from dataclasses import dataclass, field
 import fmpy
 import numpy as np
 import pytest
+from fixture_fmus import fmu_path
 from fmpy import read_model_description
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import FMU2Model, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
 from scipy.special import ellipj, ellipk
-from syssimx import fmus
 from test_fmu_bouncing_ball import H0, E, G, closed_form_bounces
 from test_fmu_validation import BUILT
 
@@ -36,12 +36,12 @@ def exact_theta(t: np.ndarray) -> np.ndarray:
 
 
 def simulate_me(name: str, **options) -> np.ndarray:
-    return fmpy.simulate_fmu(fmus.path(name), fmi_type="ModelExchange", solver="CVode", **options)
+    return fmpy.simulate_fmu(fmu_path(name), fmi_type="ModelExchange", solver="CVode", **options)
 
 
 @pytest.mark.parametrize("name", BUILT)
 def test_model_exchange_is_declared_beside_co_simulation(name: str) -> None:
-    description = read_model_description(fmus.path(name))
+    description = read_model_description(fmu_path(name))
     me, cs = description.modelExchange, description.coSimulation
     assert me.modelIdentifier == cs.modelIdentifier == name
     assert me.canGetAndSetFMUstate and me.canSerializeFMUstate
@@ -61,12 +61,12 @@ def test_model_exchange_is_declared_beside_co_simulation(name: str) -> None:
     ("sample_hold", []),
 ])
 def test_the_state_vector_is_the_models(name: str, states: list[str]) -> None:
-    description = read_model_description(fmus.path(name))
+    description = read_model_description(fmu_path(name))
     assert [u.variable.derivative.name for u in description.derivatives] == states
 
 
 def test_bouncing_ball_structure_for_model_exchange() -> None:
-    description = read_model_description(fmus.path("bouncing_ball_cvode"))
+    description = read_model_description(fmu_path("bouncing_ball_cvode"))
     assert description.numberOfEventIndicators == 1
     assert description.numberOfContinuousStates == 2
     derivatives = {u.variable.name: (u.variable.derivative.name, [d.name for d in u.dependencies])
@@ -99,7 +99,7 @@ print("\\n".join("message: " + m for m in messages))
 # fmi2SetTime fails inside FMPy's right-hand side callback, which can only print the exception;
 # CVODE then gives up
 def test_failing_fmu_refuses_the_time_past_fail_time() -> None:
-    run = subprocess.run([sys.executable, "-c", FAILING_RUN, str(fmus.path("failing"))],
+    run = subprocess.run([sys.executable, "-c", FAILING_RUN, str(fmu_path("failing"))],
                          capture_output=True, text=True, timeout=120, check=True)
     # FMPy's CVODE prints its own warnings to the same output
     lines = run.stdout.splitlines()
@@ -129,7 +129,7 @@ def test_pendulum_follows_the_exact_solution() -> None:
     assert abs(quarter["theta"][-1]) < 10 * TOLERANCE
     # the co-simulation build integrates the same equations with its own CVODE: both within
     # 10x of the exact solution, so within 20x of each other
-    cs = fmpy.simulate_fmu(fmus.path("pendulum_cvode"), stop_time=1.0, output_interval=0.01,
+    cs = fmpy.simulate_fmu(fmu_path("pendulum_cvode"), stop_time=1.0, output_interval=0.01,
                            start_values={"theta0": THETA0, "cvode_relative_tolerance": TOLERANCE})
     assert np.array_equal(cs["time"], me["time"])
     assert np.abs(me["theta"] - cs["theta"]).max() < 20 * TOLERANCE
@@ -194,8 +194,8 @@ def open_model(tmp_path) -> Iterator:
     opened: list[OpenModel] = []
 
     def open_one(name: str, starts: dict[str, float] | None = None) -> OpenModel:
-        description = read_model_description(fmus.path(name))
-        unzipped = fmpy.extract(fmus.path(name), unzipdir=tmp_path / f"me-{name}-{len(opened)}")
+        description = read_model_description(fmu_path(name))
+        unzipped = fmpy.extract(fmu_path(name), unzipdir=tmp_path / f"me-{name}-{len(opened)}")
         model = FMU2Model(guid=description.guid, unzipDirectory=unzipped,
                           modelIdentifier=description.modelExchange.modelIdentifier,
                           instanceName=name)

@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 import pytest
+from fixture_fmus import fmu_path
 from syssimx import (
     CoSimComponent,
     FMUComponent,
@@ -16,7 +17,6 @@ from syssimx import (
     PortType,
     SimulationError,
     System,
-    fmus,
 )
 from syssimx.engine import lib, string
 
@@ -24,7 +24,7 @@ FAILURES = {"error": 0, "fatal": 1, "discard": 2, "read": 3, "nan": 4}
 
 
 def broken_system(failure: str) -> tuple[System, FMUComponent]:
-    broken = FMUComponent("Broken", fmus.path("failing"))
+    broken = FMUComponent("Broken", fmu_path("failing"))
     broken.set_parameters(fail_time=0.5, failure=FAILURES[failure])
     broken.set_inputs({"u": 2.0})
     system = System("S")
@@ -110,7 +110,7 @@ def test_non_finite_outputs_are_recorded_when_allowed():
     (np.int64(0), np.int32(2), np.int16(1)),
 ])
 def test_numpy_scalars_are_accepted_as_times_and_steps(t0, tf, dt):
-    ramp = FMUComponent("Ramp", fmus.path("terminating"))
+    ramp = FMUComponent("Ramp", fmu_path("terminating"))
     ramp.set_parameters(stop_time=10.0)
     system = System("S")
     system.add_component(ramp)

@@ -14,6 +14,7 @@ from pathlib import Path
 import fmpy
 import numpy as np
 import pytest
+from fixture_fmus import fmu_path
 from syssimx import Connection, CoSimComponent, FMUComponent, PortSpec, PortType, System, fmus
 from syssimx.errors import ConfigurationError, SimulationError
 
@@ -27,17 +28,17 @@ def run_keep_defaults(component: FMUComponent, system: System | None = None) -> 
 
 
 def test_declared_starts_the_user_never_set_are_not_written():
-    keep = FMUComponent("K", fmus.path("keep_defaults"))
+    keep = FMUComponent("K", fmu_path("keep_defaults"))
     assert keep.parameters["h_min"] == 0.0  # what the modelDescription declares
     y = run_keep_defaults(keep)
     assert list(y) == [1.0, 1.0, 1.0]
-    fmpy_result = fmpy.simulate_fmu(fmus.path("keep_defaults"), stop_time=0.1,
+    fmpy_result = fmpy.simulate_fmu(fmu_path("keep_defaults"), stop_time=0.1,
                                     output_interval=0.05)
     assert list(fmpy_result["y"]) == list(y)
 
 
 def test_an_input_never_set_reads_the_fmus_own_value():
-    keep = FMUComponent("K", fmus.path("keep_defaults"))
+    keep = FMUComponent("K", fmu_path("keep_defaults"))
     assert keep.inputs["u"].get() == 0.0  # the declared start, before the FMU runs
     run_keep_defaults(keep)
     assert keep.inputs["u"].get() == 1e-7
@@ -45,27 +46,27 @@ def test_an_input_never_set_reads_the_fmus_own_value():
 
 
 def test_values_the_user_set_are_written():
-    keep = FMUComponent("K", fmus.path("keep_defaults"))
+    keep = FMUComponent("K", fmu_path("keep_defaults"))
     keep.set_parameters(h_min=2e-7)
     keep.set_inputs({"u": 3e-7})
     assert list(run_keep_defaults(keep)) == [1.5, 1.5, 1.5]
 
 
 def test_a_parameter_changed_in_the_parameters_dict_is_written():
-    keep = FMUComponent("K", fmus.path("keep_defaults"))
+    keep = FMUComponent("K", fmu_path("keep_defaults"))
     keep.parameters["h_min"] = 4e-7
     assert list(run_keep_defaults(keep)) == [0.25, 0.25, 0.25]
 
 
 def test_a_value_set_equal_to_the_declared_start_is_still_written():
-    keep = FMUComponent("K", fmus.path("keep_defaults"))
+    keep = FMUComponent("K", fmu_path("keep_defaults"))
     keep.set_parameters(h_min=0.0)
     with pytest.raises(SimulationError, match="h_min must be positive"):
         run_keep_defaults(keep)
 
 
 def test_reinitialize_overrides_are_written_even_when_equal_to_the_declared_start():
-    keep = FMUComponent("K", fmus.path("keep_defaults"))
+    keep = FMUComponent("K", fmu_path("keep_defaults"))
     run_keep_defaults(keep)
     keep.reinitialize(0.1, h_min=0.0)
     assert keep.instance.getReal([keep.value_reference("h_min")]) == [0.0]
@@ -89,7 +90,7 @@ class Source(CoSimComponent):
 
 
 def test_a_connected_input_is_driven_by_its_connection():
-    keep = FMUComponent("K", fmus.path("keep_defaults"))
+    keep = FMUComponent("K", fmu_path("keep_defaults"))
     system = System("driven")
     system.add_component(Source(5e-7))
     system.add_component(keep)

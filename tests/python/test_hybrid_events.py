@@ -159,18 +159,19 @@ def test_result_tables_of_a_hybrid_run(tmp_path):
     system, _ = clock_system({"a": crossing(0.25)})
     result = system.run(0.0, 0.5, 0.1)
     wide = result.to_dataframe("C")
-    assert list(wide.columns) == ["time", "x", "a"]
+    assert list(wide.columns) == ["time", "micro", "x", "a"]
     assert len(wide) == 6 + 2
     # the event instant has two rows, before and after handling; the EVENT output is true after
     assert wide["time"].tolist().count(0.25) == 2
     assert wide.loc[wide["a"], "time"].tolist() == [0.25]
     assert result.micro[wide.index[wide["a"]]].tolist() == [1]
+    assert wide.loc[wide["time"] == 0.25, "micro"].tolist() == [0, 1]
     long = result.to_dataframe()
-    assert list(long.columns) == ["component", "port", "time", "value", "unit"]
+    assert list(long.columns) == ["component", "port", "time", "micro", "value", "unit"]
     assert long["port"].tolist() == ["x"] * 8 + ["a"] * 8
     lines = result.to_csv(tmp_path / "run.csv").read_text().splitlines()
-    assert lines[0] == "component,port,time,value,unit" and len(lines) == 1 + 16
-    assert lines[-8:].count("C,a,0.25,True,") == 1
+    assert lines[0] == "component,port,time,micro,value,unit" and len(lines) == 1 + 16
+    assert lines[-8:].count("C,a,0.25,1,True,") == 1
 
 
 def test_keyboard_interrupt_in_a_handler_stays_an_interrupt():

@@ -67,7 +67,8 @@ BUILD_ERRORS = {
     "components:\n  - name: A\n    class: 'quickstart:LinearSource'\n    args: [1]\n":
         ", line 2: components[0] 'A': 'args' must be a mapping, got list [1]",
     PENDULUM + "    parameters: {theta9: 1}\n":
-        ", line 2: components[0] 'P' parameters: component 'P' has no parameter 'theta9'; "
+        ", line 2: components[0] 'P' parameters: component 'P' has no parameter 'theta9' "
+        "(did you mean 'theta0'?); "
         f"known parameters: {PENDULUM_PARAMETERS}",
     PENDULUM + "    parameters: {theta0: abc}\n":
         ", line 2: components[0] 'P' parameters: P.theta0 is Real; got str 'abc'",
@@ -97,7 +98,8 @@ BUILD_ERRORS = {
     BASE.replace("Src.y, dst: Int.u", "Src.z, dst: Int.u"):
         ", line 8: connections[0]: Src.z -> Int.u: 'Src' has no output 'z'; outputs: ['y']",
     BASE.replace("Src.y, dst: Int.u", "Source.y, dst: Int.u"):
-        ", line 8: connections[0]: s: unknown component 'Source'; components: ['Int', 'Src']",
+        ", line 8: connections[0]: s: unknown component 'Source' (did you mean "
+        "'Src'?); components: ['Int', 'Src']",
     BASE.replace("{src: Src.y, dst: Int.u}", "{src: Srcy, dst: Int.u}"):
         ", line 8: connections[0]: src 'Srcy' is neither 'Component.port' nor {component: ..., "
         "port: ...}",
@@ -166,10 +168,10 @@ def test_a_bad_run_entry_is_named(tmp_path: Path, text: str, message: str):
     assert str(caught.value) == f"{path}{message}"
 
 
-def test_unknown_bundled_fmu_lists_the_bundled_ones(tmp_path: Path):
-    path = write(tmp_path, "components:\n  - name: P\n    fmu: pendulum_nothing\n")
+def test_unknown_bundled_fmu_suggests_the_close_ones(tmp_path: Path):
+    path = write(tmp_path, "components:\n  - name: P\n    fmu: pendulum_cvod\n")
     with pytest.raises(ConfigError, match=r", line 2: components\[0\] 'P': no bundled FMU "
-                       r"named 'pendulum_nothing' in .*; available: .*pendulum_cvode"):
+                       r"named 'pendulum_cvod' \(did you mean 'pendulum_cvode'"):
         build_system(path)
 
 

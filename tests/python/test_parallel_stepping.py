@@ -13,6 +13,7 @@ from pathlib import Path
 import coupled_pendulums  # two pendulum FMUs and the torsion spring FMU
 import numpy as np
 import pytest
+from fixture_fmus import fmu_path
 from syssimx import (
     CoSimComponent,
     EventConnection,
@@ -92,7 +93,7 @@ def test_hybrid_system_identical_on_two_threads() -> None:
 def probe(name: str, partners: int) -> FMUComponent:
     """thread_probe: its output `thread` is the id of the thread that last stepped it; with
     partners = 2 it steps only while another such probe steps at the same time."""
-    component = FMUComponent(name, fmus.path("thread_probe"))
+    component = FMUComponent(name, fmu_path("thread_probe"))
     component.set_parameters(partners=partners)
     return component
 
@@ -103,7 +104,7 @@ def pendulums_and_failing(threads: int) -> System:
     the same system without the probes' wait."""
     system = System("failing")
     partners = 2 if threads > 1 else 0
-    failing = FMUComponent("F", fmus.path("failing"))
+    failing = FMUComponent("F", fmu_path("failing"))
     failing.set_parameters(fail_time=0.35)
     pendulum = FMUComponent("P3", fmus.path("pendulum_euler"))
     pendulum.set_parameters(theta0=0.3)
@@ -147,7 +148,7 @@ class ThreadRecorder(CoSimComponent):
 def once_per_process_probe(tmp_path: Path) -> str:
     """thread_probe.fmu declaring canBeInstantiatedOnlyOncePerProcess."""
     target = tmp_path / "thread_probe_once.fmu"
-    with zipfile.ZipFile(fmus.path("thread_probe")) as src, zipfile.ZipFile(target, "w") as dst:
+    with zipfile.ZipFile(fmu_path("thread_probe")) as src, zipfile.ZipFile(target, "w") as dst:
         for item in src.infolist():
             data = src.read(item)
             if item.filename == "modelDescription.xml":

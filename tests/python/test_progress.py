@@ -8,6 +8,7 @@ import io
 import time
 
 import pytest
+from fixture_fmus import fmu_path
 from quickstart import Integrator, LinearSource
 from syssimx import (
     ConfigurationError,
@@ -16,7 +17,6 @@ from syssimx import (
     GaussSeidelAlgorithm,
     SimulationError,
     System,
-    fmus,
 )
 from syssimx.system.progress import ProgressBar
 
@@ -72,7 +72,7 @@ def test_a_continued_run_reports_its_own_end():
 
 
 def test_a_run_a_component_ends_reports_where_it_ended():
-    ramp = FMUComponent("Ramp", fmus.path("terminating"))
+    ramp = FMUComponent("Ramp", fmu_path("terminating"))
     ramp.set_parameters(stop_time=1.0, y0=0.0)
     system = System("S")
     system.add_component(ramp)

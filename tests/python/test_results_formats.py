@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import syssimx
+from fmpy.util import plot_result, read_csv, write_csv
 from syssimx import ConfigurationError, DenseTime, SimulationResult, System
 from syssimx.system.loader import build_system
 
@@ -47,8 +48,14 @@ def test_long_table(wall: tuple[System, SimulationResult]):
     _, result = wall
     frame = result.to_dataframe()
     t, ports = result["P"]
-    assert list(frame.columns) == ["component", "port", "time", "value", "unit"]
+    assert list(frame.columns) == ["component", "port", "time", "micro", "value", "unit"]
     assert len(frame) == 4 * len(t)
+    # the event instant's two rows differ by micro: (component, port, time, micro) is a key
+    assert frame.pivot(index=["time", "micro"], columns="port", values="value").shape \
+        == (len(t), 4)
+    event = result.events[0]
+    assert frame[(frame["port"] == "theta") & (frame["time"] == event.t)]["micro"].tolist() \
+        == [0, 1]
     theta = frame[frame["port"] == "theta"]
     assert theta["time"].tolist() == t.tolist()
     assert theta["value"].tolist() == ports["theta"].tolist()
@@ -59,12 +66,13 @@ def test_long_table(wall: tuple[System, SimulationResult]):
 def test_wide_table_has_units_in_attrs(wall: tuple[System, SimulationResult]):
     _, result = wall
     frame = result.to_dataframe("P")
-    assert list(frame.columns) == ["time", "theta", "omega", "alpha", "wall_hit"]
+    assert list(frame.columns) == ["time", "micro", "theta", "omega", "alpha", "wall_hit"]
     assert frame.attrs["units"] == result.units["P"]
     event_at = frame.index[frame["wall_hit"]].tolist()
     assert len(event_at) == 1
     event = result.events[0]
     assert frame["time"][event_at[0]] == event.t == frame["time"][event_at[0] - 1]
+    assert frame["micro"][event_at[0]] == 1 and frame["micro"][event_at[0] - 1] == 0
 
 
 def test_long_csv_reads_back_every_digit(wall: tuple[System, SimulationResult], tmp_path: Path):
@@ -72,12 +80,12 @@ def test_long_csv_reads_back_every_digit(wall: tuple[System, SimulationResult], 
     path = result.to_csv(tmp_path / "long.csv")
     lines = path.read_text().splitlines()
     t, ports = result["P"]
-    assert lines[0] == "component,port,time,value,unit"
+    assert lines[0] == "component,port,time,micro,value,unit"
     theta = ports["theta"].tolist()
-    assert lines[1] == f"P,theta,0.0,{theta[0]!r},rad"
-    assert lines[2] == f"P,theta,{t.tolist()[1]!r},{theta[1]!r},rad"
+    assert lines[1] == f"P,theta,0.0,0,{theta[0]!r},rad"
+    assert lines[2] == f"P,theta,{t.tolist()[1]!r},0,{theta[1]!r},rad"
     assert len(lines) == 1 + 4 * len(t)
-    assert lines[-1] == "P,wall_hit,1.0,False,"
+    assert lines[-1] == "P,wall_hit,1.0,0,False,"
     loaded = syssimx.system.SystemHistory.load_csv(path)
     assert loaded["P"]["theta"]["unit"] == "rad"
     np.testing.assert_array_equal(loaded["P"]["theta"]["time"], t)
@@ -85,16 +93,49 @@ def test_long_csv_reads_back_every_digit(wall: tuple[System, SimulationResult], 
     assert loaded["P"]["wall_hit"]["values"].tolist() == ports["wall_hit"].tolist()
 
 
-def test_wide_csv_has_units_in_the_headers(wall: tuple[System, SimulationResult],
-                                           tmp_path: Path):
+def test_wide_csv_is_fmpys_with_units_on_request(wall: tuple[System, SimulationResult],
+                                                 tmp_path: Path):
     _, result = wall
-    lines = result.to_csv(tmp_path / "wide.csv", component="P").read_text().splitlines()
+    path = result.to_csv(tmp_path / "wide.csv", component="P")
+    lines = path.read_text().splitlines()
     t, ports = result["P"]
-    assert lines[0] == "time,theta [rad],omega [rad/s],alpha [rad/s2],wall_hit"
-    assert len(lines) == 1 + len(t)  # no micro column: the event instant is two rows
+    assert lines[0] == "time,theta,omega,alpha,wall_hit"
+    assert len(lines) == 1 + len(t)  # FMPy's form: the event instant is two rows
     cells = lines[1].split(",")
     assert cells == ["0.0", *(repr(ports[p].tolist()[0]) for p in ("theta", "omega", "alpha")),
-                     "False"]
+                     "0"]
+    fmpy_read = read_csv(path)  # FMPy's own reader
+    assert fmpy_read.dtype.names == ("time", "theta", "omega", "alpha", "wall_hit")
+    np.testing.assert_array_equal(fmpy_read["time"], t)
+    np.testing.assert_array_equal(fmpy_read["theta"], ports["theta"])
+    np.testing.assert_array_equal(fmpy_read["wall_hit"], ports["wall_hit"])
+    with_units = result.to_csv(tmp_path / "units.csv", component="P", units=True)
+    assert with_units.read_text().splitlines()[0] \
+        == "time,theta [rad],omega [rad/s],alpha [rad/s2],wall_hit"
+
+
+def test_structured_array_is_taken_by_fmpys_plot_and_writer(
+        wall: tuple[System, SimulationResult], tmp_path: Path, monkeypatch: pytest.MonkeyPatch):
+    _, result = wall
+    structured = result.to_structured("P")
+    t, ports = result["P"]
+    assert structured.dtype.names == ("time", "theta", "omega", "alpha", "wall_hit")
+    np.testing.assert_array_equal(structured["time"], t)
+    np.testing.assert_array_equal(structured["omega"], ports["omega"])
+    # FMPy writes a boolean as False/True, which its reader cannot read: the real columns
+    write_csv(tmp_path / "fmpy.csv", structured, columns=["theta", "omega"])
+    np.testing.assert_array_equal(read_csv(tmp_path / "fmpy.csv")["theta"], ports["theta"])
+    import plotly.graph_objects as go
+
+    shown: list[go.Figure] = []
+    monkeypatch.setattr(go.Figure, "show", lambda figure, *args, **kwargs: shown.append(figure))
+    plot_result(structured, names=["theta", "omega"], events=True)
+    (figure,) = shown
+    lines = [trace for trace in figure.data if trace.name in ("theta", "omega")]
+    assert [trace.name for trace in lines] == ["theta", "omega"]
+    np.testing.assert_array_equal(lines[0].y, ports["theta"])
+    everything = result.to_structured()
+    assert everything.dtype.names == ("time", "P.theta", "P.omega", "P.alpha", "P.wall_hit")
 
 
 def test_from_system_equals_the_run_result(wall: tuple[System, SimulationResult]):
@@ -172,3 +213,18 @@ def test_visualizer_from_syssimx_writes_files_as_syssimx(tmp_path: Path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["graph", "graph.svg"]
     assert (tmp_path / "graph.svg").read_text().lstrip().startswith("<?xml")
     assert (tmp_path / "graph").read_text().startswith("digraph")
+
+
+def test_fmpys_csv_reads_back_as_results(tmp_path: Path):
+    """A CSV FMPy wrote (quoted names, time first) is read as a result of its file's stem."""
+    from fmpy import simulate_fmu
+
+    fmpy_result = simulate_fmu(syssimx.fmus.path("pendulum_euler"), stop_time=0.2,
+                               output_interval=0.05)
+    write_csv(tmp_path / "Pendulum.csv", fmpy_result)
+    assert (tmp_path / "Pendulum.csv").read_text().startswith('"time","theta"')
+    loaded = syssimx.system.SystemHistory.load_csv(tmp_path / "Pendulum.csv")
+    assert list(loaded) == ["Pendulum"]
+    np.testing.assert_array_equal(loaded["Pendulum"]["theta"]["values"], fmpy_result["theta"])
+    np.testing.assert_array_equal(loaded["Pendulum"]["omega"]["time"], fmpy_result["time"])
+    assert loaded["Pendulum"]["theta"]["unit"] is None

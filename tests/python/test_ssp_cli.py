@@ -50,8 +50,8 @@ def test_an_ssp_without_stop_time_asks_for_it(
         tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     path = coupled_pendulums(JacobiAlgorithm()).to_ssp(tmp_path / "p.ssp")
     assert main(["run", str(path), "--quiet"]) == 1
-    assert capsys.readouterr().err == f"syssimx: error: {path}: give --tf: the file has no " \
-                                      "stop time\n"
+    assert capsys.readouterr().err == (
+        f"syssimx: error: {path}: give --stop-time: the file has no stop time\n")
 
 
 def test_an_ssp_without_step_runs_at_fmpys_output_interval(

@@ -9,6 +9,7 @@ import shutil
 from pathlib import Path
 
 import pytest
+from fixture_fmus import fmu_path
 from syssimx import FMUComponent, FMUFileError, fmus
 from syssimx.fmu import info as model_description
 from syssimx.fmu.info import read_fmu
@@ -53,7 +54,7 @@ def test_a_relative_path_shares_the_entry_of_the_absolute_one(
 def test_a_changed_file_is_read_again(gain_copy: Path, descriptions_read: list[str]):
     assert read_fmu(gain_copy).model_identifier == "gain"
     stamp = gain_copy.stat()
-    shutil.copyfile(fmus.path("keep_defaults"), gain_copy)
+    shutil.copyfile(fmu_path("keep_defaults"), gain_copy)
     os.utime(gain_copy, ns=(stamp.st_atime_ns, stamp.st_mtime_ns + 1_000_000_000))
     assert read_fmu(gain_copy).model_identifier == "keep_defaults"
     assert len(descriptions_read) == 2

@@ -14,7 +14,7 @@ from syssimx import System
 from syssimx.cli import main
 from syssimx.ssp import Experiment, read
 
-NO_STOP_TIME = "give --tf: the file has no stop time"
+NO_STOP_TIME = "give --stop-time: the file has no stop time"
 
 # every SSD, SSP and OSP system structure among the samples, and what `syssimx run` does: None
 # when it runs, else the reason it gives

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from fixture_fmus import fmu_path
 from fmpy import simulate_fmu
 from syssimx import (
     EventConnection,
@@ -16,12 +17,11 @@ from syssimx import (
     SimulationError,
     System,
     Termination,
-    fmus,
 )
 
 
 def ramp_system(stop_time: float = 1.0, y0: float = 0.0) -> tuple[System, FMUComponent]:
-    ramp = FMUComponent("Ramp", fmus.path("terminating"))
+    ramp = FMUComponent("Ramp", fmu_path("terminating"))
     ramp.set_parameters(stop_time=stop_time, y0=y0)
     system = System("S")
     system.add_component(ramp)
@@ -51,7 +51,7 @@ def test_a_stop_at_a_communication_point_matches_fmpy():
     system.initialize(0.0)
     result = system.run(0.0, 2.0, 0.25)
     t, data = result["Ramp"]
-    reference = simulate_fmu(fmus.path("terminating"), stop_time=2.0, output_interval=0.25,
+    reference = simulate_fmu(fmu_path("terminating"), stop_time=2.0, output_interval=0.25,
                              start_values={"stop_time": 1.0})
     np.testing.assert_array_equal(t, reference["time"])
     np.testing.assert_array_equal(data["y"], reference["y"])
@@ -60,7 +60,7 @@ def test_a_stop_at_a_communication_point_matches_fmpy():
 
 def test_the_components_after_the_stopping_one_complete_the_step():
     system, _ = ramp_system()
-    later = FMUComponent("Later", fmus.path("terminating"))
+    later = FMUComponent("Later", fmu_path("terminating"))
     later.set_parameters(stop_time=5.0, slope=3.0)
     system.add_component(later)
     system.initialize(0.0)
@@ -148,7 +148,7 @@ class Substepping(FMUComponent):
 
 
 def test_a_stop_reached_through_a_python_step_hook_also_ends_the_run():
-    ramp = Substepping("Ramp", fmus.path("terminating"))
+    ramp = Substepping("Ramp", fmu_path("terminating"))
     ramp.set_parameters(stop_time=1.0)
     system = System("S")
     system.add_component(ramp)

@@ -4,4 +4,5 @@ import sys
 
 from .main import main
 
-sys.exit(main())
+if __name__ == "__main__":  # a sweep's worker processes import this module again
+    sys.exit(main())

@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from .. import fmus
+from ..core.suggest import did_you_mean
 
 
 class CommandError(Exception):
@@ -21,11 +22,12 @@ def resolve_fmu(name_or_path: str) -> Path:
     path = Path(name_or_path)
     if path.is_file():
         return path
-    if path.suffix == "" and name_or_path in fmus.available():
+    bundled = fmus.available()
+    if path.suffix == "" and name_or_path in bundled:
         return Path(fmus.path(name_or_path))
-    bundled = ", ".join(fmus.available()) or "none"
-    raise CommandError(f"no FMU file {name_or_path!r} and no bundled FMU of that name "
-                       f"(bundled: {bundled})")
+    raise CommandError(f"no FMU file {name_or_path!r} and no bundled FMU of that name"
+                       f"{did_you_mean(name_or_path, bundled)}; 'syssimx fmus' lists the "
+                       f"{len(bundled)} bundled FMUs")
 
 
 def is_ssp(path: str) -> bool:

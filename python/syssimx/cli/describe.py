@@ -9,7 +9,7 @@ from ..system.component_classes import add_allow_module_option
 from .common import choose, is_ssp, warnings_as_lines, working_directory_importable
 
 
-def add_command(commands: Any) -> None:
+def add_command(commands: Any) -> argparse.ArgumentParser:
     describe = commands.add_parser("describe", help="print the structure of a system "
                                    "description: components, connections, order, loops")
     describe.add_argument("config", help="a YAML or JSON system description, an SSP "
@@ -20,6 +20,7 @@ def add_command(commands: Any) -> None:
                           help="SSP/OSP: refuse what run --strict refuses")
     add_allow_module_option(describe)
     describe.set_defaults(run=run_describe)
+    return describe
 
 
 def run_describe(args: argparse.Namespace, out: TextIO) -> None:

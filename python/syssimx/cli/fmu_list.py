@@ -9,9 +9,10 @@ from .. import fmus
 from .common import CommandError
 
 
-def add_command(commands: Any) -> None:
+def add_command(commands: Any) -> argparse.ArgumentParser:
     listing = commands.add_parser("fmus", help="list the FMUs bundled with syssimx")
     listing.set_defaults(run=run_fmu_list)
+    return listing
 
 
 def run_fmu_list(args: argparse.Namespace, out: TextIO) -> None:

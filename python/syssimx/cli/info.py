@@ -23,10 +23,11 @@ CAPABILITIES_FMI3 = ("hasEventMode", "mightReturnEarlyFromDoStep",
                      "canReturnEarlyAfterIntermediateUpdate")
 
 
-def add_command(commands: Any) -> None:
+def add_command(commands: Any) -> argparse.ArgumentParser:
     info = commands.add_parser("info", help="describe an FMU: variables and capabilities")
     info.add_argument("fmu", help="path to a .fmu file, or the name of a bundled FMU")
     info.set_defaults(run=run_info)
+    return info
 
 
 def run_info(args: argparse.Namespace, out: TextIO) -> None:

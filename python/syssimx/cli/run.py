@@ -18,19 +18,17 @@ from .common import (
     warnings_as_lines,
     working_directory_importable,
 )
+from .options import add_output_file, add_run_limits, add_time_options
 
 
-def add_command(commands: Any) -> None:
+def add_command(commands: Any) -> argparse.ArgumentParser:
     run = commands.add_parser("run", help="build, initialize and run a system description")
     run.add_argument("config", help="a YAML or JSON system description, an SSP (.ssp "
                      "archive or .ssd file) or an OSP system structure (.xml)")
-    run.add_argument("--t0", type=float, default=None, help="start time in s (default: the "
-                     "description's run.t0)")
-    run.add_argument("--tf", type=float, default=None, help="end time in s (default: run.tf)")
-    run.add_argument("--dt", type=float, default=None, help="macro step in s (default: run.dt)")
-    run.add_argument("--output", "-o", type=Path, default=None, metavar="CSV",
-                     help="write the results to this CSV file (long: component, port, time, "
-                          "value, unit)")
+    add_time_options(run, "the description's run entry; for an SSP or OSP file its experiment")
+    add_output_file(run, "write the results to this CSV file (long: component, port, time, "
+                         "micro, value, unit)")
+    add_run_limits(run)
     run.add_argument("--algorithm", choices=ALGORITHM_NAMES, default=None,
                      help="the master algorithm (default: the description's; for an SSP "
                           "gauss_seidel)")
@@ -50,14 +48,35 @@ def add_command(commands: Any) -> None:
                           "syssimx does not support (default: one warning each, left out)")
     add_allow_module_option(run)
     run.set_defaults(run=run_config)
+    return run
 
 
 def run_config(args: argparse.Namespace, out: TextIO) -> None:
-    result, interrupted = run_keeping_partial(lambda: _config_result(args))
+    from ..errors import SimulationTimeoutError
+    from ..system.results import SimulationResult
+
+    bar = not args.quiet and sys.stdout.isatty() and sys.stderr.isatty()
+    options: dict[str, Any] = {"progress": True} if bar else {}
+    options.update({k: v for k, v in (("timeout", args.timeout),
+                                      ("output_interval", args.output_interval))
+                    if v is not None})
+    system, (t0, tf, dt) = _prepare_ssp(args) if is_ssp(args.config) else _prepare_config(args)
+    system.initialize(t0)
+    try:
+        result, interrupted = run_keeping_partial(lambda: system.run(t0, tf, dt, **options))
+    except SimulationTimeoutError as error:  # what was recorded is written first
+        if args.output is None:
+            raise
+        recorded = SimulationResult.from_system(system, t0, tf, dt)
+        written = write_or_fallback(args.output, recorded.to_csv)
+        raise CommandError(f"{error} (--timeout {args.timeout:g} s); the samples up to there "
+                           f"are written to {written}") from error
     verb = "Completed" if interrupted is None else "Interrupted (what was finished)"
     out.write(f"{verb} '{result.system_name}': t in [{result.t0}, {result.tf}] s, "
               f"dt = {result.dt} s, algorithm = {result.algorithm}, "
               f"wall time = {result.wall_time:.3f} s\n")
+    if len(result.events):
+        out.write(_event_summary(result.events) + "\n")
     termination = result.termination
     if termination is not None:  # a component asked to stop: the end of the run, not a failure
         out.write(f"{termination}\n")
@@ -68,28 +87,31 @@ def run_config(args: argparse.Namespace, out: TextIO) -> None:
         raise interrupted
 
 
-def _config_result(args: argparse.Namespace) -> Any:
-    bar = not args.quiet and sys.stdout.isatty() and sys.stderr.isatty()
-    options = {"progress": True} if bar else {}
-    if is_ssp(args.config):
-        result = _run_ssp(args, options)
-    else:
-        from ..system.config_source import Source, read_file
-        from ..system.loader import build_system, run_from_config, run_settings
+def _prepare_config(args: argparse.Namespace) -> tuple[Any, tuple[float, float, float]]:
+    """A system description's system and its times: the run entry, each replaced by an
+    option given."""
+    from ..system.config_source import Source, read_file
+    from ..system.loader import build_system, run_settings
 
-        with working_directory_importable():
-            if not _algorithm_options_given(args):
-                result = run_from_config(args.config, t0=args.t0, tf=args.tf, dt=args.dt,
-                                         progress=options.get("progress"),
-                                         allowed_modules=args.allowed_modules)
-            else:
-                settings = run_settings(Source(Path(args.config)), read_file(args.config),
-                                        {"t0": args.t0, "tf": args.tf, "dt": args.dt})
-                system = build_system(args.config, allowed_modules=args.allowed_modules)
-                _choose_algorithm(system, args)
-                system.initialize(settings["t0"])
-                result = system.run(settings["t0"], settings["tf"], settings["dt"], **options)
-    return result
+    with working_directory_importable():
+        settings = run_settings(Source(Path(args.config)), read_file(args.config),
+                                {"t0": args.start_time, "tf": args.stop_time,
+                                 "dt": args.step_size})
+        system = build_system(args.config, allowed_modules=args.allowed_modules)
+        _choose_algorithm(system, args)
+    return system, (settings["t0"], settings["tf"], settings["dt"])
+
+
+EVENTS_LISTED = 5
+
+
+def _event_summary(events: Any) -> str:
+    """"Events: 3 (first at t = 0.465 P.wall_hit, ...)": the count and the first few."""
+    shown = ", ".join(f"t = {e.t:.10g} {e.component}.{e.event}"
+                      for e in events[:EVENTS_LISTED])
+    more = ", ..." if len(events) > EVENTS_LISTED else ""
+    first = "at" if len(events) == 1 else f"first {min(len(events), EVENTS_LISTED)} at"
+    return f"Events: {len(events)} ({first} {shown}{more})"
 
 
 def _algorithm_options_given(args: argparse.Namespace) -> bool:
@@ -116,24 +138,23 @@ def _choose_algorithm(system: Any, args: argparse.Namespace) -> None:
     system.set_algorithm(algorithm)
 
 
-def _run_ssp(args: argparse.Namespace, options: dict[str, Any]) -> Any:
-    """A system file's system (SSP or OSP) over its default experiment (start 0 when it has
-    none); the stop time and the step come from the options, the file, else the step is
-    FMPy's output interval for the run's length."""
+def _prepare_ssp(args: argparse.Namespace) -> tuple[Any, tuple[float, float, float]]:
+    """A system file's system (SSP or OSP) and its times: over its default experiment (start 0
+    when it has none); the stop time and the step come from the options, the file, else the
+    step is FMPy's output interval for the run's length."""
     from ..system_files import read_system_file
 
     with warnings_as_lines():
         imported = read_system_file(args.config, strict=args.strict)
     experiment = imported.experiment
-    t0 = choose(args.t0, experiment.start_time, 0.0)
-    tf = args.tf if args.tf is not None else experiment.stop_time
+    t0 = choose(args.start_time, experiment.start_time, 0.0)
+    tf = args.stop_time if args.stop_time is not None else experiment.stop_time
     if tf is None:
-        raise CommandError(f"{args.config}: give --tf: the file has no stop time")
-    dt = args.dt if args.dt is not None else experiment.step_size
+        raise CommandError(f"{args.config}: give --stop-time: the file has no stop time")
+    dt = args.step_size if args.step_size is not None else experiment.step_size
     if dt is None:
         from fmpy.util import auto_interval
 
         dt = float(auto_interval(float(tf) - t0))
     _choose_algorithm(imported.system, args)
-    imported.system.initialize(t0)
-    return imported.system.run(t0, float(tf), float(dt), **options)
+    return imported.system, (t0, float(tf), float(dt))

@@ -6,6 +6,7 @@ from __future__ import annotations
 import itertools
 import math
 import sys
+import time
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -36,24 +37,31 @@ def communication_points(t0: float, tf: float, dt: float, events: Any) -> list[f
     return points
 
 
-def run_through(system: Any, points: list[float], dt: float) -> Any:
+def run_through(system: Any, points: list[float], dt: float, timeout: float | None = None
+                ) -> Any:
     """Runs through the communication points: stretches of regular steps of dt in one run each,
     every step off that grid (to or from an input event, to the stop time) in a run of its own;
-    stops when a component terminates."""
+    stops when a component terminates. `timeout` (wall seconds) covers all the runs."""
+    deadline = None if timeout is None else time.monotonic() + timeout
+
+    def run(t0: float, tf: float, step: float) -> Any:
+        left = None if deadline is None else max(deadline - time.monotonic(), 1e-6)
+        return system.run(t0, tf, step, timeout=left)
+
     start, result = points[0], None
     for previous, point in itertools.pairwise(points):
         if math.isclose(point - previous, dt):
             continue
         if previous > start:
-            result = system.run(start, previous, dt)
+            result = run(start, previous, dt)
             if result.termination is not None:
                 return result
-        result = system.run(previous, point, point - previous)
+        result = run(previous, point, point - previous)
         if result.termination is not None:
             return result
         start = point
     if points[-1] > start:
-        result = system.run(start, points[-1], dt)
+        result = run(start, points[-1], dt)
     return result
 
 

@@ -4,13 +4,13 @@
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 from typing import Any, TextIO
 
 from ..system.component_classes import add_allow_module_option
+from .options import add_output_file, add_time_options
 
 
-def add_command(commands: Any) -> None:
+def add_command(commands: Any) -> argparse.ArgumentParser:
     sweep = commands.add_parser("sweep", help="run a system once per parameter set, in "
                                 "parallel worker processes (Dask)")
     sweep.add_argument("system", metavar="SYSTEM",
@@ -24,12 +24,7 @@ def add_command(commands: Any) -> None:
                        help="every combination of the values (grid) or their i-th values "
                             "together (zip)")
     # the time options of `run`: a sweep runs the same system descriptions
-    sweep.add_argument("--t0", type=float, default=None, dest="start_time",
-                       help="start time in s (default: the system file's run.t0)")
-    sweep.add_argument("--tf", type=float, default=None, dest="stop_time",
-                       help="end time in s (default: run.tf)")
-    sweep.add_argument("--dt", type=float, default=None, dest="step_size",
-                       help="macro step in s (default: run.dt)")
+    add_time_options(sweep, "the system file's run entry")
     where = sweep.add_mutually_exclusive_group()
     where.add_argument("--workers", type=int, default=None, metavar="N",
                        help="worker processes of the embedded cluster (default: one per core)")
@@ -37,13 +32,13 @@ def add_command(commands: Any) -> None:
                        help="run on the Dask cluster of this scheduler, e.g. tcp://host:8786")
     sweep.add_argument("--member-timeout", type=float, default=None, metavar="S",
                        help="fail a member whose run takes longer than S seconds")
-    sweep.add_argument("--output", "-o", type=Path, default=None, metavar="FILE",
-                       help="write the results: .csv or .parquet (one row per member and "
-                            "sample) or .nc (the xarray dataset)")
+    add_output_file(sweep, "write the results: .csv or .parquet (one row per member and "
+                           "sample) or .nc (the xarray dataset)")
     sweep.add_argument("--quiet", action="store_true", dest="no_progress",
                        help="no progress bar")
     add_allow_module_option(sweep)
     sweep.set_defaults(run=run_sweep)
+    return sweep
 
 
 def _parameter_values(text: str) -> tuple[str, list[bool | int | float | str]]:

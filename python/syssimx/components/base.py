@@ -19,6 +19,7 @@ from ..bridge.plan import bind
 from ..bridge.standalone import StandaloneSystem, standalone_system
 from ..core.events import EventIndicator
 from ..core.port import Port, PortSpec, PortType
+from ..core.suggest import did_you_mean
 from ..errors import ConfigurationError
 
 if TYPE_CHECKING:
@@ -143,7 +144,8 @@ class CoSimComponent:
         for name, value in parameters.items():
             if name not in self.parameters:
                 raise ConfigurationError(
-                    f"component {self.name!r} has no parameter {name!r}; "
+                    f"component {self.name!r} has no parameter {name!r}"
+                    f"{did_you_mean(name, self.parameters)}; "
                     f"known parameters: {sorted(self.parameters) or 'none'}")
             self.parameters[name] = value
 
@@ -151,7 +153,8 @@ class CoSimComponent:
         """The parameters named (all of them when none is named), by name."""
         unknown = [n for n in names if n not in self.parameters]
         if unknown:
-            raise ConfigurationError(f"component {self.name!r} has no parameter {unknown[0]!r}; "
+            raise ConfigurationError(f"component {self.name!r} has no parameter {unknown[0]!r}"
+                                     f"{did_you_mean(unknown[0], self.parameters)}; "
                                      f"known parameters: {sorted(self.parameters) or 'none'}")
         return {n: self.parameters[n] for n in (names or self.parameters)}
 
@@ -161,7 +164,8 @@ class CoSimComponent:
         self._sync_ports()
         for name, value in signals.items():
             if name not in self.inputs:
-                raise ConfigurationError(f"component {self.name!r} has no input {name!r}; "
+                raise ConfigurationError(f"component {self.name!r} has no input {name!r}"
+                                         f"{did_you_mean(name, self.inputs)}; "
                                          f"inputs: {sorted(self.inputs) or 'none'}")
             self.inputs[name].set(value, t)
         if self._binding is not None:
@@ -294,7 +298,8 @@ class CoSimComponent:
         _initialize_component(t) and the outputs (FMUComponent: a fresh FMU instance)."""
         unknown = sorted(set(start_values) - set(self.parameters))
         if unknown:
-            raise ConfigurationError(f"component {self.name!r} has no parameter {unknown[0]!r}; "
+            raise ConfigurationError(f"component {self.name!r} has no parameter {unknown[0]!r}"
+                                     f"{did_you_mean(unknown[0], self.parameters)}; "
                                      f"known parameters: {sorted(self.parameters) or 'none'}")
         saved = self.parameters
         self.parameters = {**saved, **start_values}

@@ -29,14 +29,16 @@ set_parameters (inputs too) and read with get_state, never connected.
 from __future__ import annotations
 
 import math
+import warnings
 import weakref
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .. import units
 from ..core.port import Port, PortSpec, PortType
+from ..core.suggest import did_you_mean
 from ..engine import lib
-from ..errors import ConfigurationError, FMUError
+from ..errors import ConfigurationError, FMUError, SysSimXWarning
 from ..fmu.extraction import extractions
 from ..fmu.info import (
     INTERFACES,
@@ -177,7 +179,8 @@ class FMUComponent(CoSimComponent):
         """Set inputs; they go to a Co-Simulation FMU at once when it is instantiated."""
         for name, value in signals.items():
             if name not in self.input_specs:
-                raise ConfigurationError(f"component {self.name!r} has no input {name!r}; "
+                raise ConfigurationError(f"component {self.name!r} has no input {name!r}"
+                                         f"{did_you_mean(name, self.input_specs)}; "
                                          f"inputs: {sorted(self.input_specs) or 'none'}")
             self._input_starts[name] = self.input_specs[name].coerce(value)
             self._inputs_set.add(name)
@@ -222,7 +225,13 @@ class FMUComponent(CoSimComponent):
 
     # ---------------------------------------------------------------- parameters
     def set_parameters(self, **parameters: Any) -> None:
-        """Numbers or pint quantities (converted to the FMU's unit)."""
+        """Numbers or pint quantities (converted to the FMU's unit). They are written to the
+        FMU at initialize (and reinitialize): after initialize they wait for the next one, with
+        a warning, as start values do in SysSimX and FMPy."""
+        if self._binding is not None and parameters:
+            warnings.warn(f"{self.name}.set_parameters({', '.join(parameters)}) after "
+                          "initialize: the running FMU keeps its values; they apply at the "
+                          "next initialize (or reinitialize)", SysSimXWarning, stacklevel=2)
         for name, value in parameters.items():
             parameter = self.info.parameters.get(name)
             sized = self.info.structural_parameters.get(name)
@@ -233,7 +242,8 @@ class FMUComponent(CoSimComponent):
                     f"value {self.info.variables[name].start}: changing it is not supported")
             if parameter is None:
                 raise ConfigurationError(
-                    f"component {self.name!r} has no parameter {name!r}; "
+                    f"component {self.name!r} has no parameter {name!r}"
+                    f"{did_you_mean(name, self.info.parameters)}; "
                     f"known parameters: {sorted(self.info.parameters) or 'none'}")
             self.parameters[name] = _coerce_parameter(self.name, parameter, value)
             self._parameters_set.add(name)
@@ -302,7 +312,8 @@ class FMUComponent(CoSimComponent):
         for name, value in start_values.items():
             if name not in self.info.parameters:
                 raise ConfigurationError(
-                    f"component {self.name!r} has no parameter {name!r}; "
+                    f"component {self.name!r} has no parameter {name!r}"
+                    f"{did_you_mean(name, self.info.parameters)}; "
                     f"known parameters: {sorted(self.info.parameters)}")
             overrides[name] = _coerce_parameter(self.name, self.info.parameters[name], value)
         self.parameters = {**saved, **overrides}

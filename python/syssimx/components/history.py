@@ -8,6 +8,8 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from ..core.suggest import did_you_mean
+from ..errors import UnknownNameError
 from ..units import to_unit
 
 
@@ -64,7 +66,8 @@ class ComponentHistory:
     def get_port_history(self, port_name: str) -> PortHistory:
         histories = self.get_all_histories()
         if port_name not in histories:
-            raise KeyError(f"{self._component.name}: no history for output {port_name!r}; "
+            raise UnknownNameError(f"{self._component.name}: no history for output {port_name!r}"
+                                   f"{did_you_mean(port_name, histories)}; "
                            f"outputs: {sorted(histories)}")
         return histories[port_name]
 

@@ -15,6 +15,8 @@ from dataclasses import dataclass
 from itertools import pairwise
 from typing import Any
 
+from ..errors import ConfigurationError, ConfigurationTypeError
+
 
 @dataclass(frozen=True)
 class RegionBoundary:
@@ -42,7 +44,7 @@ class RegionBoundary:
             return self.index + 1
         if region == self.index + 1:
             return self.index
-        raise ValueError(f"boundary {self.index} does not border region {region}")
+        raise ConfigurationError(f"boundary {self.index} does not border region {region}")
 
 
 @dataclass(frozen=True, init=False)
@@ -58,27 +60,28 @@ class SwitchRegions:
     def __init__(self, key: Callable[[Any], float], breakpoints: Sequence[float],
                  modes: Sequence[str], band: float | Sequence[float]) -> None:
         if not callable(key):
-            raise TypeError("SwitchRegions: key must be a callable of the component")
+            raise ConfigurationTypeError("SwitchRegions: key must be a callable of the component")
         points = tuple(float(p) for p in breakpoints)
         names = tuple(modes)
         if len(names) < 2 or len(points) != len(names) - 1:
-            raise ValueError(f"SwitchRegions: {len(names)} modes need {len(names) - 1} "
+            raise ConfigurationError(f"SwitchRegions: {len(names)} modes need {len(names) - 1} "
                              f"breakpoints, got {len(points)} (at least two modes)")
         if not all(math.isfinite(p) for p in points) or \
                 any(a >= b for a, b in pairwise(points)):
-            raise ValueError(f"SwitchRegions: breakpoints must be finite and strictly "
+            raise ConfigurationError(f"SwitchRegions: breakpoints must be finite and strictly "
                              f"increasing, got {points}")
         if any(a == b for a, b in pairwise(names)):
-            raise ValueError(f"SwitchRegions: neighbouring regions use the same model: {names}")
+            raise ConfigurationError(
+                f"SwitchRegions: neighbouring regions use the same model: {names}")
         bands = (tuple(float(b) for b in band) if isinstance(band, Sequence)
                  else (float(band),) * len(points))
         if len(bands) != len(points) or not all(math.isfinite(b) and b > 0 for b in bands):
-            raise ValueError(f"SwitchRegions: one band > 0 per breakpoint, got {bands}")
+            raise ConfigurationError(f"SwitchRegions: one band > 0 per breakpoint, got {bands}")
         boundaries = tuple(RegionBoundary(i, p, b) for i, (p, b)
                            in enumerate(zip(points, bands, strict=True)))
         if any(a.upper_threshold >= b.lower_threshold
                for a, b in pairwise(boundaries)):
-            raise ValueError("SwitchRegions: the bands of neighbouring breakpoints overlap")
+            raise ConfigurationError("SwitchRegions: the bands of neighbouring breakpoints overlap")
         object.__setattr__(self, "key", key)
         object.__setattr__(self, "modes", names)
         object.__setattr__(self, "boundaries", boundaries)
@@ -94,5 +97,5 @@ class SwitchRegions:
     def initial_region(self, value: float) -> int:
         """The region holding `value` at initialization (by the breakpoints themselves)."""
         if not math.isfinite(value):
-            raise ValueError(f"SwitchRegions: the switching signal is not finite ({value})")
+            raise ConfigurationError(f"SwitchRegions: the switching signal is not finite ({value})")
         return bisect_right(self.breakpoints, value)

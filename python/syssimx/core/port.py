@@ -9,6 +9,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from ..errors import ConfigurationError, ConfigurationTypeError
 from ..units import is_quantity, magnitude_in, plainly_readable, quantity, to_unit
 
 
@@ -37,10 +38,10 @@ class PortSpec:
 
     def __post_init__(self) -> None:
         if self.direction not in ("in", "out"):
-            raise ValueError(f"port {self.name!r}: direction must be 'in' or 'out'")
+            raise ConfigurationError(f"port {self.name!r}: direction must be 'in' or 'out'")
         if self.unit is not None:
             if self.type != PortType.REAL:
-                raise ValueError(f"port {self.name!r}: only REAL ports carry a unit")
+                raise ConfigurationError(f"port {self.name!r}: only REAL ports carry a unit")
             if not plainly_readable(str(self.unit)):  # needs no pint to know it is fine
                 to_unit(str(self.unit))
 
@@ -51,18 +52,22 @@ class PortSpec:
                 return magnitude_in(value, self.unit)
             if isinstance(value, bool) or not isinstance(value, int | float | np.integer
                                                           | np.floating):
-                raise TypeError(f"port {self.name!r} is REAL; got {type(value).__name__}")
+                raise ConfigurationTypeError(
+                    f"port {self.name!r} is REAL; got {type(value).__name__}")
             return float(value)
         if self.type == PortType.INT:
             if isinstance(value, bool | np.bool_) or not isinstance(value, int | np.integer):
-                raise TypeError(f"port {self.name!r} is INT; got {type(value).__name__}")
+                raise ConfigurationTypeError(
+                    f"port {self.name!r} is INT; got {type(value).__name__}")
             return int(value)
         if self.type in (PortType.BOOL, PortType.EVENT):
             if not isinstance(value, bool | np.bool_ | int | np.integer) or value not in (0, 1):
-                raise TypeError(f"port {self.name!r} is {self.type.name}; got {value!r}")
+                raise ConfigurationTypeError(
+                    f"port {self.name!r} is {self.type.name}; got {value!r}")
             return bool(value)
         if not isinstance(value, str):
-            raise TypeError(f"port {self.name!r} is STRING; got {type(value).__name__}")
+            raise ConfigurationTypeError(
+                f"port {self.name!r} is STRING; got {type(value).__name__}")
         return value
 
     def present(self, raw: float | int | bool | str) -> Any:

@@ -9,6 +9,7 @@ from typing import Any
 
 from ..errors import ConfigurationError, RunInterrupted
 from .cluster import ensemble_client
+from .main_guard import check_main_guard
 from .member import MemberTask
 from .members import ParameterSet, parameter_sets
 from .result import EnsembleResult
@@ -33,7 +34,7 @@ def sweep(system: Any, parameters: Mapping[str, Iterable[Any]], *, mode: str = "
     ("tcp://host:8786"); else an embedded LocalCluster of `workers` processes (default one per
     core). member_timeout: seconds of wall time a member's run may take (see runner.py for a
     hang inside an FMU). progress: a progress bar on stderr."""
-    return _run(system, parameter_sets(parameters, mode), t0, tf, dt, outputs, client,
+    return _run("sweep", system, parameter_sets(parameters, mode), t0, tf, dt, outputs, client,
                 scheduler, workers, member_timeout, progress)
 
 
@@ -46,11 +47,11 @@ def monte_carlo(system: Any, distributions: Mapping[str, Any], samples: int,
     ({"Component.parameter": a frozen scipy.stats distribution or a function (numpy
     Generator, count) -> values}) by one generator seeded with `seed`. The other arguments
     are sweep's."""
-    return _run(system, draw(distributions, samples, seed), t0, tf, dt, outputs, client,
-                scheduler, workers, member_timeout, progress)
+    return _run("monte_carlo", system, draw(distributions, samples, seed), t0, tf, dt, outputs,
+                client, scheduler, workers, member_timeout, progress)
 
 
-def _run(system: Any, sets: list[ParameterSet], t0: float | None, tf: float | None,
+def _run(function: str, system: Any, sets: list[ParameterSet], t0: float | None, tf: float | None,
          dt: float | None, outputs: Sequence[str] | None, client: Any, scheduler: str | None,
          workers: int | None, member_timeout: float | None, progress: bool) -> EnsembleResult:
     build = system_source(system)
@@ -69,6 +70,8 @@ def _run(system: Any, sets: list[ParameterSet], t0: float | None, tf: float | No
     ensemble = uuid.uuid4().hex  # its members share one System per worker process
     tasks = [MemberTask(index, values, settings["t0"], settings["tf"], settings["dt"], kept,
                         member_timeout, ensemble=ensemble) for index, values in enumerate(sets)]
+    if client is None and scheduler is None:  # worker processes started from this script
+        check_main_guard(function)
     start = time.perf_counter()
     try:
         with ensemble_client(client, scheduler, workers) as running_on:

@@ -12,11 +12,12 @@ from __future__ import annotations
 import os
 import socket
 import time
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import ConfigurationError
+from ..errors import ConfigurationError, SysSimXWarning
 from ..system.system import System
 from .loaded_fmus import loaded_fmus
 from .members import ParameterSet, split_name
@@ -124,7 +125,9 @@ def _set_parameters(system: System, parameters: ParameterSet) -> None:
         if variable in component.input_specs:
             component.set_inputs({variable: value})
         else:
-            component.set_parameters(**{variable: value})
+            with warnings.catch_warnings():  # a reused System: initialize comes next
+                warnings.simplefilter("ignore", SysSimXWarning)
+                component.set_parameters(**{variable: value})
 
 
 def _record(result: MemberResult, system: System, outputs: tuple[str, ...] | None) -> None:

@@ -1,12 +1,10 @@
-"""A one-line progress bar on stderr: members done, failed, elapsed time."""
+"""The ensemble's progress bar on stderr (tqdm, as `System.run(progress=True)`): members done
+and failed. No bar where stderr is not a terminal: a log gets no carriage-return frames."""
 
 from __future__ import annotations
 
 import sys
-import time
-from typing import TextIO
-
-WIDTH = 30
+from typing import Any, TextIO
 
 
 class ProgressBar:
@@ -14,23 +12,23 @@ class ProgressBar:
         self.total, self.enabled = total, enabled
         self.stream = stream if stream is not None else sys.stderr
         self.done = self.failed = 0
-        self._start = time.monotonic()
+        self._bar: Any = None
+        if enabled:
+            from tqdm import tqdm
+
+            # disable=None: tqdm draws only on a terminal
+            self._bar = tqdm(total=total, unit="member", file=self.stream, disable=None,
+                             leave=True, dynamic_ncols=True)
 
     def advance(self, failed: bool) -> None:
         self.done += 1
         self.failed += failed
-        self._draw()
+        if self._bar is not None:
+            if self.failed:
+                self._bar.set_postfix_str(f"{self.failed} failed", refresh=False)
+            self._bar.update(1)
 
     def close(self) -> None:
-        if self.enabled:
-            self.stream.write("\n")
-            self.stream.flush()
-
-    def _draw(self) -> None:
-        if not self.enabled:
-            return
-        filled = WIDTH * self.done // max(self.total, 1)
-        failed = f", {self.failed} failed" if self.failed else ""
-        self.stream.write(f"\r[{'#' * filled}{'.' * (WIDTH - filled)}] {self.done}/{self.total} "
-                          f"members{failed}, {time.monotonic() - self._start:.1f} s")
-        self.stream.flush()
+        if self._bar is not None:
+            self._bar.close()
+            self._bar = None

@@ -10,16 +10,22 @@ event instants between grid points are left out of that view only.
 
 from __future__ import annotations
 
+import importlib.util
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from ..errors import ConfigurationError
+from ..errors import ConfigurationError, MissingDependencyError
+from ..extras import install_hint, require
 from .member import STATISTICS, MemberResult
 
 WRITERS = (".csv", ".parquet", ".nc")
+# xarray's engines for .nc files, in order of preference, and the modules each needs
+NETCDF_ENGINES = (("scipy", ("scipy",)), ("netcdf4", ("netCDF4",)),
+                  ("h5netcdf", ("h5netcdf", "h5py")))
+MEMBERS_SHOWN = 10  # members listed in a notebook's table; the rest are counted
 
 
 class EnsembleResult:
@@ -35,6 +41,24 @@ class EnsembleResult:
     def __repr__(self) -> str:
         return (f"EnsembleResult({len(self.members)} members, {len(self.failed)} failed, "
                 f"parameters={self.parameters}, wall_time={self.wall_time:.3g} s)")
+
+    def _repr_html_(self) -> str:
+        """Members, failures and parameters, then the first members' values and status."""
+        from ..system.result_display import html_table
+
+        summary = html_table(("members", "ok", "failed", "parameters", "t0 [s]", "tf [s]",
+                              "dt [s]", "wall time [s]"),
+                             [(len(self), len(self) - len(self.failed), len(self.failed),
+                               ", ".join(self.parameters), self.t0, self.tf, self.dt,
+                               f"{self.wall_time:.3g}")])
+        shown = self.members[:MEMBERS_SHOWN]
+        rows: list[list[Any]] = [[m.index, *(m.parameters[p] for p in self.parameters),
+                                  m.status, m.time.size, m.error or ""] for m in shown]
+        if len(self.members) > MEMBERS_SHOWN:
+            rows.append(["…", *([""] * len(self.parameters)), "",
+                         "", f"{len(self.members) - MEMBERS_SHOWN} more"])
+        members = html_table(("member", *self.parameters, "status", "samples", "error"), rows)
+        return f"<div>{summary}{members}</div>"
 
     def __len__(self) -> int:
         return len(self.members)
@@ -67,7 +91,7 @@ class EnsembleResult:
         return self._dataset
 
     def _build_dataset(self) -> Any:
-        import xarray as xr
+        xr = require("xarray", "EnsembleResult.dataset")
 
         count = len(self.members)
         samples = max((m.time.size for m in self.members), default=0)
@@ -118,7 +142,7 @@ class EnsembleResult:
         """member x time on the common grid t0 + k*dt (tf last): at each grid time the first
         sample a member recorded there (before an event handled at that instant); NaN where a
         member has no sample (it failed or stopped earlier)."""
-        import xarray as xr
+        xr = require("xarray", "EnsembleResult.grid")
 
         grid = _grid(self.t0, self.tf, self.dt)
         tolerance = 1e-9 * self.dt
@@ -146,7 +170,7 @@ class EnsembleResult:
         """The tidy table: one row per member and sample; columns member, the parameters,
         status, time, micro and one per output. A member that recorded nothing has one row
         (its status and error) with NaN samples."""
-        import pandas as pd
+        pd = require("pandas", "EnsembleResult.to_dataframe")
 
         frames = []
         for member in self.members:
@@ -169,7 +193,7 @@ class EnsembleResult:
     def events(self) -> Any:
         """The located events as a DataFrame, one row per member and event (member, the
         parameters, time, micro, source)."""
-        import pandas as pd
+        pd = require("pandas", "EnsembleResult.events")
 
         rows = [{"member": m.index, **{n: m.parameters[n] for n in self.parameters},
                  "time": t, "micro": micro, "source": source}
@@ -179,7 +203,7 @@ class EnsembleResult:
 
     def write(self, path: str | Path) -> Path:
         """Write by suffix: .csv and .parquet the tidy table (parquet needs pyarrow or
-        fastparquet), .nc the dataset (netCDF; scipy writes it when netCDF4 is absent)."""
+        fastparquet), .nc the dataset (netCDF, by netcdf_engine())."""
         from ..atomic_file import atomic_path
 
         target = Path(path)
@@ -198,7 +222,7 @@ class EnsembleResult:
                                              f"fastparquet ({error}); write .csv or .nc "
                                              "instead") from error
             else:
-                self._netcdf_dataset().to_netcdf(temporary)
+                self._netcdf_dataset().to_netcdf(temporary, engine=netcdf_engine())
         return target
 
     def _netcdf_dataset(self) -> Any:
@@ -215,6 +239,17 @@ class EnsembleResult:
             if dataset[name].dtype == object:
                 dataset[name] = dataset[name].astype(str)
         return dataset
+
+
+def netcdf_engine() -> str:
+    """xarray's engine for .nc files: scipy's netCDF3 writer (the ensemble extra's: faster and
+    smaller files than h5netcdf's, benchmarks/netcdf_backends.py), else netCDF4's or h5netcdf's
+    where one of them is installed instead."""
+    for engine, modules in NETCDF_ENGINES:
+        if all(importlib.util.find_spec(m) is not None for m in modules):
+            return engine
+    raise MissingDependencyError(f"writing .nc files needs scipy (or h5netcdf): "
+                                 f"{install_hint('scipy')}", name="scipy")
 
 
 def _column(members: Sequence[MemberResult], name: str) -> np.ndarray:

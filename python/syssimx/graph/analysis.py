@@ -20,6 +20,8 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from ..core.suggest import did_you_mean
+from ..errors import ConfigurationError
 from .digraph import generations as topological_generations
 from .digraph import lexicographic_order, reaches, strongly_connected
 
@@ -100,16 +102,17 @@ def analyze(
         connections: (src_comp, src_port, dst_comp, dst_port) for every data connection.
 
     Raises:
-        ValueError: a connection names a component that is not in ``components``.
+        ConfigurationError (a ValueError): a connection names a component that is not in
+            ``components``.
     """
     names = list(components)
     for connection in connections:
         for name in (connection[0], connection[2]):
             if name not in components:
                 known = ", ".join(names) or "none"
-                raise ValueError(
+                raise ConfigurationError(
                     f"connection {_format_connection(connection)} names the unknown component "
-                    f"{name!r}; components: {known}"
+                    f"{name!r}{did_you_mean(name, names)}; components: {known}"
                 )
 
     zero_delay = _zero_delay_edges(components, connections)

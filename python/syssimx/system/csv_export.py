@@ -3,12 +3,16 @@
 Three layouts, SysSimX's:
 
 - long (tidy): ``component,port,time,value,unit``, one row per sample of each port;
-- wide: ``time`` then one column per port, headed ``port [unit]`` (``port`` without a unit);
+- wide, FMPy's CSV (the interchange format FMPy's ``read_csv`` and ``write_csv`` use): ``time``
+  then one column per port headed by its plain name, booleans as 0 and 1; on request each
+  header says its unit, ``port [unit]`` (FMPy's reader then keeps the unit in the name);
 - wide with a unit row (``SystemHistory.save_csv``): ``time,Comp.port,...`` then
   ``s,unit,...`` (``-`` without a unit), then the samples.
 
 Numbers are written so that they read back exactly (Python's shortest round-trip form); an event
-instant appears twice, as the samples before and after its handling (there is no micro column).
+instant appears twice, as the samples before and after its handling: the long layout has a
+``micro`` column (0 before, 1 after, ...) that tells them apart; FMPy's CSV repeats the time, as
+FMPy's own results do.
 """
 
 from __future__ import annotations
@@ -21,8 +25,11 @@ from typing import Any
 import numpy as np
 
 from ..atomic_file import atomic_path
+from ..errors import ConfigurationError
 
-LONG_HEADER = ("component", "port", "time", "value", "unit")
+LONG_HEADER = ("component", "port", "time", "micro", "value", "unit")
+# the long layout of files written before it had a micro column
+_LONG_HEADER_WITHOUT_MICRO = ("component", "port", "time", "value", "unit")
 NO_UNIT = "-"  # the unit row's mark for a port without a unit
 
 # {component: (t, {port: values})} and {component: {port: unit or None}}
@@ -30,23 +37,30 @@ Histories = Mapping[str, tuple[np.ndarray, Mapping[str, np.ndarray]]]
 Units = Mapping[str, Mapping[str, str | None]]
 
 
-def write_long(path: str | Path, histories: Histories, units: Units) -> Path:
-    """Every port of every component in the tidy long layout."""
+def write_long(path: str | Path, histories: Histories, units: Units, micro: np.ndarray
+               ) -> Path:
+    """Every port of every component in the tidy long layout; `micro` is the superdense index
+    of each sample (the components share the samples' times)."""
+    micros = _cells(micro)
+
     def rows() -> Iterable[Sequence[Any]]:
         for component, (t, ports) in histories.items():
             times = _cells(t)
             for port, values in ports.items():
                 unit = units.get(component, {}).get(port) or ""
-                for time, value in zip(times, _cells(values), strict=True):
-                    yield component, port, time, value, unit
+                for time, index, value in zip(times, micros, _cells(values), strict=True):
+                    yield component, port, time, index, value, unit
     return _write(path, [LONG_HEADER], rows())
 
 
 def write_wide(path: str | Path, t: np.ndarray, ports: Mapping[str, np.ndarray],
-               units: Mapping[str, str | None]) -> Path:
-    """One component: time, then a ``port [unit]`` column per port."""
+               units: Mapping[str, str | None] | None = None) -> Path:
+    """FMPy's CSV: time, then a column per port, ``port [unit]`` where `units` gives one."""
+    units = units or {}
     header = ["time", *(f"{p} [{units[p]}]" if units.get(p) else p for p in ports)]
-    return _write(path, [header], zip(_cells(t), *(_cells(v) for v in ports.values()), strict=True))
+    columns = [_cells(np.asarray(v, dtype=np.int8) if np.asarray(v).dtype == np.bool_ else v)
+               for v in ports.values()]  # FMPy's reader reads numbers only
+    return _write(path, [header], zip(_cells(t), *columns, strict=True))
 
 
 def write_wide_with_units(path: str | Path, t: np.ndarray, signals: Mapping[str, np.ndarray],
@@ -74,23 +88,30 @@ def _write(path: str | Path, header: Sequence[Sequence[str]], rows: Iterable[Seq
 
 
 def read_samples(path: Path) -> dict[str, dict[str, dict[str, Any]]]:
-    """A file in the long layout or the wide layout with a unit row, as
+    """A file in the long layout, the wide layout with a unit row, or FMPy's CSV (time, then a
+    column per variable: "Comp.port" names a component, a plain name is a port of the
+    component named by the file's stem), as
     {component: {port: {"time": ndarray, "values": ndarray, "unit": str | None}}}."""
     if not path.is_file():
         raise FileNotFoundError(f"no results file {str(path)!r}")
     with path.open(newline="") as stream:
         rows = list(csv.reader(stream))
-    if rows and tuple(rows[0]) == LONG_HEADER:
-        return _read_long(rows[1:])
+    if rows and tuple(rows[0]) in (LONG_HEADER, _LONG_HEADER_WITHOUT_MICRO):
+        return _read_long(rows[1:], micro=len(rows[0]) == len(LONG_HEADER))
     if len(rows) >= 2 and rows[0][:1] == ["time"] and rows[1][:1] == ["s"]:
         return _read_wide_with_units(rows)
-    raise ValueError(f"{path}: neither the long layout (header {','.join(LONG_HEADER)}) nor "
-                     "the wide layout with a unit row (time,Comp.port,... then s,unit,...)")
+    if rows and rows[0][:1] == ["time"]:  # FMPy's CSV: no unit row
+        names = [n if "." in n else f"{path.stem}.{n}" for n in rows[0]]
+        return _read_wide_with_units([names, ["s", *[NO_UNIT] * (len(names) - 1)], *rows[1:]])
+    raise ConfigurationError(f"{path}: neither the long layout (header "
+                             f"{','.join(LONG_HEADER)}), the wide layout with a unit row "
+                             "(time,Comp.port,... then s,unit,...) nor FMPy's CSV (time,...)")
 
 
-def _read_long(rows: list[list[str]]) -> dict[str, dict[str, dict[str, Any]]]:
+def _read_long(rows: list[list[str]], micro: bool) -> dict[str, dict[str, dict[str, Any]]]:
     cells: dict[tuple[str, str], tuple[list[str], list[str], str]] = {}
-    for component, port, time, value, unit in rows:
+    for row in rows:
+        component, port, time, value, unit = (*row[:3], *row[-2:]) if micro else row
         times, values, _ = cells.setdefault((component, port), ([], [], unit))
         times.append(time)
         values.append(value)

@@ -10,6 +10,8 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any, SupportsIndex, overload
 
+from ..errors import UnknownNameError
+
 if TYPE_CHECKING:
     from ..core.events import DenseTime
     from .event_record import EventRecord
@@ -38,7 +40,7 @@ class EventLog(list["EventRecord"]):
         if isinstance(key, tuple):
             histories = self._by_source()
             if key not in histories:
-                raise KeyError(f"no event {key!r}; events: {sorted(histories)}")
+                raise UnknownNameError(f"no event {key!r}; events: {sorted(histories)}")
             return histories[key]
         return super().__getitem__(key)
 
@@ -59,3 +61,21 @@ class EventLog(list["EventRecord"]):
 
     def get(self, key: tuple[str, str], default: Any = None) -> Any:
         return self._by_source().get(key, default)
+
+    def trials(self) -> Any:
+        """Every localization trial in a table (needs pandas): one row per trial, columns
+        event (the index in this log), component, name, trial, t, a, b, value."""
+        from ..extras import require
+
+        pd = require("pandas", "EventLog.trials")
+        rows = [(index, record.component, record.event, number, trial.t, trial.a, trial.b,
+                 trial.value)
+                for index, record in enumerate(self)
+                for number, trial in enumerate(record.trials)]
+        return pd.DataFrame(rows, columns=["event", "component", "name", "trial", "t", "a",
+                                           "b", "value"])
+
+    def _repr_html_(self) -> str:
+        from .result_display import events_html
+
+        return events_html(self, limit=None)

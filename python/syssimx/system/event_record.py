@@ -56,6 +56,13 @@ class EventRecord:
     def time(self) -> DenseTime:
         return DenseTime(self.t, self.micro)
 
+    def __repr__(self) -> str:
+        """One line; the trials are in `trials` (and `result.events.trials()`)."""
+        how = "handled by the component" if self.own else (
+            f"{self.iterations} iterations, {len(self.trials)} trials")
+        return (f"EventRecord({self.component}.{self.event} at t={self.t!r}, "
+                f"micro={self.micro}, {how})")
+
     @property
     def name(self) -> str:
         return self.event

@@ -11,8 +11,10 @@ from typing import TYPE_CHECKING, Any, Protocol
 import numpy as np
 
 from ..bridge.plan import recorded_columns
+from ..core.suggest import did_you_mean
 from ..engine import enum_name, ffi, lib
-from ..errors import ConfigurationError
+from ..errors import ConfigurationError, UnknownNameError
+from ..extras import require
 from . import csv_export
 from .event_log import EventLog
 from .event_record import EventRecord, LocalizationTrial
@@ -75,6 +77,11 @@ class Statistics:
         if self.termination is not None:
             lines.append(f"terminated: {self.termination}")
         return "\n".join(lines)
+
+    def _repr_html_(self) -> str:
+        from .result_display import statistics_html
+
+        return statistics_html(self)
 
 
 def read_trials(plan: EnginePlan, first: int, count: int) -> tuple[LocalizationTrial, ...]:
@@ -155,8 +162,9 @@ class HistoryView:
             return data
         recorded = self._recorded.get(component)
         if recorded is None:
-            raise KeyError(f"no component {component!r}; components: "
-                           f"{sorted(self._recorded)}")
+            raise UnknownNameError(f"no component {component!r}"
+                                   f"{did_you_mean(component, self._recorded)}; components: "
+                                   f"{sorted(self._recorded)}")
         t, values = recorded_columns(recorded, self._arrays)
         for event in recorded.events:
             values[event] = self._event_column(t, component, event)
@@ -251,33 +259,60 @@ class SimulationResult:
         """Superdense index of each sample (events record a sample before and after)."""
         return self._history.micro
 
+    def _repr_html_(self) -> str:
+        from .result_display import result_html
+
+        return result_html(self)
+
     def to_dataframe(self, component: str | None = None) -> Any:
         """SysSimX's tables (needs pandas). Without `component`: the tidy long table, columns
-        component, port, time, value, unit. With it: that component's wide table, a time
-        column and one column per port, `attrs["units"]` = {port: unit or None}. An event
-        instant has two rows, the samples before and after handling (see `micro`)."""
-        import pandas as pd
+        component, port, time, micro, value, unit. With it: that component's wide table, time
+        and micro columns and one column per port, `attrs["units"]` = {port: unit or None}.
+        An event instant has two rows, the samples before (micro 0) and after handling
+        (micro 1, and more for cascading events): (time, micro) identifies a row."""
+        pd = require("pandas", "SimulationResult.to_dataframe")
 
+        micro = self.micro
         if component is not None:
             t, ports = self[component]
-            frame = pd.DataFrame({"time": t, **ports})
+            frame = pd.DataFrame({"time": t, "micro": micro, **ports})
             frame.attrs["units"] = dict(self.units[component])
             return frame
-        frames = [pd.DataFrame({"component": name, "port": port, "time": t, "value": values,
-                                "unit": self.units[name][port]})
+        frames = [pd.DataFrame({"component": name, "port": port, "time": t, "micro": micro,
+                                "value": values, "unit": self.units[name][port]})
                   for name, (t, ports) in self.histories.items()
                   for port, values in ports.items()]
         if not frames:
             return pd.DataFrame(columns=list(csv_export.LONG_HEADER))
         return pd.concat(frames, ignore_index=True)
 
-    def to_csv(self, path: str | Path, component: str | None = None) -> Path:
-        """Write to_dataframe's table (no pandas needed): long, or with `component` wide with
-        "port [unit]" headers. Returns the path."""
+    def to_structured(self, component: str | None = None) -> np.ndarray:
+        """FMPy's form of a result: a numpy structured array, field "time" first, then one
+        field per port, named by the port for `component`, "Component.port" for every
+        component without it. `fmpy.util.plot_result` and `write_csv` take it; an event
+        instant has two rows, as in FMPy's results."""
+        names = [component] if component is not None else self.component_names
+        t = self[names[0]][0] if names else np.empty(0)
+        fields: dict[str, np.ndarray] = {}
+        for name in names:
+            for port, values in self[name][1].items():
+                fields[port if component is not None else f"{name}.{port}"] = values
+        array = np.empty(len(t), dtype=[("time", np.float64),
+                                        *((n, v.dtype) for n, v in fields.items())])
+        array["time"] = t
+        for field_name, values in fields.items():
+            array[field_name] = values
+        return array
+
+    def to_csv(self, path: str | Path, component: str | None = None,
+               units: bool = False) -> Path:
+        """Write a CSV (no pandas needed): the tidy long table (component, port, time, micro,
+        value, unit), or with `component` FMPy's CSV: time, then a column per port, headed
+        "port [unit]" with `units`. Returns the path."""
         if component is not None:
             t, ports = self[component]
-            return csv_export.write_wide(path, t, ports, self.units[component])
-        return csv_export.write_long(path, self.histories, self.units)
+            return csv_export.write_wide(path, t, ports, self.units[component] if units else None)
+        return csv_export.write_long(path, self.histories, self.units, self.micro)
 
     def plot(self, signals: Sequence[str] | None = None, path: str | Path | None = None,
              **options: Any) -> Any:

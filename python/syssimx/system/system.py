@@ -6,6 +6,7 @@ import logging
 import math
 import numbers
 import time
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -16,8 +17,9 @@ from ..bridge.observers import keep_history as keep_history_samples
 from ..bridge.plan import EnginePlan
 from ..components.base import CoSimComponent
 from ..core.port import PortType
+from ..core.suggest import did_you_mean
 from ..engine import defaults, ffi, lib
-from ..errors import ConfigurationError, RunInterrupted
+from ..errors import ConfigurationError, RunInterrupted, SysSimXWarning
 from ..graph.analysis import analyze
 from ..units import conversion
 from .algorithms import Algorithm, HybridAlgorithm, JacobiAlgorithm
@@ -107,7 +109,8 @@ class System:
 
     def _component(self, name: str) -> CoSimComponent:
         if name not in self.components:
-            raise ConfigurationError(f"{self.name}: unknown component {name!r}; components: "
+            raise ConfigurationError(f"{self.name}: unknown component {name!r}"
+                                     f"{did_you_mean(name, self.components)}; components: "
                                      f"{sorted(self.components) or 'none'}")
         return self.components[name]
 
@@ -121,11 +124,13 @@ class System:
 
         if connection.src_port not in src.output_specs:
             raise ConfigurationError(f"{where()}: {src.name!r} has no output "
-                                     f"{connection.src_port!r}{src.why_no_port(connection.src_port)}"
+                                     f"{connection.src_port!r}"
+                                     f"{_why_not(src, connection.src_port, src.output_specs)}"
                                      f"; outputs: {sorted(src.output_specs)}")
         if connection.dst_port not in dst.input_specs:
             raise ConfigurationError(f"{where()}: {dst.name!r} has no input "
-                                     f"{connection.dst_port!r}{dst.why_no_port(connection.dst_port)}"
+                                     f"{connection.dst_port!r}"
+                                     f"{_why_not(dst, connection.dst_port, dst.input_specs)}"
                                      f"; inputs: {sorted(dst.input_specs)}")
         src_spec = src.output_specs[connection.src_port]
         dst_spec = dst.input_specs[connection.dst_port]
@@ -380,6 +385,7 @@ class System:
         if timeout is not None and not (isinstance(timeout, int | float) and timeout > 0):
             raise ConfigurationError(f"{self.name}: timeout must be a positive number of "
                                      f"seconds or None, got {timeout!r}")
+        _check_step(self.name, t0, tf, dt)
         grid_steps = _grid_steps(self.name, output_interval, dt)
         if not math.isclose(t0, self.t, rel_tol=0.0, abs_tol=1e-12 * max(1.0, abs(t0))):
             raise ConfigurationError(f"{self.name}: run starts at t0={t0} but the system is at "
@@ -479,11 +485,17 @@ class System:
 
         return describe_system(self)
 
-    def _repr_svg_(self) -> str:
-        """Jupyter shows the system as its graph (graphviz is imported only here: optional)."""
-        from ..viz.system_graph_visualizer import system_svg
+    def _repr_svg_(self) -> str | None:
+        """Jupyter shows the system as its graph (graphviz is imported only here: optional).
+        A display never raises: without graphviz or its `dot` program this is None, and
+        Jupyter shows the text repr."""
+        try:
+            from ..viz.system_graph_visualizer import system_svg
 
-        return system_svg(self)
+            return system_svg(self)
+        except (ImportError, RuntimeError) as error:
+            logger.debug("%s: shown as text: %s", self.name, error)
+            return None
 
     def reset(self) -> None:
         """Drop the engine system; components keep their parameters and observers."""
@@ -514,6 +526,29 @@ def _time_value(system: str, label: str, value: object) -> float:
             or not math.isfinite(value):
         raise ConfigurationError(f"{system}: {label} must be a finite number, got {value!r}")
     return float(value)
+
+
+def _why_not(component: CoSimComponent, port: str, ports: Any) -> str:
+    """Why a known name is no port, else the close port names."""
+    return component.why_no_port(port) or did_you_mean(port, ports)
+
+
+def _check_step(system: str, t0: float, tf: float, dt: float) -> None:
+    """A step longer than the run is refused (a swapped tf and dt, most often); one that does
+    not divide the run is taken, its last step shorter so that the run ends at tf exactly, as
+    FMPy's, with a warning. (dt <= 0 is the engine's to refuse, with its own message.)"""
+    span = tf - t0
+    if not (dt > 0 and span > 0):
+        return
+    if dt > span * (1 + 1e-9):
+        raise ConfigurationError(f"{system}: dt={dt!r} is longer than the run from t0={t0!r} "
+                                 f"to tf={tf!r}; give dt <= tf - t0 (run takes t0, tf, dt)")
+    steps = span / dt
+    if abs(steps - round(steps)) > 1e-9 * max(1.0, steps):
+        last = span - math.floor(steps) * dt
+        warnings.warn(f"{system}: dt={dt!r} does not divide tf - t0 = {span!r}: the last step "
+                      f"is {last:.6g} s, so that the run ends at tf={tf!r}", SysSimXWarning,
+                      stacklevel=3)
 
 
 def _grid_steps(system: str, output_interval: object, dt: float) -> int:

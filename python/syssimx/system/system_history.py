@@ -11,7 +11,8 @@ from typing import TYPE_CHECKING, Any, Protocol
 import numpy as np
 
 from ..core.events import DenseTime
-from ..errors import ConfigurationError
+from ..core.suggest import did_you_mean
+from ..errors import ConfigurationError, UnknownNameError
 from . import csv_export
 from .event_record import EventRecord
 from .results import recorded_units
@@ -69,7 +70,8 @@ class SystemHistory:
         """(t, values) of one port; `as_unit` converts the values (pint) from the port's unit."""
         components = self._recording_system().components
         if component not in components:
-            raise KeyError(f"no component {component!r} in the history; components: "
+            raise UnknownNameError(f"no component {component!r} in the history"
+                                   f"{did_you_mean(component, components)}; components: "
                            f"{sorted(components)}")
         port_history = components[component].history.get_port_history(port)
         return port_history.time, port_history.get_values(as_unit)
@@ -84,14 +86,16 @@ class SystemHistory:
         names = list(component_names) if component_names is not None else list(histories)
         unknown = [n for n in names if n not in histories]
         if unknown:
-            raise KeyError(f"no component {unknown[0]!r} in the history; components: "
+            raise UnknownNameError(f"no component {unknown[0]!r} in the history"
+                                   f"{did_you_mean(unknown[0], histories)}; components: "
                            f"{sorted(histories)}")
         chosen = {n: (histories[n][0], _chosen_ports(n, histories[n][1], port_names))
                   for n in names}
         target = Path(filepath)
         target.parent.mkdir(parents=True, exist_ok=True)
         if long_format:
-            return csv_export.write_long(target, chosen, units)
+            return csv_export.write_long(target, chosen, units,
+                                         self._recording_system()._plan.history().micro())
         t = next(iter(chosen.values()))[0] if chosen else np.empty(0)
         signals = {f"{n}.{p}": v for n, (_, ports) in chosen.items() for p, v in ports.items()}
         signal_units = {f"{n}.{p}": units[n][p] for n, (_, ports) in chosen.items()
@@ -112,6 +116,7 @@ def _chosen_ports(component: str, ports: dict[str, np.ndarray],
         return ports
     unknown = [p for p in wanted if p not in ports]
     if unknown:
-        raise KeyError(f"component {component!r} recorded no port {unknown[0]!r}; ports: "
+        raise UnknownNameError(f"component {component!r} recorded no port {unknown[0]!r}"
+                               f"{did_you_mean(unknown[0], ports)}; ports: "
                        f"{sorted(ports)}")
     return {p: ports[p] for p in wanted}

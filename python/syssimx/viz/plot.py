@@ -6,6 +6,7 @@ pyplot's global figure list.
 
 from __future__ import annotations
 
+import io
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -13,6 +14,20 @@ from typing import Any
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+
+from ..core.suggest import did_you_mean
+from ..errors import ConfigurationError
+
+
+class ResultFigure(Figure):
+    """A matplotlib Figure that a notebook shows as an image by itself: without pyplot, no
+    `%matplotlib inline` registers a display for it."""
+
+    def _repr_png_(self) -> bytes:
+        buffer = io.BytesIO()
+        self.savefig(buffer, format="png", dpi=90)
+        return buffer.getvalue()
+
 
 EVENT_LINE = {"color": "#c0392b", "linestyle": "--", "linewidth": 1.0, "alpha": 0.8}
 
@@ -23,7 +38,10 @@ def plot_result(
     path: str | Path | None = None,
     events: bool = True,
 ) -> Figure:
-    """Plot ``signals`` ("Component.port") of ``result``; write a PNG when ``path`` is given.
+    """Plot ``signals`` ("Component.port") of ``result``; write an image when ``path`` is given,
+    in the format its suffix names (.png, .svg, .pdf, ...; PNG without one), as matplotlib does.
+    The figure is returned, kept out of pyplot's list of figures (so it is not shown twice),
+    and a notebook displays it as the last value of a cell.
 
     Signals sharing a unit share a subplot; a signal without a unit gets its own. With
     ``events``, every event instant of the run is a dashed vertical line.
@@ -33,14 +51,15 @@ def plot_result(
             optionally ``units`` ({component: {port: unit}}) and ``events`` (records with
             ``t``, ``component``, ``name``).
         signals: what to plot, e.g. ``["P.theta", "P.omega"]``.
-        path: where to write the PNG.
+        path: where to write the image.
         events: mark the event instants.
 
     Raises:
-        ValueError: no signals, or a signal names an unknown component or port.
+        ConfigurationError (a ValueError): no signals, or a signal names an unknown
+            component or port.
     """
     if not signals:
-        raise ValueError("plot_result needs at least one signal, e.g. 'Pendulum.theta'")
+        raise ConfigurationError("plot_result needs at least one signal, e.g. 'Pendulum.theta'")
     series = [_series(result, signal) for signal in signals]
     panels: dict[str, list[tuple[str, np.ndarray, np.ndarray, str | None]]] = {}
     for signal, (t, values, unit) in zip(signals, series, strict=True):
@@ -48,7 +67,7 @@ def plot_result(
             (signal, t, values, unit)
         )
 
-    figure = Figure(figsize=(8.0, 1.0 + 2.4 * len(panels)), layout="constrained")
+    figure = ResultFigure(figsize=(8.0, 1.0 + 2.4 * len(panels)), layout="constrained")
     FigureCanvasAgg(figure)
     axes = figure.subplots(len(panels), 1, sharex=True, squeeze=False)[:, 0]
     instants = _event_instants(result) if events else []
@@ -69,8 +88,9 @@ def plot_result(
     if path is not None:
         from ..atomic_file import atomic_path
 
+        # the temporary file has the target's suffix: matplotlib takes the format from it
         with atomic_path(path) as temporary:
-            figure.savefig(temporary, format="png", dpi=110)
+            figure.savefig(temporary, dpi=110)
     return figure
 
 
@@ -79,10 +99,13 @@ def _series(result: Any, signal: str) -> tuple[np.ndarray, np.ndarray, str | Non
     try:
         t, values = result[component]
     except KeyError:
-        raise ValueError(f"signal {signal!r}: no component {component!r} in the result") from None
+        names = getattr(result, "component_names", None) or []
+        raise ConfigurationError(f"signal {signal!r}: no component {component!r} in the result"
+                                 f"{did_you_mean(component, names)}") from None
     if port not in values:
         known = ", ".join(values) or "none"
-        raise ValueError(f"signal {signal!r}: {component!r} has no port {port!r}; ports: {known}")
+        raise ConfigurationError(f"signal {signal!r}: {component!r} has no port {port!r}"
+                                 f"{did_you_mean(port, values)}; ports: {known}")
     units = getattr(result, "units", None) or {}
     unit = units.get(component, {}).get(port)
     return np.asarray(t, dtype=float), np.asarray(values[port], dtype=float), unit or None
@@ -97,7 +120,7 @@ def _split_signal(result: Any, signal: str) -> tuple[str, str]:
         return name, signal[len(name) + 1 :]
     component, dot, port = signal.partition(".")
     if not dot or not component or not port:
-        raise ValueError(f"signal {signal!r} is not of the form 'Component.port'")
+        raise ConfigurationError(f"signal {signal!r} is not of the form 'Component.port'")
     return component, port
 
 

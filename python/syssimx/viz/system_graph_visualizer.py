@@ -10,8 +10,7 @@ from html import escape
 from pathlib import Path
 from typing import Any
 
-import graphviz
-
+from ..extras import require
 from ..graph.analysis import SystemAnalysis, analyze_system
 from ..graph.ports import connection_unit_label, port_kind, port_label
 
@@ -19,6 +18,8 @@ DATA_COLOR = "#4d4d4d"
 LOOP_COLOR = "#c0392b"
 EVENT_COLOR = "#e67e22"
 GROUP_FILLS = ("#eaf2fb", "#eafaf1", "#fdf2e9", "#f4ecf7", "#fef9e7", "#ebedef")
+graphviz = require("graphviz", "drawing a system (SystemGraphVisualizer, System._repr_svg_)")
+
 LEGEND = "data: solid, with units    event: dashed, orange    algebraic loop: bold, red"
 
 

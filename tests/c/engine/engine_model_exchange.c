@@ -8,7 +8,7 @@
 
 /* models/BouncingBall/bouncing_ball.c */
 enum { BALL_H = 0, BALL_V = 1, BALL_E = 5, BALL_GAP_TOL = 8, BALL_STATES = 2, BALL_INDICATORS = 1 };
-/* models/Failing/failing.c */
+/* tests/fmus/Failing/failing.c */
 enum { FAILING_Y = 0, FAILING_FAIL_TIME = 2 };
 
 #define RESTITUTION 0.8

@@ -6,7 +6,7 @@
 
 #include "test_support.h"
 
-/* Value references: models/Terminating, models/Failing, models/Gain. */
+/* Value references: tests/fmus/Terminating, tests/fmus/Failing, models/Gain. */
 enum { TERMINATING_Y = 0, TERMINATING_Y0 = 1, TERMINATING_SLOPE = 2, TERMINATING_STOP = 3 };
 enum { FAILING_Y = 0, FAILING_U = 1, FAILING_TIME = 2, FAILING_MODE = 3 };
 enum { GAIN_Y = 0, GAIN_U = 1, GAIN_K = 2 };

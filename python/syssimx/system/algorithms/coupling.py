@@ -9,6 +9,7 @@ from typing import ClassVar
 
 from ...bridge.options import engine_refusal
 from ...engine import defaults, enum_name, enum_values, ffi, lib
+from ...errors import ConfigurationError
 from .signature import EngineDefaults
 from .step_control import StepControl
 
@@ -73,29 +74,31 @@ class JacobiAlgorithm:
     def validate(self) -> None:
         jacobians = tuple(loop_jacobians())
         if self.loop_jacobian not in jacobians:
-            raise ValueError(f"{self.name}: loop_jacobian must be one of {jacobians}, "
+            raise ConfigurationError(f"{self.name}: loop_jacobian must be one of {jacobians}, "
                              f"got {self.loop_jacobian!r}")
         if engine_refusal(lambda system: lib().ssx_set_loop_options(
                 system, self.tolerance, self.max_iter, self.damping)) is not None:
-            raise ValueError(f"{self.name}: tolerance > 0, max_iter >= 1 and 0 < damping <= 1 "
+            raise ConfigurationError(
+                f"{self.name}: tolerance > 0, max_iter >= 1 and 0 < damping <= 1 "
                              f"are required (got {self.tolerance}, {self.max_iter}, "
                              f"{self.damping})")
         if isinstance(self.threads, bool) or not isinstance(self.threads, int):
-            raise ValueError(f"{self.name}: threads must be an integer, got {self.threads!r}")
+            raise ConfigurationError(
+                f"{self.name}: threads must be an integer, got {self.threads!r}")
         refusal = engine_refusal(lambda system: lib().ssx_set_threads(system, self.threads))
         if refusal is not None:
-            raise ValueError(f"{self.name}: {refusal}")
+            raise ConfigurationError(f"{self.name}: {refusal}")
         if isinstance(self.input_order, bool) or not isinstance(self.input_order, int):
-            raise ValueError(f"{self.name}: input_order must be an integer, got "
+            raise ConfigurationError(f"{self.name}: input_order must be an integer, got "
                              f"{self.input_order!r}")
         refusal = engine_refusal(lambda system: lib().ssx_set_input_order(system,
                                                                           self.input_order))
         if refusal is not None:
-            raise ValueError(f"{self.name}: {refusal}")
+            raise ConfigurationError(f"{self.name}: {refusal}")
         if self.step_control is not None:
             if not isinstance(self.step_control, StepControl):
-                raise ValueError(f"{self.name}: step_control must be a StepControl or None, "
-                                 f"got {self.step_control!r}")
+                raise ConfigurationError(f"{self.name}: step_control must be a StepControl or "
+                                         f"None, got {self.step_control!r}")
             self.step_control.validate(self.name)
 
 

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 
 from ...bridge.options import engine_refusal
 from ...engine import defaults, enum_name, enum_values, lib
+from ...errors import ConfigurationError
 from .coupling import JacobiAlgorithm, default_coupling
 from .signature import EngineDefaults
 
@@ -100,25 +101,28 @@ class HybridAlgorithm:
     def validate(self) -> None:
         methods = tuple(locator_methods())
         if self.method not in methods:
-            raise ValueError(f"HybridAlgorithm.method must be one of {methods}, "
+            raise ConfigurationError(f"HybridAlgorithm.method must be one of {methods}, "
                              f"got {self.method!r}")
         refusal = engine_refusal(lambda system: lib().ssx_set_hybrid_options(
             system, self.tol_time, self.tol_value, self.max_iter, self.max_microsteps,
             int(self.record_internal_steps), self.locator(), self.zeno_min_interval))
         if refusal is not None:
-            raise ValueError(f"HybridAlgorithm: the engine refuses tol_time={self.tol_time}, "
+            raise ConfigurationError(
+                f"HybridAlgorithm: the engine refuses tol_time={self.tol_time}, "
                              f"tol_value={self.tol_value}, max_iter={self.max_iter}, "
                              f"max_microsteps={self.max_microsteps}, zeno_min_interval="
                              f"{self.zeno_min_interval}: {refusal}")
         if not (math.isfinite(self.sign_tolerance) and self.sign_tolerance >= 0):
-            raise ValueError(f"HybridAlgorithm: sign_tolerance must be a finite number >= 0, "
+            raise ConfigurationError(
+                f"HybridAlgorithm: sign_tolerance must be a finite number >= 0, "
                              f"got {self.sign_tolerance}")
         if isinstance(self.max_deferrals, bool) or not isinstance(self.max_deferrals, int) \
                 or self.max_deferrals < 0:
-            raise ValueError(f"HybridAlgorithm: max_deferrals must be an integer >= 0, got "
+            raise ConfigurationError(f"HybridAlgorithm: max_deferrals must be an integer >= 0, got "
                              f"{self.max_deferrals!r}")
         if not isinstance(self.coupling, JacobiAlgorithm):
-            raise ValueError(f"HybridAlgorithm: the coupling (gauss_seidel_algorithm) must be a "
+            raise ConfigurationError(
+                f"HybridAlgorithm: the coupling (gauss_seidel_algorithm) must be a "
                              f"JacobiAlgorithm or GaussSeidelAlgorithm, got {self.coupling!r}")
         self.coupling.validate()
 
