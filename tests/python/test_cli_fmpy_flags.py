@@ -13,8 +13,7 @@ import pytest
 from fmpy import simulate_fmu
 from fmpy.util import read_csv
 from syssimx import fmus
-from syssimx.cli import main
-from syssimx.cli.main import _parser
+from syssimx.cli import build_parser, main
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 # Quarter period of the seed pendulum released at 0.5 rad: ellipk(sin^2(0.25)) / sqrt(mgL/I).
@@ -106,9 +105,9 @@ def test_an_unknown_flag_shows_the_subcommands_usage_and_the_close_flag(
 @pytest.mark.parametrize("command", [["run", "system.yaml"],
                                      ["sweep", "system.yaml", "--param", "P.theta0=0.1,0.2"]])
 def test_run_and_sweep_take_the_same_names(command: list[str]):
-    fmpy_names = _parser().parse_args([*command, "--start-time", "1", "--stop-time", "2",
+    fmpy_names = build_parser().parse_args([*command, "--start-time", "1", "--stop-time", "2",
                                        "--step-size", "0.5", "--output-file", "o.csv"])
-    ours = _parser().parse_args([*command, "--t0", "1", "--tf", "2", "--dt", "0.5",
+    ours = build_parser().parse_args([*command, "--t0", "1", "--tf", "2", "--dt", "0.5",
                                  "-o", "o.csv"])
     for name in ("start_time", "stop_time", "step_size", "output"):
         assert getattr(fmpy_names, name) == getattr(ours, name)
