@@ -102,7 +102,7 @@ def analyze(
         connections: (src_comp, src_port, dst_comp, dst_port) for every data connection.
 
     Raises:
-        ConfigurationError (a ValueError): a connection names a component that is not in
+        ConfigurationError: (also a ValueError) a connection names a component that is not in
             ``components``.
     """
     names = list(components)

@@ -55,7 +55,7 @@ def plot_result(
         events: mark the event instants.
 
     Raises:
-        ConfigurationError (a ValueError): no signals, or a signal names an unknown
+        ConfigurationError: (also a ValueError) no signals, or a signal names an unknown
             component or port.
     """
     if not signals:
