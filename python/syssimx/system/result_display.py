@@ -4,11 +4,43 @@ pandas; the long lists (localization trials, every sample) stay in tables a user
 from __future__ import annotations
 
 import html
-from collections.abc import Iterable, Sequence
-from typing import TYPE_CHECKING, Any
+from collections.abc import Iterable, Mapping, Sequence
+from typing import TYPE_CHECKING, Any, Protocol
 
 if TYPE_CHECKING:
-    from .results import EventRecord, SimulationResult, Statistics
+    from .event_record import EventRecord
+
+
+class Statistics(Protocol):
+    """What the tables show of a run's statistics (results.Statistics)."""
+
+    macro_steps: int
+    do_step_calls: int
+    state_saves: int
+    state_restores: int
+    events: int
+    own_events: int
+    localization_iterations: int
+    loop_solves: int
+    loop_iterations: int
+    termination: Any
+
+
+class SimulationResult(Protocol):
+    """What the summary shows of a result (results.SimulationResult)."""
+
+    system_name: str
+    algorithm: str
+    t0: float
+    tf: float
+    dt: float
+    wall_time: float
+    component_names: Sequence[str]
+    units: Mapping[str, Mapping[str, str]]
+    events: Sequence[EventRecord]
+    statistics: Statistics
+
+    def __getitem__(self, name: str) -> tuple[Any, Mapping[str, Any]]: ...
 
 EVENTS_SHOWN = 10  # events listed in a result's table; the rest are counted
 
