@@ -216,12 +216,21 @@ def test_ctrl_c_in_simulate_writes_what_was_finished_and_exits_130(tmp_path: Pat
     assert rows[0][0] == "time" and 1 < len(rows) and 0.0 < float(rows[-1][0]) < 1000.0
 
 
-def test_ctrl_c_in_a_sweep_keeps_the_finished_members():
-    """Before: KeyboardInterrupt, and the finished members were lost."""
+def test_ctrl_c_in_a_sweep_keeps_the_finished_members(monkeypatch: pytest.MonkeyPatch):
+    """Before: KeyboardInterrupt, and the finished members were lost. Ctrl-C comes as the
+    second quick member's result arrives (a fixed delay raced the cluster's start)."""
     pytest.importorskip("distributed")
-    from syssimx.ensemble import sweep
+    from syssimx.ensemble import progress, sweep
 
-    timer = interrupt_after(20.0)  # the cluster's start, then the quick members
+    advance = progress.ProgressBar.advance
+
+    def advance_then_interrupt(bar: progress.ProgressBar, failed: bool) -> None:
+        advance(bar, failed)
+        if bar.done == 2:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    monkeypatch.setattr(progress.ProgressBar, "advance", advance_then_interrupt)
+    timer = interrupt_after(300.0)  # a backstop: the slow member alone would run for hours
     try:
         with pytest.raises(RunInterrupted) as caught:
             sweep(slow_pendulum, {"P.euler_step_size": [1e-4, 1e-4, 1e-9]}, t0=0.0, tf=1.0, dt=1e-3,
@@ -233,7 +242,6 @@ def test_ctrl_c_in_a_sweep_keeps_the_finished_members():
     assert members[0].time[-1] == 1.0
     assert members[2].error_type == "KeyboardInterrupt"
     assert "interrupted" in members[2].error
-
 
 
 def test_an_ssp_archive_that_fails_while_written_leaves_the_old_file(
