@@ -10,7 +10,7 @@ from typing import Any
 from ..errors import ConfigurationError, RunInterrupted
 from .cluster import ensemble_client
 from .main_guard import check_main_guard
-from .member import MemberTask
+from .member import MemberResult, MemberTask
 from .members import ParameterSet, parameter_sets
 from .result import EnsembleResult
 from .runner import MembersInterrupted, run_members
@@ -73,15 +73,24 @@ def _run(function: str, system: Any, sets: list[ParameterSet], t0: float | None,
     if client is None and scheduler is None:  # worker processes started from this script
         check_main_guard(function)
     start = time.perf_counter()
+    finished: list[MemberResult] | None = None  # every member's result once run_members ends
     try:
         with ensemble_client(client, scheduler, workers) as running_on:
-            members = run_members(running_on, build, tasks, member_timeout, progress)
-    except MembersInterrupted as stop:  # what was finished, on the exception
-        partial = EnsembleResult(stop.results, list(sets[0]), settings["t0"], settings["tf"],
+            try:
+                finished = run_members(running_on, build, tasks, member_timeout, progress)
+            except MembersInterrupted as stop:  # what was finished, on the exception
+                finished = stop.results
+                raise
+    except KeyboardInterrupt as stop:  # in the members, or while the cluster starts or closes
+        if finished is None:  # no member had started
+            finished = [MemberResult(task.index, task.parameters, "failed",
+                                     "interrupted (Ctrl-C) before it started",
+                                     "KeyboardInterrupt") for task in tasks]
+        partial = EnsembleResult(finished, list(sets[0]), settings["t0"], settings["tf"],
                                  settings["dt"], time.perf_counter() - start)
-        done = sum(member.error_type != "KeyboardInterrupt" for member in stop.results)
-        raise RunInterrupted(f"the ensemble was interrupted: {done} of {len(stop.results)} "
+        done = sum(member.error_type != "KeyboardInterrupt" for member in finished)
+        raise RunInterrupted(f"the ensemble was interrupted: {done} of {len(finished)} "
                              "members had finished (partial_result holds them)",
                              partial) from stop
-    return EnsembleResult(members, list(sets[0]), settings["t0"], settings["tf"],
+    return EnsembleResult(finished, list(sets[0]), settings["t0"], settings["tf"],
                           settings["dt"], time.perf_counter() - start)

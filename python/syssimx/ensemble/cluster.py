@@ -11,6 +11,7 @@ from contextlib import contextmanager
 from typing import Any
 
 from ..errors import ConfigurationError
+from .deferred_interrupt import interrupts_deferred
 
 # The embedded cluster fails the tasks of a worker that died at once instead of retrying them
 # on another worker (a crashing member would crash that one too; runner.py sorts the crashed
@@ -74,20 +75,28 @@ def ensemble_client(client: Any = None, scheduler: str | None = None,
     if isinstance(count, bool) or not isinstance(count, int) or count < 1:
         raise ConfigurationError(f"workers must be a positive integer, got {workers!r}")
     # The workers' stream handlers are silenced; their nannies still keep the INFO lines
-    # (how a worker died) that a crashed member's reason is read from.
+    # (how a worker died) that a crashed member's reason is read from. Ctrl-C while the
+    # cluster starts or closes comes once it is whole, so that it is closed entirely.
+    cluster = local = None
     try:
-        with dask.config.set(EMBEDDED_SCHEDULER_CONFIG), \
-                LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
-                             host=LOOPBACK, dashboard_address=f"{LOOPBACK}:0",
-                             silence_logs=logging.CRITICAL) as cluster, \
-                Client(cluster) as local:
+        with dask.config.set(EMBEDDED_SCHEDULER_CONFIG):
+            with interrupts_deferred():
+                cluster = LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
+                                       host=LOOPBACK, dashboard_address=f"{LOOPBACK}:0",
+                                       silence_logs=logging.CRITICAL)
+                local = Client(cluster)
             yield local
     finally:
-        # a worker killed by a signal (a member's crash, the nanny's SIGTERM) left its FMU
-        # extractions: their owner is gone now
-        import tempfile
-        from pathlib import Path
+        with interrupts_deferred():
+            if local is not None:
+                local.close()
+            if cluster is not None:
+                cluster.close()
+            # a worker killed by a signal (a member's crash, the nanny's SIGTERM) left its FMU
+            # extractions: their owner is gone now
+            import tempfile
+            from pathlib import Path
 
-        from ..fmu.extraction import remove_stale_folders
+            from ..fmu.extraction import remove_stale_folders
 
-        remove_stale_folders(Path(tempfile.gettempdir()))
+            remove_stale_folders(Path(tempfile.gettempdir()))
