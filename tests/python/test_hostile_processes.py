@@ -273,3 +273,58 @@ def test_a_sweep_removes_what_its_killed_workers_extracted(tmp_path: Path,
                    workers=1, progress=False)
     assert not result.members[0].ok
     assert [p.name for p in tmp_path.iterdir() if p.name.startswith("syssimx_")] == []
+
+
+def wait_for(path: Path, timeout: float = 120.0) -> None:
+    deadline = time.monotonic() + timeout
+    while not path.exists() and time.monotonic() < deadline:
+        time.sleep(0.05)
+
+
+def extracting_then_waiting(folder_file: Path, release: Path) -> System:
+    """The first worker process extracts its FMU, tells its process id and folder, and waits
+    (the test signals it meanwhile); a later one waits before extracting, so that its first
+    extraction (which removes stale folders) cannot be what removed the first's."""
+    if folder_file.exists():
+        wait_for(release)
+    system = pendulum_system()
+    if not folder_file.exists():
+        component = system.components["P"]
+        folder_file.write_text(f"{os.getpid()} {component._unzip_dir}")
+        wait_for(release)
+    return system
+
+
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGHUP])
+def test_a_signal_to_a_sweep_worker_removes_its_extraction_folders(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, signum: int):
+    """Before: a worker's folders stayed until the sweep's cluster closed (a member runs on a
+    worker thread, where no signal handler can be set)."""
+    pytest.importorskip("distributed")
+    import tempfile
+
+    from syssimx.ensemble import sweep
+
+    monkeypatch.setenv("TMPDIR", str(tmp_path))  # the workers' temporary folder
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))  # and this process's
+    folder_file, release = tmp_path / "folder.txt", tmp_path / "release"
+    outcome: list[object] = []
+    build = functools.partial(extracting_then_waiting, folder_file, release)
+    running = threading.Thread(target=lambda: outcome.append(sweep(
+        build, {"P.theta0": [0.1, 0.2]}, t0=0.0, tf=0.1, dt=0.05, workers=1,
+        progress=False)))
+    running.start()
+    try:
+        wait_for(folder_file)
+        pid_text, folder_text = folder_file.read_text().split()
+        folder = Path(folder_text)
+        assert folder.is_dir() and folder.parent == tmp_path
+        os.kill(int(pid_text), signum)
+        deadline = time.monotonic() + 10.0
+        while folder.exists() and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert not folder.exists() and not Path(f"{folder}.owner").exists()
+    finally:
+        release.touch()
+        running.join(timeout=300)
+    assert not running.is_alive() and len(outcome) == 1

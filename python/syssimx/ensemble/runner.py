@@ -168,7 +168,10 @@ class _Ensemble:
 def run_members(client: Any, build: SystemSource, tasks: Sequence[MemberTask],
                 member_timeout: float | None, progress: bool) -> list[MemberResult]:
     """Every member's result, in member order."""
+    from .worker_signals import ExtractionsRemovedOnSignals
+
     check_processes(client)
+    client.register_plugin(ExtractionsRemovedOnSignals())
     bar = ProgressBar(len(tasks), progress)
     ensemble = _Ensemble(client, build, member_timeout, bar)
     ensemble.parameters = {task.index: task.parameters for task in tasks}

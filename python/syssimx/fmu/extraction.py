@@ -201,6 +201,14 @@ def remove_stale_folders(temporary: Path) -> list[Path]:
     return removed
 
 
+def remove_extractions_on_signals() -> None:
+    """Remove this process's extraction folders on SIGTERM and SIGHUP, where they still have
+    their default action; called on the main thread (elsewhere it does nothing). A process's
+    first extraction calls it; a process whose FMUs are extracted on other threads (a sweep's
+    worker) calls it on its main thread."""
+    _remove_on_signals(extractions)
+
+
 def _remove_on_signals(cache: ExtractionCache) -> None:
     """SIGTERM and SIGHUP end the process without atexit: where they still have their default
     action, remove the folders first, then end by the same signal."""
