@@ -8,7 +8,7 @@ is stepped through callbacks into the hooks below (engine inputs -> `inputs` por
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping, MutableMapping
 from copy import deepcopy
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -17,6 +17,7 @@ import numpy as np
 
 from ..bridge.plan import bind
 from ..bridge.standalone import StandaloneSystem, standalone_system
+from ..core.element_map import made_items
 from ..core.events import EventIndicator
 from ..core.port import Port, PortSpec, PortType
 from ..core.suggest import did_you_mean
@@ -58,12 +59,13 @@ class CoSimComponent:
         self.name = name
         self.label = label if label is not None else name
         self.group = group
-        self.input_specs: dict[str, PortSpec] = {}
-        self.output_specs: dict[str, PortSpec] = {}
-        self.inputs: dict[str, Port] = {}
-        self.outputs: dict[str, Port] = {}
-        self.parameters: dict[str, Any] = {}
-        self.direct_feedthrough: dict[str, set[str]] = {}
+        # mappings: dicts, or (an FMU's) ElementMaps that make array elements when asked for
+        self.input_specs: MutableMapping[str, PortSpec] = {}
+        self.output_specs: MutableMapping[str, PortSpec] = {}
+        self.inputs: MutableMapping[str, Port] = {}
+        self.outputs: MutableMapping[str, Port] = {}
+        self.parameters: MutableMapping[str, Any] = {}
+        self.direct_feedthrough: MutableMapping[str, set[str]] = {}
         self.event_indicators: dict[str, EventIndicator] = {}
         self.event_handlers: dict[str, list[EventHandler]] = {}
         # event name -> the EVENT inputs it arrives on (set by the System from its connections)
@@ -96,10 +98,11 @@ class CoSimComponent:
         return Port(spec)
 
     def _sync_ports(self) -> None:
-        """Create a Port for every spec added since (subclasses fill the specs in __init__)."""
+        """Create a Port for every spec added since (subclasses fill the specs in __init__;
+        the ports of an FMU's array elements are made when asked for)."""
         self._remember_default_parameters()
         for specs, ports in ((self.input_specs, self.inputs), (self.output_specs, self.outputs)):
-            for name, spec in specs.items():
+            for name, spec in made_items(specs).items():
                 port = ports.get(name)
                 # identity first: comparing every field of every spec made add_connection slow
                 if port is None or (port.spec is not spec and port.spec != spec):

@@ -28,6 +28,7 @@ set_parameters (inputs too) and read with get_state, never connected.
 
 from __future__ import annotations
 
+import copy
 import math
 import warnings
 import weakref
@@ -35,6 +36,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .. import units
+from ..core.element_map import made_items
 from ..core.port import Port, PortSpec, PortType
 from ..core.suggest import did_you_mean
 from ..engine import lib
@@ -98,13 +100,17 @@ class FMUComponent(CoSimComponent):
         # DefaultExperiment's
         self.tolerance = _checked_tolerance(tolerance, f"{name}: tolerance")
         self._experiment_tolerance = _first_given(self.tolerance, self.info.default_tolerance)
-        self.input_specs.update(self.info.input_specs)
-        self.output_specs.update(self.info.output_specs)
-        self.direct_feedthrough = {k: set(v) for k, v in self.info.feedthrough.items()}
-        self.parameters = {n: p.start for n, p in self.info.parameters.items()}
-        self._declared_parameters = dict(self.parameters)
+        # an FMI 3.0 array's elements get their spec, port, start and parameter value when
+        # they are asked for (ElementMap), a scalar's at once
+        self.input_specs = self.info.input_specs.copy()
+        self.output_specs = self.info.output_specs.copy()
+        self.direct_feedthrough = self.info.feedthrough.mapped(lambda _, inputs: set(inputs))
+        self.parameters = self.info.parameters.mapped(lambda _, parameter: parameter.start)
+        self._declared_parameters = self.parameters.copy()
         self._parameters_set: set[str] = set()  # named in set_parameters: written even if equal
-        self._input_starts = dict(self.info.input_starts)  # set_inputs changes the copy
+        self._input_starts = self.info.input_starts.copy()  # set_inputs changes the copy
+        self.inputs = self.input_specs.mapped(lambda _, spec: self._make_port(spec))
+        self.outputs = self.output_specs.mapped(lambda _, spec: self._make_port(spec))
         self._inputs_set: set[str] = set()
         fmu, self._unzip_dir, extraction_key = load(self.info, self.fmu_interface, name,
                                                     isolated, step_timeout)
@@ -251,7 +257,7 @@ class FMUComponent(CoSimComponent):
     def user_parameters(self) -> dict[str, Any]:
         """The parameters the user set: named in set_parameters (or reinitialize), or changed
         in `parameters`. Only these are written to the FMU."""
-        return {n: v for n, v in self.parameters.items()
+        return {n: v for n, v in made_items(self.parameters).items()
                 if v is not None and (n in self._parameters_set
                                       or v != self._declared_parameters.get(n))}
 
@@ -316,7 +322,8 @@ class FMUComponent(CoSimComponent):
                     f"{did_you_mean(name, self.info.parameters)}; "
                     f"known parameters: {sorted(self.info.parameters)}")
             overrides[name] = _coerce_parameter(self.name, self.info.parameters[name], value)
-        self.parameters = {**saved, **overrides}
+        self.parameters = copy.copy(saved)
+        self.parameters.update(overrides)
         self._parameters_set = saved_set | set(overrides)
         try:
             # the engine writes the values itself unless a subclass's hooks do
@@ -384,7 +391,8 @@ class FMUComponent(CoSimComponent):
             return None
         terms = handlers[0].terms(self)
         if any(self.info.parameters[p].type != PortType.REAL for p in terms) or any(
-                parameter.type == PortType.STRING for parameter in self.info.parameters.values()):
+                parameter.type == PortType.STRING  # arrays are never String ones
+                for parameter in made_items(self.info.parameters).values()):
             return None
         return terms
 

@@ -8,12 +8,12 @@ attribute names), so the rest of syssimx reads an FMI 3.0 description like an FM
 syssimx steps FMI 3.0 Co-Simulation FMUs and integrates FMI 3.0 Model Exchange ones. It
 refuses, naming the file and the element: scheduled execution only, any Clock variable (clocked
 partitions need a scheduler syssimx does not have), and String or Binary arrays among the
-inputs, outputs and parameters. Numeric and Boolean arrays become one port per element
-(fmi3_arrays.py).
+inputs, outputs and parameters. Numeric and Boolean arrays become one port per element, made
+when asked for (fmi3_arrays.py).
 
 A description is data: every value reference, dimension and start value is checked here, and
 an FMUFileError names the file and the variable, before anything is sized by it. The arrays of
-one FMU hold at most MAX_ARRAY_ELEMENTS elements together (each element is a port).
+one FMU hold at most MAX_ARRAY_ELEMENTS elements together.
 """
 
 from __future__ import annotations
@@ -22,9 +22,12 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple
 
+import numpy as np
+
+from ..core.element_map import Block
 from ..engine import ffi
 from ..errors import FMUFileError
-from .fmi3_arrays import ArrayElement
+from .fmi3_arrays import ArrayPort
 
 if TYPE_CHECKING:  # fmpy is imported by the first read, not with syssimx
     from fmpy.model_description import ModelDescription
@@ -34,7 +37,7 @@ FMI3_TYPE_CODES = {"Float64": 0, "Float32": 1, "Int8": 2, "UInt8": 3, "Int16": 4
                    "Int32": 6, "UInt32": 7, "Int64": 8, "UInt64": 9, "Boolean": 10,
                    "Enumeration": 8}  # FMI 3.0 enumerations are exchanged as Int64
 _PORT_CAUSALITIES = ("input", "output", "parameter")
-MAX_ARRAY_ELEMENTS = 100_000  # all arrays of one FMU together
+MAX_ARRAY_ELEMENTS = 1_000_000  # all arrays of one FMU together
 MAX_VALUE_REFERENCE = 2**32 - 1
 _INTEGER_RANGES = {"Int8": (-2**7, 2**7 - 1), "UInt8": (0, 2**8 - 1),
                    "Int16": (-2**15, 2**15 - 1), "UInt16": (0, 2**16 - 1),
@@ -44,13 +47,20 @@ _INTEGER_RANGES = {"Int8": (-2**7, 2**7 - 1), "UInt8": (0, 2**8 - 1),
 
 
 class FMI3Variable(NamedTuple):
-    """A row of the engine's FMI 3.0 table: engine value reference, ssx_fmi3_type code, name,
-    and for an array element where it lies (None for a scalar)."""
+    """A scalar row of the engine's FMI 3.0 table: value reference, ssx_fmi3_type code,
+    name."""
 
     value_reference: int
     type_code: int
     name: str
-    element: ArrayElement | None
+
+
+class EngineTable(NamedTuple):
+    """What the engine's FMI 3.0 table is made of: the scalar rows and the array ports (a row
+    per element, made by engine_variables)."""
+
+    scalars: list[FMI3Variable]
+    arrays: list[ArrayPort]
 
 
 def read_fmi3_description(path: Path) -> ModelDescription:
@@ -200,31 +210,51 @@ def _quoted(value: Any) -> str:
     return text if len(text) <= 80 else text[:77] + "..."
 
 
-def engine_rows(variables: Any, elements: dict[int, ArrayElement]) -> list[FMI3Variable]:
-    """The engine's FMI 3.0 type table: each numeric or Boolean scalar once per value
-    reference (an alias shares its variable's), array elements among them; arrays no port
-    carries (locals) are left out."""
+def engine_table(in_order: list[Any]) -> EngineTable:
+    """The engine's FMI 3.0 type table of the variables `in_order` (array_variables'): each
+    numeric or Boolean scalar once per value reference (an alias shares its variable's), and
+    the array ports; arrays no port carries (locals) are left out."""
     table: dict[int, FMI3Variable] = {}
-    for variable in variables:
+    arrays = []
+    for variable in in_order:
+        if isinstance(variable, ArrayPort):
+            arrays.append(variable)
+            continue
         code = FMI3_TYPE_CODES.get(variable.type)
         if code is not None and not variable.dimensions:
             vr = variable.valueReference
-            table.setdefault(vr, FMI3Variable(vr, code, variable.name, elements.get(vr)))
-    return list(table.values())
+            table.setdefault(vr, FMI3Variable(vr, code, variable.name))
+    return EngineTable(list(table.values()), arrays)
 
 
-def engine_variables(rows: list[FMI3Variable], cosimulation: Any, model_exchange: bool,
+def engine_variables(table: EngineTable, cosimulation: Any, model_exchange: bool,
                      intermediate: tuple[int, ...] = ()) -> tuple[Any, list[Any]]:
-    """The ssx_fmi3_variables of `rows` and of how a Co-Simulation instance is made (event
+    """The ssx_fmi3_variables of `table` and of how a Co-Simulation instance is made (event
     mode when the FMU has it, early return when it may return early, the inputs it moves by
     intermediate update), and what it points at: the struct does not keep that alive, the
-    caller does until the engine copied it."""
-    texts = [ffi.new("char[]", row.name.encode()) for row in rows]
-    arrays = {"vr": ffi.new("unsigned int[]", [row.value_reference for row in rows]),
-              "type": ffi.new("unsigned char[]", [row.type_code for row in rows]),
-              "name": ffi.new("const char *[]", texts)}
+    caller does until the engine copied it. An array's rows are filled from numpy, a column
+    at a time, and its elements' names go to one pool."""
+    scalars, arrays = table
+    count = len(scalars) + sum(a.size for a in arrays)
+    columns = {"vr": ffi.new("unsigned int[]", count), "type": ffi.new("unsigned char[]", count)}
+    vr = np.frombuffer(ffi.buffer(columns["vr"]), np.uint32)
+    kind = np.frombuffer(ffi.buffer(columns["type"]), np.uint8)
+    n = len(scalars)
+    vr[:n] = [row.value_reference for row in scalars]
+    kind[:n] = [row.type_code for row in scalars]
+    names = [row.name for row in scalars]
+    for array in arrays:
+        vr[n:n + array.size] = np.arange(array.first_vr, array.first_vr + array.size)
+        kind[n:n + array.size] = FMI3_TYPE_CODES[array.variable.type]
+        names.extend(Block(array.name, array.shape, array.element).names())
+        n += array.size
+    pool = ffi.new("char[]", b"\0".join(name.encode() for name in names) + b"\0")
+    lengths = np.fromiter((len(name.encode()) + 1 for name in names), np.intp, count)
+    columns["name"] = ffi.new("const char *[]", count)
+    np.frombuffer(ffi.buffer(columns["name"]), np.uintp)[:] = \
+        int(ffi.cast("uintptr_t", pool)) + np.concatenate(([0], np.cumsum(lengths)[:-1]))
     fields: dict[str, Any] = {
-        **arrays, "n": len(rows),
+        **columns, "n": count,
         "event_mode_used": not model_exchange and bool(cosimulation.hasEventMode),
         "early_return_allowed": not model_exchange and bool(
             cosimulation.canReturnEarlyAfterIntermediateUpdate
@@ -232,12 +262,23 @@ def engine_variables(rows: list[FMI3Variable], cosimulation: Any, model_exchange
     if intermediate and not model_exchange:  # inputs the engine moves inside a step
         fields.update({"intermediate_vr": ffi.new("unsigned int[]", list(intermediate)),
                        "n_intermediate": len(intermediate)})
-    if any(row.element is not None for row in rows):  # array elements: where each lies
-        elements = [row.element or ArrayElement(row.value_reference, 0, 0, 0.0)
-                    for row in rows]
-        fields.update({
-            "fmu_vr": ffi.new("unsigned int[]", [e.array_vr for e in elements]),
-            "element": ffi.new("size_t[]", [e.position for e in elements]),
-            "size": ffi.new("size_t[]", [e.size for e in elements]),
-            "start": ffi.new("double[]", [e.start for e in elements])})
-    return ffi.new("ssx_fmi3_variables *", fields), [texts, fields]
+    if arrays:  # where each element lies; a scalar's size is 0
+        where = {"fmu_vr": ffi.new("unsigned int[]", count),
+                 "element": ffi.new("size_t[]", count), "size": ffi.new("size_t[]", count),
+                 "start": ffi.new("double[]", count)}
+        fmu_vr = np.frombuffer(ffi.buffer(where["fmu_vr"]), np.uint32)
+        element = np.frombuffer(ffi.buffer(where["element"]), np.uintp)
+        size = np.frombuffer(ffi.buffer(where["size"]), np.uintp)
+        start = np.frombuffer(ffi.buffer(where["start"]), np.float64)
+        n = len(scalars)
+        fmu_vr[:n] = vr[:n]
+        for array in arrays:
+            part = slice(n, n + array.size)
+            fmu_vr[part] = array.variable.valueReference
+            element[part] = np.arange(array.size)
+            size[part] = array.size
+            if array.starts is not None:
+                start[part] = array.starts.astype(np.float64)
+            n += array.size
+        fields.update(where)
+    return ffi.new("ssx_fmi3_variables *", fields), [columns, pool, fields]

@@ -1,53 +1,77 @@
-"""FMI 3.0 array variables as scalar ports, one per element.
+"""FMI 3.0 array variables as ports, one per element, made when asked for.
 
-An array input, output or parameter `y` of shape (2, 3) becomes the scalars `y[0,0]`,
+An array input, output or parameter `y` of shape (2, 3) stands for the scalar ports `y[0,0]`,
 `y[0,1]`, ... `y[1,2]`: FMPy's names for array elements (0-based, row-major, the order in
-which FMI 3.0 serializes an array). Each element gets an engine value reference of its own,
-above every value reference of the FMU; the engine's FMI 3.0 back-end maps it to the array's
-value reference and position and reads and writes the array whole. The sizes are the ones the
-description gives: a dimension's `start`, or the start value of the structural parameter it
-names, which therefore cannot be changed.
+which FMI 3.0 serializes an array). Each element has an engine value reference of its own,
+above every value reference of the FMU (the array's first element's plus its position); the
+engine's FMI 3.0 back-end maps it to the array's value reference and position and reads and
+writes the array whole. The sizes are the ones the description gives: a dimension's `start`,
+or the start value of the structural parameter it names, which therefore cannot be changed.
+
+An array is kept as one ArrayPort (its variable, first engine value reference, shape and
+start values as a numpy array); the maps of ports, parameters and starts make an element's
+objects when it is looked up (core/element_map.py), so that an array of 10**5 elements costs
+what its start values do.
 """
 
 from __future__ import annotations
 
-import itertools
 import math
 from pathlib import Path
 from typing import Any, NamedTuple
+
+import numpy as np
 
 from ..errors import FMUFileError
 
 _ARRAY_CAUSALITIES = ("input", "output", "parameter")
 _MAX_VALUE_REFERENCE = 2**32 - 1
+_INTEGER_TYPES = ("Int8", "UInt8", "Int16", "UInt16", "Int32", "UInt32", "Int64", "UInt64",
+                  "Enumeration")
 
 
-class ArrayElement(NamedTuple):
-    """Where an element's engine value reference points: the array's FMU value reference, the
-    element's row-major position, the array's number of elements, the element's start value
-    (a number; a Boolean as 1.0 or 0.0)."""
+class ArrayPort(NamedTuple):
+    """An array input, output or parameter: FMPy's variable, the engine value reference of
+    its first element, its shape, and its start values in row-major order (None when it
+    declares none): float64 for Float types, int64 or uint64 for integers, bool for
+    Boolean."""
 
-    array_vr: int
-    position: int
-    size: int
-    start: float
+    variable: Any
+    first_vr: int
+    shape: tuple[int, ...]
+    starts: np.ndarray | None
+
+    @property
+    def name(self) -> str:
+        return str(self.variable.name)
+
+    @property
+    def size(self) -> int:
+        return math.prod(self.shape)
+
+    def start(self, position: int) -> float | int | bool | None:
+        """The element's start value as a Python number (None when the array has none)."""
+        return None if self.starts is None else self.starts[position].item()
+
+    def element(self, position: int, name: str) -> ElementVariable:
+        start = self.start(position)
+        text = None if start is None else \
+            ("true" if start else "false") if isinstance(start, bool) else repr(start)
+        return ElementVariable(self.variable, name, self.first_vr + position, text)
 
 
-class ExpandedVariables(NamedTuple):
-    """The variables with each array port replaced by its elements, the element table by
-    engine value reference, the outputs' ModelStructure entries likewise, and each structural
-    parameter's name with the arrays it sizes."""
+class ArrayVariables(NamedTuple):
+    """The FMI 3.0 description's variables in document order, each array port as its
+    ArrayPort and every other variable as itself, and each structural parameter's name with
+    the arrays it sizes."""
 
-    variables: list[Any]
-    elements: dict[int, ArrayElement]
-    outputs: list[Any]
+    in_order: list[Any]
     structural: dict[str, list[str]]
 
 
 class ElementVariable:
     """One element of an array variable, read like a scalar variable: its own name, engine
-    value reference and start, everything else the array's. Small and made without copying
-    the array's variable (attrs.evolve of FMPy's variable cost about 0.3 ms per element)."""
+    value reference and start, everything else the array's."""
 
     __slots__ = ("array", "name", "start", "valueReference")
     dimensions: tuple[Any, ...] = ()
@@ -63,71 +87,41 @@ class ElementVariable:
         return getattr(self.array, attribute)
 
 
-def expand_arrays(description: Any, path: Path) -> ExpandedVariables:
-    """The FMI 3.0 `description`'s variables with array ports expanded (FMUFileError naming the
-    file and variable when an array cannot be)."""
+def array_variables(description: Any, path: Path) -> ArrayVariables:
+    """The FMI 3.0 `description`'s variables with its array ports as ArrayPorts (FMUFileError
+    naming the file and variable when an array cannot be one)."""
     table = description.modelVariables
     next_vr = max((v.valueReference for v in table), default=-1) + 1
-    variables: list[Any] = []
-    elements: dict[int, ArrayElement] = {}
-    by_array: dict[str, list[Any]] = {}
+    in_order: list[Any] = []
     structural: dict[str, list[str]] = {}
     for variable in table:
         for dimension in variable.dimensions or ():
             if dimension.variable is not None:
                 structural.setdefault(dimension.variable.name, []).append(variable.name)
         if not variable.dimensions or variable.causality not in _ARRAY_CAUSALITIES:
-            variables.append(variable)
+            in_order.append(variable)
             continue
-        shape = tuple(variable.shape)
+        shape = tuple(int(extent) for extent in variable.shape)
         size = math.prod(shape)
         if next_vr + size - 1 > _MAX_VALUE_REFERENCE:
             raise FMUFileError(f"{path}: array {variable.name!r} of {size} elements does not "
                                "fit the value references left above the FMU's")
-        starts = _element_starts(variable, size, path)
-        parts = []
-        for position, index in enumerate(itertools.product(*(range(d) for d in shape))):
-            name = f"{variable.name}[{','.join(map(str, index))}]"
-            text = None if starts is None else starts[position]
-            parts.append(ElementVariable(variable, name, next_vr, text))
-            elements[next_vr] = ArrayElement(variable.valueReference, position, size,
-                                             _number(text, variable.type))
-            next_vr += 1
-        by_array[variable.name] = parts
-        variables.extend(parts)
-    return ExpandedVariables(variables, elements,
-                             _expanded_outputs(description.outputs, by_array), structural)
+        in_order.append(ArrayPort(variable, next_vr, shape, _starts(variable, size, path)))
+        next_vr += size
+    return ArrayVariables(in_order, structural)
 
 
-def _element_starts(variable: Any, size: int, path: Path) -> list[str] | None:
-    """The array's start values, one text per element (FMI 3.0 lists them space-separated)."""
+def _starts(variable: Any, size: int, path: Path) -> np.ndarray | None:
+    """The array's start values (FMI 3.0 lists them space-separated; description_fmi3.py has
+    checked that each parses as the type)."""
     if variable.start is None:
         return None
-    starts = str(variable.start).split()
-    if len(starts) != size:
+    texts = str(variable.start).split()
+    if len(texts) != size:
         raise FMUFileError(f"{path}: array {variable.name!r} has {size} elements but "
-                           f"{len(starts)} start values")
-    return starts
-
-
-def _number(text: str | None, fmi_type: str) -> float:
-    if text is None:
-        return 0.0
-    if fmi_type == "Boolean":
-        return 1.0 if text in ("true", "1") else 0.0
-    return float(text)
-
-
-def _expanded_outputs(outputs: list[Any], by_array: dict[str, list[Any]]) -> list[Any]:
-    """ModelStructure's outputs with an array output replaced by its elements, each depending
-    on every element of the arrays its array depends on."""
-    import attrs
-
-    expanded = []
-    for unknown in outputs:
-        dependencies = unknown.dependencies
-        if dependencies is not None:
-            dependencies = [e for d in dependencies for e in by_array.get(d.name, [d])]
-        for variable in by_array.get(unknown.variable.name, [unknown.variable]):
-            expanded.append(attrs.evolve(unknown, variable=variable, dependencies=dependencies))
-    return expanded
+                           f"{len(texts)} start values")
+    if variable.type == "Boolean":
+        return np.isin(np.array(texts), ("true", "1"))
+    if variable.type in _INTEGER_TYPES:
+        return np.array(texts, dtype=np.uint64 if variable.type == "UInt64" else np.int64)
+    return np.array(texts, dtype=np.float64)

@@ -11,18 +11,20 @@ import math
 import os
 import zipfile
 import zlib
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, MutableMapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple
 
+from ..core.element_map import Block, ElementMap
 from ..core.port import PortSpec, PortType
 from ..errors import FMUFileError
 from ..graph.analysis import feedthrough_from_model_description
 from ..units import plainly_readable, to_unit
 from .archive import open_archive
 from .description import Described, read_description
-from .description_fmi3 import FMI3Variable
+from .description_fmi3 import EngineTable
+from .fmi3_arrays import ArrayPort
 from .standards import Standard
 from .variable_table import ScalarVariable
 
@@ -82,22 +84,25 @@ class FMUInfo:
     can_get_set_state: bool
     variables: Mapping[str, ScalarVariable]  # looked up by name, made when asked for
     default_tolerance: float | None = None  # DefaultExperiment tolerance
-    input_specs: dict[str, PortSpec] = field(default_factory=dict)
-    output_specs: dict[str, PortSpec] = field(default_factory=dict)
-    parameters: dict[str, Parameter] = field(default_factory=dict)
-    input_starts: dict[str, float | int | bool] = field(default_factory=dict)  # 0 if none given
-    value_references: dict[str, int] = field(default_factory=dict)  # of ports and parameters
-    feedthrough: dict[str, set[str]] = field(default_factory=dict)
+    # the maps below make an FMI 3.0 array's elements when they are asked for
+    input_specs: MutableMapping[str, PortSpec] = field(default_factory=ElementMap)
+    output_specs: MutableMapping[str, PortSpec] = field(default_factory=ElementMap)
+    parameters: MutableMapping[str, Parameter] = field(default_factory=ElementMap)
+    # 0 if none given
+    input_starts: MutableMapping[str, float | int | bool] = field(default_factory=ElementMap)
+    # of ports and parameters
+    value_references: MutableMapping[str, int] = field(default_factory=ElementMap)
+    feedthrough: MutableMapping[str, set[str]] = field(default_factory=ElementMap)
     interfaces: dict[str, FMUInterface] = field(default_factory=dict)  # by INTERFACES name
     # Model Exchange: ModelStructure/Derivatives, numberOfEventIndicators (FMI 3.0:
     # ModelStructure/EventIndicator)
     number_of_states: int = 0
     number_of_event_indicators: int = 0
     standard: Standard = field(default_factory=Standard)  # the FMI version's
-    # FMI 3.0: every scalar the engine may get or set (array elements among them), the String
-    # and Binary outputs, which no port carries, and each structural parameter with the
-    # arrays it sizes
-    fmi3_variables: list[FMI3Variable] = field(default_factory=list)
+    # FMI 3.0: every scalar the engine may get or set and the array ports, the String and
+    # Binary outputs, which no port carries, and each structural parameter with the arrays it
+    # sizes
+    fmi3_variables: EngineTable = field(default_factory=lambda: EngineTable([], []))
     text_outputs: dict[str, ScalarVariable] = field(default_factory=dict)
     structural_parameters: dict[str, list[str]] = field(default_factory=dict)
     # every variable (FMI 3.0: its array ports as elements), made when iterated
@@ -199,15 +204,14 @@ def _read_fmu(path: Path) -> FMUInfo:
                        interfaces=interfaces,
                        number_of_states=description.numberOfContinuousStates,
                        number_of_event_indicators=description.numberOfEventIndicators,
-                       standard=standard, fmi3_variables=variables.engine_rows,
+                       standard=standard, fmi3_variables=variables.engine_table,
                        structural_parameters=variables.structural)
         if info.binary_name() not in names:
             raise FMUFileError(f"{path} has no {standard.platform} binary "
                                f"({info.binary_name()} missing)")
     info.all_variables = variables.all
     _collect_ports_and_parameters(info, variables.ports)
-    _collect_feedthrough(info, [v for v in variables.ports if v.causality in ("input", "output")],
-                         variables.outputs)
+    _collect_feedthrough(info, variables.ports, variables.outputs)
     return info
 
 
@@ -279,17 +283,36 @@ def _model_identifier(identifier: str | None, path: Path, element: str) -> str:
 _INPUT_DEFAULTS = {PortType.REAL: 0.0, PortType.INT: 0, PortType.BOOL: False}
 
 
-def _collect_ports_and_parameters(info: FMUInfo, ports: list[ScalarVariable]) -> None:
+class _Parts:
+    """What the port maps of an FMU are made of, in document order: (name, value) pairs of
+    scalars, Blocks of arrays."""
+
+    def __init__(self) -> None:
+        self.input_specs: list[tuple[str, Any] | Block] = []
+        self.output_specs: list[tuple[str, Any] | Block] = []
+        self.parameters: list[tuple[str, Any] | Block] = []
+        self.input_starts: list[tuple[str, Any] | Block] = []
+        self.value_references: list[tuple[str, Any] | Block] = []
+
+    def store(self, info: FMUInfo) -> None:
+        for name, parts in vars(self).items():
+            setattr(info, name, ElementMap.in_order(parts))
+
+
+def _collect_ports_and_parameters(info: FMUInfo, ports: list[Any]) -> None:
+    """Ports, parameters, input starts and value references of the `ports` (ScalarVariables
+    and FMI 3.0 ArrayPorts)."""
     unreadable: dict[str, list[str]] = {}  # unit pint cannot read -> the variables using it
     readable: dict[str, str | None] = {}  # the FMI unit -> what pint reads (a large FMU
-    for variable in ports:  # repeats a few units many times)
+    parts = _Parts()  # repeats a few units many times)
+    for port in ports:
+        variable = port.variable if isinstance(port, ArrayPort) else port
         kind = PORT_TYPES.get(variable.type)
         if kind is None:
             if variable.type in info.standard.text_types:
-                info.value_references[variable.name] = variable.valueReference
-                _collect_text(info, variable)
+                parts.value_references.append((variable.name, variable.valueReference))
+                _collect_text(info, variable, parts)
             continue  # FMI 2.0 String variables have no place among doubles
-        info.value_references[variable.name] = variable.valueReference
         unit = variable_unit(variable) if kind == PortType.REAL else None
         if unit:
             if unit not in readable:
@@ -297,26 +320,63 @@ def _collect_ports_and_parameters(info: FMUInfo, ports: list[ScalarVariable]) ->
             if readable[unit] is None:
                 unreadable.setdefault(unit, []).append(variable.name)
             unit = readable[unit]
+        if isinstance(port, ArrayPort):
+            _collect_array(parts, port, kind, unit)
+            continue
+        parts.value_references.append((variable.name, variable.valueReference))
         if variable.causality in ("input", "output"):
             spec = PortSpec(variable.name, kind, "in" if variable.causality == "input" else "out",
                             unit, variable.description)
-            specs = info.input_specs if spec.direction == "in" else info.output_specs
-            specs[variable.name] = spec
+            (parts.input_specs if spec.direction == "in" else parts.output_specs).append(
+                (variable.name, spec))
             if spec.direction == "in":
                 start = _start_value(variable, kind)
-                info.input_starts[variable.name] = _INPUT_DEFAULTS[kind] if start is None \
-                    else start  # type: ignore[assignment]
+                parts.input_starts.append(
+                    (variable.name, _INPUT_DEFAULTS[kind] if start is None else start))
         elif variable.causality == "parameter":
-            info.parameters[variable.name] = Parameter(
+            parts.parameters.append((variable.name, Parameter(
                 variable.name, variable.valueReference, kind, unit,
-                variable.variability == "tunable", _start_value(variable, kind), variable.type)
+                variable.variability == "tunable", _start_value(variable, kind), variable.type)))
+    parts.store(info)
     for unit, names in unreadable.items():
         others = f" and {len(names) - 1} more" if len(names) > 1 else ""
         logger.warning("%s: unit %r of variable %r%s is unknown to pint; dropped (those ports "
                        "carry no unit)", info.path.name, unit, names[0], others)
 
 
-def _collect_text(info: FMUInfo, variable: ScalarVariable) -> None:
+_PYTHON_TYPES = {PortType.REAL: float, PortType.INT: int, PortType.BOOL: bool}
+
+
+def _collect_array(parts: _Parts, array: ArrayPort, kind: PortType, unit: str | None) -> None:
+    """An array port's Blocks: its elements' objects are made when asked for."""
+    variable = array.variable
+    typed = _PYTHON_TYPES[kind]
+
+    def start(position: int) -> Any:
+        value = array.start(position)
+        return None if value is None else typed(value)
+
+    def block(make: Any) -> Block:
+        return Block(array.name, array.shape, make)
+
+    parts.value_references.append(block(lambda position, name: array.first_vr + position))
+    if variable.causality == "parameter":
+        tunable = variable.variability == "tunable"
+        parts.parameters.append(block(lambda position, name: Parameter(
+            name, array.first_vr + position, kind, unit, tunable, start(position),
+            variable.type)))
+        return
+    direction = "in" if variable.causality == "input" else "out"
+    spec = block(lambda position, name: PortSpec(name, kind, direction, unit,
+                                                 variable.description))
+    (parts.input_specs if direction == "in" else parts.output_specs).append(spec)
+    if direction == "in":
+        default = _INPUT_DEFAULTS[kind]
+        parts.input_starts.append(block(lambda position, name: default
+                                        if array.starts is None else start(position)))
+
+
+def _collect_text(info: FMUInfo, variable: ScalarVariable, parts: _Parts) -> None:
     """An FMI 3.0 String or Binary variable: an output is readable, a parameter or an input is
     set like a parameter."""
     if variable.causality == "output":
@@ -325,21 +385,46 @@ def _collect_text(info: FMUInfo, variable: ScalarVariable) -> None:
     start = variable.start
     if variable.type == "Binary" and start is not None:
         start = bytes.fromhex(start.strip())
-    info.parameters[variable.name] = Parameter(
+    parts.parameters.append((variable.name, Parameter(
         variable.name, variable.valueReference, PortType.STRING, None,
-        variable.causality == "input" or variable.variability == "tunable", start, variable.type)
+        variable.causality == "input" or variable.variability == "tunable", start,
+        variable.type)))
 
 
-def _collect_feedthrough(info: FMUInfo, inputs_and_outputs: list[ScalarVariable],
-                        outputs: list[Any]) -> None:
-    """Output -> the inputs it depends on directly, from ModelStructure's `outputs`."""
+def _collect_feedthrough(info: FMUInfo, ports: list[Any], outputs: list[Any]) -> None:
+    """Output -> the inputs it depends on directly, from ModelStructure's `outputs`. Read per
+    variable (an FMI 3.0 array as a whole); an output's set names each element of the input
+    arrays it depends on, made when asked for."""
     from fmpy.model_description import ModelDescription
 
+    variables = [p.variable if isinstance(p, ArrayPort) else p for p in ports]
     # The analysis reads inputs, outputs and ModelStructure: hand it those, not every local.
     ports_only = ModelDescription()
-    ports_only.modelVariables = inputs_and_outputs
+    ports_only.modelVariables = [v for v in variables if v.causality in ("input", "output")]
     ports_only.outputs = outputs
     declared = feedthrough_from_model_description(ports_only)
-    info.feedthrough = {name: declared[name] & set(info.input_specs)
-                        for name in info.output_specs}
+    arrays = {p.name: p for p in ports if isinstance(p, ArrayPort)}
+    inputs = {v.name for v in ports_only.modelVariables if v.causality == "input" and
+              (v.name in arrays or v.name in info.input_specs)}
 
+    def elements(names: set[str]) -> set[str]:
+        found = set()
+        for name in names:
+            array = arrays.get(name)
+            found.update([name] if array is None else
+                         Block(name, array.shape, array.element).names())
+        return found
+
+    parts: list[tuple[str, Any] | Block] = []
+    for port in ports:
+        name = port.name
+        if name not in declared or not (name in arrays or name in info.output_specs):
+            continue  # not an output, or one no port carries (String, Binary)
+        dependencies = declared[name] & inputs
+        if not dependencies.isdisjoint(arrays) or name in arrays:
+            shape = arrays[name].shape if name in arrays else ()
+            parts.append(Block(name, shape, lambda position, element, d=dependencies:
+                               elements(d)))
+        else:
+            parts.append((name, dependencies))
+    info.feedthrough = ElementMap.in_order(parts)

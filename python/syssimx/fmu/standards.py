@@ -39,14 +39,15 @@ PORT_CAUSALITIES = ("input", "output", "parameter")  # locals are no ports
 
 class Variables(NamedTuple):
     """A description's variables as syssimx uses them: every one (`all`), by name, the
-    inputs, outputs and parameters (`ports`), ModelStructure's outputs with their
-    dependencies, and FMI 3.0's type table and structural parameters (empty otherwise)."""
+    inputs, outputs and parameters (`ports`; FMI 3.0: an array port as one ArrayPort), the
+    ModelStructure outputs with their dependencies, and FMI 3.0's type table and structural
+    parameters (empty otherwise)."""
 
     all: Iterable[Any]
     by_name: Mapping[str, Any]
     ports: list[Any]
     outputs: list[Any]
-    engine_rows: list[description_fmi3.FMI3Variable]
+    engine_table: description_fmi3.EngineTable
     structural: dict[str, list[str]]
 
 
@@ -86,7 +87,7 @@ class Standard:
     def variables(self, description: ModelDescription, path: Path) -> Variables:
         table = description.modelVariables
         return Variables(table, table.by_name(), table.with_causality(*PORT_CAUSALITIES),
-                         description.outputs, [], {})
+                         description.outputs, description_fmi3.EngineTable([], []), {})
 
     def binary_name(self, model_identifier: str) -> str:
         return f"binaries/{self.platform}/{model_identifier}.so"
@@ -158,14 +159,18 @@ class FMI3(Standard):
         return description_fmi3.read_fmi3_description(path)
 
     def variables(self, description: ModelDescription, path: Path) -> Variables:
-        from .fmi3_arrays import expand_arrays
+        from ..core.element_map import Block, ElementMap
+        from .fmi3_arrays import ArrayPort, array_variables
 
-        expanded = expand_arrays(description, path)
-        table = expanded.variables
-        return Variables(table, {v.name: v for v in table},
-                         [v for v in table if v.causality in PORT_CAUSALITIES],
-                         expanded.outputs, description_fmi3.engine_rows(table, expanded.elements),
-                         expanded.structural)
+        found = array_variables(description, path)
+        in_order = found.in_order
+        by_name = ElementMap(
+            {v.name: v for v in in_order if not isinstance(v, ArrayPort)},
+            [Block(a.name, a.shape, a.element) for a in in_order if isinstance(a, ArrayPort)])
+        return Variables(ElementsInPlace(in_order), by_name,
+                         [v for v in in_order if _causality(v) in PORT_CAUSALITIES],
+                         description.outputs, description_fmi3.engine_table(in_order),
+                         found.structural)
 
     def resource_location(self, unzip_dir: Path) -> str:
         """FMI 3.0 gives the resources as a directory path ending in a separator."""
@@ -178,6 +183,33 @@ class FMI3(Standard):
             info.fmi3_variables, info.description.coSimulation,
             model_exchange=interface.name == "model-exchange",
             intermediate=interface.intermediate_inputs)
+
+
+def _causality(variable: Any) -> str:
+    """A variable's causality, an ArrayPort's its array's."""
+    from .fmi3_arrays import ArrayPort
+
+    return str((variable.variable if isinstance(variable, ArrayPort) else variable).causality)
+
+
+class ElementsInPlace:
+    """The variables `in_order` with each ArrayPort's elements in its place, made while
+    iterated."""
+
+    def __init__(self, in_order: list[Any]) -> None:
+        self._in_order = in_order
+
+    def __iter__(self) -> Any:
+        from ..core.element_map import Block
+        from .fmi3_arrays import ArrayPort
+
+        for variable in self._in_order:
+            if isinstance(variable, ArrayPort):
+                block = Block(variable.name, variable.shape, variable.element)
+                for position, name in enumerate(block.names()):
+                    yield variable.element(position, name)
+            else:
+                yield variable
 
 
 STANDARDS: tuple[Standard, ...] = (FMI1(), Standard(), FMI3())
