@@ -294,9 +294,10 @@ class _Parts:
         self.input_starts: list[tuple[str, Any] | Block] = []
         self.value_references: list[tuple[str, Any] | Block] = []
 
-    def store(self, info: FMUInfo) -> None:
-        for name, parts in vars(self).items():
-            setattr(info, name, ElementMap.in_order(parts))
+    def store(self, info: FMUInfo, with_arrays: bool) -> None:
+        for name, parts in vars(self).items():  # without arrays, a dict's speed
+            setattr(info, name, ElementMap.in_order(parts) if with_arrays
+                    else ElementMap(dict(parts)))  # type: ignore[arg-type]
 
 
 def _collect_ports_and_parameters(info: FMUInfo, ports: list[Any]) -> None:
@@ -337,7 +338,7 @@ def _collect_ports_and_parameters(info: FMUInfo, ports: list[Any]) -> None:
             parts.parameters.append((variable.name, Parameter(
                 variable.name, variable.valueReference, kind, unit,
                 variable.variability == "tunable", _start_value(variable, kind), variable.type)))
-    parts.store(info)
+    parts.store(info, with_arrays=any(isinstance(port, ArrayPort) for port in ports))
     for unit, names in unreadable.items():
         others = f" and {len(names) - 1} more" if len(names) > 1 else ""
         logger.warning("%s: unit %r of variable %r%s is unknown to pint; dropped (those ports "
