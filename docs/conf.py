@@ -76,7 +76,7 @@ nitpick_ignore = [
     # the parts of an FMUInfo (syssimx.fmu): the modelDescription as read, its variables
     ("py:class", "ModelDescription"),
     ("py:class", "ScalarVariable"),
-    ("py:class", "FMI3Variable"),
+    ("py:class", "EngineTable"),
     ("py:class", "Parameter"),
     ("py:class", "FMUInterface"),
     ("py:class", "Standard"),
