@@ -17,11 +17,13 @@ what its start values do.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any, NamedTuple
 
 import numpy as np
 
+from ..core.element_map import Block
 from ..errors import FMUFileError
 
 _ARRAY_CAUSALITIES = ("input", "output", "parameter")
@@ -44,6 +46,10 @@ class ArrayPort(NamedTuple):
     @property
     def name(self) -> str:
         return str(self.variable.name)
+
+    @property
+    def causality(self) -> str:
+        return str(self.variable.causality)
 
     @property
     def size(self) -> int:
@@ -85,6 +91,23 @@ class ElementVariable:
 
     def __getattr__(self, attribute: str) -> Any:  # only for what the element does not hold
         return getattr(self.array, attribute)
+
+
+class ElementsInPlace:
+    """The variables `in_order` (array_variables') with each ArrayPort's elements in its
+    place, made while iterated."""
+
+    def __init__(self, in_order: list[Any]) -> None:
+        self._in_order = in_order
+
+    def __iter__(self) -> Iterator[Any]:
+        for variable in self._in_order:
+            if isinstance(variable, ArrayPort):
+                block = Block(variable.name, variable.shape, variable.element)
+                for position, name in enumerate(block.names()):
+                    yield variable.element(position, name)
+            else:
+                yield variable
 
 
 def array_variables(description: Any, path: Path) -> ArrayVariables:

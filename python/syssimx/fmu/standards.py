@@ -160,15 +160,15 @@ class FMI3(Standard):
 
     def variables(self, description: ModelDescription, path: Path) -> Variables:
         from ..core.element_map import Block, ElementMap
-        from .fmi3_arrays import ArrayPort, array_variables
+        from .fmi3_arrays import ArrayPort, ElementsInPlace, array_variables
 
         found = array_variables(description, path)
         in_order = found.in_order
-        by_name = ElementMap(
-            {v.name: v for v in in_order if not isinstance(v, ArrayPort)},
-            [Block(a.name, a.shape, a.element) for a in in_order if isinstance(a, ArrayPort)])
+        by_name = ElementMap.in_order([Block(v.name, v.shape, v.element)
+                                       if isinstance(v, ArrayPort) else (v.name, v)
+                                       for v in in_order])
         return Variables(ElementsInPlace(in_order), by_name,
-                         [v for v in in_order if _causality(v) in PORT_CAUSALITIES],
+                         [v for v in in_order if v.causality in PORT_CAUSALITIES],
                          description.outputs, description_fmi3.engine_table(in_order),
                          found.structural)
 
@@ -183,33 +183,6 @@ class FMI3(Standard):
             info.fmi3_variables, info.description.coSimulation,
             model_exchange=interface.name == "model-exchange",
             intermediate=interface.intermediate_inputs)
-
-
-def _causality(variable: Any) -> str:
-    """A variable's causality, an ArrayPort's its array's."""
-    from .fmi3_arrays import ArrayPort
-
-    return str((variable.variable if isinstance(variable, ArrayPort) else variable).causality)
-
-
-class ElementsInPlace:
-    """The variables `in_order` with each ArrayPort's elements in its place, made while
-    iterated."""
-
-    def __init__(self, in_order: list[Any]) -> None:
-        self._in_order = in_order
-
-    def __iter__(self) -> Any:
-        from ..core.element_map import Block
-        from .fmi3_arrays import ArrayPort
-
-        for variable in self._in_order:
-            if isinstance(variable, ArrayPort):
-                block = Block(variable.name, variable.shape, variable.element)
-                for position, name in enumerate(block.names()):
-                    yield variable.element(position, name)
-            else:
-                yield variable
 
 
 STANDARDS: tuple[Standard, ...] = (FMI1(), Standard(), FMI3())
