@@ -88,7 +88,8 @@ def test_an_element_asked_for_is_made_as_a_scalar_port_was(large_fmu: str):
     assert component.value_reference("p[0,0]") == first + INPUTS
     assert list(component.inputs)[:3] == ["u", "a[0]", "a[1]"]
     assert list(component.info.parameters)[:3] == ["k", "p[0,0]", "p[0,1]"]
-    for name in ("a[50000]", "a[01]", "a[-1]", "a[1,2]", "a", "p[200,0]", "p[3]", "a[ 1]"):
+    for name in ("a[50000]", "a[01]", "a[-1]", "a[1,2]", "a", "p[200,0]", "p[3]", "a[ 1]",
+                 "a[\u0661]"):  # an Arabic-Indic digit one, which int() would read
         assert name not in component.inputs and name not in component.info.parameters, name
         with pytest.raises(KeyError):
             component.inputs[name]

@@ -51,8 +51,8 @@ class Block(NamedTuple):
                 and key.endswith("]")):
             return None
         texts = key[len(self.name) + 1:-1].split(",")
-        if len(texts) != len(self.shape) or not all(t.isdigit() and (t == "0" or t[0] != "0")
-                                                   for t in texts):
+        if len(texts) != len(self.shape) or not all(
+                t.isascii() and t.isdigit() and (t == "0" or t[0] != "0") for t in texts):
             return None
         position = 0
         for text, extent in zip(texts, self.shape, strict=True):
