@@ -45,6 +45,7 @@ typedef struct {
     double model_exchange_tolerance;
     int threads; /* threads that step FMU components (ssx_set_threads) */
     int input_order; /* ssx_set_input_order */
+    int extrapolate_held_inputs; /* ssx_set_extrapolate_held_inputs */
     /* ssx_set_step_control (off by default) */
     double step_rtol;
     double step_atol;
@@ -458,6 +459,13 @@ int ssx_set_loop_jacobian(ssx_system *sys, ssx_loop_jacobian jacobian);
  * interpolate, and of algebraic loop members, are held. Applies at the next ssx_initialize. */
 enum { SSX_MAX_INPUT_ORDER = 2 };
 int ssx_set_input_order(ssx_system *sys, int order);
+/* With input order 1 or 2, the inputs an FMU holds over a step (it cannot interpolate) may be
+ * extrapolated too: each is set, for the whole step, to the mean over the step of the polynomial
+ * the interpolating FMUs follow (the value at t + h/2 for order 1). A held input then errs by
+ * O(h^2) in its integral over the step instead of O(h), and the coupling is second order in h
+ * (order 2 shrinks the error further, the order stays 2). Off by default: an extrapolation may
+ * overshoot where a signal turns sharply. Applies at the next ssx_initialize. */
+int ssx_set_extrapolate_held_inputs(ssx_system *sys, int extrapolate);
 /* What an FMU component's modelDescription declares: canInterpolateInputs and
  * maxOutputDerivativeOrder; both off until set. */
 int ssx_set_interpolation(ssx_system *sys, int component, int can_interpolate_inputs,

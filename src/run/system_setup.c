@@ -37,6 +37,7 @@ void ssx_get_defaults(ssx_defaults *out)
                           .model_exchange_tolerance = 1e-5,
                           .threads = 1,
                           .input_order = 0,
+                          .extrapolate_held_inputs = 0,
                           .step_rtol = 1e-4,
                           .step_atol = 1e-4,
                           .step_min = 1e-9,
@@ -70,6 +71,7 @@ ssx_system *ssx_system_new(const char *name)
                                        .locator = d.locator,
                                        .zeno_min_interval = d.zeno_min_interval};
     sys->input_order = d.input_order;
+    sys->extrapolate_held_inputs = d.extrapolate_held_inputs;
     sys->step_control = (ssx_step_control){.enabled = 0,
                                            .rollback = 1,
                                            .rtol = d.step_rtol,
@@ -660,6 +662,12 @@ int ssx_set_input_order(ssx_system *sys, int order)
                            "system '%s': the input order is 0, 1 or 2, not %d", sys->name, order);
     }
     sys->input_order = order;
+    return 0;
+}
+
+int ssx_set_extrapolate_held_inputs(ssx_system *sys, int extrapolate)
+{
+    sys->extrapolate_held_inputs = extrapolate != 0;
     return 0;
 }
 

@@ -271,6 +271,8 @@ class System:
             plan.sys, loop_jacobians()[coupling.loop_jacobian]), "loop Jacobian")
         plan.check(lib().ssx_set_threads(plan.sys, coupling.threads), "threads")
         plan.check(lib().ssx_set_input_order(plan.sys, coupling.input_order), "input order")
+        plan.check(lib().ssx_set_extrapolate_held_inputs(
+            plan.sys, int(coupling.extrapolate_held_inputs)), "held input extrapolation")
         if coupling.step_control is not None:
             plan.check(lib().ssx_set_step_control(plan.sys,
                                                   coupling.step_control.engine_struct()),
