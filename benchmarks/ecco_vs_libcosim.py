@@ -5,9 +5,10 @@ by a torque/angular velocity bond), against the monolithic solution (solve_ivp, 
 For each tolerance (the <EccoConfiguration>'s RelativeTolerance = AbsoluteTolerance):
 libcosim runs the file (CosimExecution.from_osp_config_file, one macro step at a time until
 the stop time) in its own interpreter; syssimx reads the same file (syssimx.osp.read: Jacobi,
-steps chosen by the coupling error without rollback, bounded by the file's step sizes), then
-runs the same system with input order 1 and 2, with rollback, and on a fixed step of exactly
-libcosim's number of macro steps. Printed: macro steps, the end error and the largest error
+held inputs, steps chosen without rollback by the bond's energy residual under ECCO's PI
+controller, with the file's settings), then runs the same system with second-order inputs, with
+its own coupling error measure (input order 0, 1, 2, with rollback), and on a fixed step of
+exactly libcosim's number of macro steps. Printed: macro steps, the end error and the largest error
 (libcosim's at each of its steps, syssimx's at the 0.05 s output grid and the end).
 
 libcosimpy is installed apart, in a Python of its own:
@@ -100,14 +101,17 @@ def rows_for(python: str, folder: Path, tolerance: float) -> list[Row]:
                            max_step=ecco.max_step, initial_step=ecco.step_size,
                            safety=ecco.safety, rollback=rollback)
 
+    as_read = read_osp(structure).system.algorithm
     fixed = STOP_TIME / theirs.steps
-    rows = [theirs, syssimx(structure, "syssimx <Algorithm>ecco as read (order 0)")]
-    for order in (1, 2):
-        rows.append(syssimx(structure, f"syssimx adaptive non-iterative, order {order}",
+    rows = [theirs, syssimx(structure, "syssimx <Algorithm>ecco as read (energy, order 0)")]
+    rows.append(syssimx(structure, "syssimx ECCO's energy residual, order 2",
+                        JacobiAlgorithm(input_order=2, step_control=as_read.step_control)))
+    for order in (0, 1, 2):
+        rows.append(syssimx(structure, f"syssimx coupling error, non-iterative, order {order}",
                             JacobiAlgorithm(input_order=order, step_control=control(False))))
-    rows.append(syssimx(structure, "syssimx adaptive non-iterative, order 2, Gauss-Seidel",
+    rows.append(syssimx(structure, "syssimx coupling error, non-iterative, order 2, G.-S.",
                         GaussSeidelAlgorithm(input_order=2, step_control=control(False))))
-    rows.append(syssimx(structure, "syssimx adaptive with rollback, order 2",
+    rows.append(syssimx(structure, "syssimx coupling error, rollback, order 2",
                         JacobiAlgorithm(input_order=2, step_control=control(True))))
     for order in (0, 2):
         rows.append(syssimx(structure, f"syssimx fixed, libcosim's step count, order {order}",

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "component_calls.h"
+#include "energy_residual.h"
 #include "error.h"
 #include "fmu_backend.h"
 #include "fmu_binding.h"
@@ -170,6 +171,11 @@ int input_order_prepare(ssx_system *sys)
     }
     classify(sys, w, position);
     free(position);
+    if (sys->step_control.enabled && sys->step_control.energy &&
+        energy_residual_check(sys) != 0) {
+        input_order_free(sys);
+        return -1;
+    }
     w->order = sys->input_order;
     w->base_step = sys->coupled_step;
     sys->coupled_step = tracked_step;
@@ -399,7 +405,8 @@ int input_order_write(ssx_system *sys, ssx_component *c)
 static double end_step(ssx_system *sys, struct input_motion *w)
 {
     double h = w->h, error = 0.0;
-    int measured = sys->step_control.enabled;
+    int energy = sys->step_control.enabled && sys->step_control.energy;
+    int measured = sys->step_control.enabled && !energy;
     double rtol = sys->step_control.rtol, atol = sys->step_control.atol;
     for (int ci = 0; ci < sys->n_components; ++ci) {
         ssx_component *c = sys->components[ci];
@@ -430,7 +437,7 @@ static double end_step(ssx_system *sys, struct input_motion *w)
         }
     }
     w->stepping = 0;
-    return error;
+    return energy ? energy_residual_error(sys, h) : error;
 }
 
 static int tracked_step(ssx_system *sys, double t, double h)
