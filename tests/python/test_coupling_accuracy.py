@@ -151,6 +151,21 @@ def test_adaptive_steps_cost_far_fewer_do_steps_than_a_fixed_step_of_the_same_er
     assert stats.do_step_calls < fixed_stats.do_step_calls
 
 
+def test_a_new_step_control_on_the_same_system_takes_effect():
+    """The engine keeps a system's options between runs: a changed step control, or none,
+    must reach it."""
+    system = pendulums(GaussSeidelAlgorithm(input_order=2,
+                                            step_control=StepControl(rtol=1e-3, atol=1e-3)))
+    _, _, loose = errors(system, 0.1)
+    system.set_algorithm(GaussSeidelAlgorithm(input_order=2,
+                                              step_control=StepControl(rtol=1e-6, atol=1e-6)))
+    _, _, tight = errors(system, 0.1)
+    assert tight.accepted_steps > 2 * loose.accepted_steps
+    system.set_algorithm(GaussSeidelAlgorithm(input_order=2))
+    _, _, fixed = errors(system, 0.1)
+    assert fixed.accepted_steps == 0 and fixed.macro_steps == round(TF / 0.1)
+
+
 def test_statistics_report_the_step_control():
     control = StepControl(rtol=1e-4, atol=1e-4)
     system = pendulums(GaussSeidelAlgorithm(input_order=1, step_control=control))

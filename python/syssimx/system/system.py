@@ -274,13 +274,14 @@ class System:
         plan.check(lib().ssx_set_input_order(plan.sys, coupling.input_order), "input order")
         plan.check(lib().ssx_set_extrapolate_held_inputs(
             plan.sys, int(coupling.extrapolate_held_inputs)), "held input extrapolation")
-        if coupling.step_control is not None:
-            plan.check(lib().ssx_set_step_control(plan.sys,
-                                                  coupling.step_control.engine_struct()),
-                       "step control")
-            ends = _power_bond_ends(plan, coupling.step_control)
-            plan.check(lib().ssx_set_power_bonds(plan.sys, len(ends) // 4,
-                                                 ffi.new("int[]", ends or [0])), "power bonds")
+        # None switches off a step control an earlier run of this plan set
+        control = coupling.step_control.engine_struct() if coupling.step_control is not None \
+            else ffi.new("ssx_step_control *", {"enabled": 0})
+        plan.check(lib().ssx_set_step_control(plan.sys, control), "step control")
+        ends = _power_bond_ends(plan, coupling.step_control) \
+            if coupling.step_control is not None else []
+        plan.check(lib().ssx_set_power_bonds(plan.sys, len(ends) // 4,
+                                             ffi.new("int[]", ends or [0])), "power bonds")
         if isinstance(algorithm, HybridAlgorithm):
             plan.check(lib().ssx_set_hybrid_options(
                 plan.sys, algorithm.tol_time, algorithm.tol_value, algorithm.max_iter,
