@@ -35,6 +35,15 @@ def test_yaml_hybrid_coupling_takes_a_step_control():
     assert system.algorithm.coupling.step_control is not None
 
 
+def test_yaml_reaches_the_energy_step_control():
+    result = run_from_config(description({
+        "type": "jacobi", "step_control": {
+            "error": "energy", "rollback": False, "rtol": 1e-3, "atol": 1e-3,
+            "power_bonds": [[["P1", "torque"], ["Spring", "omega1"]],
+                            [["P2", "torque"], ["Spring", "omega2"]]]}}))
+    assert result.statistics.accepted_steps > 5
+
+
 def test_yaml_reaches_extrapolated_held_inputs():
     system = build_system(description({
         "type": "jacobi", "input_order": 1, "extrapolate_held_inputs": True}))
