@@ -55,6 +55,12 @@ def test_yaml_reaches_extrapolated_held_inputs():
 @pytest.mark.parametrize(("options", "named"), [
     ({"input_order": 3}, "input order is 0, 1 or 2"),
     ({"extrapolate_held_inputs": "yes"}, "extrapolate_held_inputs must be true or false"),
+    ({"step_control": {"min_change": 1.5}}, "0 < min_change < 1 < max_change"),
+    ({"step_control": {"error": "energy", "power_bonds": [[["P1", "torque"],
+                                                           ["Spring", "omega1"]]],
+                       "integral_gain": 0.0}}, "integral_gain > 0"),
+    ({"step_control": {"error": "power"}}, "error must be 'coupling' or 'energy'"),
+    ({"step_control": {"power_bonds": [["P1", "torque"]]}}, "each bond is two"),
     ({"step_control": {"rtol": -1.0}}, "rtol >= 0"),
     ({"step_control": {"tolerance": 1e-3}}, "tolerance"),
 ])
