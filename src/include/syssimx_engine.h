@@ -460,7 +460,8 @@ int ssx_set_loop_jacobian(ssx_system *sys, ssx_loop_jacobian jacobian);
  * between a Gauss-Seidel driver's outputs at t and t + h when it steps first, else extrapolated
  * from t with the driver's output derivatives where it declares maxOutputDerivativeOrder >= 1,
  * or from the outputs at the last communication points. Inputs of FMUs that cannot
- * interpolate, and of algebraic loop members, are held. Applies at the next ssx_initialize. */
+ * interpolate (unless ssx_set_extrapolate_held_inputs), and of algebraic loop members, are
+ * held. Applies at the next ssx_initialize. */
 enum { SSX_MAX_INPUT_ORDER = 2 };
 int ssx_set_input_order(ssx_system *sys, int order);
 /* With input order 1 or 2, the inputs an FMU holds over a step (it cannot interpolate) may be
