@@ -61,6 +61,7 @@ def test_yaml_reaches_extrapolated_held_inputs():
                        "integral_gain": 0.0}}, "integral_gain > 0"),
     ({"step_control": {"error": "power"}}, "error must be 'coupling' or 'energy'"),
     ({"step_control": {"power_bonds": [["P1", "torque"]]}}, "each bond is two"),
+    ({"step_control": {"power_bonds": "P1.torque"}}, "power_bonds must be a list of bonds"),
     ({"step_control": {"rtol": -1.0}}, "rtol >= 0"),
     ({"step_control": {"tolerance": 1e-3}}, "tolerance"),
 ])

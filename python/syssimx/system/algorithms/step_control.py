@@ -68,6 +68,9 @@ class StepControl:
         if self.error not in ("coupling", "energy"):
             raise ValueError(f"{owner}: step_control.error must be 'coupling' or 'energy', got "
                              f"{self.error!r}")
+        if not isinstance(self.power_bonds, tuple):
+            raise ValueError(f"{owner}: step_control.power_bonds must be a list of bonds, got "
+                             f"{self.power_bonds!r}")
         for bond in self.power_bonds:
             if not (isinstance(bond, tuple) and len(bond) == 2 and all(
                     isinstance(end, tuple) and len(end) == 2 and
