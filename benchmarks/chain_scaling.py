@@ -6,21 +6,34 @@ ratio to the smallest N. The gain FMU's own doStep costs about 10 ns
 (fmu_step_cost.py), so the rest is the engine's: the inputs set, the outputs read, the
 coupling and the history row.
 
+With --builds, each size runs in a fresh process per meson build directory (SYSSIMX_BUILD_DIR),
+the builds in turn, so that two engines (an earlier one kept aside and the current one) are
+compared in one run.
+
     python benchmarks/chain_scaling.py [--sizes 100,1000,10000] [--repeats 3]
+                                       [--builds build/before,build/dev]
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import statistics
+import subprocess
+import sys
 import time
+from typing import TYPE_CHECKING
 
-from syssimx import Connection, FMUComponent, System, fmus
+if TYPE_CHECKING:
+    from syssimx import FMUComponent, System
 
 FMU_STEPS = 2_000_000
 
 
 def chain(n: int) -> tuple[System, list[FMUComponent]]:
+    # imported here: with --builds this process only starts others, each on its own engine
+    from syssimx import Connection, FMUComponent, System, fmus
+
     system = System(f"chain of {n}")
     gains = [FMUComponent(f"G{i}", fmus.path("gain")) for i in range(n)]
     for gain in gains:
@@ -31,30 +44,58 @@ def chain(n: int) -> tuple[System, list[FMUComponent]]:
     return system, gains
 
 
+def cost_per_step(n: int, repeats: int) -> float:
+    """Median CPU nanoseconds per FMU step of `repeats` runs of a chain of n."""
+    system, gains = chain(n)
+    steps = FMU_STEPS // n
+    cpu = []
+    for _ in range(repeats):
+        system.initialize(0.0)
+        start = time.process_time()
+        system.run(0.0, steps * 1e-3, 1e-3)
+        cpu.append(time.process_time() - start)
+    system.reset()
+    for gain in gains:
+        gain.free()
+    return statistics.median(cpu) / (n * steps) * 1e9
+
+
+def cost_in_build(build: str, n: int, repeats: int) -> float:
+    """cost_per_step in a fresh process on the engine of a meson build directory."""
+    environment = dict(os.environ, SYSSIMX_BUILD_DIR=os.path.abspath(build))
+    output = subprocess.run(
+        [sys.executable, __file__, "--child", str(n), "--repeats", str(repeats)],
+        env=environment, check=True, capture_output=True, text=True).stdout
+    return float(output)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--sizes", default="100,1000,10000")
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--builds", help="meson build directories to compare, comma-separated")
+    parser.add_argument("--child", type=int, help=argparse.SUPPRESS)
     args = parser.parse_args()
+    if args.child is not None:
+        print(cost_per_step(args.child, args.repeats))
+        return
     sizes = [int(n) for n in args.sizes.split(",")]
-    print(f"chain of gain FMUs, {FMU_STEPS} FMU steps per run, median of {args.repeats}")
-    print(f"{'N':>7}{'steps':>8}{'ns per FMU step':>17}{'ratio':>8}")
-    first = None
+    builds = args.builds.split(",") if args.builds else [None]
+    print(f"chain of gain FMUs, {FMU_STEPS} FMU steps per run, CPU time, median of "
+          f"{args.repeats}; ns per FMU step and ratio to N={sizes[0]}")
+    print(f"{'N':>7}" + "".join(f"{build or 'ns':>24}{'ratio':>8}" for build in builds)
+          + ("" if len(builds) == 1 else f"{'new/old':>9}"))
+    first: list[float] = []  # each column's cost at the smallest N
     for n in sizes:
-        system, gains = chain(n)
-        steps = FMU_STEPS // n
-        walls = []
-        for _ in range(args.repeats):
-            system.initialize(0.0)
-            start = time.process_time()
-            system.run(0.0, steps * 1e-3, 1e-3)
-            walls.append(time.process_time() - start)
-        cost = statistics.median(walls) / (n * steps) * 1e9
-        first = first or cost
-        print(f"{n:>7}{steps:>8}{cost:>17.1f}{cost / first:>7.2f}x")
-        system.reset()
-        for gain in gains:
-            gain.free()
+        costs = [cost_per_step(n, args.repeats) if build is None
+                 else cost_in_build(build, n, args.repeats) for build in builds]
+        line = f"{n:>7}"
+        first = first or costs
+        for cost, base in zip(costs, first, strict=True):
+            line += f"{cost:>24.1f}{cost / base:>7.2f}x"
+        if len(builds) > 1:
+            line += f"{costs[-1] / costs[0]:>8.2f}x"
+        print(line, flush=True)
 
 
 if __name__ == "__main__":
