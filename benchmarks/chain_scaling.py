@@ -6,12 +6,17 @@ ratio to the smallest N. The gain FMU's own doStep costs about 10 ns
 (fmu_step_cost.py), so the rest is the engine's: the inputs set, the outputs read, the
 coupling and the history row.
 
+With --direct, the same chain stepped straight through FMI 2.0 in a C loop (the build's
+tests/c/fmu/chain_direct: set the input, doStep, get the output; the instances made one after
+the other) is printed beside it, with the engine's cost over it: the floor of the FMU's own work
+and memory.
+
 With --builds, each size runs in a fresh process per meson build directory (SYSSIMX_BUILD_DIR),
 the builds in turn, so that two engines (an earlier one kept aside and the current one) are
 compared in one run.
 
     python benchmarks/chain_scaling.py [--sizes 100,1000,10000] [--repeats 3]
-                                       [--builds build/before,build/dev]
+                                       [--builds build/before,build/dev] [--direct]
 """
 
 from __future__ import annotations
@@ -69,11 +74,25 @@ def cost_in_build(build: str, n: int, repeats: int) -> float:
     return float(output)
 
 
+def cost_direct(build: str, n: int) -> float:
+    """CPU nanoseconds per FMU step of the chain of n in chain_direct, the FMI loop in C."""
+    root = os.path.abspath(build)
+    models = os.path.join(root, "models")
+    output = subprocess.run(
+        [os.path.join(root, "tests", "c", "fmu", "chain_direct"),
+         os.path.join(models, "gain.so"), os.path.join(models, "gain_modelDescription.xml"),
+         str(n), str(FMU_STEPS // n), "u", "y"],
+        check=True, capture_output=True, text=True).stdout
+    return float(output)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--sizes", default="100,1000,10000")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--builds", help="meson build directories to compare, comma-separated")
+    parser.add_argument("--direct", action="store_true",
+                        help="also the chain stepped by a C loop straight through FMI")
     parser.add_argument("--child", type=int, help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.child is not None:
@@ -83,9 +102,12 @@ def main() -> None:
     builds = args.builds.split(",") if args.builds else [None]
     print(f"chain of gain FMUs, {FMU_STEPS} FMU steps per run, CPU time, median of "
           f"{args.repeats}; ns per FMU step and ratio to N={sizes[0]}")
+    direct_build = builds[-1] or os.environ.get("SYSSIMX_BUILD_DIR", "")
     print(f"{'N':>7}" + "".join(f"{build or 'ns':>24}{'ratio':>8}" for build in builds)
-          + ("" if len(builds) == 1 else f"{'new/old':>9}"))
+          + ("" if len(builds) == 1 else f"{'new/old':>9}")
+          + (f"{'direct C loop':>15}{'ratio':>8}{'engine/C':>10}" if args.direct else ""))
     first: list[float] = []  # each column's cost at the smallest N
+    first_direct = 0.0
     for n in sizes:
         costs = [cost_per_step(n, args.repeats) if build is None
                  else cost_in_build(build, n, args.repeats) for build in builds]
@@ -95,6 +117,10 @@ def main() -> None:
             line += f"{cost:>24.1f}{cost / base:>7.2f}x"
         if len(builds) > 1:
             line += f"{costs[-1] / costs[0]:>8.2f}x"
+        if args.direct:
+            direct = cost_direct(direct_build, n)
+            first_direct = first_direct or direct
+            line += f"{direct:>15.1f}{direct / first_direct:>7.2f}x{costs[-1] / direct:>9.2f}x"
         print(line, flush=True)
 
 
