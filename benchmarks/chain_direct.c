@@ -22,8 +22,10 @@ static double cpu_ns(void)
 
 int main(int argc, char **argv)
 {
-    if (argc != 7) {
-        fprintf(stderr, "usage: %s <binary> <modelDescription.xml> <N> <steps> <input> <output>\n",
+    if (argc != 7 && argc != 8) {
+        fprintf(stderr,
+                "usage: %s <binary> <modelDescription.xml> <N> <steps> <input> <output> "
+                "[spacing]\n",
                 argv[0]);
         return 2;
     }
@@ -34,10 +36,13 @@ int main(int argc, char **argv)
     CHECK(n > 0 && steps > 0);
     fmi2ValueReference input = fmu_vr(&fmu, argv[5]);
     fmi2ValueReference output = fmu_vr(&fmu, argv[6]);
+    size_t spacing = argc == 8 ? (size_t)strtoul(argv[7], NULL, 10) : 0;
     fmi2Component *chain = malloc((size_t)n * sizeof *chain);
-    CHECK(chain != NULL);
+    void **gaps = calloc((size_t)n, sizeof *gaps);
+    CHECK(chain != NULL && gaps != NULL);
     for (long i = 0; i < n; ++i) {
         chain[i] = fmu_start(&fmu, 0.0, 0.0, NULL, NULL, 0);
+        gaps[i] = spacing > 0 ? malloc(spacing) : NULL;
     }
     double start = cpu_ns();
     for (long k = 0; k < steps; ++k) {
@@ -52,6 +57,10 @@ int main(int argc, char **argv)
     for (long i = 0; i < n; ++i) {
         fmu.free_instance(chain[i]);
     }
+    for (long i = 0; i < n; ++i) {
+        free(gaps[i]);
+    }
+    free(gaps);
     free(chain);
     fmu_close(&fmu);
     return 0;
