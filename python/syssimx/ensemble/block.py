@@ -42,21 +42,22 @@ class MemberBlock:
     def __len__(self) -> int:
         return len(self.scalars) + len(self.others)
 
-    def results(self, parameters: Mapping[int, ParameterSet]) -> list[MemberResult]:
+    def results(self, parameters: Mapping[int, ParameterSet] | Sequence[ParameterSet]
+                ) -> list[MemberResult]:
         """The members' results, their parameters from `parameters` (by member index)."""
-        results = list(self.others)
-        names = list(enumerate(self.names, start=1))
-        for k, (index, status, error, error_type, events, termination, wall) in \
-                enumerate(self.scalars):
-            rows = slice(int(self.bounds[k]), int(self.bounds[k + 1]))
-            block = self.samples[rows]
-            counts = self.statistics[k]
-            results.append(MemberResult(
-                index, parameters[index], status, error, error_type, block[:, 0],
-                self.micro[rows], {name: block[:, column] for column, name in names}, events,
-                {name: int(v) for name, v in zip(STATISTICS, counts, strict=True) if v >= 0},
-                termination, wall, self.worker))
-        return results
+        return [*self.others, *(self.result(row, parameters) for row in range(len(self.scalars)))]
+
+    def result(self, row: int, parameters: Mapping[int, ParameterSet] | Sequence[ParameterSet]
+               ) -> MemberResult:
+        """The MemberResult of the member of `scalars[row]`, its samples views of the block's."""
+        index, status, error, error_type, events, termination, wall = self.scalars[row]
+        rows = slice(int(self.bounds[row]), int(self.bounds[row + 1]))
+        block = self.samples[rows]
+        return MemberResult(
+            index, parameters[index], status, error, error_type, block[:, 0], self.micro[rows],
+            {name: block[:, column] for column, name in enumerate(self.names, start=1)}, events,
+            {name: int(v) for name, v in zip(STATISTICS, self.statistics[row], strict=True)
+             if v >= 0}, termination, wall, self.worker)
 
 
 def pack(results: Sequence[MemberResult]) -> MemberBlock:
