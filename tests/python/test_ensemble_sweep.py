@@ -5,6 +5,7 @@ same System run in this process, each FMU file loaded once per worker, the embed
 from __future__ import annotations
 
 import os
+import sys
 from collections.abc import Iterator
 
 import coupled_pendulums as coupled_pendulums_example
@@ -186,3 +187,22 @@ def test_a_scheduler_address_runs_there_and_threaded_workers_are_refused(client)
                                           r"threads per worker: \{'tcp://"):
         sweep(seed_pendulum, {"P.theta0": [0.5]}, t0=0.0, tf=0.6, dt=0.05,
               client=threaded_client, progress=False)
+
+
+SET_BEFORE_THE_CLUSTER: list[int] = []  # a forked worker has it as this process had it
+
+
+def set_before_the_cluster() -> list[int]:
+    return SET_BEFORE_THE_CLUSTER
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="workers fork on Linux only")
+def test_the_embedded_cluster_forks_its_workers() -> None:
+    """A spawned worker imports this module anew (an empty list); a forked one starts with what
+    this process had when the cluster started."""
+    SET_BEFORE_THE_CLUSTER.append(os.getpid())
+    try:
+        with ensemble_client(workers=1) as running:
+            assert list(running.run(set_before_the_cluster).values()) == [[os.getpid()]]
+    finally:
+        SET_BEFORE_THE_CLUSTER.clear()
