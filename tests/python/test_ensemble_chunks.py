@@ -103,3 +103,21 @@ def test_results_kept_as_blocks_give_the_dataset_of_the_members_run_alone() -> N
         theirs.drop_vars(["wall_time", "worker"]))
     assert np.array_equal(from_blocks.members[4].outputs["P.theta"],
                           one_by_one.members[4].outputs["P.theta"])
+
+
+def test_chunks_after_the_probe_are_sized_by_the_members_after_a_block_s_first() -> None:
+    """A worker's first member builds the System and loads what it needs (2.5 s of pint for the
+    seed scenario): sized by it, every later task would be one member long (the design tried
+    before, which multiplied the client's CPU). A block's cost is its later members' CPU."""
+    from syssimx.ensemble.runner import TASK_SECONDS, sized
+
+    probe = run_block(_seed, [EXPERIMENT.task(index, {"P.theta0": 0.3}) for index in range(3)])
+    alone = run_block(_seed, [EXPERIMENT.task(0, {"P.theta0": 0.3})])
+    assert probe.cost is not None and 0 < probe.cost < 0.1 and alone.cost is None
+    assert sized(1992, 2, 0.0011) == round(TASK_SECONDS / 0.0011) < chunk_size(1992, 2)
+    assert sized(1992, 2, 0.00001) == chunk_size(1992, 2)  # chunk_size's bound kept
+    assert sized(1992, 2, 1.0) == 1 and sized(1992, 2, None) == chunk_size(1992, 2)
+    # the chunks after the probe continue its member indices
+    chunks = split(sets(10)[4:], 3, 2, EXPERIMENT, first=4)
+    assert [task.index for chunk in chunks for task in chunk.tasks()] == list(range(4, 10))
+    assert chunks[0].parameters[0] == sets(10)[4]

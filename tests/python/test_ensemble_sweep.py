@@ -206,3 +206,24 @@ def test_the_embedded_cluster_forks_its_workers() -> None:
             assert list(running.run(set_before_the_cluster).values()) == [[os.getpid()]]
     finally:
         SET_BEFORE_THE_CLUSTER.clear()
+
+
+def test_a_probed_ensemble_s_members_and_dataset_are_those_run_in_process(client) -> None:
+    """40 members on 2 workers: a probe chunk of 4 members per worker, then chunks sized by
+    its members' cost; every member, and the dataset built from the blocks, bit-identical to
+    the same System run here."""
+    from syssimx.ensemble.runner import PROBED_FROM
+
+    values = np.linspace(0.2, 0.6, 40)
+    assert len(values) >= PROBED_FROM * 2
+    result = sweep(seed_pendulum, {"P.theta0": values}, t0=0.0, tf=0.3, dt=0.05,
+                   client=client, progress=False)
+    assert not result.failed and [m.index for m in result.members] == list(range(40))
+    dataset = result.dataset
+    for k in (0, 7, 8, 23, 39):  # probe members, the first after the probe, later ones
+        here = in_process(seed_pendulum, {"P.theta0": float(values[k])}, 0.3, 0.05)
+        t, series = here["P"]
+        assert np.array_equal(dataset["time"].values[k, :t.size], t)
+        assert np.array_equal(dataset["P.theta"].values[k, :t.size], series["theta"])
+        assert np.array_equal(result.members[k].outputs["P.omega"], series["omega"])
+    assert list(dataset["P.theta0"].values) == list(values)

@@ -12,6 +12,7 @@ travels as its own MemberResult.
 
 from __future__ import annotations
 
+import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -38,6 +39,9 @@ class MemberBlock:
     bounds: np.ndarray
     statistics: np.ndarray  # members x len(STATISTICS); -1: the run did not complete
     others: tuple[MemberResult, ...] = ()
+    # CPU seconds per member after the first (which may have built the System); None: one
+    # member. CPU, not wall: on a loaded machine a member's wall time grows with the load.
+    cost: float | None = None
 
     def __len__(self) -> int:
         return len(self.scalars) + len(self.others)
@@ -60,7 +64,7 @@ class MemberBlock:
              if v >= 0}, termination, wall, self.worker)
 
 
-def pack(results: Sequence[MemberResult]) -> MemberBlock:
+def pack(results: Sequence[MemberResult], cost: float | None = None) -> MemberBlock:
     """One block of `results` (members of one task, run in one process)."""
     worker = results[0].worker if results else ""
     names = next((tuple(r.outputs) for r in results if r.outputs), ())
@@ -84,13 +88,16 @@ def pack(results: Sequence[MemberResult]) -> MemberBlock:
             statistics[k, j] = r.statistics.get(name, -1)
     scalars = tuple((r.index, r.status, r.error, r.error_type, r.events, r.termination,
                      r.wall_time) for r in regular)
-    return MemberBlock(worker, names, scalars, samples, micro, bounds, statistics, others)
+    return MemberBlock(worker, names, scalars, samples, micro, bounds, statistics, others, cost)
 
 
 def run_block(build: SystemSource, tasks: list[MemberTask]) -> MemberBlock:
     """Run members one after another here (one Dask task for several short members), end the
     processes their FMUs forked and left (leftovers.py), and pack their results."""
     end_left_children()  # the first call notes the worker's own children
-    results = [run_member(build, task) for task in tasks]
+    results = [run_member(build, task) for task in tasks[:1]]
+    cpu = time.thread_time()
+    results += [run_member(build, task) for task in tasks[1:]]
+    cost = (time.thread_time() - cpu) / (len(tasks) - 1) if len(tasks) > 1 else None
     end_left_children()
-    return pack(results)
+    return pack(results, cost)

@@ -1,7 +1,11 @@
 """Running members as Dask tasks and turning every outcome into a MemberResult.
 
-Short members share a task (chunk_size), so the scheduler's cost per task is paid once for
-several, and a task's results come back as one block (block.py). A member's own failures come
+Short members share a task, so the scheduler's cost per task is paid once for several, and a
+task's results come back as one block (block.py). A large ensemble first runs a probe: one
+chunk of PROBE members per worker; the CPU time of the first probe block's members after its
+first (which built the System and loaded what it needs: 2.5 s of pint for the seed scenario,
+against 1-2 ms for a member after it) is the member's cost, and the rest goes in chunks of
+about TASK_SECONDS of CPU each (chunk_size's bounds kept). A member's own failures come
 back as its result (member.py). Two faults need the client:
 - a member still running `member_timeout` (+ KILL_GRACE) seconds after it started is stuck
   where its run's own timeout cannot reach (inside an FMU call): its task is cancelled and its
@@ -22,9 +26,10 @@ import signal
 import threading
 import time
 import uuid
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
+from .block import MemberBlock
 from .chunk import Experiment, MemberChunk, run_chunk
 from .cluster import check_processes
 from .member import MemberResult
@@ -40,6 +45,12 @@ DEATH_LOG_WAIT = 10.0  # seconds at most to wait for a nanny to log how its work
 # (scheduling, messages, the result's transfer); a crash reruns its chunk's members alone
 MAX_CHUNK = 256
 CHUNKS_PER_WORKER = 4  # tasks per worker at least, for the balance
+PROBE = 4  # members per probe chunk
+PROBED_FROM = 16  # members per worker from which an ensemble starts with a probe
+# a task's target CPU time: its cost to the client (6-9 ms of CPU on the 2-core VM) stays a
+# few per cent of it, while progress, Ctrl-C and a crash's reruns stay at a fraction of a second
+# (on an unloaded machine)
+TASK_SECONDS = 0.2
 
 
 class _Starts:
@@ -67,16 +78,24 @@ def chunk_size(members: int, workers: int) -> int:
     return max(1, min(MAX_CHUNK, members // (CHUNKS_PER_WORKER * max(workers, 1))))
 
 
+def sized(members: int, workers: int, cost: float | None) -> int:
+    """Members per task for `members` members of `cost` seconds each (None: not measured):
+    chunk_size's, or fewer where a task would take longer than TASK_SECONDS."""
+    size = chunk_size(members, workers)
+    return size if cost is None or cost <= 0 else max(1, min(size, round(TASK_SECONDS / cost)))
+
+
 def split(sets: Sequence[ParameterSet], size: int, workers: int, experiment: Experiment,
-          topic: str | None = None, announce_each: bool = False) -> list[MemberChunk]:
-    """The members of `sets` (indices 0, 1, ...) in chunks of `size` at most, as many chunks
-    as a multiple of `workers` and of sizes differing by one at most, so no worker is left
-    with a last chunk alone."""
+          topic: str | None = None, announce_each: bool = False, first: int = 0
+          ) -> list[MemberChunk]:
+    """The members of `sets` (indices first, first + 1, ...) in chunks of `size` at most, as
+    many chunks as a multiple of `workers` and of sizes differing by one at most, so no worker
+    is left with a last chunk alone."""
     count = -(-len(sets) // size)
     count = min(len(sets), -(-count // workers) * workers)
     bounds = [len(sets) * k // count for k in range(count + 1)]
-    return [MemberChunk(first, sets[first:last], experiment, topic, announce_each)
-            for first, last in itertools.pairwise(bounds)]
+    return [MemberChunk(first + start, sets[start:stop], experiment, topic, announce_each)
+            for start, stop in itertools.pairwise(bounds)]
 
 
 class _Ensemble:
@@ -95,23 +114,29 @@ class _Ensemble:
         self.results = MemberList(sets)
         self._attempt = 0
 
-    def run(self, chunks: Sequence[MemberChunk], alone: bool) -> list[int]:
-        """Run `chunks`; returns the suspects' member indices (see the module's description).
-        A chunk of one member `alone` on the cluster makes a worker death that member's."""
+    def run(self, chunks: Sequence[MemberChunk], alone: bool,
+            later: Callable[[MemberBlock | None], list[MemberChunk]] | None = None) -> list[int]:
+        """Run `chunks`, and the chunks `later` gives for the first outcome (its block, None
+        for a failed task); returns the suspects' member indices (see the module's
+        description). A chunk of one member `alone` on the cluster makes a worker death that
+        member's."""
         from distributed import as_completed
 
         self._attempt += 1
-        futures = self.client.map(
-            self.task, chunks,
-            key=[f"syssimx-members-{c.first}-{self.topic[-8:]}-{self._attempt}"
-                 for c in chunks], pure=False)
-        by_key = {future.key: chunk for future, chunk in zip(futures, chunks, strict=True)}
+        futures: list[Any] = []
+        by_key: dict[Any, MemberChunk] = {}  # both grow as `later`'s chunks are submitted
+        pending = as_completed(with_results=True, raise_errors=False)
+        self._submit(chunks, futures, by_key, pending)
         watchdog = _Watchdog(self.client, futures, by_key, self.starts, self.sets,
                              self.member_timeout) if self.member_timeout is not None else None
         suspects: list[int] = []
         try:
-            for future, outcome in as_completed(futures, with_results=True, raise_errors=False):
+            for future, outcome in pending:
                 chunk = by_key[future.key]
+                if later is not None:
+                    self._submit(later(outcome if future.status == "finished" else None),
+                                 futures, by_key, pending)
+                    later = None
                 if future.status == "finished":
                     for status in self.results.add_block(outcome):
                         self.bar.advance(status != "ok")
@@ -127,6 +152,24 @@ class _Ensemble:
                 watchdog.close()
             self.client.cancel([future for future in futures if not future.done()])
         return suspects
+
+    def _submit(self, chunks: Sequence[MemberChunk], futures: list[Any],
+                by_key: dict[Any, MemberChunk], pending: Any) -> None:
+        submitted = self.client.map(
+            self.task, chunks,
+            key=[f"syssimx-members-{c.first}-{self.topic[-8:]}-{self._attempt}"
+                 for c in chunks], pure=False)
+        by_key.update((future.key, chunk)
+                      for future, chunk in zip(submitted, chunks, strict=True))
+        futures += submitted
+        pending.update(submitted)
+
+    def after_probe(self, probed: int, block: MemberBlock | None) -> list[MemberChunk]:
+        """The chunks of the members after the first `probed`, sized by `block`'s members."""
+        rest = self.sets[probed:]
+        size = sized(len(rest), self.workers, block.cost if block else None)
+        return split(rest, size, self.workers, self.experiment, self.topic,
+                     self.member_timeout is not None, first=probed)
 
     def _keep(self, results: Sequence[MemberResult]) -> None:
         for result in results:
@@ -166,10 +209,18 @@ def run_members(client: Any, build: SystemSource, experiment: Experiment,
     ensemble = _Ensemble(client, build, experiment, sets, bar)
     announce_each = experiment.timeout is not None
     client.subscribe_topic(ensemble.topic, ensemble.starts.record)
+    workers = ensemble.workers
     try:
-        chunks = split(sets, chunk_size(len(sets), ensemble.workers), ensemble.workers,
-                       experiment, ensemble.topic, announce_each)
-        for suspect in ensemble.run(chunks, alone=False):
+        if len(sets) >= PROBED_FROM * workers:
+            probed = PROBE * workers
+            suspects = ensemble.run(
+                split(sets[:probed], PROBE, workers, experiment, ensemble.topic, announce_each),
+                alone=False, later=functools.partial(ensemble.after_probe, probed))
+        else:
+            suspects = ensemble.run(split(sets, chunk_size(len(sets), workers), workers,
+                                          experiment, ensemble.topic, announce_each),
+                                    alone=False)
+        for suspect in suspects:
             ensemble.run([MemberChunk(suspect, sets[suspect:suspect + 1], experiment,
                                       ensemble.topic, announce_each)], alone=True)
     except KeyboardInterrupt as stop:  # Ctrl-C: the finished members are kept
