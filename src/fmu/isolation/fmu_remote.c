@@ -12,6 +12,7 @@
 
 #include "child_process.h"
 #include "fmi2Functions.h"
+#include "fmu_environment.h"
 #include "fmu_remote_protocol.h"
 #include "remote_io.h"
 
@@ -306,7 +307,8 @@ static fmi2Component remote_instantiate(fmi2String instance_name, fmi2Type type,
                                         const fmi2CallbackFunctions *callbacks,
                                         fmi2Boolean visible, fmi2Boolean logging_on)
 {
-    ssx_remote *r = ssx_fmu_remote(callbacks->componentEnvironment);
+    const ssx_fmu_environment *environment = callbacks->componentEnvironment;
+    ssx_remote *r = environment->remote;
     instance_name = instance_name != NULL ? instance_name : "";
     guid = guid != NULL ? guid : "";
     resource_uri = resource_uri != NULL ? resource_uri : "";
