@@ -33,7 +33,7 @@ double fmu_solver_parameter(const fmu_instance *inst, size_t i)
 void fmu_apply_start_values(fmu_instance *inst)
 {
     for (size_t vr = 0; vr < inst->n_variables; ++vr)
-        inst->values[vr] = fmu_variable(inst, (fmi2ValueReference)vr)->start;
+        inst->values[vr] = fmu_variable(inst, (unsigned int)vr)->start;
     inst->time = 0.0;
     inst->tolerance_defined = 0;
     inst->tolerance = 0.0;
@@ -55,7 +55,7 @@ void fmu_handle_events(fmu_instance *inst, double t, double *x)
 {
     for (size_t i = 0; i < inst->model->n_event_indicators; ++i)
         if (inst->fired[i])
-            fmu_log(inst, fmi2OK, LOG_EVENTS, "internal event %zu at t = %.17g", i, t);
+            fmu_log(inst, FMU_OK, LOG_EVENTS, "internal event %zu at t = %.17g", i, t);
     inst->model->handle_events(inst->values, t, x, inst->fired);
 }
 
@@ -65,10 +65,10 @@ void fmu_event_indicators(const fmu_instance *inst, double *z)
         inst->model->event_indicators(inst->values, inst->time, inst->x, z);
 }
 
-fmi2Status fmu_refusal_status(fmu_instance *inst, step_refusal_kind kind)
+fmu_status fmu_refusal_status(fmu_instance *inst, step_refusal_kind kind)
 {
-    static const fmi2Status statuses[] = {fmi2Error, fmi2Discard, fmi2Fatal};
-    if (statuses[kind] == fmi2Fatal)
+    static const fmu_status statuses[] = {FMU_ERROR, FMU_DISCARD, FMU_FATAL};
+    if (statuses[kind] == FMU_FATAL)
         inst->phase = PHASE_FATAL;
     return statuses[kind];
 }
@@ -164,7 +164,7 @@ fmu_instance *fmu_instance_create(const fmu_instance *reporter, size_t size, con
     return inst;
 }
 
-fmi2Status fmu_setup_experiment(fmu_instance *inst, const char *function, int tolerance_defined,
+fmu_status fmu_setup_experiment(fmu_instance *inst, const char *function, int tolerance_defined,
                                 double tolerance, double start_time, int stop_time_defined,
                                 double stop_time)
 {
@@ -179,7 +179,7 @@ fmi2Status fmu_setup_experiment(fmu_instance *inst, const char *function, int to
     inst->tolerance = tolerance_defined ? tolerance : 0.0;
     inst->time = start_time;
     inst->outputs_stale = 1;
-    return fmi2OK;
+    return FMU_OK;
 }
 
 void fmu_exit_initialization(fmu_instance *inst)

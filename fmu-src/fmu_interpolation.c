@@ -12,8 +12,8 @@ static int is_real_input(const model_variable *v)
     return v != NULL && v->type == TYPE_REAL && v->causality == CAUSALITY_INPUT;
 }
 
-fmi2Status fmu_set_input_derivatives(fmu_instance *inst, const char *function,
-                                     const fmi2ValueReference vr[], size_t nvr,
+fmu_status fmu_set_input_derivatives(fmu_instance *inst, const char *function,
+                                     const unsigned int vr[], size_t nvr,
                                      const int order[], const double value[])
 {
     if (nvr > 0 && (vr == NULL || order == NULL || value == NULL))
@@ -43,7 +43,7 @@ fmi2Status fmu_set_input_derivatives(fmu_instance *inst, const char *function,
         inst->outputs_stale = 1;
         fmu_solver_invalidate(inst); /* the right-hand side changed */
     }
-    return fmi2OK;
+    return FMU_OK;
 }
 
 void fmu_clear_input_derivatives(fmu_instance *inst)
@@ -110,8 +110,8 @@ static void outputs_along(fmu_instance *inst, double eps)
     inst->model->outputs(v, inst->time + eps, x);
 }
 
-fmi2Status fmu_get_output_derivatives(fmu_instance *inst, const char *function,
-                                      const fmi2ValueReference vr[], size_t nvr,
+fmu_status fmu_get_output_derivatives(fmu_instance *inst, const char *function,
+                                      const unsigned int vr[], size_t nvr,
                                       const int order[], double value[])
 {
     if (nvr > 0 && (vr == NULL || order == NULL || value == NULL))
@@ -143,5 +143,5 @@ fmi2Status fmu_get_output_derivatives(fmu_instance *inst, const char *function,
                        ? (value[i] - inst->values_scratch[vr[i]]) / (2.0 * eps)
                        : 0.0;
     }
-    return fmi2OK;
+    return FMU_OK;
 }

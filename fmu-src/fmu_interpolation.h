@@ -22,15 +22,15 @@
 #define FMU_MAX_OUTPUT_DERIVATIVE_ORDER 1
 
 /* Stores derivative order[i] of input vr[i]; `function` names the call in messages. */
-fmi2Status fmu_set_input_derivatives(fmu_instance *inst, const char *function,
-                                     const fmi2ValueReference vr[], size_t nvr,
+fmu_status fmu_set_input_derivatives(fmu_instance *inst, const char *function,
+                                     const unsigned int vr[], size_t nvr,
                                      const int order[], const double value[]);
 /* Forgets every input derivative (reset, a restored state). */
 void fmu_clear_input_derivatives(fmu_instance *inst);
 
 /* Derivative order[i] of output vr[i] at the instance's time into value[i]. */
-fmi2Status fmu_get_output_derivatives(fmu_instance *inst, const char *function,
-                                      const fmi2ValueReference vr[], size_t nvr,
+fmu_status fmu_get_output_derivatives(fmu_instance *inst, const char *function,
+                                      const unsigned int vr[], size_t nvr,
                                       const int order[], double value[]);
 
 /* Called by fmu_do_step around the back-end's integration from t to t_end. */

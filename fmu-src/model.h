@@ -1,8 +1,8 @@
 /* What a model provides to the FMU framework: its variable table and its equations.
  *
  * A model is one C file that defines `fmu_model` (see the models/ folders). The framework serves
- * every fmi2 function, the solver back-ends integrate the equations, and the describe tool
- * writes modelDescription.xml, all from this one definition. */
+ * every FMI function (1.0, 2.0 and 3.0), the solver back-ends integrate the equations, and the
+ * describe tool writes modelDescription.xml, all from this one definition. */
 #ifndef SYSSIMX_FMU_MODEL_H
 #define SYSSIMX_FMU_MODEL_H
 
@@ -57,9 +57,9 @@ typedef struct {
     [vr] = {name, vr, TYPE_REAL, CAUSALITY_PARAMETER, VARIABILITY_FIXED, INITIAL_EXACT, unit, \
             start, description, -1, NULL, NULL}
 
-/* How a refused step fails: the step fails and may be retried (fmi2Error), or the step could
- * not be completed (fmi2Discard: the FMU stays at the step's start), or the model is broken for
- * good (fmi2Fatal: every later call is refused). */
+/* How a refused step fails: the step fails and may be retried (FMU_ERROR), or the step could
+ * not be completed (FMU_DISCARD: the FMU stays at the step's start), or the model is broken for
+ * good (FMU_FATAL: every later call is refused). */
 typedef enum { STEP_FAILS, STEP_DISCARDED, STEP_FATAL } step_refusal_kind;
 
 /* Equations. `v` holds every variable by value reference (Integer and Boolean values as
@@ -90,8 +90,8 @@ typedef struct {
      * Model Exchange refuses fmi2SetTime(t_end) the same way. */
     const char *(*step_refusal)(const double *v, double t_end, step_refusal_kind *kind);
     /* NULL when the model never asks to stop; otherwise the time at which it asks the master to
-     * end the simulation (INFINITY: not now). fmi2DoStep stops there and returns fmi2Discard;
-     * fmi2GetBooleanStatus(fmi2Terminated) then answers true. Model Exchange reports it as
+     * end the simulation (INFINITY: not now). A step stops there (FMI 2.0: fmi2Discard,
+     * and fmi2GetBooleanStatus(fmi2Terminated) then answers true). Model Exchange reports it as
      * nextEventTime, and event mode there answers terminateSimulation. */
     double (*termination_time)(const double *v);
     /* NULL when the model has no time events; otherwise the first time after t at which its

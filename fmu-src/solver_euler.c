@@ -77,7 +77,7 @@ static double earliest_crossing(fmu_instance *inst)
     return earliest;
 }
 
-fmi2Status fmu_solver_step(fmu_instance *inst, double t_end)
+fmu_status fmu_solver_step(fmu_instance *inst, double t_end)
 {
     const model_definition *model = inst->model;
     euler_data *data = inst->solver;
@@ -122,7 +122,7 @@ fmi2Status fmu_solver_step(fmu_instance *inst, double t_end)
             /* stop at the located point; the importer applies the event in event mode */
             inst->time = t;
             inst->event_pending = 1;
-            return fmi2OK;
+            return FMU_OK;
         }
         fmu_handle_events(inst, t, inst->x);
         if (++events > MAX_EVENTS_PER_STEP) {
@@ -135,5 +135,5 @@ fmi2Status fmu_solver_step(fmu_instance *inst, double t_end)
         substeps = 0;
     }
     inst->time = t_end;
-    return fmi2OK;
+    return FMU_OK;
 }
