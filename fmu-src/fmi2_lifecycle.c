@@ -22,8 +22,8 @@ fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nC
     fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2SetDebugLogging));
     if (inst == NULL)
         return fmi2Error;
-    return fmi2_status(fmu_set_logging(inst, "fmi2SetDebugLogging", loggingOn != fmi2False, nCategories,
-                           categories));
+    return fmi2_status(fmu_set_logging(inst, "fmi2SetDebugLogging", loggingOn != fmi2False,
+                                       nCategories, categories));
 }
 
 /* Hands the core's message to the importer's FMI 2.0 logger. The message holds no printf
@@ -94,8 +94,9 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined,
     fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2SetupExperiment));
     if (inst == NULL)
         return fmi2Error;
-    return fmi2_status(fmu_setup_experiment(inst, "fmi2SetupExperiment", toleranceDefined != fmi2False,
-                                tolerance, startTime, stopTimeDefined != fmi2False, stopTime));
+    return fmi2_status(fmu_setup_experiment(inst, "fmi2SetupExperiment",
+                                            toleranceDefined != fmi2False, tolerance, startTime,
+                                            stopTimeDefined != fmi2False, stopTime));
 }
 
 fmi2Status fmi2EnterInitializationMode(fmi2Component c)

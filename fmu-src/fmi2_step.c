@@ -51,7 +51,8 @@ fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real *
     if (inst == NULL)
         return fmi2Error;
     if (s != fmi2LastSuccessfulTime || value == NULL)
-        return fmi2_status(fmu_error(inst, "fmi2GetRealStatus: only fmi2LastSuccessfulTime is available"));
+        return fmi2_status(
+            fmu_error(inst, "fmi2GetRealStatus: only fmi2LastSuccessfulTime is available"));
     *value = inst->time;
     return fmi2OK;
 }
@@ -72,7 +73,8 @@ fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boo
     if (inst == NULL)
         return fmi2Error;
     if (s != fmi2Terminated || value == NULL)
-        return fmi2_status(fmu_error(inst, "fmi2GetBooleanStatus: only fmi2Terminated is available"));
+        return fmi2_status(fmu_error(inst,
+                                     "fmi2GetBooleanStatus: only fmi2Terminated is available"));
     *value = inst->time >= fmu_stop_time(inst) ? fmi2True : fmi2False;
     return fmi2OK;
 }

@@ -59,8 +59,9 @@ fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
         return fmi2Error;
     if (nvr == 0)
         return fmi2OK;
-    return fmi2_status(fmu_error(inst, "fmi2GetString: unknown value reference %u (no String variables)",
-                     vr ? vr[0] : 0u));
+    return fmi2_status(fmu_error(inst,
+                                 "fmi2GetString: unknown value reference %u (no String variables)",
+                                 vr ? vr[0] : 0u));
 }
 
 static fmu_instance *prepare_set(fmi2Component c, const char *function, unsigned allowed,
@@ -119,6 +120,7 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
         return fmi2Error;
     if (nvr == 0)
         return fmi2OK;
-    return fmi2_status(fmu_error(inst, "fmi2SetString: unknown value reference %u (no String variables)",
-                     vr ? vr[0] : 0u));
+    return fmi2_status(fmu_error(inst,
+                                 "fmi2SetString: unknown value reference %u (no String variables)",
+                                 vr ? vr[0] : 0u));
 }

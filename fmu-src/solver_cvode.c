@@ -17,12 +17,9 @@
 enum { CVODE_RELATIVE_TOLERANCE };
 
 const model_variable fmu_solver_variables[] = {
-    [CVODE_RELATIVE_TOLERANCE] = {"cvode_relative_tolerance", CVODE_RELATIVE_TOLERANCE,
-                                  TYPE_REAL, CAUSALITY_PARAMETER, VARIABILITY_FIXED,
-                                  INITIAL_EXACT, NULL, 1e-6,
-                                  "CVODE relative tolerance, used when fmi2SetupExperiment "
-                                  "defines none",
-                                  -1, NULL, NULL},
+    REAL_PARAMETER(CVODE_RELATIVE_TOLERANCE, "cvode_relative_tolerance", NULL, 1e-6,
+                   "CVODE relative tolerance, used when fmi2SetupExperiment "
+                   "defines none"),
 };
 const size_t fmu_solver_variable_count = sizeof fmu_solver_variables / sizeof *fmu_solver_variables;
 const char fmu_solver_name[] = "cvode";

@@ -13,9 +13,8 @@
 enum { EULER_STEP_SIZE };
 
 const model_variable fmu_solver_variables[] = {
-    [EULER_STEP_SIZE] = {"euler_step_size", EULER_STEP_SIZE, TYPE_REAL, CAUSALITY_PARAMETER,
-                         VARIABILITY_FIXED, INITIAL_EXACT, "s", 1e-4,
-                         "step size of the explicit Euler integrator", -1, NULL, NULL},
+    REAL_PARAMETER(EULER_STEP_SIZE, "euler_step_size", "s", 1e-4,
+                   "step size of the explicit Euler integrator"),
 };
 const size_t fmu_solver_variable_count = sizeof fmu_solver_variables / sizeof *fmu_solver_variables;
 const char fmu_solver_name[] = "euler";
