@@ -159,20 +159,8 @@ static inline const model_variable *fmu_variable(const fmu_instance *inst, unsig
 /* Every variable back to its start value, the states from the parameters, time to zero. */
 void fmu_apply_start_values(fmu_instance *inst);
 
-/* Value of the back-end parameter with index `i` in the back-end's variable table. */
-double fmu_solver_parameter(const fmu_instance *inst, size_t i);
-
-/* Recompute outputs and locals from the current state and inputs; clears outputs_stale. */
-void fmu_refresh_outputs(fmu_instance *inst);
-
-/* The model's event indicators at the instance's time and state, into z. */
-void fmu_event_indicators(const fmu_instance *inst, double *z);
-
 /* The status a model's refusal (model.h) returns; after FMU_FATAL no call is allowed any more. */
 fmu_status fmu_refusal_status(fmu_instance *inst, step_refusal_kind kind);
-
-/* Apply the internal events the back-end marked in inst->fired at time t (changes x), and log them. */
-void fmu_handle_events(fmu_instance *inst, double t, double *x);
 
 /* Apply the event a step stopped at (event_pending) at the instance's time; restarts the
  * integration there. Returns whether a continuous state changed. */

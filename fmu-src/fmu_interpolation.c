@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "fmu_evaluation.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
@@ -61,20 +62,6 @@ void fmu_inputs_begin_step(fmu_instance *inst)
     } else if (inst->has_input_derivatives) {
         memcpy(inst->input_base, inst->values, inst->n_variables * sizeof(double));
         inst->input_motion = INPUTS_POLYNOMIAL;
-    }
-}
-
-void fmu_inputs_follow(fmu_instance *inst, double t)
-{
-    if (inst->input_motion == INPUTS_INTERMEDIATE_UPDATE) {
-        inst->intermediate_update(inst, t);
-        return;
-    }
-    double tau = t - inst->step_start;
-    for (size_t vr = 0; vr < inst->n_variables; ++vr) {
-        const double *d = &inst->input_derivatives[2 * vr];
-        if (d[0] != 0.0 || d[1] != 0.0)
-            inst->values[vr] = inst->input_base[vr] + tau * (d[0] + 0.5 * tau * d[1]);
     }
 }
 

@@ -37,14 +37,4 @@ fmu_status fmu_get_output_derivatives(fmu_instance *inst, const char *function,
 void fmu_inputs_begin_step(fmu_instance *inst);
 void fmu_inputs_end_step(fmu_instance *inst, double t_end);
 
-void fmu_inputs_follow(fmu_instance *inst, double t);
-
-/* The back-ends call this before evaluating the model at time t inside a step: the inputs take
- * their interpolated values at t. Inline: it runs at every right-hand side evaluation. */
-static inline void fmu_inputs_at(fmu_instance *inst, double t)
-{
-    if (inst->input_motion != INPUTS_HELD)
-        fmu_inputs_follow(inst, t);
-}
-
 #endif

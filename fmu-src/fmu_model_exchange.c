@@ -8,6 +8,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "fmu_evaluation.h"
 #include "fmu_log.h"
 
 /* Every model quantity is of order one (model.h): the importer scales its tolerances by this. */

@@ -3,6 +3,7 @@
 #include <math.h>
 
 #include "fmu_interpolation.h"
+#include "fmu_evaluation.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
 

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "fmu_evaluation.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
