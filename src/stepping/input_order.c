@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "component_calls.h"
+#include "energy_residual.h"
 #include "error.h"
 #include "fmu_backend.h"
 #include "fmu_binding.h"
@@ -72,6 +73,13 @@ static int interpolates(const ssx_system *sys, const ssx_component *c)
            c->input_batch[SSX_REAL].n > 0;
 }
 
+/* A co-simulation FMU that holds its inputs, each at its polynomial's mean over the step. */
+static int holds_extrapolated(const ssx_system *sys, const ssx_component *c)
+{
+    return sys->input_order > 0 && sys->extrapolate_held_inputs && !c->can_interpolate_inputs &&
+           c->ops == &ssx_fmu_component_ops && c->input_batch[SSX_REAL].n > 0;
+}
+
 static int prepare_track(ssx_system *sys, struct input_motion *w, int i)
 {
     ssx_component *c = sys->components[i];
@@ -86,6 +94,10 @@ static int prepare_track(ssx_system *sys, struct input_motion *w, int i)
     tr->slope = calloc(n_out, sizeof(double));
     if (tr->slope == NULL) {
         return -1;
+    }
+    if (holds_extrapolated(sys, c)) {
+        c->input_derivatives = calloc(2 * (size_t)c->n_inputs + 1, sizeof(double));
+        return c->input_derivatives == NULL ? -1 : 0;
     }
     if (!interpolates(sys, c)) {
         return 0;
@@ -159,6 +171,11 @@ int input_order_prepare(ssx_system *sys)
     }
     classify(sys, w, position);
     free(position);
+    if (sys->step_control.enabled && sys->step_control.energy &&
+        energy_residual_check(sys) != 0) {
+        input_order_free(sys);
+        return -1;
+    }
     w->order = sys->input_order;
     w->base_step = sys->coupled_step;
     sys->coupled_step = tracked_step;
@@ -339,6 +356,8 @@ void input_order_propagate(ssx_system *sys, ssx_component *c)
         return;
     }
     int held = w->held[c->index];
+    /* inside the step, an FMU that holds its inputs gets each polynomial's mean over it */
+    double mean_at = w->stepping && holds_extrapolated(sys, c) ? w->h : 0.0;
     for (int i = 0; i < c->n_inputs; ++i) {
         double *d = &c->input_derivatives[2 * i];
         int k = c->input_driver[i];
@@ -352,6 +371,7 @@ void input_order_propagate(ssx_system *sys, ssx_component *c)
         c->inputs[i] = cn->scale * y + cn->offset;
         d[0] = cn->scale * d1;
         d[1] = w->order >= 2 ? cn->scale * d2 : 0.0;
+        c->inputs[i] += mean_at * (0.5 * d[0] + mean_at * d[1] / 6.0);
     }
 }
 
@@ -362,6 +382,9 @@ int input_order_write(ssx_system *sys, ssx_component *c)
         return 0;
     }
     component_track *tr = &w->tracks[c->index];
+    if (tr->n_write == 0) {
+        return 0; /* it holds its inputs (extrapolated) */
+    }
     const ssx_port_batch *real = &c->input_batch[SSX_REAL];
     for (size_t at = 0; at < tr->n_write; ++at) {
         int port = real->port[at % real->n];
@@ -376,18 +399,24 @@ int input_order_write(ssx_system *sys, ssx_component *c)
     return 0;
 }
 
-/* After the step: each input at the value its polynomial reached at t + h (what the FMU holds),
- * and the coupling error against the drivers' outputs there. */
+/* After the step: each input at the value its polynomial reached at t + h (what an
+ * interpolating FMU holds; one that holds its inputs kept the mean), and the coupling error
+ * against the drivers' outputs there. */
 static double end_step(ssx_system *sys, struct input_motion *w)
 {
     double h = w->h, error = 0.0;
-    int measured = sys->step_control.enabled;
+    int energy = sys->step_control.enabled && sys->step_control.energy;
+    int measured = sys->step_control.enabled && !energy;
     double rtol = sys->step_control.rtol, atol = sys->step_control.atol;
     for (int ci = 0; ci < sys->n_components; ++ci) {
         ssx_component *c = sys->components[ci];
         if (w->held[ci]) {
             continue;
         }
+        /* from the polynomial's mean (a held input) or its start to its value at t + h */
+        int mean_held = holds_extrapolated(sys, c);
+        double moved = mean_held ? 0.5 : 1.0;
+        double rest = mean_held ? 1.0 / 3.0 : 0.5;
         for (int i = 0; i < c->n_inputs; ++i) {
             int k = c->input_driver[i];
             if (k < 0) {
@@ -395,7 +424,7 @@ static double end_step(ssx_system *sys, struct input_motion *w)
             }
             if (c->input_derivatives != NULL) {
                 const double *d = &c->input_derivatives[2 * i];
-                c->inputs[i] += h * (d[0] + 0.5 * h * d[1]);
+                c->inputs[i] += h * (moved * d[0] + rest * h * d[1]);
             }
             const ssx_connection *cn = &sys->connections[k];
             if (!measured) {
@@ -408,7 +437,7 @@ static double end_step(ssx_system *sys, struct input_motion *w)
         }
     }
     w->stepping = 0;
-    return error;
+    return energy ? energy_residual_error(sys, h) : error;
 }
 
 static int tracked_step(ssx_system *sys, double t, double h)
