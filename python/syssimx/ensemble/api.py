@@ -8,9 +8,11 @@ from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
 from ..errors import ConfigurationError, RunInterrupted
+from .chunk import Experiment
 from .cluster import ensemble_client
 from .main_guard import check_main_guard
-from .member import MemberResult, MemberTask
+from .member import MemberResult
+from .member_list import MemberList
 from .members import ParameterSet, parameter_sets
 from .result import EnsembleResult
 from .runner import MembersInterrupted, run_members
@@ -68,27 +70,28 @@ def _run(function: str, system: Any, sets: list[ParameterSet], t0: float | None,
                                  f"{member_timeout!r}")
     kept = tuple(outputs) if outputs is not None else None
     ensemble = uuid.uuid4().hex  # its members share one System per worker process
-    tasks = [MemberTask(index, values, settings["t0"], settings["tf"], settings["dt"], kept,
-                        member_timeout, ensemble=ensemble) for index, values in enumerate(sets)]
+    experiment = Experiment(settings["t0"], settings["tf"], settings["dt"], kept, member_timeout,
+                            ensemble)
     if client is None and scheduler is None:  # worker processes started from this script
         check_main_guard(function)
     start = time.perf_counter()
-    finished: list[MemberResult] | None = None  # every member's result once run_members ends
+    finished: MemberList | None = None  # every member's result once run_members ends
     try:
         with ensemble_client(client, scheduler, workers) as running_on:
             try:
-                finished = run_members(running_on, build, tasks, member_timeout, progress)
+                finished = run_members(running_on, build, experiment, sets, progress)
             except MembersInterrupted as stop:  # what was finished, on the exception
                 finished = stop.results
                 raise
     except KeyboardInterrupt as stop:  # in the members, or while the cluster starts or closes
         if finished is None:  # no member had started
-            finished = [MemberResult(task.index, task.parameters, "failed",
-                                     "interrupted (Ctrl-C) before it started",
-                                     "KeyboardInterrupt") for task in tasks]
+            finished = MemberList.of([MemberResult(index, values, "failed",
+                                                   "interrupted (Ctrl-C) before it started",
+                                                   "KeyboardInterrupt")
+                                      for index, values in enumerate(sets)])
         partial = EnsembleResult(finished, list(sets[0]), settings["t0"], settings["tf"],
                                  settings["dt"], time.perf_counter() - start)
-        done = sum(member.error_type != "KeyboardInterrupt" for member in finished)
+        done = sum(kind != "KeyboardInterrupt" for kind in finished.field("error_type"))
         raise RunInterrupted(f"the ensemble was interrupted: {done} of {len(finished)} "
                              "members had finished (partial_result holds them)",
                              partial) from stop
