@@ -1,5 +1,5 @@
-/* Calling a component: a Python hook if set, else its kind's built-in; the per-type port
- * batches; freeing it. */
+/* Calling a component: a Python hook if set, else its kind's built-in; preparing and freeing
+ * it. */
 #ifndef SSX_COMPONENT_CALLS_H
 #define SSX_COMPONENT_CALLS_H
 
@@ -19,8 +19,9 @@ int component_initialize(ssx_system *sys, ssx_component *c, double t0);
 int component_record(ssx_system *sys, ssx_component *c, double t);
 int component_can_roll_back(const ssx_component *c);
 
-/* Builds the per-type batches; called when the system initializes. */
-int component_prepare(ssx_component *c);
+/* The snapshot copies of its ports and what the kind builds from them; called when the
+ * system initializes. */
+int component_prepare(ssx_system *sys, ssx_component *c);
 void component_free(ssx_component *c);
 
 #endif

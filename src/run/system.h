@@ -117,7 +117,7 @@ struct ssx_system {
 };
 
 /* Appends a component of the given kind; returns its index, or -1 with the error set. */
-int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
+int system_add_component(ssx_system *sys, const char *name, int can_snapshot,
                          const ssx_component_ops *ops);
 /* Every component's snapshot into slot, or back from it at time t (observers are told). */
 int system_snapshot(ssx_system *sys, int slot);

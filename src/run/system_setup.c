@@ -124,7 +124,7 @@ static void structure_changed(ssx_system *sys)
     sys->initialized = 0;
 }
 
-int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
+int system_add_component(ssx_system *sys, const char *name, int can_snapshot,
                          const ssx_component_ops *ops)
 {
     if (name == NULL || name[0] == '\0') {
@@ -148,27 +148,15 @@ int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int ca
     }
     c->index = sys->n_components;
     c->ops = ops;
-    c->fmu = fmu;
     c->can_snapshot = can_snapshot != 0;
-    for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
-        c->fmu_state_generation[slot] = -1;
-    }
     sys->components[sys->n_components++] = c;
     structure_changed(sys);
     return c->index;
 }
 
-int ssx_add_fmu_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_get_set_state)
-{
-    if (fmu == NULL) {
-        return fail_config(sys, -1, -1, NAN, "component '%s': no FMU given", name ? name : "?");
-    }
-    return system_add_component(sys, name, fmu, can_get_set_state, &ssx_fmu_component_ops);
-}
-
 int ssx_add_python_component(ssx_system *sys, const char *name, int can_snapshot)
 {
-    return system_add_component(sys, name, NULL, can_snapshot, &ssx_python_component_ops);
+    return system_add_component(sys, name, can_snapshot, &ssx_python_component_ops);
 }
 
 int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks)
@@ -291,7 +279,7 @@ int ssx_reset_inputs(ssx_system *sys, const double *starts, size_t n)
     for (int i = 0; i < sys->n_components; ++i) {
         ssx_component *c = sys->components[i];
         for (int k = 0; k < c->n_inputs; ++k, ++start) {
-            if (isinf(*start) || (isnan(*start) && c->fmu == NULL)) {
+            if (isinf(*start) || (isnan(*start) && c->ops->adopt_inputs == NULL)) {
                 return fail_config(sys, i, -1, NAN,
                                    "component '%s': the start value of input %d must be finite "
                                    "(NaN, the FMU's own value, exists for FMU components only)",
@@ -554,21 +542,6 @@ int ssx_set_loop_options(ssx_system *sys, double tolerance, int max_iterations, 
     return 0;
 }
 
-int ssx_set_directional_derivatives(ssx_system *sys, int component, int provided)
-{
-    ssx_component *c = system_component(sys, component);
-    if (c == NULL) {
-        return -1;
-    }
-    if (c->ops->directional_derivative == NULL && provided) {
-        return fail_config(
-            sys, component, -1, NAN,
-            "component '%s' is not an FMU component: it has no directional derivatives", c->name);
-    }
-    c->provides_directional_derivatives = provided != 0;
-    return 0;
-}
-
 int ssx_set_loop_jacobian(ssx_system *sys, ssx_loop_jacobian jacobian)
 {
     if (jacobian != SSX_JACOBIAN_AUTO && jacobian != SSX_JACOBIAN_FINITE_DIFFERENCES) {
@@ -660,29 +633,6 @@ int ssx_set_input_order(ssx_system *sys, int order)
                            "system '%s': the input order is 0, 1 or 2, not %d", sys->name, order);
     }
     sys->input_order = order;
-    return 0;
-}
-
-int ssx_set_interpolation(ssx_system *sys, int component, int can_interpolate_inputs,
-                          int max_output_derivative_order)
-{
-    ssx_component *c = system_component(sys, component);
-    if (c == NULL) {
-        return -1;
-    }
-    if (max_output_derivative_order < 0) {
-        return fail_config(sys, component, -1, NAN,
-                           "component '%s': maxOutputDerivativeOrder %d is negative", c->name,
-                           max_output_derivative_order);
-    }
-    if (c->fmu == NULL && (can_interpolate_inputs || max_output_derivative_order > 0)) {
-        return fail_config(sys, component, -1, NAN,
-                           "component '%s' is not an FMU component: it neither interpolates "
-                           "inputs nor has output derivatives",
-                           c->name);
-    }
-    c->can_interpolate_inputs = can_interpolate_inputs != 0;
-    c->max_output_derivative_order = max_output_derivative_order;
     return 0;
 }
 
