@@ -83,16 +83,16 @@ int component_restore(ssx_system *sys, ssx_component *c, int slot, double t)
     return 0;
 }
 
-int component_handle_events(ssx_system *sys, ssx_component *c, const int *indicators, int n,
-                            double t)
+int component_handle_events(ssx_system *sys, ssx_component *c, const int *sources, int n,
+                            double t_event, double t)
 {
     if (c->hooks.handle_events == NULL) {
         /* built-in: the kind's own reaction (an FMU's declarative restart), if any */
         return c->ops->handle_events != NULL ? c->ops->handle_events(sys, c, t) : 0;
     }
-    return c->hooks.handle_events(c->hooks.user, indicators, n, t) == 0
+    return c->hooks.handle_events(c->hooks.user, sources, n, t_event) == 0
                ? 0
-               : fail_hook(sys, c, t, "handle_events");
+               : fail_hook(sys, c, t_event, "handle_events");
 }
 
 int component_initialize(ssx_system *sys, ssx_component *c, double t0)

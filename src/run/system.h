@@ -25,10 +25,12 @@ typedef struct {
     double offset;
 } ssx_connection;
 
+/* A listener subscribed to an event source (stepping/events/event_source.h). */
 typedef struct {
-    int indicator;
+    ssx_event_source_kind kind;
+    int index; /* the indicator's, or the component's whose own events */
     int listener;
-} ssx_event_link;
+} event_subscription;
 
 typedef struct {
     int first;  /* offset into the schedule order */
@@ -78,9 +80,9 @@ struct ssx_system {
     /* per indicator, set up by the hybrid algorithm at ssx_initialize */
     indicator_state *indicator_states;
 
-    ssx_event_link *event_links;
-    int n_event_links;
-    size_t event_links_capacity;
+    event_subscription *subscriptions;
+    int n_subscriptions;
+    size_t subscriptions_capacity;
 
     int *order;          /* schedule: component indices, group after group */
     ssx_group *groups;

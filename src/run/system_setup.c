@@ -103,7 +103,7 @@ void ssx_system_free(ssx_system *sys)
     free(sys->indicators);
     free(sys->indicator_states);
     master_algorithm_release(sys);
-    free(sys->event_links);
+    free(sys->subscriptions);
     free(sys->order);
     free(sys->groups);
     recording_free(sys->recording);
@@ -409,31 +409,6 @@ int ssx_add_indicator_callback(ssx_system *sys, int component,
                                               .evaluate = evaluate,
                                               .user = user,
                                               .direction = direction});
-}
-
-int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_component)
-{
-    if (indicator < 0 || indicator >= sys->n_indicators) {
-        return fail_config(sys, -1, indicator, NAN,
-                           "unknown indicator index %d (system '%s' has %d)", indicator, sys->name,
-                           sys->n_indicators);
-    }
-    if (system_component(sys, listener_component) == NULL) {
-        return -1;
-    }
-    for (int i = 0; i < sys->n_event_links; ++i) {
-        if (sys->event_links[i].indicator == indicator &&
-            sys->event_links[i].listener == listener_component) {
-            return 0; /* already connected: an event reaches a listener once */
-        }
-    }
-    if (array_reserve((void **)&sys->event_links, &sys->event_links_capacity,
-                      (size_t)sys->n_event_links + 1, sizeof *sys->event_links, 8) != 0) {
-        return fail_config(sys, -1, -1, NAN, "out of memory adding an event connection");
-    }
-    sys->event_links[sys->n_event_links++] =
-        (ssx_event_link){.indicator = indicator, .listener = listener_component};
-    return 0;
 }
 
 int ssx_set_schedule(ssx_system *sys, const int *order, const int *group_sizes,

@@ -7,7 +7,7 @@
 #include "error.h"
 #include "hybrid.h"
 #include "input_order.h"
-#include "own_events.h"
+#include "event_source.h"
 #include "recording.h"
 
 /* Bounds on how much one step may change the next: a controller that jumps further trusts an
@@ -124,7 +124,7 @@ static int accepted_step(ssx_system *sys, double a, double t_next, double *reach
     *reached = t_end;
     *event = 0;
     sys->time = t_end;
-    return own_events_commit(sys, t_end);
+    return event_sources_commit_own(sys, t_end);
 }
 
 int adaptive_step(ssx_system *sys, double t, double t_next)

@@ -4,14 +4,14 @@
 #include "adaptive.h"
 #include "coupling.h"
 #include "hybrid.h"
-#include "own_events.h"
+#include "event_source.h"
 #include "recording.h"
 #include "system.h"
 
 /* No events: one coupled step per communication step. */
 static int plain_step(ssx_system *sys, double t, double t_next)
 {
-    if (coupling_step(sys, t, t_next - t) != 0 || own_events_commit(sys, t_next) != 0) {
+    if (coupling_step(sys, t, t_next - t) != 0 || event_sources_commit_own(sys, t_next) != 0) {
         return -1;
     }
     sys->stats.macro_steps++;

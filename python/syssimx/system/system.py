@@ -16,6 +16,7 @@ from ..bridge.observers import add_observer, remove_observer
 from ..bridge.observers import keep_history as keep_history_samples
 from ..bridge.plan import EnginePlan
 from ..components.base import CoSimComponent
+from ..core.events import OWN_EVENTS
 from ..core.port import PortType
 from ..core.suggest import did_you_mean
 from ..engine import defaults, ffi, lib
@@ -159,7 +160,14 @@ class System:
         same): when the indicator fires, that input's handler runs."""
         src, dst = self._component(connection.src_comp), self._component(connection.dst_comp)
         where = "{}.{} -> {}.{}".format(*connection.key())
-        if connection.src_port not in src.event_indicators:
+        if connection.src_port == OWN_EVENTS:
+            from ..components.fmu import FMUComponent
+
+            if not isinstance(src, FMUComponent):
+                raise ConfigurationError(f"{where}: {src.name!r} handles no events of its own "
+                                         "(FMU components do: an FMI 3.0 FMU's events, a Model "
+                                         "Exchange FMU's state, time and step events)")
+        elif connection.src_port not in src.event_indicators:
             raise ConfigurationError(f"{where}: {src.name!r} has no event indicator "
                                      f"{connection.src_port!r}; indicators: "
                                      f"{sorted(src.event_indicators) or 'none'}")
@@ -209,7 +217,8 @@ class System:
             for event in component.event_indicators:
                 plan.add_indicator(component, event)
         for c in self.event_connections:
-            plan.add_event_connection(c.src_comp, c.src_port, c.dst_comp)
+            plan.add_event_connection(c.src_comp, c.src_port, c.dst_comp,
+                                      own=c.src_port == OWN_EVENTS)
         self._observer_ids = {id(o): add_observer(plan, o) for o in self._observers}
         for component in self.components.values():
             for event in component.self_handled_events():

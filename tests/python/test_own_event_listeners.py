@@ -1,0 +1,113 @@
+"""A component's own events as an event source: listeners subscribed to them.
+
+bouncing_ball_cvode run as Model Exchange bounces at the closed-form times inside its own steps
+(the engine's CVODE finds them as roots); a Python handler subscribed to those events is called
+once per bounce with the bounce's exact time, and a Reinitialize subscribed to them restarts
+another FMU at the communication point that holds the bounce. Master indicators and their
+listeners are unchanged (test_hybrid_events.py, test_declarative_events.py).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from syssimx import (
+    ConfigurationError,
+    EventConnection,
+    FMUComponent,
+    Reinitialize,
+    System,
+    TableSource,
+    fmus,
+)
+from syssimx.engine import ffi, lib
+
+G = 9.81
+DT = 0.01
+
+
+def bounce_times(e: float = 0.8, gap_tol: float = 1e-6, h0: float = 1.0) -> list[float]:
+    """From h0 at rest: v := -e v at h = 0, at rest once a rebound would rise less than
+    gap_tol."""
+    times, t, speed = [], math.sqrt(2 * h0 / G), math.sqrt(2 * G * h0)
+    while True:
+        times.append(t)
+        speed *= e
+        if speed**2 <= 2 * G * gap_tol:
+            return times
+        t += 2 * speed / G
+
+
+def ball(name: str, interface: str = "model-exchange") -> FMUComponent:
+    return FMUComponent(name, fmus.path("bouncing_ball_cvode"), interface=interface,
+                        tolerance=1e-12)
+
+
+def test_a_python_listener_of_own_events_is_called_at_each_bounce_time():
+    calls: list[tuple[list[str], float]] = []
+    b = ball("B")
+    b.add_event_handler("bounced", lambda _c, names, t: calls.append((names, t)))
+    system = System("ball")
+    system.add_component(b)
+    system.add_event_connection(EventConnection.own_events("B", "B", "bounced"))
+    system.initialize(0.0)
+    result = system.run(0.0, 3.0, DT)
+    expected = [t for t in bounce_times() if t < 3.0]
+    assert len(calls) == len(expected) == 6
+    assert all(names == ["own_events"] for names, _ in calls)
+    # CVODE at 1e-12 locates each root within 1e-8 of the closed form (as the own event
+    # records do: test_model_exchange.py); the listener gets the record's time itself
+    assert np.max(np.abs(np.array([t for _, t in calls]) - expected)) < 1e-8
+    assert [t for _, t in calls] == [e.t for e in result.events]
+    # a listener of own events changes nothing the ball does: no rollback, no extra step
+    assert (result.statistics.own_events, result.statistics.state_restores,
+            result.statistics.do_step_calls) == (6, 0, 300)
+
+
+def test_a_reinitialize_listener_restarts_another_fmu_at_the_communication_point():
+    """B2 (a Co-Simulation ball from h0 = 2, no floor reached before t = 0.63) restarts from
+    rest whenever B bounces: at the grid point after each bounce it is back at h0, and falls
+    freely from there."""
+    b, b2 = ball("B"), ball("B2", interface="co-simulation")
+    b2.set_parameters(h0=2.0)
+    b2.add_event_handler("restart", Reinitialize(h0=2.0))
+    system = System("two balls")
+    system.add_component(b)
+    system.add_component(b2)
+    system.add_event_connection(EventConnection.own_events("B", "B2", "restart"))
+    system.initialize(0.0)
+    t, values = system.run(0.0, 1.0, DT)["B2"]
+    first = bounce_times()[0]  # 0.4515...: committed at the step ending 0.46
+    restart = math.ceil(first / DT) * DT
+    fall = t < restart - 1e-9
+    np.testing.assert_allclose(values["h"][fall], 2.0 - G * t[fall] ** 2 / 2, atol=1e-9)
+    after = t > restart - 1e-9
+    np.testing.assert_allclose(values["h"][after], 2.0 - G * (t[after] - restart) ** 2 / 2,
+                               atol=1e-9)
+
+
+def test_own_events_come_only_from_fmu_components():
+    rows = np.array([(0.0, 0.0), (1.0, 1.0)], dtype=[("time", float), ("y", float)])
+    table = TableSource("T", rows)
+    b = ball("B")
+    b.add_event_handler("bounced", lambda *_: None)
+    system = System("s")
+    system.add_component(table)
+    system.add_component(b)
+    with pytest.raises(ConfigurationError,
+                       match=r"T\.own_events -> B\.bounced: 'T' handles no events of its own"):
+        system.add_event_connection(EventConnection.own_events("T", "B", "bounced"))
+
+
+def test_the_engine_names_a_bad_event_source():
+    sys = lib().ssx_system_new(b"s")
+    try:
+        assert lib().ssx_subscribe(sys, 7, 0, 0) == -1
+        assert "unknown event source kind 7" in ffi.string(lib().ssx_last_error(sys).message
+                                                           ).decode()
+        assert lib().ssx_subscribe(sys, lib().SSX_SOURCE_OWN_EVENTS, 3, 0) == -1
+        assert "3" in ffi.string(lib().ssx_last_error(sys).message).decode()
+    finally:
+        lib().ssx_system_free(sys)
