@@ -3,8 +3,9 @@
 bouncing_ball_cvode run as Model Exchange bounces at the closed-form times inside its own steps
 (the engine's CVODE finds them as roots); a Python handler subscribed to those events is called
 once per bounce with the bounce's exact time, and a Reinitialize subscribed to them restarts
-another FMU at the communication point that holds the bounce. Master indicators and their
-listeners are unchanged (test_hybrid_events.py, test_declarative_events.py).
+another FMU at the communication point that holds the bounce. Beside a master indicator
+located by rollback, each bounce still reaches its listener once, and the master's events are
+those without the ball (master indicators: test_hybrid_events.py, test_declarative_events.py).
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from syssimx import (
     ConfigurationError,
     EventConnection,
     FMUComponent,
+    HybridAlgorithm,
     Reinitialize,
     System,
     TableSource,
@@ -111,3 +113,34 @@ def test_the_engine_names_a_bad_event_source():
         assert "3" in ffi.string(lib().ssx_last_error(sys).message).decode()
     finally:
         lib().ssx_system_free(sys)
+
+
+def test_own_events_reach_their_listener_once_while_the_master_locates_its_own():
+    """Beside the seed's pendulum and its wall (a master indicator, located by rollback), the
+    ball's bounces reach the listener once each, at their times, however often the
+    localization steps the ball again; the wall hits are those of the pendulum alone."""
+    calls: list[float] = []
+
+    def seed(with_ball: bool) -> list[float]:
+        pendulum = FMUComponent("P", fmus.path("pendulum_cvode"))
+        pendulum.set_parameters(theta0=0.5, omega0=0.0, cvode_relative_tolerance=1e-10)
+        pendulum.add_event_indicator("wall_hit", variable="theta", direction=-1)
+        pendulum.add_event_handler("omega_invert", Reinitialize(theta0="theta", omega0="-omega"))
+        system = System("wall")
+        system.add_component(pendulum)
+        system.add_event_connection(EventConnection("P", "wall_hit", "P", "omega_invert"))
+        if with_ball:
+            b = ball("B")
+            b.add_event_handler("bounced", lambda _c, _names, t: calls.append(t))
+            system.add_component(b)
+            system.add_event_connection(EventConnection.own_events("B", "B", "bounced"))
+        system.set_algorithm(HybridAlgorithm(tol_time=1e-9, tol_value=1e-9))
+        system.initialize(0.0)
+        result = system.run(0.0, 2.0, 0.05)
+        assert result.statistics.state_restores > 0  # the wall was located by rollback
+        return [e.t for e in result.events if e.component == "P"]
+
+    assert seed(with_ball=True) == seed(with_ball=False)
+    expected = [t for t in bounce_times() if t < 2.0]
+    assert len(calls) == len(expected) == 3
+    assert np.max(np.abs(np.array(calls) - expected)) < 1e-8
