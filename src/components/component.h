@@ -39,7 +39,9 @@ typedef struct ssx_component_ops {
     int (*evaluate_outputs)(ssx_system *sys, ssx_component *c, double t);
     int (*snapshot)(ssx_system *sys, ssx_component *c, int slot);
     int (*restore)(ssx_system *sys, ssx_component *c, int slot, double t);
-    void (*release)(ssx_component *c); /* frees c->data; NULL when the kind keeps none */
+    /* frees what c->data holds, and c->data unless it lies in the component's block
+     * (system_add_component); NULL when the kind keeps none */
+    void (*release)(ssx_component *c);
     /* What callers would otherwise ask the kind for. Each may be NULL: the kind has none. */
     /* Refuses a component the run cannot use (a Python component without its two hooks). */
     int (*validate)(ssx_system *sys, const ssx_component *c);
@@ -96,7 +98,7 @@ struct ssx_component {
     int index;
     const ssx_component_ops *ops;
     ssx_hooks hooks;
-    void *data; /* the kind's own data (a table source's table, an FMU), freed by ops->release */
+    void *data; /* the kind's own data (a table source's table, an FMU's), ops->release frees */
     int can_snapshot;
     int calling_thread_only; /* ssx_set_calling_thread_only */
 

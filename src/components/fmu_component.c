@@ -652,13 +652,10 @@ int ssx_set_restart_handler(ssx_system *sys, int component, const ssx_fmu_experi
     return d->restart != NULL ? 0 : -1;
 }
 
+/* The data itself is in the component's block (ssx_add_fmu_component). */
 static void fmu_release(ssx_component *c)
 {
-    if (c->data != NULL) {
-        fmu_component_data_free(c->data);
-    }
-    free(c->data);
-    c->data = NULL;
+    fmu_component_data_free(c->data);
 }
 
 int ssx_add_fmu_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_get_set_state)
@@ -666,18 +663,11 @@ int ssx_add_fmu_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int c
     if (fmu == NULL) {
         return fail_config(sys, -1, -1, NAN, "component '%s': no FMU given", name ? name : "?");
     }
-    fmu_component_data *d = malloc(sizeof *d);
-    if (d == NULL) {
-        return fail_config(sys, -1, -1, NAN, "out of memory adding component '%s'",
-                           name ? name : "?");
+    int index = system_add_component(sys, name, can_get_set_state, &ssx_fmu_component_ops,
+                                     sizeof(fmu_component_data));
+    if (index >= 0) {
+        fmu_component_data_init(sys->components[index]->data, fmu);
     }
-    fmu_component_data_init(d, fmu);
-    int index = system_add_component(sys, name, can_get_set_state, &ssx_fmu_component_ops);
-    if (index < 0) {
-        free(d);
-        return -1;
-    }
-    sys->components[index]->data = d;
     return index;
 }
 

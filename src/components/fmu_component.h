@@ -20,8 +20,8 @@ typedef struct {
 /* What an FMU component holds besides the ports: c->data of both FMU kinds starts with it
  * (the Model Exchange kind's data embeds it as its first member). */
 typedef struct {
+    /* what every step reads first, together */
     ssx_fmu *fmu; /* borrowed */
-    ssx_component_capabilities capabilities;
     fmu_port_batch output_batch[3]; /* by ssx_value_type, built at initialization */
     fmu_port_batch input_batch[3];
     double *real_scratch;
@@ -30,6 +30,7 @@ typedef struct {
      * (-1: nothing written yet); equal inputs at an unchanged epoch need no Set call */
     double *inputs_written;
     long inputs_written_epoch;
+    ssx_component_capabilities capabilities;
     /* one reused FMU state per snapshot slot, valid for one instance generation */
     void *fmu_state[SSX_SNAPSHOT_SLOTS];
     long fmu_state_generation[SSX_SNAPSHOT_SLOTS];

@@ -765,7 +765,8 @@ int ssx_add_model_exchange_component(ssx_system *sys, const char *name, ssx_fmu 
                            label);
     }
     int index =
-        system_add_component(sys, name, can_get_set_state, &ssx_model_exchange_component_ops);
+        system_add_component(sys, name, can_get_set_state, &ssx_model_exchange_component_ops,
+                             0);
     if (index < 0) {
         me_free(me);
         return -1;

@@ -189,7 +189,7 @@ int ssx_add_table_component(ssx_system *sys, const char *name, const double *tim
     }
     memcpy(table->time, time, n_rows * sizeof *table->time);
     table->n_rows = n_rows;
-    int index = system_add_component(sys, name, 1, &ssx_table_component_ops);
+    int index = system_add_component(sys, name, 1, &ssx_table_component_ops, 0);
     if (index < 0) {
         table_free(table);
         return -1;

@@ -118,9 +118,11 @@ struct ssx_system {
     int stepping_hybrid; /* FMUs are told that a rollback may follow */
 };
 
-/* Appends a component of the given kind; returns its index, or -1 with the error set. */
+/* Appends a component of the given kind, with data_size bytes of zeroed data for the kind in
+ * the same block (c->data; NULL for 0: the kind sets its own); returns its index, or -1 with
+ * the error set. */
 int system_add_component(ssx_system *sys, const char *name, int can_snapshot,
-                         const ssx_component_ops *ops);
+                         const ssx_component_ops *ops, size_t data_size);
 /* Every component's snapshot into slot, or back from it at time t (observers are told). */
 int system_snapshot(ssx_system *sys, int slot);
 int system_restore(ssx_system *sys, int slot, double t);

@@ -125,7 +125,7 @@ static void structure_changed(ssx_system *sys)
 }
 
 int system_add_component(ssx_system *sys, const char *name, int can_snapshot,
-                         const ssx_component_ops *ops)
+                         const ssx_component_ops *ops, size_t data_size)
 {
     if (name == NULL || name[0] == '\0') {
         return fail_config(sys, -1, -1, NAN, "system '%s': a component needs a non-empty name",
@@ -141,13 +141,15 @@ int system_add_component(ssx_system *sys, const char *name, int can_snapshot,
                       (size_t)sys->n_components + 1, sizeof *sys->components, 8) != 0) {
         return fail_config(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
     }
-    ssx_component *c = calloc(1, sizeof *c);
+    /* data read on every step sits next to the ports' pointers, not in a block of its own */
+    ssx_component *c = calloc(1, sizeof *c + data_size);
     if (c == NULL || (c->name = strdup(name)) == NULL) {
         free(c);
         return fail_config(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
     }
     c->index = sys->n_components;
     c->ops = ops;
+    c->data = data_size > 0 ? (void *)(c + 1) : NULL;
     c->can_snapshot = can_snapshot != 0;
     sys->components[sys->n_components++] = c;
     structure_changed(sys);
@@ -156,7 +158,7 @@ int system_add_component(ssx_system *sys, const char *name, int can_snapshot,
 
 int ssx_add_python_component(ssx_system *sys, const char *name, int can_snapshot)
 {
-    return system_add_component(sys, name, can_snapshot, &ssx_python_component_ops);
+    return system_add_component(sys, name, can_snapshot, &ssx_python_component_ops, 0);
 }
 
 int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks)
