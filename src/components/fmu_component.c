@@ -26,6 +26,13 @@ static const char *call_name(const ssx_component *c, ssx_fmu_slot slot)
     return ssx_fmu_function_name(d->fmu, (int)slot);
 }
 
+/* The call in `slot` of c's FMU returned `status` at t. */
+static int fmi_failed(ssx_system *sys, const ssx_component *c, double t, int status,
+                      ssx_fmu_slot slot)
+{
+    return fail_fmi(sys, c, fmu_data(c)->fmu, t, status, call_name(c, slot));
+}
+
 int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t)
 {
     fmu_component_data *d = fmu_data(c);
@@ -36,7 +43,7 @@ int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t)
     if (real->n > 0) {
         int status = ssx_fmu_get_real(d->fmu, real->vr, real->n, d->real_scratch);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, d->fmu, t, status, call_name(c, SLOT_GET_REAL));
+            return fmi_failed(sys, c, t, status, SLOT_GET_REAL);
         }
         for (size_t i = 0; i < real->n; ++i) {
             double value = d->real_scratch[i];
@@ -54,7 +61,7 @@ int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t)
                          : ssx_fmu_get_boolean(d->fmu, b->vr, b->n, d->int_scratch);
         if (!fmi_ok(status)) {
             ssx_fmu_slot slot = type == SSX_INTEGER ? SLOT_GET_INTEGER : SLOT_GET_BOOLEAN;
-            return fail_fmi(sys, c, d->fmu, t, status, call_name(c, slot));
+            return fmi_failed(sys, c, t, status, slot);
         }
         for (size_t i = 0; i < b->n; ++i) {
             int value = d->int_scratch[i];
@@ -117,7 +124,7 @@ static int write_values(ssx_system *sys, ssx_component *c)
         }
         int status = ssx_fmu_set_real(d->fmu, real->vr, real->n, d->real_scratch);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, d->fmu, sys->time, status, call_name(c, SLOT_SET_REAL));
+            return fmi_failed(sys, c, sys->time, status, SLOT_SET_REAL);
         }
     }
     for (int type = SSX_INTEGER; type <= SSX_BOOLEAN; ++type) {
@@ -139,7 +146,7 @@ static int write_values(ssx_system *sys, ssx_component *c)
                          : ssx_fmu_set_boolean(d->fmu, b->vr, b->n, d->int_scratch);
         if (!fmi_ok(status)) {
             ssx_fmu_slot slot = type == SSX_INTEGER ? SLOT_SET_INTEGER : SLOT_SET_BOOLEAN;
-            return fail_fmi(sys, c, d->fmu, sys->time, status, call_name(c, slot));
+            return fmi_failed(sys, c, sys->time, status, slot);
         }
     }
     if (c->n_inputs > 0) {
@@ -220,7 +227,7 @@ static int step_call(ssx_system *sys, ssx_component *c, double t, double t_end,
         return 0;
     }
     if (!fmi_ok(status)) {
-        *done = fail_fmi(sys, c, d->fmu, t, status, call_name(c, SLOT_DO_STEP));
+        *done = fmi_failed(sys, c, t, status, SLOT_DO_STEP);
         return 0;
     }
     ssx_fmu_step_outcome(d->fmu, outcome);
@@ -235,7 +242,7 @@ static int handle_own_event(ssx_system *sys, ssx_component *c, double t_e, int *
     fmu_component_data *d = fmu_data(c);
     int status = ssx_fmu_enter_event_mode(d->fmu);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, d->fmu, t_e, status, call_name(c, SLOT_ENTER_EVENT_MODE));
+        return fmi_failed(sys, c, t_e, status, SLOT_ENTER_EVENT_MODE);
     }
     ssx_fmu_event_info update = {.new_discrete_states_needed = 1};
     for (int round = 0; update.new_discrete_states_needed && !update.terminate_simulation;
@@ -249,14 +256,14 @@ static int handle_own_event(ssx_system *sys, ssx_component *c, double t_e, int *
         }
         status = ssx_fmu_new_discrete_states(d->fmu, &update);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, d->fmu, t_e, status, call_name(c, SLOT_NEW_DISCRETE_STATES));
+            return fmi_failed(sys, c, t_e, status, SLOT_NEW_DISCRETE_STATES);
         }
     }
     *terminate = update.terminate_simulation;
     if (!*terminate) {
         status = ssx_fmu_enter_step_mode(d->fmu);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, d->fmu, t_e, status, call_name(c, SLOT_ENTER_STEP_MODE));
+            return fmi_failed(sys, c, t_e, status, SLOT_ENTER_STEP_MODE);
         }
     }
     return own_event_report(sys, c, SSX_OWN_FMU_EVENT, t_e);
@@ -344,7 +351,7 @@ static int fmu_snapshot(ssx_system *sys, ssx_component *c, int slot)
     }
     int status = ssx_fmu_get_state(d->fmu, &d->fmu_state[slot]);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, d->fmu, sys->time, status, call_name(c, SLOT_GET_STATE));
+        return fmi_failed(sys, c, sys->time, status, SLOT_GET_STATE);
     }
     return 0;
 }
@@ -367,7 +374,7 @@ static int fmu_restore(ssx_system *sys, ssx_component *c, int slot, double t)
     }
     int status = ssx_fmu_set_state(d->fmu, d->fmu_state[slot]);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, d->fmu, t, status, call_name(c, SLOT_SET_STATE));
+        return fmi_failed(sys, c, t, status, SLOT_SET_STATE);
     }
     return 0;
 }
@@ -390,10 +397,10 @@ int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0)
                      : type == SSX_INTEGER ? ssx_fmu_get_integer(d->fmu, &vr, 1, &integer)
                                            : ssx_fmu_get_boolean(d->fmu, &vr, 1, &integer);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, d->fmu, t0, status,
-                            call_name(c, type == SSX_REAL      ? SLOT_GET_REAL
-                                         : type == SSX_INTEGER ? SLOT_GET_INTEGER
-                                                               : SLOT_GET_BOOLEAN));
+            return fmi_failed(sys, c, t0, status,
+                              type == SSX_REAL      ? SLOT_GET_REAL
+                              : type == SSX_INTEGER ? SLOT_GET_INTEGER
+                                                    : SLOT_GET_BOOLEAN);
         }
         c->inputs[k] = type == SSX_REAL ? real : type == SSX_BOOLEAN ? (integer != 0) : integer;
     }
@@ -408,7 +415,8 @@ int fmu_component_directional_derivative(ssx_system *sys, ssx_component *c,
     fmu_component_data *d = fmu_data(c);
     int status = ssx_fmu_get_directional_derivative(d->fmu, outputs, n_outputs, inputs,
                                                     n_inputs, seed, out);
-    return fmi_ok(status) ? 0 : fail_fmi(sys, c, d->fmu, t, status, "fmi2GetDirectionalDerivative");
+    return fmi_ok(status) ? 0
+                          : fail_fmi(sys, c, d->fmu, t, status, "fmi2GetDirectionalDerivative");
 }
 
 const void *fmu_component_instance(const ssx_component *c)
@@ -446,7 +454,7 @@ int fmu_component_output_derivatives(ssx_system *sys, ssx_component *c, double t
     int status = ssx_fmu_get_real_output_derivatives(d->fmu, real->vr, real->n, d->int_scratch,
                                                      d->real_scratch);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, d->fmu, t, status, call_name(c, SLOT_GET_OUTPUT_DERIVATIVES));
+        return fmi_failed(sys, c, t, status, SLOT_GET_OUTPUT_DERIVATIVES);
     }
     for (size_t j = 0; j < real->n; ++j) {
         slope[real->port[j]] = d->real_scratch[j];
@@ -510,8 +518,7 @@ int fmu_component_set_input_derivatives(ssx_system *sys, ssx_component *c, int o
     int status = ssx_fmu_set_real_input_derivatives(d->fmu, d->derivative_vr, n,
                                                     d->derivative_order, d->derivative_values);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, d->fmu, sys->time, status,
-                        call_name(c, SLOT_SET_INPUT_DERIVATIVES));
+        return fmi_failed(sys, c, sys->time, status, SLOT_SET_INPUT_DERIVATIVES);
     }
     return 0;
 }

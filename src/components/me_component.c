@@ -95,6 +95,13 @@ static const char *call_name(const ssx_component *c, ssx_fmu_slot slot)
     return ssx_fmu_function_name(fmu_of(c), (int)slot);
 }
 
+/* The call in `slot` of c's FMU returned `status` at t. */
+static int fmi_failed(ssx_system *sys, const ssx_component *c, double t, int status,
+                      ssx_fmu_slot slot)
+{
+    return fail_fmi(sys, c, fmu_of(c), t, status, call_name(c, slot));
+}
+
 /* ------------------------------------------------------------------ CVODE's callbacks */
 
 static int callback_failed(me_data *me, int status, ssx_fmu_slot slot, double t)
@@ -229,7 +236,7 @@ static int iterate_discrete_states(ssx_system *sys, ssx_component *c, me_data *m
         }
         int status = ssx_fmu_new_discrete_states(fmu_of(c), info);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, fmu_of(c), t, status, call_name(c, SLOT_NEW_DISCRETE_STATES));
+            return fmi_failed(sys, c, t, status, SLOT_NEW_DISCRETE_STATES);
         }
         if (!info->new_discrete_states_needed || info->terminate_simulation) {
             return 0;
@@ -245,7 +252,7 @@ static int read_states(ssx_system *sys, ssx_component *c, me_data *me, double t)
         return 0;
     }
     int status = ssx_fmu_get_continuous_states(fmu_of(c), me->now.x, me->nx);
-    return fmi_ok(status) ? 0 : fail_fmi(sys, c, fmu_of(c), t, status, call_name(c, SLOT_GET_CONTINUOUS_STATES));
+    return fmi_ok(status) ? 0 : fmi_failed(sys, c, t, status, SLOT_GET_CONTINUOUS_STATES);
 }
 
 /* Back to continuous-time mode after event mode: the states the event left and, when they
@@ -255,7 +262,7 @@ static int leave_event_mode(ssx_system *sys, ssx_component *c, me_data *me, doub
 {
     int status = ssx_fmu_enter_continuous_time_mode(fmu_of(c));
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, fmu_of(c), t, status, call_name(c, SLOT_ENTER_CONTINUOUS_TIME_MODE));
+        return fmi_failed(sys, c, t, status, SLOT_ENTER_CONTINUOUS_TIME_MODE);
     }
     if (read_states(sys, c, me, t) != 0) {
         return -1;
@@ -263,7 +270,7 @@ static int leave_event_mode(ssx_system *sys, ssx_component *c, me_data *me, doub
     if (me->nx > 0 && (read_nominals || me->now.event.nominals_changed)) {
         status = ssx_fmu_get_nominals_of_continuous_states(fmu_of(c), me->nominals, me->nx);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, fmu_of(c), t, status, call_name(c, SLOT_GET_NOMINALS_OF_CONTINUOUS_STATES));
+            return fmi_failed(sys, c, t, status, SLOT_GET_NOMINALS_OF_CONTINUOUS_STATES);
         }
         double *atol = N_VGetArrayPointer(me->absolute_tolerance);
         for (size_t i = 0; i < me->nx; ++i) {
@@ -291,7 +298,7 @@ static int check_count(ssx_system *sys, ssx_component *c, double t, ssx_fmu_slot
     size_t n = 0;
     int status = ask(fmu_of(c), &n);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, fmu_of(c), t, status, call_name(c, slot));
+        return fmi_failed(sys, c, t, status, slot);
     }
     if (n != expected) {
         return fail(sys, c->index, -1, t,
@@ -346,7 +353,7 @@ static int handle_event(ssx_system *sys, ssx_component *c, me_data *me, double t
 {
     int status = ssx_fmu_enter_event_mode(fmu_of(c));
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, fmu_of(c), t, status, call_name(c, SLOT_ENTER_EVENT_MODE));
+        return fmi_failed(sys, c, t, status, SLOT_ENTER_EVENT_MODE);
     }
     if (iterate_discrete_states(sys, c, me, t) != 0) {
         return -1;
@@ -411,12 +418,12 @@ static int integrate(ssx_system *sys, ssx_component *c, me_data *me, double stop
     }
     int status = ssx_fmu_set_time(fmu_of(c), *t);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, fmu_of(c), *t, status, call_name(c, SLOT_SET_TIME));
+        return fmi_failed(sys, c, *t, status, SLOT_SET_TIME);
     }
     if (me->nx > 0) {
         status = ssx_fmu_set_continuous_states(fmu_of(c), me->now.x, me->nx);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, fmu_of(c), *t, status, call_name(c, SLOT_SET_CONTINUOUS_STATES));
+            return fmi_failed(sys, c, *t, status, SLOT_SET_CONTINUOUS_STATES);
         }
     }
     return 0;
@@ -495,7 +502,7 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
         int status = ssx_fmu_completed_integrator_step(fmu_of(c), !sys->stepping_hybrid,
                                                        &enter_event_mode, &terminate);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, fmu_of(c), now, status, call_name(c, SLOT_COMPLETED_INTEGRATOR_STEP));
+            return fmi_failed(sys, c, now, status, SLOT_COMPLETED_INTEGRATOR_STEP);
         }
         if (terminate) {
             return terminated(sys, c, now, t_end, dt);
@@ -544,7 +551,7 @@ static int me_write_inputs(ssx_system *sys, ssx_component *c)
     }
     int status = ssx_fmu_enter_event_mode(fmu_of(c));
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, fmu_of(c), t, status, call_name(c, SLOT_ENTER_EVENT_MODE));
+        return fmi_failed(sys, c, t, status, SLOT_ENTER_EVENT_MODE);
     }
     if (ssx_fmu_component_ops.write_inputs(sys, c) != 0 ||
         iterate_discrete_states(sys, c, me, t) != 0) {
@@ -608,7 +615,7 @@ static int me_restore(ssx_system *sys, ssx_component *c, int slot, double t)
     }
     /* the engine's copy is the state: the FMU holds it whatever its own state kept */
     int status = ssx_fmu_set_continuous_states(fmu_of(c), me->now.x, me->nx);
-    return fmi_ok(status) ? 0 : fail_fmi(sys, c, fmu_of(c), t, status, call_name(c, SLOT_SET_CONTINUOUS_STATES));
+    return fmi_ok(status) ? 0 : fmi_failed(sys, c, t, status, SLOT_SET_CONTINUOUS_STATES);
 }
 
 /* ------------------------------------------------------------------ life cycle */

@@ -442,7 +442,8 @@ static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work
             s->fire_count++;
         }
         sys->stats.events++;
-        if (event_sources_notify_indicators(sys, w->fired, w->listened, b) != 0 || coupling_settle(sys, b) != 0 ||
+        if (event_sources_notify_indicators(sys, w->fired, w->listened, b) != 0 ||
+            coupling_settle(sys, b) != 0 ||
             record_sample(sys, b, micro + 1) != 0 || indicators_evaluate(sys, b) != 0 ||
             settle_signs(sys, b, br, w) != 0 || add_event_records(sys, b, micro, br, w) != 0) {
             return -1;
