@@ -45,11 +45,16 @@ typedef struct {
     double model_exchange_tolerance;
     int threads; /* threads that step FMU components (ssx_set_threads) */
     int input_order; /* ssx_set_input_order */
+    int extrapolate_held_inputs; /* ssx_set_extrapolate_held_inputs */
     /* ssx_set_step_control (off by default) */
     double step_rtol;
     double step_atol;
     double step_min;
     double step_safety;
+    double step_min_change;
+    double step_max_change;
+    double step_proportional_gain;
+    double step_integral_gain;
 } ssx_defaults;
 void ssx_get_defaults(ssx_defaults *out);
 
@@ -472,9 +477,17 @@ int ssx_set_loop_jacobian(ssx_system *sys, ssx_loop_jacobian jacobian);
  * between a Gauss-Seidel driver's outputs at t and t + h when it steps first, else extrapolated
  * from t with the driver's output derivatives where it declares maxOutputDerivativeOrder >= 1,
  * or from the outputs at the last communication points. Inputs of FMUs that cannot
- * interpolate, and of algebraic loop members, are held. Applies at the next ssx_initialize. */
+ * interpolate (unless ssx_set_extrapolate_held_inputs), and of algebraic loop members, are
+ * held. Applies at the next ssx_initialize. */
 enum { SSX_MAX_INPUT_ORDER = 2 };
 int ssx_set_input_order(ssx_system *sys, int order);
+/* With input order 1 or 2, the inputs an FMU holds over a step (it cannot interpolate) may be
+ * extrapolated too: each is set, for the whole step, to the mean over the step of the polynomial
+ * the interpolating FMUs follow (the value at t + h/2 for order 1). A held input then errs by
+ * O(h^2) in its integral over the step instead of O(h), and the coupling is second order in h
+ * (order 2 shrinks the error further, the order stays 2). Off by default: an extrapolation may
+ * overshoot where a signal turns sharply. Applies at the next ssx_initialize. */
+int ssx_set_extrapolate_held_inputs(ssx_system *sys, int extrapolate);
 /* What an FMU component's modelDescription declares: canInterpolateInputs and
  * maxOutputDerivativeOrder; both off until set. */
 int ssx_set_interpolation(ssx_system *sys, int component, int can_interpolate_inputs,
@@ -486,9 +499,15 @@ int ssx_set_interpolation(ssx_system *sys, int component, int can_interpolate_in
  * step (every component must save and restore its state); without rollback the step is kept
  * and only the next ones shrink (non-iterative, as libcosim's ECCO). The next step is the
  * last times safety * error^(-1/(order + 1)), within [min_step, max_step] (max_step 0: no bound
- * but the grid) and at most 5 times longer; initial_step <= 0 starts with a tenth of the grid
- * step times max(rtol, atol)^(1/(order + 1)). Events are still located to tol_time inside the
- * steps. Applies at the next ssx_initialize. */
+ * but the grid) and between min_change and max_change times the last; initial_step <= 0 starts
+ * with a tenth of the grid step times max(rtol, atol)^(1/(order + 1)). Events are still located
+ * to tol_time inside the steps. Applies at the next ssx_initialize.
+ *
+ * energy = 1 measures instead the energy residual of the power bonds (ssx_set_power_bonds), as
+ * libcosim's ECCO algorithm does (Sadjina et al.): per bond, the power each side computes, its
+ * input times its output, differs by dP; the error is the root mean square over the bonds of
+ * |dP| h / (atol + rtol max(|P|) h), and a PI controller chooses the next step: the last times
+ * safety * error^-(integral_gain + proportional_gain) * previous error^proportional_gain. */
 typedef struct {
     int enabled;
     int rollback;
@@ -498,8 +517,18 @@ typedef struct {
     double max_step;
     double initial_step;
     double safety;
+    double min_change; /* 0 < min_change < 1 < max_change */
+    double max_change;
+    int energy;
+    double proportional_gain; /* >= 0, energy only */
+    double integral_gain;     /* > 0, energy only */
 } ssx_step_control;
 int ssx_set_step_control(ssx_system *sys, const ssx_step_control *control);
+/* The power bonds of the energy error: bond k joins input ends[4k + 1] of component ends[4k]
+ * (a force or torque, say) and input ends[4k + 3] of component ends[4k + 2] (the velocity), each
+ * driven by a Real output of the other component. Replaces the bonds set before; checked at
+ * ssx_initialize. */
+int ssx_set_power_bonds(ssx_system *sys, int n_bonds, const int *ends);
 
 /* Hybrid mode is active whenever an indicator exists. Two firings of one indicator closer than
  * zeno_min_interval are chattering (a Zeno error). zeno_min_interval <= 0: closer than ten times

@@ -93,7 +93,10 @@ struct ssx_system {
     int threads;                    /* ssx_set_threads */
     struct parallel_plan *parallel; /* built at ssx_initialize when threads > 1 */
     int input_order;                /* ssx_set_input_order */
+    int extrapolate_held_inputs;    /* ssx_set_extrapolate_held_inputs */
     ssx_step_control step_control;  /* ssx_set_step_control */
+    int *power_bonds;               /* ssx_set_power_bonds: 4 ints per bond */
+    int n_power_bonds;
     struct input_motion *input_motion;      /* input_order.h, at ssx_initialize */
     struct adaptive_workspace *adaptive;    /* adaptive.h, at ssx_initialize */
     /* chosen at ssx_initialize */

@@ -37,10 +37,15 @@ void ssx_get_defaults(ssx_defaults *out)
                           .model_exchange_tolerance = 1e-5,
                           .threads = 1,
                           .input_order = 0,
+                          .extrapolate_held_inputs = 0,
                           .step_rtol = 1e-4,
                           .step_atol = 1e-4,
                           .step_min = 1e-9,
-                          .step_safety = 0.9};
+                          .step_safety = 0.9,
+                          .step_min_change = 0.2,
+                          .step_max_change = 5.0,
+                          .step_proportional_gain = 0.2,
+                          .step_integral_gain = 0.15};
 }
 
 ssx_system *ssx_system_new(const char *name)
@@ -70,13 +75,19 @@ ssx_system *ssx_system_new(const char *name)
                                        .locator = d.locator,
                                        .zeno_min_interval = d.zeno_min_interval};
     sys->input_order = d.input_order;
+    sys->extrapolate_held_inputs = d.extrapolate_held_inputs;
     sys->step_control = (ssx_step_control){.enabled = 0,
                                            .rollback = 1,
                                            .rtol = d.step_rtol,
                                            .atol = d.step_atol,
                                            .min_step = d.step_min,
                                            .max_step = 0.0,
-                                           .safety = d.step_safety};
+                                           .safety = d.step_safety,
+                                           .min_change = d.step_min_change,
+                                           .max_change = d.step_max_change,
+                                           .energy = 0,
+                                           .proportional_gain = d.step_proportional_gain,
+                                           .integral_gain = d.step_integral_gain};
     sys->termination.component = -1;
     sys->recording = recording_new(d.output_interval);
     if (sys->recording == NULL) {
@@ -95,6 +106,7 @@ void ssx_system_free(ssx_system *sys)
     }
     input_order_free(sys); /* before the components whose inputs it moves */
     adaptive_free(sys);
+    free(sys->power_bonds);
     for (int i = 0; i < sys->n_components; ++i) {
         component_free(sys->components[i]);
     }
@@ -613,6 +625,12 @@ int ssx_set_input_order(ssx_system *sys, int order)
     return 0;
 }
 
+int ssx_set_extrapolate_held_inputs(ssx_system *sys, int extrapolate)
+{
+    sys->extrapolate_held_inputs = extrapolate != 0;
+    return 0;
+}
+
 int ssx_set_step_control(ssx_system *sys, const ssx_step_control *control)
 {
     if (control == NULL) {
@@ -632,6 +650,41 @@ int ssx_set_step_control(ssx_system *sys, const ssx_step_control *control)
                            "rtol=%g atol=%g min_step=%g max_step=%g safety=%g",
                            sys->name, sc.rtol, sc.atol, sc.min_step, sc.max_step, sc.safety);
     }
+    if (sc.enabled && !(sc.min_change > 0.0 && sc.min_change < 1.0 && sc.max_change > 1.0 &&
+                        isfinite(sc.max_change))) {
+        return fail_config(sys, -1, -1, NAN,
+                           "system '%s': step control needs 0 < min_change < 1 < max_change "
+                           "(finite); got min_change=%g max_change=%g",
+                           sys->name, sc.min_change, sc.max_change);
+    }
+    if (sc.enabled && sc.energy &&
+        !(sc.proportional_gain >= 0.0 && sc.integral_gain > 0.0 &&
+          isfinite(sc.proportional_gain) && isfinite(sc.integral_gain))) {
+        return fail_config(sys, -1, -1, NAN,
+                           "system '%s': the energy step control needs proportional_gain >= 0 "
+                           "and integral_gain > 0 (finite); got %g and %g",
+                           sys->name, sc.proportional_gain, sc.integral_gain);
+    }
     sys->step_control = sc;
+    return 0;
+}
+
+int ssx_set_power_bonds(ssx_system *sys, int n_bonds, const int *ends)
+{
+    if (n_bonds < 0 || (n_bonds > 0 && ends == NULL)) {
+        return fail_config(sys, -1, -1, NAN, "system '%s': %d power bonds without their ends",
+                           sys->name, n_bonds);
+    }
+    int *copy = NULL;
+    if (n_bonds > 0) {
+        copy = malloc(4 * (size_t)n_bonds * sizeof *copy);
+        if (copy == NULL) {
+            return fail_config(sys, -1, -1, NAN, "out of memory setting the power bonds");
+        }
+        memcpy(copy, ends, 4 * (size_t)n_bonds * sizeof *copy);
+    }
+    free(sys->power_bonds);
+    sys->power_bonds = copy;
+    sys->n_power_bonds = n_bonds;
     return 0;
 }

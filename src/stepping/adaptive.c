@@ -10,15 +10,12 @@
 #include "event_source.h"
 #include "recording.h"
 
-/* Bounds on how much one step may change the next: a controller that jumps further trusts an
- * error estimate beyond what one step tells. */
-#define MAX_GROWTH 5.0
-#define MAX_SHRINK 0.2
 /* Errors below this count as this small: the growth factor stays finite. */
 #define SMALLEST_ERROR 1e-10
 
 struct adaptive_workspace {
     double proposed; /* the next step's length; 0 before the first */
+    double previous_error; /* of the last accepted step (the PI controller's); 0 before one */
 };
 
 int adaptive_prepare(ssx_system *sys, void **workspace)
@@ -40,13 +37,23 @@ void adaptive_free(ssx_system *sys)
     sys->adaptive = NULL;
 }
 
-/* The factor the error asks of the step: the coupling error of held inputs grows like h, of
- * order-p inputs like h^(p + 1). */
+/* The factor the error asks of the step, within [min_change, max_change] (a controller that
+ * jumps further trusts an error estimate beyond what one step tells). The coupling error of held
+ * inputs grows like h, of order-p inputs like h^(p + 1); the energy residual is under ECCO's PI
+ * controller, which also weighs the error's trend since the last accepted step. */
 static double step_factor(const ssx_system *sys, double error)
 {
-    double exponent = -1.0 / (double)(sys->input_order + 1);
-    double factor = sys->step_control.safety * pow(fmax(error, SMALLEST_ERROR), exponent);
-    return fmin(MAX_GROWTH, fmax(MAX_SHRINK, factor));
+    const ssx_step_control *sc = &sys->step_control;
+    double e = fmax(error, SMALLEST_ERROR);
+    double factor;
+    if (sc->energy) {
+        double previous = sys->adaptive->previous_error > 0.0 ? sys->adaptive->previous_error : e;
+        factor = sc->safety * pow(e, -(sc->integral_gain + sc->proportional_gain)) *
+                 pow(previous, sc->proportional_gain);
+    } else {
+        factor = sc->safety * pow(e, -1.0 / (double)(sys->input_order + 1));
+    }
+    return fmin(sc->max_change, fmax(sc->min_change, factor));
 }
 
 /* Without an initial step: a tenth of the grid interval, shortened as the tolerance asks of
@@ -113,6 +120,7 @@ static int accepted_step(ssx_system *sys, double a, double t_next, double *reach
     sys->stats.macro_steps++;
     count_accepted(sys, h, error);
     double factor = step_factor(sys, error);
+    w->previous_error = fmax(error, SMALLEST_ERROR);
     /* a step the grid cut short says nothing about how long the next may grow */
     if (!(cut_by_grid && factor >= 1.0)) {
         w->proposed = clamp_step(sc, h * factor);

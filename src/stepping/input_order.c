@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "component_calls.h"
+#include "energy_residual.h"
 #include "error.h"
 #include "input_links.h"
 
@@ -18,8 +19,9 @@ typedef struct {
     double *slope;       /* output derivatives at the step's start, told by the component */
     int has_slope;
     /* per input its first and second time derivative over the coming step; NULL while the
-     * component's inputs are held */
+     * component's inputs are held at their value at the step's start */
     double *input_derivatives;
+    int holds_mean; /* it cannot interpolate: its inputs are held at the polynomials' mean */
 } component_track;
 
 struct input_motion {
@@ -91,6 +93,14 @@ static int tells_output_derivatives(const ssx_component *c)
            c->ops->capabilities(c).max_output_derivative_order >= 1;
 }
 
+/* A co-simulation FMU that holds its inputs, each at its polynomial's mean over the step. */
+static int holds_extrapolated(const ssx_system *sys, const ssx_component *c)
+{
+    return sys->input_order > 0 && sys->extrapolate_held_inputs &&
+           c->ops->set_input_derivatives != NULL &&
+           !c->ops->capabilities(c).can_interpolate_inputs && has_real_input(c);
+}
+
 static int prepare_track(ssx_system *sys, struct input_motion *w, int i)
 {
     ssx_component *c = sys->components[i];
@@ -106,7 +116,8 @@ static int prepare_track(ssx_system *sys, struct input_motion *w, int i)
     if (tr->slope == NULL) {
         return -1;
     }
-    if (!interpolates(sys, c)) {
+    tr->holds_mean = holds_extrapolated(sys, c);
+    if (!tr->holds_mean && !interpolates(sys, c)) {
         return 0;
     }
     tr->input_derivatives = calloc(2 * (size_t)c->n_inputs + 1, sizeof(double));
@@ -161,6 +172,11 @@ int input_order_prepare(ssx_system *sys)
     }
     classify(sys, w, position);
     free(position);
+    if (sys->step_control.enabled && sys->step_control.energy &&
+        energy_residual_check(sys) != 0) {
+        input_order_free(sys);
+        return -1;
+    }
     w->order = sys->input_order;
     w->base_step = sys->coupled_step;
     sys->coupled_step = tracked_step;
@@ -331,7 +347,10 @@ void input_order_propagate(ssx_system *sys, ssx_component *c)
         return;
     }
     int held = w->held[c->index];
-    double *derivatives = w->tracks[c->index].input_derivatives;
+    const component_track *tr = &w->tracks[c->index];
+    double *derivatives = tr->input_derivatives;
+    /* inside the step, an FMU that holds its inputs gets each polynomial's mean over it */
+    double mean_at = w->stepping && tr->holds_mean ? w->h : 0.0;
     for (int i = 0; i < c->n_inputs; ++i) {
         double *d = &derivatives[2 * i];
         int k = c->input_driver[i];
@@ -345,6 +364,7 @@ void input_order_propagate(ssx_system *sys, ssx_component *c)
         c->inputs[i] = cn->scale * y + cn->offset;
         d[0] = cn->scale * d1;
         d[1] = w->order >= 2 ? cn->scale * d2 : 0.0;
+        c->inputs[i] += mean_at * (0.5 * d[0] + mean_at * d[1] / 6.0);
     }
 }
 
@@ -354,22 +374,31 @@ int input_order_write(ssx_system *sys, ssx_component *c)
     if (w == NULL || w->tracks[c->index].input_derivatives == NULL) {
         return 0;
     }
-    return c->ops->set_input_derivatives(sys, c, w->order,
-                                         w->tracks[c->index].input_derivatives);
+    component_track *tr = &w->tracks[c->index];
+    if (tr->holds_mean) {
+        return 0; /* it holds its inputs (extrapolated) */
+    }
+    return c->ops->set_input_derivatives(sys, c, w->order, tr->input_derivatives);
 }
 
-/* After the step: each input at the value its polynomial reached at t + h (what the FMU holds),
- * and the coupling error against the drivers' outputs there. */
+/* After the step: each input at the value its polynomial reached at t + h (what an
+ * interpolating FMU holds; one that holds its inputs kept the mean), and the coupling error
+ * against the drivers' outputs there. */
 static double end_step(ssx_system *sys, struct input_motion *w)
 {
     double h = w->h, error = 0.0;
-    int measured = sys->step_control.enabled;
+    int energy = sys->step_control.enabled && sys->step_control.energy;
+    int measured = sys->step_control.enabled && !energy;
     double rtol = sys->step_control.rtol, atol = sys->step_control.atol;
     for (int ci = 0; ci < sys->n_components; ++ci) {
         ssx_component *c = sys->components[ci];
         if (w->held[ci]) {
             continue;
         }
+        /* from the polynomial's mean (a held input) or its start to its value at t + h */
+        int mean_held = w->tracks[ci].holds_mean;
+        double moved = mean_held ? 0.5 : 1.0;
+        double rest = mean_held ? 1.0 / 3.0 : 0.5;
         for (int i = 0; i < c->n_inputs; ++i) {
             int k = c->input_driver[i];
             if (k < 0) {
@@ -377,7 +406,7 @@ static double end_step(ssx_system *sys, struct input_motion *w)
             }
             if (w->tracks[ci].input_derivatives != NULL) {
                 const double *d = &w->tracks[ci].input_derivatives[2 * i];
-                c->inputs[i] += h * (d[0] + 0.5 * h * d[1]);
+                c->inputs[i] += h * (moved * d[0] + rest * h * d[1]);
             }
             const ssx_connection *cn = &sys->connections[k];
             if (!measured) {
@@ -390,7 +419,7 @@ static double end_step(ssx_system *sys, struct input_motion *w)
         }
     }
     w->stepping = 0;
-    return error;
+    return energy ? energy_residual_error(sys, h) : error;
 }
 
 static int tracked_step(ssx_system *sys, double t, double h)

@@ -7,7 +7,9 @@
  * with derivatives from the driver's output derivatives where it declares
  * maxOutputDerivativeOrder >= 1, else from the coupling history (the outputs at the last
  * communication points; an event starts it again). Inputs of an FMU that cannot interpolate are
- * held, as are those of an algebraic loop's members (the loop is solved at t + h).
+ * held: at their value at t, or (ssx_set_extrapolate_held_inputs) at the mean of the same
+ * polynomial over the step. Those of an algebraic loop's members are held at t (the loop is
+ * solved at t + h).
  *
  * With a workspace, each coupled step also measures the coupling error: for every connection
  * the difference between the driver's output at t + h and the value the input reached there,

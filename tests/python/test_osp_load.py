@@ -78,9 +78,9 @@ ECCO = """<EccoConfiguration>
 </OspSystemStructure>"""
 
 
-def test_ecco_adapts_the_step_to_the_coupling_error_with_one_warning(tmp_path: Path) -> None:
+def test_ecco_adapts_the_step_to_the_energy_residual_of_the_power_bonds(tmp_path: Path) -> None:
     """<Algorithm>ecco runs Jacobi with non-iterative step control bounded by the
-    <EccoConfiguration>; ECCO's energy-residual controller is named as not read."""
+    <EccoConfiguration>, measuring the energy residual of the power bond `right`."""
     path = write_osp(tmp_path, structure("ecco").replace("</OspSystemStructure>", ECCO))
     imported, caught = read_quietly(path)
     assert imported.algorithm == "ecco" and imported.experiment.step_size == 0.01
@@ -90,16 +90,26 @@ def test_ecco_adapts_the_step_to_the_coupling_error_with_one_warning(tmp_path: P
     assert type(imported.system.algorithm) is JacobiAlgorithm and not control.rollback
     assert (control.safety, control.initial_step, control.min_step, control.max_step,
             control.rtol) == (0.99, 1e-4, 1e-5, 0.01, 1e-6)
-    assert len(caught) == 1 and caught[0].startswith(
-        "<Algorithm> ecco's energy-residual PI controller is not supported and is ignored: ")
-    assert "ProportionalGain" in caught[0]
+    assert control.error == "energy"
+    assert control.power_bonds == ((("Spring", "omega2"), ("P2", "torque")),)
+    assert caught == []
     system = imported.system
     system.initialize(0.0)
     statistics = system.run(0.0, 0.1, 0.01).statistics
     # the steps adapted inside the grid: more accepted steps than grid intervals, none rejected
     assert statistics.accepted_steps > 10 and statistics.rejected_steps == 0
     assert statistics.smallest_step < statistics.largest_step <= 0.01 + 1e-12
-    with pytest.raises(OSPError, match=r"<Algorithm> ecco's .* is not supported \(strict\)"):
+    read(path, strict=True)  # nothing unsupported
+
+
+def test_ecco_without_power_bonds_controls_the_coupling_error_with_one_warning(
+        tmp_path: Path) -> None:
+    text = structure("ecco").replace("</OspSystemStructure>", ECCO)
+    path = write_osp(tmp_path, text.replace(' powerBond="right"', ""))
+    imported, caught = read_quietly(path)
+    assert imported.system.algorithm.step_control.error == "coupling"
+    assert len(caught) == 1 and caught[0].startswith("<Algorithm> ecco without power bonds")
+    with pytest.raises(OSPError, match=r"ecco without power bonds is not supported \(strict\)"):
         read(path, strict=True)
 
 

@@ -35,6 +35,9 @@ def add_command(commands: Any) -> argparse.ArgumentParser:
     run.add_argument("--input-order", type=int, default=None, choices=(0, 1, 2),
                      help="hold inputs over a step (0) or pass their first (1) or second (2) "
                           "derivatives to FMUs that interpolate inputs")
+    run.add_argument("--extrapolate-held-inputs", action="store_true", default=None,
+                     help="with --input-order 1 or 2, set the held inputs of FMUs that cannot "
+                          "interpolate to their extrapolation's mean over the step")
     run.add_argument("--step-tolerance", type=float, default=None, metavar="TOL",
                      help="choose the communication steps by the coupling error, with rtol = "
                           "atol = TOL (rollback); the grid dt stays the output grid")
@@ -116,12 +119,13 @@ def _event_summary(events: Any) -> str:
 
 def _algorithm_options_given(args: argparse.Namespace) -> bool:
     return any(getattr(args, name) is not None
-               for name in ("algorithm", "threads", "input_order", "step_tolerance"))
+               for name in ("algorithm", "threads", "input_order", "extrapolate_held_inputs",
+                            "step_tolerance"))
 
 
 def _choose_algorithm(system: Any, args: argparse.Namespace) -> None:
-    """--algorithm replaces the description's algorithm; --threads, --input-order and
-    --step-tolerance set its coupling's."""
+    """--algorithm replaces the description's algorithm; --threads, --input-order,
+    --extrapolate-held-inputs and --step-tolerance set its coupling's."""
     if not _algorithm_options_given(args):
         return
     algorithm = algorithm_class(args.algorithm)() if args.algorithm is not None \
@@ -131,6 +135,8 @@ def _choose_algorithm(system: Any, args: argparse.Namespace) -> None:
         coupling.threads = args.threads
     if args.input_order is not None:
         coupling.input_order = args.input_order
+    if args.extrapolate_held_inputs is not None:
+        coupling.extrapolate_held_inputs = args.extrapolate_held_inputs
     if args.step_tolerance is not None:
         from ..system.algorithms import StepControl
 

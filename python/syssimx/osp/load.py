@@ -10,7 +10,7 @@ from ..ssp.unsupported import Unsupported
 from ..system.system import System
 from .build import PowerBond, build
 from .document import read_document, structure_file
-from .ecco import IGNORED_ECCO_SETTINGS, ecco_algorithm
+from .ecco import ecco_algorithm
 from .errors import OSPError, OSPWarning
 
 
@@ -40,14 +40,14 @@ def read(path: str | Path, strict: bool = False) -> OSPImported:
     unsupported = Unsupported(strict, OSPError, OSPWarning)
     for element in document.ignored:
         unsupported.warn(f"the element {element.split(' ')[0]}", f"{document.path}: {element}")
-    if document.algorithm == "ecco":
-        unsupported.warn("<Algorithm> ecco's energy-residual PI controller",
-                         f"{document.path}: the steps adapt to the coupling error without "
-                         f"rollback (StepControl(rollback=False)) within MinimumStepSize and "
-                         f"MaximumStepSize; {', '.join(IGNORED_ECCO_SETTINGS)} are not read")
     system, bonds = build(document, unsupported)
     if document.algorithm == "ecco":
-        system.set_algorithm(ecco_algorithm(document.ecco))
+        if not bonds:
+            unsupported.warn("<Algorithm> ecco without power bonds",
+                             f"{document.path}: no connection has a powerBond, so the steps "
+                             "adapt to the coupling error of every connection instead of an "
+                             "energy residual")
+        system.set_algorithm(ecco_algorithm(document.ecco, bonds, str(document.path)))
     return OSPImported(system, Experiment(document.start_time, document.end_time,
                                           document.base_step), document.algorithm, bonds,
                        document.ecco)

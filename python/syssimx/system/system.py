@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import math
 import numbers
@@ -23,7 +24,7 @@ from ..engine import defaults, ffi, lib
 from ..errors import ConfigurationError, RunInterrupted, SysSimXWarning
 from ..graph.analysis import analyze
 from ..units import conversion
-from .algorithms import Algorithm, HybridAlgorithm, JacobiAlgorithm
+from .algorithms import Algorithm, HybridAlgorithm, JacobiAlgorithm, StepControl
 from .algorithms.coupling import default_coupling, loop_jacobians
 from .algorithms.hybrid import log_events
 from .connection import Connection, EventConnection
@@ -280,10 +281,16 @@ class System:
             plan.sys, loop_jacobians()[coupling.loop_jacobian]), "loop Jacobian")
         plan.check(lib().ssx_set_threads(plan.sys, coupling.threads), "threads")
         plan.check(lib().ssx_set_input_order(plan.sys, coupling.input_order), "input order")
-        if coupling.step_control is not None:
-            plan.check(lib().ssx_set_step_control(plan.sys,
-                                                  coupling.step_control.engine_struct()),
-                       "step control")
+        plan.check(lib().ssx_set_extrapolate_held_inputs(
+            plan.sys, int(coupling.extrapolate_held_inputs)), "held input extrapolation")
+        # None switches off a step control an earlier run of this plan set
+        control = coupling.step_control.engine_struct() if coupling.step_control is not None \
+            else ffi.new("ssx_step_control *", {"enabled": 0})
+        plan.check(lib().ssx_set_step_control(plan.sys, control), "step control")
+        ends = _power_bond_ends(plan, coupling.step_control) \
+            if coupling.step_control is not None else []
+        plan.check(lib().ssx_set_power_bonds(plan.sys, len(ends) // 4,
+                                             ffi.new("int[]", ends or [0])), "power bonds")
         if isinstance(algorithm, HybridAlgorithm):
             plan.check(lib().ssx_set_hybrid_options(
                 plan.sys, algorithm.tol_time, algorithm.tol_value, algorithm.max_iter,
@@ -517,13 +524,34 @@ class System:
             component.reset()
 
 
+def _power_bond_ends(plan: EnginePlan, control: StepControl) -> list[int]:
+    """The engine's (component, input) indices of the bonds' ends, four per bond."""
+    ends = []
+    for bond in control.power_bonds:
+        for component, port in bond:
+            if component not in plan.index or port not in plan.inputs[component]:
+                raise ConfigurationError(
+                    f"step_control.power_bonds: {component}.{port} is not an input of this "
+                    f"system; components: {sorted(plan.index)}")
+            ends += [plan.index[component], plan.inputs[component].index(port)]
+    return ends
+
+
 def _options(algorithm: Algorithm) -> tuple[Any, ...]:
     """An algorithm's options as values (its coupling's included): equal, the engine holds
     them already."""
     coupling = algorithm.coupling if isinstance(algorithm, HybridAlgorithm) else None
-    return (type(algorithm), *(v for v in vars(algorithm).values() if type(v) in _OPTION_TYPES),
+    return (type(algorithm),
+            *(_option_value(v) for v in vars(algorithm).values()
+              if type(v) in _OPTION_TYPES or isinstance(v, StepControl)),
             type(coupling),
-            *(vars(coupling).values() if coupling is not None else ()))
+            *(_option_value(v) for v in (vars(coupling).values() if coupling is not None
+                                         else ())))
+
+
+def _option_value(value: Any) -> Any:
+    """A StepControl as its values at this moment (it may be changed in place later)."""
+    return dataclasses.astuple(value) if isinstance(value, StepControl) else value
 
 
 _OPTION_TYPES = frozenset((float, int, str, bool, type(None)))

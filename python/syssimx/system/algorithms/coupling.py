@@ -51,6 +51,12 @@ class JacobiAlgorithm:
         canInterpolateInputs the first (and second) time derivative of each connected Real
         input, from the driving FMU's output derivatives where it declares them, else from the
         last communication points (see ``ssx_set_input_order``).
+    extrapolate_held_inputs : bool
+        With input_order 1 or 2, an FMU that cannot interpolate its inputs gets, instead of
+        each input's value at the step's start, the mean of its polynomial over the step (the
+        value at mid-step for order 1): second order in the step instead of first. An
+        extrapolation may overshoot where a signal turns sharply (see
+        ``ssx_set_extrapolate_held_inputs``).
     step_control : StepControl or None
         A StepControl chooses the communication steps by the coupling error; None steps on the
         run's grid.
@@ -64,6 +70,8 @@ class JacobiAlgorithm:
         "ssx_loop_jacobian", JACOBIAN_PREFIX, defaults().loop_jacobian))
     threads: int = field(default_factory=lambda: defaults().threads)
     input_order: int = field(default_factory=lambda: defaults().input_order)
+    extrapolate_held_inputs: bool = field(
+        default_factory=lambda: bool(defaults().extrapolate_held_inputs))
     step_control: StepControl | None = None
     engine_coupling: ClassVar[str] = "SSX_JACOBI"  # the ssx_coupling it runs as
     __signature__ = EngineDefaults()
@@ -95,6 +103,9 @@ class JacobiAlgorithm:
                                                                           self.input_order))
         if refusal is not None:
             raise ConfigurationError(f"{self.name}: {refusal}")
+        if not isinstance(self.extrapolate_held_inputs, bool):
+            raise ConfigurationError(f"{self.name}: extrapolate_held_inputs must be true or "
+                                     f"false, got {self.extrapolate_held_inputs!r}")
         if self.step_control is not None:
             if not isinstance(self.step_control, StepControl):
                 raise ConfigurationError(f"{self.name}: step_control must be a StepControl or "

@@ -21,10 +21,18 @@ class StepControl:
     rollback=True: a step whose error exceeds 1 is taken again with a shorter step, from the
     state saved at its start (every component must support state rollback); rollback=False:
     the step is kept and only the next ones adapt (non-iterative, like libcosim's ECCO). The
-    next step is the last times safety * error^(-1 / (input_order + 1)), at most 5 times
-    longer, within [min_step, max_step] (max_step 0: bounded only by the grid interval);
-    initial_step 0 starts with a tenth of the first grid interval times
-    max(rtol, atol)^(1 / (input_order + 1))."""
+    next step is the last times safety * error^(-1 / (input_order + 1)), between min_change and
+    max_change times the last, within [min_step, max_step] (max_step 0: bounded only by the grid
+    interval); initial_step 0 starts with a tenth of the first grid interval times
+    max(rtol, atol)^(1 / (input_order + 1)).
+
+    error="energy" measures, as libcosim's ECCO algorithm, the energy residual of the
+    power_bonds instead: each bond is a pair of (component, input) ends, say a torque input
+    and the velocity input of the other side, each driven by an output of the other side. Each
+    side's power is its input times its output that drives the other end; the error is the
+    root mean square over the bonds of abs(dP) h / (atol + rtol max(abs(P)) h), and the next
+    step is the last times safety * error^-(integral_gain + proportional_gain) *
+    previous_error^proportional_gain (a PI controller, Sadjina et al.)."""
 
     rtol: float = field(default_factory=lambda: defaults().step_rtol)
     atol: float = field(default_factory=lambda: defaults().step_atol)
@@ -33,15 +41,46 @@ class StepControl:
     initial_step: float = 0.0
     safety: float = field(default_factory=lambda: defaults().step_safety)
     rollback: bool = True
+    min_change: float = field(default_factory=lambda: defaults().step_min_change)
+    max_change: float = field(default_factory=lambda: defaults().step_max_change)
+    error: str = "coupling"
+    power_bonds: tuple[tuple[tuple[str, str], tuple[str, str]], ...] = ()
+    proportional_gain: float = field(default_factory=lambda: defaults().step_proportional_gain)
+    integral_gain: float = field(default_factory=lambda: defaults().step_integral_gain)
+
+    def __post_init__(self) -> None:
+        # from YAML, lists: hashable and comparable as tuples
+        if isinstance(self.power_bonds, list | tuple):
+            self.power_bonds = tuple(
+                tuple(tuple(end) if isinstance(end, list | tuple) else end for end in bond)
+                if isinstance(bond, list | tuple) else bond for bond in self.power_bonds)
 
     def engine_struct(self) -> Any:
         return ffi.new("ssx_step_control *", {
             "enabled": 1, "rollback": int(bool(self.rollback)), "rtol": self.rtol,
             "atol": self.atol, "min_step": self.min_step, "max_step": self.max_step,
-            "initial_step": self.initial_step, "safety": self.safety})
+            "initial_step": self.initial_step, "safety": self.safety,
+            "min_change": self.min_change, "max_change": self.max_change,
+            "energy": int(self.error == "energy"), "proportional_gain": self.proportional_gain,
+            "integral_gain": self.integral_gain})
 
     def validate(self, owner: str) -> None:
-        for name in ("rtol", "atol", "min_step", "max_step", "initial_step", "safety"):
+        if self.error not in ("coupling", "energy"):
+            raise ValueError(f"{owner}: step_control.error must be 'coupling' or 'energy', got "
+                             f"{self.error!r}")
+        if not isinstance(self.power_bonds, tuple):
+            raise ValueError(f"{owner}: step_control.power_bonds must be a list of bonds, got "
+                             f"{self.power_bonds!r}")
+        for bond in self.power_bonds:
+            if not (isinstance(bond, tuple) and len(bond) == 2 and all(
+                    isinstance(end, tuple) and len(end) == 2 and
+                    all(isinstance(name, str) for name in end) for end in bond)):
+                raise ValueError(f"{owner}: step_control.power_bonds: each bond is two "
+                                 f"(component, input) ends, got {bond!r}")
+        if self.error == "energy" and not self.power_bonds:
+            raise ValueError(f"{owner}: step_control.error 'energy' needs power_bonds")
+        for name in ("rtol", "atol", "min_step", "max_step", "initial_step", "safety",
+                     "min_change", "max_change", "proportional_gain", "integral_gain"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int | float):
                 raise ValueError(f"{owner}: step_control.{name} must be a number, got {value!r}")
