@@ -1,8 +1,9 @@
 """A component's own events as an event source: listeners subscribed to them.
 
 bouncing_ball_cvode run as Model Exchange bounces at the closed-form times inside its own steps
-(the engine's CVODE finds them as roots); a Python handler subscribed to those events is called
-once per bounce with the bounce's exact time, and a Reinitialize subscribed to them restarts
+(the engine's CVODE finds them as roots), the FMI 3.0 Co-Simulation ball returns early at each
+and is handled in event mode; a Python handler subscribed to those events is called once per
+bounce with the bounce's exact time, and a Reinitialize subscribed to them restarts
 another FMU at the communication point that holds the bounce. Beside a master indicator
 located by rollback, each bounce still reaches its listener once, and the master's events are
 those without the ball (master indicators: test_hybrid_events.py, test_declarative_events.py).
@@ -144,3 +145,21 @@ def test_own_events_reach_their_listener_once_while_the_master_locates_its_own()
     expected = [t for t in bounce_times() if t < 2.0]
     assert len(calls) == len(expected) == 3
     assert np.max(np.abs(np.array(calls) - expected)) < 1e-8
+
+
+def test_an_fmi3_fmus_events_in_its_step_reach_their_listener():
+    """The FMI 3.0 ball (Co-Simulation, its own CVODE) returns early at each bounce and is
+    handled in event mode inside its step: the listener gets each closed-form time."""
+    calls: list[float] = []
+    b = FMUComponent("B", fmus.path("bouncing_ball_cvode_fmi3"))
+    b.set_parameters(h0=1.0, v0=0.0, g=G, e=0.8, cvode_relative_tolerance=1e-12)
+    b.add_event_handler("bounced", lambda _c, _names, t: calls.append(t))
+    system = System("fmi3 ball")
+    system.add_component(b)
+    system.add_event_connection(EventConnection.own_events("B", "B", "bounced"))
+    system.initialize(0.0)
+    result = system.run(0.0, 3.0, DT)
+    expected = [t for t in bounce_times() if t < 3.0]
+    assert len(calls) == len(expected) == 6
+    assert np.max(np.abs(np.array(calls) - expected)) < 1e-8
+    assert calls == [e.t for e in result.events]
