@@ -12,6 +12,7 @@ those without the ball (master indicators: test_hybrid_events.py, test_declarati
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -26,6 +27,7 @@ from syssimx import (
     fmus,
 )
 from syssimx.engine import ffi, lib
+from syssimx.system.loader import build_system
 
 G = 9.81
 DT = 0.01
@@ -163,3 +165,27 @@ def test_an_fmi3_fmus_events_in_its_step_reach_their_listener():
     assert len(calls) == len(expected) == 6
     assert np.max(np.abs(np.array(calls) - expected)) < 1e-8
     assert calls == [e.t for e in result.events]
+
+
+def test_a_system_file_subscribes_to_own_events_by_the_port_own_events(tmp_path: Path):
+    """The YAML form of the Reinitialize test above (at the FMUs' default tolerances: the
+    samples within 1e-6 of the free fall from the restart)."""
+    config = tmp_path / "balls.yaml"
+    config.write_text(
+        "system: {name: balls}\n"
+        "components:\n"
+        "  - {name: B, fmu: bouncing_ball_cvode, interface: model-exchange}\n"
+        "  - name: B2\n"
+        "    fmu: bouncing_ball_cvode\n"
+        "    interface: co-simulation\n"
+        "    parameters: {h0: 2.0}\n"
+        "    event_handlers: [{input: restart, reinitialize: {h0: 2.0}}]\n"
+        "event_connections: [{src: B.own_events, dst: B2.restart}]\n")
+    system = build_system(config)
+    system.initialize(0.0)
+    t, values = system.run(0.0, 1.0, DT)["B2"]
+    restart = math.ceil(bounce_times()[0] / DT) * DT
+    after = t > restart - 1e-9
+    assert after.sum() > 50
+    np.testing.assert_allclose(values["h"][after], 2.0 - G * (t[after] - restart) ** 2 / 2,
+                               atol=1e-6)
