@@ -432,8 +432,8 @@ typedef enum {
  * event time, components in index order, before the instant's next sample. Own events' are
  * called when the master accepts the step that holds them, in time order (component order at
  * one time) and before indicators' at the same communication point: the hook receives the
- * event's own time t_e, while the system stands at the step's end (a built-in reaction runs
- * there, at that time); what a listener changes shows from that communication point's sample
+ * event's own time t_e, while the system stands at the step's end (ssx_time says so; a
+ * built-in reaction runs there, at that time); what a listener changes shows from that communication point's sample
  * on. Subscribing twice is one subscription. */
 int ssx_subscribe(ssx_system *sys, ssx_event_source_kind kind, int index, int listener_component);
 /* ssx_subscribe(sys, SSX_SOURCE_INDICATOR, indicator, listener_component). */

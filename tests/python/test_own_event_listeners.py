@@ -71,13 +71,18 @@ def test_a_python_listener_of_own_events_is_called_at_each_bounce_time():
             result.statistics.do_step_calls) == (6, 0, 300)
 
 
-def test_a_reinitialize_listener_restarts_another_fmu_at_the_communication_point():
+@pytest.mark.parametrize("through_python", [False, True])
+def test_a_reinitialize_listener_restarts_another_fmu_at_the_communication_point(
+        through_python: bool):
     """B2 (a Co-Simulation ball from h0 = 2, no floor reached before t = 0.63) restarts from
     rest whenever B bounces: at the grid point after each bounce it is back at h0, and falls
-    freely from there."""
+    freely from there. The engine runs the Reinitialize, or Python when another handler shares
+    the input: both restart where B2 stands."""
     b, b2 = ball("B"), ball("B2", interface="co-simulation")
     b2.set_parameters(h0=2.0)
     b2.add_event_handler("restart", Reinitialize(h0=2.0))
+    if through_python:
+        b2.add_event_handler("restart", lambda *_: None)
     system = System("two balls")
     system.add_component(b)
     system.add_component(b2)

@@ -583,6 +583,9 @@ class _HookBuilder:
         # an indicator by its index, a component's own events as -1 - component
         names = list(dict.fromkeys(self.plan.indicators[indicators[i]][1] if indicators[i] >= 0
                                    else OWN_EVENTS for i in range(n)))
+        if OWN_EVENTS in names:
+            # t is the own event's time; the component stands at the communication point after
+            c.t = float(lib().ssx_time(self.plan.sys))
         self.where = f"event handler for {', '.join(names)}"
         c._handle_events_internal(names, t)
         c._update_output_states(t, names)

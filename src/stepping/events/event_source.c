@@ -109,7 +109,12 @@ int event_sources_commit_own(ssx_system *sys, double t)
         return own_events_commit(sys, t, NULL, NULL);
     }
     commit_work w = {.t = t, .listened = 0};
-    if (own_events_commit(sys, t, committed_to_listeners, &w) != 0) {
+    /* the listeners see the system where it stands (ssx_time), whatever the caller sets after */
+    double before = sys->time;
+    sys->time = t;
+    int status = own_events_commit(sys, t, committed_to_listeners, &w);
+    sys->time = before;
+    if (status != 0) {
         return -1;
     }
     return w.listened ? coupling_settle(sys, t) : 0;
