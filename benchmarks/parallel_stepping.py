@@ -14,7 +14,7 @@ each (process CPU, all threads), the machine's 1-minute load average after the c
 whether the two recorded the same samples to the last bit. Other processes on the cores make
 the two-thread figure the first to suffer: measure on a quiet machine.
 
-    python benchmarks/parallel_stepping.py [--repeat N] [--threads N]
+    python benchmarks/parallel_stepping.py [--repeat N] [--threads N] [--cases euler,gain]
 """
 
 from __future__ import annotations
@@ -97,6 +97,8 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--cases", help="only the cases whose name contains one of these words "
+                                        "(comma-separated)")
     args = parser.parse_args()
     cases = [Case("cvode (coupled)", pendulums("pendulum_cvode", True,
                                                cvode_relative_tolerance=1e-10), 2.0, 0.01),
@@ -106,6 +108,9 @@ def main() -> None:
              Case("spring", blocks("torsion_spring"), 2.0, 1e-4)]
     cases += [Case(f"euler dt={dt:g}", pendulums("pendulum_euler", False), 2000 * dt, dt)
               for dt in (1e-4, 3e-4, 1e-3, 3e-3, 1e-2)]
+    if args.cases:
+        words = args.cases.split(",")
+        cases = [case for case in cases if any(word in case.name for word in words)]
     print(f"load average before: {os.getloadavg()[0]:.2f} (1 min) on {os.cpu_count()} cores; "
           f"{args.repeat} runs each, medians")
     n = args.threads

@@ -7,14 +7,22 @@
 #include "fmu_log.h"
 #include "fmu_values.h"
 
+/* Hands the core's message to the importer's FMI 1.0 logger, whose first argument is the
+ * instance (NULL while it is instantiated). The message holds no printf conversion
+ * (fmu_log.c), so it is the format itself. */
+static void forward_log(const fmu_logging_callbacks *callbacks, const char *instance_name,
+                        fmu_status status, const char *category, const char *message)
+{
+    fmi1CallbackLogger logger = (fmi1CallbackLogger)callbacks->logger;
+    logger(callbacks->environment, instance_name, fmi1_status(status), category, message);
+}
+
 fmu_instance *fmi1_instantiate(const char *function, fmi1String instance_name, fmi1String guid,
                                fmi1CallbackLogger logger, fmi1Boolean logging_on)
 {
-    /* FMI 1.0's logger takes the fmiComponent where FMI 2.0's takes the environment: the same
-     * pointer-first signature */
     fmu_instance reporter = {
         .name = (char *)(instance_name ? instance_name : "(unnamed)"),
-        .callbacks = {(fmi2CallbackLogger)(void (*)(void))logger, NULL},
+        .callbacks = {forward_log, (void (*)(void))logger, NULL},
         .logging_on = logging_on != fmi1False,
         .log_categories = LOG_ALL_CATEGORIES,
     };
@@ -55,8 +63,8 @@ static fmu_instance *prepare_get(fmi1Component c, const char *function,
                                  variable_type type)
 {
     fmu_instance *inst = fmu_checked(c, function, PHASES_ANY);
-    if (inst == NULL || fmu_check_references(inst, function, vr, nvr, value, type) != fmi2OK ||
-        fmu_prepare_read(inst, function) != fmi2OK)
+    if (inst == NULL || fmu_check_references(inst, function, vr, nvr, value, type) != FMU_OK ||
+        fmu_prepare_read(inst, function) != FMU_OK)
         return NULL;
     return inst;
 }
@@ -112,7 +120,7 @@ static fmu_instance *prepare_set(fmi1Component c, const char *function,
                                  variable_type type)
 {
     fmu_instance *inst = fmu_checked(c, function, PHASES_SETTABLE);
-    if (inst == NULL || fmu_check_references(inst, function, vr, nvr, value, type) != fmi2OK)
+    if (inst == NULL || fmu_check_references(inst, function, vr, nvr, value, type) != FMU_OK)
         return NULL;
     return inst;
 }
@@ -131,7 +139,7 @@ FMI1_ENTRY(fmi1Status, fmiSetReal)(fmi1Component c, const fmi1ValueReference vr[
                                    const fmi1Real value[])
 {
     fmu_instance *inst = prepare_set(c, "fmiSetReal", vr, nvr, value, TYPE_REAL);
-    if (inst == NULL || fmu_check_reals(inst, "fmiSetReal", vr, nvr, value) != fmi2OK)
+    if (inst == NULL || fmu_check_reals(inst, "fmiSetReal", vr, nvr, value) != FMU_OK)
         return fmi1Error;
     return fmi1_status(fmu_store(inst, "fmiSetReal", vr, nvr, value, real_at));
 }

@@ -32,9 +32,9 @@ FMI1_ENTRY(fmi1Status, fmiInitializeSlave)(fmi1Component c, fmi1Real tStart,
     if (inst == NULL)
         return fmi1Error;
     /* FMI 1.0 sets the tolerance nowhere: the back-end's own */
-    fmi2Status status = fmu_setup_experiment(inst, "fmiInitializeSlave", 0, 0.0, tStart,
+    fmu_status status = fmu_setup_experiment(inst, "fmiInitializeSlave", 0, 0.0, tStart,
                                              StopTimeDefined != fmi1False, tStop);
-    if (status > fmi2Warning)
+    if (status > FMU_WARNING)
         return fmi1_status(status);
     inst->phase = PHASE_INITIALIZATION;
     fmu_exit_initialization(inst);

@@ -18,10 +18,17 @@
 /* The definition of entry point `name` ("fmiDoStep" -> <id>_fmiDoStep). */
 #define FMI1_ENTRY(type, name) FMI1_EXPORT type FMI1_PREFIXED(MODEL_IDENTIFIER, name)
 
-/* The core speaks FMI 2.0's statuses, whose values FMI 1.0 shares (OK ... Fatal). */
-static inline fmi1Status fmi1_status(fmi2Status status)
+/* The core's status as FMI 1.0's: the boundary every fmi1 entry point returns through. */
+static inline fmi1Status fmi1_status(fmu_status status)
 {
-    return (fmi1Status)status;
+    switch (status) {
+    case FMU_OK: return fmi1OK;
+    case FMU_WARNING: return fmi1Warning;
+    case FMU_DISCARD: return fmi1Discard;
+    case FMU_ERROR: break;
+    case FMU_FATAL: return fmi1Fatal;
+    }
+    return fmi1Error;
 }
 
 /* A new instance for an FMI 1.0 instantiate call: the core's logger gets the instance as FMI

@@ -72,10 +72,10 @@ FMI1_ENTRY(fmi1Status, fmiInitialize)(fmi1Component c, fmi1Boolean toleranceCont
         return fmi1Error;
     if (eventInfo == NULL)
         return fmi1_status(fmu_error(inst, "fmiInitialize: the event info pointer is NULL"));
-    fmi2Status status = fmu_setup_experiment(inst, "fmiInitialize",
+    fmu_status status = fmu_setup_experiment(inst, "fmiInitialize",
                                              toleranceControlled != fmi1False,
                                              relativeTolerance, inst->time, 0, 0.0);
-    if (status > fmi2Warning)
+    if (status > FMU_WARNING)
         return fmi1_status(status);
     inst->phase = PHASE_INITIALIZATION;
     fmu_exit_initialization(inst);

@@ -4,6 +4,7 @@
 #ifndef SYSSIMX_FMI2_ALLOWED_H
 #define SYSSIMX_FMI2_ALLOWED_H
 
+#include "fmi2_status.h"
 #include "fmu_instance.h"
 
 /* The function's name and the phases it is allowed in: the two arguments of the check

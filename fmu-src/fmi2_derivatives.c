@@ -11,6 +11,7 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
     fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2GetDirectionalDerivative));
     if (inst == NULL)
         return fmi2Error;
-    return fmu_directional_derivative(inst, "fmi2GetDirectionalDerivative", vUnknown_ref,
-                                      nUnknown, vKnown_ref, nKnown, dvKnown, dvUnknown);
+    return fmi2_status(fmu_directional_derivative(inst, "fmi2GetDirectionalDerivative",
+                                                  vUnknown_ref, nUnknown, vKnown_ref, nKnown,
+                                                  dvKnown, dvUnknown));
 }

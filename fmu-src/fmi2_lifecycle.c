@@ -22,8 +22,17 @@ fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nC
     fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2SetDebugLogging));
     if (inst == NULL)
         return fmi2Error;
-    return fmu_set_logging(inst, "fmi2SetDebugLogging", loggingOn != fmi2False, nCategories,
-                           categories);
+    return fmi2_status(fmu_set_logging(inst, "fmi2SetDebugLogging", loggingOn != fmi2False,
+                                       nCategories, categories));
+}
+
+/* Hands the core's message to the importer's FMI 2.0 logger. The message holds no printf
+ * conversion (fmu_log.c), so it is the format itself. */
+static void forward_log(const fmu_logging_callbacks *callbacks, const char *instance_name,
+                        fmu_status status, const char *category, const char *message)
+{
+    fmi2CallbackLogger logger = (fmi2CallbackLogger)callbacks->logger;
+    logger(callbacks->environment, instance_name, fmi2_status(status), category, message);
 }
 
 fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
@@ -38,7 +47,8 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
     /* A stand-in to report failures before the instance exists. */
     fmu_instance reporter = {
         .name = (char *)(instanceName ? instanceName : "(unnamed)"),
-        .callbacks = {functions->logger, functions->componentEnvironment},
+        .callbacks = {forward_log, (void (*)(void))functions->logger,
+                      functions->componentEnvironment},
         .logging_on = loggingOn != fmi2False,
         .log_categories = LOG_ALL_CATEGORIES,
     };
@@ -84,8 +94,9 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean toleranceDefined,
     fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2SetupExperiment));
     if (inst == NULL)
         return fmi2Error;
-    return fmu_setup_experiment(inst, "fmi2SetupExperiment", toleranceDefined != fmi2False,
-                                tolerance, startTime, stopTimeDefined != fmi2False, stopTime);
+    return fmi2_status(fmu_setup_experiment(inst, "fmi2SetupExperiment",
+                                            toleranceDefined != fmi2False, tolerance, startTime,
+                                            stopTimeDefined != fmi2False, stopTime));
 }
 
 fmi2Status fmi2EnterInitializationMode(fmi2Component c)

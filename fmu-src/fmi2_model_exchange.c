@@ -63,7 +63,8 @@ fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *eventInfo)
     if (inst == NULL)
         return fmi2Error;
     if (eventInfo == NULL)
-        return fmu_error(inst, "fmi2NewDiscreteStates: the event info pointer is NULL");
+        return fmi2_status(fmu_error(inst,
+                                     "fmi2NewDiscreteStates: the event info pointer is NULL"));
     fmu_discrete_update update;
     fmu_me_update_discrete_states(inst, &update);
     /* one pass reaches the new discrete state: handling an event never fires another */
@@ -96,7 +97,8 @@ fmi2Status fmi2CompletedIntegratorStep(fmi2Component c,
     if (inst == NULL)
         return fmi2Error;
     if (enterEventMode == NULL || terminateSimulation == NULL)
-        return fmu_error(inst, "fmi2CompletedIntegratorStep: a result pointer is NULL");
+        return fmi2_status(fmu_error(inst,
+                                     "fmi2CompletedIntegratorStep: a result pointer is NULL"));
     /* no step events: every event is a state event (an indicator) or a time event */
     *enterEventMode = fmi2False;
     *terminateSimulation = fmu_me_terminates(inst) ? fmi2True : fmi2False;

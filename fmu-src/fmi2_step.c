@@ -13,12 +13,12 @@ fmi2Status fmi2DoStep(fmi2Component c, fmi2Real currentCommunicationPoint,
         return fmi2Error;
     double start = inst->time;
     double t_end = currentCommunicationPoint + communicationStepSize;
-    fmi2Status status =
+    fmu_status status =
         fmu_do_step(inst, "fmi2DoStep", currentCommunicationPoint, communicationStepSize);
-    if (status > fmi2Warning || !(t_end > start) || fmu_stop_time(inst) > t_end)
-        return status;
+    if (status > FMU_WARNING || !(t_end > start) || fmu_stop_time(inst) > t_end)
+        return fmi2_status(status);
     /* FMI 2.0 reports the model's request to stop as a discarded step (fmi2Terminated) */
-    fmu_log(inst, fmi2Discard, LOG_STATUS_WARNING,
+    fmu_log(inst, FMU_DISCARD, LOG_STATUS_WARNING,
             "fmi2DoStep from t = %.17g to %.17g: the model asks to end the simulation at "
             "t = %.17g",
             currentCommunicationPoint, t_end, inst->time);
@@ -30,7 +30,7 @@ fmi2Status fmi2CancelStep(fmi2Component c)
     fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2CancelStep));
     if (inst == NULL)
         return fmi2Error;
-    return fmu_error(inst, "fmi2CancelStep: steps are never asynchronous in this FMU");
+    return fmi2_status(fmu_error(inst, "fmi2CancelStep: steps are never asynchronous in this FMU"));
 }
 
 
@@ -40,7 +40,7 @@ fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *va
     if (inst == NULL)
         return fmi2Error;
     if (s != fmi2DoStepStatus || value == NULL)
-        return fmu_error(inst, "fmi2GetStatus: only fmi2DoStepStatus is available");
+        return fmi2_status(fmu_error(inst, "fmi2GetStatus: only fmi2DoStepStatus is available"));
     *value = fmi2OK;
     return fmi2OK;
 }
@@ -51,7 +51,8 @@ fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real *
     if (inst == NULL)
         return fmi2Error;
     if (s != fmi2LastSuccessfulTime || value == NULL)
-        return fmu_error(inst, "fmi2GetRealStatus: only fmi2LastSuccessfulTime is available");
+        return fmi2_status(
+            fmu_error(inst, "fmi2GetRealStatus: only fmi2LastSuccessfulTime is available"));
     *value = inst->time;
     return fmi2OK;
 }
@@ -63,7 +64,7 @@ fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Int
     fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2GetIntegerStatus));
     if (inst == NULL)
         return fmi2Error;
-    return fmu_error(inst, "fmi2GetIntegerStatus: no integer status is defined");
+    return fmi2_status(fmu_error(inst, "fmi2GetIntegerStatus: no integer status is defined"));
 }
 
 fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boolean *value)
@@ -72,7 +73,8 @@ fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boo
     if (inst == NULL)
         return fmi2Error;
     if (s != fmi2Terminated || value == NULL)
-        return fmu_error(inst, "fmi2GetBooleanStatus: only fmi2Terminated is available");
+        return fmi2_status(fmu_error(inst,
+                                     "fmi2GetBooleanStatus: only fmi2Terminated is available"));
     *value = inst->time >= fmu_stop_time(inst) ? fmi2True : fmi2False;
     return fmi2OK;
 }
@@ -84,5 +86,5 @@ fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind s, fmi2Stri
     fmu_instance *inst = fmu_checked(c, FMI2_CALL(fmi2GetStringStatus));
     if (inst == NULL)
         return fmi2Error;
-    return fmu_error(inst, "fmi2GetStringStatus: no string status is defined");
+    return fmi2_status(fmu_error(inst, "fmi2GetStringStatus: no string status is defined"));
 }

@@ -11,8 +11,8 @@ static fmu_instance *prepare_get(fmi2Component c, const char *function, unsigned
                                  variable_type type)
 {
     fmu_instance *inst = fmu_checked(c, function, allowed);
-    if (inst == NULL || fmu_check_references(inst, function, vr, nvr, value, type) != fmi2OK ||
-        fmu_prepare_read(inst, function) != fmi2OK)
+    if (inst == NULL || fmu_check_references(inst, function, vr, nvr, value, type) != FMU_OK ||
+        fmu_prepare_read(inst, function) != FMU_OK)
         return NULL;
     return inst;
 }
@@ -59,8 +59,9 @@ fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
         return fmi2Error;
     if (nvr == 0)
         return fmi2OK;
-    return fmu_error(inst, "fmi2GetString: unknown value reference %u (no String variables)",
-                     vr ? vr[0] : 0u);
+    return fmi2_status(fmu_error(inst,
+                                 "fmi2GetString: unknown value reference %u (no String variables)",
+                                 vr ? vr[0] : 0u));
 }
 
 static fmu_instance *prepare_set(fmi2Component c, const char *function, unsigned allowed,
@@ -68,7 +69,7 @@ static fmu_instance *prepare_set(fmi2Component c, const char *function, unsigned
                                  variable_type type)
 {
     fmu_instance *inst = fmu_checked(c, function, allowed);
-    if (inst == NULL || fmu_check_references(inst, function, vr, nvr, value, type) != fmi2OK)
+    if (inst == NULL || fmu_check_references(inst, function, vr, nvr, value, type) != FMU_OK)
         return NULL;
     return inst;
 }
@@ -87,9 +88,9 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nv
                        const fmi2Real value[])
 {
     fmu_instance *inst = prepare_set(c, FMI2_CALL(fmi2SetReal), vr, nvr, value, TYPE_REAL);
-    if (inst == NULL || fmu_check_reals(inst, "fmi2SetReal", vr, nvr, value) != fmi2OK)
+    if (inst == NULL || fmu_check_reals(inst, "fmi2SetReal", vr, nvr, value) != FMU_OK)
         return fmi2Error;
-    return fmu_store(inst, "fmi2SetReal", vr, nvr, value, real_at);
+    return fmi2_status(fmu_store(inst, "fmi2SetReal", vr, nvr, value, real_at));
 }
 
 fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
@@ -98,7 +99,7 @@ fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
     fmu_instance *inst = prepare_set(c, FMI2_CALL(fmi2SetInteger), vr, nvr, value, TYPE_INTEGER);
     if (inst == NULL)
         return fmi2Error;
-    return fmu_store(inst, "fmi2SetInteger", vr, nvr, value, integer_at);
+    return fmi2_status(fmu_store(inst, "fmi2SetInteger", vr, nvr, value, integer_at));
 }
 
 fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
@@ -107,7 +108,7 @@ fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t
     fmu_instance *inst = prepare_set(c, FMI2_CALL(fmi2SetBoolean), vr, nvr, value, TYPE_BOOLEAN);
     if (inst == NULL)
         return fmi2Error;
-    return fmu_store(inst, "fmi2SetBoolean", vr, nvr, value, boolean_at);
+    return fmi2_status(fmu_store(inst, "fmi2SetBoolean", vr, nvr, value, boolean_at));
 }
 
 fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
@@ -119,6 +120,7 @@ fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t 
         return fmi2Error;
     if (nvr == 0)
         return fmi2OK;
-    return fmu_error(inst, "fmi2SetString: unknown value reference %u (no String variables)",
-                     vr ? vr[0] : 0u);
+    return fmi2_status(fmu_error(inst,
+                                 "fmi2SetString: unknown value reference %u (no String variables)",
+                                 vr ? vr[0] : 0u));
 }

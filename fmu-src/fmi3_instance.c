@@ -35,15 +35,14 @@ fmi3_instance *fmi3_refuse_in_mode(fmi3_instance *inst, const char *function)
     return NULL;
 }
 
-fmi3Status fmi3_status(fmi2Status status)
+fmi3Status fmi3_status(fmu_status status)
 {
     switch (status) {
-    case fmi2OK: return fmi3OK;
-    case fmi2Warning: return fmi3Warning;
-    case fmi2Discard: return fmi3Discard;
-    case fmi2Fatal: return fmi3Fatal;
-    case fmi2Error:
-    case fmi2Pending: break; /* the framework never returns pending */
+    case FMU_OK: return fmi3OK;
+    case FMU_WARNING: return fmi3Warning;
+    case FMU_DISCARD: return fmi3Discard;
+    case FMU_ERROR: break;
+    case FMU_FATAL: return fmi3Fatal;
     }
     return fmi3Error;
 }

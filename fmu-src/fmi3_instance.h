@@ -9,8 +9,7 @@
 
 typedef struct {
     fmu_instance core; /* first: the framework works on &core */
-    fmi3LogMessageCallback log_message;
-    fmi3InstanceEnvironment environment;
+    fmi3InstanceEnvironment environment; /* what the intermediate update receives first */
     int event_mode_used;
     int early_return_allowed;
     int model_exchange; /* made by fmi3InstantiateModelExchange */
@@ -75,8 +74,8 @@ static inline fmi3_instance *fmi3_checked(fmi3Instance instance, const char *fun
     return inst;
 }
 
-/* The framework reports fmi2Status; OK to Fatal have FMI 3.0 twins. */
-fmi3Status fmi3_status(fmi2Status status);
+/* The core's status as FMI 3.0's: the boundary every fmi3 entry point returns through. */
+fmi3Status fmi3_status(fmu_status status);
 
 /* Variables FMI 3.0 adds after the framework's table (model then back-end variables, n of
  * them): the independent variable time, then one Float64 per internal event indicator, which

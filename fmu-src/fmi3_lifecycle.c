@@ -9,15 +9,13 @@
 #include "fmu_model_exchange.h"
 #include "fmu_step.h"
 
-/* The framework logs through an FMI 2.0 style callback; this one hands the message to the
- * FMI 3.0 callback, which takes no instance name. */
-static void forward_log(fmi2ComponentEnvironment environment, fmi2String instance_name,
-                        fmi2Status status, fmi2String category, fmi2String message, ...)
+/* Hands the core's message to the importer's FMI 3.0 callback, which takes no instance name. */
+static void forward_log(const fmu_logging_callbacks *callbacks, const char *instance_name,
+                        fmu_status status, const char *category, const char *message)
 {
     (void)instance_name;
-    const fmi3_instance *inst = environment;
-    if (inst->log_message != NULL)
-        inst->log_message(inst->environment, fmi3_status(status), category, message);
+    fmi3LogMessageCallback log_message = (fmi3LogMessageCallback)callbacks->logger;
+    log_message(callbacks->environment, fmi3_status(status), category, message);
 }
 
 const char *fmi3GetVersion(void)
@@ -72,11 +70,9 @@ static fmi3_instance *create(const char *function, fmi3String instanceName,
     /* A stand-in to report failures before the instance exists. */
     fmi3_instance reporter = {
         .core = {.name = (char *)(instanceName ? instanceName : "(unnamed)"),
-                 .callbacks = {forward_log, &reporter},
+                 .callbacks = {forward_log, (void (*)(void))logMessage, instanceEnvironment},
                  .logging_on = loggingOn,
                  .log_categories = LOG_ALL_CATEGORIES},
-        .log_message = logMessage,
-        .environment = instanceEnvironment,
     };
     char guid[FMU_GUID_LENGTH];
     fmu_guid(guid);
@@ -90,9 +86,7 @@ static fmi3_instance *create(const char *function, fmi3String instanceName,
         &reporter.core, sizeof(fmi3_instance), function);
     if (inst == NULL)
         return NULL;
-    inst->log_message = logMessage;
     inst->environment = instanceEnvironment;
-    inst->core.callbacks.environment = inst;
     return inst;
 }
 
@@ -167,10 +161,10 @@ fmi3Status fmi3EnterInitializationMode(fmi3Instance instance, fmi3Boolean tolera
         fmi3_checked(instance, FMI3_CALL(fmi3EnterInitializationMode));
     if (inst == NULL)
         return fmi3Error;
-    fmi2Status status = fmu_setup_experiment(&inst->core, "fmi3EnterInitializationMode",
+    fmu_status status = fmu_setup_experiment(&inst->core, "fmi3EnterInitializationMode",
                                              toleranceDefined, tolerance, startTime,
                                              stopTimeDefined, stopTime);
-    if (status == fmi2OK)
+    if (status == FMU_OK)
         inst->core.phase = PHASE_INITIALIZATION;
     return fmi3_status(status);
 }

@@ -27,9 +27,9 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
                                      "first)",
                                      inst->time));
     double t_end = currentCommunicationPoint + communicationStepSize;
-    fmi2Status status =
+    fmu_status status =
         fmu_do_step(inst, "fmi3DoStep", currentCommunicationPoint, communicationStepSize);
-    int completed = status <= fmi2Warning;
+    int completed = status <= FMU_WARNING;
     *eventHandlingNeeded = completed && inst->event_pending;
     *terminateSimulation = completed && inst->time >= fmu_stop_time(inst);
     *earlyReturn = completed && self->early_return_allowed && inst->time < t_end;

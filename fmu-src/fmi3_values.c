@@ -61,7 +61,7 @@ static fmi3_instance *checked(fmi3Instance instance, const char *function, unsig
             continue;
         return NULL;
     }
-    if (!for_set && fmu_prepare_read(inst, function) != fmi2OK)
+    if (!for_set && fmu_prepare_read(inst, function) != FMU_OK)
         return NULL;
     return self;
 }
@@ -135,7 +135,7 @@ fmi3Status fmi3SetFloat64(fmi3Instance instance, const fmi3ValueReference valueR
                                   nValueReferences, values, nValues, TYPE_REAL, 1);
     if (self == NULL ||
         fmu_check_reals(&self->core, "fmi3SetFloat64", valueReferences, nValueReferences,
-                        values) != fmi2OK)
+                        values) != FMU_OK)
         return fmi3Error;
     return fmi3_status(fmu_store(&self->core, "fmi3SetFloat64", valueReferences,
                                  nValueReferences, values, float64_at));

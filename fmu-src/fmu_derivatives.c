@@ -4,8 +4,8 @@
 
 #include "fmu_log.h"
 
-static fmi2Status check_role(const fmu_instance *inst, const char *function,
-                             fmi2ValueReference vr, variable_causality causality,
+static fmu_status check_role(const fmu_instance *inst, const char *function,
+                             unsigned int vr, variable_causality causality,
                              const char *role)
 {
     const model_variable *var = fmu_variable(inst, vr);
@@ -16,12 +16,12 @@ static fmi2Status check_role(const fmu_instance *inst, const char *function,
                          "%s: variable %s (value reference %u) is not a Real %s; only "
                          "derivatives of outputs with respect to inputs are provided",
                          function, var->name, vr, role);
-    return fmi2OK;
+    return FMU_OK;
 }
 
-fmi2Status fmu_directional_derivative(fmu_instance *inst, const char *function,
-                                      const fmi2ValueReference vUnknown_ref[], size_t nUnknown,
-                                      const fmi2ValueReference vKnown_ref[], size_t nKnown,
+fmu_status fmu_directional_derivative(fmu_instance *inst, const char *function,
+                                      const unsigned int vUnknown_ref[], size_t nUnknown,
+                                      const unsigned int vKnown_ref[], size_t nKnown,
                                       const double dvKnown[], double dvUnknown[])
 {
     const model_definition *model = inst->model;
@@ -31,12 +31,12 @@ fmi2Status fmu_directional_derivative(fmu_instance *inst, const char *function,
         (nKnown > 0 && (vKnown_ref == NULL || dvKnown == NULL)))
         return fmu_error(inst, "%s: an array argument is NULL", function);
     for (size_t i = 0; i < nUnknown; ++i) {
-        if (check_role(inst, function, vUnknown_ref[i], CAUSALITY_OUTPUT, "output") != fmi2OK)
-            return fmi2Error;
+        if (check_role(inst, function, vUnknown_ref[i], CAUSALITY_OUTPUT, "output") != FMU_OK)
+            return FMU_ERROR;
     }
     for (size_t j = 0; j < nKnown; ++j) {
-        if (check_role(inst, function, vKnown_ref[j], CAUSALITY_INPUT, "input") != fmi2OK)
-            return fmi2Error;
+        if (check_role(inst, function, vKnown_ref[j], CAUSALITY_INPUT, "input") != FMU_OK)
+            return FMU_ERROR;
     }
     for (size_t i = 0; i < nUnknown; ++i) {
         double sum = 0.0;
@@ -46,5 +46,5 @@ fmi2Status fmu_directional_derivative(fmu_instance *inst, const char *function,
                    dvKnown[j];
         dvUnknown[i] = sum;
     }
-    return fmi2OK;
+    return FMU_OK;
 }

@@ -7,9 +7,9 @@
 
 #include "fmu_instance.h"
 
-fmi2Status fmu_directional_derivative(fmu_instance *inst, const char *function,
-                                      const fmi2ValueReference vUnknown_ref[], size_t nUnknown,
-                                      const fmi2ValueReference vKnown_ref[], size_t nKnown,
+fmu_status fmu_directional_derivative(fmu_instance *inst, const char *function,
+                                      const unsigned int vUnknown_ref[], size_t nUnknown,
+                                      const unsigned int vKnown_ref[], size_t nKnown,
                                       const double dvKnown[], double dvUnknown[]);
 
 #endif

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "fmu_evaluation.h"
 #include "fmu_interpolation.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
@@ -25,15 +26,10 @@ fmu_instance *fmu_refuse_in_phase(fmu_instance *inst, const char *function)
     return NULL;
 }
 
-double fmu_solver_parameter(const fmu_instance *inst, size_t i)
-{
-    return inst->values[inst->model->n_variables + i];
-}
-
 void fmu_apply_start_values(fmu_instance *inst)
 {
     for (size_t vr = 0; vr < inst->n_variables; ++vr)
-        inst->values[vr] = fmu_variable(inst, (fmi2ValueReference)vr)->start;
+        inst->values[vr] = fmu_variable(inst, (unsigned int)vr)->start;
     inst->time = 0.0;
     inst->tolerance_defined = 0;
     inst->tolerance = 0.0;
@@ -42,33 +38,10 @@ void fmu_apply_start_values(fmu_instance *inst)
     fmu_refresh_outputs(inst);
 }
 
-void fmu_refresh_outputs(fmu_instance *inst)
+fmu_status fmu_refusal_status(fmu_instance *inst, step_refusal_kind kind)
 {
-    /* Before initialization is done the states follow their start parameters. */
-    if (inst->phase < PHASE_STEP && inst->model->n_states > 0)
-        inst->model->initial_states(inst->values, inst->x);
-    inst->model->outputs(inst->values, inst->time, inst->x);
-    inst->outputs_stale = 0;
-}
-
-void fmu_handle_events(fmu_instance *inst, double t, double *x)
-{
-    for (size_t i = 0; i < inst->model->n_event_indicators; ++i)
-        if (inst->fired[i])
-            fmu_log(inst, fmi2OK, LOG_EVENTS, "internal event %zu at t = %.17g", i, t);
-    inst->model->handle_events(inst->values, t, x, inst->fired);
-}
-
-void fmu_event_indicators(const fmu_instance *inst, double *z)
-{
-    if (inst->model->n_event_indicators > 0)
-        inst->model->event_indicators(inst->values, inst->time, inst->x, z);
-}
-
-fmi2Status fmu_refusal_status(fmu_instance *inst, step_refusal_kind kind)
-{
-    static const fmi2Status statuses[] = {fmi2Error, fmi2Discard, fmi2Fatal};
-    if (statuses[kind] == fmi2Fatal)
+    static const fmu_status statuses[] = {FMU_ERROR, FMU_DISCARD, FMU_FATAL};
+    if (statuses[kind] == FMU_FATAL)
         inst->phase = PHASE_FATAL;
     return statuses[kind];
 }
@@ -164,7 +137,7 @@ fmu_instance *fmu_instance_create(const fmu_instance *reporter, size_t size, con
     return inst;
 }
 
-fmi2Status fmu_setup_experiment(fmu_instance *inst, const char *function, int tolerance_defined,
+fmu_status fmu_setup_experiment(fmu_instance *inst, const char *function, int tolerance_defined,
                                 double tolerance, double start_time, int stop_time_defined,
                                 double stop_time)
 {
@@ -179,7 +152,7 @@ fmi2Status fmu_setup_experiment(fmu_instance *inst, const char *function, int to
     inst->tolerance = tolerance_defined ? tolerance : 0.0;
     inst->time = start_time;
     inst->outputs_stale = 1;
-    return fmi2OK;
+    return FMU_OK;
 }
 
 void fmu_exit_initialization(fmu_instance *inst)

@@ -2,8 +2,10 @@
 #ifndef SYSSIMX_FMU_INSTANCE_H
 #define SYSSIMX_FMU_INSTANCE_H
 
-#include "fmi2Functions.h"
+#include <stddef.h>
+
 #include "fmu_guid.h"
+#include "fmu_status.h"
 #include "model.h"
 
 typedef enum {
@@ -13,7 +15,7 @@ typedef enum {
     PHASE_EVENT,           /* Model Exchange: event mode */
     PHASE_CONTINUOUS_TIME, /* Model Exchange: continuous-time mode */
     PHASE_TERMINATED,
-    PHASE_FATAL /* after fmi2Fatal: no call is allowed any more */
+    PHASE_FATAL /* after FMU_FATAL: no call is allowed any more */
 } fmu_phase;
 
 #define PHASE_BIT(phase) (1u << (phase))
@@ -43,9 +45,14 @@ typedef enum {
     INPUTS_INTERMEDIATE_UPDATE  /* as the importer answers FMI 3.0's intermediate update */
 } input_motion_kind;
 
-typedef struct {
-    fmi2CallbackLogger logger;
-    fmi2ComponentEnvironment environment;
+/* The importer's logger, as the FMI version's entry points received it. The core hands every
+ * message to `forward`, the version's function that calls `logger` with its standard's types
+ * and status (cast back from the untyped pointer kept here). */
+typedef struct fmu_logging_callbacks {
+    void (*forward)(const struct fmu_logging_callbacks *callbacks, const char *instance_name,
+                    fmu_status status, const char *category, const char *message);
+    void (*logger)(void); /* the importer's, NULL: none */
+    void *environment;    /* what the importer's logger receives first */
 } fmu_logging_callbacks;
 
 typedef struct fmu_instance {
@@ -55,7 +62,7 @@ typedef struct fmu_instance {
     int logging_on;
     unsigned log_categories; /* bit set of enabled categories (fmu_log.h) */
     fmu_phase phase;
-    fmu_phase running_phase; /* entered by fmi2ExitInitializationMode: step or event mode */
+    fmu_phase running_phase; /* entered by exiting initialization mode: step or event mode */
 
     const model_definition *model;
     size_t n_variables;      /* model variables followed by the back-end's parameters */
@@ -110,8 +117,8 @@ typedef struct fmu_instance {
 fmu_instance *fmu_refuse_in_phase(fmu_instance *inst, const char *function);
 
 /* The instance behind c when the call is allowed in one of the phases in `allowed` (a set of
- * PHASE_BIT); otherwise logs why and returns NULL. Inline: every fmi2 call starts here. */
-static inline fmu_instance *fmu_checked(fmi2Component c, const char *function, unsigned allowed)
+ * PHASE_BIT); otherwise logs why and returns NULL. Inline: every entry point starts here. */
+static inline fmu_instance *fmu_checked(void *c, const char *function, unsigned allowed)
 {
     fmu_instance *inst = c;
     if (inst == NULL)
@@ -131,15 +138,15 @@ fmu_instance *fmu_instance_create(const fmu_instance *reporter, size_t size,
 void fmu_instance_free(fmu_instance *inst);
 
 /* The lifecycle steps every interface shares; `function` names the call in messages. */
-fmi2Status fmu_setup_experiment(fmu_instance *inst, const char *function, int tolerance_defined,
+fmu_status fmu_setup_experiment(fmu_instance *inst, const char *function, int tolerance_defined,
                                 double tolerance, double start_time, int stop_time_defined,
                                 double stop_time);
 void fmu_exit_initialization(fmu_instance *inst);
 void fmu_reset(fmu_instance *inst);
 
 /* The table row of a value reference, or NULL when the FMU has no such variable. Inline: every
- * fmi2Get and fmi2Set checks each of its value references with it. */
-static inline const model_variable *fmu_variable(const fmu_instance *inst, fmi2ValueReference vr)
+ * get and set checks each of its value references with it. */
+static inline const model_variable *fmu_variable(const fmu_instance *inst, unsigned int vr)
 {
     size_t n_model = inst->model->n_variables;
     if (vr < n_model)
@@ -152,20 +159,8 @@ static inline const model_variable *fmu_variable(const fmu_instance *inst, fmi2V
 /* Every variable back to its start value, the states from the parameters, time to zero. */
 void fmu_apply_start_values(fmu_instance *inst);
 
-/* Value of the back-end parameter with index `i` in the back-end's variable table. */
-double fmu_solver_parameter(const fmu_instance *inst, size_t i);
-
-/* Recompute outputs and locals from the current state and inputs; clears outputs_stale. */
-void fmu_refresh_outputs(fmu_instance *inst);
-
-/* The model's event indicators at the instance's time and state, into z. */
-void fmu_event_indicators(const fmu_instance *inst, double *z);
-
-/* The status a model's refusal (model.h) returns; after fmi2Fatal no call is allowed any more. */
-fmi2Status fmu_refusal_status(fmu_instance *inst, step_refusal_kind kind);
-
-/* Apply the internal events the back-end marked in inst->fired at time t (changes x), and log them. */
-void fmu_handle_events(fmu_instance *inst, double t, double *x);
+/* The status a model's refusal (model.h) returns; after FMU_FATAL no call is allowed any more. */
+fmu_status fmu_refusal_status(fmu_instance *inst, step_refusal_kind kind);
 
 /* Apply the event a step stopped at (event_pending) at the instance's time; restarts the
  * integration there. Returns whether a continuous state changed. */

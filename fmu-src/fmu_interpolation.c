@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "fmu_evaluation.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
@@ -12,8 +13,8 @@ static int is_real_input(const model_variable *v)
     return v != NULL && v->type == TYPE_REAL && v->causality == CAUSALITY_INPUT;
 }
 
-fmi2Status fmu_set_input_derivatives(fmu_instance *inst, const char *function,
-                                     const fmi2ValueReference vr[], size_t nvr,
+fmu_status fmu_set_input_derivatives(fmu_instance *inst, const char *function,
+                                     const unsigned int vr[], size_t nvr,
                                      const int order[], const double value[])
 {
     if (nvr > 0 && (vr == NULL || order == NULL || value == NULL))
@@ -43,7 +44,7 @@ fmi2Status fmu_set_input_derivatives(fmu_instance *inst, const char *function,
         inst->outputs_stale = 1;
         fmu_solver_invalidate(inst); /* the right-hand side changed */
     }
-    return fmi2OK;
+    return FMU_OK;
 }
 
 void fmu_clear_input_derivatives(fmu_instance *inst)
@@ -61,20 +62,6 @@ void fmu_inputs_begin_step(fmu_instance *inst)
     } else if (inst->has_input_derivatives) {
         memcpy(inst->input_base, inst->values, inst->n_variables * sizeof(double));
         inst->input_motion = INPUTS_POLYNOMIAL;
-    }
-}
-
-void fmu_inputs_follow(fmu_instance *inst, double t)
-{
-    if (inst->input_motion == INPUTS_INTERMEDIATE_UPDATE) {
-        inst->intermediate_update(inst, t);
-        return;
-    }
-    double tau = t - inst->step_start;
-    for (size_t vr = 0; vr < inst->n_variables; ++vr) {
-        const double *d = &inst->input_derivatives[2 * vr];
-        if (d[0] != 0.0 || d[1] != 0.0)
-            inst->values[vr] = inst->input_base[vr] + tau * (d[0] + 0.5 * tau * d[1]);
     }
 }
 
@@ -110,8 +97,8 @@ static void outputs_along(fmu_instance *inst, double eps)
     inst->model->outputs(v, inst->time + eps, x);
 }
 
-fmi2Status fmu_get_output_derivatives(fmu_instance *inst, const char *function,
-                                      const fmi2ValueReference vr[], size_t nvr,
+fmu_status fmu_get_output_derivatives(fmu_instance *inst, const char *function,
+                                      const unsigned int vr[], size_t nvr,
                                       const int order[], double value[])
 {
     if (nvr > 0 && (vr == NULL || order == NULL || value == NULL))
@@ -143,5 +130,5 @@ fmi2Status fmu_get_output_derivatives(fmu_instance *inst, const char *function,
                        ? (value[i] - inst->values_scratch[vr[i]]) / (2.0 * eps)
                        : 0.0;
     }
-    return fmi2OK;
+    return FMU_OK;
 }

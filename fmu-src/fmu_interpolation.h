@@ -22,29 +22,19 @@
 #define FMU_MAX_OUTPUT_DERIVATIVE_ORDER 1
 
 /* Stores derivative order[i] of input vr[i]; `function` names the call in messages. */
-fmi2Status fmu_set_input_derivatives(fmu_instance *inst, const char *function,
-                                     const fmi2ValueReference vr[], size_t nvr,
+fmu_status fmu_set_input_derivatives(fmu_instance *inst, const char *function,
+                                     const unsigned int vr[], size_t nvr,
                                      const int order[], const double value[]);
 /* Forgets every input derivative (reset, a restored state). */
 void fmu_clear_input_derivatives(fmu_instance *inst);
 
 /* Derivative order[i] of output vr[i] at the instance's time into value[i]. */
-fmi2Status fmu_get_output_derivatives(fmu_instance *inst, const char *function,
-                                      const fmi2ValueReference vr[], size_t nvr,
+fmu_status fmu_get_output_derivatives(fmu_instance *inst, const char *function,
+                                      const unsigned int vr[], size_t nvr,
                                       const int order[], double value[]);
 
 /* Called by fmu_do_step around the back-end's integration from t to t_end. */
 void fmu_inputs_begin_step(fmu_instance *inst);
 void fmu_inputs_end_step(fmu_instance *inst, double t_end);
-
-void fmu_inputs_follow(fmu_instance *inst, double t);
-
-/* The back-ends call this before evaluating the model at time t inside a step: the inputs take
- * their interpolated values at t. Inline: it runs at every right-hand side evaluation. */
-static inline void fmu_inputs_at(fmu_instance *inst, double t)
-{
-    if (inst->input_motion != INPUTS_HELD)
-        fmu_inputs_follow(inst, t);
-}
 
 #endif

@@ -11,18 +11,18 @@ const char *const fmu_log_category_descriptions[LOG_CATEGORY_COUNT] = {
     "internal events located and handled by the FMU", "calls that return fmi2Warning",
     "calls that return fmi2Error", "every message"};
 
-static int category_enabled(const fmu_instance *inst, fmi2Status status,
+static int category_enabled(const fmu_instance *inst, fmu_status status,
                             fmu_log_category category)
 {
     unsigned bit = 1u << category;
     unsigned all = 1u << LOG_ALL;
     int enabled = (inst->log_categories & (bit | all)) != 0;
-    if (status >= fmi2Warning)
+    if (status >= FMU_WARNING)
         return enabled;
     return inst->logging_on && enabled;
 }
 
-static void emit(const fmu_instance *inst, fmi2Status status, fmu_log_category category,
+static void emit(const fmu_instance *inst, fmu_status status, fmu_log_category category,
                  const char *format, va_list args)
 {
     if (inst == NULL || inst->callbacks.logger == NULL || !category_enabled(inst, status, category))
@@ -33,11 +33,11 @@ static void emit(const fmu_instance *inst, fmi2Status status, fmu_log_category c
     for (char *c = message; *c != '\0'; ++c)
         if (*c == '%')
             *c = ' ';
-    inst->callbacks.logger(inst->callbacks.environment, inst->name, status,
-                           fmu_log_category_names[category], message);
+    inst->callbacks.forward(&inst->callbacks, inst->name, status,
+                            fmu_log_category_names[category], message);
 }
 
-void fmu_log(const fmu_instance *inst, fmi2Status status, fmu_log_category category,
+void fmu_log(const fmu_instance *inst, fmu_status status, fmu_log_category category,
              const char *format, ...)
 {
     va_list args;
@@ -46,13 +46,13 @@ void fmu_log(const fmu_instance *inst, fmi2Status status, fmu_log_category categ
     va_end(args);
 }
 
-fmi2Status fmu_error(const fmu_instance *inst, const char *format, ...)
+fmu_status fmu_error(const fmu_instance *inst, const char *format, ...)
 {
     va_list args;
     va_start(args, format);
-    emit(inst, fmi2Error, LOG_STATUS_ERROR, format, args);
+    emit(inst, FMU_ERROR, LOG_STATUS_ERROR, format, args);
     va_end(args);
-    return fmi2Error;
+    return FMU_ERROR;
 }
 
 int fmu_log_category_from_name(const char *name)
@@ -63,7 +63,7 @@ int fmu_log_category_from_name(const char *name)
     return -1;
 }
 
-fmi2Status fmu_set_logging(fmu_instance *inst, const char *function, int logging_on,
+fmu_status fmu_set_logging(fmu_instance *inst, const char *function, int logging_on,
                            size_t n_categories, const char *const categories[])
 {
     unsigned selected = 0;
@@ -76,5 +76,5 @@ fmi2Status fmu_set_logging(fmu_instance *inst, const char *function, int logging
     }
     inst->logging_on = logging_on;
     inst->log_categories = n_categories > 0 ? selected : LOG_ALL_CATEGORIES;
-    return fmi2OK;
+    return FMU_OK;
 }

@@ -22,21 +22,21 @@ extern const char *const fmu_log_category_descriptions[LOG_CATEGORY_COUNT];
 #if defined(__GNUC__)
 __attribute__((format(printf, 4, 5)))
 #endif
-void fmu_log(const fmu_instance *inst, fmi2Status status, fmu_log_category category,
+void fmu_log(const fmu_instance *inst, fmu_status status, fmu_log_category category,
              const char *format, ...);
 
-/* Shorthand for an error message; returns fmi2Error so callers can `return fmu_error(...)`. */
+/* Shorthand for an error message; returns FMU_ERROR so callers can `return fmu_error(...)`. */
 #if defined(__GNUC__)
 __attribute__((format(printf, 2, 3)))
 #endif
-fmi2Status fmu_error(const fmu_instance *inst, const char *format, ...);
+fmu_status fmu_error(const fmu_instance *inst, const char *format, ...);
 
 /* Category bit for a name, or -1 when unknown. */
 int fmu_log_category_from_name(const char *name);
 
 /* Switches debug logging and selects the categories (none given: all); `function` names the
  * call in messages. */
-fmi2Status fmu_set_logging(fmu_instance *inst, const char *function, int logging_on,
+fmu_status fmu_set_logging(fmu_instance *inst, const char *function, int logging_on,
                            size_t n_categories, const char *const categories[]);
 
 #endif

@@ -8,12 +8,13 @@
 #include <math.h>
 #include <string.h>
 
+#include "fmu_evaluation.h"
 #include "fmu_log.h"
 
 /* Every model quantity is of order one (model.h): the importer scales its tolerances by this. */
 #define STATE_NOMINAL 1.0
 
-static fmi2Status check_vector(const fmu_instance *inst, const char *function, const void *array,
+static fmu_status check_vector(const fmu_instance *inst, const char *function, const void *array,
                                size_t given, size_t expected, const char *what)
 {
     if (given != expected)
@@ -21,7 +22,7 @@ static fmi2Status check_vector(const fmu_instance *inst, const char *function, c
                          expected);
     if (given > 0 && array == NULL)
         return fmu_error(inst, "%s: the array of %s is NULL", function, what);
-    return fmi2OK;
+    return FMU_OK;
 }
 
 /* In initialization mode the states follow their start parameters (fmu_refresh_outputs);
@@ -44,7 +45,7 @@ int fmu_me_terminates(const fmu_instance *inst)
     return inst->time >= termination_time(inst);
 }
 
-fmi2Status fmu_me_set_time(fmu_instance *inst, const char *function, double time)
+fmu_status fmu_me_set_time(fmu_instance *inst, const char *function, double time)
 {
     if (!isfinite(time))
         return fmu_error(inst, "%s: time %g is not finite", function, time);
@@ -54,57 +55,57 @@ fmi2Status fmu_me_set_time(fmu_instance *inst, const char *function, double time
         step_refusal_kind kind = STEP_FAILS;
         const char *reason = inst->model->step_refusal(inst->values, time, &kind);
         if (reason != NULL) {
-            fmi2Status status = fmu_refusal_status(inst, kind);
-            fmu_log(inst, status, status == fmi2Discard ? LOG_STATUS_WARNING : LOG_STATUS_ERROR,
+            fmu_status status = fmu_refusal_status(inst, kind);
+            fmu_log(inst, status, status == FMU_DISCARD ? LOG_STATUS_WARNING : LOG_STATUS_ERROR,
                     "%s to t = %.17g: %s", function, time, reason);
             return status;
         }
     }
     inst->time = time;
     inst->outputs_stale = 1;
-    return fmi2OK;
+    return FMU_OK;
 }
 
-fmi2Status fmu_me_set_states(fmu_instance *inst, const char *function, const double *x,
+fmu_status fmu_me_set_states(fmu_instance *inst, const char *function, const double *x,
                              size_t nx)
 {
-    if (check_vector(inst, function, x, nx, inst->model->n_states, "states") != fmi2OK)
-        return fmi2Error;
+    if (check_vector(inst, function, x, nx, inst->model->n_states, "states") != FMU_OK)
+        return FMU_ERROR;
     for (size_t i = 0; i < nx; ++i)
         if (isnan(x[i]))
             return fmu_error(inst, "%s: state %zu (%s) is NaN", function, i,
                              inst->model->variables[inst->model->state_vrs[i]].name);
     memcpy(inst->x, x, nx * sizeof(double));
     inst->outputs_stale = 1;
-    return fmi2OK;
+    return FMU_OK;
 }
 
-fmi2Status fmu_me_get_states(fmu_instance *inst, const char *function, double *x, size_t nx)
+fmu_status fmu_me_get_states(fmu_instance *inst, const char *function, double *x, size_t nx)
 {
-    if (check_vector(inst, function, x, nx, inst->model->n_states, "states") != fmi2OK)
-        return fmi2Error;
+    if (check_vector(inst, function, x, nx, inst->model->n_states, "states") != FMU_OK)
+        return FMU_ERROR;
     settle(inst);
     if (nx > 0)
         memcpy(x, inst->x, nx * sizeof(double));
-    return fmi2OK;
+    return FMU_OK;
 }
 
-fmi2Status fmu_me_derivatives(fmu_instance *inst, const char *function, double *dx, size_t nx)
+fmu_status fmu_me_derivatives(fmu_instance *inst, const char *function, double *dx, size_t nx)
 {
-    if (check_vector(inst, function, dx, nx, inst->model->n_states, "derivatives") != fmi2OK)
-        return fmi2Error;
+    if (check_vector(inst, function, dx, nx, inst->model->n_states, "derivatives") != FMU_OK)
+        return FMU_ERROR;
     settle(inst);
     if (nx > 0)
         inst->model->derivatives(inst->values, inst->time, inst->x, dx);
-    return fmi2OK;
+    return FMU_OK;
 }
 
-fmi2Status fmu_me_event_indicators(fmu_instance *inst, const char *function, double *z,
+fmu_status fmu_me_event_indicators(fmu_instance *inst, const char *function, double *z,
                                    size_t nz)
 {
     if (check_vector(inst, function, z, nz, inst->model->n_event_indicators,
-                     "event indicators") != fmi2OK)
-        return fmi2Error;
+                     "event indicators") != FMU_OK)
+        return FMU_ERROR;
     settle(inst);
     fmu_event_indicators(inst, z);
     /* An event can leave an indicator at exactly 0 (a bounce puts the ball on the floor), and a
@@ -115,17 +116,17 @@ fmi2Status fmu_me_event_indicators(fmu_instance *inst, const char *function, dou
         for (size_t i = 0; i < nz; ++i)
             if (z[i] > 0.0)
                 inst->z_previous[i] = z[i];
-    return fmi2OK;
+    return FMU_OK;
 }
 
-fmi2Status fmu_me_nominals(fmu_instance *inst, const char *function, double *nominals,
+fmu_status fmu_me_nominals(fmu_instance *inst, const char *function, double *nominals,
                            size_t nx)
 {
-    if (check_vector(inst, function, nominals, nx, inst->model->n_states, "nominals") != fmi2OK)
-        return fmi2Error;
+    if (check_vector(inst, function, nominals, nx, inst->model->n_states, "nominals") != FMU_OK)
+        return FMU_ERROR;
     for (size_t i = 0; i < nx; ++i)
         nominals[i] = STATE_NOMINAL;
-    return fmi2OK;
+    return FMU_OK;
 }
 
 /* Applies the events of the indicators that fell from > 0 to <= 0 since the last event mode;
@@ -162,7 +163,7 @@ void fmu_me_update_discrete_states(fmu_instance *inst, fmu_discrete_update *upda
     double stop = termination_time(inst);
     update->terminate = inst->time >= stop;
     if (update->terminate)
-        fmu_log(inst, fmi2OK, LOG_EVENTS, "the model asks to end the simulation at t = %.17g",
+        fmu_log(inst, FMU_OK, LOG_EVENTS, "the model asks to end the simulation at t = %.17g",
                 inst->time);
     else
         next = fmin(next, stop);

@@ -14,14 +14,14 @@ typedef struct {
     double next_event_time;
 } fmu_discrete_update;
 
-fmi2Status fmu_me_set_time(fmu_instance *inst, const char *function, double time);
-fmi2Status fmu_me_set_states(fmu_instance *inst, const char *function, const double *x,
+fmu_status fmu_me_set_time(fmu_instance *inst, const char *function, double time);
+fmu_status fmu_me_set_states(fmu_instance *inst, const char *function, const double *x,
                              size_t nx);
-fmi2Status fmu_me_get_states(fmu_instance *inst, const char *function, double *x, size_t nx);
-fmi2Status fmu_me_derivatives(fmu_instance *inst, const char *function, double *dx, size_t nx);
-fmi2Status fmu_me_event_indicators(fmu_instance *inst, const char *function, double *z,
+fmu_status fmu_me_get_states(fmu_instance *inst, const char *function, double *x, size_t nx);
+fmu_status fmu_me_derivatives(fmu_instance *inst, const char *function, double *dx, size_t nx);
+fmu_status fmu_me_event_indicators(fmu_instance *inst, const char *function, double *z,
                                    size_t nz);
-fmi2Status fmu_me_nominals(fmu_instance *inst, const char *function, double *nominals,
+fmu_status fmu_me_nominals(fmu_instance *inst, const char *function, double *nominals,
                            size_t nx);
 /* The model's events since the last event mode, applied; one pass settles them. */
 void fmu_me_update_discrete_states(fmu_instance *inst, fmu_discrete_update *update);

@@ -14,6 +14,6 @@ void fmu_solver_free(fmu_instance *inst);
 /* The state or an input was changed from outside: restart the integration from inst->x. */
 void fmu_solver_invalidate(fmu_instance *inst);
 /* Advance inst->time and inst->x to t_end (> inst->time). */
-fmi2Status fmu_solver_step(fmu_instance *inst, double t_end);
+fmu_status fmu_solver_step(fmu_instance *inst, double t_end);
 
 #endif

@@ -68,7 +68,7 @@ static void capture(const fmu_instance *inst, fmu_snapshot *snapshot)
         fired[i] = inst->fired[i];
 }
 
-fmi2Status fmu_state_get(fmu_instance *inst, const char *function, void **FMUstate)
+fmu_status fmu_state_get(fmu_instance *inst, const char *function, void **FMUstate)
 {
     if (FMUstate == NULL)
         return fmu_error(inst, "%s: the state pointer is NULL", function);
@@ -85,10 +85,10 @@ fmi2Status fmu_state_get(fmu_instance *inst, const char *function, void **FMUsta
     }
     capture(inst, snapshot);
     *FMUstate = snapshot;
-    return fmi2OK;
+    return FMU_OK;
 }
 
-fmi2Status fmu_state_set(fmu_instance *inst, const char *function, const void *FMUstate)
+fmu_status fmu_state_set(fmu_instance *inst, const char *function, const void *FMUstate)
 {
     const fmu_snapshot *snapshot = FMUstate;
     if (snapshot == NULL || !matches(inst, &snapshot->header))
@@ -108,29 +108,29 @@ fmi2Status fmu_state_set(fmu_instance *inst, const char *function, const void *F
     fmu_clear_input_derivatives(inst);
     inst->outputs_stale = 1;
     fmu_solver_invalidate(inst);
-    return fmi2OK;
+    return FMU_OK;
 }
 
-fmi2Status fmu_state_free(fmu_instance *inst, const char *function, void **FMUstate)
+fmu_status fmu_state_free(fmu_instance *inst, const char *function, void **FMUstate)
 {
     if (FMUstate == NULL)
         return fmu_error(inst, "%s: the state pointer is NULL", function);
     free(*FMUstate);
     *FMUstate = NULL;
-    return fmi2OK;
+    return FMU_OK;
 }
 
-fmi2Status fmu_state_serialized_size(fmu_instance *inst, const char *function,
+fmu_status fmu_state_serialized_size(fmu_instance *inst, const char *function,
                                      const void *FMUstate, size_t *size)
 {
     const fmu_snapshot *snapshot = FMUstate;
     if (snapshot == NULL || size == NULL || !matches(inst, &snapshot->header))
         return fmu_error(inst, "%s: invalid state or size pointer", function);
     *size = sizeof(state_header) + data_count(inst) * sizeof(double);
-    return fmi2OK;
+    return FMU_OK;
 }
 
-fmi2Status fmu_state_serialize(fmu_instance *inst, const char *function, const void *FMUstate,
+fmu_status fmu_state_serialize(fmu_instance *inst, const char *function, const void *FMUstate,
                                unsigned char serializedState[], size_t size)
 {
     const fmu_snapshot *snapshot = FMUstate;
@@ -142,10 +142,10 @@ fmi2Status fmu_state_serialize(fmu_instance *inst, const char *function, const v
     memcpy(serializedState, &snapshot->header, sizeof(state_header));
     memcpy(serializedState + sizeof(state_header), snapshot->data,
            data_count(inst) * sizeof(double));
-    return fmi2OK;
+    return FMU_OK;
 }
 
-fmi2Status fmu_state_deserialize(fmu_instance *inst, const char *function,
+fmu_status fmu_state_deserialize(fmu_instance *inst, const char *function,
                                  const unsigned char serializedState[], size_t size,
                                  void **FMUstate)
 {
@@ -168,5 +168,5 @@ fmi2Status fmu_state_deserialize(fmu_instance *inst, const char *function,
     memcpy(snapshot->data, serializedState + sizeof(state_header),
            data_count(inst) * sizeof(double));
     *FMUstate = snapshot;
-    return fmi2OK;
+    return FMU_OK;
 }

@@ -8,14 +8,14 @@
 #include "fmu_instance.h"
 
 /* Captures the instance into *FMUstate, reusing it when it is a state of this FMU. */
-fmi2Status fmu_state_get(fmu_instance *inst, const char *function, void **FMUstate);
-fmi2Status fmu_state_set(fmu_instance *inst, const char *function, const void *FMUstate);
-fmi2Status fmu_state_free(fmu_instance *inst, const char *function, void **FMUstate);
-fmi2Status fmu_state_serialized_size(fmu_instance *inst, const char *function,
+fmu_status fmu_state_get(fmu_instance *inst, const char *function, void **FMUstate);
+fmu_status fmu_state_set(fmu_instance *inst, const char *function, const void *FMUstate);
+fmu_status fmu_state_free(fmu_instance *inst, const char *function, void **FMUstate);
+fmu_status fmu_state_serialized_size(fmu_instance *inst, const char *function,
                                      const void *FMUstate, size_t *size);
-fmi2Status fmu_state_serialize(fmu_instance *inst, const char *function, const void *FMUstate,
+fmu_status fmu_state_serialize(fmu_instance *inst, const char *function, const void *FMUstate,
                                unsigned char serializedState[], size_t size);
-fmi2Status fmu_state_deserialize(fmu_instance *inst, const char *function,
+fmu_status fmu_state_deserialize(fmu_instance *inst, const char *function,
                                  const unsigned char serializedState[], size_t size,
                                  void **FMUstate);
 

@@ -3,6 +3,7 @@
 #include <math.h>
 
 #include "fmu_interpolation.h"
+#include "fmu_evaluation.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
@@ -17,16 +18,16 @@ double fmu_stop_time(const fmu_instance *inst)
                                                  : INFINITY;
 }
 
-static fmi2Status refuse_step(fmu_instance *inst, const char *function, double t, double t_end,
+static fmu_status refuse_step(fmu_instance *inst, const char *function, double t, double t_end,
                               const char *reason, step_refusal_kind kind)
 {
-    fmi2Status status = fmu_refusal_status(inst, kind);
-    fmu_log(inst, status, status == fmi2Discard ? LOG_STATUS_WARNING : LOG_STATUS_ERROR,
+    fmu_status status = fmu_refusal_status(inst, kind);
+    fmu_log(inst, status, status == FMU_DISCARD ? LOG_STATUS_WARNING : LOG_STATUS_ERROR,
             "%s from t = %.17g to %.17g: %s", function, t, t_end, reason);
     return status;
 }
 
-fmi2Status fmu_do_step(fmu_instance *inst, const char *function, double t, double h)
+fmu_status fmu_do_step(fmu_instance *inst, const char *function, double t, double h)
 {
     if (!isfinite(h) || h < 0.0)
         return fmu_error(inst, "%s: communication step size %g is negative or not finite",
@@ -39,7 +40,7 @@ fmi2Status fmu_do_step(fmu_instance *inst, const char *function, double t, doubl
     double t_end = t + h;
     if (t_end <= inst->time) {
         fmu_refresh_outputs(inst);
-        return fmi2OK;
+        return FMU_OK;
     }
     if (inst->model->step_refusal != NULL) {
         step_refusal_kind kind = STEP_FAILS;
@@ -49,7 +50,7 @@ fmi2Status fmu_do_step(fmu_instance *inst, const char *function, double t, doubl
     }
     /* a model that asks to stop inside the step is integrated up to that time only */
     double t_until = fmin(t_end, fmu_stop_time(inst));
-    fmi2Status status = fmi2OK;
+    fmu_status status = FMU_OK;
     if (t_until > inst->time) {
         fmu_inputs_begin_step(inst);
         status = fmu_solver_step(inst, t_until);

@@ -11,6 +11,6 @@ double fmu_stop_time(const fmu_instance *inst);
  * model asks to stop, or (importer_handles_events) only to the first internal event, which it
  * leaves pending. A step that ends where the instance already is only refreshes the outputs.
  * `function` names the call in messages. */
-fmi2Status fmu_do_step(fmu_instance *inst, const char *function, double t, double h);
+fmu_status fmu_do_step(fmu_instance *inst, const char *function, double t, double h);
 
 #endif

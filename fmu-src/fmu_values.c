@@ -4,13 +4,14 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "fmu_evaluation.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
 const char *const fmu_type_names[] = {"Real", "Integer", "Boolean"};
 
-fmi2Status fmu_refuse_reference(const fmu_instance *inst, const char *function,
-                                fmi2ValueReference vr)
+fmu_status fmu_refuse_reference(const fmu_instance *inst, const char *function,
+                                unsigned int vr)
 {
     const model_variable *var = fmu_variable(inst, vr);
     if (var == NULL)
@@ -20,8 +21,8 @@ fmi2Status fmu_refuse_reference(const fmu_instance *inst, const char *function,
 }
 
 /* The model's own variables are looked up directly: this runs on every get and set. */
-fmi2Status fmu_check_references(const fmu_instance *inst, const char *function,
-                                const fmi2ValueReference vr[], size_t nvr, const void *value,
+fmu_status fmu_check_references(const fmu_instance *inst, const char *function,
+                                const unsigned int vr[], size_t nvr, const void *value,
                                 variable_type type)
 {
     if (nvr > 0 && vr == NULL)
@@ -31,15 +32,15 @@ fmi2Status fmu_check_references(const fmu_instance *inst, const char *function,
     const model_variable *model_variables = inst->model->variables;
     const size_t n_model = inst->model->n_variables;
     for (size_t i = 0; i < nvr; ++i) {
-        const fmi2ValueReference r = vr[i];
+        const unsigned int r = vr[i];
         const model_variable *var = r < n_model ? &model_variables[r] : fmu_variable(inst, r);
         if (var == NULL || var->type != type)
             return fmu_refuse_reference(inst, function, r);
     }
-    return fmi2OK;
+    return FMU_OK;
 }
 
-fmi2Status fmu_prepare_read(fmu_instance *inst, const char *function)
+fmu_status fmu_prepare_read(fmu_instance *inst, const char *function)
 {
     if (inst->outputs_stale) /* outputs follow the current state and inputs */
         fmu_refresh_outputs(inst);
@@ -48,23 +49,23 @@ fmi2Status fmu_prepare_read(fmu_instance *inst, const char *function)
         if (reason != NULL)
             return fmu_error(inst, "%s at t = %.17g: %s", function, inst->time, reason);
     }
-    return fmi2OK;
+    return FMU_OK;
 }
 
 /* Whether the variable may be written now (causality, variability, phase). Masters re-apply
  * all parameters after a state restore (SysSimX does): a fixed parameter set after
  * initialization to the value it already has changes nothing and is accepted; a new value is
  * not. */
-static fmi2Status check_settable(const fmu_instance *inst, const char *function,
-                                 fmi2ValueReference vr, double value)
+static fmu_status check_settable(const fmu_instance *inst, const char *function,
+                                 unsigned int vr, double value)
 {
     const model_variable *var = fmu_variable(inst, vr);
     if (var->causality == CAUSALITY_INPUT)
-        return fmi2OK;
+        return FMU_OK;
     if (var->causality == CAUSALITY_PARAMETER) {
         if ((PHASE_BIT(inst->phase) & PHASES_RUNNING) == 0 ||
             var->variability == VARIABILITY_TUNABLE || inst->values[vr] == value)
-            return fmi2OK;
+            return FMU_OK;
         /* the hint names the calls of the caller's interface: fmi2... or fmi3... */
         return fmu_error(inst,
                          "%s: %s is a fixed parameter and cannot be changed in %s "
@@ -75,12 +76,12 @@ static fmi2Status check_settable(const fmu_instance *inst, const char *function,
                      var->name);
 }
 
-fmi2Status fmu_store(fmu_instance *inst, const char *function, const fmi2ValueReference vr[],
+fmu_status fmu_store(fmu_instance *inst, const char *function, const unsigned int vr[],
                      size_t nvr, const void *values, double (*value_at)(const void *, size_t))
 {
     for (size_t i = 0; i < nvr; ++i)
-        if (check_settable(inst, function, vr[i], value_at(values, i)) != fmi2OK)
-            return fmi2Error;
+        if (check_settable(inst, function, vr[i], value_at(values, i)) != FMU_OK)
+            return FMU_ERROR;
     int changed = 0;
     for (size_t i = 0; i < nvr; ++i) {
         double value = value_at(values, i);
@@ -92,15 +93,15 @@ fmi2Status fmu_store(fmu_instance *inst, const char *function, const fmi2ValueRe
         if (inst->phase == PHASE_STEP)
             fmu_solver_invalidate(inst);
     }
-    return fmi2OK;
+    return FMU_OK;
 }
 
-fmi2Status fmu_check_reals(const fmu_instance *inst, const char *function,
-                           const fmi2ValueReference vr[], size_t nvr, const double values[])
+fmu_status fmu_check_reals(const fmu_instance *inst, const char *function,
+                           const unsigned int vr[], size_t nvr, const double values[])
 {
     for (size_t i = 0; i < nvr; ++i)
         if (isnan(values[i]))
             return fmu_error(inst, "%s: value for %s is NaN", function,
                              fmu_variable(inst, vr[i])->name);
-    return fmi2OK;
+    return FMU_OK;
 }

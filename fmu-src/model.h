@@ -1,8 +1,8 @@
 /* What a model provides to the FMU framework: its variable table and its equations.
  *
  * A model is one C file that defines `fmu_model` (see the models/ folders). The framework serves
- * every fmi2 function, the solver back-ends integrate the equations, and the describe tool
- * writes modelDescription.xml, all from this one definition. */
+ * every FMI function (1.0, 2.0 and 3.0), the solver back-ends integrate the equations, and the
+ * describe tool writes modelDescription.xml, all from this one definition. */
 #ifndef SYSSIMX_FMU_MODEL_H
 #define SYSSIMX_FMU_MODEL_H
 
@@ -52,14 +52,80 @@ typedef struct {
     const char *declared_start;
 } model_variable;
 
-/* A fixed Real parameter with initial="exact", the most common row. */
-#define REAL_PARAMETER(vr, name, unit, start, description)                                  \
-    [vr] = {name, vr, TYPE_REAL, CAUSALITY_PARAMETER, VARIABILITY_FIXED, INITIAL_EXACT, unit, \
-            start, description, -1, NULL, NULL}
+/* The rows of the variable table, one macro per kind of variable, each naming the fields it
+ * sets; the others are zero (no unit, start 0). `vr` is the value reference and the row's
+ * index; `depends` and `initial_depends` are DEPENDS(...), DEPENDS_NONE or NULL (none
+ * declared); `state` is the value reference of the state a derivative belongs to. */
+#define MODEL_ROW(vr_, name_, type_, causality_, variability_, initial_, derivative_of_, ...)     \
+    [vr_] = {.name = (name_), .vr = (vr_), .type = (type_), .causality = (causality_),            \
+             .variability = (variability_), .initial = (initial_),                                \
+             .derivative_of = (derivative_of_), __VA_ARGS__}
 
-/* How a refused step fails: the step fails and may be retried (fmi2Error), or the step could
- * not be completed (fmi2Discard: the FMU stays at the step's start), or the model is broken for
- * good (fmi2Fatal: every later call is refused). */
+/* A fixed parameter with initial="exact". */
+#define REAL_PARAMETER(vr, name, unit_, start_, description_)                                     \
+    MODEL_ROW(vr, name, TYPE_REAL, CAUSALITY_PARAMETER, VARIABILITY_FIXED, INITIAL_EXACT, -1,     \
+              .unit = (unit_), .start = (start_), .description = (description_))
+#define INTEGER_PARAMETER(vr, name, start_, description_)                                         \
+    MODEL_ROW(vr, name, TYPE_INTEGER, CAUSALITY_PARAMETER, VARIABILITY_FIXED, INITIAL_EXACT, -1,  \
+              .start = (start_), .description = (description_))
+
+/* A continuous input. */
+#define REAL_INPUT(vr, name, unit_, start_, description_)                                         \
+    MODEL_ROW(vr, name, TYPE_REAL, CAUSALITY_INPUT, VARIABILITY_CONTINUOUS, INITIAL_NONE, -1,     \
+              .unit = (unit_), .start = (start_), .description = (description_))
+
+/* A parameter or an input whose modelDescription.xml declares the text `declared` instead of
+ * its start, for test models that mimic exporters printing starts rounded (e.g. "%f"). */
+#define REAL_PARAMETER_DECLARED(vr, name, unit_, start_, declared, description_)                  \
+    MODEL_ROW(vr, name, TYPE_REAL, CAUSALITY_PARAMETER, VARIABILITY_FIXED, INITIAL_EXACT, -1,     \
+              .unit = (unit_), .start = (start_), .description = (description_),                  \
+              .declared_start = (declared))
+#define REAL_INPUT_DECLARED(vr, name, unit_, start_, declared, description_)                      \
+    MODEL_ROW(vr, name, TYPE_REAL, CAUSALITY_INPUT, VARIABILITY_CONTINUOUS, INITIAL_NONE, -1,     \
+              .unit = (unit_), .start = (start_), .description = (description_),                  \
+              .declared_start = (declared))
+
+/* A continuous output computed from the states, inputs and parameters. */
+#define REAL_OUTPUT(vr, name, unit_, description_, depends_, initial_depends_)                    \
+    MODEL_ROW(vr, name, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS,                      \
+              INITIAL_CALCULATED, -1,                                                             \
+              .unit = (unit_), .description = (description_), .depends = (depends_),              \
+              .initial_depends = (initial_depends_))
+
+/* A continuous output that is the derivative of `state` (an acceleration as an output). */
+#define REAL_DERIVATIVE_OUTPUT(vr, name, unit_, description_, state, depends_, initial_depends_)  \
+    MODEL_ROW(vr, name, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS,                      \
+              INITIAL_CALCULATED, state,                                                          \
+              .unit = (unit_), .description = (description_), .depends = (depends_),              \
+              .initial_depends = (initial_depends_))
+
+/* An output that changes only at events. */
+#define REAL_DISCRETE_OUTPUT(vr, name, unit_, description_, depends_, initial_depends_)           \
+    MODEL_ROW(vr, name, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_DISCRETE, INITIAL_CALCULATED, -1,\
+              .unit = (unit_), .description = (description_), .depends = (depends_),              \
+              .initial_depends = (initial_depends_))
+#define BOOLEAN_DISCRETE_OUTPUT(vr, name, description_, depends_, initial_depends_)               \
+    MODEL_ROW(vr, name, TYPE_BOOLEAN, CAUSALITY_OUTPUT, VARIABILITY_DISCRETE,                     \
+              INITIAL_CALCULATED, -1,                                                             \
+              .description = (description_), .depends = (depends_),                               \
+              .initial_depends = (initial_depends_))
+
+/* A continuous local computed from the states (a state shown by a variable of its own). */
+#define REAL_LOCAL(vr, name, unit_, description_, depends_, initial_depends_)                     \
+    MODEL_ROW(vr, name, TYPE_REAL, CAUSALITY_LOCAL, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED, -1,\
+              .unit = (unit_), .description = (description_), .depends = (depends_),              \
+              .initial_depends = (initial_depends_))
+
+/* The derivative of `state` as a local ("der(x)"). */
+#define REAL_DERIVATIVE(vr, name, unit_, description_, state, depends_, initial_depends_)         \
+    MODEL_ROW(vr, name, TYPE_REAL, CAUSALITY_LOCAL, VARIABILITY_CONTINUOUS,                       \
+              INITIAL_CALCULATED, state,                                                          \
+              .unit = (unit_), .description = (description_), .depends = (depends_),              \
+              .initial_depends = (initial_depends_))
+
+/* How a refused step fails: the step fails and may be retried (FMU_ERROR), or the step could
+ * not be completed (FMU_DISCARD: the FMU stays at the step's start), or the model is broken for
+ * good (FMU_FATAL: every later call is refused). */
 typedef enum { STEP_FAILS, STEP_DISCARDED, STEP_FATAL } step_refusal_kind;
 
 /* Equations. `v` holds every variable by value reference (Integer and Boolean values as
@@ -90,8 +156,8 @@ typedef struct {
      * Model Exchange refuses fmi2SetTime(t_end) the same way. */
     const char *(*step_refusal)(const double *v, double t_end, step_refusal_kind *kind);
     /* NULL when the model never asks to stop; otherwise the time at which it asks the master to
-     * end the simulation (INFINITY: not now). fmi2DoStep stops there and returns fmi2Discard;
-     * fmi2GetBooleanStatus(fmi2Terminated) then answers true. Model Exchange reports it as
+     * end the simulation (INFINITY: not now). A step stops there (FMI 2.0: fmi2Discard,
+     * and fmi2GetBooleanStatus(fmi2Terminated) then answers true). Model Exchange reports it as
      * nextEventTime, and event mode there answers terminateSimulation. */
     double (*termination_time)(const double *v);
     /* NULL when the model has no time events; otherwise the first time after t at which its

@@ -10,19 +10,16 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
-#include "fmu_interpolation.h"
+#include "fmu_evaluation.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
 enum { CVODE_RELATIVE_TOLERANCE };
 
 const model_variable fmu_solver_variables[] = {
-    [CVODE_RELATIVE_TOLERANCE] = {"cvode_relative_tolerance", CVODE_RELATIVE_TOLERANCE,
-                                  TYPE_REAL, CAUSALITY_PARAMETER, VARIABILITY_FIXED,
-                                  INITIAL_EXACT, NULL, 1e-6,
-                                  "CVODE relative tolerance, used when fmi2SetupExperiment "
-                                  "defines none",
-                                  -1, NULL, NULL},
+    REAL_PARAMETER(CVODE_RELATIVE_TOLERANCE, "cvode_relative_tolerance", NULL, 1e-6,
+                   "CVODE relative tolerance, used when fmi2SetupExperiment "
+                   "defines none"),
 };
 const size_t fmu_solver_variable_count = sizeof fmu_solver_variables / sizeof *fmu_solver_variables;
 const char fmu_solver_name[] = "cvode";
@@ -65,7 +62,7 @@ static void report(int code, const char *module, const char *function, char *mes
     if (code < 0)
         fmu_error(inst, "%s %s: %s", module, function, message);
     else
-        fmu_log(inst, fmi2OK, LOG_ALL, "%s %s: %s", module, function, message);
+        fmu_log(inst, FMU_OK, LOG_ALL, "%s %s: %s", module, function, message);
 }
 
 void fmu_solver_free(fmu_instance *inst)
@@ -147,7 +144,7 @@ void fmu_solver_invalidate(fmu_instance *inst)
 }
 
 /* Restart the integration at inst->time from inst->x with the current tolerance. */
-static fmi2Status restart(fmu_instance *inst, cvode_data *data)
+static fmu_status restart(fmu_instance *inst, cvode_data *data)
 {
     double relative = inst->tolerance_defined
                           ? inst->tolerance
@@ -163,7 +160,7 @@ static fmi2Status restart(fmu_instance *inst, cvode_data *data)
             CV_SUCCESS)
         return fmu_error(inst, "CVODE could not be restarted at t = %.17g", inst->time);
     data->must_restart = 0;
-    return fmi2OK;
+    return FMU_OK;
 }
 
 static void copy_state_out(fmu_instance *inst, const cvode_data *data)
@@ -173,11 +170,11 @@ static void copy_state_out(fmu_instance *inst, const cvode_data *data)
         inst->x[i] = y[i];
 }
 
-fmi2Status fmu_solver_step(fmu_instance *inst, double t_end)
+fmu_status fmu_solver_step(fmu_instance *inst, double t_end)
 {
     cvode_data *data = inst->solver;
-    if (data->must_restart && restart(inst, data) != fmi2OK)
-        return fmi2Error;
+    if (data->must_restart && restart(inst, data) != FMU_OK)
+        return FMU_ERROR;
     int events = 0;
     for (;;) {
         sunrealtype t_reached = inst->time;
@@ -201,11 +198,11 @@ fmi2Status fmu_solver_step(fmu_instance *inst, double t_end)
         if (inst->importer_handles_events) {
             /* stop at the root; the importer applies the event in event mode */
             inst->event_pending = 1;
-            return fmi2OK;
+            return FMU_OK;
         }
         fmu_handle_events(inst, t_reached, inst->x);
-        if (restart(inst, data) != fmi2OK)
-            return fmi2Error;
+        if (restart(inst, data) != FMU_OK)
+            return FMU_ERROR;
         if (++events > MAX_EVENTS_PER_STEP)
             return fmu_error(inst, "more than %d internal events in one step at t = %.17g: "
                                    "the model chatters",
@@ -214,5 +211,5 @@ fmi2Status fmu_solver_step(fmu_instance *inst, double t_end)
             break;
     }
     inst->time = t_end;
-    return fmi2OK;
+    return FMU_OK;
 }

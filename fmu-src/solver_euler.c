@@ -6,16 +6,15 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "fmu_interpolation.h"
+#include "fmu_evaluation.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
 enum { EULER_STEP_SIZE };
 
 const model_variable fmu_solver_variables[] = {
-    [EULER_STEP_SIZE] = {"euler_step_size", EULER_STEP_SIZE, TYPE_REAL, CAUSALITY_PARAMETER,
-                         VARIABILITY_FIXED, INITIAL_EXACT, "s", 1e-4,
-                         "step size of the explicit Euler integrator", -1, NULL, NULL},
+    REAL_PARAMETER(EULER_STEP_SIZE, "euler_step_size", "s", 1e-4,
+                   "step size of the explicit Euler integrator"),
 };
 const size_t fmu_solver_variable_count = sizeof fmu_solver_variables / sizeof *fmu_solver_variables;
 const char fmu_solver_name[] = "euler";
@@ -77,7 +76,7 @@ static double earliest_crossing(fmu_instance *inst)
     return earliest;
 }
 
-fmi2Status fmu_solver_step(fmu_instance *inst, double t_end)
+fmu_status fmu_solver_step(fmu_instance *inst, double t_end)
 {
     const model_definition *model = inst->model;
     euler_data *data = inst->solver;
@@ -122,7 +121,7 @@ fmi2Status fmu_solver_step(fmu_instance *inst, double t_end)
             /* stop at the located point; the importer applies the event in event mode */
             inst->time = t;
             inst->event_pending = 1;
-            return fmi2OK;
+            return FMU_OK;
         }
         fmu_handle_events(inst, t, inst->x);
         if (++events > MAX_EVENTS_PER_STEP) {
@@ -135,5 +134,5 @@ fmi2Status fmu_solver_step(fmu_instance *inst, double t_end)
         substeps = 0;
     }
     inst->time = t_end;
-    return fmi2OK;
+    return FMU_OK;
 }

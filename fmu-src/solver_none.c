@@ -20,8 +20,8 @@ void fmu_solver_invalidate(fmu_instance *inst)
     (void)inst;
 }
 
-fmi2Status fmu_solver_step(fmu_instance *inst, double t_end)
+fmu_status fmu_solver_step(fmu_instance *inst, double t_end)
 {
     inst->time = t_end;
-    return fmi2OK;
+    return FMU_OK;
 }

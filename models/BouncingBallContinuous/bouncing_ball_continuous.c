@@ -6,16 +6,12 @@
 enum { VR_H, VR_V, VR_DER_H, VR_DER_V, VR_G, VR_H0, VR_V0, VARIABLE_COUNT };
 
 static const model_variable variables[VARIABLE_COUNT] = {
-    [VR_H] = {"h", VR_H, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,
-              "m", 0, "height above the floor", -1, DEPENDS(VR_H), DEPENDS(VR_H0)},
-    [VR_V] = {"v", VR_V, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,
-              "m/s", 0, "vertical velocity, up positive", -1, DEPENDS(VR_V), DEPENDS(VR_V0)},
-    [VR_DER_H] = {"der(h)", VR_DER_H, TYPE_REAL, CAUSALITY_LOCAL, VARIABILITY_CONTINUOUS,
-                  INITIAL_CALCULATED, "m/s", 0, "derivative of h", VR_H, DEPENDS(VR_V),
-                  DEPENDS(VR_V0)},
-    [VR_DER_V] = {"der(v)", VR_DER_V, TYPE_REAL, CAUSALITY_LOCAL, VARIABILITY_CONTINUOUS,
-                  INITIAL_CALCULATED, "m/s2", 0, "derivative of v", VR_V, DEPENDS_NONE,
-                  DEPENDS(VR_G)},
+    REAL_OUTPUT(VR_H, "h", "m", "height above the floor", DEPENDS(VR_H), DEPENDS(VR_H0)),
+    REAL_OUTPUT(VR_V, "v", "m/s", "vertical velocity, up positive", DEPENDS(VR_V), DEPENDS(VR_V0)),
+    REAL_DERIVATIVE(VR_DER_H, "der(h)", "m/s", "derivative of h", VR_H, DEPENDS(VR_V),
+                    DEPENDS(VR_V0)),
+    REAL_DERIVATIVE(VR_DER_V, "der(v)", "m/s2", "derivative of v", VR_V, DEPENDS_NONE,
+                    DEPENDS(VR_G)),
     REAL_PARAMETER(VR_G, "g", "m/s2", 9.81, "gravitational acceleration"),
     REAL_PARAMETER(VR_H0, "h0", "m", 1, "initial height"),
     REAL_PARAMETER(VR_V0, "v0", "m/s", 0, "initial velocity"),

@@ -4,10 +4,8 @@
 enum { VR_Y, VR_U, VR_K, VARIABLE_COUNT };
 
 static const model_variable variables[VARIABLE_COUNT] = {
-    [VR_Y] = {"y", VR_Y, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,
-              "m", 0, "output k * u", -1, DEPENDS(VR_U), DEPENDS(VR_U, VR_K)},
-    [VR_U] = {"u", VR_U, TYPE_REAL, CAUSALITY_INPUT, VARIABILITY_CONTINUOUS, INITIAL_NONE, "m", 0,
-              "input", -1, NULL, NULL},
+    REAL_OUTPUT(VR_Y, "y", "m", "output k * u", DEPENDS(VR_U), DEPENDS(VR_U, VR_K)),
+    REAL_INPUT(VR_U, "u", "m", 0, "input"),
     REAL_PARAMETER(VR_K, "k", NULL, 1, "gain"),
 };
 

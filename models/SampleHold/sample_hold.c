@@ -12,9 +12,9 @@ static const double PI = 3.14159265358979323846;
 enum { VR_Y, VR_AMPLITUDE, VR_FREQUENCY, VR_HOLD_STEP, VARIABLE_COUNT };
 
 static const model_variable variables[VARIABLE_COUNT] = {
-    [VR_Y] = {"y", VR_Y, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_DISCRETE, INITIAL_CALCULATED,
-              NULL, 0, "amplitude * cos(2 pi f t_k), t_k the last sample instant", -1,
-              DEPENDS_NONE, DEPENDS(VR_AMPLITUDE, VR_FREQUENCY, VR_HOLD_STEP)},
+    REAL_DISCRETE_OUTPUT(VR_Y, "y", NULL,
+                         "amplitude * cos(2 pi f t_k), t_k the last sample instant", DEPENDS_NONE,
+                         DEPENDS(VR_AMPLITUDE, VR_FREQUENCY, VR_HOLD_STEP)),
     REAL_PARAMETER(VR_AMPLITUDE, "amplitude", NULL, 1, "amplitude of the cosine"),
     REAL_PARAMETER(VR_FREQUENCY, "f", "1/s", 0.7, "frequency of the cosine"),
     REAL_PARAMETER(VR_HOLD_STEP, "hold_step", "s", 1e-3, "time between two samples"),

@@ -6,16 +6,13 @@
 enum { VR_X, VR_V, VR_DER_X, VR_DER_V, VR_MU, VR_G, VR_X0, VR_V0, VARIABLE_COUNT };
 
 static const model_variable variables[VARIABLE_COUNT] = {
-    [VR_X] = {"x", VR_X, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,
-              "m", 0, "position along the floor", -1, DEPENDS(VR_X), DEPENDS(VR_X0)},
-    [VR_V] = {"v", VR_V, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,
-              "m/s", 0, "velocity; exactly 0 once stopped", -1, DEPENDS(VR_V), DEPENDS(VR_V0)},
-    [VR_DER_X] = {"der(x)", VR_DER_X, TYPE_REAL, CAUSALITY_LOCAL, VARIABILITY_CONTINUOUS,
-                  INITIAL_CALCULATED, "m/s", 0, "derivative of x", VR_X, DEPENDS(VR_V),
-                  DEPENDS(VR_V0)},
-    [VR_DER_V] = {"der(v)", VR_DER_V, TYPE_REAL, CAUSALITY_LOCAL, VARIABILITY_CONTINUOUS,
-                  INITIAL_CALCULATED, "m/s2", 0, "derivative of v", VR_V, DEPENDS(VR_V),
-                  DEPENDS(VR_V0, VR_MU, VR_G)},
+    REAL_OUTPUT(VR_X, "x", "m", "position along the floor", DEPENDS(VR_X), DEPENDS(VR_X0)),
+    REAL_OUTPUT(VR_V, "v", "m/s", "velocity; exactly 0 once stopped", DEPENDS(VR_V),
+                DEPENDS(VR_V0)),
+    REAL_DERIVATIVE(VR_DER_X, "der(x)", "m/s", "derivative of x", VR_X, DEPENDS(VR_V),
+                    DEPENDS(VR_V0)),
+    REAL_DERIVATIVE(VR_DER_V, "der(v)", "m/s2", "derivative of v", VR_V, DEPENDS(VR_V),
+                    DEPENDS(VR_V0, VR_MU, VR_G)),
     REAL_PARAMETER(VR_MU, "mu", NULL, 0.3, "coefficient of friction"),
     REAL_PARAMETER(VR_G, "g", "m/s2", 9.81, "gravitational acceleration"),
     REAL_PARAMETER(VR_X0, "x0", "m", 0, "initial position"),

@@ -6,10 +6,8 @@
 enum { VR_Y, VR_U, VR_B, VR_C, VARIABLE_COUNT };
 
 static const model_variable variables[VARIABLE_COUNT] = {
-    [VR_Y] = {"y", VR_Y, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,
-              "m", 0, "output b - c * u", -1, DEPENDS(VR_U), DEPENDS(VR_U, VR_B, VR_C)},
-    [VR_U] = {"u", VR_U, TYPE_REAL, CAUSALITY_INPUT, VARIABILITY_CONTINUOUS, INITIAL_NONE, "cm", 0,
-              "input", -1, NULL, NULL},
+    REAL_OUTPUT(VR_Y, "y", "m", "output b - c * u", DEPENDS(VR_U), DEPENDS(VR_U, VR_B, VR_C)),
+    REAL_INPUT(VR_U, "u", "cm", 0, "input"),
     REAL_PARAMETER(VR_B, "b", "m", 0, "offset"),
     REAL_PARAMETER(VR_C, "c", NULL, 1, "weight of the input, in m per cm of input"),
 };

@@ -6,21 +6,18 @@ enum {
     VARIABLE_COUNT
 };
 
-#define INPUT(vr, name, unit, description)                                                     \
-    [vr] = {name, vr, TYPE_REAL, CAUSALITY_INPUT, VARIABILITY_CONTINUOUS, INITIAL_NONE, unit, 0, \
-            description, -1, NULL, NULL}
+/* Both torques depend on the same inputs and parameters. */
 #define TORQUE(vr, name, description)                                                          \
-    [vr] = {name, vr, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,   \
-            "N.m", 0, description, -1, DEPENDS(VR_THETA1, VR_THETA2, VR_OMEGA1, VR_OMEGA2),     \
-            DEPENDS(VR_THETA1, VR_THETA2, VR_OMEGA1, VR_OMEGA2, VR_K, VR_D)}
+    REAL_OUTPUT(vr, name, "N.m", description, DEPENDS(VR_THETA1, VR_THETA2, VR_OMEGA1, VR_OMEGA2), \
+                DEPENDS(VR_THETA1, VR_THETA2, VR_OMEGA1, VR_OMEGA2, VR_K, VR_D))
 
 static const model_variable variables[VARIABLE_COUNT] = {
     TORQUE(VR_TAU1, "tau1", "torque on body 1"),
     TORQUE(VR_TAU2, "tau2", "torque on body 2"),
-    INPUT(VR_THETA1, "theta1", "rad", "angle of body 1"),
-    INPUT(VR_THETA2, "theta2", "rad", "angle of body 2"),
-    INPUT(VR_OMEGA1, "omega1", "rad/s", "angular velocity of body 1"),
-    INPUT(VR_OMEGA2, "omega2", "rad/s", "angular velocity of body 2"),
+    REAL_INPUT(VR_THETA1, "theta1", "rad", 0, "angle of body 1"),
+    REAL_INPUT(VR_THETA2, "theta2", "rad", 0, "angle of body 2"),
+    REAL_INPUT(VR_OMEGA1, "omega1", "rad/s", 0, "angular velocity of body 1"),
+    REAL_INPUT(VR_OMEGA2, "omega2", "rad/s", 0, "angular velocity of body 2"),
     REAL_PARAMETER(VR_K, "k", "N.m/rad", 100, "stiffness"),
     REAL_PARAMETER(VR_D, "d", "N.m.s/rad", 1, "damping"),
 };

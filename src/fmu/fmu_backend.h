@@ -8,6 +8,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 
+#include "fmu_environment.h"
 #include "fmu_outcome.h"
 #include "syssimx_engine.h"
 
@@ -109,10 +110,11 @@ typedef struct {
     /* bytes the back-end keeps per FMU (what the instance may point at until it is freed),
      * zeroed by the binding and passed to instantiate */
     size_t context_size;
-    /* NULL on failure; fmu is the environment the FMU's log messages name (ssx_fmu_log) */
-    void *(*instantiate)(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
-                         const char *instance_name, const char *guid, const char *resource_uri,
-                         int logging_on);
+    /* NULL on failure; environment is what the FMU's callbacks reach: where its log messages
+     * go (ssx_fmu_environment_log) and, isolated, its host */
+    void *(*instantiate)(const ssx_fmu_function *fn, void *context,
+                         ssx_fmu_environment *environment, const char *instance_name,
+                         const char *guid, const char *resource_uri, int logging_on);
     void (*free_instance)(const ssx_fmu_function *fn, void *instance);
     int (*setup_experiment)(const ssx_fmu_function *fn, void *instance, int tolerance_defined,
                             double tolerance, double start_time, int stop_time_defined,
@@ -213,8 +215,5 @@ extern const ssx_fmu_backend ssx_fmi3_model_exchange_backend;
  * (fmiInstantiateModel ... fmiEventUpdate): no FMU state, no directional derivatives. */
 extern const ssx_fmu_backend ssx_fmi1_backend;
 extern const ssx_fmu_backend ssx_fmi1_model_exchange_backend;
-
-/* For a back-end's logger: what the FMU logged, a printf format with its arguments. */
-void ssx_fmu_log(ssx_fmu *fmu, const char *format, va_list args);
 
 #endif

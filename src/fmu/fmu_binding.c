@@ -6,14 +6,13 @@
 
 #include "fmu_binding.h"
 
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "array.h"
 #include "fmu_backend.h"
-#include "fmu_message.h"
+#include "fmu_environment.h"
 #include "fmu_remote.h"
 #include "shared_library.h"
 
@@ -35,7 +34,6 @@ struct ssx_fmu {
     const char *names[SLOT_COUNT];   /* the standard's name of each slot, for messages */
     void *context;                   /* the back-end's, outlives every instance */
     void *library;
-    ssx_remote *remote; /* an isolated FMU's host process; NULL when the binary runs here */
     char *guid;
     char *resource_uri;
     char *instance_name;
@@ -48,7 +46,8 @@ struct ssx_fmu {
     void **states;
     size_t n_states;
     size_t states_capacity;
-    char last_message[1024];
+    /* the FMU's callbacks' environment: its last message and, isolated, its host */
+    ssx_fmu_environment environment;
 };
 
 /* ------------------------------------------------------------------ status names */
@@ -67,14 +66,9 @@ const char *ssx_status_name(int status)
 
 /* ------------------------------------------------------------------ messages */
 
-void ssx_fmu_log(ssx_fmu *fmu, const char *format, va_list args)
-{
-    ssx_format_fmu_message(fmu->last_message, sizeof fmu->last_message, format, args);
-}
-
 static void note(ssx_fmu *fmu, const char *text)
 {
-    snprintf(fmu->last_message, sizeof fmu->last_message, "%s", text);
+    snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message, "%s", text);
 }
 
 /* ------------------------------------------------------------------ loading */
@@ -110,8 +104,9 @@ static int resolve_functions(ssx_fmu *fmu, const char *binary_path,
     }
     for (size_t i = 0; i < backend->n_functions; ++i) {
         const ssx_fmu_function_row *row = &backend->functions[i];
-        void *symbol = fmu->remote != NULL ? ssx_remote_function(fmu->remote, row->name)
-                                           : resolve(fmu->library, model_identifier, row->name);
+        ssx_remote *remote = fmu->environment.remote;
+        void *symbol = remote != NULL ? ssx_remote_function(remote, row->name)
+                                      : resolve(fmu->library, model_identifier, row->name);
         /* a symbol is a void *; C11 has no direct cast to a function pointer */
         memcpy(&fmu->fn[row->slot], &symbol, sizeof symbol);
         fmu->names[row->slot] = row->name;
@@ -184,10 +179,10 @@ ssx_fmu *ssx_fmu_load(const ssx_fmu_load_spec *spec, char *error, size_t error_s
     fmu->backend = backend;
     fmu->last_call = "";
     if (spec->host_path != NULL) {
-        fmu->remote = ssx_remote_start(spec->host_path, spec->binary_path,
+        fmu->environment.remote = ssx_remote_start(spec->host_path, spec->binary_path,
                                        spec->model_identifier, spec->step_timeout, error,
                                        error_size);
-        if (fmu->remote == NULL) {
+        if (fmu->environment.remote == NULL) {
             free(fmu);
             return NULL;
         }
@@ -256,7 +251,7 @@ static const struct {
 
 static void refuse_after_fatal(ssx_fmu *fmu, const char *call)
 {
-    snprintf(fmu->last_message, sizeof fmu->last_message,
+    snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
              "%s refused: %s returned %s earlier, and %s allows no further call on the FMU", call,
              fmu->fatal_call, fmu->backend->status_names[SSX_STATUS_FATAL],
              fmu->backend->version);
@@ -269,13 +264,13 @@ static int refuse(ssx_fmu *fmu, ssx_fmu_slot call)
     if (fmu->fatal_call != NULL) {
         refuse_after_fatal(fmu, name);
     } else if (name == OUTSIDE_THE_INTERFACE) {
-        snprintf(fmu->last_message, sizeof fmu->last_message,
+        snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
                  "the FMU runs as %s, which has no such function", fmu->backend->standard);
     } else if (fmu->instance == NULL) {
-        snprintf(fmu->last_message, sizeof fmu->last_message,
+        snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
                  "%s called without a live instance (call instantiate first)", name);
     } else {
-        snprintf(fmu->last_message, sizeof fmu->last_message, "this FMU does not provide %s",
+        snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message, "this FMU does not provide %s",
                  name);
     }
     return 0;
@@ -402,8 +397,8 @@ void ssx_fmu_free(ssx_fmu *fmu)
     free(fmu->instance_name);
     /* unloading would run the code of a library that declared itself broken; a host process
      * can always be ended */
-    if (fmu->fatal_call == NULL || fmu->remote != NULL) {
-        unload(fmu->library, fmu->remote);
+    if (fmu->fatal_call == NULL || fmu->environment.remote != NULL) {
+        unload(fmu->library, fmu->environment.remote);
     }
     free(fmu);
 }
@@ -414,26 +409,26 @@ int ssx_fmu_instantiate(ssx_fmu *fmu)
         return -1;
     }
     fmu->last_call = fmu->names[SLOT_INSTANTIATE];
-    if (fmu->fatal_call != NULL && fmu->remote == NULL) {
+    if (fmu->fatal_call != NULL && fmu->environment.remote == NULL) {
         refuse_after_fatal(fmu, fmu->last_call);
         return -1;
     }
     if (fmu->fatal_call != NULL) {
         /* an isolated FMU starts over in a new host: the broken one is ended, never called */
-        ssx_remote_restart(fmu->remote);
+        ssx_remote_restart(fmu->environment.remote);
         fmu->fatal_call = NULL;
     }
     /* a state the old instance fails to free is its leak, not a reason to refuse a new one */
     (void)ssx_fmu_free_instance(fmu);
-    fmu->last_message[0] = '\0';
-    fmu->instance = fmu->backend->instantiate(fmu->fn, fmu->context, fmu, fmu->instance_name,
+    fmu->environment.last_message[0] = '\0';
+    fmu->instance = fmu->backend->instantiate(fmu->fn, fmu->context, &fmu->environment, fmu->instance_name,
                                               fmu->guid, fmu->resource_uri, fmu->logging_on);
     (void)finish(fmu, SLOT_INSTANTIATE, 0);
     fmu->generation++;
     fmu->starts++;
     if (fmu->instance == NULL) {
-        if (fmu->last_message[0] == '\0') {
-            snprintf(fmu->last_message, sizeof fmu->last_message, "%s returned NULL",
+        if (fmu->environment.last_message[0] == '\0') {
+            snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message, "%s returned NULL",
                      fmu->last_call);
         }
         return -1;
@@ -675,7 +670,7 @@ int ssx_fmu_get_state(ssx_fmu *fmu, void **state)
         return -1;
     }
     if (*state != NULL && !knows_state(fmu, *state)) {
-        snprintf(fmu->last_message, sizeof fmu->last_message,
+        snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
                  "%s: the state to reuse does not belong to the live instance", fmu->last_call);
         return -1;
     }
@@ -702,7 +697,7 @@ int ssx_fmu_set_state(ssx_fmu *fmu, void *state)
         return -1;
     }
     if (!knows_state(fmu, state)) {
-        snprintf(fmu->last_message, sizeof fmu->last_message,
+        snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
                  "%s: the state does not belong to the live instance", fmu->last_call);
         return -1;
     }
@@ -742,7 +737,7 @@ int ssx_fmu_deserialize_state(ssx_fmu *fmu, const char *bytes, size_t size, void
         return -1;
     }
     if (*state != NULL && !knows_state(fmu, *state)) {
-        snprintf(fmu->last_message, sizeof fmu->last_message,
+        snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
                  "%s: the state to reuse does not belong to the live instance", fmu->last_call);
         return -1;
     }
@@ -775,7 +770,7 @@ int ssx_fmu_is_instantiated(const ssx_fmu *fmu)
 
 const char *ssx_fmu_last_message(const ssx_fmu *fmu)
 {
-    return fmu != NULL ? fmu->last_message : "";
+    return fmu != NULL ? fmu->environment.last_message : "";
 }
 
 const char *ssx_fmu_last_call(const ssx_fmu *fmu)
@@ -834,8 +829,7 @@ long ssx_fmu_values_epoch(const ssx_fmu *fmu)
     return fmu != NULL ? fmu->values_epoch : 0;
 }
 
-ssx_remote *ssx_fmu_remote(const void *environment)
+ssx_remote *ssx_fmu_remote(const ssx_fmu *fmu)
 {
-    const ssx_fmu *fmu = environment;
-    return fmu != NULL ? fmu->remote : NULL;
+    return fmu != NULL ? fmu->environment.remote : NULL;
 }

@@ -3,6 +3,7 @@
 #define SSX_FMU_BINDING_H
 
 #include "fmu_outcome.h"
+#include "fmu_remote.h"
 #include "syssimx_engine.h"
 
 /* Counts instantiations: FMU states of an earlier instance are invalid (the binding frees them
@@ -62,5 +63,8 @@ int ssx_fmu_get_number_of_event_indicators(ssx_fmu *fmu, size_t *n);
 int ssx_fmu_experiment_tolerance(const ssx_fmu *fmu, double *tolerance);
 /* Whether the FMU was loaded for Model Exchange. */
 int ssx_fmu_is_model_exchange(const ssx_fmu *fmu);
+
+/* An isolated FMU's host process (to watch a run's calls), NULL when the binary runs here. */
+ssx_remote *ssx_fmu_remote(const ssx_fmu *fmu);
 
 #endif

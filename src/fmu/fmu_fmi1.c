@@ -28,7 +28,7 @@ typedef fmi1Component fmi1_instantiate_model(fmi1String instance_name, fmi1Strin
 
 typedef struct {
     fmi1Component component;
-    ssx_fmu *fmu; /* whom the FMU's log messages are for */
+    ssx_fmu_environment *environment; /* where the FMU's log messages go */
     double start_time;
     int stop_time_defined;
     double stop_time;
@@ -56,7 +56,7 @@ static void logger(fmi1Component component, fmi1String instance_name, fmi1Status
     }
     va_list args;
     va_start(args, message);
-    ssx_fmu_log(calling->fmu, message, args);
+    ssx_fmu_environment_log(calling->environment, message, args);
     va_end(args);
 }
 
@@ -81,12 +81,12 @@ static void *instantiated(fmi1_context *ctx, fmi1Component component)
     return component != NULL ? ctx : NULL;
 }
 
-static void *instantiate_slave(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
+static void *instantiate_slave(const ssx_fmu_function *fn, void *context, ssx_fmu_environment *environment,
                                const char *instance_name, const char *guid,
                                const char *fmu_location, int logging_on)
 {
     fmi1_context *ctx = context;
-    *ctx = (fmi1_context){.fmu = fmu};
+    *ctx = (fmi1_context){.environment = environment};
     fmi1CallbackFunctions callbacks = {logger, calloc, free, NULL};
     fmi1_context *outer = calling;
     calling = ctx;
@@ -97,13 +97,13 @@ static void *instantiate_slave(const ssx_fmu_function *fn, void *context, ssx_fm
     return instantiated(ctx, component);
 }
 
-static void *instantiate_model(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
+static void *instantiate_model(const ssx_fmu_function *fn, void *context, ssx_fmu_environment *environment,
                                const char *instance_name, const char *guid,
                                const char *resource_uri, int logging_on)
 {
     (void)resource_uri; /* FMI 1.0 Model Exchange has no resources */
     fmi1_context *ctx = context;
-    *ctx = (fmi1_context){.fmu = fmu};
+    *ctx = (fmi1_context){.environment = environment};
     fmi1_model_callbacks callbacks = {logger, calloc, free};
     fmi1_context *outer = calling;
     calling = ctx;

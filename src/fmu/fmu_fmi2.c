@@ -84,35 +84,35 @@ static void logger(fmi2ComponentEnvironment environment, fmi2String instance_nam
     }
     va_list args;
     va_start(args, message);
-    ssx_fmu_log(environment, message, args);
+    ssx_fmu_environment_log(environment, message, args);
     va_end(args);
 }
 
 /* The callbacks live in the context: FMI 2.0 lets the instance keep the pointer. */
 static void *instantiate_as(fmi2Type type, const ssx_fmu_function *fn, void *context,
-                            ssx_fmu *fmu, const char *instance_name, const char *guid,
+                            ssx_fmu_environment *environment, const char *instance_name, const char *guid,
                             const char *resource_uri, int logging_on)
 {
     fmi2CallbackFunctions *callbacks = context;
-    *callbacks = (fmi2CallbackFunctions){logger, calloc, free, NULL, fmu};
+    *callbacks = (fmi2CallbackFunctions){logger, calloc, free, NULL, environment};
     return FMI2(fn, SLOT_INSTANTIATE, fmi2InstantiateTYPE)(
         instance_name, type, guid, resource_uri, callbacks, fmi2False,
         logging_on ? fmi2True : fmi2False);
 }
 
-static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
+static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu_environment *environment,
                          const char *instance_name, const char *guid, const char *resource_uri,
                          int logging_on)
 {
-    return instantiate_as(fmi2CoSimulation, fn, context, fmu, instance_name, guid, resource_uri,
+    return instantiate_as(fmi2CoSimulation, fn, context, environment, instance_name, guid, resource_uri,
                           logging_on);
 }
 
-static void *instantiate_model_exchange(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
+static void *instantiate_model_exchange(const ssx_fmu_function *fn, void *context, ssx_fmu_environment *environment,
                                         const char *instance_name, const char *guid,
                                         const char *resource_uri, int logging_on)
 {
-    return instantiate_as(fmi2ModelExchange, fn, context, fmu, instance_name, guid,
+    return instantiate_as(fmi2ModelExchange, fn, context, environment, instance_name, guid,
                           resource_uri, logging_on);
 }
 

@@ -146,17 +146,18 @@ static void answer_intermediate_update(fmi3InstanceEnvironment environment, fmi3
                                                            n, values, n);
 }
 
-static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
+static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu_environment *environment,
                          const char *instance_name, const char *token, const char *resource_path,
                          int logging_on)
 {
     fmi3_context *ctx = context;
-    ctx->fmu = fmu;
+    ctx->environment = environment;
     ctx->fn = fn;
     ctx->outcome = (ssx_step_outcome){0};
     size_t n_moving = ctx->n_intermediate;
     fmi3IntermediateUpdateCallback update = n_moving > 0 ? answer_intermediate_update : NULL;
-    /* the logger's environment is the context, whose first use is to reach the fmu */
+    /* the logger's environment is the context, whose first use is to reach the FMU's
+     * environment */
     ctx->instance = FMI3(fn, SLOT_INSTANTIATE, fmi3InstantiateCoSimulationTYPE)(
         instance_name, token, resource_path, fmi3False, logging_on ? fmi3True : fmi3False,
         ctx->event_mode_used ? fmi3True : fmi3False,
@@ -519,12 +520,12 @@ static int get_output_derivatives(const ssx_fmu_function *fn, void *instance,
 
 /* ------------------------------------------------------------------ Model Exchange */
 
-static void *instantiate_model_exchange(const ssx_fmu_function *fn, void *context, ssx_fmu *fmu,
+static void *instantiate_model_exchange(const ssx_fmu_function *fn, void *context, ssx_fmu_environment *environment,
                                         const char *instance_name, const char *token,
                                         const char *resource_path, int logging_on)
 {
     fmi3_context *ctx = context;
-    ctx->fmu = fmu;
+    ctx->environment = environment;
     ctx->outcome = (ssx_step_outcome){0};
     ctx->instance = FMI3(fn, SLOT_INSTANTIATE, fmi3InstantiateModelExchangeTYPE)(
         instance_name, token, resource_path, fmi3False, logging_on ? fmi3True : fmi3False, ctx,

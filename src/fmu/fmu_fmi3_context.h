@@ -33,7 +33,7 @@ typedef struct {
 
 typedef struct {
     fmi3Instance instance; /* the FMU's; NULL until instantiated */
-    ssx_fmu *fmu;          /* the environment of log messages */
+    ssx_fmu_environment *environment; /* where log messages go */
     variable *variables;   /* sorted by value reference */
     size_t n_variables;
     char *names;

@@ -175,7 +175,7 @@ void fmi3_say(fmi3_context *ctx, const char *format, ...)
 {
     va_list args;
     va_start(args, format);
-    ssx_fmu_log(ctx->fmu, format, args);
+    ssx_fmu_environment_log(ctx->environment, format, args);
     va_end(args);
 }
 

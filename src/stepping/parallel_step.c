@@ -224,11 +224,23 @@ int parallel_prepare(ssx_system *sys)
 
 /* A thread goes on after a failure: the tasks after it are not needed, but the tasks before
  * it may be waiting for a thread, and one that stops would not save time. */
+/* A sample counts for at most this many times the average: on a shared machine the process is
+ * preempted for milliseconds now and then, and one preempted batch of a few microseconds would
+ * otherwise have the next tens of batches shared (the 2-core figures of docs/performance/
+ * threads.md: 0.68x on two threads at 31 us per step before). A lasting rise still gets through,
+ * by a quarter per batch. */
+#define TASK_COST_SAMPLE_MAX 2.0
+
 /* One batch's cost per task into the moving average that decides whether the next is shared. */
 static void note_task_cost(parallel_plan *p, double seconds_per_task)
 {
-    p->task_seconds =
-        p->task_seconds < 0.0 ? seconds_per_task : 0.75 * p->task_seconds + 0.25 * seconds_per_task;
+    if (p->task_seconds < 0.0) {
+        p->task_seconds = seconds_per_task;
+        return;
+    }
+    double ceiling = TASK_COST_SAMPLE_MAX * p->task_seconds;
+    double sample = seconds_per_task < ceiling ? seconds_per_task : ceiling;
+    p->task_seconds = 0.75 * p->task_seconds + 0.25 * sample;
 }
 
 static void step_one(void *context, int k, int thread);

@@ -66,3 +66,35 @@ def test_once_per_process_fmu_gets_a_private_extraction(tmp_path: Path) -> None:
     first.free()
     second.free()
     assert not any(d.exists() for d in directories)
+
+
+def test_a_forked_child_neither_removes_nor_reuses_its_parent_s_folder() -> None:
+    """An ensemble's workers are forked: before, a worker that dropped a component it
+    inherited removed the folder its parent still used."""
+    import os
+
+    gc.collect()
+    inherited = FMUComponent("A", fmus.path("pendulum_euler"))
+    folder = inherited._unzip_dir
+    read, write = os.pipe()
+    child = os.fork()
+    if child == 0:  # drop the inherited component, extract and drop one of its own
+        status = 1
+        try:
+            inherited = None
+            gc.collect()
+            own = FMUComponent("B", fmus.path("pendulum_euler"))
+            os.write(write, str(own._unzip_dir).encode())
+            own = None
+            gc.collect()
+            status = 0
+        finally:
+            os._exit(status)
+    os.close(write)
+    with os.fdopen(read) as pipe:
+        childs_folder = Path(pipe.read())
+    _, status = os.waitpid(child, 0)
+    assert os.waitstatus_to_exitcode(status) == 0
+    assert folder.is_dir() and childs_folder != folder
+    assert not childs_folder.exists()  # the child removed its own
+    assert inherited._unzip_dir == folder

@@ -5,6 +5,7 @@ same System run in this process, each FMU file loaded once per worker, the embed
 from __future__ import annotations
 
 import os
+import sys
 from collections.abc import Iterator
 
 import coupled_pendulums as coupled_pendulums_example
@@ -186,3 +187,43 @@ def test_a_scheduler_address_runs_there_and_threaded_workers_are_refused(client)
                                           r"threads per worker: \{'tcp://"):
         sweep(seed_pendulum, {"P.theta0": [0.5]}, t0=0.0, tf=0.6, dt=0.05,
               client=threaded_client, progress=False)
+
+
+SET_BEFORE_THE_CLUSTER: list[int] = []  # a forked worker has it as this process had it
+
+
+def set_before_the_cluster() -> list[int]:
+    return SET_BEFORE_THE_CLUSTER
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="workers fork on Linux only")
+def test_the_embedded_cluster_forks_its_workers() -> None:
+    """A spawned worker imports this module anew (an empty list); a forked one starts with what
+    this process had when the cluster started."""
+    SET_BEFORE_THE_CLUSTER.append(os.getpid())
+    try:
+        with ensemble_client(workers=1) as running:
+            assert list(running.run(set_before_the_cluster).values()) == [[os.getpid()]]
+    finally:
+        SET_BEFORE_THE_CLUSTER.clear()
+
+
+def test_a_probed_ensemble_s_members_and_dataset_are_those_run_in_process(client) -> None:
+    """40 members on 2 workers: a probe chunk of 4 members per worker, then chunks sized by
+    its members' cost; every member, and the dataset built from the blocks, bit-identical to
+    the same System run here."""
+    from syssimx.ensemble.runner import PROBED_FROM
+
+    values = np.linspace(0.2, 0.6, 40)
+    assert len(values) >= PROBED_FROM * 2
+    result = sweep(seed_pendulum, {"P.theta0": values}, t0=0.0, tf=0.3, dt=0.05,
+                   client=client, progress=False)
+    assert not result.failed and [m.index for m in result.members] == list(range(40))
+    dataset = result.dataset
+    for k in (0, 7, 8, 23, 39):  # probe members, the first after the probe, later ones
+        here = in_process(seed_pendulum, {"P.theta0": float(values[k])}, 0.3, 0.05)
+        t, series = here["P"]
+        assert np.array_equal(dataset["time"].values[k, :t.size], t)
+        assert np.array_equal(dataset["P.theta"].values[k, :t.size], series["theta"])
+        assert np.array_equal(result.members[k].outputs["P.omega"], series["omega"])
+    assert list(dataset["P.theta0"].values) == list(values)

@@ -116,6 +116,9 @@ class EnginePlan:
         self.failure: CallbackFailure | None = None
         # the first component that was bound elsewhere since (initialized in another System)
         self.left: str | None = None
+        # parameters set on running FMUs (component -> names): they apply only at the next
+        # initialize, so the next run warns of them once
+        self.waiting_parameters: dict[str, tuple[str, ...]] = {}
         # the System's time after its last run; components read it (their `t`) when they have
         # not set a time of their own since that run (see CoSimComponent.t)
         self.time = 0.0
@@ -136,6 +139,7 @@ class EnginePlan:
         self.check(lib().ssx_reset_inputs(self.sys, ffi.new("double[]", starts), len(starts)),
                    f"{self.name}: input start values")
         self.failure = None
+        self.waiting_parameters.clear()
 
     def ran(self, t: float) -> None:
         """A run ended at t: every component's time is t until it sets its own."""

@@ -8,9 +8,9 @@ from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
 from ..errors import ConfigurationError, RunInterrupted
+from .chunk import Experiment
 from .cluster import ensemble_client
 from .main_guard import check_main_guard
-from .member import MemberTask
 from .members import ParameterSet, parameter_sets
 from .result import EnsembleResult
 from .runner import MembersInterrupted, run_members
@@ -68,18 +68,18 @@ def _run(function: str, system: Any, sets: list[ParameterSet], t0: float | None,
                                  f"{member_timeout!r}")
     kept = tuple(outputs) if outputs is not None else None
     ensemble = uuid.uuid4().hex  # its members share one System per worker process
-    tasks = [MemberTask(index, values, settings["t0"], settings["tf"], settings["dt"], kept,
-                        member_timeout, ensemble=ensemble) for index, values in enumerate(sets)]
+    experiment = Experiment(settings["t0"], settings["tf"], settings["dt"], kept, member_timeout,
+                            ensemble)
     if client is None and scheduler is None:  # worker processes started from this script
         check_main_guard(function)
     start = time.perf_counter()
     try:
         with ensemble_client(client, scheduler, workers) as running_on:
-            members = run_members(running_on, build, tasks, member_timeout, progress)
+            members = run_members(running_on, build, experiment, sets, progress)
     except MembersInterrupted as stop:  # what was finished, on the exception
         partial = EnsembleResult(stop.results, list(sets[0]), settings["t0"], settings["tf"],
                                  settings["dt"], time.perf_counter() - start)
-        done = sum(member.error_type != "KeyboardInterrupt" for member in stop.results)
+        done = sum(kind != "KeyboardInterrupt" for kind in stop.results.field("error_type"))
         raise RunInterrupted(f"the ensemble was interrupted: {done} of {len(stop.results)} "
                              "members had finished (partial_result holds them)",
                              partial) from stop

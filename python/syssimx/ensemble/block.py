@@ -12,6 +12,7 @@ travels as its own MemberResult.
 
 from __future__ import annotations
 
+import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -38,28 +39,32 @@ class MemberBlock:
     bounds: np.ndarray
     statistics: np.ndarray  # members x len(STATISTICS); -1: the run did not complete
     others: tuple[MemberResult, ...] = ()
+    # CPU seconds per member after the first (which may have built the System); None: one
+    # member. CPU, not wall: on a loaded machine a member's wall time grows with the load.
+    cost: float | None = None
 
     def __len__(self) -> int:
         return len(self.scalars) + len(self.others)
 
-    def results(self, parameters: Mapping[int, ParameterSet]) -> list[MemberResult]:
+    def results(self, parameters: Mapping[int, ParameterSet] | Sequence[ParameterSet]
+                ) -> list[MemberResult]:
         """The members' results, their parameters from `parameters` (by member index)."""
-        results = list(self.others)
-        names = list(enumerate(self.names, start=1))
-        for k, (index, status, error, error_type, events, termination, wall) in \
-                enumerate(self.scalars):
-            rows = slice(int(self.bounds[k]), int(self.bounds[k + 1]))
-            block = self.samples[rows]
-            counts = self.statistics[k]
-            results.append(MemberResult(
-                index, parameters[index], status, error, error_type, block[:, 0],
-                self.micro[rows], {name: block[:, column] for column, name in names}, events,
-                {name: int(v) for name, v in zip(STATISTICS, counts, strict=True) if v >= 0},
-                termination, wall, self.worker))
-        return results
+        return [*self.others, *(self.result(row, parameters) for row in range(len(self.scalars)))]
+
+    def result(self, row: int, parameters: Mapping[int, ParameterSet] | Sequence[ParameterSet]
+               ) -> MemberResult:
+        """The MemberResult of the member of `scalars[row]`, its samples views of the block's."""
+        index, status, error, error_type, events, termination, wall = self.scalars[row]
+        rows = slice(int(self.bounds[row]), int(self.bounds[row + 1]))
+        block = self.samples[rows]
+        return MemberResult(
+            index, parameters[index], status, error, error_type, block[:, 0], self.micro[rows],
+            {name: block[:, column] for column, name in enumerate(self.names, start=1)}, events,
+            {name: int(v) for name, v in zip(STATISTICS, self.statistics[row], strict=True)
+             if v >= 0}, termination, wall, self.worker)
 
 
-def pack(results: Sequence[MemberResult]) -> MemberBlock:
+def pack(results: Sequence[MemberResult], cost: float | None = None) -> MemberBlock:
     """One block of `results` (members of one task, run in one process)."""
     worker = results[0].worker if results else ""
     names = next((tuple(r.outputs) for r in results if r.outputs), ())
@@ -83,13 +88,16 @@ def pack(results: Sequence[MemberResult]) -> MemberBlock:
             statistics[k, j] = r.statistics.get(name, -1)
     scalars = tuple((r.index, r.status, r.error, r.error_type, r.events, r.termination,
                      r.wall_time) for r in regular)
-    return MemberBlock(worker, names, scalars, samples, micro, bounds, statistics, others)
+    return MemberBlock(worker, names, scalars, samples, micro, bounds, statistics, others, cost)
 
 
 def run_block(build: SystemSource, tasks: list[MemberTask]) -> MemberBlock:
     """Run members one after another here (one Dask task for several short members), end the
     processes their FMUs forked and left (leftovers.py), and pack their results."""
     end_left_children()  # the first call notes the worker's own children
-    results = [run_member(build, task) for task in tasks]
+    results = [run_member(build, task) for task in tasks[:1]]
+    cpu = time.thread_time()
+    results += [run_member(build, task) for task in tasks[1:]]
+    cost = (time.thread_time() - cpu) / (len(tasks) - 1) if len(tasks) > 1 else None
     end_left_children()
-    return pack(results)
+    return pack(results, cost)

@@ -11,6 +11,7 @@ components load the binary in their own host process: neither is kept here.
 from __future__ import annotations
 
 import ctypes
+import os
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -32,6 +33,7 @@ class LoadedFMUs:
 
     def __init__(self) -> None:
         self._kept: dict[str, KeptFMU] = {}
+        os.register_at_fork(after_in_child=self._kept.clear)
 
     def keep(self, system: System) -> None:
         """Keep the FMUs of a member's system, and count what it reused."""

@@ -16,6 +16,7 @@ MODES = ("grid", "zip")
 
 Scalar = bool | int | float | str
 ParameterSet = dict[str, Scalar]
+PLAIN = (bool, int, float, str)  # a value of one of these types exactly is kept as it is
 
 
 def parameter_sets(parameters: Mapping[str, Iterable[Any]], mode: str = "grid"
@@ -76,7 +77,8 @@ def _checked_name(name: Any) -> str:
 def _values(name: str, values: Iterable[Any]) -> Sequence[Any]:
     if isinstance(values, str | bytes) or not isinstance(values, Iterable):
         raise ConfigurationError(f"{name}: expected a list of values, got {values!r}")
-    listed = list(np.asarray(values).ravel()) if isinstance(values, np.ndarray) else list(values)
+    # tolist: numpy's values as Python's, at once
+    listed = values.ravel().tolist() if isinstance(values, np.ndarray) else list(values)
     if not listed:
         raise ConfigurationError(f"{name}: the list of values is empty")
     return listed
@@ -84,6 +86,8 @@ def _values(name: str, values: Iterable[Any]) -> Sequence[Any]:
 
 def _scalar(name: str, value: Any) -> Scalar:
     """A plain Python value (numpy scalars unwrapped), so members pickle and print simply."""
+    if type(value) in PLAIN:
+        return value
     if isinstance(value, np.generic):
         value = value.item()
     if not isinstance(value, bool | int | float | str):

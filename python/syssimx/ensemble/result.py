@@ -20,6 +20,8 @@ import numpy as np
 from ..errors import ConfigurationError, MissingDependencyError
 from ..extras import install_hint, require
 from .member import STATISTICS, MemberResult
+from .member_list import MemberList
+from .members import ParameterSet
 
 WRITERS = (".csv", ".parquet", ".nc")
 # xarray's engines for .nc files, in order of preference, and the modules each needs
@@ -33,7 +35,9 @@ class EnsembleResult:
 
     def __init__(self, members: Sequence[MemberResult], parameters: Sequence[str], t0: float,
                  tf: float, dt: float, wall_time: float) -> None:
-        self.members = list(members)
+        # a sweep's MemberList cuts a member's result from its block when first asked for
+        self.members = members if isinstance(members, MemberList) \
+            else MemberList.of(list(members))
         self.parameters = list(parameters)
         self.t0, self.tf, self.dt, self.wall_time = t0, tf, dt, wall_time
         self._dataset: Any = None
@@ -70,12 +74,13 @@ class EnsembleResult:
     def failed(self) -> list[MemberResult]:
         """The members that did not complete, each with its status, reason and the samples it
         recorded before."""
-        return [member for member in self.members if not member.ok]
+        return [self.members[index] for index, status in
+                enumerate(self.members.field("status")) if status != "ok"]
 
     @property
     def output_names(self) -> list[str]:
         """Every "Component.port" recorded by some member, in first-seen order."""
-        return list(dict.fromkeys(name for m in self.members for name in m.outputs))
+        return self.members.output_names()
 
     # ------------------------------------------------------------------ xarray
     @property
@@ -94,40 +99,32 @@ class EnsembleResult:
         xr = require("xarray", "EnsembleResult.dataset")
 
         count = len(self.members)
-        samples = max((m.time.size for m in self.members), default=0)
-        time = np.full((count, samples), np.nan)
-        micro = np.full((count, samples), -1, dtype=np.int64)
-        outputs = {name: np.full((count, samples), np.nan) for name in self.output_names}
-        for row, member in enumerate(self.members):
-            n = member.time.size
-            time[row, :n], micro[row, :n] = member.time, member.micro
-            for name, values in member.outputs.items():
-                outputs[name][row, :n] = values
-        most_events = max((len(m.events) for m in self.members), default=0)
+        time, micro, outputs = self.members.padded(self.output_names)
+        events = self.members.field("events")
+        most_events = max(map(len, events), default=0)
         event_time = np.full((count, most_events), np.nan)
         event_micro = np.full((count, most_events), -1, dtype=np.int64)
         event_source = np.full((count, most_events), "", dtype=object)
-        for row, member in enumerate(self.members):
-            for column, (t, step, source) in enumerate(member.events):
+        for row, member_events in enumerate(events):
+            for column, (t, step, source) in enumerate(member_events):
                 event_time[row, column], event_micro[row, column] = t, step
                 event_source[row, column] = source
+        field = self.members.field
         member_vars: dict[str, Any] = {
-            "status": ("member", np.array([m.status for m in self.members], dtype=object)),
-            "error": ("member", np.array([m.error for m in self.members], dtype=object)),
-            "termination": ("member", np.array([m.termination for m in self.members],
-                                               dtype=object)),
-            "worker": ("member", np.array([m.worker for m in self.members], dtype=object)),
-            "wall_time": ("member", np.array([m.wall_time for m in self.members])),
-            "samples": ("member", np.array([m.time.size for m in self.members])),
+            **{name: ("member", np.array(field(name), dtype=object))
+               for name in ("status", "error", "termination", "worker")},
+            "wall_time": ("member", np.array(field("wall_time"), dtype=np.float64)),
+            "samples": ("member", np.array(field("samples"), dtype=np.int64)),
+            **{statistic: ("member", np.array(self.members.statistic(statistic),
+                                              dtype=np.int64))
+               for statistic in STATISTICS},
         }
-        for statistic in STATISTICS:
-            member_vars[statistic] = ("member", np.array(
-                [m.statistics.get(statistic, -1) for m in self.members], dtype=np.int64))
         coords: dict[str, Any] = {
             "member": np.arange(count),
             "time": (("member", "sample"), time),
             "micro": (("member", "sample"), micro),
-            **{name: ("member", _column(self.members, name)) for name in self.parameters},
+            **{name: ("member", _column(self.members.parameters, name))
+               for name in self.parameters},
         }
         return xr.Dataset(
             {**{name: (("member", "sample"), values) for name, values in outputs.items()},
@@ -160,7 +157,8 @@ class EnsembleResult:
             rows = np.flatnonzero(on_grid)[first]
             for name, series in member.outputs.items():
                 values[name][row, columns] = series[rows]
-        parameters = {name: ("member", _column(self.members, name)) for name in self.parameters}
+        parameters = {name: ("member", _column(self.members.parameters, name))
+                      for name in self.parameters}
         return xr.Dataset({name: (("member", "time"), data) for name, data in values.items()},
                           coords={"member": np.arange(len(self.members)), "time": grid,
                                   **parameters})
@@ -252,8 +250,8 @@ def netcdf_engine() -> str:
                                  f"{install_hint('scipy')}", name="scipy")
 
 
-def _column(members: Sequence[MemberResult], name: str) -> np.ndarray:
-    values = [member.parameters[name] for member in members]
+def _column(parameters: Sequence[ParameterSet], name: str) -> np.ndarray:
+    values = [member[name] for member in parameters]
     array = np.array(values)
     return array if array.dtype.kind in "biuf" else np.array(values, dtype=object)
 

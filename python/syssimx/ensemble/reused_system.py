@@ -15,12 +15,15 @@ of its own that no comparison sees (a MultiComponent's models included). A faile
 System is never kept (an FMU may refuse every call after fmi2Fatal). Code the user runs during a
 member (handlers, indicator functions) sees the same Python objects from member to member, as in
 a loop that initializes one System again and again; the system function runs once per worker and
-ensemble.
+ensemble. A worker forked from a process that kept a System does not take it: its FMU
+instances and folders are the parent's. It keeps it unused instead of dropping it (dropping it
+would free what belongs to the parent, e.g. an isolated component's host process).
 """
 
 from __future__ import annotations
 
 import math
+import os
 from typing import Any
 
 from ..components.fmu import FMUComponent
@@ -38,6 +41,13 @@ class ReusedSystem:
     def __init__(self) -> None:
         self._ensemble: str | None = None
         self._system: System | None = None
+        self._parents: list[System] = []  # kept by the parent before a fork: never used
+        os.register_at_fork(after_in_child=self._set_aside_parents)
+
+    def _set_aside_parents(self) -> None:
+        if self._system is not None:
+            self._parents.append(self._system)
+        self._system = self._ensemble = None
 
     def take(self, ensemble: str | None, build: SystemSource) -> System:
         """The System kept for `ensemble`, else a fresh one from `build` (always fresh for no

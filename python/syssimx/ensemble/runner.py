@@ -1,7 +1,11 @@
 """Running members as Dask tasks and turning every outcome into a MemberResult.
 
-Short members share a task (chunk_size), so the scheduler's cost per task is paid once for
-several, and a task's results come back as one block (block.py). A member's own failures come
+Short members share a task, so the scheduler's cost per task is paid once for several, and a
+task's results come back as one block (block.py). A large ensemble first runs a probe: one
+chunk of PROBE members per worker; the CPU time of the first probe block's members after its
+first (which built the System and loaded what it needs: 2.5 s of pint for the seed scenario,
+against 1-2 ms for a member after it) is the member's cost, and the rest goes in chunks of
+about TASK_SECONDS of CPU each (chunk_size's bounds kept). A member's own failures come
 back as its result (member.py). Two faults need the client:
 - a member still running `member_timeout` (+ KILL_GRACE) seconds after it started is stuck
   where its run's own timeout cannot reach (inside an FMU call): its task is cancelled and its
@@ -22,13 +26,15 @@ import signal
 import threading
 import time
 import uuid
-from collections.abc import Sequence
-from dataclasses import replace
+from collections.abc import Callable, Sequence
 from typing import Any
 
-from .block import run_block
+from .block import MemberBlock
+from .chunk import Experiment, MemberChunk, run_chunk
 from .cluster import check_processes
-from .member import MemberResult, MemberTask
+from .member import MemberResult
+from .member_list import MemberList
+from .members import ParameterSet
 from .progress import ProgressBar
 from .system_source import SystemSource
 
@@ -37,8 +43,14 @@ POLL = 0.1  # seconds between checks for stuck members
 DEATH_LOG_WAIT = 10.0  # seconds at most to wait for a nanny to log how its worker died
 # members per task at most: a task costs the client and its worker about 4 ms of CPU each
 # (scheduling, messages, the result's transfer); a crash reruns its chunk's members alone
-MAX_CHUNK = 64
+MAX_CHUNK = 256
 CHUNKS_PER_WORKER = 4  # tasks per worker at least, for the balance
+PROBE = 4  # members per probe chunk
+PROBED_FROM = 16  # members per worker from which an ensemble starts with a probe
+# a task's target CPU time: its cost to the client (6-9 ms of CPU on the 2-core VM) stays a
+# few per cent of it, while progress, Ctrl-C and a crash's reruns stay at a fraction of a second
+# (on an unloaded machine)
+TASK_SECONDS = 0.2
 
 
 class _Starts:
@@ -66,65 +78,73 @@ def chunk_size(members: int, workers: int) -> int:
     return max(1, min(MAX_CHUNK, members // (CHUNKS_PER_WORKER * max(workers, 1))))
 
 
-def split(tasks: Sequence[MemberTask], size: int, workers: int, topic: str,
-          every_member: bool) -> list[list[MemberTask]]:
-    """`tasks` in chunks of `size` at most, as many chunks as a multiple of `workers` and of
-    sizes differing by one at most, so no worker is left with a last chunk alone. The members
-    that announce their start on `topic`: all when `every_member` (the watchdog times each
-    member), else only each chunk's first (a worker death is pinned on a chunk of one member
-    only, and each announcement costs the scheduler and the client a message)."""
-    count = -(-len(tasks) // size)
-    count = min(len(tasks), -(-count // workers) * workers)
-    bounds = [len(tasks) * k // count for k in range(count + 1)]
-    return [[replace(task, topic=topic) if every_member or offset == 0 else task
-             for offset, task in enumerate(tasks[first:last])]
-            for first, last in itertools.pairwise(bounds)]
+def sized(members: int, workers: int, cost: float | None) -> int:
+    """Members per task for `members` members of `cost` seconds each (None: not measured):
+    chunk_size's, or fewer where a task would take longer than TASK_SECONDS."""
+    size = chunk_size(members, workers)
+    return size if cost is None or cost <= 0 else max(1, min(size, round(TASK_SECONDS / cost)))
+
+
+def split(sets: Sequence[ParameterSet], size: int, workers: int, experiment: Experiment,
+          topic: str | None = None, announce_each: bool = False, first: int = 0
+          ) -> list[MemberChunk]:
+    """The members of `sets` (indices first, first + 1, ...) in chunks of `size` at most, as
+    many chunks as a multiple of `workers` and of sizes differing by one at most, so no worker
+    is left with a last chunk alone."""
+    count = -(-len(sets) // size)
+    count = min(len(sets), -(-count // workers) * workers)
+    bounds = [len(sets) * k // count for k in range(count + 1)]
+    return [MemberChunk(first + start, sets[start:stop], experiment, topic, announce_each)
+            for start, stop in itertools.pairwise(bounds)]
 
 
 class _Ensemble:
     """The members' tasks on one client, their starts, and the results so far."""
 
-    def __init__(self, client: Any, build: SystemSource, member_timeout: float | None,
-                 bar: ProgressBar) -> None:
-        self.client, self.build, self.member_timeout, self.bar = client, build, \
-            member_timeout, bar
+    def __init__(self, client: Any, build: SystemSource, experiment: Experiment,
+                 sets: Sequence[ParameterSet], bar: ProgressBar) -> None:
+        self.client, self.build, self.experiment, self.sets, self.bar = client, build, \
+            experiment, sets, bar
+        self.member_timeout = experiment.timeout
         self.workers = max(1, len(client.nthreads()))
         # one function object for every task: Dask serializes it once, not per task
-        self.task = functools.partial(run_block, build)
-        self.parameters: dict[int, Any] = {}  # by member index
+        self.task = functools.partial(run_chunk, build)
         self.topic = f"syssimx-ensemble-{uuid.uuid4().hex}"
         self.starts = _Starts()
-        self.results: dict[int, MemberResult] = {}
+        self.results = MemberList(sets)
         self._attempt = 0
 
-    def run(self, tasks: Sequence[MemberTask], size: int) -> list[MemberTask]:
-        """Run `tasks` in chunks of `size` members; returns the suspects (see the module's
-        description). A chunk of one member alone on the cluster (size 0 here: `tasks` is one
-        member run alone) makes a worker death that member's."""
+    def run(self, chunks: Sequence[MemberChunk], alone: bool,
+            later: Callable[[MemberBlock | None], list[MemberChunk]] | None = None) -> list[int]:
+        """Run `chunks`, and the chunks `later` gives for the first outcome (its block, None
+        for a failed task); returns the suspects' member indices (see the module's
+        description). A chunk of one member `alone` on the cluster makes a worker death that
+        member's."""
         from distributed import as_completed
 
-        alone = size == 0
         self._attempt += 1
-        chunks = split(tasks, max(size, 1), self.workers, self.topic,
-                       every_member=self.member_timeout is not None)
-        futures = self.client.map(
-            self.task, chunks,
-            key=[f"syssimx-members-{c[0].index}-{self.topic[-8:]}-{self._attempt}"
-                 for c in chunks], pure=False)
-        by_key = {future.key: chunk for future, chunk in zip(futures, chunks, strict=True)}
-        watchdog = _Watchdog(self.client, futures, by_key, self.starts, self.member_timeout) \
-            if self.member_timeout is not None else None
-        suspects: list[MemberTask] = []
+        futures: list[Any] = []
+        by_key: dict[Any, MemberChunk] = {}  # both grow as `later`'s chunks are submitted
+        pending = as_completed(with_results=True, raise_errors=False)
+        self._submit(chunks, futures, by_key, pending)
+        watchdog = _Watchdog(self.client, futures, by_key, self.starts, self.sets,
+                             self.member_timeout) if self.member_timeout is not None else None
+        suspects: list[int] = []
         try:
-            for future, outcome in as_completed(futures, with_results=True, raise_errors=False):
+            for future, outcome in pending:
                 chunk = by_key[future.key]
+                if later is not None:
+                    self._submit(later(outcome if future.status == "finished" else None),
+                                 futures, by_key, pending)
+                    later = None
                 if future.status == "finished":
-                    self._keep(outcome.results(self.parameters))
+                    for status in self.results.add_block(outcome):
+                        self.bar.advance(status != "ok")
                 elif future.status == "cancelled":  # the watchdog stopped one of its members
                     assert watchdog is not None
-                    self._keep([watchdog.stopped[t.index] for t in chunk
-                                if t.index in watchdog.stopped])
-                    suspects += [t for t in chunk if t.index not in watchdog.stopped]
+                    self._keep([watchdog.stopped[i] for i in chunk.indices
+                                if i in watchdog.stopped])
+                    suspects += [i for i in chunk.indices if i not in watchdog.stopped]
                 else:
                     suspects += self._failed(future.exception(), chunk, alone)
         finally:
@@ -133,63 +153,93 @@ class _Ensemble:
             self.client.cancel([future for future in futures if not future.done()])
         return suspects
 
+    def _submit(self, chunks: Sequence[MemberChunk], futures: list[Any],
+                by_key: dict[Any, MemberChunk], pending: Any) -> None:
+        submitted = self.client.map(
+            self.task, chunks,
+            key=[f"syssimx-members-{c.first}-{self.topic[-8:]}-{self._attempt}"
+                 for c in chunks], pure=False)
+        by_key.update((future.key, chunk)
+                      for future, chunk in zip(submitted, chunks, strict=True))
+        futures += submitted
+        pending.update(submitted)
+
+    def after_probe(self, probed: int, block: MemberBlock | None) -> list[MemberChunk]:
+        """The chunks of the members after the first `probed`, sized by `block`'s members."""
+        rest = self.sets[probed:]
+        size = sized(len(rest), self.workers, block.cost if block else None)
+        return split(rest, size, self.workers, self.experiment, self.topic,
+                     self.member_timeout is not None, first=probed)
+
     def _keep(self, results: Sequence[MemberResult]) -> None:
         for result in results:
-            self.results[result.index] = result
+            self.results.add(result)
             self.bar.advance(not result.ok)
 
-    def _failed(self, error: BaseException, chunk: list[MemberTask], alone: bool
-                ) -> list[MemberTask]:
+    def _failed(self, error: BaseException, chunk: MemberChunk, alone: bool) -> list[int]:
         """Results for a chunk whose task failed; returns its suspects."""
         from distributed.scheduler import KilledWorker
 
         if not isinstance(error, KilledWorker):
             # the task failed before the members' code ran (e.g. the function did not unpickle)
-            self._keep([MemberResult(t.index, t.parameters, "failed",
+            self._keep([MemberResult(i, self.sets[i], "failed",
                                      f"{type(error).__name__}: {error}", type(error).__name__)
-                        for t in chunk])
+                        for i in chunk.indices])
             return []
         dead = error.last_worker
-        start = self.starts.get(chunk[0].index)
+        start = self.starts.get(chunk.first)
         # one member that announced its start on the dead process: nobody else was running
         if alone or (len(chunk) == 1 and start is not None and start[2] == dead.pid):
-            task = chunk[0]
             # the process the member announced its start from: the scheduler's record of the
             # dead worker can name the process that ran there before a restart
             pid = start[2] if start is not None else dead.pid
             reason = (f"WorkerDied: the worker process {pid} ({dead.address}) died while "
                       f"running this member{_death(self.client, pid)}")
-            self._keep([MemberResult(task.index, task.parameters, "failed", reason,
+            self._keep([MemberResult(chunk.first, self.sets[chunk.first], "failed", reason,
                                      "WorkerDied")])
             return []
-        return list(chunk)
+        return list(chunk.indices)
 
 
-def run_members(client: Any, build: SystemSource, tasks: Sequence[MemberTask],
-                member_timeout: float | None, progress: bool) -> list[MemberResult]:
-    """Every member's result, in member order."""
+def run_members(client: Any, build: SystemSource, experiment: Experiment,
+                sets: Sequence[ParameterSet], progress: bool) -> MemberList:
+    """Every member's result (member k runs `sets[k]`), in member order."""
     check_processes(client)
-    bar = ProgressBar(len(tasks), progress)
-    ensemble = _Ensemble(client, build, member_timeout, bar)
-    ensemble.parameters = {task.index: task.parameters for task in tasks}
+    bar = ProgressBar(len(sets), progress)
+    ensemble = _Ensemble(client, build, experiment, sets, bar)
+    announce_each = experiment.timeout is not None
     client.subscribe_topic(ensemble.topic, ensemble.starts.record)
+    workers = ensemble.workers
     try:
-        for suspect in ensemble.run(tasks, chunk_size(len(tasks), ensemble.workers)):
-            ensemble.run([suspect], 0)
+        if len(sets) >= PROBED_FROM * workers:
+            probed = PROBE * workers
+            suspects = ensemble.run(
+                split(sets[:probed], PROBE, workers, experiment, ensemble.topic, announce_each),
+                alone=False, later=functools.partial(ensemble.after_probe, probed))
+        else:
+            suspects = ensemble.run(split(sets, chunk_size(len(sets), workers), workers,
+                                          experiment, ensemble.topic, announce_each),
+                                    alone=False)
+        for suspect in suspects:
+            ensemble.run([MemberChunk(suspect, sets[suspect:suspect + 1], experiment,
+                                      ensemble.topic, announce_each)], alone=True)
     except KeyboardInterrupt as stop:  # Ctrl-C: the finished members are kept
-        raise MembersInterrupted([ensemble.results.get(task.index) or MemberResult(
-            task.index, task.parameters, "failed", "interrupted (Ctrl-C) before it finished",
-            "KeyboardInterrupt") for task in tasks]) from stop
+        for index, values in enumerate(sets):
+            if not ensemble.results.has(index):
+                ensemble.results.add(MemberResult(
+                    index, values, "failed", "interrupted (Ctrl-C) before it finished",
+                    "KeyboardInterrupt"))
+        raise MembersInterrupted(ensemble.results) from stop
     finally:
         bar.close()
         client.unsubscribe_topic(ensemble.topic)
-    return [ensemble.results[task.index] for task in tasks]
+    return ensemble.results
 
 
 class MembersInterrupted(KeyboardInterrupt):
     """Ctrl-C during run_members: every member's result, the unfinished ones failed."""
 
-    def __init__(self, results: list[MemberResult]) -> None:
+    def __init__(self, results: MemberList) -> None:
         super().__init__("interrupted")
         self.results = results
 
@@ -198,12 +248,11 @@ class _Watchdog(threading.Thread):
     """Stops members running past member_timeout + KILL_GRACE: cancels their task (so it is
     not run again) and restarts its worker process."""
 
-    def __init__(self, client: Any, futures: Sequence[Any],
-                 by_key: dict[Any, list[MemberTask]], starts: _Starts,
-                 member_timeout: float) -> None:
+    def __init__(self, client: Any, futures: Sequence[Any], by_key: dict[Any, MemberChunk],
+                 starts: _Starts, sets: Sequence[ParameterSet], member_timeout: float) -> None:
         super().__init__(name="syssimx-ensemble-watchdog", daemon=True)
         self.client, self.futures, self.by_key = client, futures, by_key
-        self.starts, self.member_timeout = starts, member_timeout
+        self.starts, self.sets, self.member_timeout = starts, sets, member_timeout
         self.stopped: dict[int, MemberResult] = {}
         self._closing = threading.Event()
         self.start()
@@ -213,23 +262,23 @@ class _Watchdog(threading.Thread):
             for future in self.futures:
                 if future.done():
                     continue
-                for task in self.by_key[future.key]:
-                    if self._stuck(task):
-                        self._stop_member(future, task)
+                for index in self.by_key[future.key].indices:
+                    if self._stuck(index):
+                        self._stop_member(future, index)
                         break
 
-    def _stuck(self, task: MemberTask) -> bool:
-        start = self.starts.get(task.index)
-        return start is not None and task.index not in self.stopped and \
+    def _stuck(self, index: int) -> bool:
+        start = self.starts.get(index)
+        return start is not None and index not in self.stopped and \
             time.monotonic() - start[0] > self.member_timeout + KILL_GRACE
 
-    def _stop_member(self, future: Any, task: MemberTask) -> None:
-        start = self.starts.get(task.index)
+    def _stop_member(self, future: Any, index: int) -> None:
+        start = self.starts.get(index)
         assert start is not None
         _, worker, pid = start
         # recorded first: the cancelled future completes as soon as it is cancelled
-        self.stopped[task.index] = MemberResult(
-            task.index, task.parameters, "failed",
+        self.stopped[index] = MemberResult(
+            index, self.sets[index], "failed",
             f"MemberTimeout: still running {self.member_timeout + KILL_GRACE:g} s after it "
             f"started (member_timeout={self.member_timeout:g} s), stuck where the run's "
             f"timeout cannot stop it; its worker process {pid} ({worker}) was restarted",

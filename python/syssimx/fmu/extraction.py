@@ -9,7 +9,9 @@ Every extraction folder is removed by its last user, on a failed extraction, at 
 SIGTERM and SIGHUP (where nobody else handles them). Beside each folder `syssimx_X` lies
 `syssimx_X.owner`, the owning process's id and start time: the first extraction of a process
 removes the folders whose owner is gone (killed by SIGKILL, or by a signal someone else
-handled), and those left without an owner file for a day by versions before it.
+handled), and those left without an owner file for a day by versions before it. A forked
+child (an ensemble's worker) inherits its parent's folders without owning them: it never
+removes them, and extracts its own.
 """
 
 from __future__ import annotations
@@ -50,7 +52,15 @@ class ExtractionCache:
         # folder -> member -> its resolved path, checked once per extraction
         self._binaries: dict[Path, dict[str, Path]] = {}
         self._swept = False
+        self._inherited: set[Path] = set()  # a forked child's parent's folders: not ours
         atexit.register(self.remove_all)
+        os.register_at_fork(after_in_child=self._forget_parents_folders)
+
+    def _forget_parents_folders(self) -> None:
+        self._inherited |= self._directories
+        self._directories = set()
+        self._entries = {}
+        self._lock = threading.RLock()  # another thread of the parent may have held it
 
     def acquire(self, archive: Path, shareable: bool) -> tuple[Path, tuple[str, int, int] | None]:
         """The directory holding `archive` (a resolved path) extracted, and the key to release
@@ -80,6 +90,8 @@ class ExtractionCache:
 
     def release(self, directory: Path, key: tuple[str, int, int] | None) -> None:
         """Give back what acquire returned; the last user removes the directory."""
+        if directory in self._inherited:
+            return  # a forked child's copy of its parent's component: the parent removes it
         if key is not None:
             with self._lock:
                 entry = self._entries[key]
@@ -104,6 +116,7 @@ class ExtractionCache:
             _remove(directory)
             raise
         self._directories.add(directory)
+        self._inherited.discard(directory)  # the parent's removed folder's name, reused
         return directory
 
     def remove_all(self) -> None:

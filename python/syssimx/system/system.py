@@ -396,6 +396,8 @@ class System:
         initialize): with stream_to, a run larger than memory keeps every sample on disk."""
         if not self.is_initialized or self._plan is None:
             raise ConfigurationError(f"{self.name}: call initialize(t0) before run()")
+        if self._plan.waiting_parameters:
+            _warn_waiting_parameters(self._plan.waiting_parameters)
         t0, tf, dt = (_time_value(self.name, label, value)
                       for label, value in (("t0", t0), ("tf", tf), ("dt", dt)))
         if timeout is not None and not (isinstance(timeout, int | float) and timeout > 0):
@@ -600,3 +602,11 @@ def _grid_steps(system: str, output_interval: object, dt: float) -> int:
                                  f"multiple of dt={dt!r}")
     return steps
 
+
+def _warn_waiting_parameters(waiting: dict[str, tuple[str, ...]]) -> None:
+    """Once per parameter set on a running FMU: this run does not use it."""
+    for component, names in waiting.items():
+        warnings.warn(f"{component}.set_parameters({', '.join(names)}) after initialize: the "
+                      "running FMU keeps its values; they apply at the next initialize (or "
+                      "reinitialize)", SysSimXWarning, stacklevel=3)
+    waiting.clear()

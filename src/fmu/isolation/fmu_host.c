@@ -7,20 +7,16 @@
  * and forwards every fmi2 call; the host makes the call and answers with what the FMU logged
  * and the call's result. It ends when the engine closes the socket, even while the FMU is
  * still inside a call (the engine's process died). */
-#define _GNU_SOURCE /* POLLRDHUP */
-
-#include <poll.h>
 #include <pthread.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
+#include "channel.h"
 #include "fmi2Functions.h"
 #include "fmu_message.h"
 #include "fmu_remote_protocol.h"
-#include "remote_io.h"
 #include "shared_library.h"
 
 typedef void (*any_function)(void);
@@ -53,7 +49,7 @@ static int send_reply(const host *h, remote_reply_kind kind, int status, uint64_
                       const void *payload, size_t size)
 {
     remote_reply reply = {.kind = kind, .status = status, .value = value, .payload = size};
-    return remote_send(h->socket, &reply, sizeof reply, payload, size);
+    return channel_send(h->socket, &reply, sizeof reply, payload, size);
 }
 
 /* Sent while the call runs: the engine hands it to its own logger before the result. */
@@ -238,14 +234,16 @@ static int serve_requests(host *h)
 {
     for (;;) {
         remote_request rq;
-        if (remote_receive(h->socket, &rq, sizeof rq, NULL, 0) != RECEIVED) {
+        if (channel_receive(h->socket, &rq, sizeof rq, CHANNEL_NO_DEADLINE, 0, NULL) !=
+            CHANNEL_RECEIVED) {
             return 0;
         }
         if (grown(&h->request, &h->request_capacity, (size_t)rq.payload) == NULL &&
             rq.payload > 0) {
             return 1;
         }
-        if (remote_receive(h->socket, h->request, (size_t)rq.payload, NULL, 0) != RECEIVED) {
+        if (channel_receive(h->socket, h->request, (size_t)rq.payload, CHANNEL_NO_DEADLINE, 0,
+                            NULL) != CHANNEL_RECEIVED) {
             return 0;
         }
         /* A call the binary does not export never arrives: the engine knows the exports. */
@@ -266,10 +264,8 @@ static int serve_requests(host *h)
  * thread that started the host ends, not its process. */
 static void *watch_engine(void *socket)
 {
-    struct pollfd hangup = {.fd = *(const int *)socket, .events = POLLRDHUP};
-    while (poll(&hangup, 1, -1) < 0 || (hangup.revents & (POLLRDHUP | POLLHUP)) == 0) {
-    }
-    _exit(0);
+    channel_wait_for_hangup(*(const int *)socket);
+    _Exit(0);
 }
 
 int main(int argc, char **argv)

@@ -8,12 +8,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
+#include "channel.h"
 #include "child_process.h"
 #include "fmi2Functions.h"
+#include "fmu_environment.h"
 #include "fmu_remote_protocol.h"
-#include "remote_io.h"
 
 struct ssx_remote {
     int pid; /* 0 while no host runs */
@@ -36,7 +36,7 @@ struct ssx_remote {
     int read_status;
     int read_ready;
     char gone[512]; /* why the host ended, "" while it runs */
-    remote_watch watch; /* asked while a call waits: the engine's run stops it */
+    channel_watch watch; /* asked while a call waits: the engine's run stops it */
 };
 
 /* ------------------------------------------------------------------ the host process */
@@ -68,27 +68,10 @@ static void close_host(ssx_remote *r, char *how, size_t how_size)
     }
 }
 
-static struct timespec deadline_after(double seconds)
+/* The deadline of a call started now (CHANNEL_NO_DEADLINE without a call timeout). */
+static double call_deadline(const ssx_remote *r)
 {
-    struct timespec deadline;
-    clock_gettime(CLOCK_MONOTONIC, &deadline);
-    double whole = (double)(long)seconds;
-    deadline.tv_sec += (time_t)whole;
-    deadline.tv_nsec += (long)((seconds - whole) * 1e9);
-    if (deadline.tv_nsec >= 1000000000L) {
-        deadline.tv_sec += 1;
-        deadline.tv_nsec -= 1000000000L;
-    }
-    return deadline;
-}
-
-static const struct timespec *call_deadline(const ssx_remote *r, struct timespec *storage)
-{
-    if (!(r->call_timeout > 0.0)) {
-        return NULL;
-    }
-    *storage = deadline_after(r->call_timeout);
-    return storage;
+    return channel_deadline_after(r->call_timeout);
 }
 
 /* Starts the host and reads its HELLO. */
@@ -103,22 +86,22 @@ static int start_host(ssx_remote *r, char *error, size_t error_size)
         snprintf(error, error_size, "the FMU host %s: %s", r->host_path, reason_of_start);
         return -1;
     }
-    struct timespec storage;
     remote_reply hello;
-    remote_receive_result got = remote_receive(r->socket, &hello, sizeof hello,
-                                               call_deadline(r, &storage), r->pid);
-    if (got == RECEIVED && hello.kind == REPLY_HELLO && hello.status == 0 && hello.payload == 0) {
+    channel_receive_result got = channel_receive(r->socket, &hello, sizeof hello,
+                                                 call_deadline(r), r->pid, NULL);
+    if (got == CHANNEL_RECEIVED && hello.kind == REPLY_HELLO && hello.status == 0 && hello.payload == 0) {
         r->exported = hello.value;
         r->gone[0] = '\0';
         return 0;
     }
     char reason[1024] = "";
-    if (got == RECEIVED && hello.kind == REPLY_HELLO && hello.payload > 0 &&
+    if (got == CHANNEL_RECEIVED && hello.kind == REPLY_HELLO && hello.payload > 0 &&
         hello.payload < sizeof reason &&
-        remote_receive(r->socket, reason, (size_t)hello.payload, NULL, r->pid) == RECEIVED) {
+        channel_receive(r->socket, reason, (size_t)hello.payload, CHANNEL_NO_DEADLINE, r->pid,
+                        NULL) == CHANNEL_RECEIVED) {
         reason[hello.payload] = '\0';
     }
-    if (got == TIMED_OUT) {
+    if (got == CHANNEL_TIMED_OUT) {
         child_process_kill(r->pid);
     }
     char how[256];
@@ -127,7 +110,7 @@ static int start_host(ssx_remote *r, char *error, size_t error_size)
         snprintf(error, error_size, "%s", reason);
     } else {
         snprintf(error, error_size, "the FMU host %s %s before it loaded %s", r->host_path,
-                 got == TIMED_OUT ? "was killed: it hung" : how, r->binary_path);
+                 got == CHANNEL_TIMED_OUT ? "was killed: it hung" : how, r->binary_path);
     }
     return -1;
 }
@@ -196,16 +179,16 @@ static void deliver(const ssx_remote *r, int status, const char *category, const
 }
 
 /* The host died, hung or broke the protocol during `call`: it is gone, and the call fails. */
-static int lost(ssx_remote *r, remote_call call, remote_receive_result why)
+static int lost(ssx_remote *r, remote_call call, channel_receive_result why)
 {
     char how[256];
-    if (why == TIMED_OUT) {
+    if (why == CHANNEL_TIMED_OUT) {
         child_process_kill_group(r->pid);
         close_host(r, how, sizeof how);
         snprintf(r->gone, sizeof r->gone,
                  "%s did not return within the step timeout of %g s: the FMU process was "
                  "killed", remote_call_names[call], r->call_timeout);
-    } else if (why == STOPPED) {
+    } else if (why == CHANNEL_STOPPED) {
         child_process_kill_group(r->pid);
         close_host(r, how, sizeof how);
         snprintf(r->gone, sizeof r->gone,
@@ -230,25 +213,24 @@ static int call(ssx_remote *r, remote_request *rq, void *out, size_t out_size, u
         deliver(r, fmi2Fatal, "logStatusFatal", r->gone);
         return fmi2Fatal;
     }
-    struct timespec storage;
-    const struct timespec *deadline = call_deadline(r, &storage);
-    if (remote_send(r->socket, rq, sizeof *rq, r->buffer, (size_t)rq->payload) != 0) {
-        return lost(r, rq->call, PEER_GONE);
+    double deadline = call_deadline(r);
+    if (channel_send(r->socket, rq, sizeof *rq, r->buffer, (size_t)rq->payload) != 0) {
+        return lost(r, rq->call, CHANNEL_PEER_GONE);
     }
     for (;;) {
         remote_reply reply;
-        remote_receive_result got = remote_receive_watched(r->socket, &reply, sizeof reply,
-                                                           deadline, r->pid, &r->watch);
+        channel_receive_result got = channel_receive(r->socket, &reply, sizeof reply, deadline,
+                                                     r->pid, &r->watch);
         /* a reply the host would never send (the FMU wrote to the socket itself) ends it */
-        if (got == RECEIVED && (reply.payload >= SIZE_MAX / 2 ||
+        if (got == CHANNEL_RECEIVED && (reply.payload >= SIZE_MAX / 2 ||
                                 reserve(r, (size_t)reply.payload + 1) != 0)) {
-            got = PEER_GONE;
+            got = CHANNEL_PEER_GONE;
         }
-        if (got == RECEIVED) {
-            got = remote_receive_watched(r->socket, r->buffer, (size_t)reply.payload, deadline,
-                                         r->pid, &r->watch);
+        if (got == CHANNEL_RECEIVED) {
+            got = channel_receive(r->socket, r->buffer, (size_t)reply.payload, deadline, r->pid,
+                                  &r->watch);
         }
-        if (got != RECEIVED) {
+        if (got != CHANNEL_RECEIVED) {
             return lost(r, rq->call, got);
         }
         if (reply.kind == REPLY_LOG) {
@@ -260,7 +242,7 @@ static int call(ssx_remote *r, remote_request *rq, void *out, size_t out_size, u
             continue;
         }
         if (reply.kind != REPLY_RESULT || reply.payload != out_size) {
-            return lost(r, rq->call, PEER_GONE);
+            return lost(r, rq->call, CHANNEL_PEER_GONE);
         }
         if (out_size > 0) {
             memcpy(out, r->buffer, out_size);
@@ -306,7 +288,8 @@ static fmi2Component remote_instantiate(fmi2String instance_name, fmi2Type type,
                                         const fmi2CallbackFunctions *callbacks,
                                         fmi2Boolean visible, fmi2Boolean logging_on)
 {
-    ssx_remote *r = ssx_fmu_remote(callbacks->componentEnvironment);
+    const ssx_fmu_environment *environment = callbacks->componentEnvironment;
+    ssx_remote *r = environment->remote;
     instance_name = instance_name != NULL ? instance_name : "";
     guid = guid != NULL ? guid : "";
     resource_uri = resource_uri != NULL ? resource_uri : "";
@@ -594,6 +577,6 @@ void *ssx_remote_function(const ssx_remote *r, const char *name)
 void ssx_remote_set_watch(ssx_remote *r, int (*stop)(void *user), void *user)
 {
     if (r != NULL) {
-        r->watch = (remote_watch){stop, user};
+        r->watch = (channel_watch){stop, user};
     }
 }

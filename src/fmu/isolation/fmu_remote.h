@@ -27,14 +27,11 @@ void ssx_remote_set_watch(ssx_remote *remote, int (*stop)(void *user), void *use
 
 /* The forwarding implementation of the fmi2 function `name`, as dlsym would return it, or NULL
  * when the binary does not export it. The instance fmi2Instantiate returns is the remote
- * itself; its callbacks' componentEnvironment must be the ssx_fmu that owns the remote. A host
+ * itself; its callbacks' componentEnvironment must be the ssx_fmu_environment
+ * (fmu_environment.h) that holds the remote: FMI 2.0 hands fmi2Instantiate nothing else to
+ * find it by. A host
  * that dies makes the call fail with fmi2Fatal and logs why (the signal, or the timeout); the
  * next fmi2Instantiate starts a new host. */
 void *ssx_remote_function(const ssx_remote *remote, const char *name);
-
-/* The remote of the ssx_fmu an instance was made for (its callbacks' componentEnvironment):
- * FMI 2.0 hands fmi2Instantiate nothing else to find it by. The binding, which makes both,
- * defines it. */
-ssx_remote *ssx_fmu_remote(const void *environment);
 
 #endif

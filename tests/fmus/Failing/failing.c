@@ -13,16 +13,12 @@ enum { VR_Y, VR_U, VR_FAIL_TIME, VR_FAILURE, VARIABLE_COUNT };
 enum { FAIL_ERROR, FAIL_FATAL, FAIL_DISCARD, FAIL_READ, FAIL_NAN };
 
 static const model_variable variables[VARIABLE_COUNT] = {
-    [VR_Y] = {"y", VR_Y, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,
-              NULL, 0, "copy of the input", -1, DEPENDS(VR_U), DEPENDS(VR_U)},
-    [VR_U] = {"u", VR_U, TYPE_REAL, CAUSALITY_INPUT, VARIABILITY_CONTINUOUS, INITIAL_NONE, NULL, 0,
-              "input", -1, NULL, NULL},
+    REAL_OUTPUT(VR_Y, "y", NULL, "copy of the input", DEPENDS(VR_U), DEPENDS(VR_U)),
+    REAL_INPUT(VR_U, "u", NULL, 0, "input"),
     REAL_PARAMETER(VR_FAIL_TIME, "fail_time", "s", 1, "the FMU fails after this time"),
-    [VR_FAILURE] = {"failure", VR_FAILURE, TYPE_INTEGER, CAUSALITY_PARAMETER, VARIABILITY_FIXED,
-                    INITIAL_EXACT, NULL, FAIL_ERROR,
-                    "0 doStep error, 1 doStep fatal, 2 doStep discard, 3 fmi2Get error, "
-                    "4 NaN output",
-                    -1, NULL, NULL},
+    INTEGER_PARAMETER(VR_FAILURE, "failure", FAIL_ERROR,
+                      "0 doStep error, 1 doStep fatal, 2 doStep discard, 3 fmi2Get error, "
+                      "4 NaN output"),
 };
 
 static void outputs(double *v, double t, const double *x)

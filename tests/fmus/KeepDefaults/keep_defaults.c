@@ -8,16 +8,12 @@
 enum { VR_Y, VR_U, VR_H_MIN, VARIABLE_COUNT };
 
 static const model_variable variables[VARIABLE_COUNT] = {
-    [VR_Y] = {"y", VR_Y, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,
-              NULL, 0, "u / h_min (1 with the model's own values)", -1, DEPENDS(VR_U),
-              DEPENDS(VR_U, VR_H_MIN)},
-    [VR_U] = {"u", VR_U, TYPE_REAL, CAUSALITY_INPUT, VARIABILITY_CONTINUOUS, INITIAL_NONE, NULL,
-              1e-7, "input, declared start rounded to 0.000000", -1, NULL, NULL,
-              .declared_start = "0.000000"},
-    [VR_H_MIN] = {"h_min", VR_H_MIN, TYPE_REAL, CAUSALITY_PARAMETER, VARIABILITY_FIXED,
-                  INITIAL_EXACT, NULL, 1e-7,
-                  "smallest internal step, declared start rounded to 0.000000", -1, NULL, NULL,
-                  .declared_start = "0.000000"},
+    REAL_OUTPUT(VR_Y, "y", NULL, "u / h_min (1 with the model's own values)", DEPENDS(VR_U),
+                DEPENDS(VR_U, VR_H_MIN)),
+    REAL_INPUT_DECLARED(VR_U, "u", NULL, 1e-7, "0.000000",
+                        "input, declared start rounded to 0.000000"),
+    REAL_PARAMETER_DECLARED(VR_H_MIN, "h_min", NULL, 1e-7, "0.000000",
+                            "smallest internal step, declared start rounded to 0.000000"),
 };
 
 static void outputs(double *v, double t, const double *x)

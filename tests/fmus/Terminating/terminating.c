@@ -6,8 +6,7 @@
 enum { VR_Y, VR_Y0, VR_SLOPE, VR_STOP_TIME, VARIABLE_COUNT };
 
 static const model_variable variables[VARIABLE_COUNT] = {
-    [VR_Y] = {"y", VR_Y, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,
-              NULL, 0, "the ramp y0 + slope * t", -1, DEPENDS_NONE, DEPENDS(VR_Y0, VR_SLOPE)},
+    REAL_OUTPUT(VR_Y, "y", NULL, "the ramp y0 + slope * t", DEPENDS_NONE, DEPENDS(VR_Y0, VR_SLOPE)),
     REAL_PARAMETER(VR_Y0, "y0", NULL, 0, "value at t = 0"),
     REAL_PARAMETER(VR_SLOPE, "slope", NULL, 1, "slope of the ramp (1/s)"),
     REAL_PARAMETER(VR_STOP_TIME, "stop_time", "s", 1, "the model asks to stop at this time"),

@@ -15,12 +15,10 @@
 enum { VR_THREAD, VR_PARTNERS, VARIABLE_COUNT };
 
 static const model_variable variables[VARIABLE_COUNT] = {
-    [VR_THREAD] = {"thread", VR_THREAD, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_DISCRETE,
-                   INITIAL_CALCULATED, NULL, 0, "id of the thread that last stepped the FMU", -1,
-                   DEPENDS_NONE, DEPENDS_NONE},
-    [VR_PARTNERS] = {"partners", VR_PARTNERS, TYPE_INTEGER, CAUSALITY_PARAMETER, VARIABILITY_FIXED,
-                     INITIAL_EXACT, NULL, 0,
-                     "instances that must be stepping at once (0 or 1: no wait)", -1, NULL, NULL},
+    REAL_DISCRETE_OUTPUT(VR_THREAD, "thread", NULL, "id of the thread that last stepped the FMU",
+                         DEPENDS_NONE, DEPENDS_NONE),
+    INTEGER_PARAMETER(VR_PARTNERS, "partners", 0,
+                      "instances that must be stepping at once (0 or 1: no wait)"),
 };
 
 enum { MEETING_TIMEOUT_S = 10 };

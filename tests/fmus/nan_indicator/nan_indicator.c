@@ -8,11 +8,9 @@
 enum { VR_X, VR_DER_X, VR_POISON, VARIABLE_COUNT };
 
 static const model_variable variables[VARIABLE_COUNT] = {
-    [VR_X] = {"x", VR_X, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_CONTINUOUS, INITIAL_CALCULATED,
-              "m", 0, "decaying state", -1, DEPENDS(VR_X), DEPENDS_NONE},
-    [VR_DER_X] = {"der(x)", VR_DER_X, TYPE_REAL, CAUSALITY_LOCAL, VARIABILITY_CONTINUOUS,
-                  INITIAL_CALCULATED, "m/s", 0, "derivative of x", VR_X, DEPENDS(VR_X),
-                  DEPENDS_NONE},
+    REAL_OUTPUT(VR_X, "x", "m", "decaying state", DEPENDS(VR_X), DEPENDS_NONE),
+    REAL_DERIVATIVE(VR_DER_X, "der(x)", "m/s", "derivative of x", VR_X, DEPENDS(VR_X),
+                    DEPENDS_NONE),
     REAL_PARAMETER(VR_POISON, "poison", "-", 0, "1: the event indicator is NaN"),
 };
 

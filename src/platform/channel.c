@@ -1,7 +1,8 @@
-/* Socket I/O for the isolated FMU: retried on EINTR and partial transfers. */
-#define _DEFAULT_SOURCE
+/* A byte stream between processes on POSIX systems (see channel.h): a socket, retried on EINTR
+ * and partial transfers. */
+#define _GNU_SOURCE /* POLLRDHUP */
 
-#include "remote_io.h"
+#include "channel.h"
 
 #include <errno.h>
 #include <poll.h>
@@ -10,15 +11,17 @@
 #include <sys/uio.h>
 #include <sys/wait.h>
 
-int remote_send(int fd, const void *head, size_t head_size, const void *payload,
-                size_t payload_size)
+#include "clock.h"
+
+int channel_send(int channel, const void *head, size_t head_size, const void *payload,
+                 size_t payload_size)
 {
     struct iovec parts[2] = {{(void *)head, head_size}, {(void *)payload, payload_size}};
     struct iovec *part = parts;
     size_t n_parts = payload_size > 0 ? 2 : 1;
     while (n_parts > 0) {
         struct msghdr message = {.msg_iov = part, .msg_iovlen = n_parts};
-        ssize_t sent = sendmsg(fd, &message, MSG_NOSIGNAL);
+        ssize_t sent = sendmsg(channel, &message, MSG_NOSIGNAL);
         if (sent < 0) {
             if (errno == EINTR) {
                 continue;
@@ -39,30 +42,31 @@ int remote_send(int fd, const void *head, size_t head_size, const void *payload,
     return 0;
 }
 
+double channel_deadline_after(double seconds)
+{
+    return seconds > 0.0 ? monotonic_seconds() + seconds : CHANNEL_NO_DEADLINE;
+}
+
+static int has_deadline(double deadline)
+{
+    return deadline >= 0.0;
+}
+
 /* Milliseconds from now to the deadline, at least 0, at most the peer check interval. */
-static int wait_slice(const struct timespec *deadline, int peer, int watched)
+static int wait_slice(double deadline, int peer, int watched)
 {
     int slice = peer > 0 || watched ? 100 : -1;
-    if (deadline == NULL) {
+    if (!has_deadline(deadline)) {
         return slice;
     }
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    double left = (double)(deadline->tv_sec - now.tv_sec) * 1e3 +
-                  (double)(deadline->tv_nsec - now.tv_nsec) * 1e-6;
+    double left = (deadline - monotonic_seconds()) * 1e3;
     int remaining = left <= 0.0 ? 0 : left >= 1e9 ? 1000000000 : (int)left + 1;
     return slice < 0 || remaining < slice ? remaining : slice;
 }
 
-static int expired(const struct timespec *deadline)
+static int expired(double deadline)
 {
-    if (deadline == NULL) {
-        return 0;
-    }
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    return now.tv_sec > deadline->tv_sec ||
-           (now.tv_sec == deadline->tv_sec && now.tv_nsec >= deadline->tv_nsec);
+    return has_deadline(deadline) && monotonic_seconds() >= deadline;
 }
 
 /* Whether the peer process has ended, without reaping it (its exit status stays readable). */
@@ -75,48 +79,48 @@ static int peer_ended(int peer)
     return info.si_pid == peer;
 }
 
-remote_receive_result remote_receive(int fd, void *data, size_t size,
-                                     const struct timespec *deadline, int peer)
-{
-    return remote_receive_watched(fd, data, size, deadline, peer, NULL);
-}
-
-remote_receive_result remote_receive_watched(int fd, void *data, size_t size,
-                                             const struct timespec *deadline, int peer,
-                                             const remote_watch *watch)
+channel_receive_result channel_receive(int channel, void *data, size_t size, double deadline,
+                                       int peer, const channel_watch *watch)
 {
     int watched = watch != NULL && watch->stop != NULL;
     char *at = data;
     while (size > 0) {
-        ssize_t got = recv(fd, at, size, MSG_DONTWAIT);
+        ssize_t got = recv(channel, at, size, MSG_DONTWAIT);
         if (got > 0) {
             at += got;
             size -= (size_t)got;
             continue;
         }
         if (got == 0) {
-            return PEER_GONE;
+            return CHANNEL_PEER_GONE;
         }
         if (errno == EINTR) {
             continue;
         }
         if (errno != EAGAIN && errno != EWOULDBLOCK) {
-            return PEER_GONE;
+            return CHANNEL_PEER_GONE;
         }
         if (expired(deadline)) {
-            return TIMED_OUT;
+            return CHANNEL_TIMED_OUT;
         }
-        struct pollfd readable = {.fd = fd, .events = POLLIN};
+        struct pollfd readable = {.fd = channel, .events = POLLIN};
         int ready = poll(&readable, 1, wait_slice(deadline, peer, watched));
         if (ready < 0 && errno != EINTR) {
-            return PEER_GONE;
+            return CHANNEL_PEER_GONE;
         }
         if (ready == 0 && peer > 0 && peer_ended(peer)) {
-            return PEER_GONE;
+            return CHANNEL_PEER_GONE;
         }
         if (ready == 0 && watched && watch->stop(watch->user) != 0) {
-            return STOPPED;
+            return CHANNEL_STOPPED;
         }
     }
-    return RECEIVED;
+    return CHANNEL_RECEIVED;
+}
+
+void channel_wait_for_hangup(int channel)
+{
+    struct pollfd hangup = {.fd = channel, .events = POLLRDHUP};
+    while (poll(&hangup, 1, -1) < 0 || (hangup.revents & (POLLRDHUP | POLLHUP)) == 0) {
+    }
 }
