@@ -74,6 +74,8 @@ typedef struct ssx_component_ops {
     /* The kind's own reaction to an event at t when no Python hook handles it (an FMU's
      * declarative restart). NULL: none. */
     int (*handle_events)(ssx_system *sys, ssx_component *c, double t);
+    /* The FMU it runs (a run watches an isolated FMU's host). NULL: it runs none. */
+    ssx_fmu *(*fmu)(const ssx_component *c);
     /* The kind's reads check its outputs for NaN and infinities; a Python hook that steps
      * it calls them. 0: values Python wrote are checked after the hook. */
     int checks_own_outputs;

@@ -424,10 +424,14 @@ const void *fmu_component_instance(const ssx_component *c)
     return fmu_data(c)->fmu;
 }
 
+ssx_fmu *fmu_component_fmu(const ssx_component *c)
+{
+    return fmu_data(c)->fmu;
+}
+
 ssx_fmu *fmu_component_binding(const ssx_component *c)
 {
-    int fmu_kind = c->ops == &ssx_fmu_component_ops || c->ops == &ssx_model_exchange_component_ops;
-    return fmu_kind ? fmu_data(c)->fmu : NULL;
+    return c->ops->fmu != NULL ? c->ops->fmu(c) : NULL;
 }
 
 ssx_component_capabilities fmu_component_capabilities(const ssx_component *c)
@@ -739,5 +743,6 @@ const ssx_component_ops ssx_fmu_component_ops = {
     .output_derivatives = fmu_component_output_derivatives,
     .set_input_derivatives = fmu_component_set_input_derivatives,
     .handle_events = fmu_component_handle_events,
+    .fmu = fmu_component_fmu,
     .checks_own_outputs = 1,
 };

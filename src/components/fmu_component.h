@@ -51,11 +51,12 @@ static inline fmu_component_data *fmu_data(const ssx_component *c)
 void fmu_component_data_init(fmu_component_data *d, ssx_fmu *fmu);
 void fmu_component_data_free(fmu_component_data *d);
 
-/* c's FMU when c is an FMU component of either kind, else NULL. */
+/* c's FMU when its kind runs one (ops->fmu), else NULL. */
 ssx_fmu *fmu_component_binding(const ssx_component *c);
 
 /* The FMU kinds' shared operations (component.h describes each). */
 int fmu_component_prepare(ssx_system *sys, ssx_component *c);
+ssx_fmu *fmu_component_fmu(const ssx_component *c);
 int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0);
 int fmu_component_directional_derivative(ssx_system *sys, ssx_component *c,
                                          const unsigned int *outputs, size_t n_outputs,

@@ -676,6 +676,7 @@ const ssx_component_ops ssx_model_exchange_component_ops = {
     .can_roll_back = fmu_component_can_roll_back,
     .capabilities = fmu_component_capabilities,
     .handle_events = fmu_component_handle_events,
+    .fmu = fmu_component_fmu,
     .checks_own_outputs = 1,
 };
 

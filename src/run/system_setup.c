@@ -8,7 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "adaptive.h"
 #include "algorithm.h"
 #include "array.h"
 #include "component_calls.h"
@@ -105,7 +104,6 @@ void ssx_system_free(ssx_system *sys)
         return;
     }
     input_order_free(sys); /* before the components whose inputs it moves */
-    adaptive_free(sys);
     free(sys->power_bonds);
     for (int i = 0; i < sys->n_components; ++i) {
         component_free(sys->components[i]);
@@ -593,26 +591,6 @@ int ssx_set_run_output_interval(ssx_system *sys, int grid_steps)
     }
     sys->recording->run_output_interval = grid_steps;
     return 0;
-}
-
-int system_snapshot(ssx_system *sys, int slot)
-{
-    for (int i = 0; i < sys->n_components; ++i) {
-        if (component_snapshot(sys, sys->components[i], slot) != 0) {
-            return -1;
-        }
-    }
-    return 0;
-}
-
-int system_restore(ssx_system *sys, int slot, double t)
-{
-    for (int i = 0; i < sys->n_components; ++i) {
-        if (component_restore(sys, sys->components[i], slot, t) != 0) {
-            return -1;
-        }
-    }
-    return record_state_restored(sys, t);
 }
 
 int ssx_set_input_order(ssx_system *sys, int order)

@@ -25,13 +25,13 @@ static const ssx_master_algorithm ALGORITHMS[] = {
     [PLAIN] = {NULL, plain_step, NULL},
     [HYBRID] = {hybrid_prepare, hybrid_step, hybrid_release},
     /* events inside adaptive steps too: its workspace is the hybrid one */
-    [ADAPTIVE] = {adaptive_prepare, adaptive_step, hybrid_release},
+    [ADAPTIVE] = {adaptive_prepare, adaptive_step, adaptive_release},
 };
 
 void master_algorithm_release(ssx_system *sys)
 {
     if (sys->algorithm != NULL && sys->algorithm->release != NULL) {
-        sys->algorithm->release(sys->algorithm_workspace);
+        sys->algorithm->release(sys, sys->algorithm_workspace);
     }
     sys->algorithm = NULL;
     sys->algorithm_workspace = NULL;

@@ -591,8 +591,9 @@ int hybrid_end_piece(ssx_system *sys, const hybrid_piece *piece, double t_end, d
     return status;
 }
 
-void hybrid_release(void *workspace)
+void hybrid_release(ssx_system *sys, void *workspace)
 {
+    (void)sys;
     hybrid_workspace *hw = workspace;
     if (hw != NULL) {
         free(hw->brackets);
