@@ -6,7 +6,6 @@
 #include <string.h>
 
 #include "fmu_evaluation.h"
-#include "fmu_interpolation.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
@@ -165,12 +164,19 @@ void fmu_exit_initialization(fmu_instance *inst)
     fmu_event_indicators(inst, inst->z_previous);
 }
 
+void fmu_hold_inputs(fmu_instance *inst)
+{
+    memset(inst->input_derivatives, 0, 2 * inst->n_variables * sizeof(double));
+    inst->has_input_derivatives = 0;
+    inst->input_motion = INPUTS_HELD;
+}
+
 void fmu_reset(fmu_instance *inst)
 {
     inst->phase = PHASE_INSTANTIATED;
     inst->event_pending = 0;
     inst->in_event_mode = 0;
-    fmu_clear_input_derivatives(inst);
+    fmu_hold_inputs(inst);
     fmu_apply_start_values(inst);
     fmu_solver_invalidate(inst);
 }

@@ -143,6 +143,8 @@ fmu_status fmu_setup_experiment(fmu_instance *inst, const char *function, int to
                                 double stop_time);
 void fmu_exit_initialization(fmu_instance *inst);
 void fmu_reset(fmu_instance *inst);
+/* Forgets every input derivative: the inputs are held again (reset, a restored state). */
+void fmu_hold_inputs(fmu_instance *inst);
 
 /* The table row of a value reference, or NULL when the FMU has no such variable. Inline: every
  * get and set checks each of its value references with it. */

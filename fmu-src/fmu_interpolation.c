@@ -47,13 +47,6 @@ fmu_status fmu_set_input_derivatives(fmu_instance *inst, const char *function,
     return FMU_OK;
 }
 
-void fmu_clear_input_derivatives(fmu_instance *inst)
-{
-    memset(inst->input_derivatives, 0, 2 * inst->n_variables * sizeof(double));
-    inst->has_input_derivatives = 0;
-    inst->input_motion = INPUTS_HELD;
-}
-
 void fmu_inputs_begin_step(fmu_instance *inst)
 {
     inst->step_start = inst->time;

@@ -25,9 +25,6 @@
 fmu_status fmu_set_input_derivatives(fmu_instance *inst, const char *function,
                                      const unsigned int vr[], size_t nvr,
                                      const int order[], const double value[]);
-/* Forgets every input derivative (reset, a restored state). */
-void fmu_clear_input_derivatives(fmu_instance *inst);
-
 /* Derivative order[i] of output vr[i] at the instance's time into value[i]. */
 fmu_status fmu_get_output_derivatives(fmu_instance *inst, const char *function,
                                       const unsigned int vr[], size_t nvr,

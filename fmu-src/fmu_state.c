@@ -8,7 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "fmu_interpolation.h"
 #include "fmu_log.h"
 #include "fmu_solver.h"
 
@@ -105,7 +104,7 @@ fmu_status fmu_state_set(fmu_instance *inst, const char *function, const void *F
     const double *fired = z_previous + inst->model->n_event_indicators;
     for (size_t i = 0; i < inst->model->n_event_indicators; ++i)
         inst->fired[i] = fired[i] != 0.0;
-    fmu_clear_input_derivatives(inst);
+    fmu_hold_inputs(inst);
     inst->outputs_stale = 1;
     fmu_solver_invalidate(inst);
     return FMU_OK;

@@ -25,6 +25,13 @@ typedef struct {
     size_t capacity;
 } ssx_own_event_list;
 
+/* What a component can do beyond stepping, for the algorithms that use it. */
+typedef struct {
+    int directional_derivatives; /* providesDirectionalDerivative(s) */
+    int can_interpolate_inputs;  /* canInterpolateInputs: takes its inputs' time derivatives */
+    int max_output_derivative_order; /* maxOutputDerivativeOrder: tells its outputs' */
+} ssx_component_capabilities;
+
 typedef struct ssx_component_ops {
     int (*do_step)(ssx_system *sys, ssx_component *c, double t, double dt);
     int (*write_inputs)(ssx_system *sys, ssx_component *c);
@@ -32,7 +39,9 @@ typedef struct ssx_component_ops {
     int (*evaluate_outputs)(ssx_system *sys, ssx_component *c, double t);
     int (*snapshot)(ssx_system *sys, ssx_component *c, int slot);
     int (*restore)(ssx_system *sys, ssx_component *c, int slot, double t);
-    void (*release)(ssx_component *c); /* frees c->data; NULL when the kind keeps none */
+    /* frees what c->data holds, and c->data unless it lies in the component's block
+     * (system_add_component); NULL when the kind keeps none */
+    void (*release)(ssx_component *c);
     /* What callers would otherwise ask the kind for. Each may be NULL: the kind has none. */
     /* Refuses a component the run cannot use (a Python component without its two hooks). */
     int (*validate)(ssx_system *sys, const ssx_component *c);
@@ -47,6 +56,29 @@ typedef struct ssx_component_ops {
     /* What two components must never use on two threads at once (their FMU instance), NULL:
      * nothing shared. Only kinds whose built-in step may run on a worker thread have it. */
     const void *(*shared_with_threads)(const ssx_component *c);
+    /* At initialization, after the ports are final: what the kind builds from them; -1: out
+     * of memory. */
+    int (*prepare)(ssx_system *sys, ssx_component *c);
+    /* Whether the component can save and restore its state (with its hooks as set). */
+    int (*can_roll_back)(const ssx_component *c);
+    /* What it can do (directional derivatives, moving inputs). NULL: nothing. */
+    ssx_component_capabilities (*capabilities)(const ssx_component *c);
+    /* The first time derivative of each Real output at t into slope[output] (other entries
+     * untouched); 0, or -1 with the error set. Only kinds with max_output_derivative_order. */
+    int (*output_derivatives)(ssx_system *sys, ssx_component *c, double t, double *slope);
+    /* Hands the component the first `order` time derivatives of its Real inputs over the
+     * coming step, derivatives[2 * input + k - 1] the k-th of input `input`. Only kinds that
+     * can interpolate inputs. */
+    int (*set_input_derivatives)(ssx_system *sys, ssx_component *c, int order,
+                                 const double *derivatives);
+    /* The kind's own reaction to an event at t when no Python hook handles it (an FMU's
+     * declarative restart). NULL: none. */
+    int (*handle_events)(ssx_system *sys, ssx_component *c, double t);
+    /* The FMU it runs (a run watches an isolated FMU's host). NULL: it runs none. */
+    ssx_fmu *(*fmu)(const ssx_component *c);
+    /* The kind's reads check its outputs for NaN and infinities; a Python hook that steps
+     * it calls them. 0: values Python wrote are checked after the hook. */
+    int checks_own_outputs;
 } ssx_component_ops;
 
 /* A driven input, resolved for the coupling loop: inputs[input] = scale * *source + offset,
@@ -58,13 +90,6 @@ typedef struct {
     double offset;
 } ssx_input_link;
 
-/* Ports of one value type, batched for a single fmi2Get/Set call. */
-typedef struct {
-    unsigned int *vr;
-    int *port; /* index of each entry in the component's port array */
-    size_t n;
-} ssx_port_batch;
-
 typedef struct {
     ssx_value_type type;
     unsigned int vr;
@@ -75,16 +100,8 @@ struct ssx_component {
     int index;
     const ssx_component_ops *ops;
     ssx_hooks hooks;
-    ssx_fmu *fmu; /* borrowed; NULL for a Python component */
-    void *data;   /* the kind's own data (a table source's table), freed by ops->release */
+    void *data; /* the kind's own data (a table source's table, an FMU's), ops->release frees */
     int can_snapshot;
-    int provides_directional_derivatives; /* FMU components only */
-    /* FMU components: the modelDescription's canInterpolateInputs and maxOutputDerivativeOrder,
-     * and (input_order.h) per input its first and second time derivative over the coming
-     * step, NULL while inputs are held */
-    int can_interpolate_inputs;
-    int max_output_derivative_order;
-    double *input_derivatives;
     int calling_thread_only; /* ssx_set_calling_thread_only */
 
     ssx_port *output_ports;
@@ -98,42 +115,14 @@ struct ssx_component {
     ssx_input_link *links; /* the driven inputs, built with the schedule (coupling.c) */
     int n_links;
 
-    ssx_port_batch output_batch[3]; /* by ssx_value_type, built at initialization */
-    ssx_port_batch input_batch[3];
-    double *real_scratch;
-    int *int_scratch;
-    /* the inputs as last written to the FMU and its values epoch right after that write
-     * (-1: nothing written yet); equal inputs at an unchanged epoch need no fmi2Set */
-    double *inputs_written;
-    long inputs_written_epoch;
-
-    /* built-in FMU snapshots: one reused FMU state per slot, valid for one instance generation */
-    void *fmu_state[SSX_SNAPSHOT_SLOTS];
-    long fmu_state_generation[SSX_SNAPSHOT_SLOTS];
     /* engine-side port values saved with each snapshot, so a restore brings them back too */
     double *saved_outputs[SSX_SNAPSHOT_SLOTS];
     double *saved_inputs[SSX_SNAPSHOT_SLOTS];
     /* events handled inside its steps, until the master accepts them (own_events.h) */
     ssx_own_event_list own_events;
-    /* its declarative event handler (restart_handler.h), NULL for none */
-    struct ssx_restart *restart;
 };
 
 extern const ssx_component_ops ssx_fmu_component_ops;
-
-/* Unconnected inputs whose start is NaN take the value the initialized FMU holds. */
-int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0);
-/* Whether the FMU already holds every input value: nothing set it since the engine's last
- * write. */
-int fmu_component_inputs_unchanged(const ssx_component *c);
-/* Both FMU kinds' directional derivatives and the instance their threads must not share. */
-int fmu_component_directional_derivative(ssx_system *sys, ssx_component *c,
-                                         const unsigned int *outputs, size_t n_outputs,
-                                         const unsigned int *inputs, size_t n_inputs,
-                                         const double *seed, double *out, double t);
-const void *fmu_component_instance(const ssx_component *c);
-/* Reads every output of an FMU component; a failure is reported at t, the time the FMU is at. */
-int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t);
 /* A Model Exchange FMU integrated by the engine (me_component.c); its ports are an FMU
  * component's. */
 extern const ssx_component_ops ssx_model_exchange_component_ops;

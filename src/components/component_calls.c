@@ -7,7 +7,6 @@
 
 #include "error.h"
 #include "own_events.h"
-#include "restart_handler.h"
 #include "system.h"
 
 int component_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
@@ -18,7 +17,7 @@ int component_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
             return fail_hook(sys, c, t, "do_step");
         }
         /* an FMU's values were checked where the built-in read them; Python wrote these */
-        return c->fmu == NULL ? component_check_outputs(sys, c, t + dt) : 0;
+        return c->ops->checks_own_outputs ? 0 : component_check_outputs(sys, c, t + dt);
     }
     return c->ops->do_step(sys, c, t, dt);
 }
@@ -39,7 +38,7 @@ int component_evaluate_outputs(ssx_system *sys, ssx_component *c, double t)
         if (c->hooks.evaluate_outputs(c->hooks.user, t) != 0) {
             return fail_hook(sys, c, t, "evaluate_outputs");
         }
-        return c->fmu == NULL ? component_check_outputs(sys, c, t) : 0;
+        return c->ops->checks_own_outputs ? 0 : component_check_outputs(sys, c, t);
     }
     return c->ops->evaluate_outputs(sys, c, t);
 }
@@ -84,16 +83,16 @@ int component_restore(ssx_system *sys, ssx_component *c, int slot, double t)
     return 0;
 }
 
-int component_handle_events(ssx_system *sys, ssx_component *c, const int *indicators, int n,
-                            double t)
+int component_handle_events(ssx_system *sys, ssx_component *c, const int *sources, int n,
+                            double t_event, double t)
 {
     if (c->hooks.handle_events == NULL) {
-        /* built-in: the declarative restart, else no discrete reaction of its own */
-        return c->restart != NULL ? restart_handle(sys, c, t) : 0;
+        /* built-in: the kind's own reaction (an FMU's declarative restart), if any */
+        return c->ops->handle_events != NULL ? c->ops->handle_events(sys, c, t) : 0;
     }
-    return c->hooks.handle_events(c->hooks.user, indicators, n, t) == 0
+    return c->hooks.handle_events(c->hooks.user, sources, n, t_event) == 0
                ? 0
-               : fail_hook(sys, c, t, "handle_events");
+               : fail_hook(sys, c, t_event, "handle_events");
 }
 
 int component_initialize(ssx_system *sys, ssx_component *c, double t0)
@@ -114,67 +113,14 @@ int component_record(ssx_system *sys, ssx_component *c, double t)
 
 int component_can_roll_back(const ssx_component *c)
 {
-    int has_pair = c->hooks.snapshot != NULL && c->hooks.restore != NULL;
-    if (c->ops == &ssx_table_component_ops) {
-        return 1; /* a function of time: restoring its outputs restores it */
-    }
-    if (c->fmu == NULL) {
-        return c->can_snapshot && has_pair;
-    }
-    if (c->hooks.snapshot != NULL || c->hooks.restore != NULL) {
-        return has_pair; /* half a pair cannot roll back consistently */
-    }
-    return c->can_snapshot;
-}
-
-static void free_batch(ssx_port_batch *b)
-{
-    free(b->vr);
-    free(b->port);
-    memset(b, 0, sizeof *b);
-}
-
-static int build_batch(ssx_port_batch *b, const ssx_port *ports, int n_ports, ssx_value_type type)
-{
-    free_batch(b);
-    size_t n = 0;
-    for (int i = 0; i < n_ports; ++i) {
-        n += ports[i].type == type;
-    }
-    if (n == 0) {
-        return 0;
-    }
-    b->vr = malloc(n * sizeof *b->vr);
-    b->port = malloc(n * sizeof *b->port);
-    if (b->vr == NULL || b->port == NULL) {
-        free_batch(b);
-        return -1;
-    }
-    for (int i = 0; i < n_ports; ++i) {
-        if (ports[i].type == type) {
-            b->vr[b->n] = ports[i].vr;
-            b->port[b->n] = i;
-            b->n++;
-        }
-    }
-    return 0;
+    return c->ops->can_roll_back(c);
 }
 
 static void free_prepared(ssx_component *c)
 {
-    for (int type = 0; type < 3; ++type) {
-        free_batch(&c->output_batch[type]);
-        free_batch(&c->input_batch[type]);
-    }
-    free(c->real_scratch);
-    free(c->int_scratch);
-    free(c->inputs_written);
     free(c->links);
     c->links = NULL;
     c->n_links = 0;
-    c->real_scratch = NULL;
-    c->int_scratch = NULL;
-    c->inputs_written = NULL;
     for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
         free(c->saved_outputs[slot]);
         free(c->saved_inputs[slot]);
@@ -183,25 +129,9 @@ static void free_prepared(ssx_component *c)
     }
 }
 
-int component_prepare(ssx_component *c)
+int component_prepare(ssx_system *sys, ssx_component *c)
 {
     free_prepared(c);
-    for (int type = 0; type < 3; ++type) {
-        if (build_batch(&c->output_batch[type], c->output_ports, c->n_outputs,
-                        (ssx_value_type)type) != 0 ||
-            build_batch(&c->input_batch[type], c->input_ports, c->n_inputs,
-                        (ssx_value_type)type) != 0) {
-            return -1;
-        }
-    }
-    size_t widest = (size_t)(c->n_outputs > c->n_inputs ? c->n_outputs : c->n_inputs) + 1;
-    c->real_scratch = malloc(widest * sizeof *c->real_scratch);
-    c->int_scratch = malloc(widest * sizeof *c->int_scratch);
-    c->inputs_written = malloc(((size_t)c->n_inputs + 1) * sizeof *c->inputs_written);
-    c->inputs_written_epoch = -1;
-    if (c->real_scratch == NULL || c->int_scratch == NULL || c->inputs_written == NULL) {
-        return -1;
-    }
     for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
         c->saved_outputs[slot] = calloc((size_t)c->n_outputs + 1, sizeof(double));
         c->saved_inputs[slot] = calloc((size_t)c->n_inputs + 1, sizeof(double));
@@ -209,7 +139,7 @@ int component_prepare(ssx_component *c)
             return -1;
         }
     }
-    return 0;
+    return c->ops->prepare != NULL ? c->ops->prepare(sys, c) : 0;
 }
 
 void component_free(ssx_component *c)
@@ -224,7 +154,6 @@ void component_free(ssx_component *c)
     }
     free_prepared(c);
     own_event_list_free(&c->own_events);
-    restart_free(c->restart);
     free(c->name);
     free(c->output_ports);
     free(c->outputs);

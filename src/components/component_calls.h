@@ -1,5 +1,5 @@
-/* Calling a component: a Python hook if set, else its kind's built-in; the per-type port
- * batches; freeing it. */
+/* Calling a component: a Python hook if set, else its kind's built-in; preparing and freeing
+ * it. */
 #ifndef SSX_COMPONENT_CALLS_H
 #define SSX_COMPONENT_CALLS_H
 
@@ -13,14 +13,18 @@ int component_read_outputs(ssx_system *sys, ssx_component *c);
 int component_evaluate_outputs(ssx_system *sys, ssx_component *c, double t);
 int component_snapshot(ssx_system *sys, ssx_component *c, int slot);
 int component_restore(ssx_system *sys, ssx_component *c, int slot, double t);
-int component_handle_events(ssx_system *sys, ssx_component *c, const int *indicators, int n,
-                            double t);
+/* The event sources in sources[] (ssx_subscribe's numbering) fired at t_event; the system
+ * stands at t (the same, except for own events committed at a later communication point): a
+ * hook receives t_event, a built-in reaction runs at t. */
+int component_handle_events(ssx_system *sys, ssx_component *c, const int *sources, int n,
+                            double t_event, double t);
 int component_initialize(ssx_system *sys, ssx_component *c, double t0);
 int component_record(ssx_system *sys, ssx_component *c, double t);
 int component_can_roll_back(const ssx_component *c);
 
-/* Builds the per-type batches; called when the system initializes. */
-int component_prepare(ssx_component *c);
+/* The snapshot copies of its ports and what the kind builds from them; called when the
+ * system initializes. */
+int component_prepare(ssx_system *sys, ssx_component *c);
 void component_free(ssx_component *c);
 
 #endif

@@ -4,16 +4,16 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
-#include "component.h"
+#include "fmu_component.h"
 #include "error.h"
 #include "finite_outputs.h"
 #include "fmu_backend.h"
 #include "fmu_binding.h"
 #include "input_order.h"
 #include "own_events.h"
-#include "parallel_step.h"
 #include "system.h"
 
 /* The status every standard gives a step it could not complete (fmi2Discard, fmi3Discard). */
@@ -22,40 +22,49 @@ enum { STATUS_DISCARD = 2, STATUS_ERROR = 3 };
 /* The standard's name of the call in `slot` of c's FMU, for messages. */
 static const char *call_name(const ssx_component *c, ssx_fmu_slot slot)
 {
-    return ssx_fmu_function_name(c->fmu, (int)slot);
+    fmu_component_data *d = fmu_data(c);
+    return ssx_fmu_function_name(d->fmu, (int)slot);
+}
+
+/* The call in `slot` of c's FMU returned `status` at t. */
+static int fmi_failed(ssx_system *sys, const ssx_component *c, double t, int status,
+                      ssx_fmu_slot slot)
+{
+    return fail_fmi(sys, c, fmu_data(c)->fmu, t, status, call_name(c, slot));
 }
 
 int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t)
 {
+    fmu_component_data *d = fmu_data(c);
     /* x - x is 0 for a finite x and NaN for NaN and infinities: one subtraction per value
      * instead of a classification (Integer and Boolean values are always finite) */
     double residue = 0.0;
-    const ssx_port_batch *real = &c->output_batch[SSX_REAL];
+    const fmu_port_batch *real = &d->output_batch[SSX_REAL];
     if (real->n > 0) {
-        int status = ssx_fmu_get_real(c->fmu, real->vr, real->n, c->real_scratch);
+        int status = ssx_fmu_get_real(d->fmu, real->vr, real->n, d->real_scratch);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, t, status, call_name(c, SLOT_GET_REAL));
+            return fmi_failed(sys, c, t, status, SLOT_GET_REAL);
         }
         for (size_t i = 0; i < real->n; ++i) {
-            double value = c->real_scratch[i];
+            double value = d->real_scratch[i];
             c->outputs[real->port[i]] = value;
             residue += value - value;
         }
     }
     for (int type = SSX_INTEGER; type <= SSX_BOOLEAN; ++type) {
-        const ssx_port_batch *b = &c->output_batch[type];
+        const fmu_port_batch *b = &d->output_batch[type];
         if (b->n == 0) {
             continue;
         }
         int status = type == SSX_INTEGER
-                         ? ssx_fmu_get_integer(c->fmu, b->vr, b->n, c->int_scratch)
-                         : ssx_fmu_get_boolean(c->fmu, b->vr, b->n, c->int_scratch);
+                         ? ssx_fmu_get_integer(d->fmu, b->vr, b->n, d->int_scratch)
+                         : ssx_fmu_get_boolean(d->fmu, b->vr, b->n, d->int_scratch);
         if (!fmi_ok(status)) {
             ssx_fmu_slot slot = type == SSX_INTEGER ? SLOT_GET_INTEGER : SLOT_GET_BOOLEAN;
-            return fail_fmi(sys, c, t, status, call_name(c, slot));
+            return fmi_failed(sys, c, t, status, slot);
         }
         for (size_t i = 0; i < b->n; ++i) {
-            int value = c->int_scratch[i];
+            int value = d->int_scratch[i];
             c->outputs[b->port[i]] = type == SSX_BOOLEAN ? (value != 0) : (double)value;
         }
     }
@@ -71,11 +80,12 @@ static int fmu_read_outputs(ssx_system *sys, ssx_component *c)
  * (connected inputs change each step; unconnected ones only when Python writes them). */
 int fmu_component_inputs_unchanged(const ssx_component *c)
 {
-    if (c->inputs_written_epoch != ssx_fmu_values_epoch(c->fmu)) {
+    fmu_component_data *d = fmu_data(c);
+    if (d->inputs_written_epoch != ssx_fmu_values_epoch(d->fmu)) {
         return 0;
     }
     for (int i = 0; i < c->n_inputs; ++i) {
-        if (c->inputs[i] != c->inputs_written[i]) {
+        if (c->inputs[i] != d->inputs_written[i]) {
             return 0;
         }
     }
@@ -85,7 +95,8 @@ int fmu_component_inputs_unchanged(const ssx_component *c)
 /* An Integer input's value is an int at the FMU boundary; one beyond it cannot be written. */
 static int integer_out_of_range(ssx_system *sys, ssx_component *c, unsigned int vr, double value)
 {
-    const char *name = ssx_fmu_variable_name(c->fmu, vr);
+    fmu_component_data *d = fmu_data(c);
+    const char *name = ssx_fmu_variable_name(d->fmu, vr);
     return fail(sys, c->index, -1, sys->time,
                 "component '%s': input %s%s%s(value reference %u) receives %.17g at t=%.17g, "
                 "outside the range of the engine's Integer ports (%d..%d)",
@@ -105,18 +116,19 @@ static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
 
 static int write_values(ssx_system *sys, ssx_component *c)
 {
-    const ssx_port_batch *real = &c->input_batch[SSX_REAL];
+    fmu_component_data *d = fmu_data(c);
+    const fmu_port_batch *real = &d->input_batch[SSX_REAL];
     if (real->n > 0) {
         for (size_t i = 0; i < real->n; ++i) {
-            c->real_scratch[i] = c->inputs[real->port[i]];
+            d->real_scratch[i] = c->inputs[real->port[i]];
         }
-        int status = ssx_fmu_set_real(c->fmu, real->vr, real->n, c->real_scratch);
+        int status = ssx_fmu_set_real(d->fmu, real->vr, real->n, d->real_scratch);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, sys->time, status, call_name(c, SLOT_SET_REAL));
+            return fmi_failed(sys, c, sys->time, status, SLOT_SET_REAL);
         }
     }
     for (int type = SSX_INTEGER; type <= SSX_BOOLEAN; ++type) {
-        const ssx_port_batch *b = &c->input_batch[type];
+        const fmu_port_batch *b = &d->input_batch[type];
         if (b->n == 0) {
             continue;
         }
@@ -126,21 +138,21 @@ static int write_values(ssx_system *sys, ssx_component *c)
                 return integer_out_of_range(sys, c, b->vr[i], value);
             }
             /* integers round to nearest: a scaled connection may land a hair off an integer */
-            c->int_scratch[i] = type == SSX_BOOLEAN ? (value != 0.0)
+            d->int_scratch[i] = type == SSX_BOOLEAN ? (value != 0.0)
                                                     : (int)(value < 0 ? value - 0.5 : value + 0.5);
         }
         int status = type == SSX_INTEGER
-                         ? ssx_fmu_set_integer(c->fmu, b->vr, b->n, c->int_scratch)
-                         : ssx_fmu_set_boolean(c->fmu, b->vr, b->n, c->int_scratch);
+                         ? ssx_fmu_set_integer(d->fmu, b->vr, b->n, d->int_scratch)
+                         : ssx_fmu_set_boolean(d->fmu, b->vr, b->n, d->int_scratch);
         if (!fmi_ok(status)) {
             ssx_fmu_slot slot = type == SSX_INTEGER ? SLOT_SET_INTEGER : SLOT_SET_BOOLEAN;
-            return fail_fmi(sys, c, sys->time, status, call_name(c, slot));
+            return fmi_failed(sys, c, sys->time, status, slot);
         }
     }
     if (c->n_inputs > 0) {
-        memcpy(c->inputs_written, c->inputs, (size_t)c->n_inputs * sizeof(double));
+        memcpy(d->inputs_written, c->inputs, (size_t)c->n_inputs * sizeof(double));
     }
-    c->inputs_written_epoch = ssx_fmu_values_epoch(c->fmu);
+    d->inputs_written_epoch = ssx_fmu_values_epoch(d->fmu);
     return 0;
 }
 
@@ -171,17 +183,18 @@ static int stop_requested(ssx_system *sys, ssx_component *c, double t, double t_
  * not complete the step: a failure that says how far it got (its last successful time). */
 static int discarded_step(ssx_system *sys, ssx_component *c, double t, double t_end)
 {
+    fmu_component_data *d = fmu_data(c);
     char log[sizeof sys->termination.message];
-    snprintf(log, sizeof log, "%s", ssx_fmu_last_message(c->fmu)); /* before queries overwrite it */
+    snprintf(log, sizeof log, "%s", ssx_fmu_last_message(d->fmu)); /* before queries overwrite it */
     int terminated = 0;
     double reached = NAN;
-    int asked = ssx_fmu_get_terminated(c->fmu, &terminated);
-    if (!fmi_ok(ssx_fmu_get_last_successful_time(c->fmu, &reached))) {
+    int asked = ssx_fmu_get_terminated(d->fmu, &terminated);
+    if (!fmi_ok(ssx_fmu_get_last_successful_time(d->fmu, &reached))) {
         reached = NAN;
     }
     if (!fmi_ok(asked) || !terminated) {
         ssx_step_outcome outcome;
-        ssx_fmu_step_outcome(c->fmu, &outcome);
+        ssx_fmu_step_outcome(d->fmu, &outcome);
         /* FMI 2.0 asks a status function; FMI 3.0's doStep says it itself */
         const char *reached_name = outcome.reported ? "lastSuccessfulTime"
                                                     : "fmi2LastSuccessfulTime";
@@ -193,7 +206,7 @@ static int discarded_step(ssx_system *sys, ssx_component *c, double t, double t_
                            "component '%s': %s from t=%.17g to %.17g returned %s without asking "
                            "to terminate: the FMU completed the step only up to %s%s%s%s",
                            c->name, call_name(c, SLOT_DO_STEP), t, t_end,
-                           ssx_fmu_status_text(c->fmu, STATUS_DISCARD), got_to,
+                           ssx_fmu_status_text(d->fmu, STATUS_DISCARD), got_to,
                            log[0] ? " (FMU log: " : "", log,
                            log[0] ? ")" : " (the FMU logged no message)");
     }
@@ -206,17 +219,18 @@ static int discarded_step(ssx_system *sys, ssx_component *c, double t, double t_
 static int step_call(ssx_system *sys, ssx_component *c, double t, double t_end,
                      ssx_step_outcome *outcome, int *done)
 {
+    fmu_component_data *d = fmu_data(c);
     /* In hybrid mode the engine may set an earlier state again, so it must not promise not to. */
-    int status = ssx_fmu_do_step(c->fmu, t, t_end - t, !sys->stepping_hybrid);
+    int status = ssx_fmu_do_step(d->fmu, t, t_end - t, !sys->stepping_hybrid);
     if (status == STATUS_DISCARD) {
         *done = discarded_step(sys, c, t, t_end);
         return 0;
     }
     if (!fmi_ok(status)) {
-        *done = fail_fmi(sys, c, t, status, call_name(c, SLOT_DO_STEP));
+        *done = fmi_failed(sys, c, t, status, SLOT_DO_STEP);
         return 0;
     }
-    ssx_fmu_step_outcome(c->fmu, outcome);
+    ssx_fmu_step_outcome(d->fmu, outcome);
     return 1;
 }
 
@@ -225,9 +239,10 @@ static int step_call(ssx_system *sys, ssx_component *c, double t, double t_end,
  * *terminate is set when the FMU asks to end the simulation there. */
 static int handle_own_event(ssx_system *sys, ssx_component *c, double t_e, int *terminate)
 {
-    int status = ssx_fmu_enter_event_mode(c->fmu);
+    fmu_component_data *d = fmu_data(c);
+    int status = ssx_fmu_enter_event_mode(d->fmu);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, t_e, status, call_name(c, SLOT_ENTER_EVENT_MODE));
+        return fmi_failed(sys, c, t_e, status, SLOT_ENTER_EVENT_MODE);
     }
     ssx_fmu_event_info update = {.new_discrete_states_needed = 1};
     for (int round = 0; update.new_discrete_states_needed && !update.terminate_simulation;
@@ -239,16 +254,16 @@ static int handle_own_event(ssx_system *sys, ssx_component *c, double t_e, int *
                              c->name, call_name(c, SLOT_NEW_DISCRETE_STATES), round, t_e,
                              sys->hybrid.max_microsteps);
         }
-        status = ssx_fmu_new_discrete_states(c->fmu, &update);
+        status = ssx_fmu_new_discrete_states(d->fmu, &update);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, t_e, status, call_name(c, SLOT_NEW_DISCRETE_STATES));
+            return fmi_failed(sys, c, t_e, status, SLOT_NEW_DISCRETE_STATES);
         }
     }
     *terminate = update.terminate_simulation;
     if (!*terminate) {
-        status = ssx_fmu_enter_step_mode(c->fmu);
+        status = ssx_fmu_enter_step_mode(d->fmu);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, t_e, status, call_name(c, SLOT_ENTER_STEP_MODE));
+            return fmi_failed(sys, c, t_e, status, SLOT_ENTER_STEP_MODE);
         }
     }
     return own_event_report(sys, c, SSX_OWN_FMU_EVENT, t_e);
@@ -261,6 +276,7 @@ static int handle_own_event(ssx_system *sys, ssx_component *c, double t_e, int *
 static int step_on(ssx_system *sys, ssx_component *c, double t, double t_end,
                    ssx_step_outcome outcome)
 {
+    fmu_component_data *d = fmu_data(c);
     double close = 1e-9 * (t_end - t); /* the grid's own rounding */
     double from = t;
     int stuck = 0; /* returns in a row that did not advance */
@@ -280,7 +296,7 @@ static int step_on(ssx_system *sys, ssx_component *c, double t, double t_end,
             return -1;
         }
         if (terminate) {
-            return stop_requested(sys, c, t, t_end, reached, ssx_fmu_last_message(c->fmu));
+            return stop_requested(sys, c, t, t_end, reached, ssx_fmu_last_message(d->fmu));
         }
         if (reached >= t_end - close) {
             return fmu_component_read_outputs_at(sys, c, t_end);
@@ -327,36 +343,38 @@ static int fmu_evaluate_outputs(ssx_system *sys, ssx_component *c, double t)
 
 static int fmu_snapshot(ssx_system *sys, ssx_component *c, int slot)
 {
-    long generation = ssx_fmu_generation(c->fmu);
-    if (c->fmu_state_generation[slot] != generation) {
-        c->fmu_state[slot] = NULL; /* released with its instance by the binding */
-        c->fmu_state_generation[slot] = generation;
+    fmu_component_data *d = fmu_data(c);
+    long generation = ssx_fmu_generation(d->fmu);
+    if (d->fmu_state_generation[slot] != generation) {
+        d->fmu_state[slot] = NULL; /* released with its instance by the binding */
+        d->fmu_state_generation[slot] = generation;
     }
-    int status = ssx_fmu_get_state(c->fmu, &c->fmu_state[slot]);
+    int status = ssx_fmu_get_state(d->fmu, &d->fmu_state[slot]);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, sys->time, status, call_name(c, SLOT_GET_STATE));
+        return fmi_failed(sys, c, sys->time, status, SLOT_GET_STATE);
     }
     return 0;
 }
 
 static int fmu_restore(ssx_system *sys, ssx_component *c, int slot, double t)
 {
+    fmu_component_data *d = fmu_data(c);
     /* a restore is followed by stepping again, which a component that asked to stop refuses */
     if (sys->termination.component >= 0) {
         return fail(sys, c->index, -1, t,
                     "component '%s' asked to stop at t=%.17g: the system is not stepped again",
                     sys->components[sys->termination.component]->name, sys->termination.time);
     }
-    if (c->fmu_state[slot] == NULL ||
-        c->fmu_state_generation[slot] != ssx_fmu_generation(c->fmu)) {
+    if (d->fmu_state[slot] == NULL ||
+        d->fmu_state_generation[slot] != ssx_fmu_generation(d->fmu)) {
         return fail(sys, c->index, -1, t,
                     "component '%s': no FMU state in snapshot slot %d for the live instance "
                     "(was the FMU instantiated again after the snapshot?)",
                     c->name, slot);
     }
-    int status = ssx_fmu_set_state(c->fmu, c->fmu_state[slot]);
+    int status = ssx_fmu_set_state(d->fmu, d->fmu_state[slot]);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, t, status, call_name(c, SLOT_SET_STATE));
+        return fmi_failed(sys, c, t, status, SLOT_SET_STATE);
     }
     return 0;
 }
@@ -366,6 +384,7 @@ static int fmu_restore(ssx_system *sys, ssx_component *c, int slot, double t)
  * Reading the value lets the engine treat the input like any other. */
 int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0)
 {
+    fmu_component_data *d = fmu_data(c);
     for (int k = 0; k < c->n_inputs; ++k) {
         if (c->input_driver[k] >= 0 || !isnan(c->input_starts[k])) {
             continue;
@@ -374,14 +393,14 @@ int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0)
         ssx_value_type type = c->input_ports[k].type;
         double real = 0.0;
         int integer = 0;
-        int status = type == SSX_REAL      ? ssx_fmu_get_real(c->fmu, &vr, 1, &real)
-                     : type == SSX_INTEGER ? ssx_fmu_get_integer(c->fmu, &vr, 1, &integer)
-                                           : ssx_fmu_get_boolean(c->fmu, &vr, 1, &integer);
+        int status = type == SSX_REAL      ? ssx_fmu_get_real(d->fmu, &vr, 1, &real)
+                     : type == SSX_INTEGER ? ssx_fmu_get_integer(d->fmu, &vr, 1, &integer)
+                                           : ssx_fmu_get_boolean(d->fmu, &vr, 1, &integer);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, t0, status,
-                            call_name(c, type == SSX_REAL      ? SLOT_GET_REAL
-                                         : type == SSX_INTEGER ? SLOT_GET_INTEGER
-                                                               : SLOT_GET_BOOLEAN));
+            return fmi_failed(sys, c, t0, status,
+                              type == SSX_REAL      ? SLOT_GET_REAL
+                              : type == SSX_INTEGER ? SLOT_GET_INTEGER
+                                                    : SLOT_GET_BOOLEAN);
         }
         c->inputs[k] = type == SSX_REAL ? real : type == SSX_BOOLEAN ? (integer != 0) : integer;
     }
@@ -393,14 +412,318 @@ int fmu_component_directional_derivative(ssx_system *sys, ssx_component *c,
                                          const unsigned int *inputs, size_t n_inputs,
                                          const double *seed, double *out, double t)
 {
-    int status = ssx_fmu_get_directional_derivative(c->fmu, outputs, n_outputs, inputs,
+    fmu_component_data *d = fmu_data(c);
+    int status = ssx_fmu_get_directional_derivative(d->fmu, outputs, n_outputs, inputs,
                                                     n_inputs, seed, out);
-    return fmi_ok(status) ? 0 : fail_fmi(sys, c, t, status, "fmi2GetDirectionalDerivative");
+    return fmi_ok(status) ? 0
+                          : fail_fmi(sys, c, d->fmu, t, status, "fmi2GetDirectionalDerivative");
 }
 
 const void *fmu_component_instance(const ssx_component *c)
 {
-    return c->fmu;
+    return fmu_data(c)->fmu;
+}
+
+ssx_fmu *fmu_component_fmu(const ssx_component *c)
+{
+    return fmu_data(c)->fmu;
+}
+
+ssx_fmu *fmu_component_binding(const ssx_component *c)
+{
+    return c->ops->fmu != NULL ? c->ops->fmu(c) : NULL;
+}
+
+ssx_component_capabilities fmu_component_capabilities(const ssx_component *c)
+{
+    return fmu_data(c)->capabilities;
+}
+
+int fmu_component_can_roll_back(const ssx_component *c)
+{
+    if (c->hooks.snapshot != NULL || c->hooks.restore != NULL) {
+        /* half a pair cannot roll back consistently */
+        return c->hooks.snapshot != NULL && c->hooks.restore != NULL;
+    }
+    return c->can_snapshot;
+}
+
+int fmu_component_output_derivatives(ssx_system *sys, ssx_component *c, double t, double *slope)
+{
+    fmu_component_data *d = fmu_data(c);
+    const fmu_port_batch *real = &d->output_batch[SSX_REAL];
+    for (size_t j = 0; j < real->n; ++j) {
+        d->int_scratch[j] = 1;
+    }
+    int status = ssx_fmu_get_real_output_derivatives(d->fmu, real->vr, real->n, d->int_scratch,
+                                                     d->real_scratch);
+    if (!fmi_ok(status)) {
+        return fmi_failed(sys, c, t, status, SLOT_GET_OUTPUT_DERIVATIVES);
+    }
+    for (size_t j = 0; j < real->n; ++j) {
+        slope[real->port[j]] = d->real_scratch[j];
+    }
+    return 0;
+}
+
+/* The write's value references and orders, for `order` derivatives of every Real input; -1:
+ * out of memory. */
+static int lay_out_derivatives(fmu_component_data *d, int order)
+{
+    const fmu_port_batch *real = &d->input_batch[SSX_REAL];
+    size_t n = real->n * (size_t)order;
+    if (n > d->derivative_capacity) {
+        unsigned int *vr = realloc(d->derivative_vr, n * sizeof *vr);
+        if (vr != NULL) {
+            d->derivative_vr = vr;
+        }
+        int *orders = realloc(d->derivative_order, n * sizeof *orders);
+        if (orders != NULL) {
+            d->derivative_order = orders;
+        }
+        double *values = realloc(d->derivative_values, n * sizeof *values);
+        if (values != NULL) {
+            d->derivative_values = values;
+        }
+        if (vr == NULL || orders == NULL || values == NULL) {
+            return -1;
+        }
+        d->derivative_capacity = n;
+    }
+    for (int k = 1; k <= order; ++k) {
+        for (size_t j = 0; j < real->n; ++j) {
+            size_t at = (size_t)(k - 1) * real->n + j;
+            d->derivative_vr[at] = real->vr[j];
+            d->derivative_order[at] = k;
+        }
+    }
+    return 0;
+}
+
+int fmu_component_set_input_derivatives(ssx_system *sys, ssx_component *c, int order,
+                                        const double *derivatives)
+{
+    fmu_component_data *d = fmu_data(c);
+    const fmu_port_batch *real = &d->input_batch[SSX_REAL];
+    size_t n = real->n * (size_t)order;
+    if (n == 0) {
+        return 0;
+    }
+    if (n > d->derivative_capacity || d->derivative_order[n - 1] != order) {
+        if (lay_out_derivatives(d, order) != 0) {
+            return fail(sys, c->index, -1, sys->time,
+                        "component '%s': out of memory writing input derivatives", c->name);
+        }
+    }
+    for (size_t at = 0; at < n; ++at) {
+        int port = real->port[at % real->n];
+        d->derivative_values[at] = derivatives[2 * port + d->derivative_order[at] - 1];
+    }
+    int status = ssx_fmu_set_real_input_derivatives(d->fmu, d->derivative_vr, n,
+                                                    d->derivative_order, d->derivative_values);
+    if (!fmi_ok(status)) {
+        return fmi_failed(sys, c, sys->time, status, SLOT_SET_INPUT_DERIVATIVES);
+    }
+    return 0;
+}
+
+static void free_batch(fmu_port_batch *b)
+{
+    free(b->vr);
+    free(b->port);
+    memset(b, 0, sizeof *b);
+}
+
+static int build_batch(fmu_port_batch *b, const ssx_port *ports, int n_ports, ssx_value_type type)
+{
+    free_batch(b);
+    size_t n = 0;
+    for (int i = 0; i < n_ports; ++i) {
+        n += ports[i].type == type;
+    }
+    if (n == 0) {
+        return 0;
+    }
+    b->vr = malloc(n * sizeof *b->vr);
+    b->port = malloc(n * sizeof *b->port);
+    if (b->vr == NULL || b->port == NULL) {
+        free_batch(b);
+        return -1;
+    }
+    for (int i = 0; i < n_ports; ++i) {
+        if (ports[i].type == type) {
+            b->vr[b->n] = ports[i].vr;
+            b->port[b->n] = i;
+            b->n++;
+        }
+    }
+    return 0;
+}
+
+static void free_prepared(fmu_component_data *d)
+{
+    for (int type = 0; type < 3; ++type) {
+        free_batch(&d->output_batch[type]);
+        free_batch(&d->input_batch[type]);
+    }
+    free(d->real_scratch);
+    free(d->int_scratch);
+    free(d->inputs_written);
+    free(d->derivative_vr);
+    free(d->derivative_order);
+    free(d->derivative_values);
+    d->real_scratch = NULL;
+    d->int_scratch = NULL;
+    d->inputs_written = NULL;
+    d->derivative_vr = NULL;
+    d->derivative_order = NULL;
+    d->derivative_values = NULL;
+    d->derivative_capacity = 0;
+}
+
+int fmu_component_prepare(ssx_system *sys, ssx_component *c)
+{
+    (void)sys;
+    fmu_component_data *d = fmu_data(c);
+    free_prepared(d);
+    for (int type = 0; type < 3; ++type) {
+        if (build_batch(&d->output_batch[type], c->output_ports, c->n_outputs,
+                        (ssx_value_type)type) != 0 ||
+            build_batch(&d->input_batch[type], c->input_ports, c->n_inputs,
+                        (ssx_value_type)type) != 0) {
+            return -1;
+        }
+    }
+    size_t widest = (size_t)(c->n_outputs > c->n_inputs ? c->n_outputs : c->n_inputs) + 1;
+    d->real_scratch = malloc(widest * sizeof *d->real_scratch);
+    d->int_scratch = malloc(widest * sizeof *d->int_scratch);
+    d->inputs_written = malloc(((size_t)c->n_inputs + 1) * sizeof *d->inputs_written);
+    d->inputs_written_epoch = -1;
+    return d->real_scratch == NULL || d->int_scratch == NULL || d->inputs_written == NULL ? -1
+                                                                                          : 0;
+}
+
+void fmu_component_data_init(fmu_component_data *d, ssx_fmu *fmu)
+{
+    memset(d, 0, sizeof *d);
+    d->fmu = fmu;
+    d->inputs_written_epoch = -1;
+    for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
+        d->fmu_state_generation[slot] = -1;
+    }
+}
+
+/* FMU states stay with their (borrowed) instance, which releases them when it is freed. */
+void fmu_component_data_free(fmu_component_data *d)
+{
+    free_prepared(d);
+    restart_free(d->restart);
+    d->restart = NULL;
+}
+
+int fmu_component_handle_events(ssx_system *sys, ssx_component *c, double t)
+{
+    fmu_component_data *d = fmu_data(c);
+    if (d->restart == NULL) {
+        return 0;
+    }
+    if (restart_handle(sys, c, d->fmu, d->restart, t) != 0) {
+        return -1;
+    }
+    return fmu_component_read_outputs_at(sys, c, t);
+}
+
+int ssx_set_restart_handler(ssx_system *sys, int component, const ssx_fmu_experiment *experiment,
+                            const ssx_fmu_values *starts, const unsigned int *vr,
+                            const int *source, const double *scale, const double *offset,
+                            size_t n)
+{
+    ssx_component *c = system_component(sys, component);
+    if (c == NULL) {
+        return -1;
+    }
+    if (fmu_component_binding(c) == NULL) {
+        return fail_config(sys, component, -1, NAN,
+                           "component '%s': a restart handler needs an FMU component", c->name);
+    }
+    for (size_t k = 0; k < n; ++k) {
+        if (source[k] < 0 || source[k] >= c->n_outputs) {
+            return fail_config(sys, component, -1, NAN,
+                               "component '%s': a restart value reads output %d of %d", c->name,
+                               source[k], c->n_outputs);
+        }
+    }
+    fmu_component_data *d = fmu_data(c);
+    restart_free(d->restart);
+    d->restart = NULL;
+    if (experiment == NULL) {
+        return 0; /* removed */
+    }
+    d->restart = restart_new(sys, c, experiment, starts, vr, source, scale, offset, n);
+    return d->restart != NULL ? 0 : -1;
+}
+
+/* The data itself is in the component's block (ssx_add_fmu_component). */
+static void fmu_release(ssx_component *c)
+{
+    fmu_component_data_free(c->data);
+}
+
+int ssx_add_fmu_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_get_set_state)
+{
+    if (fmu == NULL) {
+        return fail_config(sys, -1, -1, NAN, "component '%s': no FMU given", name ? name : "?");
+    }
+    int index = system_add_component(sys, name, can_get_set_state, &ssx_fmu_component_ops,
+                                     sizeof(fmu_component_data));
+    if (index >= 0) {
+        fmu_component_data_init(sys->components[index]->data, fmu);
+    }
+    return index;
+}
+
+int ssx_set_directional_derivatives(ssx_system *sys, int component, int provided)
+{
+    ssx_component *c = system_component(sys, component);
+    if (c == NULL) {
+        return -1;
+    }
+    if (fmu_component_binding(c) == NULL) {
+        return provided ? fail_config(sys, component, -1, NAN,
+                                      "component '%s' is not an FMU component: it has no "
+                                      "directional derivatives",
+                                      c->name)
+                        : 0;
+    }
+    fmu_data(c)->capabilities.directional_derivatives = provided != 0;
+    return 0;
+}
+
+int ssx_set_interpolation(ssx_system *sys, int component, int can_interpolate_inputs,
+                          int max_output_derivative_order)
+{
+    ssx_component *c = system_component(sys, component);
+    if (c == NULL) {
+        return -1;
+    }
+    if (max_output_derivative_order < 0) {
+        return fail_config(sys, component, -1, NAN,
+                           "component '%s': maxOutputDerivativeOrder %d is negative", c->name,
+                           max_output_derivative_order);
+    }
+    if (fmu_component_binding(c) == NULL) {
+        if (can_interpolate_inputs || max_output_derivative_order > 0) {
+            return fail_config(sys, component, -1, NAN,
+                               "component '%s' is not an FMU component: it neither "
+                               "interpolates inputs nor has output derivatives",
+                               c->name);
+        }
+        return 0;
+    }
+    fmu_component_data *d = fmu_data(c);
+    d->capabilities.can_interpolate_inputs = can_interpolate_inputs != 0;
+    d->capabilities.max_output_derivative_order = max_output_derivative_order;
+    return 0;
 }
 
 const ssx_component_ops ssx_fmu_component_ops = {
@@ -410,7 +733,16 @@ const ssx_component_ops ssx_fmu_component_ops = {
     .evaluate_outputs = fmu_evaluate_outputs,
     .snapshot = fmu_snapshot,
     .restore = fmu_restore,
+    .release = fmu_release,
     .adopt_inputs = fmu_component_adopt_inputs,
     .directional_derivative = fmu_component_directional_derivative,
     .shared_with_threads = fmu_component_instance,
+    .prepare = fmu_component_prepare,
+    .can_roll_back = fmu_component_can_roll_back,
+    .capabilities = fmu_component_capabilities,
+    .output_derivatives = fmu_component_output_derivatives,
+    .set_input_derivatives = fmu_component_set_input_derivatives,
+    .handle_events = fmu_component_handle_events,
+    .fmu = fmu_component_fmu,
+    .checks_own_outputs = 1,
 };

@@ -31,11 +31,11 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
-#include "component.h"
 #include "component_calls.h"
 #include "error.h"
 #include "fmu_backend.h"
 #include "fmu_binding.h"
+#include "fmu_component.h"
 #include "own_events.h"
 #include "parallel_step.h"
 #include "system.h"
@@ -51,6 +51,7 @@ typedef struct {
 } me_state;
 
 typedef struct {
+    fmu_component_data base; /* first: the data every FMU kind has (fmu_component.h) */
     size_t nx;         /* continuous states of the FMU */
     size_t nz;         /* event indicators */
     size_t n;          /* CVODE's states: nx, or one constant dummy when the FMU has none */
@@ -83,10 +84,22 @@ typedef struct {
     char cvode_message[512];
 } me_data;
 
+static ssx_fmu *fmu_of(const ssx_component *c)
+{
+    return fmu_data(c)->fmu;
+}
+
 /* The name of the call in `slot` in the FMU's standard ("fmi3SetTime"). */
 static const char *call_name(const ssx_component *c, ssx_fmu_slot slot)
 {
-    return ssx_fmu_function_name(c->fmu, (int)slot);
+    return ssx_fmu_function_name(fmu_of(c), (int)slot);
+}
+
+/* The call in `slot` of c's FMU returned `status` at t. */
+static int fmi_failed(ssx_system *sys, const ssx_component *c, double t, int status,
+                      ssx_fmu_slot slot)
+{
+    return fail_fmi(sys, c, fmu_of(c), t, status, call_name(c, slot));
 }
 
 /* ------------------------------------------------------------------ CVODE's callbacks */
@@ -102,12 +115,12 @@ static int callback_failed(me_data *me, int status, ssx_fmu_slot slot, double t)
 /* The FMU at time t with the states y (nothing to set for the dummy state). */
 static int set_point(me_data *me, double t, N_Vector y)
 {
-    int status = ssx_fmu_set_time(me->c->fmu, t);
+    int status = ssx_fmu_set_time(me->base.fmu, t);
     if (!fmi_ok(status)) {
         return callback_failed(me, status, SLOT_SET_TIME, t);
     }
     if (me->nx > 0) {
-        status = ssx_fmu_set_continuous_states(me->c->fmu, N_VGetArrayPointer(y), me->nx);
+        status = ssx_fmu_set_continuous_states(me->base.fmu, N_VGetArrayPointer(y), me->nx);
         if (!fmi_ok(status)) {
             return callback_failed(me, status, SLOT_SET_CONTINUOUS_STATES, t);
         }
@@ -125,7 +138,7 @@ static int derivatives(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
     if (set_point(me, t, y) != 0) {
         return -1;
     }
-    int status = ssx_fmu_get_derivatives(me->c->fmu, N_VGetArrayPointer(ydot), me->nx);
+    int status = ssx_fmu_get_derivatives(me->base.fmu, N_VGetArrayPointer(ydot), me->nx);
     return fmi_ok(status) ? 0 : callback_failed(me, status, SLOT_GET_DERIVATIVES, t);
 }
 
@@ -135,7 +148,7 @@ static int indicators(sunrealtype t, N_Vector y, sunrealtype *z, void *user)
     if (set_point(me, t, y) != 0) {
         return -1;
     }
-    int status = ssx_fmu_get_event_indicators(me->c->fmu, z, me->nz);
+    int status = ssx_fmu_get_event_indicators(me->base.fmu, z, me->nz);
     if (!fmi_ok(status)) {
         return callback_failed(me, status, SLOT_GET_EVENT_INDICATORS, t);
     }
@@ -167,7 +180,7 @@ static int fail_cvode(ssx_system *sys, ssx_component *c, me_data *me, double t, 
     if (me->failed_call != NULL) {
         const char *failed = me->failed_call;
         me->failed_call = NULL;
-        return fail_fmi(sys, c, me->failed_time, me->failed_status, failed);
+        return fail_fmi(sys, c, fmu_of(c), me->failed_time, me->failed_status, failed);
     }
     if (me->non_finite_indicator >= 0) {
         long i = me->non_finite_indicator;
@@ -190,7 +203,7 @@ static void note_termination(ssx_system *sys, ssx_component *c, double t)
     if (request->component < 0) {
         request->component = c->index;
         request->time = t;
-        snprintf(request->message, sizeof request->message, "%s", ssx_fmu_last_message(c->fmu));
+        snprintf(request->message, sizeof request->message, "%s", ssx_fmu_last_message(fmu_of(c)));
     }
 }
 
@@ -221,9 +234,9 @@ static int iterate_discrete_states(ssx_system *sys, ssx_component *c, me_data *m
                              c->name, call_name(c, SLOT_NEW_DISCRETE_STATES),
                              sys->hybrid.max_microsteps, t);
         }
-        int status = ssx_fmu_new_discrete_states(c->fmu, info);
+        int status = ssx_fmu_new_discrete_states(fmu_of(c), info);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, t, status, call_name(c, SLOT_NEW_DISCRETE_STATES));
+            return fmi_failed(sys, c, t, status, SLOT_NEW_DISCRETE_STATES);
         }
         if (!info->new_discrete_states_needed || info->terminate_simulation) {
             return 0;
@@ -238,8 +251,8 @@ static int read_states(ssx_system *sys, ssx_component *c, me_data *me, double t)
     if (me->nx == 0) {
         return 0;
     }
-    int status = ssx_fmu_get_continuous_states(c->fmu, me->now.x, me->nx);
-    return fmi_ok(status) ? 0 : fail_fmi(sys, c, t, status, call_name(c, SLOT_GET_CONTINUOUS_STATES));
+    int status = ssx_fmu_get_continuous_states(fmu_of(c), me->now.x, me->nx);
+    return fmi_ok(status) ? 0 : fmi_failed(sys, c, t, status, SLOT_GET_CONTINUOUS_STATES);
 }
 
 /* Back to continuous-time mode after event mode: the states the event left and, when they
@@ -247,17 +260,17 @@ static int read_states(ssx_system *sys, ssx_component *c, me_data *me, double t)
 static int leave_event_mode(ssx_system *sys, ssx_component *c, me_data *me, double t,
                             int read_nominals)
 {
-    int status = ssx_fmu_enter_continuous_time_mode(c->fmu);
+    int status = ssx_fmu_enter_continuous_time_mode(fmu_of(c));
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, t, status, call_name(c, SLOT_ENTER_CONTINUOUS_TIME_MODE));
+        return fmi_failed(sys, c, t, status, SLOT_ENTER_CONTINUOUS_TIME_MODE);
     }
     if (read_states(sys, c, me, t) != 0) {
         return -1;
     }
     if (me->nx > 0 && (read_nominals || me->now.event.nominals_changed)) {
-        status = ssx_fmu_get_nominals_of_continuous_states(c->fmu, me->nominals, me->nx);
+        status = ssx_fmu_get_nominals_of_continuous_states(fmu_of(c), me->nominals, me->nx);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, t, status, call_name(c, SLOT_GET_NOMINALS_OF_CONTINUOUS_STATES));
+            return fmi_failed(sys, c, t, status, SLOT_GET_NOMINALS_OF_CONTINUOUS_STATES);
         }
         double *atol = N_VGetArrayPointer(me->absolute_tolerance);
         for (size_t i = 0; i < me->nx; ++i) {
@@ -283,9 +296,9 @@ static int check_count(ssx_system *sys, ssx_component *c, double t, ssx_fmu_slot
         return 0;
     }
     size_t n = 0;
-    int status = ask(c->fmu, &n);
+    int status = ask(fmu_of(c), &n);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, t, status, call_name(c, slot));
+        return fmi_failed(sys, c, t, status, slot);
     }
     if (n != expected) {
         return fail(sys, c->index, -1, t,
@@ -300,7 +313,7 @@ static int check_count(ssx_system *sys, ssx_component *c, double t, ssx_fmu_slot
  * instance: the FMU may have been instantiated again (reinitialize) since the last step. */
 static int start_instance(ssx_system *sys, ssx_component *c, me_data *me, double t)
 {
-    long generation = ssx_fmu_starts(c->fmu);
+    long generation = ssx_fmu_starts(fmu_of(c));
     if (me->generation == generation) {
         return 0;
     }
@@ -310,7 +323,7 @@ static int start_instance(ssx_system *sys, ssx_component *c, me_data *me, double
                     ssx_fmu_get_number_of_event_indicators, me->nz, "event indicators") != 0) {
         return -1;
     }
-    if (!ssx_fmu_experiment_tolerance(c->fmu, &me->relative_tolerance) ||
+    if (!ssx_fmu_experiment_tolerance(fmu_of(c), &me->relative_tolerance) ||
         !(me->relative_tolerance > 0.0)) {
         ssx_defaults defaults;
         ssx_get_defaults(&defaults);
@@ -338,9 +351,9 @@ static int start_instance(ssx_system *sys, ssx_component *c, me_data *me, double
 static int handle_event(ssx_system *sys, ssx_component *c, me_data *me, double t,
                         ssx_own_event_kind kind)
 {
-    int status = ssx_fmu_enter_event_mode(c->fmu);
+    int status = ssx_fmu_enter_event_mode(fmu_of(c));
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, t, status, call_name(c, SLOT_ENTER_EVENT_MODE));
+        return fmi_failed(sys, c, t, status, SLOT_ENTER_EVENT_MODE);
     }
     if (iterate_discrete_states(sys, c, me, t) != 0) {
         return -1;
@@ -403,14 +416,14 @@ static int integrate(ssx_system *sys, ssx_component *c, me_data *me, double stop
             memcpy(me->now.x, N_VGetArrayPointer(me->y), me->nx * sizeof(double));
         }
     }
-    int status = ssx_fmu_set_time(c->fmu, *t);
+    int status = ssx_fmu_set_time(fmu_of(c), *t);
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, *t, status, call_name(c, SLOT_SET_TIME));
+        return fmi_failed(sys, c, *t, status, SLOT_SET_TIME);
     }
     if (me->nx > 0) {
-        status = ssx_fmu_set_continuous_states(c->fmu, me->now.x, me->nx);
+        status = ssx_fmu_set_continuous_states(fmu_of(c), me->now.x, me->nx);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, *t, status, call_name(c, SLOT_SET_CONTINUOUS_STATES));
+            return fmi_failed(sys, c, *t, status, SLOT_SET_CONTINUOUS_STATES);
         }
     }
     return 0;
@@ -470,7 +483,7 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
     int repeated_events = 0;
     /* a time event within the grid's rounding of the step's end belongs to this step */
     double reach = t_end + 1e-9 * dt;
-    int warm = me->warm_at == t && me->warm_epoch == ssx_fmu_values_epoch(c->fmu);
+    int warm = me->warm_at == t && me->warm_epoch == ssx_fmu_values_epoch(fmu_of(c));
     me->warm_at = NAN;
     if (me->cvode != NULL && !warm &&
         (read_states(sys, c, me, t) != 0 || restart_cvode(sys, c, me, t) != 0)) {
@@ -486,10 +499,10 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
             return -1;
         }
         int enter_event_mode = 0, terminate = 0;
-        int status = ssx_fmu_completed_integrator_step(c->fmu, !sys->stepping_hybrid,
+        int status = ssx_fmu_completed_integrator_step(fmu_of(c), !sys->stepping_hybrid,
                                                        &enter_event_mode, &terminate);
         if (!fmi_ok(status)) {
-            return fail_fmi(sys, c, now, status, call_name(c, SLOT_COMPLETED_INTEGRATOR_STEP));
+            return fmi_failed(sys, c, now, status, SLOT_COMPLETED_INTEGRATOR_STEP);
         }
         if (terminate) {
             return terminated(sys, c, now, t_end, dt);
@@ -516,7 +529,7 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
     }
     if (!event_at_end) {
         me->warm_at = t_end;
-        me->warm_epoch = ssx_fmu_values_epoch(c->fmu);
+        me->warm_epoch = ssx_fmu_values_epoch(fmu_of(c));
     }
     return fmu_component_read_outputs_at(sys, c, t_end);
 }
@@ -536,9 +549,9 @@ static int me_write_inputs(ssx_system *sys, ssx_component *c)
     if (start_instance(sys, c, me, t) != 0) {
         return -1;
     }
-    int status = ssx_fmu_enter_event_mode(c->fmu);
+    int status = ssx_fmu_enter_event_mode(fmu_of(c));
     if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, t, status, call_name(c, SLOT_ENTER_EVENT_MODE));
+        return fmi_failed(sys, c, t, status, SLOT_ENTER_EVENT_MODE);
     }
     if (ssx_fmu_component_ops.write_inputs(sys, c) != 0 ||
         iterate_discrete_states(sys, c, me, t) != 0) {
@@ -601,8 +614,8 @@ static int me_restore(ssx_system *sys, ssx_component *c, int slot, double t)
         return 0;
     }
     /* the engine's copy is the state: the FMU holds it whatever its own state kept */
-    int status = ssx_fmu_set_continuous_states(c->fmu, me->now.x, me->nx);
-    return fmi_ok(status) ? 0 : fail_fmi(sys, c, t, status, call_name(c, SLOT_SET_CONTINUOUS_STATES));
+    int status = ssx_fmu_set_continuous_states(fmu_of(c), me->now.x, me->nx);
+    return fmi_ok(status) ? 0 : fmi_failed(sys, c, t, status, SLOT_SET_CONTINUOUS_STATES);
 }
 
 /* ------------------------------------------------------------------ life cycle */
@@ -630,6 +643,7 @@ static void me_free(me_data *me)
     if (me->context != NULL) {
         SUNContext_Free(&me->context);
     }
+    fmu_component_data_free(&me->base);
     free(me->nominals);
     free(me->roots_found);
     free(me->now.x);
@@ -658,6 +672,12 @@ const ssx_component_ops ssx_model_exchange_component_ops = {
     .adopt_inputs = fmu_component_adopt_inputs,
     .directional_derivative = fmu_component_directional_derivative,
     .shared_with_threads = fmu_component_instance,
+    .prepare = fmu_component_prepare,
+    .can_roll_back = fmu_component_can_roll_back,
+    .capabilities = fmu_component_capabilities,
+    .handle_events = fmu_component_handle_events,
+    .fmu = fmu_component_fmu,
+    .checks_own_outputs = 1,
 };
 
 static int state_new(me_state *state, size_t n, size_t nz)
@@ -674,12 +694,13 @@ static int state_new(me_state *state, size_t n, size_t nz)
 }
 
 /* CVODE with its vectors, dense matrix and linear solver; NULL when out of memory. */
-static me_data *me_new(size_t nx, size_t nz)
+static me_data *me_new(ssx_fmu *fmu, size_t nx, size_t nz)
 {
     me_data *me = calloc(1, sizeof *me);
     if (me == NULL) {
         return NULL;
     }
+    fmu_component_data_init(&me->base, fmu);
     me->nx = nx;
     me->nz = nz;
     me->n = nx > 0 ? nx : 1;
@@ -745,14 +766,15 @@ int ssx_add_model_exchange_component(ssx_system *sys, const char *name, ssx_fmu 
                            "neither can be negative",
                            label, n_states, n_event_indicators);
     }
-    me_data *me = me_new((size_t)n_states, (size_t)n_event_indicators);
+    me_data *me = me_new(fmu, (size_t)n_states, (size_t)n_event_indicators);
     if (me == NULL || (me->cvode != NULL && configure_cvode(me) != 0)) {
         me_free(me);
         return fail_config(sys, -1, -1, NAN, "component '%s': out of memory creating CVODE",
                            label);
     }
     int index =
-        system_add_component(sys, name, fmu, can_get_set_state, &ssx_model_exchange_component_ops);
+        system_add_component(sys, name, can_get_set_state, &ssx_model_exchange_component_ops,
+                             0);
     if (index < 0) {
         me_free(me);
         return -1;

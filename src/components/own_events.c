@@ -53,7 +53,7 @@ static int earliest(const ssx_system *sys, const size_t *next, double t)
     return best;
 }
 
-int own_events_commit(ssx_system *sys, double t)
+int own_events_commit(ssx_system *sys, double t, own_event_committed committed, void *user)
 {
     int any = 0;
     for (int i = 0; i < sys->n_components && !any; ++i) {
@@ -83,6 +83,9 @@ int own_events_commit(ssx_system *sys, double t)
         };
         sys->stats.own_events++;
         status = record_event(sys, &record);
+        if (status == 0 && committed != NULL) {
+            status = committed(sys, i, record.t, user);
+        }
     }
     /* what stays pending lies after t: move it to the front */
     for (int c = 0; c < sys->n_components; ++c) {

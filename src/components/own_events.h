@@ -14,9 +14,12 @@
 int own_event_report(ssx_system *sys, ssx_component *c, ssx_own_event_kind kind, double t);
 /* The component's state is back at t: its events after t did not happen. */
 void own_events_drop_after(ssx_component *c, double t);
+/* Told of each own event as it is committed (after its record): 0, or -1 with the error set. */
+typedef int (*own_event_committed)(ssx_system *sys, int component, double t_event, void *user);
 /* The master accepted the system's state at t: every component's pending events up to t become
- * event records, in time order (component order within one time), at micro step 0. */
-int own_events_commit(ssx_system *sys, double t);
+ * event records, in time order (component order within one time), at micro step 0, each then
+ * handed to `committed` (NULL: none). */
+int own_events_commit(ssx_system *sys, double t, own_event_committed committed, void *user);
 /* ssx_initialize: nothing is pending. */
 void own_events_clear(ssx_system *sys);
 void own_event_list_free(ssx_own_event_list *list);

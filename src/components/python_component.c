@@ -50,6 +50,11 @@ static int python_restore(ssx_system *sys, ssx_component *c, int slot, double t)
     return c->hooks.restore(c->hooks.user, slot, t) == 0 ? 0 : fail_hook(sys, c, t, "restore");
 }
 
+static int python_can_roll_back(const ssx_component *c)
+{
+    return c->can_snapshot && c->hooks.snapshot != NULL && c->hooks.restore != NULL;
+}
+
 static int python_validate(ssx_system *sys, const ssx_component *c)
 {
     if (c->hooks.do_step == NULL || c->hooks.evaluate_outputs == NULL) {
@@ -67,4 +72,5 @@ const ssx_component_ops ssx_python_component_ops = {
     .snapshot = python_snapshot,
     .restore = python_restore,
     .validate = python_validate,
+    .can_roll_back = python_can_roll_back,
 };

@@ -66,6 +66,7 @@ static void *copy(const void *from, size_t n, size_t size)
 typedef struct {
     ssx_system *sys;
     ssx_component *c;
+    ssx_fmu *fmu;
     ssx_restart *r;
     double t;
     int status;        /* the failing call's status */
@@ -78,7 +79,7 @@ static int wrote(restart_work *w, int status, ssx_fmu_slot slot)
         return 1;
     }
     w->status = status;
-    w->call = ssx_fmu_function_name(w->c->fmu, (int)slot);
+    w->call = ssx_fmu_function_name(w->fmu, (int)slot);
     return 0;
 }
 
@@ -86,6 +87,7 @@ static int wrote(restart_work *w, int status, ssx_fmu_slot slot)
 static int write_inputs(restart_work *w)
 {
     ssx_component *c = w->c;
+    ssx_fmu *fmu = w->fmu;
     ssx_restart *r = w->r;
     static const ssx_fmu_slot slots[3] = {SLOT_SET_REAL, SLOT_SET_INTEGER, SLOT_SET_BOOLEAN};
     for (int type = 0; type < 3; ++type) {
@@ -106,10 +108,10 @@ static int write_inputs(restart_work *w)
         if (n == 0) {
             continue;
         }
-        int status = type == SSX_REAL ? ssx_fmu_set_real(c->fmu, r->input_vr, n, r->input_real)
+        int status = type == SSX_REAL ? ssx_fmu_set_real(fmu, r->input_vr, n, r->input_real)
                      : type == SSX_INTEGER
-                         ? ssx_fmu_set_integer(c->fmu, r->input_vr, n, r->input_int)
-                         : ssx_fmu_set_boolean(c->fmu, r->input_vr, n, r->input_int);
+                         ? ssx_fmu_set_integer(fmu, r->input_vr, n, r->input_int)
+                         : ssx_fmu_set_boolean(fmu, r->input_vr, n, r->input_int);
         if (!wrote(w, status, slots[type])) {
             return -1;
         }
@@ -121,7 +123,7 @@ static int in_initialization_mode(void *user)
 {
     restart_work *w = user;
     ssx_restart *r = w->r;
-    if (r->n_targets > 0 && !wrote(w, ssx_fmu_set_real(w->c->fmu, r->target, r->n_targets,
+    if (r->n_targets > 0 && !wrote(w, ssx_fmu_set_real(w->fmu, r->target, r->n_targets,
                                                        r->values),
                                    SLOT_SET_REAL)) {
         return -1;
@@ -129,9 +131,8 @@ static int in_initialization_mode(void *user)
     return write_inputs(w);
 }
 
-int restart_handle(ssx_system *sys, ssx_component *c, double t)
+int restart_handle(ssx_system *sys, ssx_component *c, ssx_fmu *fmu, ssx_restart *r, double t)
 {
-    ssx_restart *r = c->restart;
     for (size_t k = 0; k < r->n_targets; ++k) {
         r->values[k] = r->scale[k] * c->outputs[r->source[k]] + r->offset[k];
     }
@@ -141,42 +142,22 @@ int restart_handle(ssx_system *sys, ssx_component *c, double t)
         .n_integer = r->n[SSX_INTEGER], .boolean_vr = r->vr[SSX_BOOLEAN],
         .boolean_values = r->int_values[1], .n_boolean = r->n[SSX_BOOLEAN]};
     r->experiment.start_time = t;
-    restart_work w = {.sys = sys, .c = c, .r = r, .t = t};
-    int status = ssx_fmu_initialize(c->fmu, &r->experiment, &starts, in_initialization_mode, &w);
+    restart_work w = {.sys = sys, .c = c, .fmu = fmu, .r = r, .t = t};
+    int status = ssx_fmu_initialize(fmu, &r->experiment, &starts, in_initialization_mode, &w);
     if (!fmi_ok(status)) {
         if (w.call != NULL) {
-            return fail_fmi(sys, c, t, w.status, w.call);
+            return fail_fmi(sys, c, fmu, t, w.status, w.call);
         }
-        return fail_fmi(sys, c, t, status, ssx_fmu_last_call(c->fmu));
+        return fail_fmi(sys, c, fmu, t, status, ssx_fmu_last_call(fmu));
     }
-    return fmu_component_read_outputs_at(sys, c, t);
+    return 0;
 }
 
-int ssx_set_restart_handler(ssx_system *sys, int component, const ssx_fmu_experiment *experiment,
-                            const ssx_fmu_values *starts, const unsigned int *vr,
-                            const int *source, const double *scale, const double *offset,
-                            size_t n)
+ssx_restart *restart_new(ssx_system *sys, const ssx_component *c,
+                         const ssx_fmu_experiment *experiment, const ssx_fmu_values *starts,
+                         const unsigned int *vr, const int *source, const double *scale,
+                         const double *offset, size_t n)
 {
-    ssx_component *c = system_component(sys, component);
-    if (c == NULL) {
-        return -1;
-    }
-    if (c->fmu == NULL) {
-        return fail_config(sys, component, -1, NAN,
-                           "component '%s': a restart handler needs an FMU component", c->name);
-    }
-    for (size_t k = 0; k < n; ++k) {
-        if (source[k] < 0 || source[k] >= c->n_outputs) {
-            return fail_config(sys, component, -1, NAN,
-                               "component '%s': a restart value reads output %d of %d", c->name,
-                               source[k], c->n_outputs);
-        }
-    }
-    restart_free(c->restart);
-    c->restart = NULL;
-    if (experiment == NULL) {
-        return 0; /* removed */
-    }
     ssx_restart *r = calloc(1, sizeof *r);
     ssx_fmu_values none = {0};
     const ssx_fmu_values *s = starts != NULL ? starts : &none;
@@ -208,9 +189,9 @@ int ssx_set_restart_handler(ssx_system *sys, int component, const ssx_fmu_experi
         r->values == NULL || r->input_vr == NULL || r->input_real == NULL ||
         r->input_int == NULL) {
         restart_free(r);
-        return fail_config(sys, component, -1, NAN, "out of memory setting the restart of '%s'",
-                           c->name);
+        fail_config(sys, c->index, -1, NAN, "out of memory setting the restart of '%s'",
+                    c->name);
+        return NULL;
     }
-    c->restart = r;
-    return 0;
+    return r;
 }

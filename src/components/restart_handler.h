@@ -5,12 +5,20 @@
 #define SSX_RESTART_HANDLER_H
 
 #include "component.h"
+#include "fmu_binding.h"
 #include "system.h"
 
 typedef struct ssx_restart ssx_restart;
 
-/* Runs c's restart at the event time t: 0, or -1 with the error set. */
-int restart_handle(ssx_system *sys, ssx_component *c, double t);
+/* The restart ssx_set_restart_handler describes, for component c (its sources checked by the
+ * caller); NULL with the error set when out of memory. */
+ssx_restart *restart_new(ssx_system *sys, const ssx_component *c,
+                         const ssx_fmu_experiment *experiment, const ssx_fmu_values *starts,
+                         const unsigned int *vr, const int *source, const double *scale,
+                         const double *offset, size_t n);
+/* Starts c's FMU `fmu` again at the event time t; the caller reads its outputs. 0, or -1 with
+ * the error set. */
+int restart_handle(ssx_system *sys, ssx_component *c, ssx_fmu *fmu, ssx_restart *r, double t);
 void restart_free(ssx_restart *restart);
 
 #endif

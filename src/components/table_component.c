@@ -144,6 +144,13 @@ static void table_release(ssx_component *c)
     c->data = NULL;
 }
 
+/* A function of time: restoring its outputs restores it. */
+static int table_can_roll_back(const ssx_component *c)
+{
+    (void)c;
+    return 1;
+}
+
 const ssx_component_ops ssx_table_component_ops = {
     .do_step = table_do_step,
     .write_inputs = table_ports_in_place,
@@ -152,6 +159,7 @@ const ssx_component_ops ssx_table_component_ops = {
     .snapshot = table_snapshot,
     .restore = table_restore,
     .release = table_release,
+    .can_roll_back = table_can_roll_back,
 };
 
 int ssx_add_table_component(ssx_system *sys, const char *name, const double *time, size_t n_rows)
@@ -181,7 +189,7 @@ int ssx_add_table_component(ssx_system *sys, const char *name, const double *tim
     }
     memcpy(table->time, time, n_rows * sizeof *table->time);
     table->n_rows = n_rows;
-    int index = system_add_component(sys, name, NULL, 1, &ssx_table_component_ops);
+    int index = system_add_component(sys, name, 1, &ssx_table_component_ops, 0);
     if (index < 0) {
         table_free(table);
         return -1;

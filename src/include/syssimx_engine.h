@@ -419,7 +419,24 @@ int ssx_add_indicator_output(ssx_system *sys, int component, int output, int dir
 int ssx_add_indicator_callback(ssx_system *sys, int component,
                                int (*evaluate)(void *user, double t, double *value), void *user,
                                int direction);
-/* When the indicator fires, listener's handle_events hook receives it. */
+/* Where events come from: an event indicator the master locates (index: the indicator's), or
+ * the events a component handles inside its own steps (index: the component's; an FMI 3.0
+ * FMU's events, a Model Exchange FMU's state, time and step events). */
+typedef enum {
+    SSX_SOURCE_INDICATOR = 0,
+    SSX_SOURCE_OWN_EVENTS = 1
+} ssx_event_source_kind;
+/* The listener's handle_events hook (else its built-in reaction, an FMU's restart handler)
+ * runs when the source fires; it receives the sources that fired, an indicator as its index,
+ * a component's own events as -1 - component. An indicator's listeners run at the located
+ * event time, components in index order, before the instant's next sample. Own events' are
+ * called when the master accepts the step that holds them, in time order (component order at
+ * one time) and before indicators' at the same communication point: the hook receives the
+ * event's own time t_e, while the system stands at the step's end (ssx_time says so; a
+ * built-in reaction runs there, at that time); what a listener changes shows from that communication point's sample
+ * on. Subscribing twice is one subscription. */
+int ssx_subscribe(ssx_system *sys, ssx_event_source_kind kind, int index, int listener_component);
+/* ssx_subscribe(sys, SSX_SOURCE_INDICATOR, indicator, listener_component). */
 int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_component);
 
 /* Scheduling. order lists every component once, as n_groups consecutive groups of

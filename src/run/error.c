@@ -91,12 +91,13 @@ int fail_zeno(ssx_system *sys, int component, int indicator, double t, const cha
     return -1;
 }
 
-int fail_fmi(ssx_system *sys, const ssx_component *c, double t, int status, const char *call)
+int fail_fmi(ssx_system *sys, const ssx_component *c, const ssx_fmu *fmu, double t, int status,
+             const char *call)
 {
-    const char *log = ssx_fmu_last_message(c->fmu);
+    const char *log = ssx_fmu_last_message(fmu);
     ssx_error *e = record(sys, SSX_ERROR_FMI, c->index, -1, t,
                           "component '%s': %s failed at t=%.17g with status %s%s%s%s", c->name,
-                          call, t, ssx_fmu_status_text(c->fmu, status),
+                          call, t, ssx_fmu_status_text(fmu, status),
                           log[0] ? " (FMU log: " : "", log,
                           log[0] ? ")" : " (the FMU logged no message)");
     e->fmi_status = status;

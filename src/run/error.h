@@ -21,8 +21,9 @@ int fail_config(ssx_system *sys, int component, int indicator, double t, const c
 /* A failure of kind `kind` other than the ones above and below. */
 int fail_kind(ssx_system *sys, ssx_error_kind kind, int component, int indicator, double t,
               const char *format, ...) SSX_PRINTF(6, 7);
-/* An fmi2 call of component c returned `status` (or the binding failed, status -1). */
-int fail_fmi(ssx_system *sys, const ssx_component *c, double t, int status, const char *call);
+/* A call of component c's FMU `fmu` returned `status` (or the binding failed, status -1). */
+int fail_fmi(ssx_system *sys, const ssx_component *c, const ssx_fmu *fmu, double t, int status,
+             const char *call);
 /* Component c failed in a way an fmi2 status explains without an fmi2 call failing (a step
  * discarded without a request to terminate): kind SSX_ERROR_SIMULATION with that status. */
 int fail_status(ssx_system *sys, const ssx_component *c, double t, int status,

@@ -9,6 +9,7 @@
 #include "coupling.h"
 #include "error.h"
 #include "fmu_binding.h"
+#include "fmu_component.h"
 #include "fmu_remote.h"
 #include "indicator.h"
 #include "input_order.h"
@@ -33,7 +34,7 @@ static int check_components(ssx_system *sys)
                         "event indicators: locating an event restores every component",
                         c->name);
         }
-        if (component_prepare(c) != 0) {
+        if (component_prepare(sys, c) != 0) {
             return fail(sys, i, -1, sys->time, "out of memory preparing component '%s'", c->name);
         }
     }
@@ -105,7 +106,7 @@ static int stop_requested_by_monitor(void *user)
 static void watch_isolated_fmus(ssx_system *sys, int (*stop)(void *user))
 {
     for (int i = 0; i < sys->n_components; ++i) {
-        ssx_fmu *fmu = sys->components[i]->fmu;
+        ssx_fmu *fmu = fmu_component_binding(sys->components[i]);
         if (fmu != NULL) {
             ssx_remote_set_watch(ssx_fmu_remote(fmu), stop, sys);
         }

@@ -25,10 +25,12 @@ typedef struct {
     double offset;
 } ssx_connection;
 
+/* A listener subscribed to an event source (stepping/events/event_source.h). */
 typedef struct {
-    int indicator;
+    ssx_event_source_kind kind;
+    int index; /* the indicator's, or the component's whose own events */
     int listener;
-} ssx_event_link;
+} event_subscription;
 
 typedef struct {
     int first;  /* offset into the schedule order */
@@ -78,9 +80,9 @@ struct ssx_system {
     /* per indicator, set up by the hybrid algorithm at ssx_initialize */
     indicator_state *indicator_states;
 
-    ssx_event_link *event_links;
-    int n_event_links;
-    size_t event_links_capacity;
+    event_subscription *subscriptions;
+    int n_subscriptions;
+    size_t subscriptions_capacity;
 
     int *order;          /* schedule: component indices, group after group */
     ssx_group *groups;
@@ -119,9 +121,11 @@ struct ssx_system {
     int stepping_hybrid; /* FMUs are told that a rollback may follow */
 };
 
-/* Appends a component of the given kind; returns its index, or -1 with the error set. */
-int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
-                         const ssx_component_ops *ops);
+/* Appends a component of the given kind, with data_size bytes of zeroed data for the kind in
+ * the same block (c->data; NULL for 0: the kind sets its own); returns its index, or -1 with
+ * the error set. */
+int system_add_component(ssx_system *sys, const char *name, int can_snapshot,
+                         const ssx_component_ops *ops, size_t data_size);
 /* Every component's snapshot into slot, or back from it at time t (observers are told). */
 int system_snapshot(ssx_system *sys, int slot);
 int system_restore(ssx_system *sys, int slot, double t);

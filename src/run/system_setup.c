@@ -8,7 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "adaptive.h"
 #include "algorithm.h"
 #include "array.h"
 #include "component_calls.h"
@@ -105,7 +104,6 @@ void ssx_system_free(ssx_system *sys)
         return;
     }
     input_order_free(sys); /* before the components whose inputs it moves */
-    adaptive_free(sys);
     free(sys->power_bonds);
     for (int i = 0; i < sys->n_components; ++i) {
         component_free(sys->components[i]);
@@ -115,7 +113,7 @@ void ssx_system_free(ssx_system *sys)
     free(sys->indicators);
     free(sys->indicator_states);
     master_algorithm_release(sys);
-    free(sys->event_links);
+    free(sys->subscriptions);
     free(sys->order);
     free(sys->groups);
     recording_free(sys->recording);
@@ -136,8 +134,8 @@ static void structure_changed(ssx_system *sys)
     sys->initialized = 0;
 }
 
-int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_snapshot,
-                         const ssx_component_ops *ops)
+int system_add_component(ssx_system *sys, const char *name, int can_snapshot,
+                         const ssx_component_ops *ops, size_t data_size)
 {
     if (name == NULL || name[0] == '\0') {
         return fail_config(sys, -1, -1, NAN, "system '%s': a component needs a non-empty name",
@@ -153,34 +151,24 @@ int system_add_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int ca
                       (size_t)sys->n_components + 1, sizeof *sys->components, 8) != 0) {
         return fail_config(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
     }
-    ssx_component *c = calloc(1, sizeof *c);
+    /* data read on every step sits next to the ports' pointers, not in a block of its own */
+    ssx_component *c = calloc(1, sizeof *c + data_size);
     if (c == NULL || (c->name = strdup(name)) == NULL) {
         free(c);
         return fail_config(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
     }
     c->index = sys->n_components;
     c->ops = ops;
-    c->fmu = fmu;
+    c->data = data_size > 0 ? (void *)(c + 1) : NULL;
     c->can_snapshot = can_snapshot != 0;
-    for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
-        c->fmu_state_generation[slot] = -1;
-    }
     sys->components[sys->n_components++] = c;
     structure_changed(sys);
     return c->index;
 }
 
-int ssx_add_fmu_component(ssx_system *sys, const char *name, ssx_fmu *fmu, int can_get_set_state)
-{
-    if (fmu == NULL) {
-        return fail_config(sys, -1, -1, NAN, "component '%s': no FMU given", name ? name : "?");
-    }
-    return system_add_component(sys, name, fmu, can_get_set_state, &ssx_fmu_component_ops);
-}
-
 int ssx_add_python_component(ssx_system *sys, const char *name, int can_snapshot)
 {
-    return system_add_component(sys, name, NULL, can_snapshot, &ssx_python_component_ops);
+    return system_add_component(sys, name, can_snapshot, &ssx_python_component_ops, 0);
 }
 
 int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks)
@@ -303,7 +291,7 @@ int ssx_reset_inputs(ssx_system *sys, const double *starts, size_t n)
     for (int i = 0; i < sys->n_components; ++i) {
         ssx_component *c = sys->components[i];
         for (int k = 0; k < c->n_inputs; ++k, ++start) {
-            if (isinf(*start) || (isnan(*start) && c->fmu == NULL)) {
+            if (isinf(*start) || (isnan(*start) && c->ops->adopt_inputs == NULL)) {
                 return fail_config(sys, i, -1, NAN,
                                    "component '%s': the start value of input %d must be finite "
                                    "(NaN, the FMU's own value, exists for FMU components only)",
@@ -435,31 +423,6 @@ int ssx_add_indicator_callback(ssx_system *sys, int component,
                                               .direction = direction});
 }
 
-int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_component)
-{
-    if (indicator < 0 || indicator >= sys->n_indicators) {
-        return fail_config(sys, -1, indicator, NAN,
-                           "unknown indicator index %d (system '%s' has %d)", indicator, sys->name,
-                           sys->n_indicators);
-    }
-    if (system_component(sys, listener_component) == NULL) {
-        return -1;
-    }
-    for (int i = 0; i < sys->n_event_links; ++i) {
-        if (sys->event_links[i].indicator == indicator &&
-            sys->event_links[i].listener == listener_component) {
-            return 0; /* already connected: an event reaches a listener once */
-        }
-    }
-    if (array_reserve((void **)&sys->event_links, &sys->event_links_capacity,
-                      (size_t)sys->n_event_links + 1, sizeof *sys->event_links, 8) != 0) {
-        return fail_config(sys, -1, -1, NAN, "out of memory adding an event connection");
-    }
-    sys->event_links[sys->n_event_links++] =
-        (ssx_event_link){.indicator = indicator, .listener = listener_component};
-    return 0;
-}
-
 int ssx_set_schedule(ssx_system *sys, const int *order, const int *group_sizes,
                      const int *group_is_loop, int n_groups)
 {
@@ -566,21 +529,6 @@ int ssx_set_loop_options(ssx_system *sys, double tolerance, int max_iterations, 
     return 0;
 }
 
-int ssx_set_directional_derivatives(ssx_system *sys, int component, int provided)
-{
-    ssx_component *c = system_component(sys, component);
-    if (c == NULL) {
-        return -1;
-    }
-    if (c->ops->directional_derivative == NULL && provided) {
-        return fail_config(
-            sys, component, -1, NAN,
-            "component '%s' is not an FMU component: it has no directional derivatives", c->name);
-    }
-    c->provides_directional_derivatives = provided != 0;
-    return 0;
-}
-
 int ssx_set_loop_jacobian(ssx_system *sys, ssx_loop_jacobian jacobian)
 {
     if (jacobian != SSX_JACOBIAN_AUTO && jacobian != SSX_JACOBIAN_FINITE_DIFFERENCES) {
@@ -645,26 +593,6 @@ int ssx_set_run_output_interval(ssx_system *sys, int grid_steps)
     return 0;
 }
 
-int system_snapshot(ssx_system *sys, int slot)
-{
-    for (int i = 0; i < sys->n_components; ++i) {
-        if (component_snapshot(sys, sys->components[i], slot) != 0) {
-            return -1;
-        }
-    }
-    return 0;
-}
-
-int system_restore(ssx_system *sys, int slot, double t)
-{
-    for (int i = 0; i < sys->n_components; ++i) {
-        if (component_restore(sys, sys->components[i], slot, t) != 0) {
-            return -1;
-        }
-    }
-    return record_state_restored(sys, t);
-}
-
 int ssx_set_input_order(ssx_system *sys, int order)
 {
     if (order < 0 || order > SSX_MAX_INPUT_ORDER) {
@@ -678,29 +606,6 @@ int ssx_set_input_order(ssx_system *sys, int order)
 int ssx_set_extrapolate_held_inputs(ssx_system *sys, int extrapolate)
 {
     sys->extrapolate_held_inputs = extrapolate != 0;
-    return 0;
-}
-
-int ssx_set_interpolation(ssx_system *sys, int component, int can_interpolate_inputs,
-                          int max_output_derivative_order)
-{
-    ssx_component *c = system_component(sys, component);
-    if (c == NULL) {
-        return -1;
-    }
-    if (max_output_derivative_order < 0) {
-        return fail_config(sys, component, -1, NAN,
-                           "component '%s': maxOutputDerivativeOrder %d is negative", c->name,
-                           max_output_derivative_order);
-    }
-    if (c->fmu == NULL && (can_interpolate_inputs || max_output_derivative_order > 0)) {
-        return fail_config(sys, component, -1, NAN,
-                           "component '%s' is not an FMU component: it neither interpolates "
-                           "inputs nor has output derivatives",
-                           c->name);
-    }
-    c->can_interpolate_inputs = can_interpolate_inputs != 0;
-    c->max_output_derivative_order = max_output_derivative_order;
     return 0;
 }
 

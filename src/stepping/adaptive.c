@@ -7,7 +7,7 @@
 #include "error.h"
 #include "hybrid.h"
 #include "input_order.h"
-#include "own_events.h"
+#include "event_source.h"
 #include "recording.h"
 
 /* Errors below this count as this small: the growth factor stays finite. */
@@ -18,9 +18,15 @@ struct adaptive_workspace {
     double previous_error; /* of the last accepted step (the PI controller's); 0 before one */
 };
 
+static void controller_free(ssx_system *sys)
+{
+    free(sys->adaptive);
+    sys->adaptive = NULL;
+}
+
 int adaptive_prepare(ssx_system *sys, void **workspace)
 {
-    adaptive_free(sys);
+    controller_free(sys);
     sys->adaptive = calloc(1, sizeof *sys->adaptive);
     if (sys->adaptive == NULL) {
         return fail(sys, -1, -1, sys->time, "out of memory preparing the step control");
@@ -31,10 +37,10 @@ int adaptive_prepare(ssx_system *sys, void **workspace)
     return 0;
 }
 
-void adaptive_free(ssx_system *sys)
+void adaptive_release(ssx_system *sys, void *workspace)
 {
-    free(sys->adaptive);
-    sys->adaptive = NULL;
+    controller_free(sys);
+    hybrid_release(sys, workspace);
 }
 
 /* The factor the error asks of the step, within [min_change, max_change] (a controller that
@@ -132,7 +138,7 @@ static int accepted_step(ssx_system *sys, double a, double t_next, double *reach
     *reached = t_end;
     *event = 0;
     sys->time = t_end;
-    return own_events_commit(sys, t_end);
+    return event_sources_commit_own(sys, t_end);
 }
 
 int adaptive_step(ssx_system *sys, double t, double t_next)

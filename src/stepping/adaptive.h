@@ -8,11 +8,12 @@
 #include "system.h"
 
 /* Makes the step controller's state (sys->adaptive) and, when the system has event
- * indicators, the hybrid algorithm's workspace in *workspace (released by hybrid_release). */
+ * indicators, the hybrid algorithm's workspace in *workspace. */
 int adaptive_prepare(ssx_system *sys, void **workspace);
 /* Covers the grid interval [t, t_next] with accepted steps; events inside are located and
  * handled as the hybrid algorithm does. Records the grid point t_next. */
 int adaptive_step(ssx_system *sys, double t, double t_next);
-void adaptive_free(ssx_system *sys);
+/* Frees both. */
+void adaptive_release(ssx_system *sys, void *workspace);
 
 #endif

@@ -55,7 +55,8 @@ static const ssx_connection *driver_of(const loop_work *w, int k)
 static int has_directional_derivatives(const loop_work *w, const ssx_component *c)
 {
     if (w->sys->loop.jacobian != SSX_JACOBIAN_AUTO || c->ops->directional_derivative == NULL ||
-        !c->provides_directional_derivatives || c->hooks.evaluate_outputs != NULL) {
+        c->ops->capabilities == NULL || !c->ops->capabilities(c).directional_derivatives ||
+        c->hooks.evaluate_outputs != NULL) {
         return 0;
     }
     for (int k = 0; k < w->n; ++k) {

@@ -4,14 +4,14 @@
 #include "adaptive.h"
 #include "coupling.h"
 #include "hybrid.h"
-#include "own_events.h"
+#include "event_source.h"
 #include "recording.h"
 #include "system.h"
 
 /* No events: one coupled step per communication step. */
 static int plain_step(ssx_system *sys, double t, double t_next)
 {
-    if (coupling_step(sys, t, t_next - t) != 0 || own_events_commit(sys, t_next) != 0) {
+    if (coupling_step(sys, t, t_next - t) != 0 || event_sources_commit_own(sys, t_next) != 0) {
         return -1;
     }
     sys->stats.macro_steps++;
@@ -25,13 +25,13 @@ static const ssx_master_algorithm ALGORITHMS[] = {
     [PLAIN] = {NULL, plain_step, NULL},
     [HYBRID] = {hybrid_prepare, hybrid_step, hybrid_release},
     /* events inside adaptive steps too: its workspace is the hybrid one */
-    [ADAPTIVE] = {adaptive_prepare, adaptive_step, hybrid_release},
+    [ADAPTIVE] = {adaptive_prepare, adaptive_step, adaptive_release},
 };
 
 void master_algorithm_release(ssx_system *sys)
 {
     if (sys->algorithm != NULL && sys->algorithm->release != NULL) {
-        sys->algorithm->release(sys->algorithm_workspace);
+        sys->algorithm->release(sys, sys->algorithm_workspace);
     }
     sys->algorithm = NULL;
     sys->algorithm_workspace = NULL;

@@ -13,7 +13,7 @@ typedef struct ssx_master_algorithm {
     /* Advances from t to the communication point t_next and records what it completes. */
     int (*step)(ssx_system *sys, double t, double t_next);
     /* Frees what prepare made. NULL: prepare makes nothing to free. */
-    void (*release)(void *workspace);
+    void (*release)(ssx_system *sys, void *workspace);
 } ssx_master_algorithm;
 
 /* Chooses the system's algorithm and prepares it, releasing the one before: hybrid when the

@@ -7,8 +7,6 @@
 #include "component_calls.h"
 #include "energy_residual.h"
 #include "error.h"
-#include "fmu_backend.h"
-#include "fmu_binding.h"
 #include "input_links.h"
 
 /* Communication points kept per component: three give a second-order extrapolation. */
@@ -18,13 +16,12 @@ typedef struct {
     double t[HISTORY];   /* newest first */
     double *y[HISTORY];  /* the outputs at t[k] */
     int count;
-    double *slope;       /* output derivatives at the step's start, read from the FMU */
+    double *slope;       /* output derivatives at the step's start, told by the component */
     int has_slope;
-    /* for writing input derivatives: value references, orders and values of the Real inputs */
-    unsigned int *write_vr;
-    int *write_order;
-    double *write_values;
-    size_t n_write;
+    /* per input its first and second time derivative over the coming step; NULL while the
+     * component's inputs are held at their value at the step's start */
+    double *input_derivatives;
+    int holds_mean; /* it cannot interpolate: its inputs are held at the polynomials' mean */
 } component_track;
 
 struct input_motion {
@@ -54,11 +51,7 @@ void input_order_free(ssx_system *sys)
             free(tr->y[k]);
         }
         free(tr->slope);
-        free(tr->write_vr);
-        free(tr->write_order);
-        free(tr->write_values);
-        free(sys->components[i]->input_derivatives);
-        sys->components[i]->input_derivatives = NULL;
+        free(tr->input_derivatives);
     }
     free(w->tracks);
     free(w->interpolated);
@@ -67,17 +60,45 @@ void input_order_free(ssx_system *sys)
     sys->input_motion = NULL;
 }
 
+static int has_real_input(const ssx_component *c)
+{
+    for (int i = 0; i < c->n_inputs; ++i) {
+        if (c->input_ports[i].type == SSX_REAL) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+static int has_real_output(const ssx_component *c)
+{
+    for (int i = 0; i < c->n_outputs; ++i) {
+        if (c->output_ports[i].type == SSX_REAL) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
 static int interpolates(const ssx_system *sys, const ssx_component *c)
 {
-    return sys->input_order > 0 && c->can_interpolate_inputs && c->fmu != NULL &&
-           c->input_batch[SSX_REAL].n > 0;
+    return sys->input_order > 0 && c->ops->set_input_derivatives != NULL &&
+           c->ops->capabilities(c).can_interpolate_inputs && has_real_input(c);
+}
+
+/* Whether the component tells its outputs' time derivatives. */
+static int tells_output_derivatives(const ssx_component *c)
+{
+    return c->ops->output_derivatives != NULL &&
+           c->ops->capabilities(c).max_output_derivative_order >= 1;
 }
 
 /* A co-simulation FMU that holds its inputs, each at its polynomial's mean over the step. */
 static int holds_extrapolated(const ssx_system *sys, const ssx_component *c)
 {
-    return sys->input_order > 0 && sys->extrapolate_held_inputs && !c->can_interpolate_inputs &&
-           c->ops == &ssx_fmu_component_ops && c->input_batch[SSX_REAL].n > 0;
+    return sys->input_order > 0 && sys->extrapolate_held_inputs &&
+           c->ops->set_input_derivatives != NULL &&
+           !c->ops->capabilities(c).can_interpolate_inputs && has_real_input(c);
 }
 
 static int prepare_track(ssx_system *sys, struct input_motion *w, int i)
@@ -95,32 +116,12 @@ static int prepare_track(ssx_system *sys, struct input_motion *w, int i)
     if (tr->slope == NULL) {
         return -1;
     }
-    if (holds_extrapolated(sys, c)) {
-        c->input_derivatives = calloc(2 * (size_t)c->n_inputs + 1, sizeof(double));
-        return c->input_derivatives == NULL ? -1 : 0;
-    }
-    if (!interpolates(sys, c)) {
+    tr->holds_mean = holds_extrapolated(sys, c);
+    if (!tr->holds_mean && !interpolates(sys, c)) {
         return 0;
     }
-    size_t n_real = c->input_batch[SSX_REAL].n;
-    size_t n_write = n_real * (size_t)sys->input_order;
-    c->input_derivatives = calloc(2 * (size_t)c->n_inputs + 1, sizeof(double));
-    tr->write_vr = malloc(n_write * sizeof *tr->write_vr);
-    tr->write_order = malloc(n_write * sizeof *tr->write_order);
-    tr->write_values = malloc(n_write * sizeof *tr->write_values);
-    if (c->input_derivatives == NULL || tr->write_vr == NULL || tr->write_order == NULL ||
-        tr->write_values == NULL) {
-        return -1;
-    }
-    for (int order = 1; order <= sys->input_order; ++order) {
-        for (size_t j = 0; j < n_real; ++j) {
-            size_t at = (size_t)(order - 1) * n_real + j;
-            tr->write_vr[at] = c->input_batch[SSX_REAL].vr[j];
-            tr->write_order[at] = order;
-        }
-    }
-    tr->n_write = n_write;
-    return 0;
+    tr->input_derivatives = calloc(2 * (size_t)c->n_inputs + 1, sizeof(double));
+    return tr->input_derivatives == NULL ? -1 : 0;
 }
 
 /* Which connections interpolate (their driver steps before the input's owner in the same
@@ -224,22 +225,12 @@ static void remember(component_track *tr, const ssx_component *c, double t)
 
 static int read_slopes(ssx_system *sys, ssx_component *c, component_track *tr, double t)
 {
-    const ssx_port_batch *real = &c->output_batch[SSX_REAL];
     tr->has_slope = 0;
-    if (c->fmu == NULL || c->max_output_derivative_order < 1 || real->n == 0) {
+    if (!tells_output_derivatives(c) || !has_real_output(c)) {
         return 0;
     }
-    for (size_t j = 0; j < real->n; ++j) {
-        c->int_scratch[j] = 1;
-    }
-    int status = ssx_fmu_get_real_output_derivatives(c->fmu, real->vr, real->n, c->int_scratch,
-                                                     c->real_scratch);
-    if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, t, status,
-                        ssx_fmu_function_name(c->fmu, SLOT_GET_OUTPUT_DERIVATIVES));
-    }
-    for (size_t j = 0; j < real->n; ++j) {
-        tr->slope[real->port[j]] = c->real_scratch[j];
+    if (c->ops->output_derivatives(sys, c, t, tr->slope) != 0) {
+        return -1;
     }
     tr->has_slope = 1;
     return 0;
@@ -259,8 +250,8 @@ static int begin_step(ssx_system *sys, struct input_motion *w, double t, double 
         int i = sys->order[s];
         ssx_component *c = sys->components[i];
         component_track *tr = &w->tracks[i];
-        if (c->ops != &ssx_fmu_component_ops) {
-            continue;
+        if (c->ops->set_input_derivatives == NULL) {
+            continue; /* a kind whose inputs never move over a step */
         }
         if (!w->held[i] && c->n_inputs > 0) {
             input_links_apply(c);
@@ -352,14 +343,16 @@ static double driver_polynomial(const ssx_system *sys, const struct input_motion
 void input_order_propagate(ssx_system *sys, ssx_component *c)
 {
     struct input_motion *w = sys->input_motion;
-    if (w == NULL || c->input_derivatives == NULL) {
+    if (w == NULL || w->tracks[c->index].input_derivatives == NULL) {
         return;
     }
     int held = w->held[c->index];
+    const component_track *tr = &w->tracks[c->index];
+    double *derivatives = tr->input_derivatives;
     /* inside the step, an FMU that holds its inputs gets each polynomial's mean over it */
-    double mean_at = w->stepping && holds_extrapolated(sys, c) ? w->h : 0.0;
+    double mean_at = w->stepping && tr->holds_mean ? w->h : 0.0;
     for (int i = 0; i < c->n_inputs; ++i) {
-        double *d = &c->input_derivatives[2 * i];
+        double *d = &derivatives[2 * i];
         int k = c->input_driver[i];
         d[0] = d[1] = 0.0;
         if (k < 0 || held || c->input_ports[i].type != SSX_REAL) {
@@ -378,25 +371,14 @@ void input_order_propagate(ssx_system *sys, ssx_component *c)
 int input_order_write(ssx_system *sys, ssx_component *c)
 {
     struct input_motion *w = sys->input_motion;
-    if (w == NULL || c->input_derivatives == NULL) {
+    if (w == NULL || w->tracks[c->index].input_derivatives == NULL) {
         return 0;
     }
     component_track *tr = &w->tracks[c->index];
-    if (tr->n_write == 0) {
+    if (tr->holds_mean) {
         return 0; /* it holds its inputs (extrapolated) */
     }
-    const ssx_port_batch *real = &c->input_batch[SSX_REAL];
-    for (size_t at = 0; at < tr->n_write; ++at) {
-        int port = real->port[at % real->n];
-        tr->write_values[at] = c->input_derivatives[2 * port + tr->write_order[at] - 1];
-    }
-    int status = ssx_fmu_set_real_input_derivatives(c->fmu, tr->write_vr, tr->n_write,
-                                                    tr->write_order, tr->write_values);
-    if (!fmi_ok(status)) {
-        return fail_fmi(sys, c, sys->time, status,
-                        ssx_fmu_function_name(c->fmu, SLOT_SET_INPUT_DERIVATIVES));
-    }
-    return 0;
+    return c->ops->set_input_derivatives(sys, c, w->order, tr->input_derivatives);
 }
 
 /* After the step: each input at the value its polynomial reached at t + h (what an
@@ -414,7 +396,7 @@ static double end_step(ssx_system *sys, struct input_motion *w)
             continue;
         }
         /* from the polynomial's mean (a held input) or its start to its value at t + h */
-        int mean_held = holds_extrapolated(sys, c);
+        int mean_held = w->tracks[ci].holds_mean;
         double moved = mean_held ? 0.5 : 1.0;
         double rest = mean_held ? 1.0 / 3.0 : 0.5;
         for (int i = 0; i < c->n_inputs; ++i) {
@@ -422,8 +404,8 @@ static double end_step(ssx_system *sys, struct input_motion *w)
             if (k < 0) {
                 continue;
             }
-            if (c->input_derivatives != NULL) {
-                const double *d = &c->input_derivatives[2 * i];
+            if (w->tracks[ci].input_derivatives != NULL) {
+                const double *d = &w->tracks[ci].input_derivatives[2 * i];
                 c->inputs[i] += h * (moved * d[0] + rest * h * d[1]);
             }
             const ssx_connection *cn = &sys->connections[k];

@@ -91,14 +91,14 @@ int parallel_batches(const parallel_plan *plan, const parallel_batch **batches)
 }
 
 typedef struct {
-    uintptr_t fmu;
+    uintptr_t instance;
     int component;
 } fmu_user;
 
 static int by_fmu(const void *a, const void *b)
 {
-    uintptr_t x = ((const fmu_user *)a)->fmu;
-    uintptr_t y = ((const fmu_user *)b)->fmu;
+    uintptr_t x = ((const fmu_user *)a)->instance;
+    uintptr_t y = ((const fmu_user *)b)->instance;
     return (x > y) - (x < y);
 }
 
@@ -125,7 +125,7 @@ static int choose_pool_components(parallel_plan *p, const ssx_system *sys)
     }
     qsort(users, (size_t)n_users, sizeof *users, by_fmu);
     for (int k = 1; k < n_users; ++k) {
-        if (users[k].fmu == users[k - 1].fmu) {
+        if (users[k].instance == users[k - 1].instance) {
             p->on_pool[users[k].component] = 0;
             p->on_pool[users[k - 1].component] = 0;
         }

@@ -13,12 +13,12 @@
 
 #include <errno.h>
 #include <pthread.h>
-#include <signal.h>
 #include <stdatomic.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
-#include <unistd.h>
+
+#include "thread_signals.h"
 
 /* Polls before sleeping: a few microseconds of one core. */
 enum { SPIN_POLLS = 2000 };
@@ -39,7 +39,8 @@ struct worker_pool {
     worker_task task;
     void *context;
     int n_workers;
-    pid_t owner; /* the process whose threads these are */
+    long owner; /* the process whose threads these are */
+    int started; /* workers started (all of them once worker_pool_new returned it) */
     pthread_t *threads;
     worker_start *starts;
 };
@@ -143,6 +144,21 @@ static void release(worker_pool *pool)
     free(pool);
 }
 
+/* Starts the workers, counting them in pool->started; 0, or pthread_create's error. */
+static int start_workers(void *context)
+{
+    worker_pool *pool = context;
+    for (pool->started = 0; pool->started < pool->n_workers; ++pool->started) {
+        int k = pool->started;
+        pool->starts[k] = (worker_start){pool, k + 1};
+        int status = pthread_create(&pool->threads[k], NULL, worker_main, &pool->starts[k]);
+        if (status != 0) {
+            return status;
+        }
+    }
+    return 0;
+}
+
 worker_pool *worker_pool_new(int n_workers, int *error)
 {
     worker_pool *pool = calloc(1, sizeof *pool);
@@ -160,33 +176,17 @@ worker_pool *worker_pool_new(int n_workers, int *error)
     atomic_init(&pool->busy, 0);
     atomic_init(&pool->stopping, 0);
     pool->n_workers = n_workers;
-    pool->owner = getpid();
+    pool->owner = current_process_id();
     if (pool->threads == NULL || pool->starts == NULL) {
         *error = ENOMEM;
         release(pool);
         return NULL;
     }
-    /* the workers inherit this mask: Ctrl-C and timers keep reaching the application's
+    /* the workers inherit the mask: Ctrl-C and timers keep reaching the application's
      * threads, while a fault in an FMU still reaches the handlers installed for it */
-    sigset_t asynchronous, previous;
-    sigfillset(&asynchronous);
-    const int faults[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGTRAP, SIGSYS, SIGABRT};
-    for (size_t i = 0; i < sizeof faults / sizeof faults[0]; ++i) {
-        sigdelset(&asynchronous, faults[i]);
-    }
-    pthread_sigmask(SIG_SETMASK, &asynchronous, &previous);
-    int started = 0;
-    int status = 0;
-    for (; started < n_workers; ++started) {
-        pool->starts[started] = (worker_start){pool, started + 1};
-        status = pthread_create(&pool->threads[started], NULL, worker_main, &pool->starts[started]);
-        if (status != 0) {
-            break;
-        }
-    }
-    pthread_sigmask(SIG_SETMASK, &previous, NULL);
+    int status = with_asynchronous_signals_blocked(start_workers, pool);
     if (status != 0) {
-        stop_workers(pool, started);
+        stop_workers(pool, pool->started);
         release(pool);
         *error = status;
         return NULL;
@@ -200,7 +200,7 @@ void worker_pool_free(worker_pool *pool)
         return;
     }
     /* a forked copy has no threads to join */
-    stop_workers(pool, pool->owner == getpid() ? pool->n_workers : 0);
+    stop_workers(pool, pool->owner == current_process_id() ? pool->n_workers : 0);
     release(pool);
 }
 
@@ -214,7 +214,7 @@ void worker_pool_run(worker_pool *pool, worker_task task, void *context, int n_t
     if (n_tasks <= 0) {
         return;
     }
-    if (pool->owner != getpid()) {
+    if (pool->owner != current_process_id()) {
         for (int k = 0; k < n_tasks; ++k) {
             task(context, k, 0);
         }

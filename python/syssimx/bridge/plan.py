@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from ..core.events import OWN_EVENTS
 from ..core.port import PortType
 from ..engine import ffi, lib
 from ..errors import ConfigurationError, SimulationTimeoutError
@@ -115,6 +116,9 @@ class EnginePlan:
         self.failure: CallbackFailure | None = None
         # the first component that was bound elsewhere since (initialized in another System)
         self.left: str | None = None
+        # parameters set on running FMUs (component -> names): they apply only at the next
+        # initialize, so the next run warns of them once
+        self.waiting_parameters: dict[str, tuple[str, ...]] = {}
         # the System's time after its last run; components read it (their `t`) when they have
         # not set a time of their own since that run (see CoSimComponent.t)
         self.time = 0.0
@@ -135,6 +139,7 @@ class EnginePlan:
         self.check(lib().ssx_reset_inputs(self.sys, ffi.new("double[]", starts), len(starts)),
                    f"{self.name}: input start values")
         self.failure = None
+        self.waiting_parameters.clear()
 
     def ran(self, t: float) -> None:
         """A run ended at t: every component's time is t until it sets its own."""
@@ -322,9 +327,15 @@ class EnginePlan:
                 return -1
         return evaluate
 
-    def add_event_connection(self, src: str, event: str, dst: str) -> None:
-        self.check(lib().ssx_add_event_connection(self.sys, self.indicator_index[(src, event)],
-                                                  self.index[dst]), f"{src}.{event} -> {dst}")
+    def add_event_connection(self, src: str, event: str, dst: str, own: bool = False) -> None:
+        """dst listens to src's indicator `event`, or with `own` to src's own events."""
+        if own:
+            status = lib().ssx_subscribe(self.sys, lib().SSX_SOURCE_OWN_EVENTS, self.index[src],
+                                         self.index[dst])
+        else:
+            status = lib().ssx_subscribe(self.sys, lib().SSX_SOURCE_INDICATOR,
+                                         self.indicator_index[(src, event)], self.index[dst])
+        self.check(status, f"{src}.{event} -> {dst}")
 
     def fail(self, component: Component, where: str, t: float, exc: BaseException) -> None:
         if self.failure is None:
@@ -573,7 +584,12 @@ class _HookBuilder:
 
     def _handle_events(self, indicators: Any, n: int, t: float) -> None:
         c = self.component
-        names = list(dict.fromkeys(self.plan.indicators[indicators[i]][1] for i in range(n)))
+        # an indicator by its index, a component's own events as -1 - component
+        names = list(dict.fromkeys(self.plan.indicators[indicators[i]][1] if indicators[i] >= 0
+                                   else OWN_EVENTS for i in range(n)))
+        if OWN_EVENTS in names:
+            # t is the own event's time; the component stands at the communication point after
+            c.t = float(lib().ssx_time(self.plan.sys))
         self.where = f"event handler for {', '.join(names)}"
         c._handle_events_internal(names, t)
         c._update_output_states(t, names)

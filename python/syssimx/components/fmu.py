@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import copy
 import math
-import warnings
 import weakref
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -40,7 +39,7 @@ from ..core.element_map import made_items
 from ..core.port import Port, PortSpec, PortType
 from ..core.suggest import did_you_mean
 from ..engine import lib
-from ..errors import ConfigurationError, FMUError, SysSimXWarning
+from ..errors import ConfigurationError, FMUError
 from ..fmu.extraction import extractions
 from ..fmu.info import (
     INTERFACES,
@@ -232,12 +231,11 @@ class FMUComponent(CoSimComponent):
     # ---------------------------------------------------------------- parameters
     def set_parameters(self, **parameters: Any) -> None:
         """Numbers or pint quantities (converted to the FMU's unit). They are written to the
-        FMU at initialize (and reinitialize): after initialize they wait for the next one, with
-        a warning, as start values do in SysSimX and FMPy."""
-        if self._binding is not None and parameters:
-            warnings.warn(f"{self.name}.set_parameters({', '.join(parameters)}) after "
-                          "initialize: the running FMU keeps its values; they apply at the "
-                          "next initialize (or reinitialize)", SysSimXWarning, stacklevel=2)
+        FMU at initialize (and reinitialize): set on a running FMU they wait for the next one
+        (the next run without it warns), as start values do in SysSimX and FMPy."""
+        if self._binding is not None and parameters and self.instance.mode == "step":
+            waiting = self._binding.plan.waiting_parameters
+            waiting[self.name] = tuple(dict.fromkeys((*waiting.get(self.name, ()), *parameters)))
         for name, value in parameters.items():
             parameter = self.info.parameters.get(name)
             sized = self.info.structural_parameters.get(name)
@@ -265,6 +263,8 @@ class FMUComponent(CoSimComponent):
         """Write the parameters the user set to the FMU. In step mode only tunable ones (FMI
         forbids setting fixed parameters after initialization)."""
         self._write_to_fmu(self._parameter_starts(step_mode=self.instance.mode == "step"))
+        if self._binding is not None and self.instance.mode != "step":
+            self._binding.plan.waiting_parameters.pop(self.name, None)
 
     def _apply_input_starts(self) -> None:
         """Write the inputs the user set to the FMU; in a system, the engine's current input
@@ -343,6 +343,7 @@ class FMUComponent(CoSimComponent):
             self.parameters, self._parameters_set = saved, saved_set
         self.t = t
         if self._binding is not None:
+            self._binding.plan.waiting_parameters.pop(self.name, None)
             self._binding.plan.read_outputs(self)
 
     def _add_to_plan(self, plan: EnginePlan) -> None:

@@ -15,6 +15,7 @@ import re
 from dataclasses import dataclass
 from typing import Any
 
+from ..core.events import OWN_EVENTS
 from ..core.port import PortType
 from ..errors import ConfigurationError
 
@@ -77,5 +78,8 @@ class Reinitialize:
         return {p: parse_term(component, p, text) for p, text in self.values.items()}
 
     def __call__(self, component: Any, event_names: list[str], t: float) -> None:
-        component.reinitialize(t, **{p: term.value(component)
-                                     for p, term in self.terms(component).items()})
+        # a component's own events reach it at the communication point after them: it
+        # restarts where it stands, as the engine's restart does
+        at = component.t if OWN_EVENTS in event_names else t
+        component.reinitialize(at, **{p: term.value(component)
+                                      for p, term in self.terms(component).items()})

@@ -1,10 +1,15 @@
-"""Event vocabulary: superdense time instants and event indicator declarations."""
+"""Event vocabulary: superdense time instants, event indicator declarations and the name of
+a component's own events as an event source."""
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
+
+# The event source port of an FMU component's own events: those it handles inside its step (an
+# FMI 3.0 FMU's events, a Model Exchange FMU's state, time and step events).
+OWN_EVENTS = "own_events"
 
 
 @dataclass(frozen=True, order=True)

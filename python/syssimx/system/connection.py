@@ -1,8 +1,11 @@
-"""Connections between components: data (output -> input) and event (indicator -> listener)."""
+"""Connections between components: data (output -> input) and event (event source ->
+listener)."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+
+from ..core.events import OWN_EVENTS
 
 
 @dataclass(frozen=True)
@@ -29,13 +32,24 @@ class Connection:
 
 @dataclass(frozen=True)
 class EventConnection:
-    """The event `src_port` (an event indicator of src_comp) is delivered to dst_comp through
-    its EVENT input dst_port; dst_comp handles it (its handler or _handle_events_internal)."""
+    """The events of `src_port` (an event indicator of src_comp, or ``"own_events"``: the
+    events an FMU component handles inside its own steps) are delivered to dst_comp through its
+    EVENT input dst_port; dst_comp handles them (its handler or _handle_events_internal).
+
+    An indicator's listeners run at the located event time. Own events' listeners run when the
+    master accepts the step that holds the event: a handler receives the event's own time,
+    while the system stands at the step's end (a Reinitialize restarts there).
+    """
 
     src_comp: str
     src_port: str
     dst_comp: str
     dst_port: str
+
+    @classmethod
+    def own_events(cls, src_comp: str, dst_comp: str, dst_port: str) -> EventConnection:
+        """The events src_comp handles inside its own steps, delivered to dst_comp.dst_port."""
+        return cls(src_comp, OWN_EVENTS, dst_comp, dst_port)
 
     @property
     def event_name(self) -> str:

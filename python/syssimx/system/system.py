@@ -17,6 +17,7 @@ from ..bridge.observers import add_observer, remove_observer
 from ..bridge.observers import keep_history as keep_history_samples
 from ..bridge.plan import EnginePlan
 from ..components.base import CoSimComponent
+from ..core.events import OWN_EVENTS
 from ..core.port import PortType
 from ..core.suggest import did_you_mean
 from ..engine import defaults, ffi, lib
@@ -160,7 +161,14 @@ class System:
         same): when the indicator fires, that input's handler runs."""
         src, dst = self._component(connection.src_comp), self._component(connection.dst_comp)
         where = "{}.{} -> {}.{}".format(*connection.key())
-        if connection.src_port not in src.event_indicators:
+        if connection.src_port == OWN_EVENTS:
+            from ..components.fmu import FMUComponent
+
+            if not isinstance(src, FMUComponent):
+                raise ConfigurationError(f"{where}: {src.name!r} handles no events of its own "
+                                         "(FMU components do: an FMI 3.0 FMU's events, a Model "
+                                         "Exchange FMU's state, time and step events)")
+        elif connection.src_port not in src.event_indicators:
             raise ConfigurationError(f"{where}: {src.name!r} has no event indicator "
                                      f"{connection.src_port!r}; indicators: "
                                      f"{sorted(src.event_indicators) or 'none'}")
@@ -210,7 +218,8 @@ class System:
             for event in component.event_indicators:
                 plan.add_indicator(component, event)
         for c in self.event_connections:
-            plan.add_event_connection(c.src_comp, c.src_port, c.dst_comp)
+            plan.add_event_connection(c.src_comp, c.src_port, c.dst_comp,
+                                      own=c.src_port == OWN_EVENTS)
         self._observer_ids = {id(o): add_observer(plan, o) for o in self._observers}
         for component in self.components.values():
             for event in component.self_handled_events():
@@ -387,6 +396,8 @@ class System:
         initialize): with stream_to, a run larger than memory keeps every sample on disk."""
         if not self.is_initialized or self._plan is None:
             raise ConfigurationError(f"{self.name}: call initialize(t0) before run()")
+        if self._plan.waiting_parameters:
+            _warn_waiting_parameters(self._plan.waiting_parameters)
         t0, tf, dt = (_time_value(self.name, label, value)
                       for label, value in (("t0", t0), ("tf", tf), ("dt", dt)))
         if timeout is not None and not (isinstance(timeout, int | float) and timeout > 0):
@@ -591,3 +602,11 @@ def _grid_steps(system: str, output_interval: object, dt: float) -> int:
                                  f"multiple of dt={dt!r}")
     return steps
 
+
+def _warn_waiting_parameters(waiting: dict[str, tuple[str, ...]]) -> None:
+    """Once per parameter set on a running FMU: this run does not use it."""
+    for component, names in waiting.items():
+        warnings.warn(f"{component}.set_parameters({', '.join(names)}) after initialize: the "
+                      "running FMU keeps its values; they apply at the next initialize (or "
+                      "reinitialize)", SysSimXWarning, stacklevel=3)
+    waiting.clear()

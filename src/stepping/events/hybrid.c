@@ -13,9 +13,9 @@
 #include "component_calls.h"
 #include "coupling.h"
 #include "error.h"
+#include "event_source.h"
 #include "indicator.h"
 #include "locator.h"
-#include "own_events.h"
 #include "recording.h"
 #include "zeno.h"
 
@@ -273,28 +273,6 @@ static int probe(ssx_system *sys, double b, double delta_max, instant_work *w)
     return 0;
 }
 
-static int notify_listeners(ssx_system *sys, double b, instant_work *w)
-{
-    for (int c = 0; c < sys->n_components; ++c) {
-        int n = 0;
-        for (int i = 0; i < sys->n_indicators; ++i) {
-            if (!w->fired[i]) {
-                continue;
-            }
-            for (int k = 0; k < sys->n_event_links; ++k) {
-                if (sys->event_links[k].indicator == i && sys->event_links[k].listener == c) {
-                    w->listened[n++] = i;
-                    break;
-                }
-            }
-        }
-        if (n > 0 && component_handle_events(sys, sys->components[c], w->listened, n, b) != 0) {
-            return -1;
-        }
-    }
-    return 0;
-}
-
 /* Chattering by zeno.h's rule. The master's resolution is a tenth of the communication step
  * (the horizon over which the probe judges where a handled state goes): crossings that come
  * back faster are finer than the grid resolves, since between two grid points a master sees
@@ -464,7 +442,8 @@ static int handle_instant(ssx_system *sys, const event_bracket *br, instant_work
             s->fire_count++;
         }
         sys->stats.events++;
-        if (notify_listeners(sys, b, w) != 0 || coupling_settle(sys, b) != 0 ||
+        if (event_sources_notify_indicators(sys, w->fired, w->listened, b) != 0 ||
+            coupling_settle(sys, b) != 0 ||
             record_sample(sys, b, micro + 1) != 0 || indicators_evaluate(sys, b) != 0 ||
             settle_signs(sys, b, br, w) != 0 || add_event_records(sys, b, micro, br, w) != 0) {
             return -1;
@@ -590,14 +569,14 @@ int hybrid_end_piece(ssx_system *sys, const hybrid_piece *piece, double t_end, d
             indicator_follow(&sys->indicator_states[i], sys->indicator_states[i].value);
         }
         sys->time = t_end;
-        return own_events_commit(sys, t_end);
+        return event_sources_commit_own(sys, t_end);
     }
     event_bracket br = {.a0 = piece->a0,
                         .t_end = t_end,
                         .grid_step = grid_step,
                         .do_steps_before = piece->do_steps_before,
                         .restores_before = piece->restores_before};
-    if (locate(sys, &br) != 0 || own_events_commit(sys, br.b) != 0) {
+    if (locate(sys, &br) != 0 || event_sources_commit_own(sys, br.b) != 0) {
         return -1;
     }
     sys->time = br.b;
@@ -612,8 +591,9 @@ int hybrid_end_piece(ssx_system *sys, const hybrid_piece *piece, double t_end, d
     return status;
 }
 
-void hybrid_release(void *workspace)
+void hybrid_release(ssx_system *sys, void *workspace)
 {
+    (void)sys;
     hybrid_workspace *hw = workspace;
     if (hw != NULL) {
         free(hw->brackets);

@@ -7,7 +7,7 @@
 /* Allocates the indicators' states and the algorithm's own workspace (localization) for the
  * system as built. */
 int hybrid_prepare(ssx_system *sys, void **workspace);
-void hybrid_release(void *workspace);
+void hybrid_release(ssx_system *sys, void *workspace);
 /* Advances the system from t to t_next, locating and handling every event in between. */
 int hybrid_step(ssx_system *sys, double t, double t_next);
 
