@@ -16,6 +16,7 @@ import sys
 import textwrap
 import threading
 import time
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -167,9 +168,20 @@ def pendulum_system() -> System:
     return system
 
 
+@pytest.fixture
+def hangup_at_default() -> Iterator[None]:
+    """SIGHUP at its default action, as a program started from a terminal has it: started under
+    nohup (as a CI runner may start the tests) it is ignored, and the children inherit that;
+    syssimx leaves an ignored signal ignored."""
+    previous = signal.signal(signal.SIGHUP, signal.SIG_DFL)
+    yield
+    signal.signal(signal.SIGHUP, previous)
+
+
 @pytest.mark.parametrize(("signum", "isolated"), [(signal.SIGTERM, False),
                                                   (signal.SIGHUP, False),
                                                   (signal.SIGTERM, True)])
+@pytest.mark.usefixtures("hangup_at_default")
 def test_a_signal_removes_the_extraction_folders(tmp_path: Path, signum: int, isolated: bool):
     """Before: SIGTERM and SIGHUP left the syssimx_* folders behind."""
     script = textwrap.dedent(f"""
@@ -296,6 +308,7 @@ def extracting_then_waiting(folder_file: Path, release: Path) -> System:
 
 
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGHUP])
+@pytest.mark.usefixtures("hangup_at_default")
 def test_a_signal_to_a_sweep_worker_removes_its_extraction_folders(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch, signum: int):
     """Before: a worker's folders stayed until the sweep's cluster closed (a member runs on a
