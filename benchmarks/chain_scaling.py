@@ -103,6 +103,9 @@ def main() -> None:
     print(f"chain of gain FMUs, {FMU_STEPS} FMU steps per run, CPU time, median of "
           f"{args.repeats}; ns per FMU step and ratio to N={sizes[0]}")
     direct_build = builds[-1] or os.environ.get("SYSSIMX_BUILD_DIR", "")
+    if args.direct and not direct_build:
+        parser.error("--direct runs the C loop of a meson build directory: name it with "
+                     "--builds or SYSSIMX_BUILD_DIR")
     print(f"{'N':>7}" + "".join(f"{build or 'ns':>24}{'ratio':>8}" for build in builds)
           + ("" if len(builds) == 1 else f"{'new/old':>9}")
           + (f"{'direct C loop':>15}{'ratio':>8}{'engine/C':>10}" if args.direct else ""))
