@@ -419,6 +419,11 @@ int ssx_add_indicator_output(ssx_system *sys, int component, int output, int dir
 int ssx_add_indicator_callback(ssx_system *sys, int component,
                                int (*evaluate)(void *user, double t, double *value), void *user,
                                int direction);
+/* Indicator `indicator` (on an output of an FMU component) has its time derivative in the FMU's
+ * Real variable `vr` (the variable a modelDescription declares its derivative): localization
+ * reads it at the bracket ends and at each trial, and aims from the slope (cubic Hermite, then
+ * Newton) instead of from values alone. Other kinds of component refuse it. */
+int ssx_set_indicator_slope(ssx_system *sys, int indicator, unsigned int vr);
 /* Where events come from: an event indicator the master locates (index: the indicator's), or
  * the events a component handles inside its own steps (index: the component's; an FMI 3.0
  * FMU's events, a Model Exchange FMU's state, time and step events). */
@@ -760,6 +765,7 @@ typedef struct {
     const uint8_t *causality;      /* the FMI 2.0 default when absent: SSX_MD_LOCAL */
     const uint8_t *variability;    /* SSX_MD_CONTINUOUS when absent */
     const uint8_t *initial;        /* FMI 2.0's default when absent (may be SSX_MD_NONE) */
+    const uint32_t *derivative;    /* a Real's derivative attribute (variable index from 1), 0: none */
     /* ModelStructure/Outputs: the output's variable index (from 0) and its dependencies
      * (variable indices, from 0) at dependencies[first_dependency[k]] onwards; a
      * dependency_count of -1 means the attribute is absent (depends on everything). */

@@ -402,6 +402,28 @@ int ssx_add_indicator_output(ssx_system *sys, int component, int output, int dir
                                               .direction = direction});
 }
 
+int ssx_set_indicator_slope(ssx_system *sys, int indicator, unsigned int vr)
+{
+    if (sys == NULL) {
+        return -1;
+    }
+    if (indicator < 0 || indicator >= sys->n_indicators) {
+        return fail_config(sys, -1, indicator, NAN, "no indicator %d (there are %d)", indicator,
+                           sys->n_indicators);
+    }
+    ssx_indicator *ind = &sys->indicators[indicator];
+    const ssx_component *c = sys->components[ind->component];
+    if (ind->output < 0 || c->ops->fmu == NULL) {
+        return fail_config(sys, ind->component, indicator, NAN,
+                           "component '%s': only an indicator on an output of an FMU "
+                           "component can take its slope from the FMU",
+                           c->name);
+    }
+    ind->has_slope = 1;
+    ind->slope_vr = vr;
+    return 0;
+}
+
 int ssx_add_indicator_callback(ssx_system *sys, int component,
                                int (*evaluate)(void *user, double t, double *value), void *user,
                                int direction)

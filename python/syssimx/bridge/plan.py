@@ -301,6 +301,11 @@ class EnginePlan:
             number = self.check(lib().ssx_add_indicator_output(
                 self.sys, index, output, int(indicator.direction)),
                 f"{component.name}.{event}")
+            slope = getattr(component, "_indicator_slope", None)
+            slope_vr = slope(indicator.variable) if slope is not None else None
+            if slope_vr is not None:
+                self.check(lib().ssx_set_indicator_slope(self.sys, number, slope_vr),
+                           f"{component.name}.{event}")
         else:
             engine_time = lib().ssx_time
             callback = self.callback(

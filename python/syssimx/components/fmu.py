@@ -52,6 +52,7 @@ from ..fmu.info import (
 )
 from ..fmu.instance import FMUInstance, start_values
 from ..fmu.loading import load
+from ..fmu.variable_table import VariableTable
 from ..units import is_quantity, magnitude_in
 from .base import CoSimComponent, _overrides
 from .restart import Reinitialize, Term
@@ -179,6 +180,16 @@ class FMUComponent(CoSimComponent):
         """The FMU's value reference of the variable `name`."""
         known = self.info.value_references.get(name)
         return int(self.info.variables[name].valueReference) if known is None else known
+
+    def _indicator_slope(self, name: str) -> int | None:
+        """The value reference of the variable this FMU declares the time derivative of the
+        variable `name` (FMI 2.0 Co-Simulation: a Real's `derivative` attribute), or None.
+        Event localization on `name` aims from that slope."""
+        variables = self.info.description.modelVariables
+        if self.model_exchange or not isinstance(variables, VariableTable):
+            return None
+        derivative = variables.derivative_of(variables.find(name))
+        return int(variables[derivative].valueReference) if derivative >= 0 else None
 
     def set_inputs(self, signals: dict[str, Any], t: float | None = None) -> None:
         """Set inputs; they go to a Co-Simulation FMU at once when it is instantiated."""

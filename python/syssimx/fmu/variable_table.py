@@ -68,6 +68,7 @@ class VariableTable(Sequence[ScalarVariable]):
         self._causality = _column(md.causality, count, np.uint8)
         self._variability = _column(md.variability, count, np.uint8)
         self._initial = _column(md.initial, count, np.uint8)
+        self._derivative = _column(md.derivative, count, np.uint32)
 
     def __len__(self) -> int:
         return self._count
@@ -98,6 +99,12 @@ class VariableTable(Sequence[ScalarVariable]):
     def find(self, name: str) -> int:
         """The index of the variable called `name`, or -1 (a hash lookup in the engine)."""
         return int(lib().ssx_md_find(self._md, name.encode()))
+
+    def derivative_of(self, index: int) -> int:
+        """The index of the Real variable declared the time derivative of variable `index`
+        (its `derivative` attribute names it), or -1."""
+        found = np.flatnonzero(self._derivative == index + 1)
+        return int(found[0]) if len(found) else -1
 
     def with_causality(self, *causalities: str) -> list[ScalarVariable]:
         """The variables of these causalities, in document order."""

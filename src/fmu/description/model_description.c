@@ -51,6 +51,7 @@ typedef struct {
     slice alias; /* FMI 1.0 */
     int type; /* SSX_MD_NONE until the type element */
     slice start, unit, declared_type;
+    slice derivative; /* of a Real: the index (from 1) of the variable it is the derivative of */
 } variable_parts;
 
 typedef struct {
@@ -72,7 +73,7 @@ typedef struct {
     ssx_md_simple_type *types;
     size_t type_count, type_capacity;
     size_t count, capacity; /* variables */
-    uint32_t *name, *value_reference, *description, *unit, *start;
+    uint32_t *name, *value_reference, *description, *unit, *start, *derivative;
     int32_t *declared_type;
     uint8_t *type, *causality, *variability, *initial;
     size_t output_count, output_capacity, dependency_total, dependency_capacity;
@@ -88,6 +89,7 @@ static bool end_element(void *user);
 static bool finish_variable(reader *r);
 static bool finish_type(reader *r);
 static bool read_unknown(reader *r, size_t line);
+static bool read_derivative(reader *r, const variable_parts *v, uint32_t *derivative);
 static bool push_output(reader *r, uint32_t index);
 static bool keep_attributes(reader *r, slice tag);
 static bool store(reader *r, slice text, uint32_t *offset);
@@ -170,6 +172,7 @@ void ssx_md_free(ssx_md *md)
     free((void *)md->unit);
     free((void *)md->start);
     free((void *)md->declared_type);
+    free((void *)md->derivative);
     free((void *)md->type);
     free((void *)md->causality);
     free((void *)md->variability);
@@ -277,6 +280,8 @@ static bool start_element(void *user, slice tag, size_t line)
                     v->unit = value;
                 } else if (slice_is(name, "declaredType")) {
                     v->declared_type = value;
+                } else if (slice_is(name, "derivative")) {
+                    v->derivative = value;
                 }
             }
             return true;
@@ -538,6 +543,10 @@ static bool finish_variable(reader *r)
         return fail(r, SSX_MD_BAD_INITIAL, line, subject, v->initial, none);
     }
 
+    uint32_t derivative;
+    if (!read_derivative(r, v, &derivative)) {
+        return false;
+    }
     uint32_t description, unit;
     if (!store(r, v->description, &description) ||
         !store(r, v->type == SSX_MD_REAL ? v->unit : none, &unit)) {
@@ -553,10 +562,31 @@ static bool finish_variable(reader *r)
     r->unit[k] = unit;
     r->start[k] = start;
     r->declared_type[k] = declared_type;
+    r->derivative[k] = derivative;
     r->type[k] = (uint8_t)v->type;
     r->causality[k] = (uint8_t)causality;
     r->variability[k] = (uint8_t)variability;
     r->initial[k] = (uint8_t)initial;
+    return true;
+}
+
+/* A Real's derivative attribute: the index (from 1) of the variable it is the time derivative
+ * of, 0 when absent. Only a hint (where to look for a slope), so a value that is no index is
+ * read as absent; the index is checked against the variables by whoever uses it. */
+static bool read_derivative(reader *r, const variable_parts *v, uint32_t *derivative)
+{
+    *derivative = 0;
+    slice text;
+    int64_t index;
+    if (v->type != SSX_MD_REAL || v->derivative.at == NULL) {
+        return true;
+    }
+    if (!view(r, v->derivative, &text)) {
+        return false;
+    }
+    if (parse_integer(text.at, text.length, &index) && index >= 1 && index <= (int64_t)UINT32_MAX) {
+        *derivative = (uint32_t)index;
+    }
     return true;
 }
 
@@ -849,9 +879,9 @@ static bool grow_variables(reader *r)
     size_t capacity = r->capacity > 0 ? 2 * r->capacity : 1024;
     void **arrays[] = {(void **)&r->name, (void **)&r->value_reference, (void **)&r->description,
                        (void **)&r->unit, (void **)&r->start, (void **)&r->declared_type,
-                       (void **)&r->type, (void **)&r->causality, (void **)&r->variability,
-                       (void **)&r->initial};
-    size_t sizes[] = {4, 4, 4, 4, 4, 4, 1, 1, 1, 1};
+                       (void **)&r->derivative, (void **)&r->type, (void **)&r->causality,
+                       (void **)&r->variability, (void **)&r->initial};
+    size_t sizes[] = {4, 4, 4, 4, 4, 4, 4, 1, 1, 1, 1};
     for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; ++k) {
         void *grown = realloc(*arrays[k], capacity * sizes[k]);
         if (grown == NULL) {
@@ -881,6 +911,7 @@ static void publish(reader *r)
     md->unit = r->unit;
     md->start = r->start;
     md->declared_type = r->declared_type;
+    md->derivative = r->derivative;
     md->type = r->type;
     md->causality = r->causality;
     md->variability = r->variability;

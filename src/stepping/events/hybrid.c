@@ -67,6 +67,19 @@ static int step_from_snapshot(ssx_system *sys, double a0, double t)
     return indicators_evaluate(sys, t);
 }
 
+/* The indicators' slopes at the current state (time t) into one end of their brackets (those
+ * without a slope get NAN there). */
+static int read_slopes(ssx_system *sys, double t, int side)
+{
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        indicator_bracket *end = &workspace(sys)->brackets[i];
+        if (indicator_slope(sys, i, t, side == SIDE_RIGHT ? &end->d_right : &end->d_left) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
 /* Indicator i crosses in its direction at its current value. */
 static int fires_now(const ssx_system *sys, int i)
 {
@@ -129,6 +142,9 @@ static int locate(ssx_system *sys, event_bracket *br)
         ends[i].w_right = ends[i].z_right;
         ends[i].crossing = fires_now(sys, i);
     }
+    if (read_slopes(sys, b, SIDE_RIGHT) != 0) {
+        return -1;
+    }
     localization_log_begin(&sys->localization, sys->n_indicators);
     br->localized = 1;
     if (log_row(sys, a, a, b, 1) != 0 || log_row(sys, b, a, b, 0) != 0) {
@@ -139,7 +155,8 @@ static int locate(ssx_system *sys, event_bracket *br)
     double final_width = opt->tol_time - 16.0 * DBL_EPSILON * fmax(fabs(a), fabs(b));
     int budget = locator_budget(method, b - a, opt->tol_time);
     bracket_state st = {.a = a, .b = b, .replaced = NAN, .moved = SIDE_NONE,
-                        .moved_before = SIDE_NONE};
+                        .moved_before = SIDE_NONE, .tol_time = opt->tol_time,
+                        .tol_value = opt->tol_value};
     br->iterations = 0;
     while (st.b - st.a > opt->tol_time && !far_side_converged(sys)) {
         if (br->iterations >= opt->max_iterations) {
@@ -148,17 +165,25 @@ static int locate(ssx_system *sys, event_bracket *br)
                         "bracket [%.17g, %.17g]",
                         opt->tol_time, opt->max_iterations, st.a, st.b);
         }
+        /* the slopes at a0 are read after the first restore, before the first estimate */
+        if (system_restore(sys, MACRO_SLOT, br->a0) != 0 ||
+            (br->iterations == 0 && read_slopes(sys, br->a0, SIDE_LEFT) != 0)) {
+            return -1;
+        }
         double t = locator_next_trial(method, ends, n, &st, opt->tol_time, final_width, budget,
                                       br->iterations);
         br->iterations++;
         sys->stats.localization_iterations++;
-        if (step_from_snapshot(sys, br->a0, t) != 0) {
+        if (coupling_step(sys, br->a0, t - br->a0) != 0 || indicators_evaluate(sys, t) != 0) {
             return -1;
         }
         if (opt->record_internal_steps && record_sample(sys, t, -1) != 0) {
             return -1;
         }
         int side = any_fires(sys) ? SIDE_RIGHT : SIDE_LEFT;
+        if (read_slopes(sys, t, side) != 0) {
+            return -1;
+        }
         for (int i = 0; i < n; ++i) {
             double z = sys->indicator_states[i].value;
             if (side == SIDE_RIGHT) {

@@ -4,6 +4,9 @@
 #include <math.h>
 
 #include "error.h"
+#include "fmu_backend.h"
+#include "component.h"
+#include "fmu_binding.h"
 #include "system.h"
 
 int indicators_evaluate(ssx_system *sys, double t)
@@ -27,6 +30,25 @@ int indicators_evaluate(ssx_system *sys, double t)
         }
         sys->indicator_states[i].value = value;
     }
+    return 0;
+}
+
+int indicator_slope(ssx_system *sys, int i, double t, double *slope)
+{
+    const ssx_indicator *ind = &sys->indicators[i];
+    *slope = NAN;
+    if (!ind->has_slope) {
+        return 0;
+    }
+    const ssx_component *c = sys->components[ind->component];
+    ssx_fmu *fmu = c->ops->fmu(c); /* it runs one: ssx_set_indicator_slope checked */
+    double value;
+    int status = ssx_fmu_get_real(fmu, &ind->slope_vr, 1, &value);
+    if (!fmi_ok(status)) {
+        return fail_fmi(sys, c, fmu, t, status, ssx_fmu_function_name(fmu, SLOT_GET_REAL));
+    }
+    /* a slope that is no number only leaves the estimate to the values */
+    *slope = isfinite(value) ? value : NAN;
     return 0;
 }
 

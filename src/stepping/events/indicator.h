@@ -17,6 +17,8 @@ typedef struct ssx_indicator {
     int (*evaluate)(void *user, double t, double *value);
     void *user;
     int direction;
+    int has_slope;          /* its time derivative can be read from the component's FMU: */
+    unsigned int slope_vr;  /* the Real variable holding it (ssx_set_indicator_slope) */
 } ssx_indicator;
 
 /* Where an indicator stands in a run: its value, its side, its events so far. */
@@ -33,6 +35,9 @@ typedef struct indicator_state {
 
 /* Evaluates every indicator at the current state (time t) into its state's value. */
 int indicators_evaluate(ssx_system *sys, double t);
+/* Indicator i's time derivative at the current state (time t) into *slope, NAN when it has
+ * none; 0, or -1 with the error set when the FMU refuses the read. */
+int indicator_slope(ssx_system *sys, int i, double t, double *slope);
 /* At ssx_initialize, once the values at t0 are evaluated: no events yet, each indicator on
  * the side of its value (none when it is zero). */
 void indicators_start(ssx_system *sys);

@@ -1,5 +1,6 @@
 /* Localization methods: bisection, Illinois, and the default, Illinois helped by secant steps
- * and held within two trials of bisection. */
+ * (or, where the indicator's time derivative is known, by cubic Hermite and Newton steps) and
+ * held within two trials of bisection. */
 #include "locator.h"
 
 #include <math.h>
@@ -35,6 +36,87 @@ static double secant_point(const indicator_bracket *end, const bracket_state *st
     return t > st->a && t < st->b ? t : NAN;
 }
 
+/* The cubic through the bracket ends' values and slopes, at s in [0, 1] of the bracket. */
+static double hermite(const indicator_bracket *end, double h, double s)
+{
+    double r = 1.0 - s;
+    return r * r * ((1.0 + 2.0 * s) * end->z_left + s * h * end->d_left) +
+           s * s * ((3.0 - 2.0 * s) * end->z_right - r * h * end->d_right);
+}
+
+/* The earliest zero of that cubic inside the bracket: the first sign change among a few
+ * pieces, then halvings down to rounding. NAN when it does not change sign. */
+static double hermite_point(const indicator_bracket *end, const bracket_state *st)
+{
+    enum { PIECES = 8, HALVINGS = 60 };
+    double h = st->b - st->a;
+    double near = hermite(end, h, 0.0);
+    double lo = 0.0;
+    double hi = NAN;
+    for (int k = 1; k <= PIECES && isnan(hi); ++k) {
+        double s = (double)k / PIECES;
+        if (hermite(end, h, s) * near <= 0.0) {
+            hi = s;
+        } else {
+            lo = s;
+        }
+    }
+    if (isnan(hi)) {
+        return NAN;
+    }
+    for (int k = 0; k < HALVINGS && st->a + h * lo < st->a + h * hi; ++k) {
+        double mid = 0.5 * (lo + hi);
+        if (hermite(end, h, mid) * near <= 0.0) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    return st->a + h * hi;
+}
+
+/* Where the slope puts the zero: before any trial the cubic Hermite through both ends, then a
+ * Newton step from the end just moved. It aims a little past the zero, by a sixteenth of
+ * tol_value (at most a quarter of tol_time), so that a trial that hits the zero lands on its
+ * far side within tol_value and ends the localization. Without tol_value only the bracket's
+ * width ends it: a trial after one that moved the far end then aims as far before the zero,
+ * so that the near end comes in too. NAN without the slopes it needs. */
+static double slope_point(const indicator_bracket *end, const bracket_state *st)
+{
+    if (end->z_right == 0.0) {
+        return NAN; /* it may rest on zero there: no slope tells where it arrived */
+    }
+    double zero;
+    double slope;
+    if (st->moved == SIDE_NONE) {
+        if (!isfinite(end->d_left) || !isfinite(end->d_right)) {
+            return NAN;
+        }
+        zero = hermite_point(end, st);
+        slope = end->d_right;
+    } else {
+        int right = st->moved == SIDE_RIGHT;
+        double x = right ? st->b : st->a;
+        double z = right ? end->z_right : end->z_left;
+        slope = right ? end->d_right : end->d_left;
+        if (!isfinite(slope) || slope == 0.0) {
+            return NAN;
+        }
+        zero = x - z / slope;
+    }
+    if (!isfinite(zero) || !isfinite(slope) || slope == 0.0) {
+        return NAN;
+    }
+    double past = 0.25 * st->tol_time;
+    if (st->tol_value > 0.0) {
+        past = fmin(past, st->tol_value / (16.0 * fabs(slope)));
+    } else if (st->moved == SIDE_RIGHT) {
+        past = -past;
+    }
+    double t = zero + past;
+    return t > st->a && t < st->b ? t : NAN;
+}
+
 /* The earliest of an estimate over the crossing indicators; NAN when none is usable. */
 static double earliest_point(const indicator_bracket *ends, int n, const bracket_state *st,
                              double (*point)(const indicator_bracket *, const bracket_state *),
@@ -65,8 +147,7 @@ static double illinois_estimate(const indicator_bracket *ends, int n, const brac
 
 /* Secant steps where they land inside the bracket, Illinois elsewhere; an indicator that kept
  * its value over the last trial is flat there and gives no estimate. */
-static double secant_illinois_estimate(const indicator_bracket *ends, int n,
-                                       const bracket_state *st)
+static double values_estimate(const indicator_bracket *ends, int n, const bracket_state *st)
 {
     double t = earliest_point(ends, n, st, secant_point, 1);
     if (isnan(t)) {
@@ -80,6 +161,31 @@ static double secant_illinois_estimate(const indicator_bracket *ends, int n,
         return past > st->a && past < st->b ? past : t;
     }
     return t;
+}
+
+/* Slope steps when every crossing indicator has one; otherwise the earliest of them and of
+ * the values' estimate. */
+static double secant_illinois_estimate(const indicator_bracket *ends, int n,
+                                       const bracket_state *st)
+{
+    double sloped = NAN;
+    int all_sloped = 1;
+    for (int i = 0; i < n; ++i) {
+        if (!ends[i].crossing) {
+            continue;
+        }
+        double t = slope_point(&ends[i], st);
+        if (isnan(t)) {
+            all_sloped = 0;
+        } else if (isnan(sloped) || t < sloped) {
+            sloped = t;
+        }
+    }
+    if (all_sloped && !isnan(sloped)) {
+        return sloped;
+    }
+    double valued = values_estimate(ends, n, st);
+    return isnan(sloped) ? valued : isnan(valued) ? sloped : fmin(sloped, valued);
 }
 
 /* The Illinois modification: an end that stays twice in a row has its weight halved, so the

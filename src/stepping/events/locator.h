@@ -14,6 +14,8 @@ typedef struct {
     double replaced;  /* where the end that the last trial replaced was; NAN before any trial */
     int moved;        /* which end the last trial replaced (SIDE_*) */
     int moved_before; /* which end the trial before replaced */
+    double tol_time;  /* the tolerances: where a method aims past a zero it knows well */
+    double tol_value;
 } bracket_state;
 
 /* One indicator at the bracket ends: the localization workspace, one per indicator. */
@@ -21,6 +23,7 @@ typedef struct {
     double z_left, z_right; /* values at the bracket ends */
     double w_left, w_right; /* Illinois-weighted values at the bracket ends */
     double z_replaced;      /* value at the end the last trial replaced */
+    double d_left, d_right; /* time derivatives at the bracket ends, NAN where unknown */
     int crossing;           /* crosses (in its direction) at the current right end */
 } indicator_bracket;
 

@@ -28,8 +28,8 @@ static const char DOCUMENT[] =
     "variability=\"fixed\">\n"
     "      <Boolean start=\"true\"/>\n"
     "    </ScalarVariable>\n"
-    "    <ScalarVariable name=\"t\" valueReference=\"3\" causality=\"independent\"><Real/>"
-    "</ScalarVariable>\n"
+    "    <ScalarVariable name=\"t\" valueReference=\"3\" causality=\"independent\">"
+    "<Real derivative=\" 1\"/></ScalarVariable>\n"
     "  </ModelVariables>\n"
     "  <ModelStructure>\n"
     "    <Outputs><Unknown index=\"2\" dependencies=\" 1\t3 \"/></Outputs>\n"
@@ -88,6 +88,8 @@ static void reads_a_document(void)
     CHECK(md->initial[3] == SSX_MD_NONE && md->variability[3] == SSX_MD_CONTINUOUS);
     CHECK(md->output_count == 1 && md->output[0] == 1 && md->dependency_count[0] == 2);
     CHECK(md->dependencies[0] == 0 && md->dependencies[1] == 2);
+    /* the derivative attribute, an index from 1 (0: none) */
+    CHECK(md->derivative[0] == 0 && md->derivative[1] == 0 && md->derivative[3] == 1);
     int model_name = 0;
     for (size_t i = 0; i < md->attribute_count; ++i) {
         if (strcmp(text(md, md->attributes[i].name), "modelName") == 0) {
