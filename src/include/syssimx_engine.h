@@ -639,6 +639,11 @@ size_t ssx_event_count(const ssx_system *sys);
 int ssx_event_get(const ssx_system *sys, size_t index, ssx_event_record *out);
 size_t ssx_event_trial_count(const ssx_system *sys);
 int ssx_event_trial(const ssx_system *sys, size_t index, ssx_localization_trial *out);
+/* Records (trials) first .. first + n - 1, or as many of them as there are, copied into out in
+ * one call; returns how many were copied. */
+size_t ssx_events_copy(const ssx_system *sys, size_t first, size_t n, ssx_event_record *out);
+size_t ssx_event_trials_copy(const ssx_system *sys, size_t first, size_t n,
+                             ssx_localization_trial *out);
 void ssx_get_statistics(const ssx_system *sys, ssx_statistics *out);
 
 /* ------------------------------------------------------------------------------------------

@@ -2,6 +2,7 @@
  * localization trials and statistics. */
 #include <math.h>
 #include <stddef.h>
+#include <string.h>
 
 #include "recording.h"
 #include "system.h"
@@ -95,6 +96,31 @@ int ssx_event_trial(const ssx_system *sys, size_t index, ssx_localization_trial 
     }
     *out = sys->localization.trials[index];
     return 0;
+}
+
+/* How many of n items from first lie below count. */
+static size_t available(size_t first, size_t n, size_t count)
+{
+    return first >= count ? 0 : n < count - first ? n : count - first;
+}
+
+size_t ssx_events_copy(const ssx_system *sys, size_t first, size_t n, ssx_event_record *out)
+{
+    size_t copied = out != NULL ? available(first, n, sys->recording->n_events) : 0;
+    if (copied > 0) {
+        memcpy(out, sys->recording->events + first, copied * sizeof *out);
+    }
+    return copied;
+}
+
+size_t ssx_event_trials_copy(const ssx_system *sys, size_t first, size_t n,
+                             ssx_localization_trial *out)
+{
+    size_t copied = out != NULL ? available(first, n, sys->localization.n_trials) : 0;
+    if (copied > 0) {
+        memcpy(out, sys->localization.trials + first, copied * sizeof *out);
+    }
+    return copied;
 }
 
 void ssx_get_statistics(const ssx_system *sys, ssx_statistics *out)

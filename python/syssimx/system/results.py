@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
+from functools import cache
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
 
@@ -84,32 +85,62 @@ class Statistics:
         return statistics_html(self)
 
 
-def read_trials(plan: EnginePlan, first: int, count: int) -> tuple[LocalizationTrial, ...]:
-    trial = ffi.new("ssx_localization_trial *")
-    trials = []
-    for i in range(first, first + count):
-        if lib().ssx_event_trial(plan.sys, i, trial) == 0:
-            trials.append(LocalizationTrial(float(trial.t), float(trial.a), float(trial.b),
-                                            float(trial.value)))
-    return tuple(trials)
+_RECORD_FIELDS = ("t", "micro", "indicator", "component", "own", "iterations", "rollbacks",
+                  "do_steps", "t_left", "t_right", "value_left", "value_right", "first_trial",
+                  "n_trials")
+_TRIAL_FIELDS = ("t", "a", "b", "value")
+
+
+@cache
+def _struct_dtype(ctype: str) -> np.dtype:
+    """The numpy dtype of the engine's struct `ctype`, laid out as the compiler laid it out."""
+    names, formats, offsets = [], [], []
+    for name, field in ffi.typeof(ctype).fields:
+        size = ffi.sizeof(field.type)
+        kind = "f" if field.type.cname in ("double", "float") else \
+            "u" if field.type.cname.startswith(("unsigned", "size_t", "uint")) else "i"
+        names.append(name)
+        formats.append(np.dtype(f"{kind}{size}"))
+        offsets.append(field.offset)
+    return np.dtype({"names": names, "formats": formats, "offsets": offsets,
+                     "itemsize": ffi.sizeof(ctype)})
+
+
+def _copied(copy: Any, plan: EnginePlan, ctype: str, count: int,
+            fields: tuple[str, ...]) -> list[tuple[Any, ...]]:
+    """The engine's first `count` structs `ctype`, copied by `copy` in one call, as rows of
+    Python numbers in the order of `fields`."""
+    if count == 0:
+        return []
+    block = ffi.new(f"{ctype}[]", count)
+    copied = int(copy(plan.sys, 0, count, block))
+    array = np.frombuffer(ffi.buffer(block), dtype=_struct_dtype(ctype), count=copied)
+    return list(zip(*(array[name].tolist() for name in fields), strict=True))
 
 
 def read_events(plan: EnginePlan) -> list[EventRecord]:
-    record = ffi.new("ssx_event_record *")
+    """The run's event records and their trials, copied from the engine in two calls."""
+    engine = lib()
+    records = _copied(engine.ssx_events_copy, plan, "ssx_event_record",
+                      int(engine.ssx_event_count(plan.sys)), _RECORD_FIELDS)
+    if not records:
+        return []
+    trials = [LocalizationTrial(*row) for row in _copied(
+        engine.ssx_event_trials_copy, plan, "ssx_localization_trial",
+        int(engine.ssx_event_trial_count(plan.sys)), _TRIAL_FIELDS)]
+    names = list(plan.index)
     events = []
-    for i in range(int(lib().ssx_event_count(plan.sys))):
-        if lib().ssx_event_get(plan.sys, i, record) == 0:
-            if record.indicator >= 0:
-                component, event = plan.indicators[record.indicator]
-            else:
-                component = list(plan.index)[record.component]
-                event = enum_name("ssx_own_event_kind", "SSX_OWN_", record.own)
-            events.append(EventRecord(
-                float(record.t), int(record.micro), component, event, int(record.iterations),
-                int(record.rollbacks), int(record.do_steps), float(record.t_left),
-                float(record.t_right), float(record.value_left), float(record.value_right),
-                read_trials(plan, int(record.first_trial), int(record.n_trials)),
-                record.indicator < 0))
+    for (t, micro, indicator, component, own, iterations, rollbacks, do_steps, t_left, t_right,
+         value_left, value_right, first_trial, n_trials) in records:
+        if indicator >= 0:
+            source, event = plan.indicators[indicator]
+        else:
+            source = names[component]
+            event = enum_name("ssx_own_event_kind", "SSX_OWN_", own)
+        events.append(EventRecord(
+            t, micro, source, event, iterations, rollbacks, do_steps, t_left, t_right,
+            value_left, value_right, tuple(trials[first_trial:first_trial + n_trials]),
+            indicator < 0))
     return events
 
 
