@@ -10,9 +10,11 @@ import pytest
 from syssimx import EventConnection, FMUComponent, HybridAlgorithm, Reinitialize, System, fmus
 
 
-def test_the_slope_is_the_declared_derivative() -> None:
-    pendulum = FMUComponent("P", fmus.path("pendulum_euler"))
+@pytest.mark.parametrize("stem", ["pendulum_euler", "pendulum_cvode_fmi3"])
+def test_the_slope_is_the_declared_derivative(stem: str) -> None:
+    pendulum = FMUComponent("P", fmus.path(stem))
     # models/Pendulum: der(theta) (value reference 3) and alpha (2) declare derivative="..."
+    # (FMI 2.0: an index into the variables; FMI 3.0: a value reference)
     assert pendulum._indicator_slope("theta") == 3
     assert pendulum._indicator_slope("omega") == 2
     assert pendulum._indicator_slope("alpha") is None

@@ -182,14 +182,21 @@ class FMUComponent(CoSimComponent):
         return int(self.info.variables[name].valueReference) if known is None else known
 
     def _indicator_slope(self, name: str) -> int | None:
-        """The value reference of the variable this FMU declares the time derivative of the
-        variable `name` (FMI 2.0 Co-Simulation: a Real's `derivative` attribute), or None.
-        Event localization on `name` aims from that slope."""
+        """The value reference of the variable this Co-Simulation FMU declares the time
+        derivative of the variable `name` (the `derivative` attribute of a Real, FMI 2.0, or of
+        a scalar Float64, FMI 3.0), or None. Event localization on `name` aims from it."""
         variables = self.info.description.modelVariables
-        if self.model_exchange or not isinstance(variables, VariableTable):
+        if self.model_exchange:
             return None
-        derivative = variables.derivative_of(variables.find(name))
-        return int(variables[derivative].valueReference) if derivative >= 0 else None
+        if isinstance(variables, VariableTable):
+            derivative = variables.derivative_of(variables.find(name))
+            return int(variables[derivative].valueReference) if derivative >= 0 else None
+        for variable in variables:  # fmpy's objects: the derivative names the variable
+            of = getattr(variable, "derivative", None)
+            if of is not None and getattr(of, "name", None) == name and \
+                    variable.type == "Float64" and not getattr(variable, "dimensions", None):
+                return int(variable.valueReference)
+        return None
 
     def set_inputs(self, signals: dict[str, Any], t: float | None = None) -> None:
         """Set inputs; they go to a Co-Simulation FMU at once when it is instantiated."""
