@@ -3,9 +3,9 @@
 
 #include <math.h>
 
+#include "component.h"
 #include "error.h"
 #include "fmu_backend.h"
-#include "component.h"
 #include "fmu_binding.h"
 #include "system.h"
 

@@ -104,12 +104,12 @@ static double slope_point(const indicator_bracket *end, const bracket_state *st)
         }
         zero = x - z / slope;
     }
-    if (!isfinite(zero) || !isfinite(slope) || slope == 0.0) {
+    if (!isfinite(zero)) {
         return NAN;
     }
     double past = 0.25 * st->tol_time;
     if (st->tol_value > 0.0) {
-        past = fmin(past, st->tol_value / (16.0 * fabs(slope)));
+        past = fmin(past, st->tol_value / (16.0 * fabs(slope))); /* a zero slope: no bound */
     } else if (st->moved == SIDE_RIGHT) {
         past = -past;
     }
