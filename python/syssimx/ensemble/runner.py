@@ -41,16 +41,21 @@ from .system_source import SystemSource
 KILL_GRACE = 1.0  # seconds past member_timeout: the run's own timeout reports first if it can
 POLL = 0.1  # seconds between checks for stuck members
 DEATH_LOG_WAIT = 10.0  # seconds at most to wait for a nanny to log how its worker died
-# members per task at most: a task costs the client and its worker about 4 ms of CPU each
-# (scheduling, messages, the result's transfer); a crash reruns its chunk's members alone
-MAX_CHUNK = 256
-CHUNKS_PER_WORKER = 4  # tasks per worker at least, for the balance
+# members per task at most: a task costs the client's process 2.5-4 ms of CPU on the 2-core
+# VM whatever its size (scheduling, messages, fetching the result from the worker); a crash
+# reruns its chunk's members alone, one task each
+MAX_CHUNK = 1024
+# tasks per worker at least, for the balance: a worker slowed by others' load ends about a
+# task after the rest. Each task
+# costs the client a seed member's CPU 3-4 times over: 4 tasks per worker were 0.02 ms of
+# its 0.05 ms per member for 2000 seed members on 2 workers.
+CHUNKS_PER_WORKER = 3
 PROBE = 4  # members per probe chunk
 PROBED_FROM = 16  # members per worker from which an ensemble starts with a probe
-# a task's target CPU time: its cost to the client (6-9 ms of CPU on the 2-core VM) stays a
-# few per cent of it, while progress, Ctrl-C and a crash's reruns stay at a fraction of a second
-# (on an unloaded machine)
-TASK_SECONDS = 0.2
+# a task's target CPU time: its cost to the client stays under 1 % of it, while progress,
+# Ctrl-C (the finished tasks are kept) and a crash's reruns stay at half a second (on an
+# unloaded machine)
+TASK_SECONDS = 0.5
 
 
 class _Starts:
@@ -102,11 +107,11 @@ class _Ensemble:
     """The members' tasks on one client, their starts, and the results so far."""
 
     def __init__(self, client: Any, build: SystemSource, experiment: Experiment,
-                 sets: Sequence[ParameterSet], bar: ProgressBar) -> None:
+                 sets: Sequence[ParameterSet], bar: ProgressBar, workers: int) -> None:
         self.client, self.build, self.experiment, self.sets, self.bar = client, build, \
             experiment, sets, bar
         self.member_timeout = experiment.timeout
-        self.workers = max(1, len(client.nthreads()))
+        self.workers = max(1, workers)
         # one function object for every task: Dask serializes it once, not per task
         self.task = functools.partial(run_chunk, build)
         self.topic = f"syssimx-ensemble-{uuid.uuid4().hex}"
@@ -206,10 +211,10 @@ def run_members(client: Any, build: SystemSource, experiment: Experiment,
     """Every member's result (member k runs `sets[k]`), in member order."""
     from .worker_signals import ExtractionsRemovedOnSignals
 
-    check_processes(client)
+    workers = check_processes(client)
     client.register_plugin(ExtractionsRemovedOnSignals())
     bar = ProgressBar(len(sets), progress)
-    ensemble = _Ensemble(client, build, experiment, sets, bar)
+    ensemble = _Ensemble(client, build, experiment, sets, bar, workers)
     announce_each = experiment.timeout is not None
     client.subscribe_topic(ensemble.topic, ensemble.starts.record)
     workers = ensemble.workers
