@@ -56,10 +56,14 @@ class MemberChunk:
         return range(self.first, self.first + len(self.parameters))
 
     def tasks(self) -> list[MemberTask]:
-        announced = self.announce_each or len(self.parameters) == 1
-        return [self.experiment.task(self.first + offset, values,
-                                     self.topic if announced else None)
+        topic = self.topic if self.announced else None
+        return [self.experiment.task(self.first + offset, values, topic)
                 for offset, values in enumerate(self.parameters)]
+
+    @property
+    def announced(self) -> bool:
+        """Whether its members announce their start."""
+        return self.topic is not None and (self.announce_each or len(self.parameters) == 1)
 
 
 def run_chunk(build: SystemSource, chunk: MemberChunk) -> MemberBlock:

@@ -116,6 +116,7 @@ class _Ensemble:
         self.task = functools.partial(run_chunk, build)
         self.topic = f"syssimx-ensemble-{uuid.uuid4().hex}"
         self.starts = _Starts()
+        self._subscribed = False  # to the topic: from the first chunk whose members announce
         self.results = MemberList(sets)
         self._attempt = 0
 
@@ -160,6 +161,10 @@ class _Ensemble:
 
     def _submit(self, chunks: Sequence[MemberChunk], futures: list[Any],
                 by_key: dict[Any, MemberChunk], pending: Any) -> None:
+        if not self._subscribed and any(chunk.announced for chunk in chunks):
+            # sent before the tasks on the same stream: the scheduler has it before they run
+            self.client.subscribe_topic(self.topic, self.starts.record)
+            self._subscribed = True
         submitted = self.client.map(
             self.task, chunks,
             key=[f"syssimx-members-{c.first}-{self.topic[-8:]}-{self._attempt}"
@@ -168,6 +173,10 @@ class _Ensemble:
                       for future, chunk in zip(submitted, chunks, strict=True))
         futures += submitted
         pending.update(submitted)
+
+    def close(self) -> None:
+        if self._subscribed:
+            self.client.unsubscribe_topic(self.topic)
 
     def after_probe(self, probed: int, block: MemberBlock | None) -> list[MemberChunk]:
         """The chunks of the members after the first `probed`, sized by `block`'s members."""
@@ -209,15 +218,13 @@ class _Ensemble:
 def run_members(client: Any, build: SystemSource, experiment: Experiment,
                 sets: Sequence[ParameterSet], progress: bool) -> MemberList:
     """Every member's result (member k runs `sets[k]`), in member order."""
-    from .worker_signals import ExtractionsRemovedOnSignals
+    from .worker_signals import register
 
     workers = check_processes(client)
-    client.register_plugin(ExtractionsRemovedOnSignals())
+    register(client)
     bar = ProgressBar(len(sets), progress)
     ensemble = _Ensemble(client, build, experiment, sets, bar, workers)
     announce_each = experiment.timeout is not None
-    client.subscribe_topic(ensemble.topic, ensemble.starts.record)
-    workers = ensemble.workers
     try:
         if len(sets) >= PROBED_FROM * workers:
             probed = PROBE * workers
@@ -240,7 +247,7 @@ def run_members(client: Any, build: SystemSource, experiment: Experiment,
         raise MembersInterrupted(ensemble.results) from stop
     finally:
         bar.close()
-        client.unsubscribe_topic(ensemble.topic)
+        ensemble.close()
     return ensemble.results
 
 
