@@ -346,6 +346,10 @@ class EnginePlan:
         index = self.index[component.name]
         return (lib().ssx_outputs if direction == "out" else lib().ssx_inputs)(self.sys, index)
 
+    def input_array(self, component: Component) -> Any:
+        """The engine's input values of a component (a C array, in the order of `inputs`)."""
+        return lib().ssx_inputs(self.sys, self.index[component.name])
+
     def port_value(self, component: Component, direction: str, port: str) -> float:
         names = self.outputs if direction == "out" else self.inputs
         return float(self._array(component, direction)[names[component.name].index(port)])

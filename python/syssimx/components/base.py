@@ -237,7 +237,8 @@ class CoSimComponent:
     def _set_event_ports(self, t: float | None, event_names: Iterable[str] | None) -> None:
         """EVENT outputs: True for the events that just fired, all False otherwise."""
         names = set(event_names or ())
-        for port in self.outputs.values():
+        # EVENT ports are never array elements: the made ports are all of them
+        for port in made_items(self.outputs).values():
             if port.spec.type == PortType.EVENT:
                 port.set(port.spec.name in names, t)
 

@@ -122,7 +122,8 @@ class FMUInstance:
         experiment = ffi.new("ssx_fmu_experiment *", {
             "start_time": start_time, "tolerance_defined": tolerance is not None,
             "tolerance": tolerance or 0.0})
-        values, _arrays = start_values(starts or {})  # the arrays live as long as this call
+        # the arrays live as long as this call
+        values, _arrays = start_values(starts) if starts else (ffi.NULL, None)
         raised: list[BaseException] = []
 
         def during(_user: Any) -> int:
@@ -308,15 +309,23 @@ def start_values(starts: Values) -> tuple[Any, list[Any]]:
     """The ssx_fmu_values of `starts`, and the arrays it points at (keep them alive)."""
     values = ffi.new("ssx_fmu_values *")
     keep: list[Any] = [values]
-    layout = {PortType.REAL: ("real", "double[]"), PortType.INT: ("integer", "int[]"),
-              PortType.BOOL: ("boolean", "int[]")}
     for kind, (refs, vals) in starts.items():
-        field, c_type = layout[kind]
-        items = [float(v) if kind == PortType.REAL else int(v) if kind == PortType.INT
-                 else int(bool(v)) for v in vals]
+        vr_field, values_field, count_field, c_type, convert = _VALUES_LAYOUT[kind]
+        items = [convert(v) for v in vals]
         vr, array = ffi.new("unsigned int[]", list(refs)), ffi.new(c_type, items)
         keep += [vr, array]
-        setattr(values, f"{field}_vr", vr)
-        setattr(values, f"{field}_values", array)
-        setattr(values, f"n_{field}", len(items))
+        setattr(values, vr_field, vr)
+        setattr(values, values_field, array)
+        setattr(values, count_field, len(items))
     return values, keep
+
+
+def _boolean(value: Any) -> int:
+    return int(bool(value))
+
+
+# per value type: the ssx_fmu_values fields, the C array type and the conversion of a value
+_VALUES_LAYOUT: dict[PortType, tuple[str, str, str, str, Callable[[Any], Any]]] = {
+    PortType.REAL: ("real_vr", "real_values", "n_real", "double[]", float),
+    PortType.INT: ("integer_vr", "integer_values", "n_integer", "int[]", int),
+    PortType.BOOL: ("boolean_vr", "boolean_values", "n_boolean", "int[]", _boolean)}

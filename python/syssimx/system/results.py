@@ -95,9 +95,12 @@ def read_trials(plan: EnginePlan, first: int, count: int) -> tuple[LocalizationT
 
 
 def read_events(plan: EnginePlan) -> list[EventRecord]:
+    count = int(lib().ssx_event_count(plan.sys))
+    if count == 0:
+        return []
     record = ffi.new("ssx_event_record *")
     events = []
-    for i in range(int(lib().ssx_event_count(plan.sys))):
+    for i in range(count):
         if lib().ssx_event_get(plan.sys, i, record) == 0:
             if record.indicator >= 0:
                 component, event = plan.indicators[record.indicator]
@@ -115,17 +118,33 @@ def read_events(plan: EnginePlan) -> list[EventRecord]:
 
 def read_statistics(plan: EnginePlan, events: Sequence[EventRecord],
                     termination: Termination | None = None) -> Statistics:
-    raw = ffi.new("ssx_statistics *")
-    lib().ssx_get_statistics(plan.sys, raw)
-    return Statistics(int(raw.macro_steps), int(raw.do_step_calls), int(raw.state_saves),
-                      int(raw.state_restores), int(raw.events),
-                      int(raw.localization_iterations), int(raw.loop_iterations),
-                      int(raw.loop_solves),
-                      tuple(e.iterations for e in events if not e.own),
-                      int(raw.directional_derivatives), int(raw.own_events), termination,
-                      int(raw.accepted_steps), int(raw.rejected_steps), float(raw.smallest_step),
-                      float(raw.largest_step), float(raw.largest_error),
-                      float(raw.error_sum) / raw.accepted_steps if raw.accepted_steps else 0.0)
+    return StatisticsReading(plan, events, termination).statistics()
+
+
+class StatisticsReading:
+    """The engine's counters copied at one instant (one engine call), made a Statistics only
+    when asked for: a result that nobody asks for its statistics costs no Python for them."""
+
+    def __init__(self, plan: EnginePlan, events: Sequence[EventRecord],
+                 termination: Termination | None) -> None:
+        self._raw = ffi.new("ssx_statistics *")
+        lib().ssx_get_statistics(plan.sys, self._raw)
+        self._events = events
+        self.termination = termination
+
+    def statistics(self) -> Statistics:
+        raw, events, termination = self._raw, self._events, self.termination
+        return Statistics(int(raw.macro_steps), int(raw.do_step_calls), int(raw.state_saves),
+                          int(raw.state_restores), int(raw.events),
+                          int(raw.localization_iterations), int(raw.loop_iterations),
+                          int(raw.loop_solves),
+                          tuple(e.iterations for e in events if not e.own),
+                          int(raw.directional_derivatives), int(raw.own_events), termination,
+                          int(raw.accepted_steps), int(raw.rejected_steps),
+                          float(raw.smallest_step), float(raw.largest_step),
+                          float(raw.largest_error),
+                          float(raw.error_sum) / raw.accepted_steps if raw.accepted_steps
+                          else 0.0)
 
 
 class HistoryView:
@@ -139,7 +158,7 @@ class HistoryView:
         self._recorded = plan.recorded()
         self._events = events
         self._arrays = plan.history()
-        self._micro = self._arrays.micro()
+        self._micro: np.ndarray | None = None  # made when first asked for
         self._data: dict[str, tuple[np.ndarray, dict[str, np.ndarray]]] = {}
 
     def _event_column(self, t: np.ndarray, component: str, event: str) -> np.ndarray:
@@ -149,11 +168,13 @@ class HistoryView:
             if (e.component, e.event) == (component, event):
                 # samples are in time order: look only at those taken at the event's instant
                 first, end = np.searchsorted(t, e.t, "left"), np.searchsorted(t, e.t, "right")
-                column[first:end] |= self._micro[first:end] == e.micro + 1
+                column[first:end] |= self.micro[first:end] == e.micro + 1
         return column
 
     @property
     def micro(self) -> np.ndarray:
+        if self._micro is None:
+            self._micro = self._arrays.micro()
         return self._micro
 
     def __getitem__(self, component: str) -> tuple[np.ndarray, dict[str, np.ndarray]]:
@@ -204,7 +225,7 @@ class SimulationResult:
     ({component: {port: unit or None}}) are SysSimX's."""
 
     def __init__(self, system_name: str, algorithm: str, history: HistoryView,
-                 events: Sequence[EventRecord], statistics: Statistics,
+                 events: Sequence[EventRecord], statistics: Statistics | StatisticsReading,
                  units: Mapping[str, dict[str, str | None]], t0: float, tf: float, dt: float,
                  wall_time: float, mode_switches: dict[str, tuple[Any, ...]] | None = None
                  ) -> None:
@@ -214,10 +235,17 @@ class SimulationResult:
         self.events = EventLog(events)
         # {component: (ModeSwitchEvent, ...)} of the MultiComponents that switched
         self.mode_switches = mode_switches or {}
-        self.statistics = statistics
+        self._statistics = statistics
         self.termination = statistics.termination
         self.units = units
         self.t0, self.tf, self.dt, self.wall_time = t0, tf, dt, wall_time
+
+    @property
+    def statistics(self) -> Statistics:
+        """The run's counters (since System.initialize), read when the run returned."""
+        if isinstance(self._statistics, StatisticsReading):
+            self._statistics = self._statistics.statistics()
+        return self._statistics
 
     @classmethod
     def from_system(cls, system: RecordedSystem, t0: float, tf: float, dt: float,
@@ -229,7 +257,7 @@ class SimulationResult:
         events = system.history.events
         return cls(system.name, type(system._run_algorithm(plan)).__name__,
                    HistoryView(plan, events),
-                   events, read_statistics(plan, events, system.termination),
+                   events, StatisticsReading(plan, events, system.termination),
                    recorded_units(plan), t0, tf, dt, wall_time,
                    system._mode_switches())
 

@@ -319,7 +319,8 @@ class System:
             self._plan, self._plan_structure = plan, structure
         else:
             plan.restart()
-            keep_history_samples(plan, True)  # a run may have switched it off
+            if self._history_off:  # a run switched the history off
+                keep_history_samples(plan, True)
         self._push_options(plan)
         plan.check(lib().ssx_set_allow_non_finite(plan.sys, int(bool(allow_non_finite))),
                    "allow_non_finite")
@@ -398,8 +399,8 @@ class System:
             raise ConfigurationError(f"{self.name}: call initialize(t0) before run()")
         if self._plan.waiting_parameters:
             _warn_waiting_parameters(self._plan.waiting_parameters)
-        t0, tf, dt = (_time_value(self.name, label, value)
-                      for label, value in (("t0", t0), ("tf", tf), ("dt", dt)))
+        t0, tf, dt = (_time_value(self.name, "t0", t0), _time_value(self.name, "tf", tf),
+                      _time_value(self.name, "dt", dt))
         if timeout is not None and not (isinstance(timeout, int | float) and timeout > 0):
             raise ConfigurationError(f"{self.name}: timeout must be a positive number of "
                                      f"seconds or None, got {timeout!r}")
@@ -541,19 +542,17 @@ def _power_bond_ends(plan: EnginePlan, control: StepControl) -> list[int]:
 
 def _options(algorithm: Algorithm) -> tuple[Any, ...]:
     """An algorithm's options as values (its coupling's included): equal, the engine holds
-    them already."""
+    them already. A StepControl counts as its values at this moment (it may be changed in
+    place later). Taken at every initialize and run: one comprehension each, no call per
+    option."""
     coupling = algorithm.coupling if isinstance(algorithm, HybridAlgorithm) else None
-    return (type(algorithm),
-            *(_option_value(v) for v in vars(algorithm).values()
-              if type(v) in _OPTION_TYPES or isinstance(v, StepControl)),
-            type(coupling),
-            *(_option_value(v) for v in (vars(coupling).values() if coupling is not None
-                                         else ())))
-
-
-def _option_value(value: Any) -> Any:
-    """A StepControl as its values at this moment (it may be changed in place later)."""
-    return dataclasses.astuple(value) if isinstance(value, StepControl) else value
+    own = [v if type(v) in _OPTION_TYPES else dataclasses.astuple(v)
+           for v in vars(algorithm).values()
+           if type(v) in _OPTION_TYPES or isinstance(v, StepControl)]
+    inner = [] if coupling is None else [
+        dataclasses.astuple(v) if isinstance(v, StepControl) else v
+        for v in vars(coupling).values()]
+    return (type(algorithm), *own, type(coupling), *inner)
 
 
 _OPTION_TYPES = frozenset((float, int, str, bool, type(None)))
@@ -561,6 +560,8 @@ _OPTION_TYPES = frozenset((float, int, str, bool, type(None)))
 
 def _time_value(system: str, label: str, value: object) -> float:
     """A time or step as a float: any real number (numpy scalars too), finite."""
+    if type(value) is float and math.isfinite(value):  # the common case, without the ABC
+        return value
     if isinstance(value, bool) or not isinstance(value, numbers.Real) \
             or not math.isfinite(value):
         raise ConfigurationError(f"{system}: {label} must be a finite number, got {value!r}")
