@@ -126,8 +126,13 @@ class EnginePlan:
         # components that may switch models (MultiComponent): what a result asks for switches
         self.switching = [n for n, c in components.items() if hasattr(c, "switch_events")]
         self.options: tuple[Any, ...] | None = None  # the algorithm's options the engine holds
+        # what System.initialize set last (allow_non_finite, output_interval) and run's
+        # output interval in grid steps: the engine keeps them, so equal ones are not set again
+        self.initialize_settings: tuple[int, int | None] | None = None
+        self.run_output_interval: int | None = None
         self._recorded: dict[str, RecordedComponent] | None = None
         self._do_step = lib().ssx_component_do_step
+        self.tables: list[str] = []  # the table sources (add_table), in component order
         for component in components.values():
             component._add_to_plan(self)
 
@@ -277,6 +282,7 @@ class EnginePlan:
                 self.sys, index, engine_type(component.output_specs[port].type),
                 int(port in hold), ffi.from_buffer("double[]", values)), f"{name}.{port}")
         component._binding = Binding(self, index)
+        self.tables.append(name)
 
     def start_table(self, table: Component, t0: float) -> dict[str, float]:
         """The table's outputs at t0 (the value on the left of a jump), written before any
@@ -411,9 +417,11 @@ class EnginePlan:
             for name, c in self.components.items():
                 outputs = tuple(self.outputs[name])
                 events = tuple(c.event_indicators)
+                types = tuple(c.output_specs[p].type for p in outputs)
                 self._recorded[name] = RecordedComponent(
-                    self.index[name], outputs, tuple(c.output_specs[p].type for p in outputs),
-                    events, {p: c.output_specs[p].unit for p in (*outputs, *events)})
+                    self.index[name], outputs, types, events,
+                    {p: c.output_specs[p].unit for p in (*outputs, *events)},
+                    all(kind == PortType.REAL for kind in types))
         return self._recorded
 
 
@@ -427,6 +435,7 @@ class RecordedComponent:
     types: tuple[PortType, ...]
     events: tuple[str, ...]
     units: dict[str, str | None]
+    real_only: bool  # every output Real: its columns are the matrix's, unconverted
 
 
 def recorded_columns(recorded: RecordedComponent, arrays: HistoryArrays
@@ -434,6 +443,8 @@ def recorded_columns(recorded: RecordedComponent, arrays: HistoryArrays
     """(time, {output: values}) of one component in `arrays`, without a copy (Real outputs;
     Integer and Boolean ones converted)."""
     matrix = arrays.values(recorded.index, len(recorded.outputs))
+    if recorded.real_only:
+        return arrays.time(), {name: matrix[:, j] for j, name in enumerate(recorded.outputs)}
     columns = {}
     for j, (name, kind) in enumerate(zip(recorded.outputs, recorded.types, strict=True)):
         column = matrix[:, j]

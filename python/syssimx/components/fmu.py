@@ -568,6 +568,8 @@ def _first_given(*values: float | None) -> float | None:
 
 
 def _coerce_parameter(component: str, parameter: Parameter, value: Any) -> Any:
+    if type(value) is float and parameter.type == PortType.REAL:  # the common case
+        return value
     where = f"{component}.{parameter.name}"
     if parameter.fmi_type == "Binary":
         if not isinstance(value, bytes | bytearray):

@@ -195,4 +195,5 @@ class ElementMap(MutableMapping[str, Value]):
 def made_items(mapping: MutableMapping[str, Value]) -> dict[str, Value]:
     """The values of `mapping` that exist as objects: all of a dict's, the made ones of an
     ElementMap's."""
-    return mapping.made() if isinstance(mapping, ElementMap) else dict(mapping)
+    return mapping._values if type(mapping) is ElementMap else \
+        mapping.made() if isinstance(mapping, ElementMap) else dict(mapping)

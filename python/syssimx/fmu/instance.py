@@ -55,6 +55,9 @@ class FMUInstance:
         self._free_state_function = lib().ssx_fmu_free_state
         self._get_counters = lib().ssx_fmu_get_counters
         self._counters = ffi.new("ssx_fmu_counters *")
+        # initialize's experiment, filled at each call (the engine reads it before anything
+        # that could call initialize again)
+        self._experiment = ffi.new("ssx_fmu_experiment *")
 
     @property
     def generation(self) -> int:
@@ -119,9 +122,10 @@ class FMUInstance:
         enterInitializationMode, write `starts`, call `in_initialization_mode` (it may write
         more through this proxy; what it raises is raised here), exitInitializationMode."""
         self.mode = "init"  # what the FMU is in while in_initialization_mode runs
-        experiment = ffi.new("ssx_fmu_experiment *", {
-            "start_time": start_time, "tolerance_defined": tolerance is not None,
-            "tolerance": tolerance or 0.0})
+        experiment = self._experiment
+        experiment.start_time = start_time
+        experiment.tolerance_defined = tolerance is not None
+        experiment.tolerance = tolerance or 0.0
         # the arrays live as long as this call
         values, _arrays = start_values(starts) if starts else (ffi.NULL, None)
         raised: list[BaseException] = []

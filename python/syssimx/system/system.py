@@ -239,13 +239,13 @@ class System:
         their port and feedthrough counts, their handlers and their indicators, the connections and
         the event connections. Equal before two initializes, the plan is reused. Cheap: it is
         taken at every initialize."""
-        components = tuple(
+        components = tuple([
             (name, id(c), type(c), len(c.input_specs), len(c.output_specs),
              len(c.direct_feedthrough),
              tuple(id(h) for hs in c.event_handlers.values() for h in hs)
              if c.event_handlers else (),
              tuple(c.event_indicators.values()) if c.event_indicators else ())
-            for name, c in self.components.items())
+            for name, c in self.components.items()])
         connections = tuple((*c.key(), c.factor, c.offset, c.convert_units)
                             for c in self.connections)
         return components, connections, tuple(c.key() for c in self.event_connections)
@@ -322,11 +322,16 @@ class System:
             if self._history_off:  # a run switched the history off
                 keep_history_samples(plan, True)
         self._push_options(plan)
-        plan.check(lib().ssx_set_allow_non_finite(plan.sys, int(bool(allow_non_finite))),
-                   "allow_non_finite")
-        plan.check(lib().ssx_set_output_interval(
-            plan.sys, defaults().output_interval if output_interval is None else output_interval),
-            "output_interval")
+        settings = (int(bool(allow_non_finite)), output_interval)
+        if settings != plan.initialize_settings:  # a reused plan holds them mostly
+            plan.initialize_settings = None  # unknown until both are taken
+            plan.check(lib().ssx_set_allow_non_finite(plan.sys, settings[0]),
+                       "allow_non_finite")
+            plan.check(lib().ssx_set_output_interval(
+                plan.sys,
+                defaults().output_interval if output_interval is None else output_interval),
+                "output_interval")
+            plan.initialize_settings = settings
         self.termination = None
         start_tables(self.components, self.connections, plan, t0)
         for component in self.components.values():
@@ -419,7 +424,9 @@ class System:
             raise ConfigurationError(f"{self.name}: an earlier run kept no history "
                                      "(keep_history=False); call initialize to keep it again")
         self._push_options(plan)
-        plan.check(lib().ssx_set_run_output_interval(plan.sys, grid_steps), "output_interval")
+        if grid_steps != plan.run_output_interval:
+            plan.check(lib().ssx_set_run_output_interval(plan.sys, grid_steps), "output_interval")
+            plan.run_output_interval = grid_steps
         stream = RunStream(plan, stream_to, t0, self._streamed) if stream_to is not None \
             else None
         if not keep_history:
