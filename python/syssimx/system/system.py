@@ -475,6 +475,8 @@ class System:
     def _mode_switches(self) -> dict[str, tuple[Any, ...]]:
         """{component: (ModeSwitchEvent, ...)} of the components that switched models."""
         names = self._plan.switching if self._plan is not None else self.components
+        if not names:
+            return {}
         switches = {n: self.components[n].history.mode_switch_events for n in names}
         return {n: events for n, events in switches.items() if events}
 
@@ -549,17 +551,21 @@ def _power_bond_ends(plan: EnginePlan, control: StepControl) -> list[int]:
 
 def _options(algorithm: Algorithm) -> tuple[Any, ...]:
     """An algorithm's options as values (its coupling's included): equal, the engine holds
-    them already. A StepControl counts as its values at this moment (it may be changed in
-    place later). Taken at every initialize and run: one comprehension each, no call per
-    option."""
+    them already. Taken at every initialize and run."""
     coupling = algorithm.coupling if isinstance(algorithm, HybridAlgorithm) else None
-    own = [v if type(v) in _OPTION_TYPES else dataclasses.astuple(v)
-           for v in vars(algorithm).values()
-           if type(v) in _OPTION_TYPES or isinstance(v, StepControl)]
-    inner = [] if coupling is None else [
-        dataclasses.astuple(v) if isinstance(v, StepControl) else v
-        for v in vars(coupling).values()]
-    return (type(algorithm), *own, type(coupling), *inner)
+    return (type(algorithm), *_option_values(algorithm, every=False), type(coupling),
+            *(_option_values(coupling, every=True) if coupling is not None else ()))
+
+
+def _option_values(options: Any, every: bool) -> tuple[Any, ...]:
+    """The values of an options object's fields, a StepControl as its values at this moment
+    (it may be changed in place later); without `every` only options (no nested objects).
+    Plain values only, the common case, take no Python per field."""
+    values = tuple(vars(options).values())
+    if _OPTION_TYPES.issuperset(map(type, values)):
+        return values
+    return tuple(dataclasses.astuple(v) if isinstance(v, StepControl) else v for v in values
+                 if every or type(v) in _OPTION_TYPES or isinstance(v, StepControl))
 
 
 _OPTION_TYPES = frozenset((float, int, str, bool, type(None)))
