@@ -133,6 +133,7 @@ class EnginePlan:
         self._recorded: dict[str, RecordedComponent] | None = None
         self._do_step = lib().ssx_component_do_step
         self.tables: list[str] = []  # the table sources (add_table), in component order
+        self._input_arrays: dict[str, Any] = {}  # see input_array
         for component in components.values():
             component._add_to_plan(self)
 
@@ -353,8 +354,13 @@ class EnginePlan:
         return (lib().ssx_outputs if direction == "out" else lib().ssx_inputs)(self.sys, index)
 
     def input_array(self, component: Component) -> Any:
-        """The engine's input values of a component (a C array, in the order of `inputs`)."""
-        return lib().ssx_inputs(self.sys, self.index[component.name])
+        """The engine's input values of a component (a C array, in the order of `inputs`;
+        it stays where it is once the component's ports are added: found once)."""
+        array = self._input_arrays.get(component.name)
+        if array is None:
+            array = self._input_arrays[component.name] = lib().ssx_inputs(
+                self.sys, self.index[component.name])
+        return array
 
     def port_value(self, component: Component, direction: str, port: str) -> float:
         names = self.outputs if direction == "out" else self.inputs
