@@ -27,10 +27,6 @@ class _BufferOwner:
                                     "typestr": typestr, "version": 3}
 
 
-def _address(pointer: Any) -> int:
-    return int(ffi.cast("uintptr_t", pointer))
-
-
 class HistoryArrays:
     """The samples recorded so far by one engine system, as read-only numpy arrays."""
 
@@ -48,7 +44,8 @@ class HistoryArrays:
     def _view(self, pointer: Any, shape: tuple[int, ...], typestr: str) -> np.ndarray:
         if self._block is None or 0 in shape:
             return np.empty(shape, dtype=np.dtype(typestr))
-        return np.asarray(_BufferOwner(self._block, _address(pointer), shape, typestr))
+        address = int(ffi.cast("uintptr_t", pointer))
+        return np.asarray(_BufferOwner(self._block, address, shape, typestr))
 
     def time(self) -> np.ndarray:
         return self._view(self._time, (self.length,), "<f8")

@@ -552,6 +552,9 @@ def _power_bond_ends(plan: EnginePlan, control: StepControl) -> list[int]:
 def _options(algorithm: Algorithm) -> tuple[Any, ...]:
     """An algorithm's options as values (its coupling's included): equal, the engine holds
     them already. Taken at every initialize and run."""
+    own = tuple(vars(algorithm).values())
+    if _OPTION_TYPES.issuperset(map(type, own)):  # a coupling algorithm of plain values
+        return (type(algorithm), *own, type(None))
     coupling = algorithm.coupling if isinstance(algorithm, HybridAlgorithm) else None
     return (type(algorithm), *_option_values(algorithm, every=False), type(coupling),
             *(_option_values(coupling, every=True) if coupling is not None else ()))
