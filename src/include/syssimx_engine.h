@@ -635,6 +635,21 @@ int ssx_event_get(const ssx_system *sys, size_t index, ssx_event_record *out);
 size_t ssx_event_trial_count(const ssx_system *sys);
 int ssx_event_trial(const ssx_system *sys, size_t index, ssx_localization_trial *out);
 void ssx_get_statistics(const ssx_system *sys, ssx_statistics *out);
+/* What a caller reads after each run, in one call: each field is what its accessor gives now.
+ * For a caller that pays per call (Python through cffi) a short run's reading is then one
+ * crossing, not eight. `history` is a reference as ssx_history_retain gives it (NULL when
+ * nothing is recorded): the caller releases it with ssx_history_release. */
+typedef struct {
+    double time;                        /* ssx_time */
+    size_t n_events;                    /* ssx_event_count */
+    const ssx_termination *termination; /* ssx_get_termination */
+    ssx_statistics statistics;          /* ssx_get_statistics */
+    size_t history_length;              /* ssx_history_length */
+    ssx_history_block *history;         /* ssx_history_retain, when history_length > 0 */
+    const double *history_time;         /* ssx_history_time */
+    const int *history_micro;           /* ssx_history_micro */
+} ssx_run_outcome;
+void ssx_get_run_outcome(ssx_system *sys, ssx_run_outcome *out);
 
 /* ------------------------------------------------------------------------------------------
  * Isolation: an FMU whose binary runs in a process of its own.

@@ -41,6 +41,17 @@ class HistoryArrays:
         self._time = engine.ssx_history_time(sys)
         self._micro = engine.ssx_history_micro(sys)
 
+    @classmethod
+    def of_retained(cls, block: Any, length: int, time: Any, micro: Any,
+                    release: Any) -> HistoryArrays:
+        """The arrays of a history reference the caller got (ssx_get_run_outcome) with the
+        history's length, times and micro steps: released with the last of them."""
+        arrays = cls.__new__(cls)
+        arrays.length = length
+        arrays._block = ffi.gc(block, release) if block != ffi.NULL else None
+        arrays._time, arrays._micro = time, micro
+        return arrays
+
     def _view(self, pointer: Any, shape: tuple[int, ...], typestr: str) -> np.ndarray:
         if self._block is None or 0 in shape:
             return np.empty(shape, dtype=np.dtype(typestr))

@@ -99,7 +99,7 @@ class EnginePlan:
         # What destructors call is looked up now: a collection may run them while cffi holds
         # the lock that a first lookup of a library function would wait for.
         self.sys = ffi.gc(raw, functools.partial(_free_system, lib().ssx_system_free, address))
-        self._release_history = lib().ssx_history_release
+        self.release_history = lib().ssx_history_release
         self._callbacks: list[Any] = []  # kept alive as long as the engine may call them
         self.name = name
         self.deadline: float | None = None  # time.monotonic() at which the run times out
@@ -407,7 +407,7 @@ class EnginePlan:
     # ------------------------------------------------------------------ history
     def history(self) -> HistoryArrays:
         """The samples recorded so far, as arrays that stay valid and unchanged for their life."""
-        return HistoryArrays(self.sys, self._release_history)
+        return HistoryArrays(self.sys, self.release_history)
 
     def component_history(self, component: Component, arrays: HistoryArrays | None = None
                           ) -> tuple[np.ndarray, dict[str, np.ndarray]]:

@@ -10,7 +10,9 @@ from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
+from ..bridge.history_arrays import HistoryArrays
 from ..bridge.plan import recorded_columns
+from ..bridge.run_outcome import RunOutcome
 from ..core.suggest import did_you_mean
 from ..engine import enum_name, ffi, lib
 from ..errors import ConfigurationError, UnknownNameError
@@ -94,8 +96,9 @@ def read_trials(plan: EnginePlan, first: int, count: int) -> tuple[LocalizationT
     return tuple(trials)
 
 
-def read_events(plan: EnginePlan) -> list[EventRecord]:
-    count = int(lib().ssx_event_count(plan.sys))
+def read_events(plan: EnginePlan, count: int | None = None) -> list[EventRecord]:
+    """The events since initialize (`count` of them, when the caller knows)."""
+    count = int(lib().ssx_event_count(plan.sys)) if count is None else count
     if count == 0:
         return []
     record = ffi.new("ssx_event_record *")
@@ -118,22 +121,25 @@ def read_events(plan: EnginePlan) -> list[EventRecord]:
 
 def read_statistics(plan: EnginePlan, events: Sequence[EventRecord],
                     termination: Termination | None = None) -> Statistics:
-    return StatisticsReading(plan, events, termination).statistics()
+    counters = ffi.new("ssx_statistics *")
+    lib().ssx_get_statistics(plan.sys, counters)
+    return StatisticsReading(counters, events, termination).statistics()
 
 
 class StatisticsReading:
-    """The engine's counters copied at one instant (one engine call), made a Statistics only
-    when asked for: a result that nobody asks for its statistics costs no Python for them."""
+    """The engine's counters as they were at one instant (an ssx_statistics of the caller's,
+    which nothing changes later), made a Statistics only when asked for: a result that
+    nobody asks for its statistics costs no Python for them."""
 
-    def __init__(self, plan: EnginePlan, events: Sequence[EventRecord],
-                 termination: Termination | None) -> None:
-        self._raw = ffi.new("ssx_statistics *")
-        lib().ssx_get_statistics(plan.sys, self._raw)
+    def __init__(self, counters: Any, events: Sequence[EventRecord],
+                 termination: Termination | None, owner: Any = None) -> None:
+        self._counters = counters
+        self._owner = owner  # holds the memory of `counters` when they are a struct inside it
         self._events = events
         self.termination = termination
 
     def statistics(self) -> Statistics:
-        raw, events, termination = self._raw, self._events, self.termination
+        raw, events, termination = self._counters, self._events, self.termination
         return Statistics(int(raw.macro_steps), int(raw.do_step_calls), int(raw.state_saves),
                           int(raw.state_restores), int(raw.events),
                           int(raw.localization_iterations), int(raw.loop_iterations),
@@ -154,10 +160,12 @@ class HistoryView:
     for, so a run's result costs nothing per component; the view holds neither the plan nor
     the components (it outlives them)."""
 
-    def __init__(self, plan: EnginePlan, events: Sequence[EventRecord]) -> None:
+    def __init__(self, plan: EnginePlan, events: Sequence[EventRecord],
+                 arrays: HistoryArrays | None = None) -> None:
+        """`arrays`: the samples to view (a run's outcome), else those recorded now."""
         self._recorded = plan.recorded()
         self._events = events
-        self._arrays = plan.history()
+        self._arrays = arrays if arrays is not None else plan.history()
         self._micro: np.ndarray | None = None  # made when first asked for
         self._data: dict[str, tuple[np.ndarray, dict[str, np.ndarray]]] = {}
 
@@ -249,15 +257,20 @@ class SimulationResult:
 
     @classmethod
     def from_system(cls, system: RecordedSystem, t0: float, tf: float, dt: float,
-                    wall_time: float = math.nan) -> SimulationResult:
-        """The result of what `system` recorded since its initialize (also after a failed run)."""
+                    wall_time: float = math.nan, outcome: RunOutcome | None = None
+                    ) -> SimulationResult:
+        """The result of what `system` recorded since its initialize (also after a failed run);
+        `outcome`: the engine's state as the run that just ended read it."""
         plan = system._plan
         if plan is None:
             raise ConfigurationError(f"{system.name}: nothing recorded yet; call initialize")
+        if outcome is None:
+            outcome = RunOutcome(plan)
         events = system.history.events
         return cls(system.name, type(system._run_algorithm(plan)).__name__,
-                   HistoryView(plan, events),
-                   events, StatisticsReading(plan, events, system.termination),
+                   HistoryView(plan, events, outcome.history),
+                   events, StatisticsReading(outcome.statistics, events, system.termination,
+                                             outcome.owner),
                    recorded_units(plan), t0, tf, dt, wall_time,
                    system._mode_switches())
 

@@ -16,6 +16,7 @@ from ..bridge.failure import raise_failure
 from ..bridge.observers import add_observer, remove_observer
 from ..bridge.observers import keep_history as keep_history_samples
 from ..bridge.plan import EnginePlan
+from ..bridge.run_outcome import RunOutcome
 from ..components.base import CoSimComponent
 from ..core.events import OWN_EVENTS
 from ..core.port import PortType
@@ -444,9 +445,10 @@ class System:
             if stream is not None:
                 stream.finish()
         wall = time.perf_counter() - start
-        events = read_events(plan)
+        outcome = RunOutcome(plan)
+        events = read_events(plan, outcome.event_count)
         self.history = SystemHistory(events, self)
-        self.t = float(lib().ssx_time(plan.sys))
+        self.t = outcome.time
         if status < 0:
             if reports is not None:
                 reports.close()
@@ -455,13 +457,13 @@ class System:
             except KeyboardInterrupt as stop:  # Ctrl-C: the steps completed are the result
                 for component in self.components.values():
                     component.t = self.t
-                partial = SimulationResult.from_system(self, t0, self.t, dt, wall)
+                partial = SimulationResult.from_system(self, t0, self.t, dt, wall, outcome)
                 raise RunInterrupted(f"system {self.name!r}: the run was interrupted at "
                                      f"t={self.t:.12g} (partial_result holds the samples up "
                                      "to there)", partial) from stop
         if reports is not None:
             reports.finish(self.t)
-        self.termination = read_termination(plan)
+        self.termination = read_termination(plan, outcome.termination)
         if self.termination is not None:
             plan.failure = None  # what a hook raised because the component stopped
             logger.info("%s: %s; the run ends at t=%s", self.name, self.termination, self.t)
@@ -470,7 +472,7 @@ class System:
         if isinstance(algorithm, HybridAlgorithm):
             log_events([e for e in events if e.t >= t0], algorithm.method)
         logger.info("Simulation completed in %.2f seconds", wall)
-        return SimulationResult.from_system(self, t0, tf, dt, wall)
+        return SimulationResult.from_system(self, t0, tf, dt, wall, outcome)
 
     def _mode_switches(self) -> dict[str, tuple[Any, ...]]:
         """{component: (ModeSwitchEvent, ...)} of the components that switched models."""
