@@ -368,7 +368,7 @@ class FMUComponent(CoSimComponent):
             self.instance.initialize(t, self._experiment_tolerance,
                                      in_initialization_mode=self._apply_starts)
             return
-        starts = self._parameter_starts(step_mode=False)
+        starts = self.user_parameters()  # every one: the FMU is in initialization mode
         starts.update(self._input_starts_to_write())
         texts = {n: v for n, v in starts.items()
                  if n in self.info.parameters

@@ -58,6 +58,8 @@ class FMUInstance:
         # initialize's experiment, filled at each call (the engine reads it before anything
         # that could call initialize again)
         self._experiment = ffi.new("ssx_fmu_experiment *")
+        # start values by the variables they write: see _start_values
+        self._kept_starts: dict[tuple[Any, ...], tuple[Any, list[Any]]] = {}
 
     @property
     def generation(self) -> int:
@@ -126,8 +128,7 @@ class FMUInstance:
         experiment.start_time = start_time
         experiment.tolerance_defined = tolerance is not None
         experiment.tolerance = tolerance or 0.0
-        # the arrays live as long as this call
-        values, _arrays = start_values(starts) if starts else (ffi.NULL, None)
+        values = self._start_values(starts) if starts else ffi.NULL
         raised: list[BaseException] = []
 
         def during(_user: Any) -> int:
@@ -140,7 +141,8 @@ class FMUInstance:
 
         callback = ffi.NULL if in_initialization_mode is None \
             else ffi.callback("int(void *)", during)
-        status = lib().ssx_fmu_initialize(self.fmu, experiment, values, callback, ffi.NULL)
+        fmu = self._fmu if self._fmu is not None else self.fmu  # (FMUError once released)
+        status = lib().ssx_fmu_initialize(fmu, experiment, values, callback, ffi.NULL)
         if status in (0, 1):
             self.mode = "step"
             return
@@ -148,6 +150,23 @@ class FMUInstance:
         if raised:
             raise raised[0]
         self._check(status, string(lib().ssx_fmu_last_call(self.fmu)))
+
+    def _start_values(self, starts: Values) -> Any:
+        """The ssx_fmu_values of `starts` in C arrays kept for the next call that writes the
+        same variables (a loop of members writes the same parameters each time): then only
+        the values are written into them. The engine reads them during the call only."""
+        layout = tuple((kind, *refs) for kind, (refs, _) in starts.items())
+        kept = self._kept_starts.get(layout)
+        if kept is None:
+            if len(self._kept_starts) == _KEPT_LAYOUTS:
+                self._kept_starts.clear()
+            kept = self._kept_starts[layout] = start_values(starts)
+            return kept[0]
+        values, arrays = kept
+        for (kind, (_, vals)), array in zip(starts.items(), arrays[2::2], strict=True):
+            convert = _VALUES_LAYOUT[kind][4]
+            array[0:len(vals)] = [convert(v) for v in vals]
+        return values
 
     def instantiate(self, visible: bool = False, callbacks: Any = None,
                     loggingOn: bool = False) -> None:  # noqa: N803 (FMPy's names)
@@ -322,6 +341,10 @@ def start_values(starts: Values) -> tuple[Any, list[Any]]:
         setattr(values, values_field, array)
         setattr(values, count_field, len(items))
     return values, keep
+
+
+# layouts of start values an instance keeps (a user's loop may write ever other subsets)
+_KEPT_LAYOUTS = 8
 
 
 def _boolean(value: Any) -> int:

@@ -270,7 +270,10 @@ class System:
         """The algorithm's options into the engine, checked first; nothing to do when the
         plan holds them already (a reused plan, a second run)."""
         algorithm = self._run_algorithm(plan)
-        options = _options(algorithm)
+        own = tuple(vars(algorithm).values())
+        # a coupling algorithm of plain values is its options as they are (see _options)
+        options = (type(algorithm), *own, type(None)) \
+            if _OPTION_TYPES.issuperset(map(type, own)) else _options(algorithm)
         if options == plan.options:
             return
         algorithm.validate()
@@ -554,9 +557,6 @@ def _power_bond_ends(plan: EnginePlan, control: StepControl) -> list[int]:
 def _options(algorithm: Algorithm) -> tuple[Any, ...]:
     """An algorithm's options as values (its coupling's included): equal, the engine holds
     them already. Taken at every initialize and run."""
-    own = tuple(vars(algorithm).values())
-    if _OPTION_TYPES.issuperset(map(type, own)):  # a coupling algorithm of plain values
-        return (type(algorithm), *own, type(None))
     coupling = algorithm.coupling if isinstance(algorithm, HybridAlgorithm) else None
     return (type(algorithm), *_option_values(algorithm, every=False), type(coupling),
             *(_option_values(coupling, every=True) if coupling is not None else ()))
