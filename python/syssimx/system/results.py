@@ -119,13 +119,6 @@ def read_events(plan: EnginePlan, count: int | None = None) -> list[EventRecord]
     return events
 
 
-def read_statistics(plan: EnginePlan, events: Sequence[EventRecord],
-                    termination: Termination | None = None) -> Statistics:
-    counters = ffi.new("ssx_statistics *")
-    lib().ssx_get_statistics(plan.sys, counters)
-    return StatisticsReading(counters, events, termination).statistics()
-
-
 class StatisticsReading:
     """The engine's counters as they were at one instant (an ssx_statistics of the caller's,
     which nothing changes later), made a Statistics only when asked for: a result that
