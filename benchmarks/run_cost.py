@@ -103,6 +103,7 @@ def fmpy_members(fmu: str) -> Callable[[np.ndarray], list[np.ndarray]]:
 
 
 def timed(run: Callable[[np.ndarray], list[np.ndarray]]) -> Round:
+    """`run` as a Round: its CPU time (the members' angles are read after the clock stops)."""
     def round_of(thetas: np.ndarray) -> tuple[float, list[float]]:
         start = time.process_time()
         series = run(thetas)
