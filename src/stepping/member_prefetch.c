@@ -5,7 +5,6 @@
 
 #include "component.h"
 #include "error.h"
-#include "fmu_component.h"
 
 enum { LINE = 64 };
 
@@ -21,7 +20,7 @@ int member_prefetch_prepare(ssx_system *sys)
         const ssx_component *c = sys->components[sys->order[k]];
         const char *block = (const char *)c;
         const char *data = c->data != NULL ? (const char *)c->data : block;
-        const ssx_fmu *fmu = fmu_component_binding(c);
+        const ssx_fmu *fmu = c->ops->fmu != NULL ? c->ops->fmu(c) : NULL;
         const char *binding = fmu != NULL ? (const char *)fmu : block;
         /* the component's fields first read, its kind's data (next to it), its links and the
          * first two lines of its FMU binding (fmu_binding.c keeps a step's fields there) */
