@@ -15,7 +15,6 @@ typedef struct ssx_master_algorithm ssx_master_algorithm;
 typedef struct ssx_indicator ssx_indicator;
 typedef struct indicator_state indicator_state;
 typedef struct ssx_recording ssx_recording;
-struct member_lines;
 
 typedef struct {
     int src_component;
@@ -88,7 +87,6 @@ struct ssx_system {
     int *order;          /* schedule: component indices, group after group */
     double *port_block;  /* every component's port values, in schedule order (port_block.h) */
     size_t port_block_size;
-    struct member_lines *member_lines; /* member_prefetch.h, at ssx_initialize */
     ssx_group *groups;
     int n_groups;
     int has_schedule;

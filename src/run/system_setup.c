@@ -15,7 +15,6 @@
 #include "error.h"
 #include "indicator.h"
 #include "input_order.h"
-#include "member_prefetch.h"
 #include "parallel_step.h"
 #include "port_block.h"
 #include "record_hooks.h"
@@ -117,7 +116,6 @@ void ssx_system_free(ssx_system *sys)
     master_algorithm_release(sys);
     free(sys->subscriptions);
     port_block_free(sys); /* after the components that point into it */
-    member_prefetch_free(sys);
     free(sys->order);
     free(sys->groups);
     recording_free(sys->recording);

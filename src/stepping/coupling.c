@@ -9,7 +9,6 @@
 #include "error.h"
 #include "input_links.h"
 #include "input_order.h"
-#include "member_prefetch.h"
 #include "parallel_step.h"
 #include "port_block.h"
 
@@ -40,8 +39,7 @@ static int prepare_links(ssx_system *sys);
 int coupling_prepare(ssx_system *sys)
 {
     if (prepare_schedule(sys) != 0 || prepare_members(sys) != 0 || port_block_lay_out(sys) != 0 ||
-        prepare_links(sys) != 0 || member_prefetch_prepare(sys) != 0 ||
-        parallel_prepare(sys) != 0) {
+        prepare_links(sys) != 0 || parallel_prepare(sys) != 0) {
         return -1;
     }
     sys->coupled_step = COUPLED_STEPS[sys->coupling][sys->parallel != NULL];
@@ -155,7 +153,6 @@ static int step_gauss_seidel(ssx_system *sys, double t, double h)
         const ssx_group *g = &sys->groups[gi];
         for (int m = 0; m < g->size; ++m) {
             ssx_component *c = member(sys, g, m);
-            member_prefetch(sys, g->first + m + MEMBER_PREFETCH_AHEAD);
             if (!g->is_loop) {
                 coupling_propagate_inputs(sys, c);
             }
@@ -199,7 +196,6 @@ static int step_jacobi(ssx_system *sys, double t, double h)
     for (int gi = 0; gi < sys->n_groups; ++gi) {
         const ssx_group *g = &sys->groups[gi];
         for (int m = 0; m < g->size && !g->is_loop; ++m) {
-            member_prefetch(sys, g->first + m + MEMBER_PREFETCH_AHEAD);
             coupling_propagate_inputs(sys, member(sys, g, m));
         }
     }

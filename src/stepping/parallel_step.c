@@ -10,7 +10,6 @@
 #include "clock.h"
 #include "component_calls.h"
 #include "error.h"
-#include "member_prefetch.h"
 #include "worker_pool.h"
 
 /* Handing work to a thread costs a wake-up and moving its FMUs' data between cores: a few
@@ -350,9 +349,7 @@ int parallel_step(ssx_system *sys, const int *members, int n, double t, double h
     if (sharing < 2) {
         int timed = p != NULL && p->n_tasks >= 2; /* a batch that might be shared next time */
         double start = timed ? monotonic_seconds() : 0.0;
-        int position = (int)(members - sys->order); /* in the schedule */
         for (int m = 0; m < n; ++m) {
-            member_prefetch(sys, position + m + MEMBER_PREFETCH_AHEAD);
             if (step_member(sys, sys->components[members[m]], t, h) != 0) {
                 return -1;
             }

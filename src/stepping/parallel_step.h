@@ -32,10 +32,9 @@ int parallel_batches(const parallel_plan *plan, const parallel_batch **batches);
 /* How one member is written and stepped from t to t + h on the calling thread (the
  * coupling's). */
 typedef int (*member_step)(ssx_system *sys, ssx_component *c, double t, double h);
-/* Writes and steps components[members[0..n)] (a run of the schedule, sys->order) from t to
- * t + h, the first failure in member order reported as if they had stepped one by one.
- * Without a plan: one by one, by step_member, each fetching ahead the memory of those after
- * it (member_prefetch.h). */
+/* Writes and steps components[members[0..n)] from t to t + h, the first failure in member
+ * order reported as if they had stepped one by one. Without a plan: one by one, by
+ * step_member. */
 int parallel_step(ssx_system *sys, const int *members, int n, double t, double h,
                   member_step step_member);
 
