@@ -4,6 +4,7 @@ same System run in this process, each FMU file loaded once per worker, the embed
 
 from __future__ import annotations
 
+import gc
 import os
 import sys
 from collections.abc import Iterator
@@ -206,6 +207,17 @@ def test_the_embedded_cluster_forks_its_workers() -> None:
             assert list(running.run(set_before_the_cluster).values()) == [[os.getpid()]]
     finally:
         SET_BEFORE_THE_CLUSTER.clear()
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="workers fork on Linux only")
+def test_forked_workers_keep_this_process_s_objects_frozen_and_this_process_does_not() -> None:
+    """The objects inherited from the fork stay out of a worker's collections (copy-on-write);
+    here they are collected as before, once the cluster has started."""
+    assert gc.get_freeze_count() == 0
+    with ensemble_client(workers=1) as running:
+        assert gc.get_freeze_count() == 0
+        [frozen] = running.run(gc.get_freeze_count).values()
+        assert frozen > 1000
 
 
 def test_a_probed_ensemble_s_members_and_dataset_are_those_run_in_process(client) -> None:

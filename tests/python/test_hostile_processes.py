@@ -130,6 +130,29 @@ def test_a_sweep_worker_ends_what_a_member_forked(tmp_path: Path,
     assert not alive(child)
 
 
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="read from Linux's /proc")
+def test_a_worker_finds_the_children_any_of_its_threads_forked_but_not_group_leaders():
+    """What a sweep worker ends after a task (leftovers.py): a child forked from a thread
+    (a member runs on the worker's executor thread), not one leading its own group (an
+    isolated FMU's host); the kernel's per-thread lists and the scan of /proc agree."""
+    from syssimx.ensemble.leftovers import _listed_children, children
+
+    forked: list[subprocess.Popen[bytes]] = []
+    thread = threading.Thread(target=lambda: forked.append(subprocess.Popen(["sleep", "60"])))
+    thread.start()
+    thread.join()
+    leader = subprocess.Popen(["sleep", "60"], start_new_session=True)
+    try:
+        assert forked[0].pid in children() and leader.pid not in children()
+        listed = _listed_children()
+        if listed is not None:  # a kernel that keeps the lists
+            assert {forked[0].pid, leader.pid} <= listed
+    finally:
+        for process in (*forked, leader):
+            process.kill()
+            process.wait()
+
+
 def listening_addresses(pids: set[int]) -> set[str]:
     import psutil
 

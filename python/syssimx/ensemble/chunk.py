@@ -39,8 +39,8 @@ class Experiment:
 class MemberChunk:
     """Members first, first + 1, ... with `parameters`. The members that announce their start
     on `topic`: every one when `announce_each` (the watchdog times each member), else only the
-    first (a worker death is pinned on a chunk of one member only, and each announcement costs
-    the scheduler and the client a message)."""
+    member of a chunk of one (a worker death is pinned on a chunk of one member only, and each
+    announcement costs the worker, the scheduler and the client a message)."""
 
     first: int
     parameters: Sequence[ParameterSet]
@@ -56,9 +56,14 @@ class MemberChunk:
         return range(self.first, self.first + len(self.parameters))
 
     def tasks(self) -> list[MemberTask]:
-        return [self.experiment.task(self.first + offset, values,
-                                     self.topic if self.announce_each or offset == 0 else None)
+        topic = self.topic if self.announced else None
+        return [self.experiment.task(self.first + offset, values, topic)
                 for offset, values in enumerate(self.parameters)]
+
+    @property
+    def announced(self) -> bool:
+        """Whether its members announce their start."""
+        return self.topic is not None and (self.announce_each or len(self.parameters) == 1)
 
 
 def run_chunk(build: SystemSource, chunk: MemberChunk) -> MemberBlock:

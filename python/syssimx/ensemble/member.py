@@ -14,10 +14,12 @@ import socket
 import time
 import warnings
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
 from ..errors import ConfigurationError, SysSimXWarning
+from ..system.results import SimulationResult
 from ..system.system import System
 from .loaded_fmus import loaded_fmus
 from .members import ParameterSet, split_name
@@ -79,6 +81,7 @@ def run_member(build: SystemSource, task: MemberTask) -> MemberResult:
     start = time.perf_counter()
     worker = f"{socket.gethostname()}:{os.getpid()}"
     system: System | None = None
+    run: SimulationResult | None = None
     initialized = False  # a kept System holds the previous member's samples until then
     result = MemberResult(task.index, task.parameters, "ok", worker=worker)
     try:
@@ -95,7 +98,7 @@ def run_member(build: SystemSource, task: MemberTask) -> MemberResult:
         result.status, result.error_type = "failed", type(error).__name__
         result.error = f"{type(error).__name__}: {error}"
     if system is not None and initialized:
-        _record(result, system, task.outputs)
+        _record(result, system, task.outputs, run)
         if result.ok:  # a failed member's System is dropped (an FMU may be broken)
             reused_system.give_back(task.ensemble, system, before_run)
     result.wall_time = time.perf_counter() - start
@@ -130,21 +133,30 @@ def _set_parameters(system: System, parameters: ParameterSet) -> None:
                 component.set_parameters(**{variable: value})
 
 
-def _record(result: MemberResult, system: System, outputs: tuple[str, ...] | None) -> None:
-    """Copy the member's samples and events out of its engine (the System dies here)."""
-    try:
-        history = system.get_history()
-    except ConfigurationError:  # it failed before initialize recorded anything
-        return
+def _record(result: MemberResult, system: System, outputs: tuple[str, ...] | None,
+            run: SimulationResult | None) -> None:
+    """Copy the member's samples and events out of its engine (the System dies here): from
+    its run's result when the run returned one (the same views over the engine's samples that
+    get_history would make again: 0.04 ms of a 1.2 ms seed member), else from get_history."""
+    samples: SimulationResult | dict[str, Any]
+    if run is not None:
+        samples, instants = run, system.history.get_all_event_histories()
+    else:
+        try:
+            samples = system.get_history()
+        except ConfigurationError:  # it failed before initialize recorded anything
+            return
+        instants = samples["Events"]
     columns: dict[str, np.ndarray] = {}
     for component in system.components:
-        t, values = history[component]
+        t, values = samples[component]
         if result.time.size == 0:
             result.time = np.array(t, dtype=np.float64)
         for port, series in values.items():
             columns[f"{component}.{port}"] = np.array(series)
     if result.time.size:
-        result.micro = np.array(system._plan.history().micro(), dtype=np.int64)
+        micro = run.micro if run is not None else system._plan.history().micro()
+        result.micro = np.array(micro, dtype=np.int64)
     if outputs is not None:
         unknown = [name for name in outputs if name not in columns]
         if unknown and result.ok:
@@ -154,5 +166,5 @@ def _record(result: MemberResult, system: System, outputs: tuple[str, ...] | Non
         columns = {name: columns[name] for name in outputs if name in columns}
     result.outputs = columns
     result.events = tuple(sorted((instant.t, instant.micro, f"{component}.{event}")
-                                 for (component, event), instants in history["Events"].items()
-                                 for instant in instants))
+                                 for (component, event), times in instants.items()
+                                 for instant in times))

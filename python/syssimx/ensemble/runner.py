@@ -41,16 +41,21 @@ from .system_source import SystemSource
 KILL_GRACE = 1.0  # seconds past member_timeout: the run's own timeout reports first if it can
 POLL = 0.1  # seconds between checks for stuck members
 DEATH_LOG_WAIT = 10.0  # seconds at most to wait for a nanny to log how its worker died
-# members per task at most: a task costs the client and its worker about 4 ms of CPU each
-# (scheduling, messages, the result's transfer); a crash reruns its chunk's members alone
-MAX_CHUNK = 256
-CHUNKS_PER_WORKER = 4  # tasks per worker at least, for the balance
+# members per task at most: a task costs the client's process 2.5-4 ms of CPU on the 2-core
+# VM whatever its size (scheduling, messages, fetching the result from the worker); a crash
+# reruns its chunk's members alone, one task each
+MAX_CHUNK = 1024
+# tasks per worker at least, for the balance: a worker slowed by others' load ends about a
+# task after the rest. Each task
+# costs the client a seed member's CPU 3-4 times over: 4 tasks per worker were 0.02 ms of
+# its 0.05 ms per member for 2000 seed members on 2 workers.
+CHUNKS_PER_WORKER = 3
 PROBE = 4  # members per probe chunk
 PROBED_FROM = 16  # members per worker from which an ensemble starts with a probe
-# a task's target CPU time: its cost to the client (6-9 ms of CPU on the 2-core VM) stays a
-# few per cent of it, while progress, Ctrl-C and a crash's reruns stay at a fraction of a second
-# (on an unloaded machine)
-TASK_SECONDS = 0.2
+# a task's target CPU time: its cost to the client stays under 1 % of it, while progress,
+# Ctrl-C (the finished tasks are kept) and a crash's reruns stay at half a second (on an
+# unloaded machine)
+TASK_SECONDS = 0.5
 
 
 class _Starts:
@@ -102,15 +107,16 @@ class _Ensemble:
     """The members' tasks on one client, their starts, and the results so far."""
 
     def __init__(self, client: Any, build: SystemSource, experiment: Experiment,
-                 sets: Sequence[ParameterSet], bar: ProgressBar) -> None:
+                 sets: Sequence[ParameterSet], bar: ProgressBar, workers: int) -> None:
         self.client, self.build, self.experiment, self.sets, self.bar = client, build, \
             experiment, sets, bar
         self.member_timeout = experiment.timeout
-        self.workers = max(1, len(client.nthreads()))
+        self.workers = max(1, workers)
         # one function object for every task: Dask serializes it once, not per task
         self.task = functools.partial(run_chunk, build)
         self.topic = f"syssimx-ensemble-{uuid.uuid4().hex}"
         self.starts = _Starts()
+        self._subscribed = False  # to the topic: from the first chunk whose members announce
         self.results = MemberList(sets)
         self._attempt = 0
 
@@ -155,6 +161,10 @@ class _Ensemble:
 
     def _submit(self, chunks: Sequence[MemberChunk], futures: list[Any],
                 by_key: dict[Any, MemberChunk], pending: Any) -> None:
+        if not self._subscribed and any(chunk.announced for chunk in chunks):
+            # sent before the tasks on the same stream: the scheduler has it before they run
+            self.client.subscribe_topic(self.topic, self.starts.record)
+            self._subscribed = True
         submitted = self.client.map(
             self.task, chunks,
             key=[f"syssimx-members-{c.first}-{self.topic[-8:]}-{self._attempt}"
@@ -163,6 +173,10 @@ class _Ensemble:
                       for future, chunk in zip(submitted, chunks, strict=True))
         futures += submitted
         pending.update(submitted)
+
+    def close(self) -> None:
+        if self._subscribed:
+            self.client.unsubscribe_topic(self.topic)
 
     def after_probe(self, probed: int, block: MemberBlock | None) -> list[MemberChunk]:
         """The chunks of the members after the first `probed`, sized by `block`'s members."""
@@ -204,15 +218,13 @@ class _Ensemble:
 def run_members(client: Any, build: SystemSource, experiment: Experiment,
                 sets: Sequence[ParameterSet], progress: bool) -> MemberList:
     """Every member's result (member k runs `sets[k]`), in member order."""
-    from .worker_signals import ExtractionsRemovedOnSignals
+    from .worker_signals import register
 
-    check_processes(client)
-    client.register_plugin(ExtractionsRemovedOnSignals())
+    workers = check_processes(client)
+    register(client)
     bar = ProgressBar(len(sets), progress)
-    ensemble = _Ensemble(client, build, experiment, sets, bar)
+    ensemble = _Ensemble(client, build, experiment, sets, bar, workers)
     announce_each = experiment.timeout is not None
-    client.subscribe_topic(ensemble.topic, ensemble.starts.record)
-    workers = ensemble.workers
     try:
         if len(sets) >= PROBED_FROM * workers:
             probed = PROBE * workers
@@ -235,7 +247,7 @@ def run_members(client: Any, build: SystemSource, experiment: Experiment,
         raise MembersInterrupted(ensemble.results) from stop
     finally:
         bar.close()
-        client.unsubscribe_topic(ensemble.topic)
+        ensemble.close()
     return ensemble.results
 
 
