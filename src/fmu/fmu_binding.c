@@ -684,7 +684,8 @@ int ssx_fmu_get_state(ssx_fmu *fmu, void **state)
     }
     if (*state != NULL && !knows_state(fmu, *state)) {
         snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
-                 "%s: the state to reuse does not belong to the live instance", ssx_fmu_last_call(fmu));
+                 "%s: the state to reuse does not belong to the live instance",
+                 ssx_fmu_last_call(fmu));
         return -1;
     }
     void *reused = *state;
@@ -751,7 +752,8 @@ int ssx_fmu_deserialize_state(ssx_fmu *fmu, const char *bytes, size_t size, void
     }
     if (*state != NULL && !knows_state(fmu, *state)) {
         snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
-                 "%s: the state to reuse does not belong to the live instance", ssx_fmu_last_call(fmu));
+                 "%s: the state to reuse does not belong to the live instance",
+                 ssx_fmu_last_call(fmu));
         return -1;
     }
     void *reused = *state;
