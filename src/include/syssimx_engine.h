@@ -398,8 +398,11 @@ int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned 
 /* Before initializing a system again (its plan reused): every input's start value, the
  * components' inputs in order, n in all; each input holds its start again, as when added. */
 int ssx_reset_inputs(ssx_system *sys, const double *starts, size_t n);
-double *ssx_outputs(ssx_system *sys, int component); /* n_outputs current values */
-double *ssx_inputs(ssx_system *sys, int component);  /* n_inputs current values */
+/* A component's n_outputs (n_inputs) current values. ssx_initialize moves them, with every
+ * other component's, into one block in schedule order when the structure changed (adding a
+ * port moves the component's out again): take the address again after ssx_initialize. */
+double *ssx_outputs(ssx_system *sys, int component);
+double *ssx_inputs(ssx_system *sys, int component);
 
 /* dst_input = scale * src_output + offset, applied in C (units resolved by Python). One driver
  * per input: a second connection to the same input fails. */

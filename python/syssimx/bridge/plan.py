@@ -133,9 +133,18 @@ class EnginePlan:
         self._recorded: dict[str, RecordedComponent] | None = None
         self._do_step = lib().ssx_component_do_step
         self.tables: list[str] = []  # the table sources (add_table), in component order
-        self._input_arrays: dict[str, Any] = {}  # see input_array
+        # what keeps the engine's port addresses (set again when ssx_initialize moves them)
+        self._port_holders: list[_HookBuilder] = []
         for component in components.values():
             component._add_to_plan(self)
+
+    def initialize(self, t0: float) -> int:
+        """ssx_initialize at t0 (its status); the port values may have moved into the engine's
+        block in schedule order, so what keeps their addresses takes them again."""
+        status = int(lib().ssx_initialize(self.sys, t0))
+        for holder in self._port_holders:
+            holder.take_port_addresses()
+        return status
 
     def restart(self) -> None:
         """Before the System initializes again on this plan: every input holds its start value
@@ -250,7 +259,10 @@ class EnginePlan:
     def _bind(self, component: Component, hooks: set[str], is_fmu: bool) -> None:
         index = self.index[component.name]
         bind(component, Binding(self, index))
-        struct = _HookBuilder(self, component, is_fmu).build(hooks)
+        builder = _HookBuilder(self, component, is_fmu)
+        struct = builder.build(hooks)
+        if "do_step" in hooks and not is_fmu:  # the one hook that keeps the addresses
+            self._port_holders.append(builder)
         if struct is not None:  # the engine copies the struct; the callbacks are kept above
             self.check(lib().ssx_set_hooks(self.sys, index, struct), f"{component.name}: hooks")
 
@@ -354,13 +366,9 @@ class EnginePlan:
         return (lib().ssx_outputs if direction == "out" else lib().ssx_inputs)(self.sys, index)
 
     def input_array(self, component: Component) -> Any:
-        """The engine's input values of a component (a C array, in the order of `inputs`;
-        it stays where it is once the component's ports are added: found once)."""
-        array = self._input_arrays.get(component.name)
-        if array is None:
-            array = self._input_arrays[component.name] = lib().ssx_inputs(
-                self.sys, self.index[component.name])
-        return array
+        """The engine's input values of a component now (a C array, in the order of `inputs`;
+        ssx_initialize may move it)."""
+        return lib().ssx_inputs(self.sys, self.index[component.name])
 
     def port_value(self, component: Component, direction: str, port: str) -> float:
         names = self.outputs if direction == "out" else self.inputs
@@ -481,15 +489,20 @@ class _HookBuilder:
         self.is_fmu = is_fmu  # the engine owns the ports and steps the FMU itself
         self.snapshots: dict[int, Any] = {}
         self.where: str | None = None  # a more precise place, set while a hook runs
-        # what a Python component's step moves, found once: the engine's port arrays (they
-        # stay where they are once the component's ports are added) and, in engine order, the
-        # port names with the conversion of an engine value to the port's type
-        index = plan.index[component.name]
-        self.engine_inputs = lib().ssx_inputs(plan.sys, index)
-        self.engine_outputs = lib().ssx_outputs(plan.sys, index)
+        # what a Python component's step moves, found once: the engine's port arrays (taken
+        # again after each initialize, which may move them) and, in engine order, the port
+        # names with the conversion of an engine value to the port's type
+        self.ports: tuple[Any, Any] = (ffi.NULL, ffi.NULL)
+        self.take_port_addresses()
         self.input_names = [(name, _FROM_ENGINE[component.input_specs[name].type])
                             for name in plan.inputs[component.name]]
         self.output_names = list(enumerate(plan.outputs[component.name]))
+
+    def take_port_addresses(self) -> None:
+        """The engine's (inputs, outputs) arrays of the component, where they are now."""
+        index = self.plan.index[self.component.name]
+        self.ports = (lib().ssx_inputs(self.plan.sys, index),
+                      lib().ssx_outputs(self.plan.sys, index))
 
     def _guard(self, where: str, body: Callable[..., None], time_arg: int | None
                ) -> Callable[..., int]:
@@ -551,11 +564,11 @@ class _HookBuilder:
         engine inputs into its input ports, its step, its output ports into the engine, with
         what it needs looked up once."""
         plan, c = self.plan, self.component
-        inputs, outputs = self.engine_inputs, self.engine_outputs
         input_names, output_names = list(enumerate(self.input_names)), self.output_names
 
         def step(_user: Any, t: float, dt: float) -> int:
             try:
+                inputs, outputs = self.ports
                 ports = c.inputs
                 for i, (name, convert) in input_names:
                     ports[name]._raw = convert(inputs[i])

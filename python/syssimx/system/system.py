@@ -340,7 +340,7 @@ class System:
         start_tables(self.components, self.connections, plan, t0)
         for component in self.components.values():
             component._start(t0, tolerance)
-        if lib().ssx_initialize(plan.sys, t0) < 0:
+        if plan.initialize(t0) < 0:
             raise_failure(plan)
         self.history = SystemHistory(system=self)
         self.t = t0
@@ -352,7 +352,7 @@ class System:
         checkpoint): the history restarts with the sample at t."""
         if self._plan is None:
             raise ConfigurationError(f"{self.name}: call initialize(t0) first")
-        if lib().ssx_initialize(self._plan.sys, t) < 0:
+        if self._plan.initialize(t) < 0:
             raise_failure(self._plan)
         self.history = SystemHistory(system=self)
         self.t = t
