@@ -8,9 +8,12 @@ what `System.run` costs in Python as the component count grows.
      fresh instance per member: what every initialize did before plans were reused);
    - FMPy's reuse loop: one FMU2Slave, `reset` between members, setupExperiment, start value,
      initialization mode, 20 doStep + getReal of the outputs into a list.
+   - with `--baseline REF`: the reused System of the syssimx of git ref REF (its python/
+     from `git archive`, the same engine library), in a child process that takes its turn
+     in every round.
    Median CPU microseconds per member of `--repeats` rounds of `--members` members (CPU time,
    not wall time: on a shared machine the wall counts the other processes' turns too), and
-   ratios to FMPy.
+   ratios to FMPy (and to the baseline). The load average is printed before and after.
 2. `System.run` of one step on a chain-free system of N `gain` FMUs (N = 100, 1000, 10000):
    the wall of `System.run` against `ssx_run` called directly on the same engine system for
    the same step; the difference is the Python cost per call, printed per call and per
@@ -18,22 +21,34 @@ what `System.run` costs in Python as the component count grows.
    hook: a figure the machine's load does not move).
 
     python benchmarks/run_cost.py [--members 200] [--repeats 5] [--components 100,1000,10000]
+                                  [--baseline main]
 """
 
 from __future__ import annotations
 
 import argparse
 import functools
+import io
+import json
+import os
 import statistics
+import subprocess
 import sys
+import tarfile
+import tempfile
 import time
 from collections.abc import Callable
+from pathlib import Path
 
 import numpy as np
 from syssimx import FMUComponent, System, fmus
 from syssimx.engine import lib
 
 DT, STEPS = 0.05, 20
+ROOT = Path(__file__).resolve().parent.parent
+
+# One round of members: (CPU seconds it took, each member's theta after 1 s)
+Round = Callable[[np.ndarray], tuple[float, list[float]]]
 
 
 def syssimx_members(fmu: str, rebuild: bool) -> Callable[[np.ndarray], list[np.ndarray]]:
@@ -87,31 +102,93 @@ def fmpy_members(fmu: str) -> Callable[[np.ndarray], list[np.ndarray]]:
     return run
 
 
-def member_costs(members: int, repeats: int) -> None:
+def timed(run: Callable[[np.ndarray], list[np.ndarray]]) -> Round:
+    """`run` as a Round: its CPU time (the members' angles are read after the clock stops)."""
+    def round_of(thetas: np.ndarray) -> tuple[float, list[float]]:
+        start = time.process_time()
+        series = run(thetas)
+        return time.process_time() - start, [float(s[-1]) for s in series]
+    return round_of
+
+
+class BaselineMembers:
+    """The reused-System members of another syssimx (python/ at `pythonpath`), run by a child
+    process of this script, one round per request: the thetas go as JSON, the CPU time the
+    child measured and its final angles come back."""
+
+    def __init__(self, fmu: str, pythonpath: Path) -> None:
+        environment = dict(os.environ, PYTHONPATH=str(pythonpath))
+        if "SYSSIMX_BUILD_DIR" in environment:
+            environment["SYSSIMX_BUILD_DIR"] = os.path.abspath(environment["SYSSIMX_BUILD_DIR"])
+        self.child = subprocess.Popen([sys.executable, __file__, "--serve", fmu],
+                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True,
+                                      env=environment)
+
+    def __call__(self, thetas: np.ndarray) -> tuple[float, list[float]]:
+        assert self.child.stdin is not None and self.child.stdout is not None
+        self.child.stdin.write(json.dumps(thetas.tolist()) + "\n")
+        self.child.stdin.flush()
+        line = self.child.stdout.readline()
+        if not line:
+            raise RuntimeError(f"the baseline's child ended (status {self.child.wait()})")
+        cpu, finals = json.loads(line)
+        return cpu, finals
+
+    def close(self) -> None:
+        assert self.child.stdin is not None
+        self.child.stdin.close()
+        self.child.wait()
+
+
+def serve(fmu: str) -> None:
+    """The child of BaselineMembers: a round of members per line of thetas read."""
+    run = timed(syssimx_members(fmu, rebuild=False))
+    for line in sys.stdin:
+        print(json.dumps(run(np.array(json.loads(line)))), flush=True)
+
+
+def baseline_tree(ref: str, directory: Path) -> Path:
+    """python/ of git ref `ref`, unpacked under `directory`."""
+    archive = subprocess.run(["git", "-C", str(ROOT), "archive", ref, "python"], check=True,
+                             capture_output=True).stdout
+    with tarfile.open(fileobj=io.BytesIO(archive)) as tar:
+        tar.extractall(directory, filter="data")
+    return directory / "python"
+
+
+def member_costs(members: int, repeats: int, baseline: tuple[str, Path] | None) -> None:
     thetas = np.linspace(0.2, 0.6, members)
     print(f"1. members of {STEPS} steps (dt {DT}), {members} members per round, median of "
           f"{repeats} rounds, in turns")
-    print(f"{'FMU':<16} {'path':<26} {'CPU us/member':>14} {'/ FMPy':>8}")
+    before = f"syssimx {baseline[0]}, reused" if baseline is not None else ""
+    print(f"{'FMU':<16} {'path':<30} {'CPU us/member':>14} {'/ FMPy':>8}"
+          + (f" {'/ ' + baseline[0]:>10}" if baseline is not None else ""))
     for fmu in ("pendulum_euler", "pendulum_cvode"):
-        paths = {"syssimx, reused System": syssimx_members(fmu, rebuild=False),
-                 "syssimx, rebuilt": syssimx_members(fmu, rebuild=True),
-                 "FMPy reuse loop": fmpy_members(fmu)}
+        paths: dict[str, Round] = {
+            "syssimx, reused System": timed(syssimx_members(fmu, rebuild=False)),
+            "syssimx, rebuilt": timed(syssimx_members(fmu, rebuild=True)),
+            "FMPy reuse loop": timed(fmpy_members(fmu))}
+        child = BaselineMembers(fmu, baseline[1]) if baseline is not None else None
+        if child is not None:
+            paths[before] = child
         times: dict[str, list[float]] = {name: [] for name in paths}
         finals: dict[str, list[float]] = {}
         for name, run in paths.items():  # warm-up, and the final angles compared
-            finals[name] = [float(series[-1]) for series in run(thetas[:5])]
+            finals[name] = run(thetas[:5])[1]
         for _ in range(repeats):
             for name, run in paths.items():
-                start = time.process_time()
-                run(thetas)
-                times[name].append((time.process_time() - start) / members * 1e6)
+                times[name].append(run(thetas)[0] / members * 1e6)
+        if child is not None:
+            child.close()
         fmpy = statistics.median(times["FMPy reuse loop"])
+        earlier = statistics.median(times[before]) if baseline is not None else None
         for name, samples in times.items():
             cost = statistics.median(samples)
-            print(f"{fmu:<16} {name:<26} {cost:14.1f} {cost / fmpy:8.2f}")
+            print(f"{fmu:<16} {name:<30} {cost:14.1f} {cost / fmpy:8.2f}"
+                  + (f" {cost / earlier:10.2f}" if earlier is not None else ""))
         reference = np.array(finals["FMPy reuse loop"])
         for name, values in finals.items():
-            print(f"{'':<16} {name:<26} max |theta(1 s) - FMPy's| = "
+            print(f"{'':<16} {name:<30} max |theta(1 s) - FMPy's| = "
                   f"{np.max(np.abs(np.array(values) - reference)):.1e}")
 
 
@@ -166,10 +243,23 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--members", type=int, default=200)
     parser.add_argument("--repeats", type=int, default=5)
-    parser.add_argument("--components", default="100,1000,10000")
+    parser.add_argument("--components", default="100,1000,10000",
+                        help="component counts of part 2, comma-separated (none: skip it)")
+    parser.add_argument("--baseline", help="git ref of a syssimx to compare the reused "
+                        "System with (its python/, this engine library)")
+    parser.add_argument("--serve", help=argparse.SUPPRESS)
     args = parser.parse_args()
-    member_costs(args.members, args.repeats)
-    run_call_cost([int(n) for n in args.components.split(",")], args.repeats)
+    if args.serve:
+        serve(args.serve)
+        return
+    print(f"load average {os.getloadavg()[0]:.2f} at the start")
+    with tempfile.TemporaryDirectory() as temporary:
+        baseline = (args.baseline, baseline_tree(args.baseline, Path(temporary))) \
+            if args.baseline else None
+        member_costs(args.members, args.repeats, baseline)
+    if args.components != "none":
+        run_call_cost([int(n) for n in args.components.split(",")], args.repeats)
+    print(f"load average {os.getloadavg()[0]:.2f} at the end")
 
 
 if __name__ == "__main__":

@@ -71,6 +71,9 @@ nitpick_ignore_regex = [
 nitpick_ignore = [
     ("py:class", "ComponentHistory"),
     ("py:class", "syssimx.system.results.HistoryView"),
+    # what System.run hands the result it makes (SimulationResult and its from_system)
+    ("py:class", "syssimx.system.results.StatisticsReading"),
+    ("py:class", "syssimx.bridge.run_outcome.RunOutcome"),
     ("py:class", "syssimx.components.switch_regions.RegionBoundary"),
     ("py:class", "syssimx.components.restart.Term"),
     # the parts of an FMUInfo (syssimx.fmu): the modelDescription as read, its variables

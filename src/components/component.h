@@ -96,24 +96,26 @@ typedef struct {
 } ssx_port;
 
 struct ssx_component {
-    char *name;
-    int index;
+    /* what every step reads, together at the start */
     const ssx_component_ops *ops;
-    ssx_hooks hooks;
     void *data; /* the kind's own data (a table source's table, an FMU's), ops->release frees */
-    int can_snapshot;
-    int calling_thread_only; /* ssx_set_calling_thread_only */
-
-    ssx_port *output_ports;
+    double *inputs;  /* in the system's port block once initialized (ports_in_block) */
     double *outputs;
-    int n_outputs;
-    ssx_port *input_ports;
-    double *inputs;
-    double *input_starts;
-    int *input_driver; /* connection index driving each input, or -1 */
-    int n_inputs;
     ssx_input_link *links; /* the driven inputs, built with the schedule (coupling.c) */
     int n_links;
+    int n_inputs;
+    int n_outputs;
+    int ports_in_block; /* inputs and outputs lie in the system's port block (port_block.h) */
+    ssx_hooks hooks;
+
+    char *name;
+    int index;
+    int can_snapshot;
+    int calling_thread_only; /* ssx_set_calling_thread_only */
+    ssx_port *output_ports;
+    ssx_port *input_ports;
+    double *input_starts;
+    int *input_driver; /* connection index driving each input, or -1 */
 
     /* engine-side port values saved with each snapshot, so a restore brings them back too */
     double *saved_outputs[SSX_SNAPSHOT_SLOTS];

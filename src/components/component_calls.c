@@ -116,14 +116,13 @@ int component_can_roll_back(const ssx_component *c)
     return c->ops->can_roll_back(c);
 }
 
+/* The links and the snapshot copies are one allocation, starting with the links. */
 static void free_prepared(ssx_component *c)
 {
     free(c->links);
     c->links = NULL;
     c->n_links = 0;
     for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
-        free(c->saved_outputs[slot]);
-        free(c->saved_inputs[slot]);
         c->saved_outputs[slot] = NULL;
         c->saved_inputs[slot] = NULL;
     }
@@ -132,12 +131,20 @@ static void free_prepared(ssx_component *c)
 int component_prepare(ssx_system *sys, ssx_component *c)
 {
     free_prepared(c);
+    /* one more of each than needed: never an allocation of size 0 */
+    size_t n_links = (size_t)c->n_inputs + 1;
+    size_t n_saved = (size_t)c->n_outputs + (size_t)c->n_inputs + 2;
+    ssx_input_link *links = calloc(1, n_links * sizeof *links +
+                                          SSX_SNAPSHOT_SLOTS * n_saved * sizeof(double));
+    if (links == NULL) {
+        return -1;
+    }
+    c->links = links;
+    double *saved = (double *)(links + n_links);
     for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
-        c->saved_outputs[slot] = calloc((size_t)c->n_outputs + 1, sizeof(double));
-        c->saved_inputs[slot] = calloc((size_t)c->n_inputs + 1, sizeof(double));
-        if (c->saved_outputs[slot] == NULL || c->saved_inputs[slot] == NULL) {
-            return -1;
-        }
+        c->saved_outputs[slot] = saved;
+        c->saved_inputs[slot] = saved + c->n_outputs + 1;
+        saved += n_saved;
     }
     return c->ops->prepare != NULL ? c->ops->prepare(sys, c) : 0;
 }
@@ -156,9 +163,11 @@ void component_free(ssx_component *c)
     own_event_list_free(&c->own_events);
     free(c->name);
     free(c->output_ports);
-    free(c->outputs);
     free(c->input_ports);
-    free(c->inputs);
+    if (!c->ports_in_block) { /* else the system frees the block */
+        free(c->outputs);
+        free(c->inputs);
+    }
     free(c->input_starts);
     free(c->input_driver);
     free(c);

@@ -22,8 +22,9 @@ int component_initialize(ssx_system *sys, ssx_component *c, double t0);
 int component_record(ssx_system *sys, ssx_component *c, double t);
 int component_can_roll_back(const ssx_component *c);
 
-/* The snapshot copies of its ports and what the kind builds from them; called when the
- * system initializes. */
+/* Its links' room (filled by the coupling), the snapshot copies of its ports and what the
+ * kind builds from them; called when the system initializes, member after member in schedule
+ * order, so that what each step reads lies in that order. */
 int component_prepare(ssx_system *sys, ssx_component *c);
 void component_free(ssx_component *c);
 

@@ -527,29 +527,11 @@ int fmu_component_set_input_derivatives(ssx_system *sys, ssx_component *c, int o
     return 0;
 }
 
-static void free_batch(fmu_port_batch *b)
+/* The ports of one type, each with its value reference, in the arrays at vr and port. */
+static void build_batch(fmu_port_batch *b, const ssx_port *ports, int n_ports,
+                        ssx_value_type type, unsigned int *vr, int *port)
 {
-    free(b->vr);
-    free(b->port);
-    memset(b, 0, sizeof *b);
-}
-
-static int build_batch(fmu_port_batch *b, const ssx_port *ports, int n_ports, ssx_value_type type)
-{
-    free_batch(b);
-    size_t n = 0;
-    for (int i = 0; i < n_ports; ++i) {
-        n += ports[i].type == type;
-    }
-    if (n == 0) {
-        return 0;
-    }
-    b->vr = malloc(n * sizeof *b->vr);
-    b->port = malloc(n * sizeof *b->port);
-    if (b->vr == NULL || b->port == NULL) {
-        free_batch(b);
-        return -1;
-    }
+    *b = (fmu_port_batch){.vr = vr, .port = port, .n = 0};
     for (int i = 0; i < n_ports; ++i) {
         if (ports[i].type == type) {
             b->vr[b->n] = ports[i].vr;
@@ -557,21 +539,17 @@ static int build_batch(fmu_port_batch *b, const ssx_port *ports, int n_ports, ss
             b->n++;
         }
     }
-    return 0;
 }
 
 static void free_prepared(fmu_component_data *d)
 {
-    for (int type = 0; type < 3; ++type) {
-        free_batch(&d->output_batch[type]);
-        free_batch(&d->input_batch[type]);
-    }
-    free(d->real_scratch);
-    free(d->int_scratch);
-    free(d->inputs_written);
+    free(d->step_block);
     free(d->derivative_vr);
     free(d->derivative_order);
     free(d->derivative_values);
+    d->step_block = NULL;
+    memset(d->output_batch, 0, sizeof d->output_batch);
+    memset(d->input_batch, 0, sizeof d->input_batch);
     d->real_scratch = NULL;
     d->int_scratch = NULL;
     d->inputs_written = NULL;
@@ -581,26 +559,40 @@ static void free_prepared(fmu_component_data *d)
     d->derivative_capacity = 0;
 }
 
+/* What a step reads besides the ports (batches, scratch, the inputs last written) in one
+ * allocation, made in schedule order with the other members' (component_prepare): doubles
+ * first, then value references, port indices and the Integer scratch. */
 int fmu_component_prepare(ssx_system *sys, ssx_component *c)
 {
     (void)sys;
     fmu_component_data *d = fmu_data(c);
     free_prepared(d);
-    for (int type = 0; type < 3; ++type) {
-        if (build_batch(&d->output_batch[type], c->output_ports, c->n_outputs,
-                        (ssx_value_type)type) != 0 ||
-            build_batch(&d->input_batch[type], c->input_ports, c->n_inputs,
-                        (ssx_value_type)type) != 0) {
-            return -1;
-        }
-    }
     size_t widest = (size_t)(c->n_outputs > c->n_inputs ? c->n_outputs : c->n_inputs) + 1;
-    d->real_scratch = malloc(widest * sizeof *d->real_scratch);
-    d->int_scratch = malloc(widest * sizeof *d->int_scratch);
-    d->inputs_written = malloc(((size_t)c->n_inputs + 1) * sizeof *d->inputs_written);
+    size_t n_written = (size_t)c->n_inputs + 1;
+    size_t n_ports = (size_t)c->n_outputs + (size_t)c->n_inputs + 1;
+    double *block = malloc((widest + n_written) * sizeof(double) +
+                           n_ports * (sizeof(unsigned int) + sizeof(int)) + widest * sizeof(int));
+    if (block == NULL) {
+        return -1;
+    }
+    d->step_block = block;
+    d->real_scratch = block;
+    d->inputs_written = block + widest;
+    unsigned int *vr = (unsigned int *)(d->inputs_written + n_written);
+    int *port = (int *)(vr + n_ports);
+    d->int_scratch = port + n_ports;
+    for (int type = 0; type < 3; ++type) {
+        build_batch(&d->output_batch[type], c->output_ports, c->n_outputs, (ssx_value_type)type,
+                    vr, port);
+        vr += d->output_batch[type].n;
+        port += d->output_batch[type].n;
+        build_batch(&d->input_batch[type], c->input_ports, c->n_inputs, (ssx_value_type)type,
+                    vr, port);
+        vr += d->input_batch[type].n;
+        port += d->input_batch[type].n;
+    }
     d->inputs_written_epoch = -1;
-    return d->real_scratch == NULL || d->int_scratch == NULL || d->inputs_written == NULL ? -1
-                                                                                          : 0;
+    return 0;
 }
 
 void fmu_component_data_init(fmu_component_data *d, ssx_fmu *fmu)

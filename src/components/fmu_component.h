@@ -26,6 +26,8 @@ typedef struct {
     fmu_port_batch input_batch[3];
     double *real_scratch;
     int *int_scratch;
+    /* one allocation holding the batches' arrays, the scratch and inputs_written */
+    void *step_block;
     /* the inputs as last written to the FMU and its values epoch right after that write
      * (-1: nothing written yet); equal inputs at an unchanged epoch need no Set call */
     double *inputs_written;

@@ -15,6 +15,10 @@
 /* The operations of the interface: a back-end resolves one function of its standard into each
  * slot it has. */
 typedef enum {
+    /* what every step calls first: their functions share a cache line of the binding */
+    SLOT_DO_STEP,
+    SLOT_GET_REAL,
+    SLOT_SET_REAL,
     SLOT_INSTANTIATE,
     SLOT_FREE_INSTANCE,
     SLOT_SETUP_EXPERIMENT,
@@ -22,13 +26,10 @@ typedef enum {
     SLOT_EXIT_INITIALIZATION_MODE,
     SLOT_TERMINATE,
     SLOT_RESET,
-    SLOT_GET_REAL,
     SLOT_GET_INTEGER,
     SLOT_GET_BOOLEAN,
-    SLOT_SET_REAL,
     SLOT_SET_INTEGER,
     SLOT_SET_BOOLEAN,
-    SLOT_DO_STEP,
     SLOT_GET_STATE,
     SLOT_SET_STATE,
     SLOT_FREE_STATE,

@@ -16,21 +16,33 @@
 #include "fmu_remote.h"
 #include "shared_library.h"
 
+/* A slot number for "no call yet" (last_slot). */
+enum { NO_CALL = -1 };
+/* The binding is aligned to cache lines of this size (the common one). */
+enum { CACHE_LINE = 64 };
+
+static size_t round_up(size_t size, size_t to)
+{
+    return (size + to - 1) / to * to;
+}
+
 struct ssx_fmu {
-    /* what every doStep touches, together at the start: one cache line where thousands of
-     * FMUs step in turn (the function tables below span several) */
+    /* What every doStep, Get and Set touches, in the struct's first two cache lines (it is
+     * allocated aligned to them): where thousands of FMUs step in turn, each costs one trip to
+     * memory, not one per field. The step's own functions lead the function table
+     * (fmu_backend.h orders the slots so). */
     const ssx_fmu_backend *backend;
     void *instance;
-    const char *last_call; /* the last call made or refused, "" before any */
+    long values_epoch; /* see ssx_fmu_values_epoch */
     /* the call that returned Fatal, or NULL: after it FMI allows no call at all, not even
      * freeing the instance, so the instance and its states are abandoned (instance NULL) and
      * the library stays loaded */
     const char *fatal_call;
-    long values_epoch; /* see ssx_fmu_values_epoch */
-    long generation;
-    long starts; /* see ssx_fmu_starts */
+    int last_slot; /* the last call made or refused (an ssx_fmu_slot), NO_CALL before any */
     ssx_fmu_counters counters;
     ssx_fmu_function fn[SLOT_COUNT]; /* NULL: the binary lacks the function */
+    long generation;
+    long starts; /* see ssx_fmu_starts */
     const char *names[SLOT_COUNT];   /* the standard's name of each slot, for messages */
     void *context;                   /* the back-end's, outlives every instance */
     void *library;
@@ -171,13 +183,14 @@ ssx_fmu *ssx_fmu_load(const ssx_fmu_load_spec *spec, char *error, size_t error_s
         snprintf(error, error_size, "ssx_fmu_load: %s", problem);
         return NULL;
     }
-    ssx_fmu *fmu = calloc(1, sizeof *fmu);
+    ssx_fmu *fmu = aligned_alloc(CACHE_LINE, round_up(sizeof *fmu, CACHE_LINE));
     if (fmu == NULL) {
         snprintf(error, error_size, "out of memory loading %s", spec->binary_path);
         return NULL;
     }
+    memset(fmu, 0, sizeof *fmu);
     fmu->backend = backend;
-    fmu->last_call = "";
+    fmu->last_slot = NO_CALL;
     if (spec->host_path != NULL) {
         fmu->environment.remote = ssx_remote_start(spec->host_path, spec->binary_path,
                                        spec->model_identifier, spec->step_timeout, error,
@@ -283,7 +296,7 @@ static inline int begin(ssx_fmu *fmu, ssx_fmu_slot call)
     if (fmu == NULL) {
         return 0;
     }
-    fmu->last_call = fmu->names[call];
+    fmu->last_slot = (int)call;
     if (fmu->instance == NULL || fmu->fn[call] == NULL) {
         return refuse(fmu, call);
     }
@@ -408,9 +421,9 @@ int ssx_fmu_instantiate(ssx_fmu *fmu)
     if (fmu == NULL) {
         return -1;
     }
-    fmu->last_call = fmu->names[SLOT_INSTANTIATE];
+    fmu->last_slot = SLOT_INSTANTIATE;
     if (fmu->fatal_call != NULL && fmu->environment.remote == NULL) {
-        refuse_after_fatal(fmu, fmu->last_call);
+        refuse_after_fatal(fmu, fmu->names[SLOT_INSTANTIATE]);
         return -1;
     }
     if (fmu->fatal_call != NULL) {
@@ -429,7 +442,7 @@ int ssx_fmu_instantiate(ssx_fmu *fmu)
     if (fmu->instance == NULL) {
         if (fmu->environment.last_message[0] == '\0') {
             snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message, "%s returned NULL",
-                     fmu->last_call);
+                     fmu->names[SLOT_INSTANTIATE]);
         }
         return -1;
     }
@@ -671,7 +684,8 @@ int ssx_fmu_get_state(ssx_fmu *fmu, void **state)
     }
     if (*state != NULL && !knows_state(fmu, *state)) {
         snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
-                 "%s: the state to reuse does not belong to the live instance", fmu->last_call);
+                 "%s: the state to reuse does not belong to the live instance",
+                 ssx_fmu_last_call(fmu));
         return -1;
     }
     void *reused = *state;
@@ -698,7 +712,7 @@ int ssx_fmu_set_state(ssx_fmu *fmu, void *state)
     }
     if (!knows_state(fmu, state)) {
         snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
-                 "%s: the state does not belong to the live instance", fmu->last_call);
+                 "%s: the state does not belong to the live instance", ssx_fmu_last_call(fmu));
         return -1;
     }
     return finish(fmu, SLOT_SET_STATE, fmu->backend->set_state(fmu->fn, fmu->instance, state));
@@ -738,7 +752,8 @@ int ssx_fmu_deserialize_state(ssx_fmu *fmu, const char *bytes, size_t size, void
     }
     if (*state != NULL && !knows_state(fmu, *state)) {
         snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
-                 "%s: the state to reuse does not belong to the live instance", fmu->last_call);
+                 "%s: the state to reuse does not belong to the live instance",
+                 ssx_fmu_last_call(fmu));
         return -1;
     }
     void *reused = *state;
@@ -775,7 +790,7 @@ const char *ssx_fmu_last_message(const ssx_fmu *fmu)
 
 const char *ssx_fmu_last_call(const ssx_fmu *fmu)
 {
-    return fmu != NULL ? fmu->last_call : "";
+    return fmu == NULL || fmu->last_slot == NO_CALL ? "" : fmu->names[fmu->last_slot];
 }
 
 void ssx_fmu_get_counters(const ssx_fmu *fmu, ssx_fmu_counters *out)

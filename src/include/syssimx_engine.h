@@ -398,8 +398,11 @@ int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned 
 /* Before initializing a system again (its plan reused): every input's start value, the
  * components' inputs in order, n in all; each input holds its start again, as when added. */
 int ssx_reset_inputs(ssx_system *sys, const double *starts, size_t n);
-double *ssx_outputs(ssx_system *sys, int component); /* n_outputs current values */
-double *ssx_inputs(ssx_system *sys, int component);  /* n_inputs current values */
+/* A component's n_outputs (n_inputs) current values. ssx_initialize moves them, with every
+ * other component's, into one block in schedule order when the structure changed (adding a
+ * port moves the component's out again): take the address again after ssx_initialize. */
+double *ssx_outputs(ssx_system *sys, int component);
+double *ssx_inputs(ssx_system *sys, int component);
 
 /* dst_input = scale * src_output + offset, applied in C (units resolved by Python). One driver
  * per input: a second connection to the same input fails. */
@@ -645,6 +648,21 @@ size_t ssx_events_copy(const ssx_system *sys, size_t first, size_t n, ssx_event_
 size_t ssx_event_trials_copy(const ssx_system *sys, size_t first, size_t n,
                              ssx_localization_trial *out);
 void ssx_get_statistics(const ssx_system *sys, ssx_statistics *out);
+/* What a caller reads after each run, in one call: each field is what its accessor gives now.
+ * For a caller that pays per call (Python through cffi) a short run's reading is then one
+ * crossing, not eight. `history` is a reference as ssx_history_retain gives it (NULL when
+ * nothing is recorded): the caller releases it with ssx_history_release. */
+typedef struct {
+    double time;                        /* ssx_time */
+    size_t n_events;                    /* ssx_event_count */
+    const ssx_termination *termination; /* ssx_get_termination */
+    ssx_statistics statistics;          /* ssx_get_statistics */
+    size_t history_length;              /* ssx_history_length */
+    ssx_history_block *history;         /* ssx_history_retain, when history_length > 0 */
+    const double *history_time;         /* ssx_history_time */
+    const int *history_micro;           /* ssx_history_micro */
+} ssx_run_outcome;
+void ssx_get_run_outcome(ssx_system *sys, ssx_run_outcome *out);
 
 /* ------------------------------------------------------------------------------------------
  * Isolation: an FMU whose binary runs in a process of its own.

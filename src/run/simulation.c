@@ -34,9 +34,6 @@ static int check_components(ssx_system *sys)
                         "event indicators: locating an event restores every component",
                         c->name);
         }
-        if (component_prepare(sys, c) != 0) {
-            return fail(sys, i, -1, sys->time, "out of memory preparing component '%s'", c->name);
-        }
     }
     return 0;
 }

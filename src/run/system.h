@@ -85,6 +85,8 @@ struct ssx_system {
     size_t subscriptions_capacity;
 
     int *order;          /* schedule: component indices, group after group */
+    double *port_block;  /* every component's port values, in schedule order (port_block.h) */
+    size_t port_block_size;
     ssx_group *groups;
     int n_groups;
     int has_schedule;

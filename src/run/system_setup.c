@@ -16,6 +16,7 @@
 #include "indicator.h"
 #include "input_order.h"
 #include "parallel_step.h"
+#include "port_block.h"
 #include "record_hooks.h"
 #include "recording.h"
 
@@ -114,6 +115,7 @@ void ssx_system_free(ssx_system *sys)
     free(sys->indicator_states);
     master_algorithm_release(sys);
     free(sys->subscriptions);
+    port_block_free(sys); /* after the components that point into it */
     free(sys->order);
     free(sys->groups);
     recording_free(sys->recording);
@@ -210,6 +212,10 @@ int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned
         return fail_config(sys, component, -1, NAN, "component '%s': unknown value type %d",
                            c->name, (int)type);
     }
+    if (port_block_detach(c) != 0) {
+        return fail_config(sys, component, -1, NAN, "out of memory adding an output to '%s'",
+                           c->name);
+    }
     size_t n = (size_t)c->n_outputs + 1;
     ssx_port *ports = realloc(c->output_ports, n * sizeof *ports);
     if (ports != NULL) {
@@ -244,6 +250,10 @@ int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned 
         return fail_config(sys, component, -1, NAN,
                            "component '%s': the start value of an input must "
                            "be finite (NaN, the FMU's own value, exists for FMU components only)",
+                           c->name);
+    }
+    if (port_block_detach(c) != 0) {
+        return fail_config(sys, component, -1, NAN, "out of memory adding an input to '%s'",
                            c->name);
     }
     size_t n = (size_t)c->n_inputs + 1;

@@ -10,6 +10,7 @@
 #include "input_links.h"
 #include "input_order.h"
 #include "parallel_step.h"
+#include "port_block.h"
 
 typedef int (*coupled_step)(ssx_system *sys, double t, double h);
 
@@ -31,11 +32,14 @@ int coupling_known(int coupling)
 
 static int prepare_schedule(ssx_system *sys);
 
+static int prepare_members(ssx_system *sys);
+
 static int prepare_links(ssx_system *sys);
 
 int coupling_prepare(ssx_system *sys)
 {
-    if (prepare_schedule(sys) != 0 || prepare_links(sys) != 0 || parallel_prepare(sys) != 0) {
+    if (prepare_schedule(sys) != 0 || prepare_members(sys) != 0 || port_block_lay_out(sys) != 0 ||
+        prepare_links(sys) != 0 || parallel_prepare(sys) != 0) {
         return -1;
     }
     sys->coupled_step = COUPLED_STEPS[sys->coupling][sys->parallel != NULL];
@@ -74,19 +78,28 @@ static int prepare_schedule(ssx_system *sys)
     return 0;
 }
 
-/* Each component's driven inputs as one array of links straight to the driving outputs: the
- * coupling loop reads no connection table and skips the undriven inputs. */
+/* In schedule order: what each member's step reads is then allocated in the order of the
+ * steps. */
+static int prepare_members(ssx_system *sys)
+{
+    for (int k = 0; k < sys->n_components; ++k) {
+        ssx_component *c = sys->components[sys->order[k]];
+        if (component_prepare(sys, c) != 0) {
+            return fail(sys, c->index, -1, sys->time, "out of memory preparing component '%s'",
+                        c->name);
+        }
+    }
+    return 0;
+}
+
+/* Each component's driven inputs as one array of links straight to the driving outputs (in
+ * the port block: after the output just written): the coupling loop reads no connection table
+ * and skips the undriven inputs. The room for them was made by component_prepare. */
 static int prepare_links(ssx_system *sys)
 {
     for (int i = 0; i < sys->n_components; ++i) {
         ssx_component *c = sys->components[i];
-        free(c->links);
-        c->links = malloc(((size_t)c->n_inputs + 1) * sizeof *c->links);
         c->n_links = 0;
-        if (c->links == NULL) {
-            return fail(sys, i, -1, sys->time, "out of memory preparing the inputs of '%s'",
-                        c->name);
-        }
         for (int k = 0; k < c->n_inputs; ++k) {
             int driver = c->input_driver[k];
             if (driver >= 0) {

@@ -325,7 +325,10 @@ def extracting_then_waiting(folder_file: Path, release: Path) -> System:
     system = pendulum_system()
     if not folder_file.exists():
         component = system.components["P"]
-        folder_file.write_text(f"{os.getpid()} {component._unzip_dir}")
+        # written whole under another name first: the test reads it as soon as it exists
+        partial = folder_file.with_suffix(".partial")
+        partial.write_text(f"{os.getpid()} {component._unzip_dir}")
+        partial.replace(folder_file)
         wait_for(release)
     return system
 

@@ -45,8 +45,8 @@ def _reaching(imports: dict[str, set[str]], room: str) -> list[str]:
 
 
 def test_relative_imports_resolve_to_module_names():
-    imports = _imports(PACKAGE / "system" / "table_starts.py")
-    assert {"syssimx.bridge.plan", "syssimx.components.table_source",
+    imports = _imports(PACKAGE / "system" / "system.py")
+    assert {"syssimx.bridge.plan", "syssimx.components.base",
             "syssimx.system.connection"} <= imports
 
 

@@ -7,10 +7,19 @@ System's time after it."""
 
 from __future__ import annotations
 
+import coupled_pendulums
 import numpy as np
 import pendulum_wall
 import pytest
-from syssimx import Connection, FMUComponent, System, fmus
+from syssimx import (
+    Connection,
+    FMUComponent,
+    GaussSeidelAlgorithm,
+    SimulationResult,
+    StepControl,
+    System,
+    fmus,
+)
 from syssimx.errors import ConfigurationError
 
 
@@ -119,3 +128,76 @@ def test_a_component_initialized_elsewhere_stops_the_run_and_a_new_plan_is_made(
     first.initialize(0.0)
     assert first._plan is not plan
     assert first.run(0.0, 0.1, 0.1)["G"][0].size == 2
+
+
+def _everything(result: SimulationResult) -> tuple[object, ...]:
+    """What a result holds: its samples, micro steps, events and statistics."""
+    t, ports = result["P"]
+    return (t.tolist(), {name: values.tolist() for name, values in ports.items()},
+            result.micro.tolist(), [(e.t, e.micro, e.component, e.event) for e in result.events],
+            result.statistics)
+
+
+def test_a_result_first_read_after_later_runs_holds_its_own_run() -> None:
+    """A result makes its arrays, micro steps and statistics only when asked for: asked for
+    after the same System ran another member and was initialized again, they are still those
+    of its own run, to the bit those of the run on a fresh System."""
+    system, pendulum = pendulum_wall.build("euler")
+    first = _run_member(system, 0.5)
+    second = _run_member(system, 0.3)
+    system.components["P"].set_parameters(theta0=0.4)
+    system.initialize(0.0)  # a third start, not run
+    for result, theta0 in ((first, 0.5), (second, 0.3)):
+        fresh_system, fresh = pendulum_wall.build("euler")
+        expected = _everything(_run_member(fresh_system, theta0))
+        assert _everything(result) == expected
+        assert result.statistics.events == len(result.events) >= 1
+        fresh.free()
+    pendulum.free()
+
+
+def _run_member(system: System, theta0: float) -> SimulationResult:
+    system.components["P"].set_parameters(theta0=theta0)
+    system.initialize(0.0)
+    return system.run(0.0, 1.0, 0.05)
+
+
+def test_what_one_run_or_initialize_sets_is_not_kept_by_the_next() -> None:
+    """output_interval of a run and of an initialize hold for that call only, also where the
+    reused plan skips setting what the engine holds already."""
+    gain = FMUComponent("G", fmus.path("gain"))
+    gain.set_inputs({"u": 1.0})
+    system = System("settings")
+    system.add_component(gain)
+    system.initialize(0.0, output_interval=2)
+    assert system.run(0.0, 0.4, 0.1)["G"][0].tolist() == pytest.approx([0.0, 0.2, 0.4])
+    assert system.run(0.4, 0.8, 0.1, output_interval=0.4)["G"][0].tolist() == pytest.approx(
+        [0.0, 0.2, 0.4, 0.8])
+    assert system.run(0.8, 1.2, 0.1)["G"][0].tolist() == pytest.approx(
+        [0.0, 0.2, 0.4, 0.8, 1.0, 1.2])
+    plan = system._plan
+    system.initialize(0.0)
+    assert system._plan is plan
+    assert system.run(0.0, 0.3, 0.1)["G"][0].tolist() == pytest.approx([0.0, 0.1, 0.2, 0.3])
+    assert system.run(0.3, 0.5, 0.1, output_interval=0.2)["G"][0].tolist() == pytest.approx(
+        [0.0, 0.1, 0.2, 0.3, 0.5])
+    assert system.run(0.5, 0.7, 0.1)["G"][0].size == 7
+
+
+def test_options_changed_in_place_reach_a_reused_plan() -> None:
+    """A StepControl changed in place between two initializes of one System: the run is the
+    run of a fresh System with the new tolerance, not the old one."""
+    control = StepControl(rtol=1e-3, atol=1e-3)
+    system = coupled_pendulums.build(GaussSeidelAlgorithm(input_order=1, step_control=control))
+    system.initialize(0.0)
+    loose = system.run(0.0, 1.0, 0.1).statistics
+    control.rtol = control.atol = 1e-6
+    system.initialize(0.0)
+    tight = system.run(0.0, 1.0, 0.1)
+    fresh = coupled_pendulums.build(GaussSeidelAlgorithm(
+        input_order=1, step_control=StepControl(rtol=1e-6, atol=1e-6)))
+    fresh.initialize(0.0)
+    expected = fresh.run(0.0, 1.0, 0.1)
+    assert tight.statistics == expected.statistics
+    assert tight.statistics.accepted_steps > loose.accepted_steps
+    assert np.array_equal(tight["P1"][1]["theta"], expected["P1"][1]["theta"])

@@ -27,10 +27,6 @@ class _BufferOwner:
                                     "typestr": typestr, "version": 3}
 
 
-def _address(pointer: Any) -> int:
-    return int(ffi.cast("uintptr_t", pointer))
-
-
 class HistoryArrays:
     """The samples recorded so far by one engine system, as read-only numpy arrays."""
 
@@ -45,10 +41,22 @@ class HistoryArrays:
         self._time = engine.ssx_history_time(sys)
         self._micro = engine.ssx_history_micro(sys)
 
+    @classmethod
+    def of_retained(cls, block: Any, length: int, time: Any, micro: Any,
+                    release: Any) -> HistoryArrays:
+        """The arrays of a history reference the caller got (ssx_get_run_outcome) with the
+        history's length, times and micro steps: released with the last of them."""
+        arrays = cls.__new__(cls)
+        arrays.length = length
+        arrays._block = ffi.gc(block, release) if block != ffi.NULL else None
+        arrays._time, arrays._micro = time, micro
+        return arrays
+
     def _view(self, pointer: Any, shape: tuple[int, ...], typestr: str) -> np.ndarray:
         if self._block is None or 0 in shape:
             return np.empty(shape, dtype=np.dtype(typestr))
-        return np.asarray(_BufferOwner(self._block, _address(pointer), shape, typestr))
+        address = int(ffi.cast("uintptr_t", pointer))
+        return np.asarray(_BufferOwner(self._block, address, shape, typestr))
 
     def time(self) -> np.ndarray:
         return self._view(self._time, (self.length,), "<f8")

@@ -8,6 +8,7 @@ output order: the names `columns(plan)` gives ("Pendulum.theta").
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 from typing import Any
 
@@ -40,6 +41,10 @@ def _output_views(plan: EnginePlan) -> list[np.ndarray]:
     return views
 
 
+def _no_values() -> np.ndarray:
+    return np.empty(0)
+
+
 def _event_source(plan: EnginePlan, record: Any) -> tuple[str, str]:
     """(component, event) of an event record: an indicator's, or a component's own event."""
     if record.indicator >= 0:
@@ -54,11 +59,16 @@ def add_observer(plan: EnginePlan, observer: Any) -> int:
     start(t0, columns), state_restored(t), event(t, micro, component, event) and run_end().
     An exception in one stops the run and is raised by it. Returns the engine's id."""
     names = columns(plan)
-    views = _output_views(plan)
     step_complete = observer.step_complete
-    # a new array per sample: one component's outputs copied, several concatenated
-    values = (views[0].copy if len(views) == 1 else
-              (lambda: np.concatenate(views)) if views else (lambda: np.empty(0)))
+    # a new array per sample: one component's outputs copied, several concatenated; over the
+    # outputs where they are (initialize may move them: taken again at each start)
+    values: Callable[[], np.ndarray] = _no_values
+
+    def take_views() -> None:
+        nonlocal values
+        views = _output_views(plan)
+        values = (views[0].copy if len(views) == 1 else
+                  functools.partial(np.concatenate, views) if views else _no_values)
 
     def failed(where: str) -> Callable[[BaseException], None]:
         def keep(exc: BaseException) -> None:
@@ -74,11 +84,12 @@ def add_observer(plan: EnginePlan, observer: Any) -> int:
     callbacks = ffi.new("ssx_observer_callbacks *")
     callbacks.step_complete = plan.callback("int(void *, double, int)", on_step, -1,
                                             failed("step_complete"))
-    if hasattr(observer, "start"):
-        def on_start(_user: Any, t0: float) -> int:
+    def on_start(_user: Any, t0: float) -> int:
+        take_views()
+        if hasattr(observer, "start"):
             observer.start(t0, names)
-            return 0
-        callbacks.start = plan.callback("int(void *, double)", on_start, -1, failed("start"))
+        return 0
+    callbacks.start = plan.callback("int(void *, double)", on_start, -1, failed("start"))
     if hasattr(observer, "state_restored"):
         def on_restored(_user: Any, t: float) -> int:
             observer.state_restored(t)

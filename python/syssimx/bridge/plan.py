@@ -99,7 +99,7 @@ class EnginePlan:
         # What destructors call is looked up now: a collection may run them while cffi holds
         # the lock that a first lookup of a library function would wait for.
         self.sys = ffi.gc(raw, functools.partial(_free_system, lib().ssx_system_free, address))
-        self._release_history = lib().ssx_history_release
+        self.release_history = lib().ssx_history_release
         self._callbacks: list[Any] = []  # kept alive as long as the engine may call them
         self.name = name
         self.deadline: float | None = None  # time.monotonic() at which the run times out
@@ -126,10 +126,25 @@ class EnginePlan:
         # components that may switch models (MultiComponent): what a result asks for switches
         self.switching = [n for n, c in components.items() if hasattr(c, "switch_events")]
         self.options: tuple[Any, ...] | None = None  # the algorithm's options the engine holds
+        # what System.initialize set last (allow_non_finite, output_interval) and run's
+        # output interval in grid steps: the engine keeps them, so equal ones are not set again
+        self.initialize_settings: tuple[int, int | None] | None = None
+        self.run_output_interval: int | None = None
         self._recorded: dict[str, RecordedComponent] | None = None
         self._do_step = lib().ssx_component_do_step
+        self.tables: list[str] = []  # the table sources (add_table), in component order
+        # what keeps the engine's port addresses (set again when ssx_initialize moves them)
+        self._port_holders: list[_HookBuilder] = []
         for component in components.values():
             component._add_to_plan(self)
+
+    def initialize(self, t0: float) -> int:
+        """ssx_initialize at t0 (its status); the port values may have moved into the engine's
+        block in schedule order, so what keeps their addresses takes them again."""
+        status = int(lib().ssx_initialize(self.sys, t0))
+        for holder in self._port_holders:
+            holder.take_port_addresses()
+        return status
 
     def restart(self) -> None:
         """Before the System initializes again on this plan: every input holds its start value
@@ -244,7 +259,10 @@ class EnginePlan:
     def _bind(self, component: Component, hooks: set[str], is_fmu: bool) -> None:
         index = self.index[component.name]
         bind(component, Binding(self, index))
-        struct = _HookBuilder(self, component, is_fmu).build(hooks)
+        builder = _HookBuilder(self, component, is_fmu)
+        struct = builder.build(hooks)
+        if "do_step" in hooks and not is_fmu:  # the one hook that keeps the addresses
+            self._port_holders.append(builder)
         if struct is not None:  # the engine copies the struct; the callbacks are kept above
             self.check(lib().ssx_set_hooks(self.sys, index, struct), f"{component.name}: hooks")
 
@@ -277,6 +295,7 @@ class EnginePlan:
                 self.sys, index, engine_type(component.output_specs[port].type),
                 int(port in hold), ffi.from_buffer("double[]", values)), f"{name}.{port}")
         component._binding = Binding(self, index)
+        self.tables.append(name)
 
     def start_table(self, table: Component, t0: float) -> dict[str, float]:
         """The table's outputs at t0 (the value on the left of a jump), written before any
@@ -351,6 +370,11 @@ class EnginePlan:
         index = self.index[component.name]
         return (lib().ssx_outputs if direction == "out" else lib().ssx_inputs)(self.sys, index)
 
+    def input_array(self, component: Component) -> Any:
+        """The engine's input values of a component now (a C array, in the order of `inputs`;
+        ssx_initialize may move it)."""
+        return lib().ssx_inputs(self.sys, self.index[component.name])
+
     def port_value(self, component: Component, direction: str, port: str) -> float:
         names = self.outputs if direction == "out" else self.inputs
         return float(self._array(component, direction)[names[component.name].index(port)])
@@ -396,7 +420,7 @@ class EnginePlan:
     # ------------------------------------------------------------------ history
     def history(self) -> HistoryArrays:
         """The samples recorded so far, as arrays that stay valid and unchanged for their life."""
-        return HistoryArrays(self.sys, self._release_history)
+        return HistoryArrays(self.sys, self.release_history)
 
     def component_history(self, component: Component, arrays: HistoryArrays | None = None
                           ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
@@ -412,9 +436,11 @@ class EnginePlan:
             for name, c in self.components.items():
                 outputs = tuple(self.outputs[name])
                 events = tuple(c.event_indicators)
+                types = tuple(c.output_specs[p].type for p in outputs)
                 self._recorded[name] = RecordedComponent(
-                    self.index[name], outputs, tuple(c.output_specs[p].type for p in outputs),
-                    events, {p: c.output_specs[p].unit for p in (*outputs, *events)})
+                    self.index[name], outputs, types, events,
+                    {p: c.output_specs[p].unit for p in (*outputs, *events)},
+                    all(kind == PortType.REAL for kind in types))
         return self._recorded
 
 
@@ -428,6 +454,7 @@ class RecordedComponent:
     types: tuple[PortType, ...]
     events: tuple[str, ...]
     units: dict[str, str | None]
+    real_only: bool  # every output Real: its columns are the matrix's, unconverted
 
 
 def recorded_columns(recorded: RecordedComponent, arrays: HistoryArrays
@@ -435,6 +462,8 @@ def recorded_columns(recorded: RecordedComponent, arrays: HistoryArrays
     """(time, {output: values}) of one component in `arrays`, without a copy (Real outputs;
     Integer and Boolean ones converted)."""
     matrix = arrays.values(recorded.index, len(recorded.outputs))
+    if recorded.real_only:
+        return arrays.time(), {name: matrix[:, j] for j, name in enumerate(recorded.outputs)}
     columns = {}
     for j, (name, kind) in enumerate(zip(recorded.outputs, recorded.types, strict=True)):
         column = matrix[:, j]
@@ -465,15 +494,20 @@ class _HookBuilder:
         self.is_fmu = is_fmu  # the engine owns the ports and steps the FMU itself
         self.snapshots: dict[int, Any] = {}
         self.where: str | None = None  # a more precise place, set while a hook runs
-        # what a Python component's step moves, found once: the engine's port arrays (they
-        # stay where they are once the component's ports are added) and, in engine order, the
-        # port names with the conversion of an engine value to the port's type
-        index = plan.index[component.name]
-        self.engine_inputs = lib().ssx_inputs(plan.sys, index)
-        self.engine_outputs = lib().ssx_outputs(plan.sys, index)
+        # what a Python component's step moves, found once: the engine's port arrays (taken
+        # again after each initialize, which may move them) and, in engine order, the port
+        # names with the conversion of an engine value to the port's type
+        self.ports: tuple[Any, Any] = (ffi.NULL, ffi.NULL)
+        self.take_port_addresses()
         self.input_names = [(name, _FROM_ENGINE[component.input_specs[name].type])
                             for name in plan.inputs[component.name]]
         self.output_names = list(enumerate(plan.outputs[component.name]))
+
+    def take_port_addresses(self) -> None:
+        """The engine's (inputs, outputs) arrays of the component, where they are now."""
+        index = self.plan.index[self.component.name]
+        self.ports = (lib().ssx_inputs(self.plan.sys, index),
+                      lib().ssx_outputs(self.plan.sys, index))
 
     def _guard(self, where: str, body: Callable[..., None], time_arg: int | None
                ) -> Callable[..., int]:
@@ -535,11 +569,11 @@ class _HookBuilder:
         engine inputs into its input ports, its step, its output ports into the engine, with
         what it needs looked up once."""
         plan, c = self.plan, self.component
-        inputs, outputs = self.engine_inputs, self.engine_outputs
         input_names, output_names = list(enumerate(self.input_names)), self.output_names
 
         def step(_user: Any, t: float, dt: float) -> int:
             try:
+                inputs, outputs = self.ports
                 ports = c.inputs
                 for i, (name, convert) in input_names:
                     ports[name]._raw = convert(inputs[i])

@@ -100,10 +100,12 @@ class CoSimComponent:
     def _sync_ports(self) -> None:
         """Create a Port for every spec added since (subclasses fill the specs in __init__;
         the ports of an FMU's array elements are made when asked for)."""
-        self._remember_default_parameters()
+        if self._parameter_defaults is None:
+            self._remember_default_parameters()
         for specs, ports in ((self.input_specs, self.inputs), (self.output_specs, self.outputs)):
+            made = made_items(ports)  # a dict lookup per port; an ElementMap's for the rest
             for name, spec in made_items(specs).items():
-                port = ports.get(name)
+                port = made.get(name) or ports.get(name)
                 # identity first: comparing every field of every spec made add_connection slow
                 if port is None or (port.spec is not spec and port.spec != spec):
                     ports[name] = self._make_port(spec)
@@ -237,7 +239,8 @@ class CoSimComponent:
     def _set_event_ports(self, t: float | None, event_names: Iterable[str] | None) -> None:
         """EVENT outputs: True for the events that just fired, all False otherwise."""
         names = set(event_names or ())
-        for port in self.outputs.values():
+        # EVENT ports are never array elements: the made ports are all of them
+        for port in made_items(self.outputs).values():
             if port.spec.type == PortType.EVENT:
                 port.set(port.spec.name in names, t)
 

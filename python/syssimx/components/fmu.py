@@ -112,6 +112,12 @@ class FMUComponent(CoSimComponent):
         self.inputs = self.input_specs.mapped(lambda _, spec: self._make_port(spec))
         self.outputs = self.output_specs.mapped(lambda _, spec: self._make_port(spec))
         self._inputs_set: set[str] = set()
+        # String or Binary parameters (FMI 3.0; arrays are never String ones): the engine
+        # writes numbers only
+        self._has_text_parameters = any(parameter.type == PortType.STRING for parameter
+                                        in made_items(self.info.parameters).values())
+        # name -> (value type, value reference) of what _by_type wrote so far
+        self._written_variables: dict[str, tuple[PortType, int]] = {}
         fmu, self._unzip_dir, extraction_key = load(self.info, self.fmu_interface, name,
                                                     isolated, step_timeout)
         self.instance = FMUInstance(fmu, name, self.info.standard.function_prefix)
@@ -233,18 +239,28 @@ class FMUComponent(CoSimComponent):
         """Value references and values of parameters and inputs, grouped by value type (FMI
         3.0 String and Binary ones are written by _write_texts)."""
         by_type: dict[PortType, tuple[list[int], list[Any]]] = {}
+        written = self._written_variables
         for name, value in values.items():
-            kind = self.input_specs[name].type if name in self.input_specs \
-                else self.info.parameters[name].type
+            known = written.get(name)
+            if known is None:
+                known = written[name] = self._written_variable(name)
+            kind, reference = known
             if kind == PortType.STRING:
                 continue
             if kind == PortType.INT and not INT_MIN <= value <= INT_MAX:
                 raise ConfigurationError(f"{self.name}.{name}: {value} is outside the range of "
                                          f"the engine's Integer ports ({INT_MIN}..{INT_MAX})")
             refs, vals = by_type.setdefault(kind, ([], []))
-            refs.append(self.value_reference(name))
+            refs.append(reference)
             vals.append(value)
         return by_type
+
+    def _written_variable(self, name: str) -> tuple[PortType, int]:
+        """The value type and value reference of a parameter or input written to the FMU
+        (fixed by its modelDescription: _by_type keeps them, looked up once per name)."""
+        kind = self.input_specs[name].type if name in self.input_specs \
+            else self.info.parameters[name].type
+        return kind, -1 if kind == PortType.STRING else self.value_reference(name)
 
     # ---------------------------------------------------------------- parameters
     def set_parameters(self, **parameters: Any) -> None:
@@ -256,8 +272,8 @@ class FMUComponent(CoSimComponent):
             waiting[self.name] = tuple(dict.fromkeys((*waiting.get(self.name, ()), *parameters)))
         for name, value in parameters.items():
             parameter = self.info.parameters.get(name)
-            sized = self.info.structural_parameters.get(name)
-            if parameter is None and sized is not None:
+            sized = self.info.structural_parameters.get(name) if parameter is None else None
+            if sized is not None:
                 raise ConfigurationError(
                     f"component {self.name!r}: {name!r} is a structural parameter (it sizes "
                     f"the array(s) {', '.join(map(repr, sized))}); syssimx keeps its start "
@@ -273,9 +289,11 @@ class FMUComponent(CoSimComponent):
     def user_parameters(self) -> dict[str, Any]:
         """The parameters the user set: named in set_parameters (or reinitialize), or changed
         in `parameters`. Only these are written to the FMU."""
+        declared, named = self._declared_parameters, self._parameters_set
+        made = made_items(declared)  # a dict's lookups, an ElementMap's only for the rest
         return {n: v for n, v in made_items(self.parameters).items()
-                if v is not None and (n in self._parameters_set
-                                      or v != self._declared_parameters.get(n))}
+                if v is not None and (n in named or v != (made[n] if n in made
+                                                          else declared.get(n)))}
 
     def _apply_parameters_starts(self) -> None:
         """Write the parameters the user set to the FMU. In step mode only tunable ones (FMI
@@ -291,16 +309,21 @@ class FMUComponent(CoSimComponent):
         self._write_to_fmu(self._input_starts_to_write())
 
     def _parameter_starts(self, step_mode: bool) -> dict[str, Any]:
+        if not step_mode:
+            return self.user_parameters()
         return {n: v for n, v in self.user_parameters().items()
-                if self.info.parameters[n].tunable or not step_mode}
+                if self.info.parameters[n].tunable}
 
     def _input_starts_to_write(self) -> dict[str, Any]:
         if self._binding is None:
             return {n: self._input_starts[n] for n in self._inputs_set}
         plan = self._binding.plan
-        engine = {n: plan.port_value(self, "in", n) for n in self.engine_inputs()}
-        return {n: _typed_input(self.input_specs[n].type, v)
-                for n, v in engine.items() if not math.isnan(v)}
+        names = plan.inputs[self.name]
+        if not names:
+            return {}
+        engine = plan.input_array(self)
+        return {n: _typed_input(self.input_specs[n].type, engine[i])
+                for i, n in enumerate(names) if not math.isnan(engine[i])}
 
     def _start_hooks_overridden(self) -> bool:
         """Whether a subclass writes the start values itself (SysSimX's hooks)."""
@@ -316,8 +339,8 @@ class FMUComponent(CoSimComponent):
     def _start(self, t0: float, tolerance: float | None = None) -> None:
         self._sync_ports()
         self.t = t0
-        system_tolerance = _checked_tolerance(tolerance, f"{self.name}: the tolerance given to "
-                                              "System.initialize")
+        system_tolerance = None if tolerance is None else _checked_tolerance(
+            tolerance, f"{self.name}: the tolerance given to System.initialize")
         self._experiment_tolerance = _first_given(self.tolerance, system_tolerance,
                                                   self.info.default_tolerance)
         self.reinitialize(t0)
@@ -340,29 +363,38 @@ class FMUComponent(CoSimComponent):
                     f"{did_you_mean(name, self.info.parameters)}; "
                     f"known parameters: {sorted(self.info.parameters)}")
             overrides[name] = _coerce_parameter(self.name, self.info.parameters[name], value)
-        self.parameters = copy.copy(saved)
-        self.parameters.update(overrides)
-        self._parameters_set = saved_set | set(overrides)
-        try:
-            # the engine writes the values itself unless a subclass's hooks do
-            if self._start_hooks_overridden():
-                self.instance.initialize(t, self._experiment_tolerance,
-                                         in_initialization_mode=self._apply_starts)
-            else:
-                starts = {**self._parameter_starts(step_mode=False),
-                          **self._input_starts_to_write()}
-                texts = {n: v for n, v in starts.items()
-                         if n in self.info.parameters
-                         and self.info.parameters[n].type == PortType.STRING}
-                self.instance.initialize(
-                    t, self._experiment_tolerance, self._by_type(starts),
-                    in_initialization_mode=(lambda: self._write_texts(texts)) if texts else None)
-        finally:
-            self.parameters, self._parameters_set = saved, saved_set
+        if overrides or self._start_hooks_overridden():
+            # on copies: neither the overrides nor what a subclass's hooks change stay
+            self.parameters = copy.copy(saved)
+            self.parameters.update(overrides)
+            self._parameters_set = saved_set | set(overrides)
+            try:
+                self._initialize_instance(t)
+            finally:
+                self.parameters, self._parameters_set = saved, saved_set
+        else:
+            self._initialize_instance(t)
         self.t = t
         if self._binding is not None:
             self._binding.plan.waiting_parameters.pop(self.name, None)
             self._binding.plan.read_outputs(self)
+
+    def _initialize_instance(self, t: float) -> None:
+        """The instance ready to step at t with the parameters and inputs the user set: the
+        engine writes the values itself (one call) unless a subclass's hooks do."""
+        if self._start_hooks_overridden():
+            self.instance.initialize(t, self._experiment_tolerance,
+                                     in_initialization_mode=self._apply_starts)
+            return
+        starts = self.user_parameters()  # every one: the FMU is in initialization mode
+        starts.update(self._input_starts_to_write())
+        texts = {n: v for n, v in starts.items()
+                 if n in self.info.parameters
+                 and self.info.parameters[n].type == PortType.STRING} \
+            if self._has_text_parameters else None
+        self.instance.initialize(
+            t, self._experiment_tolerance, self._by_type(starts),
+            in_initialization_mode=(lambda: self._write_texts(texts)) if texts else None)
 
     def _add_to_plan(self, plan: EnginePlan) -> None:
         """The engine steps the FMU itself; only what a subclass overrides runs in Python. An
@@ -401,6 +433,8 @@ class FMUComponent(CoSimComponent):
         a value for a parameter that is not Real, an FMU with String or Binary parameters (the
         engine writes numbers only). Decided by what the plan is compiled from, so it holds
         for every initialize on that plan."""
+        if not self.event_handlers:
+            return None
         handlers = [h for port in self.event_handlers.values() for h in port]
         if len(handlers) != 1 or not isinstance(handlers[0], Reinitialize) \
                 or any(_overrides(self, hook) for hook in _EVENT_HOOKS):
@@ -409,9 +443,8 @@ class FMUComponent(CoSimComponent):
         if any(routes != {port} for routes in self._event_routes.values()):
             return None
         terms = handlers[0].terms(self)
-        if any(self.info.parameters[p].type != PortType.REAL for p in terms) or any(
-                parameter.type == PortType.STRING  # arrays are never String ones
-                for parameter in made_items(self.info.parameters).values()):
+        if any(self.info.parameters[p].type != PortType.REAL for p in terms) \
+                or self._has_text_parameters:
             return None
         return terms
 
@@ -553,6 +586,8 @@ def _first_given(*values: float | None) -> float | None:
 
 
 def _coerce_parameter(component: str, parameter: Parameter, value: Any) -> Any:
+    if type(value) is float and parameter.type == PortType.REAL:  # the common case
+        return value
     where = f"{component}.{parameter.name}"
     if parameter.fmi_type == "Binary":
         if not isinstance(value, bytes | bytearray):

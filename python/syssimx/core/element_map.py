@@ -19,6 +19,8 @@ from typing import Any, NamedTuple, TypeVar
 
 Value = TypeVar("Value")
 
+_ABSENT = object()  # what dict.get answers for a name not made (None may be a value)
+
 
 class Block(NamedTuple):
     """An array's elements in a map: the name of the array, its shape (() for one value
@@ -108,11 +110,23 @@ class ElementMap(MutableMapping[str, Value]):
         value = self._values[key] = block.make(position, key)
         return value
 
+    def get(self, key: str, default: Any = None) -> Any:
+        # Mapping.get goes through __getitem__ and a KeyError: the made values are a dict
+        value = self._values.get(key, _ABSENT)
+        if value is not _ABSENT:
+            return value
+        found = self._block_of(key) if isinstance(key, str) else None
+        if found is None:
+            return default
+        block, position = found
+        value = self._values[key] = block.make(position, key)
+        return value
+
     def __contains__(self, key: object) -> bool:
         return key in self._values or (isinstance(key, str) and self._block_of(key) is not None)
 
     def __setitem__(self, key: str, value: Value) -> None:
-        if key not in self:
+        if key not in self._values and key not in self:
             self._order.append(key)
             self._length += 1
         self._values[key] = value
@@ -181,4 +195,5 @@ class ElementMap(MutableMapping[str, Value]):
 def made_items(mapping: MutableMapping[str, Value]) -> dict[str, Value]:
     """The values of `mapping` that exist as objects: all of a dict's, the made ones of an
     ElementMap's."""
-    return mapping.made() if isinstance(mapping, ElementMap) else dict(mapping)
+    return mapping._values if type(mapping) is ElementMap else \
+        mapping.made() if isinstance(mapping, ElementMap) else dict(mapping)

@@ -55,6 +55,11 @@ class FMUInstance:
         self._free_state_function = lib().ssx_fmu_free_state
         self._get_counters = lib().ssx_fmu_get_counters
         self._counters = ffi.new("ssx_fmu_counters *")
+        # initialize's experiment, filled at each call (the engine reads it before anything
+        # that could call initialize again)
+        self._experiment = ffi.new("ssx_fmu_experiment *")
+        # start values by the variables they write: see _start_values
+        self._kept_starts: dict[tuple[Any, ...], tuple[Any, list[Any]]] = {}
 
     @property
     def generation(self) -> int:
@@ -119,10 +124,11 @@ class FMUInstance:
         enterInitializationMode, write `starts`, call `in_initialization_mode` (it may write
         more through this proxy; what it raises is raised here), exitInitializationMode."""
         self.mode = "init"  # what the FMU is in while in_initialization_mode runs
-        experiment = ffi.new("ssx_fmu_experiment *", {
-            "start_time": start_time, "tolerance_defined": tolerance is not None,
-            "tolerance": tolerance or 0.0})
-        values, _arrays = start_values(starts or {})  # the arrays live as long as this call
+        experiment = self._experiment
+        experiment.start_time = start_time
+        experiment.tolerance_defined = tolerance is not None
+        experiment.tolerance = tolerance or 0.0
+        values = self._start_values(starts) if starts else ffi.NULL
         raised: list[BaseException] = []
 
         def during(_user: Any) -> int:
@@ -135,7 +141,8 @@ class FMUInstance:
 
         callback = ffi.NULL if in_initialization_mode is None \
             else ffi.callback("int(void *)", during)
-        status = lib().ssx_fmu_initialize(self.fmu, experiment, values, callback, ffi.NULL)
+        fmu = self._fmu if self._fmu is not None else self.fmu  # (FMUError once released)
+        status = lib().ssx_fmu_initialize(fmu, experiment, values, callback, ffi.NULL)
         if status in (0, 1):
             self.mode = "step"
             return
@@ -143,6 +150,23 @@ class FMUInstance:
         if raised:
             raise raised[0]
         self._check(status, string(lib().ssx_fmu_last_call(self.fmu)))
+
+    def _start_values(self, starts: Values) -> Any:
+        """The ssx_fmu_values of `starts` in C arrays kept for the next call that writes the
+        same variables (a loop of members writes the same parameters each time): then only
+        the values are written into them. The engine reads them during the call only."""
+        layout = tuple((kind, *refs) for kind, (refs, _) in starts.items())
+        kept = self._kept_starts.get(layout)
+        if kept is None:
+            if len(self._kept_starts) == _KEPT_LAYOUTS:
+                self._kept_starts.clear()
+            kept = self._kept_starts[layout] = start_values(starts)
+            return kept[0]
+        values, arrays = kept
+        for (kind, (_, vals)), array in zip(starts.items(), arrays[2::2], strict=True):
+            convert = _VALUES_LAYOUT[kind][4]
+            array[0:len(vals)] = [convert(v) for v in vals]
+        return values
 
     def instantiate(self, visible: bool = False, callbacks: Any = None,
                     loggingOn: bool = False) -> None:  # noqa: N803 (FMPy's names)
@@ -308,15 +332,27 @@ def start_values(starts: Values) -> tuple[Any, list[Any]]:
     """The ssx_fmu_values of `starts`, and the arrays it points at (keep them alive)."""
     values = ffi.new("ssx_fmu_values *")
     keep: list[Any] = [values]
-    layout = {PortType.REAL: ("real", "double[]"), PortType.INT: ("integer", "int[]"),
-              PortType.BOOL: ("boolean", "int[]")}
     for kind, (refs, vals) in starts.items():
-        field, c_type = layout[kind]
-        items = [float(v) if kind == PortType.REAL else int(v) if kind == PortType.INT
-                 else int(bool(v)) for v in vals]
+        vr_field, values_field, count_field, c_type, convert = _VALUES_LAYOUT[kind]
+        items = [convert(v) for v in vals]
         vr, array = ffi.new("unsigned int[]", list(refs)), ffi.new(c_type, items)
         keep += [vr, array]
-        setattr(values, f"{field}_vr", vr)
-        setattr(values, f"{field}_values", array)
-        setattr(values, f"n_{field}", len(items))
+        setattr(values, vr_field, vr)
+        setattr(values, values_field, array)
+        setattr(values, count_field, len(items))
     return values, keep
+
+
+# layouts of start values an instance keeps (a user's loop may write ever other subsets)
+_KEPT_LAYOUTS = 8
+
+
+def _boolean(value: Any) -> int:
+    return int(bool(value))
+
+
+# per value type: the ssx_fmu_values fields, the C array type and the conversion of a value
+_VALUES_LAYOUT: dict[PortType, tuple[str, str, str, str, Callable[[Any], Any]]] = {
+    PortType.REAL: ("real_vr", "real_values", "n_real", "double[]", float),
+    PortType.INT: ("integer_vr", "integer_values", "n_integer", "int[]", int),
+    PortType.BOOL: ("boolean_vr", "boolean_values", "n_boolean", "int[]", _boolean)}

@@ -11,7 +11,9 @@ from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
+from ..bridge.history_arrays import HistoryArrays
 from ..bridge.plan import recorded_columns
+from ..bridge.run_outcome import RunOutcome
 from ..core.suggest import did_you_mean
 from ..engine import enum_name, ffi, lib
 from ..errors import ConfigurationError, UnknownNameError
@@ -118,11 +120,12 @@ def _copied(copy: Any, plan: EnginePlan, ctype: str, count: int,
     return list(zip(*(array[name].tolist() for name in fields), strict=True))
 
 
-def read_events(plan: EnginePlan) -> list[EventRecord]:
-    """The run's event records and their trials, copied from the engine in two calls."""
+def read_events(plan: EnginePlan, count: int | None = None) -> list[EventRecord]:
+    """The events since initialize (`count` of them, when the caller knows) and their trials,
+    copied from the engine in two calls."""
     engine = lib()
-    records = _copied(engine.ssx_events_copy, plan, "ssx_event_record",
-                      int(engine.ssx_event_count(plan.sys)), _RECORD_FIELDS)
+    count = int(engine.ssx_event_count(plan.sys)) if count is None else count
+    records = _copied(engine.ssx_events_copy, plan, "ssx_event_record", count, _RECORD_FIELDS)
     if not records:
         return []
     trials = [LocalizationTrial(*row) for row in _copied(
@@ -144,19 +147,31 @@ def read_events(plan: EnginePlan) -> list[EventRecord]:
     return events
 
 
-def read_statistics(plan: EnginePlan, events: Sequence[EventRecord],
-                    termination: Termination | None = None) -> Statistics:
-    raw = ffi.new("ssx_statistics *")
-    lib().ssx_get_statistics(plan.sys, raw)
-    return Statistics(int(raw.macro_steps), int(raw.do_step_calls), int(raw.state_saves),
-                      int(raw.state_restores), int(raw.events),
-                      int(raw.localization_iterations), int(raw.loop_iterations),
-                      int(raw.loop_solves),
-                      tuple(e.iterations for e in events if not e.own),
-                      int(raw.directional_derivatives), int(raw.own_events), termination,
-                      int(raw.accepted_steps), int(raw.rejected_steps), float(raw.smallest_step),
-                      float(raw.largest_step), float(raw.largest_error),
-                      float(raw.error_sum) / raw.accepted_steps if raw.accepted_steps else 0.0)
+class StatisticsReading:
+    """The engine's counters as they were at one instant (an ssx_statistics of the caller's,
+    which nothing changes later), made a Statistics only when asked for: a result that
+    nobody asks for its statistics costs no Python for them."""
+
+    def __init__(self, counters: Any, events: Sequence[EventRecord],
+                 termination: Termination | None, owner: Any = None) -> None:
+        self._counters = counters
+        self._owner = owner  # holds the memory of `counters` when they are a struct inside it
+        self._events = events
+        self.termination = termination
+
+    def statistics(self) -> Statistics:
+        raw, events, termination = self._counters, self._events, self.termination
+        return Statistics(int(raw.macro_steps), int(raw.do_step_calls), int(raw.state_saves),
+                          int(raw.state_restores), int(raw.events),
+                          int(raw.localization_iterations), int(raw.loop_iterations),
+                          int(raw.loop_solves),
+                          tuple(e.iterations for e in events if not e.own),
+                          int(raw.directional_derivatives), int(raw.own_events), termination,
+                          int(raw.accepted_steps), int(raw.rejected_steps),
+                          float(raw.smallest_step), float(raw.largest_step),
+                          float(raw.largest_error),
+                          float(raw.error_sum) / raw.accepted_steps if raw.accepted_steps
+                          else 0.0)
 
 
 class HistoryView:
@@ -166,11 +181,13 @@ class HistoryView:
     for, so a run's result costs nothing per component; the view holds neither the plan nor
     the components (it outlives them)."""
 
-    def __init__(self, plan: EnginePlan, events: Sequence[EventRecord]) -> None:
+    def __init__(self, plan: EnginePlan, events: Sequence[EventRecord],
+                 arrays: HistoryArrays | None = None) -> None:
+        """`arrays`: the samples to view (a run's outcome), else those recorded now."""
         self._recorded = plan.recorded()
         self._events = events
-        self._arrays = plan.history()
-        self._micro = self._arrays.micro()
+        self._arrays = arrays if arrays is not None else plan.history()
+        self._micro: np.ndarray | None = None  # made when first asked for
         self._data: dict[str, tuple[np.ndarray, dict[str, np.ndarray]]] = {}
 
     def _event_column(self, t: np.ndarray, component: str, event: str) -> np.ndarray:
@@ -180,11 +197,13 @@ class HistoryView:
             if (e.component, e.event) == (component, event):
                 # samples are in time order: look only at those taken at the event's instant
                 first, end = np.searchsorted(t, e.t, "left"), np.searchsorted(t, e.t, "right")
-                column[first:end] |= self._micro[first:end] == e.micro + 1
+                column[first:end] |= self.micro[first:end] == e.micro + 1
         return column
 
     @property
     def micro(self) -> np.ndarray:
+        if self._micro is None:
+            self._micro = self._arrays.micro()
         return self._micro
 
     def __getitem__(self, component: str) -> tuple[np.ndarray, dict[str, np.ndarray]]:
@@ -235,7 +254,7 @@ class SimulationResult:
     ({component: {port: unit or None}}) are SysSimX's."""
 
     def __init__(self, system_name: str, algorithm: str, history: HistoryView,
-                 events: Sequence[EventRecord], statistics: Statistics,
+                 events: Sequence[EventRecord], statistics: Statistics | StatisticsReading,
                  units: Mapping[str, dict[str, str | None]], t0: float, tf: float, dt: float,
                  wall_time: float, mode_switches: dict[str, tuple[Any, ...]] | None = None
                  ) -> None:
@@ -245,22 +264,34 @@ class SimulationResult:
         self.events = EventLog(events)
         # {component: (ModeSwitchEvent, ...)} of the MultiComponents that switched
         self.mode_switches = mode_switches or {}
-        self.statistics = statistics
+        self._statistics = statistics
         self.termination = statistics.termination
         self.units = units
         self.t0, self.tf, self.dt, self.wall_time = t0, tf, dt, wall_time
 
+    @property
+    def statistics(self) -> Statistics:
+        """The run's counters (since System.initialize), read when the run returned."""
+        if isinstance(self._statistics, StatisticsReading):
+            self._statistics = self._statistics.statistics()
+        return self._statistics
+
     @classmethod
     def from_system(cls, system: RecordedSystem, t0: float, tf: float, dt: float,
-                    wall_time: float = math.nan) -> SimulationResult:
-        """The result of what `system` recorded since its initialize (also after a failed run)."""
+                    wall_time: float = math.nan, outcome: RunOutcome | None = None
+                    ) -> SimulationResult:
+        """The result of what `system` recorded since its initialize (also after a failed run);
+        `outcome`: the engine's state as the run that just ended read it."""
         plan = system._plan
         if plan is None:
             raise ConfigurationError(f"{system.name}: nothing recorded yet; call initialize")
+        if outcome is None:
+            outcome = RunOutcome(plan)
         events = system.history.events
         return cls(system.name, type(system._run_algorithm(plan)).__name__,
-                   HistoryView(plan, events),
-                   events, read_statistics(plan, events, system.termination),
+                   HistoryView(plan, events, outcome.history),
+                   events, StatisticsReading(outcome.statistics, events, system.termination,
+                                             outcome.owner),
                    recorded_units(plan), t0, tf, dt, wall_time,
                    system._mode_switches())
 

@@ -16,6 +16,7 @@ from ..bridge.failure import raise_failure
 from ..bridge.observers import add_observer, remove_observer
 from ..bridge.observers import keep_history as keep_history_samples
 from ..bridge.plan import EnginePlan
+from ..bridge.run_outcome import RunOutcome
 from ..components.base import CoSimComponent
 from ..core.events import OWN_EVENTS
 from ..core.port import PortType
@@ -239,13 +240,13 @@ class System:
         their port and feedthrough counts, their handlers and their indicators, the connections and
         the event connections. Equal before two initializes, the plan is reused. Cheap: it is
         taken at every initialize."""
-        components = tuple(
+        components = tuple([
             (name, id(c), type(c), len(c.input_specs), len(c.output_specs),
              len(c.direct_feedthrough),
              tuple(id(h) for hs in c.event_handlers.values() for h in hs)
              if c.event_handlers else (),
              tuple(c.event_indicators.values()) if c.event_indicators else ())
-            for name, c in self.components.items())
+            for name, c in self.components.items()])
         connections = tuple((*c.key(), c.factor, c.offset, c.convert_units)
                             for c in self.connections)
         return components, connections, tuple(c.key() for c in self.event_connections)
@@ -269,7 +270,10 @@ class System:
         """The algorithm's options into the engine, checked first; nothing to do when the
         plan holds them already (a reused plan, a second run)."""
         algorithm = self._run_algorithm(plan)
-        options = _options(algorithm)
+        own = tuple(vars(algorithm).values())
+        # a coupling algorithm of plain values is its options as they are (see _options)
+        options = (type(algorithm), *own, type(None)) \
+            if _OPTION_TYPES.issuperset(map(type, own)) else _options(algorithm)
         if options == plan.options:
             return
         algorithm.validate()
@@ -319,18 +323,24 @@ class System:
             self._plan, self._plan_structure = plan, structure
         else:
             plan.restart()
-            keep_history_samples(plan, True)  # a run may have switched it off
+            if self._history_off:  # a run switched the history off
+                keep_history_samples(plan, True)
         self._push_options(plan)
-        plan.check(lib().ssx_set_allow_non_finite(plan.sys, int(bool(allow_non_finite))),
-                   "allow_non_finite")
-        plan.check(lib().ssx_set_output_interval(
-            plan.sys, defaults().output_interval if output_interval is None else output_interval),
-            "output_interval")
+        settings = (int(bool(allow_non_finite)), output_interval)
+        if settings != plan.initialize_settings:  # a reused plan holds them mostly
+            plan.initialize_settings = None  # unknown until both are taken
+            plan.check(lib().ssx_set_allow_non_finite(plan.sys, settings[0]),
+                       "allow_non_finite")
+            plan.check(lib().ssx_set_output_interval(
+                plan.sys,
+                defaults().output_interval if output_interval is None else output_interval),
+                "output_interval")
+            plan.initialize_settings = settings
         self.termination = None
         start_tables(self.components, self.connections, plan, t0)
         for component in self.components.values():
             component._start(t0, tolerance)
-        if lib().ssx_initialize(plan.sys, t0) < 0:
+        if plan.initialize(t0) < 0:
             raise_failure(plan)
         self.history = SystemHistory(system=self)
         self.t = t0
@@ -342,7 +352,7 @@ class System:
         checkpoint): the history restarts with the sample at t."""
         if self._plan is None:
             raise ConfigurationError(f"{self.name}: call initialize(t0) first")
-        if lib().ssx_initialize(self._plan.sys, t) < 0:
+        if self._plan.initialize(t) < 0:
             raise_failure(self._plan)
         self.history = SystemHistory(system=self)
         self.t = t
@@ -398,8 +408,8 @@ class System:
             raise ConfigurationError(f"{self.name}: call initialize(t0) before run()")
         if self._plan.waiting_parameters:
             _warn_waiting_parameters(self._plan.waiting_parameters)
-        t0, tf, dt = (_time_value(self.name, label, value)
-                      for label, value in (("t0", t0), ("tf", tf), ("dt", dt)))
+        t0, tf, dt = (_time_value(self.name, "t0", t0), _time_value(self.name, "tf", tf),
+                      _time_value(self.name, "dt", dt))
         if timeout is not None and not (isinstance(timeout, int | float) and timeout > 0):
             raise ConfigurationError(f"{self.name}: timeout must be a positive number of "
                                      f"seconds or None, got {timeout!r}")
@@ -418,7 +428,9 @@ class System:
             raise ConfigurationError(f"{self.name}: an earlier run kept no history "
                                      "(keep_history=False); call initialize to keep it again")
         self._push_options(plan)
-        plan.check(lib().ssx_set_run_output_interval(plan.sys, grid_steps), "output_interval")
+        if grid_steps != plan.run_output_interval:
+            plan.check(lib().ssx_set_run_output_interval(plan.sys, grid_steps), "output_interval")
+            plan.run_output_interval = grid_steps
         stream = RunStream(plan, stream_to, t0, self._streamed) if stream_to is not None \
             else None
         if not keep_history:
@@ -436,9 +448,10 @@ class System:
             if stream is not None:
                 stream.finish()
         wall = time.perf_counter() - start
-        events = read_events(plan)
+        outcome = RunOutcome(plan)
+        events = read_events(plan, outcome.event_count)
         self.history = SystemHistory(events, self)
-        self.t = float(lib().ssx_time(plan.sys))
+        self.t = outcome.time
         if status < 0:
             if reports is not None:
                 reports.close()
@@ -447,13 +460,13 @@ class System:
             except KeyboardInterrupt as stop:  # Ctrl-C: the steps completed are the result
                 for component in self.components.values():
                     component.t = self.t
-                partial = SimulationResult.from_system(self, t0, self.t, dt, wall)
+                partial = SimulationResult.from_system(self, t0, self.t, dt, wall, outcome)
                 raise RunInterrupted(f"system {self.name!r}: the run was interrupted at "
                                      f"t={self.t:.12g} (partial_result holds the samples up "
                                      "to there)", partial) from stop
         if reports is not None:
             reports.finish(self.t)
-        self.termination = read_termination(plan)
+        self.termination = read_termination(plan, outcome.termination)
         if self.termination is not None:
             plan.failure = None  # what a hook raised because the component stopped
             logger.info("%s: %s; the run ends at t=%s", self.name, self.termination, self.t)
@@ -462,11 +475,13 @@ class System:
         if isinstance(algorithm, HybridAlgorithm):
             log_events([e for e in events if e.t >= t0], algorithm.method)
         logger.info("Simulation completed in %.2f seconds", wall)
-        return SimulationResult.from_system(self, t0, tf, dt, wall)
+        return SimulationResult.from_system(self, t0, tf, dt, wall, outcome)
 
     def _mode_switches(self) -> dict[str, tuple[Any, ...]]:
         """{component: (ModeSwitchEvent, ...)} of the components that switched models."""
         names = self._plan.switching if self._plan is not None else self.components
+        if not names:
+            return {}
         switches = {n: self.components[n].history.mode_switch_events for n in names}
         return {n: events for n, events in switches.items() if events}
 
@@ -541,19 +556,21 @@ def _power_bond_ends(plan: EnginePlan, control: StepControl) -> list[int]:
 
 def _options(algorithm: Algorithm) -> tuple[Any, ...]:
     """An algorithm's options as values (its coupling's included): equal, the engine holds
-    them already."""
+    them already. Taken at every initialize and run."""
     coupling = algorithm.coupling if isinstance(algorithm, HybridAlgorithm) else None
-    return (type(algorithm),
-            *(_option_value(v) for v in vars(algorithm).values()
-              if type(v) in _OPTION_TYPES or isinstance(v, StepControl)),
-            type(coupling),
-            *(_option_value(v) for v in (vars(coupling).values() if coupling is not None
-                                         else ())))
+    return (type(algorithm), *_option_values(algorithm, every=False), type(coupling),
+            *(_option_values(coupling, every=True) if coupling is not None else ()))
 
 
-def _option_value(value: Any) -> Any:
-    """A StepControl as its values at this moment (it may be changed in place later)."""
-    return dataclasses.astuple(value) if isinstance(value, StepControl) else value
+def _option_values(options: Any, every: bool) -> tuple[Any, ...]:
+    """The values of an options object's fields, a StepControl as its values at this moment
+    (it may be changed in place later); without `every` only options (no nested objects).
+    Plain values only, the common case, take no Python per field."""
+    values = tuple(vars(options).values())
+    if _OPTION_TYPES.issuperset(map(type, values)):
+        return values
+    return tuple(dataclasses.astuple(v) if isinstance(v, StepControl) else v for v in values
+                 if every or type(v) in _OPTION_TYPES or isinstance(v, StepControl))
 
 
 _OPTION_TYPES = frozenset((float, int, str, bool, type(None)))
@@ -561,6 +578,8 @@ _OPTION_TYPES = frozenset((float, int, str, bool, type(None)))
 
 def _time_value(system: str, label: str, value: object) -> float:
     """A time or step as a float: any real number (numpy scalars too), finite."""
+    if type(value) is float and math.isfinite(value):  # the common case, without the ABC
+        return value
     if isinstance(value, bool) or not isinstance(value, numbers.Real) \
             or not math.isfinite(value):
         raise ConfigurationError(f"{system}: {label} must be a finite number, got {value!r}")

@@ -6,7 +6,6 @@ from collections.abc import Mapping, Sequence
 
 from ..bridge.plan import EnginePlan, typed
 from ..components.base import CoSimComponent
-from ..components.table_source import TableSource
 from ..units import conversion
 from .connection import Connection
 
@@ -16,8 +15,9 @@ def start_tables(components: Mapping[str, CoSimComponent], connections: Sequence
     """Before any component initializes: each table's outputs at t0, and every input a table
     drives starting at that value, so an FMU has it before it leaves initialization mode (as
     FMPy sets its inputs)."""
-    starts = {name: plan.start_table(table, t0) for name, table in components.items()
-              if isinstance(table, TableSource)}
+    if not plan.tables:
+        return
+    starts = {name: plan.start_table(components[name], t0) for name in plan.tables}
     for connection in connections:
         if connection.src_comp not in starts:
             continue

@@ -7,7 +7,7 @@ engine keeps which component asked and the time it reached.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from ..engine import ffi, lib
 
@@ -28,9 +28,11 @@ class Termination:
         return f"component {self.component!r} asked to stop at t = {self.time:.12g}"
 
 
-def read_termination(plan: EnginePlan) -> Termination | None:
-    """The plan's termination, or None when no component asked to stop."""
-    raw = lib().ssx_get_termination(plan.sys)
+def read_termination(plan: EnginePlan, raw: Any = None) -> Termination | None:
+    """The plan's termination (its ssx_termination `raw`, when the caller has it), or None
+    when no component asked to stop."""
+    if raw is None:
+        raw = lib().ssx_get_termination(plan.sys)
     if raw.component < 0:
         return None
     return Termination(list(plan.index)[raw.component], float(raw.time),

@@ -130,8 +130,40 @@ static void test_monitor_stops_the_run(void)
     ssx_fmu_free(fmu);
 }
 
+/* ssx_get_run_outcome reads what each accessor reads, and its history reference keeps the
+ * samples like ssx_history_retain's. */
+static void test_run_outcome_is_the_accessors(void)
+{
+    ssx_fmu *fmu = load_fmu("pendulum_euler");
+    ssx_system *sys = pendulum_system(fmu);
+    CHECK_OK(sys, ssx_run(sys, 0.0, 0.5, 0.05));
+    ssx_run_outcome outcome;
+    ssx_get_run_outcome(sys, &outcome);
+    ssx_statistics statistics;
+    ssx_get_statistics(sys, &statistics);
+    CHECK(outcome.time == ssx_time(sys) && outcome.time == 0.5);
+    CHECK(outcome.n_events == ssx_event_count(sys) && outcome.n_events == 0);
+    CHECK(outcome.termination == ssx_get_termination(sys) &&
+          outcome.termination->component == -1);
+    CHECK(memcmp(&outcome.statistics, &statistics, sizeof statistics) == 0);
+    CHECK(outcome.statistics.macro_steps == 10);
+    CHECK(outcome.history_length == ssx_history_length(sys) && outcome.history_length == 11);
+    CHECK(outcome.history_time == ssx_history_time(sys));
+    CHECK(outcome.history_micro == ssx_history_micro(sys));
+    CHECK(outcome.history != NULL &&
+          ssx_history_block_values(outcome.history, 0) == ssx_history_values(sys, 0));
+    double last = outcome.history_time[10];
+    CHECK(start_pendulum(fmu, 0.0, 0.25, 0.0, 0.0) == 0);
+    CHECK_OK(sys, ssx_initialize(sys, 0.0));
+    ssx_system_free(sys);
+    CHECK(outcome.history_time[10] == last && last == 0.5); /* held by the reference */
+    ssx_history_release(outcome.history);
+    ssx_fmu_free(fmu);
+}
+
 int main(void)
 {
+    test_run_outcome_is_the_accessors();
     test_retained_samples_survive();
     test_unretained_history_is_trimmed_to_its_samples();
     test_held_results_copy_rarely();
