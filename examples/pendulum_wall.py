@@ -23,14 +23,16 @@ def bounce(component: FMUComponent, event_names: list[str], t: float) -> None:
                            omega0=-outputs["omega"].magnitude)
 
 
-def build(solver: str = "cvode", method: str = "illinois") -> tuple[System, FMUComponent]:
-    """The initialized system; CVODE runs at relative tolerance 1e-10, Euler at its 1e-4 step."""
+def build(solver: str = "cvode", method: str = "illinois",
+          handler: object = bounce) -> tuple[System, FMUComponent]:
+    """The initialized system; CVODE runs at relative tolerance 1e-10, Euler at its 1e-4 step.
+    `handler` is what a wall hit runs: a function like `bounce`, or a `Reinitialize`."""
     pendulum = FMUComponent("P", fmus.path(f"pendulum_{solver}"))
     pendulum.set_parameters(theta0=0.5, omega0=0.0)
     if solver == "cvode":
         pendulum.set_parameters(cvode_relative_tolerance=1e-10)
     pendulum.add_event_indicator("wall_hit", variable="theta", direction=-1)
-    pendulum.add_event_handler("omega_invert", bounce)
+    pendulum.add_event_handler("omega_invert", handler)
     system = System("pendulum against a wall")
     system.add_component(pendulum)
     system.add_event_connection(EventConnection("P", "wall_hit", "P", "omega_invert"))

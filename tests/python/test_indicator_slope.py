@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import pendulum_wall
 import pytest
-from syssimx import EventConnection, FMUComponent, HybridAlgorithm, Reinitialize, System, fmus
+from syssimx import FMUComponent, Reinitialize, fmus
 
 
 @pytest.mark.parametrize("stem", ["pendulum_euler", "pendulum_cvode_fmi3"])
@@ -21,17 +21,7 @@ def test_the_slope_is_the_declared_derivative(stem: str) -> None:
 
 
 def _seed(solver: str, handler: object, method: str = "illinois") -> tuple[list[float], list[int]]:
-    pendulum = FMUComponent("P", fmus.path(f"pendulum_{solver}"))
-    pendulum.set_parameters(theta0=0.5, omega0=0.0)
-    if solver == "cvode":
-        pendulum.set_parameters(cvode_relative_tolerance=1e-10)
-    pendulum.add_event_indicator("wall_hit", variable="theta", direction=-1)
-    pendulum.add_event_handler("omega_invert", handler)
-    system = System("wall")
-    system.add_component(pendulum)
-    system.add_event_connection(EventConnection("P", "wall_hit", "P", "omega_invert"))
-    system.set_algorithm(HybridAlgorithm(tol_time=1e-9, tol_value=1e-9, method=method))
-    system.initialize(0.0)
+    system, pendulum = pendulum_wall.build(solver, method, handler)
     result = system.run(0.0, 3.0, 0.05)
     pendulum.free()
     return [e.t for e in result.events], [e.iterations for e in result.events]

@@ -2,62 +2,17 @@
  * Gauss-Seidel the sampler sees the counter's newest value, under Jacobi the previous one. */
 #include <math.h>
 
+#include "hook_components.h"
 #include "test_support.h"
-
-typedef struct {
-    ssx_system *sys;
-    int component;
-} block;
-
-/* counter: its output counts the steps taken */
-static int count(void *user, double t, double dt)
-{
-    (void)t;
-    (void)dt;
-    block *b = user;
-    ssx_outputs(b->sys, b->component)[0] += 1.0;
-    return 0;
-}
-
-/* sampler: holds the input it saw when it stepped */
-static int sample(void *user, double t, double dt)
-{
-    (void)t;
-    (void)dt;
-    block *b = user;
-    ssx_outputs(b->sys, b->component)[0] = ssx_inputs(b->sys, b->component)[0];
-    return 0;
-}
-
-static int keep(void *user, double t)
-{
-    (void)user;
-    (void)t;
-    return 0;
-}
-
-static int add(ssx_system *sys, const char *name, block *b, int (*do_step)(void *, double, double),
-               int with_input)
-{
-    int c = ssx_add_python_component(sys, name, 0);
-    CHECK(ssx_add_output(sys, c, SSX_REAL, 0) == 0);
-    if (with_input) {
-        CHECK(ssx_add_input(sys, c, SSX_REAL, 0, 0.0) == 0);
-    }
-    *b = (block){.sys = sys, .component = c};
-    ssx_hooks hooks = {.user = b, .do_step = do_step, .evaluate_outputs = keep};
-    CHECK_OK(sys, ssx_set_hooks(sys, c, &hooks));
-    return c;
-}
 
 /* Ten steps of 0.1; the sampler must lag the counter by expected_lag steps. */
 static void run(ssx_coupling coupling, int sampler_first, double scale, double offset,
                 double expected_lag)
 {
     ssx_system *sys = ssx_system_new("coupling");
-    block counter, sampler;
-    int c = add(sys, "counter", &counter, count, 0);
-    int s = add(sys, "sampler", &sampler, sample, 1);
+    hook_component counter, sampler;
+    int c = hook_add(sys, "counter", &counter, hook_count, 0);
+    int s = hook_add(sys, "sampler", &sampler, hook_sample, 1);
     CHECK_OK(sys, ssx_connect(sys, c, 0, s, 0, scale, offset));
     CHECK_OK(sys, ssx_set_coupling(sys, coupling));
     if (sampler_first) {

@@ -3,61 +3,17 @@
  * component that gets a new port, with every value where it was. Three hook components added
  * in the reverse of their schedule: a counter, a doubler of the count, a sampler of the
  * doubled count. */
+#include "hook_components.h"
 #include "test_support.h"
 
-typedef struct {
-    ssx_system *sys;
-    int component;
-} block;
-
-/* counter: its output counts the steps taken */
-static int count(void *user, double t, double dt)
-{
-    (void)t;
-    (void)dt;
-    block *b = user;
-    ssx_outputs(b->sys, b->component)[0] += 1.0;
-    return 0;
-}
-
-/* doubler and sampler: the output is gain times the input */
+/* doubler: its output is twice its input */
 static int twice(void *user, double t, double dt)
 {
     (void)t;
     (void)dt;
-    block *b = user;
+    hook_component *b = user;
     ssx_outputs(b->sys, b->component)[0] = 2.0 * ssx_inputs(b->sys, b->component)[0];
     return 0;
-}
-
-static int once(void *user, double t, double dt)
-{
-    (void)t;
-    (void)dt;
-    block *b = user;
-    ssx_outputs(b->sys, b->component)[0] = ssx_inputs(b->sys, b->component)[0];
-    return 0;
-}
-
-static int keep(void *user, double t)
-{
-    (void)user;
-    (void)t;
-    return 0;
-}
-
-static int add(ssx_system *sys, const char *name, block *b, int (*do_step)(void *, double, double),
-               int with_input)
-{
-    int c = ssx_add_python_component(sys, name, 0);
-    if (with_input) {
-        CHECK(ssx_add_input(sys, c, SSX_REAL, 0, 0.0) == 0);
-    }
-    CHECK(ssx_add_output(sys, c, SSX_REAL, 0) == 0);
-    *b = (block){.sys = sys, .component = c};
-    ssx_hooks hooks = {.user = b, .do_step = do_step, .evaluate_outputs = keep};
-    CHECK_OK(sys, ssx_set_hooks(sys, c, &hooks));
-    return c;
 }
 
 /* After `steps` steps of 0.1 from the last run's end: the count, doubled, sampled. */
@@ -73,10 +29,10 @@ static void check_values(ssx_system *sys, int counter, int doubler, int sampler,
 int main(void)
 {
     ssx_system *sys = ssx_system_new("port block");
-    block sampler_block, doubler_block, counter_block;
-    int sampler = add(sys, "sampler", &sampler_block, once, 1);
-    int doubler = add(sys, "doubler", &doubler_block, twice, 1);
-    int counter = add(sys, "counter", &counter_block, count, 0);
+    hook_component sampler_block, doubler_block, counter_block;
+    int sampler = hook_add(sys, "sampler", &sampler_block, hook_sample, 1);
+    int doubler = hook_add(sys, "doubler", &doubler_block, twice, 1);
+    int counter = hook_add(sys, "counter", &counter_block, hook_count, 0);
     CHECK_OK(sys, ssx_connect(sys, counter, 0, doubler, 0, 1.0, 0.0));
     CHECK_OK(sys, ssx_connect(sys, doubler, 0, sampler, 0, 1.0, 0.0));
     const int order[] = {counter, doubler, sampler};
