@@ -58,13 +58,22 @@ typedef struct {
     int *turned_back; /* the first probe moved a fired indicator towards its near side */
 } instant_work;
 
-/* The whole system from the macro snapshot at a0 to time t: one restore, one coupled step. */
-static int step_from_snapshot(ssx_system *sys, double a0, double t)
+/* The whole system, restored to a0, to time t: one coupled step, the indicators at t. */
+static int step_from_restored(ssx_system *sys, double a0, double t)
 {
-    if (system_restore(sys, MACRO_SLOT, a0) != 0 || coupling_step(sys, a0, t - a0) != 0) {
+    if (coupling_step(sys, a0, t - a0) != 0) {
         return -1;
     }
     return indicators_evaluate(sys, t);
+}
+
+/* The whole system from the macro snapshot at a0 to time t: one restore, one coupled step. */
+static int step_from_snapshot(ssx_system *sys, double a0, double t)
+{
+    if (system_restore(sys, MACRO_SLOT, a0) != 0) {
+        return -1;
+    }
+    return step_from_restored(sys, a0, t);
 }
 
 /* The indicators' slopes at the current state (time t) into one end of their brackets (those
@@ -170,11 +179,10 @@ static int locate(ssx_system *sys, event_bracket *br)
             (br->iterations == 0 && read_slopes(sys, br->a0, SIDE_LEFT) != 0)) {
             return -1;
         }
-        double t = locator_next_trial(method, ends, n, &st, opt->tol_time, final_width, budget,
-                                      br->iterations);
+        double t = locator_next_trial(method, ends, n, &st, final_width, budget, br->iterations);
         br->iterations++;
         sys->stats.localization_iterations++;
-        if (coupling_step(sys, br->a0, t - br->a0) != 0 || indicators_evaluate(sys, t) != 0) {
+        if (step_from_restored(sys, br->a0, t) != 0) {
             return -1;
         }
         if (opt->record_internal_steps && record_sample(sys, t, -1) != 0) {

@@ -255,9 +255,9 @@ int locator_budget(const locator_method *method, double w, double tol)
 }
 
 double locator_next_trial(const locator_method *method, const indicator_bracket *ends, int n,
-                          const bracket_state *st, double tol, double final_width, int budget,
-                          int done)
+                          const bracket_state *st, double final_width, int budget, int done)
 {
+    double tol = st->tol_time;
     double a = st->a;
     double b = st->b;
     double t = method->estimate(ends, n, st);

@@ -14,7 +14,8 @@ typedef struct {
     double replaced;  /* where the end that the last trial replaced was; NAN before any trial */
     int moved;        /* which end the last trial replaced (SIDE_*) */
     int moved_before; /* which end the trial before replaced */
-    double tol_time;  /* the tolerances: where a method aims past a zero it knows well */
+    double tol_time;  /* the tolerances: how close to the bracket a trial may lie, and where a
+                       * method aims past a zero it knows well */
     double tol_value;
 } bracket_state;
 
@@ -42,9 +43,8 @@ const locator_method *locator_method_of(ssx_locator locator);
 int locator_budget(const locator_method *method, double w, double tol);
 /* The next trial time in the bracket. A budgeted method's estimate is kept where, whichever
  * end the trial replaces, the bracket left over still comes down to final_width by halving
- * within the remaining budget: budget - done - 1 halvings after this trial. tol: tol_time. */
+ * within the remaining budget: budget - done - 1 halvings after this trial. */
 double locator_next_trial(const locator_method *method, const indicator_bracket *ends, int n,
-                          const bracket_state *st, double tol, double final_width, int budget,
-                          int done);
+                          const bracket_state *st, double final_width, int budget, int done);
 
 #endif
