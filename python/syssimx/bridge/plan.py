@@ -373,7 +373,7 @@ class EnginePlan:
     def input_array(self, component: Component) -> Any:
         """The engine's input values of a component now (a C array, in the order of `inputs`;
         ssx_initialize may move it)."""
-        return lib().ssx_inputs(self.sys, self.index[component.name])
+        return self._array(component, "in")
 
     def port_value(self, component: Component, direction: str, port: str) -> float:
         names = self.outputs if direction == "out" else self.inputs

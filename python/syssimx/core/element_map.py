@@ -99,28 +99,30 @@ class ElementMap(MutableMapping[str, Value]):
         position = block.position(key)
         return None if position is None else (block, position)
 
-    def __getitem__(self, key: str) -> Value:
-        try:
-            return self._values[key]
-        except KeyError:
-            found = self._block_of(key) if isinstance(key, str) else None
-            if found is None:
-                raise
+    def _make(self, key: object) -> Any:
+        """The element `key` of a Block, made now and kept; _ABSENT where no Block has it."""
+        found = self._block_of(key) if isinstance(key, str) else None
+        if found is None:
+            return _ABSENT
         block, position = found
         value = self._values[key] = block.make(position, key)
         return value
 
+    def __getitem__(self, key: str) -> Value:
+        try:
+            return self._values[key]
+        except KeyError:
+            value = self._make(key)
+            if value is _ABSENT:
+                raise
+            return value
+
     def get(self, key: str, default: Any = None) -> Any:
         # Mapping.get goes through __getitem__ and a KeyError: the made values are a dict
         value = self._values.get(key, _ABSENT)
-        if value is not _ABSENT:
-            return value
-        found = self._block_of(key) if isinstance(key, str) else None
-        if found is None:
-            return default
-        block, position = found
-        value = self._values[key] = block.make(position, key)
-        return value
+        if value is _ABSENT:
+            value = self._make(key)
+        return default if value is _ABSENT else value
 
     def __contains__(self, key: object) -> bool:
         return key in self._values or (isinstance(key, str) and self._block_of(key) is not None)
@@ -195,5 +197,4 @@ class ElementMap(MutableMapping[str, Value]):
 def made_items(mapping: MutableMapping[str, Value]) -> dict[str, Value]:
     """The values of `mapping` that exist as objects: all of a dict's, the made ones of an
     ElementMap's."""
-    return mapping._values if type(mapping) is ElementMap else \
-        mapping.made() if isinstance(mapping, ElementMap) else dict(mapping)
+    return mapping.made() if isinstance(mapping, ElementMap) else dict(mapping)

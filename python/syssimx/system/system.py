@@ -270,10 +270,7 @@ class System:
         """The algorithm's options into the engine, checked first; nothing to do when the
         plan holds them already (a reused plan, a second run)."""
         algorithm = self._run_algorithm(plan)
-        own = tuple(vars(algorithm).values())
-        # a coupling algorithm of plain values is its options as they are (see _options)
-        options = (type(algorithm), *own, type(None)) \
-            if _OPTION_TYPES.issuperset(map(type, own)) else _options(algorithm)
+        options = _options(algorithm)
         if options == plan.options:
             return
         algorithm.validate()
