@@ -15,6 +15,7 @@
 #include "fmu_environment.h"
 #include "fmu_remote.h"
 #include "shared_library.h"
+#include "slot_pool.h"
 
 /* A slot number for "no call yet" (last_slot). */
 enum { NO_CALL = -1 };
@@ -25,6 +26,28 @@ static size_t round_up(size_t size, size_t to)
 {
     return (size + to - 1) / to * to;
 }
+
+/* What no step reads: in an allocation of its own, so that a binding is small and the
+ * bindings made in a pool lie close together. */
+typedef struct {
+    const char *names[SLOT_COUNT]; /* the standard's name of each slot, for messages */
+    void *context;                 /* the back-end's, outlives every instance */
+    void *library;
+    char *guid;
+    char *resource_uri;
+    char *instance_name;
+    int logging_on;
+    /* the tolerance of the last fmi2SetupExperiment, which a Model Exchange FMU's integrator
+     * uses */
+    int tolerance_defined;
+    double tolerance;
+    /* FMU states handed out by the live instance, freed with it */
+    void **states;
+    size_t n_states;
+    size_t states_capacity;
+    /* the FMU's callbacks' environment: its last message and, isolated, its host */
+    ssx_fmu_environment environment;
+} binding_rest;
 
 struct ssx_fmu {
     /* What every doStep, Get and Set touches, in the struct's first two cache lines (it is
@@ -43,23 +66,8 @@ struct ssx_fmu {
     ssx_fmu_function fn[SLOT_COUNT]; /* NULL: the binary lacks the function */
     long generation;
     long starts; /* see ssx_fmu_starts */
-    const char *names[SLOT_COUNT];   /* the standard's name of each slot, for messages */
-    void *context;                   /* the back-end's, outlives every instance */
-    void *library;
-    char *guid;
-    char *resource_uri;
-    char *instance_name;
-    int logging_on;
-    /* the tolerance of the last fmi2SetupExperiment, which a Model Exchange FMU's integrator
-     * uses */
-    int tolerance_defined;
-    double tolerance;
-    /* FMU states handed out by the live instance, freed with it */
-    void **states;
-    size_t n_states;
-    size_t states_capacity;
-    /* the FMU's callbacks' environment: its last message and, isolated, its host */
-    ssx_fmu_environment environment;
+    slot_pool *pool; /* the pool it lies in (ssx_fmu_load_spec), NULL: allocated alone */
+    binding_rest *rest;
 };
 
 /* ------------------------------------------------------------------ status names */
@@ -80,7 +88,8 @@ const char *ssx_status_name(int status)
 
 static void note(ssx_fmu *fmu, const char *text)
 {
-    snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message, "%s", text);
+    ssx_fmu_environment *environment = &fmu->rest->environment;
+    snprintf(environment->last_message, sizeof environment->last_message, "%s", text);
 }
 
 /* ------------------------------------------------------------------ loading */
@@ -112,16 +121,16 @@ static int resolve_functions(ssx_fmu *fmu, const char *binary_path,
 {
     const ssx_fmu_backend *backend = fmu->backend;
     for (int slot = 0; slot < SLOT_COUNT; ++slot) {
-        fmu->names[slot] = OUTSIDE_THE_INTERFACE;
+        fmu->rest->names[slot] = OUTSIDE_THE_INTERFACE;
     }
     for (size_t i = 0; i < backend->n_functions; ++i) {
         const ssx_fmu_function_row *row = &backend->functions[i];
-        ssx_remote *remote = fmu->environment.remote;
+        ssx_remote *remote = fmu->rest->environment.remote;
         void *symbol = remote != NULL ? ssx_remote_function(remote, row->name)
-                                      : resolve(fmu->library, model_identifier, row->name);
+                                      : resolve(fmu->rest->library, model_identifier, row->name);
         /* a symbol is a void *; C11 has no direct cast to a function pointer */
         memcpy(&fmu->fn[row->slot], &symbol, sizeof symbol);
-        fmu->names[row->slot] = row->name;
+        fmu->rest->names[row->slot] = row->name;
         if (symbol == NULL && row->required) {
             snprintf(error, error_size, "%s does not export %s: not an %s binary", binary_path,
                      row->name, backend->standard);
@@ -171,6 +180,68 @@ static const char *unusable(const ssx_fmu_load_spec *spec, const ssx_fmu_backend
     return NULL;
 }
 
+static void release_binding(ssx_fmu *fmu)
+{
+    free(fmu->rest);
+    if (fmu->pool != NULL) {
+        slot_pool_give_back(fmu->pool, fmu);
+    } else {
+        free(fmu);
+    }
+}
+
+/* ------------------------------------------------------------------ where bindings lie */
+
+struct ssx_binding_pool {
+    slot_pool *slots;
+};
+
+ssx_binding_pool *ssx_binding_pool_new(void)
+{
+    ssx_binding_pool *pool = malloc(sizeof *pool);
+    if (pool == NULL) {
+        return NULL;
+    }
+    pool->slots = slot_pool_new(sizeof(ssx_fmu), CACHE_LINE);
+    if (pool->slots == NULL) {
+        free(pool);
+        return NULL;
+    }
+    return pool;
+}
+
+void ssx_binding_pool_release(ssx_binding_pool *pool)
+{
+    if (pool != NULL) {
+        slot_pool_release(pool->slots); /* its bindings keep the slots until they are freed */
+        free(pool);
+    }
+}
+
+/* A zeroed binding in `pool` (NULL: on its own), aligned to cache lines, with its rest. */
+static ssx_fmu *allocate_binding(ssx_binding_pool *pool)
+{
+    ssx_fmu *fmu;
+    if (pool != NULL) {
+        fmu = slot_pool_take(pool->slots);
+    } else {
+        fmu = aligned_alloc(CACHE_LINE, round_up(sizeof *fmu, CACHE_LINE));
+        if (fmu != NULL) {
+            memset(fmu, 0, sizeof *fmu);
+        }
+    }
+    if (fmu == NULL) {
+        return NULL;
+    }
+    fmu->pool = pool != NULL ? pool->slots : NULL;
+    fmu->rest = calloc(1, sizeof *fmu->rest);
+    if (fmu->rest == NULL) {
+        release_binding(fmu);
+        return NULL;
+    }
+    return fmu;
+}
+
 ssx_fmu *ssx_fmu_load(const ssx_fmu_load_spec *spec, char *error, size_t error_size)
 {
     if (spec == NULL) {
@@ -183,29 +254,28 @@ ssx_fmu *ssx_fmu_load(const ssx_fmu_load_spec *spec, char *error, size_t error_s
         snprintf(error, error_size, "ssx_fmu_load: %s", problem);
         return NULL;
     }
-    ssx_fmu *fmu = aligned_alloc(CACHE_LINE, round_up(sizeof *fmu, CACHE_LINE));
+    ssx_fmu *fmu = allocate_binding(spec->binding_pool);
     if (fmu == NULL) {
         snprintf(error, error_size, "out of memory loading %s", spec->binary_path);
         return NULL;
     }
-    memset(fmu, 0, sizeof *fmu);
     fmu->backend = backend;
     fmu->last_slot = NO_CALL;
     if (spec->host_path != NULL) {
-        fmu->environment.remote = ssx_remote_start(spec->host_path, spec->binary_path,
+        fmu->rest->environment.remote = ssx_remote_start(spec->host_path, spec->binary_path,
                                        spec->model_identifier, spec->step_timeout, error,
                                        error_size);
-        if (fmu->environment.remote == NULL) {
-            free(fmu);
+        if (fmu->rest->environment.remote == NULL) {
+            release_binding(fmu);
             return NULL;
         }
     } else {
         const char *reason = NULL;
-        fmu->library = shared_library_open(spec->binary_path, &reason);
-        if (fmu->library == NULL) {
+        fmu->rest->library = shared_library_open(spec->binary_path, &reason);
+        if (fmu->rest->library == NULL) {
             snprintf(error, error_size, "cannot load the FMU binary %s: %s", spec->binary_path,
                      reason);
-            free(fmu);
+            release_binding(fmu);
             return NULL;
         }
     }
@@ -214,19 +284,20 @@ ssx_fmu *ssx_fmu_load(const ssx_fmu_load_spec *spec, char *error, size_t error_s
         ssx_fmu_free(fmu);
         return NULL;
     }
-    fmu->context = calloc(1, backend->context_size);
-    fmu->guid = duplicate(spec->guid);
-    fmu->resource_uri = duplicate(spec->resource_location);
-    fmu->instance_name = duplicate(spec->instance_name != NULL ? spec->instance_name
+    fmu->rest->context = calloc(1, backend->context_size);
+    fmu->rest->guid = duplicate(spec->guid);
+    fmu->rest->resource_uri = duplicate(spec->resource_location);
+    fmu->rest->instance_name = duplicate(spec->instance_name != NULL ? spec->instance_name
                                                                : spec->model_identifier);
-    if (fmu->context == NULL || fmu->guid == NULL || fmu->resource_uri == NULL ||
-        fmu->instance_name == NULL) {
+    if (fmu->rest->context == NULL || fmu->rest->guid == NULL || fmu->rest->resource_uri == NULL ||
+        fmu->rest->instance_name == NULL) {
         snprintf(error, error_size, "out of memory loading %s", spec->binary_path);
         ssx_fmu_free(fmu);
         return NULL;
     }
-    fmu->logging_on = spec->logging_on;
-    if (backend->prepare != NULL && backend->prepare(fmu->context, spec, error, error_size) != 0) {
+    fmu->rest->logging_on = spec->logging_on;
+    if (backend->prepare != NULL &&
+        backend->prepare(fmu->rest->context, spec, error, error_size) != 0) {
         ssx_fmu_free(fmu);
         return NULL;
     }
@@ -264,7 +335,7 @@ static const struct {
 
 static void refuse_after_fatal(ssx_fmu *fmu, const char *call)
 {
-    snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
+    snprintf(fmu->rest->environment.last_message, sizeof fmu->rest->environment.last_message,
              "%s refused: %s returned %s earlier, and %s allows no further call on the FMU", call,
              fmu->fatal_call, fmu->backend->status_names[SSX_STATUS_FATAL],
              fmu->backend->version);
@@ -273,18 +344,18 @@ static void refuse_after_fatal(ssx_fmu *fmu, const char *call)
 /* Why a call was refused, as the FMU's last message. */
 static int refuse(ssx_fmu *fmu, ssx_fmu_slot call)
 {
-    const char *name = fmu->names[call];
+    const char *name = fmu->rest->names[call];
+    char *message = fmu->rest->environment.last_message;
+    size_t size = sizeof fmu->rest->environment.last_message;
     if (fmu->fatal_call != NULL) {
         refuse_after_fatal(fmu, name);
     } else if (name == OUTSIDE_THE_INTERFACE) {
-        snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
-                 "the FMU runs as %s, which has no such function", fmu->backend->standard);
+        snprintf(message, size, "the FMU runs as %s, which has no such function",
+                 fmu->backend->standard);
     } else if (fmu->instance == NULL) {
-        snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
-                 "%s called without a live instance (call instantiate first)", name);
+        snprintf(message, size, "%s called without a live instance (call instantiate first)", name);
     } else {
-        snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message, "this FMU does not provide %s",
-                 name);
+        snprintf(message, size, "this FMU does not provide %s", name);
     }
     return 0;
 }
@@ -305,9 +376,9 @@ static inline int begin(ssx_fmu *fmu, ssx_fmu_slot call)
 
 static void abandon(ssx_fmu *fmu, ssx_fmu_slot call)
 {
-    fmu->fatal_call = fmu->names[call];
+    fmu->fatal_call = fmu->rest->names[call];
     fmu->instance = NULL;
-    fmu->n_states = 0;
+    fmu->rest->n_states = 0;
 }
 
 /* ... and ends here with the status the instance returned: counted, and a fatal one ends all
@@ -340,9 +411,9 @@ static inline int finish(ssx_fmu *fmu, ssx_fmu_slot call, int status)
 
 static int forget_state(ssx_fmu *fmu, void *state)
 {
-    for (size_t i = 0; i < fmu->n_states; ++i) {
-        if (fmu->states[i] == state) {
-            fmu->states[i] = fmu->states[--fmu->n_states];
+    for (size_t i = 0; i < fmu->rest->n_states; ++i) {
+        if (fmu->rest->states[i] == state) {
+            fmu->rest->states[i] = fmu->rest->states[--fmu->rest->n_states];
             return 0;
         }
     }
@@ -351,8 +422,8 @@ static int forget_state(ssx_fmu *fmu, void *state)
 
 static int knows_state(const ssx_fmu *fmu, const void *state)
 {
-    for (size_t i = 0; i < fmu->n_states; ++i) {
-        if (fmu->states[i] == state) {
+    for (size_t i = 0; i < fmu->rest->n_states; ++i) {
+        if (fmu->rest->states[i] == state) {
             return 1;
         }
     }
@@ -361,11 +432,12 @@ static int knows_state(const ssx_fmu *fmu, const void *state)
 
 static int remember_state(ssx_fmu *fmu, void *state)
 {
-    if (array_reserve((void **)&fmu->states, &fmu->states_capacity, fmu->n_states + 1,
-                      sizeof *fmu->states, 4) != 0) {
+    binding_rest *rest = fmu->rest;
+    if (array_reserve((void **)&rest->states, &rest->states_capacity, rest->n_states + 1,
+                      sizeof *rest->states, 4) != 0) {
         return -1;
     }
-    fmu->states[fmu->n_states++] = state;
+    rest->states[rest->n_states++] = state;
     return 0;
 }
 
@@ -377,8 +449,8 @@ int ssx_fmu_free_instance(ssx_fmu *fmu)
     int worst = 0;
     if (fmu->instance != NULL) {
         /* States belong to their instance: release them while it still exists. */
-        while (fmu->n_states > 0) {
-            void *state = fmu->states[--fmu->n_states];
+        while (fmu->rest->n_states > 0) {
+            void *state = fmu->rest->states[--fmu->rest->n_states];
             if (fmu->fn[SLOT_FREE_STATE] != NULL) {
                 int status = fmu->backend->free_state(fmu->fn, fmu->instance, &state);
                 worst = status > worst ? status : worst;
@@ -400,20 +472,20 @@ void ssx_fmu_free(ssx_fmu *fmu)
         (void)fmu->backend->terminate(fmu->fn, fmu->instance);
     }
     (void)ssx_fmu_free_instance(fmu);
-    free(fmu->states);
-    if (fmu->context != NULL && fmu->backend->release_context != NULL) {
-        fmu->backend->release_context(fmu->context);
+    free(fmu->rest->states);
+    if (fmu->rest->context != NULL && fmu->backend->release_context != NULL) {
+        fmu->backend->release_context(fmu->rest->context);
     }
-    free(fmu->context);
-    free(fmu->guid);
-    free(fmu->resource_uri);
-    free(fmu->instance_name);
+    free(fmu->rest->context);
+    free(fmu->rest->guid);
+    free(fmu->rest->resource_uri);
+    free(fmu->rest->instance_name);
     /* unloading would run the code of a library that declared itself broken; a host process
      * can always be ended */
-    if (fmu->fatal_call == NULL || fmu->environment.remote != NULL) {
-        unload(fmu->library, fmu->environment.remote);
+    if (fmu->fatal_call == NULL || fmu->rest->environment.remote != NULL) {
+        unload(fmu->rest->library, fmu->rest->environment.remote);
     }
-    free(fmu);
+    release_binding(fmu);
 }
 
 int ssx_fmu_instantiate(ssx_fmu *fmu)
@@ -422,27 +494,29 @@ int ssx_fmu_instantiate(ssx_fmu *fmu)
         return -1;
     }
     fmu->last_slot = SLOT_INSTANTIATE;
-    if (fmu->fatal_call != NULL && fmu->environment.remote == NULL) {
-        refuse_after_fatal(fmu, fmu->names[SLOT_INSTANTIATE]);
+    if (fmu->fatal_call != NULL && fmu->rest->environment.remote == NULL) {
+        refuse_after_fatal(fmu, fmu->rest->names[SLOT_INSTANTIATE]);
         return -1;
     }
     if (fmu->fatal_call != NULL) {
         /* an isolated FMU starts over in a new host: the broken one is ended, never called */
-        ssx_remote_restart(fmu->environment.remote);
+        ssx_remote_restart(fmu->rest->environment.remote);
         fmu->fatal_call = NULL;
     }
     /* a state the old instance fails to free is its leak, not a reason to refuse a new one */
     (void)ssx_fmu_free_instance(fmu);
-    fmu->environment.last_message[0] = '\0';
-    fmu->instance = fmu->backend->instantiate(fmu->fn, fmu->context, &fmu->environment, fmu->instance_name,
-                                              fmu->guid, fmu->resource_uri, fmu->logging_on);
+    fmu->rest->environment.last_message[0] = '\0';
+    binding_rest *rest = fmu->rest;
+    fmu->instance = fmu->backend->instantiate(fmu->fn, rest->context, &rest->environment,
+                                              rest->instance_name, rest->guid,
+                                              rest->resource_uri, rest->logging_on);
     (void)finish(fmu, SLOT_INSTANTIATE, 0);
     fmu->generation++;
     fmu->starts++;
     if (fmu->instance == NULL) {
-        if (fmu->environment.last_message[0] == '\0') {
-            snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message, "%s returned NULL",
-                     fmu->names[SLOT_INSTANTIATE]);
+        if (rest->environment.last_message[0] == '\0') {
+            snprintf(rest->environment.last_message, sizeof rest->environment.last_message,
+                     "%s returned NULL", rest->names[SLOT_INSTANTIATE]);
         }
         return -1;
     }
@@ -453,8 +527,8 @@ int ssx_fmu_setup_experiment(ssx_fmu *fmu, int tolerance_defined, double toleran
                              double start_time, int stop_time_defined, double stop_time)
 {
     if (fmu != NULL) {
-        fmu->tolerance_defined = tolerance_defined;
-        fmu->tolerance = tolerance;
+        fmu->rest->tolerance_defined = tolerance_defined;
+        fmu->rest->tolerance = tolerance;
     }
     return CHECKED(fmu, SLOT_SETUP_EXPERIMENT, setup_experiment, tolerance_defined, tolerance,
                    start_time, stop_time_defined, stop_time);
@@ -663,10 +737,10 @@ int ssx_fmu_get_number_of_event_indicators(ssx_fmu *fmu, size_t *n)
 
 int ssx_fmu_experiment_tolerance(const ssx_fmu *fmu, double *tolerance)
 {
-    if (fmu == NULL || !fmu->tolerance_defined) {
+    if (fmu == NULL || !fmu->rest->tolerance_defined) {
         return 0;
     }
-    *tolerance = fmu->tolerance;
+    *tolerance = fmu->rest->tolerance;
     return 1;
 }
 
@@ -683,7 +757,7 @@ int ssx_fmu_get_state(ssx_fmu *fmu, void **state)
         return -1;
     }
     if (*state != NULL && !knows_state(fmu, *state)) {
-        snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
+        snprintf(fmu->rest->environment.last_message, sizeof fmu->rest->environment.last_message,
                  "%s: the state to reuse does not belong to the live instance",
                  ssx_fmu_last_call(fmu));
         return -1;
@@ -711,7 +785,7 @@ int ssx_fmu_set_state(ssx_fmu *fmu, void *state)
         return -1;
     }
     if (!knows_state(fmu, state)) {
-        snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
+        snprintf(fmu->rest->environment.last_message, sizeof fmu->rest->environment.last_message,
                  "%s: the state does not belong to the live instance", ssx_fmu_last_call(fmu));
         return -1;
     }
@@ -751,7 +825,7 @@ int ssx_fmu_deserialize_state(ssx_fmu *fmu, const char *bytes, size_t size, void
         return -1;
     }
     if (*state != NULL && !knows_state(fmu, *state)) {
-        snprintf(fmu->environment.last_message, sizeof fmu->environment.last_message,
+        snprintf(fmu->rest->environment.last_message, sizeof fmu->rest->environment.last_message,
                  "%s: the state to reuse does not belong to the live instance",
                  ssx_fmu_last_call(fmu));
         return -1;
@@ -785,12 +859,12 @@ int ssx_fmu_is_instantiated(const ssx_fmu *fmu)
 
 const char *ssx_fmu_last_message(const ssx_fmu *fmu)
 {
-    return fmu != NULL ? fmu->environment.last_message : "";
+    return fmu != NULL ? fmu->rest->environment.last_message : "";
 }
 
 const char *ssx_fmu_last_call(const ssx_fmu *fmu)
 {
-    return fmu == NULL || fmu->last_slot == NO_CALL ? "" : fmu->names[fmu->last_slot];
+    return fmu == NULL || fmu->last_slot == NO_CALL ? "" : fmu->rest->names[fmu->last_slot];
 }
 
 void ssx_fmu_get_counters(const ssx_fmu *fmu, ssx_fmu_counters *out)
@@ -814,8 +888,8 @@ const char *ssx_fmu_status_text(const ssx_fmu *fmu, int status)
 const char *ssx_fmu_variable_name(const ssx_fmu *fmu, unsigned int vr)
 {
     const char *name = NULL;
-    if (fmu != NULL && fmu->context != NULL && fmu->backend->variable_name != NULL) {
-        name = fmu->backend->variable_name(fmu->context, vr);
+    if (fmu != NULL && fmu->rest->context != NULL && fmu->backend->variable_name != NULL) {
+        name = fmu->backend->variable_name(fmu->rest->context, vr);
     }
     return name != NULL ? name : "";
 }
@@ -823,10 +897,10 @@ const char *ssx_fmu_variable_name(const ssx_fmu *fmu, unsigned int vr)
 const char *ssx_fmu_function_name(const ssx_fmu *fmu, int slot)
 {
     if (fmu == NULL || slot < 0 || slot >= SLOT_COUNT ||
-        fmu->names[slot] == OUTSIDE_THE_INTERFACE) {
+        fmu->rest->names[slot] == OUTSIDE_THE_INTERFACE) {
         return "";
     }
-    return fmu->names[slot];
+    return fmu->rest->names[slot];
 }
 
 long ssx_fmu_generation(const ssx_fmu *fmu)
@@ -846,5 +920,5 @@ long ssx_fmu_values_epoch(const ssx_fmu *fmu)
 
 ssx_remote *ssx_fmu_remote(const ssx_fmu *fmu)
 {
-    return fmu != NULL ? fmu->environment.remote : NULL;
+    return fmu != NULL ? fmu->rest->environment.remote : NULL;
 }

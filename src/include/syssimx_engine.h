@@ -127,6 +127,14 @@ typedef struct {
 typedef enum { SSX_FMI1 = 1, SSX_FMI2 = 2, SSX_FMI3 = 3 } ssx_fmi_version;
 typedef enum { SSX_CO_SIMULATION = 0, SSX_MODEL_EXCHANGE = 1 } ssx_fmu_interface;
 
+/* Where bindings are made: those loaded with one pool lie next to each other in the order they
+ * were loaded, a few to a page, instead of between the other allocations of each load. A system
+ * of thousands of FMUs then reaches its bindings, one per step of each, through a few pages.
+ * The pool lives until it is released and its last binding freed, in either order. */
+typedef struct ssx_binding_pool ssx_binding_pool;
+ssx_binding_pool *ssx_binding_pool_new(void); /* NULL when out of memory */
+void ssx_binding_pool_release(ssx_binding_pool *pool);
+
 /* What loading a binary needs. The texts and the variables are copied. */
 typedef struct {
     ssx_fmi_version version;
@@ -145,6 +153,7 @@ typedef struct {
     const char *host_path;
     double step_timeout;
     const ssx_fmi3_variables *fmi3_variables; /* FMI 3.0 only */
+    ssx_binding_pool *binding_pool; /* NULL: the binding is allocated on its own */
 } ssx_fmu_load_spec;
 
 /* Loads the binary (dlopen RTLD_NOW | RTLD_LOCAL, or in a host process) and resolves the

@@ -24,6 +24,7 @@ import socket
 import tempfile
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -39,6 +40,7 @@ ORPHAN_AGE = 24 * 3600.0  # seconds: a folder without an owner file is that old 
 class _Extraction:
     directory: Path
     users: int
+    shared_value: Any = None  # see ExtractionCache.shared
 
 
 class ExtractionCache:
@@ -87,6 +89,15 @@ class ExtractionCache:
                     return None
                 checked[member] = path
             return checked[member]
+
+    def shared(self, key: tuple[str, int, int], make: Callable[[], Any]) -> Any:
+        """What `make` returns, made once per shared extraction and kept as long as it is (the
+        pool the engine makes the bindings of its FMUs in)."""
+        with self._lock:
+            entry = self._entries[key]
+            if entry.shared_value is None:
+                entry.shared_value = make()
+            return entry.shared_value
 
     def release(self, directory: Path, key: tuple[str, int, int] | None) -> None:
         """Give back what acquire returned; the last user removes the directory."""

@@ -30,9 +30,18 @@ def load(info: FMUInfo, interface: FMUInterface, name: str, isolated: bool,
     error = ffi.new("char[1024]")
     spec, _pointed_at = info.standard.load_spec(info, interface, binary, unzip_dir, name,
                                                 fmu_host() if isolated else None, step_timeout)
+    # the components of one shared extraction make their bindings side by side
+    spec.binding_pool = ffi.NULL if key is None else extractions.shared(key, _binding_pool)
     handle = lib().ssx_fmu_load(spec, error, 1024)
     if handle == ffi.NULL:
         extractions.release(unzip_dir, key)
         raise FMUFileError(f"{info.path}: cannot load {binary_name}: "
                            f"{ffi.string(error).decode(errors='replace')}")
     return handle, unzip_dir, key
+
+
+def _binding_pool() -> Any:
+    """A pool for the engine's bindings, released when Python lets it go (its bindings keep it
+    until they are freed); NULL, which loads each binding on its own, when out of memory."""
+    pool = lib().ssx_binding_pool_new()
+    return ffi.NULL if pool == ffi.NULL else ffi.gc(pool, lib().ssx_binding_pool_release)

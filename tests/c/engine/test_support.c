@@ -35,15 +35,21 @@ static ssx_fmu *loaded(ssx_fmu *fmu, const char *stem, const char *error)
     return fmu;
 }
 
-static ssx_fmu *load_as(const char *stem, int model_exchange)
+static ssx_fmu *load_as(const char *stem, int model_exchange, ssx_binding_pool *pool)
 {
     const built_fmu *b = built(stem);
     char error[512];
     ssx_fmu_load_spec spec = {.version = SSX_FMI2,
                               .interface = model_exchange ? SSX_MODEL_EXCHANGE : SSX_CO_SIMULATION,
                               .binary_path = b->binary, .model_identifier = stem,
-                              .guid = b->guid, .resource_location = "", .instance_name = stem};
+                              .guid = b->guid, .resource_location = "", .instance_name = stem,
+                              .binding_pool = pool};
     return loaded(ssx_fmu_load(&spec, error, sizeof error), stem, error);
+}
+
+ssx_fmu *load_fmu_in(const char *stem, ssx_binding_pool *pool)
+{
+    return load_as(stem, 0, pool);
 }
 
 ssx_fmu *load_fmi3_fmu(const char *stem, const ssx_fmi3_variables *variables, int model_exchange)
@@ -71,12 +77,12 @@ ssx_fmu *load_fmi1_fmu(const char *stem, const char *model_identifier, int model
 
 ssx_fmu *load_fmu(const char *stem)
 {
-    return load_as(stem, 0);
+    return load_as(stem, 0, NULL);
 }
 
 ssx_fmu *load_model_exchange_fmu(const char *stem)
 {
-    return load_as(stem, 1);
+    return load_as(stem, 1, NULL);
 }
 
 int start_fmu(ssx_fmu *fmu, double t, double tolerance, const unsigned int *vr,

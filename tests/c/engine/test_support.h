@@ -71,6 +71,8 @@ void check_own_bounces(ssx_system *sys);
 
 /* Loads one of the built FMUs by its stem (e.g. "pendulum_cvode"); exits on failure. */
 ssx_fmu *load_fmu(const char *stem);
+/* The same, its binding made in `pool` (ssx_fmu_load_spec.binding_pool). */
+ssx_fmu *load_fmu_in(const char *stem, ssx_binding_pool *pool);
 /* The same FMU loaded for its Model Exchange interface. */
 ssx_fmu *load_model_exchange_fmu(const char *stem);
 /* One of the FMI 3.0 builds (e.g. "bouncing_ball_cvode_fmi3") with its variables' types, for
