@@ -11,17 +11,21 @@ tests/c/fmu/chain_direct: set the input, doStep, get the output; the instances m
 the other) is printed beside it, with the engine's cost over it: the floor of the FMU's own work
 and memory.
 
-With --builds, each size runs in a fresh process per meson build directory (SYSSIMX_BUILD_DIR),
-the builds in turn, so that two engines (an earlier one kept aside and the current one) are
-compared in one run.
+With --builds, each size runs in a fresh process per meson build directory (SYSSIMX_BUILD_DIR,
+with the Python package of the source tree it was built from), the builds in turn, so that two
+engines (an earlier one kept aside and the current one) are compared in one run. With --rounds R
+the whole comparison runs R times in turn and ends with the median and range of each figure:
+on a shared machine one run at 10 000 varies by half its value.
 
     python benchmarks/chain_scaling.py [--sizes 100,1000,10000] [--repeats 3]
                                        [--builds build/before,build/dev] [--direct]
+                                       [--rounds 5]
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import statistics
 import subprocess
@@ -65,9 +69,17 @@ def cost_per_step(n: int, repeats: int) -> float:
     return statistics.median(cpu) / (n * steps) * 1e9
 
 
+def source_of(build: str) -> str:
+    """The source tree a meson build directory was configured from."""
+    with open(os.path.join(build, "meson-info", "meson-info.json")) as info:
+        return str(json.load(info)["directories"]["source"])
+
+
 def cost_in_build(build: str, n: int, repeats: int) -> float:
     """cost_per_step in a fresh process on the engine of a meson build directory."""
-    environment = dict(os.environ, SYSSIMX_BUILD_DIR=os.path.abspath(build))
+    # the build's own Python package: an earlier engine with the Python of its time
+    environment = dict(os.environ, SYSSIMX_BUILD_DIR=os.path.abspath(build),
+                       PYTHONPATH=os.path.join(source_of(build), "python"))
     output = subprocess.run(
         [sys.executable, __file__, "--child", str(n), "--repeats", str(repeats)],
         env=environment, check=True, capture_output=True, text=True).stdout
@@ -86,10 +98,43 @@ def cost_direct(build: str, n: int) -> float:
     return float(output)
 
 
+def print_table(title: str, sizes: list[int], builds: list[str | None],
+                costs: dict[tuple[int, int], list[float]], direct: dict[int, list[float]]) -> None:
+    """One table: per size, each build's cost per FMU step (median over the runs, with their
+    range when several), its ratio to the first size, the last build against the first and the
+    bare C loop."""
+    print(title)
+    print(f"{'N':>7}" + "".join(f" {build or 'ns':>23}{'ratio':>8}" for build in builds)
+          + ("" if len(builds) == 1 else f"{'new/old':>9}")
+          + (f"{'direct C loop':>24}{'ratio':>8}{'engine/C':>10}" if direct else ""))
+
+    def cell(values: list[float]) -> str:
+        median = statistics.median(values)
+        spread = f" ({min(values):.0f}-{max(values):.0f})" if len(values) > 1 else ""
+        return f"{median:.1f}{spread}"
+
+    for n in sizes:
+        line = f"{n:>7}"
+        medians = [statistics.median(costs[n, b]) for b in range(len(builds))]
+        for b, median in enumerate(medians):
+            base = statistics.median(costs[sizes[0], b])
+            line += f"{cell(costs[n, b]):>24}{median / base:>7.2f}x"
+        if len(builds) > 1:
+            line += f"{medians[-1] / medians[0]:>8.2f}x"
+        if direct:
+            bare = statistics.median(direct[n])
+            line += (f"{cell(direct[n]):>24}{bare / statistics.median(direct[sizes[0]]):>7.2f}x"
+                     f"{medians[-1] / bare:>9.2f}x")
+        print(line, flush=True)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--sizes", default="100,1000,10000")
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--rounds", type=int, default=1,
+                        help="measure every size and build this many times in turn, then "
+                             "print the medians and ranges")
     parser.add_argument("--builds", help="meson build directories to compare, comma-separated")
     parser.add_argument("--direct", action="store_true",
                         help="also the chain stepped by a C loop straight through FMI")
@@ -100,31 +145,27 @@ def main() -> None:
         return
     sizes = [int(n) for n in args.sizes.split(",")]
     builds = args.builds.split(",") if args.builds else [None]
-    print(f"chain of gain FMUs, {FMU_STEPS} FMU steps per run, CPU time, median of "
-          f"{args.repeats}; ns per FMU step and ratio to N={sizes[0]}")
     direct_build = builds[-1] or os.environ.get("SYSSIMX_BUILD_DIR", "")
     if args.direct and not direct_build:
         parser.error("--direct runs the C loop of a meson build directory: name it with "
                      "--builds or SYSSIMX_BUILD_DIR")
-    print(f"{'N':>7}" + "".join(f"{build or 'ns':>24}{'ratio':>8}" for build in builds)
-          + ("" if len(builds) == 1 else f"{'new/old':>9}")
-          + (f"{'direct C loop':>15}{'ratio':>8}{'engine/C':>10}" if args.direct else ""))
-    first: list[float] = []  # each column's cost at the smallest N
-    first_direct = 0.0
-    for n in sizes:
-        costs = [cost_per_step(n, args.repeats) if build is None
-                 else cost_in_build(build, n, args.repeats) for build in builds]
-        line = f"{n:>7}"
-        first = first or costs
-        for cost, base in zip(costs, first, strict=True):
-            line += f"{cost:>24.1f}{cost / base:>7.2f}x"
-        if len(builds) > 1:
-            line += f"{costs[-1] / costs[0]:>8.2f}x"
-        if args.direct:
-            direct = cost_direct(direct_build, n)
-            first_direct = first_direct or direct
-            line += f"{direct:>15.1f}{direct / first_direct:>7.2f}x{costs[-1] / direct:>9.2f}x"
-        print(line, flush=True)
+    print(f"chain of gain FMUs, {FMU_STEPS} FMU steps per run, CPU time, median of "
+          f"{args.repeats} runs per process; ns per FMU step and ratio to N={sizes[0]}")
+    costs: dict[tuple[int, int], list[float]] = {(n, b): [] for n in sizes
+                                                 for b in range(len(builds))}
+    direct: dict[int, list[float]] = {n: [] for n in sizes} if args.direct else {}
+    for round_number in range(1, args.rounds + 1):
+        for n in sizes:
+            for b, build in enumerate(builds):
+                costs[n, b].append(cost_per_step(n, args.repeats) if build is None
+                                   else cost_in_build(build, n, args.repeats))
+            if args.direct:
+                direct[n].append(cost_direct(direct_build, n))
+        this_round = {key: values[-1:] for key, values in costs.items()}
+        print_table(f"round {round_number}" if args.rounds > 1 else "", sizes, builds,
+                    this_round, {n: values[-1:] for n, values in direct.items()})
+    if args.rounds > 1:
+        print_table(f"median (range) of {args.rounds} rounds", sizes, builds, costs, direct)
 
 
 if __name__ == "__main__":
