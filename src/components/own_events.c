@@ -26,6 +26,7 @@ int own_event_report(ssx_system *sys, ssx_component *c, ssx_own_event_kind kind,
     }
     list->pending[at] = (ssx_own_event){.t = t, .kind = kind};
     list->n++;
+    atomic_store_explicit(&sys->own_events_pending, 1, memory_order_relaxed);
     return 0;
 }
 
@@ -55,11 +56,17 @@ static int earliest(const ssx_system *sys, const size_t *next, double t)
 
 int own_events_commit(ssx_system *sys, double t, own_event_committed committed, void *user)
 {
+    /* where no component reported, a system of thousands is not asked component by component
+     * after every step (the workers that report have joined before the commit) */
+    if (!atomic_load_explicit(&sys->own_events_pending, memory_order_relaxed)) {
+        return 0;
+    }
     int any = 0;
     for (int i = 0; i < sys->n_components && !any; ++i) {
         any = sys->components[i]->own_events.n > 0;
     }
     if (!any) {
+        atomic_store_explicit(&sys->own_events_pending, 0, memory_order_relaxed);
         return 0;
     }
     size_t *next = calloc((size_t)sys->n_components, sizeof *next);
@@ -88,6 +95,7 @@ int own_events_commit(ssx_system *sys, double t, own_event_committed committed, 
         }
     }
     /* what stays pending lies after t: move it to the front */
+    int left = 0;
     for (int c = 0; c < sys->n_components; ++c) {
         ssx_own_event_list *list = &sys->components[c]->own_events;
         size_t kept = 0;
@@ -95,7 +103,9 @@ int own_events_commit(ssx_system *sys, double t, own_event_committed committed, 
             list->pending[kept++] = list->pending[k];
         }
         list->n = kept;
+        left |= kept > 0;
     }
+    atomic_store_explicit(&sys->own_events_pending, left, memory_order_relaxed);
     free(next);
     return status;
 }
@@ -105,6 +115,7 @@ void own_events_clear(ssx_system *sys)
     for (int i = 0; i < sys->n_components; ++i) {
         sys->components[i]->own_events.n = 0;
     }
+    atomic_store_explicit(&sys->own_events_pending, 0, memory_order_relaxed);
 }
 
 void own_event_list_free(ssx_own_event_list *list)

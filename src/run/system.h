@@ -4,6 +4,8 @@
 #ifndef SSX_SYSTEM_H
 #define SSX_SYSTEM_H
 
+#include <stdatomic.h>
+
 #include "locator.h"
 #include "localization_log.h"
 #include "monitor.h"
@@ -121,6 +123,9 @@ struct ssx_system {
     double time;
     int initialized;
     int stepping_hybrid; /* FMUs are told that a rollback may follow */
+    /* 0: no component holds an own event (own_events.h), so a commit need not ask each one;
+     * set by a report, on a worker thread too */
+    atomic_int own_events_pending;
 };
 
 /* Appends a component of the given kind, with data_size bytes of zeroed data for the kind in

@@ -34,9 +34,8 @@
 /* The first chunk's slots, and the most a chunk holds: a system of ten FMUs takes one small
  * chunk, one of ten thousand a few large ones. */
 enum { FIRST_CHUNK_SLOTS = 16, MAX_CHUNK_SLOTS = 4096 };
-/* From this size on a chunk is aligned to, and asks for, the large pages of x86-64 and
- * AArch64 Linux: a system of thousands of FMUs reaches all its bindings through a few
- * translations. */
+/* A chunk this large is one of the large pages of x86-64 and AArch64 Linux, aligned to it and
+ * asked for: a system of thousands of FMUs reaches its bindings through a few translations. */
 static const size_t LARGE_PAGE = (size_t)2 << 20;
 
 typedef struct chunk {
@@ -85,11 +84,18 @@ slot_pool *slot_pool_new(size_t size, size_t alignment)
     return pool;
 }
 
-/* A new chunk for the fresh slots (the old chunk's fresh ones, if any, are left unused). */
+/* A new chunk for the fresh slots (the old chunk's fresh ones, if any, are left unused). One
+ * that would reach a large page is one large page, filled with as many slots as it holds. */
 static int grow(slot_pool *pool)
 {
-    size_t bytes = pool->header + pool->next_chunk_slots * pool->size;
-    size_t alignment = bytes >= LARGE_PAGE ? LARGE_PAGE : pool->alignment;
+    size_t slots = pool->next_chunk_slots;
+    size_t bytes = pool->header + slots * pool->size;
+    size_t alignment = pool->alignment;
+    if (bytes >= LARGE_PAGE && pool->header + pool->size <= LARGE_PAGE) {
+        slots = (LARGE_PAGE - pool->header) / pool->size;
+        bytes = LARGE_PAGE;
+        alignment = LARGE_PAGE;
+    }
     chunk *c = aligned_alloc(alignment, round_up(bytes, alignment));
     if (c == NULL) {
         return -1;
@@ -97,13 +103,13 @@ static int grow(slot_pool *pool)
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     if (alignment == LARGE_PAGE) {
         /* a hint: where large pages are off or used up, small ones serve as before */
-        (void)madvise(c, round_up(bytes, alignment), MADV_HUGEPAGE);
+        (void)madvise(c, bytes, MADV_HUGEPAGE);
     }
 #endif
     c->next = pool->chunks;
     pool->chunks = c;
     pool->fresh = (char *)c + pool->header;
-    pool->fresh_left = pool->next_chunk_slots;
+    pool->fresh_left = slots;
     POISON(pool->fresh, pool->fresh_left * pool->size);
     if (pool->next_chunk_slots < MAX_CHUNK_SLOTS) {
         pool->next_chunk_slots *= 2;

@@ -1,5 +1,5 @@
 /* The slot pool that FMU bindings are made in: slots side by side in the order taken, aligned,
- * zeroed, reused once given back, chunks that grow up to large-page size, and a pool that
+ * zeroed, reused once given back, chunks that grow up to one large page, and a pool that
  * lives until its maker released it and its last slot came back, in either order (run under
  * AddressSanitizer, a slot used after the pool went or a chunk never freed is reported). Then
  * bindings loaded with a pool: adjacent, working, freed before and after the pool. */
@@ -54,10 +54,12 @@ static void slots_side_by_side(void)
     }
 }
 
-/* Chunks double from 16 slots to 4096; one of 2 MiB or more starts on a 2 MiB boundary. */
+/* Chunks double from 16 slots; one that would reach 2 MiB is exactly 2 MiB, on a 2 MiB
+ * boundary: its header line, then as many slots as fit. */
 static void chunks_grow_to_large_pages(void)
 {
-    enum { SLOT = 640, TAKEN = 16 + 32 + 64 + 128 + 256 + 512 + 1024 + 2048 + 4096 + 1 };
+    enum { SLOT = 640, SMALL = 16 + 32 + 64 + 128 + 256 + 512 + 1024 + 2048 };
+    enum { LARGE = ((2 << 20) - LINE) / SLOT, TAKEN = SMALL + LARGE + 1 };
     slot_pool *pool = slot_pool_new(SLOT, LINE);
     CHECK(pool != NULL);
     static unsigned char *slots[TAKEN];
@@ -66,14 +68,18 @@ static void chunks_grow_to_large_pages(void)
         CHECK(slots[i] != NULL);
     }
     size_t first = 0;
-    for (size_t chunk = 16; chunk <= 4096; first += chunk, chunk *= 2) {
+    for (size_t chunk = 16; first < SMALL; first += chunk, chunk *= 2) {
         for (size_t i = first + 1; i < first + chunk; ++i) {
             CHECK(slots[i] - slots[i - 1] == SLOT);
         }
     }
-    /* the 4096-slot chunk (2.5 MiB) holds its header line before the first slot */
-    size_t large = first - 4096;
-    CHECK(((uintptr_t)slots[large] - LINE) % ((uintptr_t)2 << 20) == 0);
+    CHECK(((uintptr_t)slots[SMALL] - LINE) % ((uintptr_t)2 << 20) == 0);
+    for (size_t i = SMALL + 1; i < SMALL + LARGE; ++i) {
+        CHECK(slots[i] - slots[i - 1] == SLOT);
+    }
+    /* the large chunk is full: the next slot lies in another */
+    uintptr_t large = (uintptr_t)slots[SMALL], next = (uintptr_t)slots[TAKEN - 1];
+    CHECK(next < large || next >= large + ((uintptr_t)2 << 20));
     CHECK(slot_pool_in_use(pool) == TAKEN);
     for (int i = TAKEN - 1; i >= 0; --i) {
         slot_pool_give_back(pool, slots[i]);
