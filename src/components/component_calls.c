@@ -170,5 +170,5 @@ void component_free(ssx_component *c)
     }
     free(c->input_starts);
     free(c->input_driver);
-    free(c);
+    /* the block itself is the system's (system_add_component) */
 }

@@ -26,6 +26,7 @@ int component_can_roll_back(const ssx_component *c);
  * kind builds from them; called when the system initializes, member after member in schedule
  * order, so that what each step reads lies in that order. */
 int component_prepare(ssx_system *sys, ssx_component *c);
+/* Frees what the component holds; its block goes with the system's arena. */
 void component_free(ssx_component *c);
 
 #endif

@@ -53,7 +53,21 @@ void *large_buffer_resize(void *data, size_t bytes, size_t new_bytes)
     return other;
 }
 
+void *large_buffer_chunk(size_t bytes, size_t alignment)
+{
+    void *chunk = aligned_alloc(alignment, bytes);
+    if (chunk != NULL && alignment >= LARGE_PAGE_BYTES) {
+        (void)madvise(chunk, bytes, MADV_HUGEPAGE);
+    }
+    return chunk;
+}
+
 #else
+
+void *large_buffer_chunk(size_t bytes, size_t alignment)
+{
+    return aligned_alloc(alignment, bytes);
+}
 
 void large_buffer_free(void *data, size_t bytes)
 {

@@ -6,6 +6,7 @@
 
 #include <stdatomic.h>
 
+#include "arena.h"
 #include "locator.h"
 #include "localization_log.h"
 #include "monitor.h"
@@ -123,6 +124,7 @@ struct ssx_system {
     double time;
     int initialized;
     int stepping_hybrid; /* FMUs are told that a rollback may follow */
+    arena component_blocks; /* every component's block (system_add_component) */
     /* 0: no component holds an own event (own_events.h), so a commit need not ask each one;
      * set by a report, on a worker thread too */
     atomic_int own_events_pending;

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "algorithm.h"
+#include "arena.h"
 #include "array.h"
 #include "component_calls.h"
 #include "coupling.h"
@@ -19,6 +20,9 @@
 #include "port_block.h"
 #include "record_hooks.h"
 #include "recording.h"
+
+/* A component block starts on a cache line: the fields a step reads lead it. */
+enum { COMPONENT_ALIGNMENT = 64 };
 
 void ssx_get_defaults(ssx_defaults *out)
 {
@@ -109,6 +113,7 @@ void ssx_system_free(ssx_system *sys)
     for (int i = 0; i < sys->n_components; ++i) {
         component_free(sys->components[i]);
     }
+    arena_free(&sys->component_blocks);
     free(sys->components);
     free(sys->connections);
     free(sys->indicators);
@@ -153,10 +158,11 @@ int system_add_component(ssx_system *sys, const char *name, int can_snapshot,
                       (size_t)sys->n_components + 1, sizeof *sys->components, 8) != 0) {
         return fail_config(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
     }
-    /* data read on every step sits next to the ports' pointers, not in a block of its own */
-    ssx_component *c = calloc(1, sizeof *c + data_size);
+    /* data read on every step sits next to the ports' pointers, not in a block of its own;
+     * the blocks of a system's components lie side by side in the order they were added */
+    ssx_component *c = arena_allocate(&sys->component_blocks, sizeof *c + data_size,
+                                      COMPONENT_ALIGNMENT);
     if (c == NULL || (c->name = strdup(name)) == NULL) {
-        free(c);
         return fail_config(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
     }
     c->index = sys->n_components;

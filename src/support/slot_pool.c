@@ -1,6 +1,4 @@
 /* Slots of one size, next to each other (see slot_pool.h). */
-#define _DEFAULT_SOURCE /* madvise */
-
 #include "slot_pool.h"
 
 #include <pthread.h>
@@ -9,34 +7,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
-
-/* Under AddressSanitizer a slot not taken is poisoned: reading a binding after it was freed is
- * reported as with malloc, although the pool, not malloc, holds its memory. */
-#if defined(__SANITIZE_ADDRESS__)
-#define SLOT_POOL_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SLOT_POOL_ASAN 1
-#endif
-#endif
-#ifdef SLOT_POOL_ASAN
-#include <sanitizer/asan_interface.h>
-#define POISON(address, size) ASAN_POISON_MEMORY_REGION((address), (size))
-#define UNPOISON(address, size) ASAN_UNPOISON_MEMORY_REGION((address), (size))
-#else
-#define POISON(address, size) ((void)(address), (void)(size))
-#define UNPOISON(address, size) ((void)(address), (void)(size))
-#endif
+#include "large_buffer.h"
+#include "poison.h"
 
 /* The first chunk's slots, and the most a chunk holds: a system of ten FMUs takes one small
  * chunk, one of ten thousand a few large ones. */
 enum { FIRST_CHUNK_SLOTS = 16, MAX_CHUNK_SLOTS = 4096 };
-/* A chunk this large is one of the large pages of x86-64 and AArch64 Linux, aligned to it and
- * asked for: a system of thousands of FMUs reaches its bindings through a few translations. */
-static const size_t LARGE_PAGE = (size_t)2 << 20;
+/* A chunk that would reach a large page is one: a system of thousands of FMUs reaches its
+ * bindings through a few translations. */
+static const size_t LARGE_PAGE = LARGE_PAGE_BYTES;
 
 typedef struct chunk {
     struct chunk *next;
@@ -96,16 +75,10 @@ static int grow(slot_pool *pool)
         bytes = LARGE_PAGE;
         alignment = LARGE_PAGE;
     }
-    chunk *c = aligned_alloc(alignment, round_up(bytes, alignment));
+    chunk *c = large_buffer_chunk(round_up(bytes, alignment), alignment);
     if (c == NULL) {
         return -1;
     }
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-    if (alignment == LARGE_PAGE) {
-        /* a hint: where large pages are off or used up, small ones serve as before */
-        (void)madvise(c, bytes, MADV_HUGEPAGE);
-    }
-#endif
     c->next = pool->chunks;
     pool->chunks = c;
     pool->fresh = (char *)c + pool->header;
