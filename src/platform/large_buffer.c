@@ -32,7 +32,14 @@ void *large_buffer_allocate(size_t bytes)
         return malloc(bytes);
     }
     void *data = mmap(NULL, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    return data != MAP_FAILED ? data : NULL;
+    if (data == MAP_FAILED) {
+        return NULL;
+    }
+    if (bytes >= LARGE_PAGE_BYTES) {
+        /* a hint, kept by mremap: its 2 MiB-aligned stretches may be large pages */
+        (void)madvise(data, bytes, MADV_HUGEPAGE);
+    }
+    return data;
 }
 
 void *large_buffer_resize(void *data, size_t bytes, size_t new_bytes)

@@ -36,9 +36,7 @@ static size_t row_bytes(const ssx_history_block *b, int component)
 
 static void block_free(ssx_history_block *b)
 {
-    for (int c = 0; c < b->n_components; ++c) {
-        buffer_free(&b->values[c]);
-    }
+    buffer_free(&b->outputs);
     free(b->values);
     free(b->columns);
     buffer_free(&b->time);
@@ -46,22 +44,44 @@ static void block_free(ssx_history_block *b)
     free(b);
 }
 
-/* Resizes every buffer of the block to `capacity` rows. On failure some buffers have the new
- * size and the others the old one: the capacity becomes the smaller of the two, which every
- * buffer holds (each buffer knows its own size for freeing). */
-static int block_resize(ssx_history_block *b, size_t capacity)
+static size_t total_columns(const ssx_history_block *b)
 {
-    int status = buffer_resize(&b->time, capacity * sizeof(double));
-    status = status != 0 ? status : buffer_resize(&b->micro, capacity * sizeof(int));
-    for (int c = 0; c < b->n_components && status == 0; ++c) {
-        if (b->columns[c] > 0) {
-            status = buffer_resize(&b->values[c], capacity * row_bytes(b, c));
+    size_t total = 0;
+    for (int c = 0; c < b->n_components; ++c) {
+        total += (size_t)b->columns[c];
+    }
+    return total;
+}
+
+/* Gives the block room for `capacity` rows, keeping its first `rows` (no more than either
+ * capacity). The outputs move into a new mapping laid out for the new capacity. On failure
+ * some buffers have the new size and the others the old one: the capacity becomes the smaller
+ * of the two, which every buffer holds (each buffer knows its own size for freeing). */
+static int block_resize(ssx_history_block *b, size_t capacity, size_t rows)
+{
+    ssx_buffer outputs = {.bytes = (capacity * total_columns(b) + 1) * sizeof(double)};
+    outputs.data = large_buffer_allocate(outputs.bytes);
+    if (outputs.data == NULL) {
+        return -1;
+    }
+    if (buffer_resize(&b->time, capacity * sizeof(double)) != 0 ||
+        buffer_resize(&b->micro, capacity * sizeof(int)) != 0) {
+        buffer_free(&outputs);
+        b->capacity = capacity < b->capacity ? capacity : b->capacity;
+        return -1;
+    }
+    double *at = outputs.data;
+    for (int c = 0; c < b->n_components; ++c) {
+        if (rows > 0 && b->columns[c] > 0) {
+            memcpy(at, b->values[c], rows * row_bytes(b, c));
         }
+        b->values[c] = at;
+        at += capacity * (size_t)b->columns[c];
     }
-    if (status == 0 || capacity < b->capacity) {
-        b->capacity = capacity;
-    }
-    return status;
+    buffer_free(&b->outputs);
+    b->outputs = outputs;
+    b->capacity = capacity;
+    return 0;
 }
 
 static ssx_history_block *block_new(int n_components, const int *columns, size_t capacity)
@@ -79,7 +99,7 @@ static ssx_history_block *block_new(int n_components, const int *columns, size_t
     }
     b->n_components = n_components;
     memcpy(b->columns, columns, (size_t)n_components * sizeof *columns);
-    if (block_resize(b, capacity) != 0) {
+    if (block_resize(b, capacity, 0) != 0) {
         block_free(b);
         return NULL;
     }
@@ -134,7 +154,7 @@ static int move_to_new_block(ssx_history *h, size_t capacity)
     memcpy(b->micro.data, old->micro.data, h->length * sizeof(int));
     for (int c = 0; c < b->n_components; ++c) {
         if (b->columns[c] > 0) {
-            memcpy(b->values[c].data, old->values[c].data, h->length * row_bytes(b, c));
+            memcpy(b->values[c], old->values[c], h->length * row_bytes(b, c));
         }
     }
     h->block = b;
@@ -152,7 +172,7 @@ static int make_room(ssx_history *h, size_t needed)
         return 0;
     }
     if (!is_shared(h->block)) {
-        return block_resize(h->block, needed);
+        return block_resize(h->block, needed, h->length);
     }
     size_t doubled = 2 * h->length;
     return move_to_new_block(h, needed > doubled ? needed : doubled);
@@ -194,7 +214,7 @@ int history_append(ssx_history *h, double t, int micro, const double *const *out
     /* a plain loop: rows are a few doubles, too short to pay for a memcpy call */
     for (int c = 0; c < b->n_components; ++c) {
         size_t n = (size_t)b->columns[c];
-        double *dst = (double *)b->values[c].data + row * n;
+        double *dst = b->values[c] + row * n;
         const double *src = outputs[c];
         for (size_t j = 0; j < n; ++j) {
             dst[j] = src[j];
@@ -209,7 +229,7 @@ void history_trim(ssx_history *h)
     if (h->block != NULL && !is_shared(h->block) && !h->copied_for_reader &&
         h->block->capacity > h->length && h->length > 0) {
         /* a failed shrink only keeps some buffers larger than needed */
-        (void)block_resize(h->block, h->length);
+        (void)block_resize(h->block, h->length, h->length);
     }
     h->copied_for_reader = 0;
 }

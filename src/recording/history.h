@@ -1,12 +1,12 @@
 /* The recorded history: one time axis with its micro index, and per component a row-major
- * matrix of output values.
+ * matrix of output values, the matrices one after the other in one buffer.
  *
  * The buffers live in a reference-counted block, so that readers (numpy arrays in Python) can
  * keep the samples they were given without a copy. The history holds one reference; each
  * ssx_history_retain adds one. Samples are only ever appended, so a reader's rows are never
- * written again; growth moves the buffers (realloc, mremap) only while no reader holds the
- * block, and otherwise copies the samples into a new block and leaves the old one to its
- * readers. */
+ * written again; growth moves the buffers (realloc, mremap, the matrices copied into their new
+ * places) only while no reader holds the block, and otherwise copies the samples into a new
+ * block and leaves the old one to its readers. */
 #ifndef SSX_HISTORY_H
 #define SSX_HISTORY_H
 
@@ -26,7 +26,11 @@ typedef struct ssx_history_block {
     int *columns;           /* outputs per component */
     ssx_buffer time;        /* double per row */
     ssx_buffer micro;       /* int per row */
-    ssx_buffer *values;     /* per component: capacity x columns doubles */
+    /* every component's rows, component after component: one mapping (in large pages where
+     * it is large), so a step's row reaches one page per 2 MiB of columns, not one per
+     * component */
+    ssx_buffer outputs;
+    double **values;        /* per component: its capacity x columns doubles in outputs */
 } ssx_history_block;
 
 typedef struct {

@@ -44,7 +44,7 @@ const double *ssx_history_values(const ssx_system *sys, int component)
     if (b == NULL || component < 0 || component >= b->n_components) {
         return NULL;
     }
-    return b->values[component].data;
+    return b->values[component];
 }
 
 size_t ssx_history_bytes(const ssx_system *sys)
@@ -62,7 +62,7 @@ const double *ssx_history_block_values(const ssx_history_block *block, int compo
     if (block == NULL || component < 0 || component >= block->n_components) {
         return NULL;
     }
-    return block->values[component].data;
+    return block->values[component];
 }
 
 void ssx_history_release(ssx_history_block *block)
