@@ -21,11 +21,18 @@ from .deferred_interrupt import interrupts_deferred
 # runs: the next starts without waiting for the scheduler, and a crash takes at most one
 # innocent task with it. The workers' statistical profiler is off: it samples the running
 # thread every 10 ms and made Python-heavy members (building a System) about twice as slow.
-# Dask's housekeeping is slowed where it only measures: every process's event-loop tick (a
-# check for a blocked loop, every 20 ms), the system monitor (the dashboard's figures) and the
-# memory monitor (a nanny still ends a worker past its memory limit, within half a second).
-# Idle, they cost the client's process (scheduler, nannies) and two workers about 11% of one
-# core, after 2.5%: on two cores, that was CPU taken from the members.
+# Dask's housekeeping is slowed or left out where it serves what an ensemble does not use, as
+# it costs the client's process (scheduler, nannies, client) CPU every second, whether members
+# run or not, and more with each worker (measured on the 2-core VM with two workers, idle:
+# 12.8 -> 5.0 ms of CPU per second, with the heartbeats below):
+# - every process's event-loop tick (a check for a blocked loop, every 20 ms) every second;
+# - the system monitor (the dashboard's figures; the cluster has no dashboard) every 10 s;
+# - the memory monitor of each nanny every second, not 0.5 s (a nanny still ends a worker past
+#   its memory limit, within a second);
+# - no active memory manager: it drops extra copies of data the workers hold, and an
+#   ensemble's workers hold none (each task's block is fetched once and released);
+# - the client's copy of the scheduler's description (its repr) every 30 s, not 2 s: what the
+#   ensemble asks of the scheduler it asks when it needs it.
 # On Linux the worker processes are forked from this one instead of spawned: a spawned worker
 # imports Python, numpy, distributed and syssimx again, and the first member in it loads what
 # its System needs (pint alone: 2.5 s); a forked one starts with all of this process has
@@ -40,13 +47,26 @@ EMBEDDED_SCHEDULER_CONFIG = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.tick.interval": "1s",
     "distributed.admin.system-monitor.interval": "10s",
-    "distributed.worker.memory.monitor-interval": "500ms",
+    "distributed.worker.memory.monitor-interval": "1s",
+    "distributed.scheduler.active-memory-manager.start": False,
+    "distributed.client.scheduler-info-interval": "30s",
 }
+# A worker's heartbeat tells the scheduler its metrics for the dashboard and that it is alive;
+# Dask asks for one every 0.5 s up to 10 workers, each a message through the scheduler (the
+# client's process): 3-4 ms of its CPU per second with two workers. A dead worker is found
+# by its nanny (the process ends) and its closed connection, not by a missed heartbeat, and
+# the scheduler waits 5 minutes (distributed.scheduler.worker-ttl) before it counts one as
+# missed. The embedded cluster asks every HEARTBEAT seconds instead; the cluster's own record
+# of itself kept on the scheduler (for tools that reconnect to a cluster by name) is sent
+# every CLUSTER_SYNC seconds, not every second.
+HEARTBEAT = 5.0
+CLUSTER_SYNC = 30.0
 
 
-# Every socket of the embedded cluster (scheduler, workers, nannies, the dashboard) listens on
-# loopback only: the dashboard shows the workers, their memory and local folders to anyone who
-# reaches it. A cluster of the user's own (client=, scheduler=) is theirs to expose.
+# Every socket of the embedded cluster (scheduler, workers, nannies) listens on loopback only.
+# It has no dashboard: the cluster lives for one sweep and nobody is told its address, and a
+# dashboard shows the workers, their memory and local folders to anyone who reaches it. A
+# cluster of the user's own (client=, scheduler=) is theirs to expose.
 LOOPBACK = "127.0.0.1"
 
 
@@ -95,8 +115,11 @@ def ensemble_client(client: Any = None, scheduler: str | None = None,
         with dask.config.set(EMBEDDED_SCHEDULER_CONFIG):
             with interrupts_deferred(), _frozen_for_the_fork():
                 cluster = LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
-                                       host=LOOPBACK, dashboard_address=f"{LOOPBACK}:0",
-                                       silence_logs=logging.CRITICAL)
+                                       host=LOOPBACK, dashboard_address=None,
+                                       silence_logs=logging.CRITICAL,
+                                       scheduler_sync_interval=CLUSTER_SYNC,
+                                       heartbeat_interval=HEARTBEAT)
+                _slow_heartbeats(cluster.scheduler)
                 local = Client(cluster)
             yield local
     finally:
@@ -113,6 +136,23 @@ def ensemble_client(client: Any = None, scheduler: str | None = None,
             from ..fmu.extraction import remove_stale_folders
 
             remove_stale_folders(Path(tempfile.gettempdir()))
+
+
+def _slow_heartbeats(scheduler: Any) -> None:
+    """The workers of `scheduler` (in this process) told to come back every HEARTBEAT seconds
+    at the least: the worker sets its next heartbeat from the scheduler's reply to the last
+    (its first comes HEARTBEAT seconds after its start, the interval it was started with)."""
+    handler = scheduler.handlers.get("heartbeat_worker")
+    if handler is None:  # a Dask that names it otherwise: Dask's interval, at its cost
+        return
+
+    def heartbeat_worker(**message: Any) -> Any:
+        reply = handler(**message)
+        if isinstance(reply, dict) and "heartbeat-interval" in reply:
+            reply["heartbeat-interval"] = max(reply["heartbeat-interval"], HEARTBEAT)
+        return reply
+
+    scheduler.handlers["heartbeat_worker"] = heartbeat_worker
 
 
 @contextmanager
