@@ -84,14 +84,15 @@ def test_results_kept_as_blocks_give_the_dataset_of_the_members_run_alone() -> N
 
     pytest.importorskip("xarray")
     from syssimx.ensemble.member_list import MemberList
+    from syssimx.ensemble.members import ParameterTable
     from syssimx.ensemble.result import EnsembleResult
 
     values = [{"P.theta0": 0.3}, {"P.theta0": "text"}, {"P.theta0": 0.5}, {"P.theta0": 0.4},
               {"P.theta0": 0.6}]
     experiment = Experiment(0.0, 1.0, 0.05, ensemble="blocks")
     tasks = [experiment.task(index, parameters) for index, parameters in enumerate(values)]
-    kept = MemberList(values)
-    assert kept.add_block(run_block(_seed, tasks[:3])) == ["ok", "ok", "failed"]  # loose last
+    kept = MemberList(ParameterTable.of(values))
+    assert kept.add_block(run_block(_seed, tasks[:3])) == (3, 1)  # members, failed
     kept.add_block(run_block(_seed, tasks[4:]))
     kept.add(run_member(_seed, tasks[3]))
     assert kept[2].parameters == values[2]  # cut before the dataset is built

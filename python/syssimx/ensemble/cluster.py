@@ -63,10 +63,11 @@ HEARTBEAT = 5.0
 CLUSTER_SYNC = 30.0
 
 
-# Every socket of the embedded cluster (scheduler, workers, nannies) listens on loopback only.
-# It has no dashboard: the cluster lives for one sweep and nobody is told its address, and a
-# dashboard shows the workers, their memory and local folders to anyone who reaches it. A
-# cluster of the user's own (client=, scheduler=) is theirs to expose.
+# Every socket of the embedded cluster (scheduler, workers, nannies, the scheduler's HTTP
+# server) listens on loopback only, at a port the system picks. It has no dashboard: the
+# cluster lives for one sweep and nobody is told its address, and a dashboard shows the
+# workers, their memory and local folders to anyone who reaches it. A cluster of the user's
+# own (client=, scheduler=) is theirs to expose.
 LOOPBACK = "127.0.0.1"
 
 
@@ -115,7 +116,8 @@ def ensemble_client(client: Any = None, scheduler: str | None = None,
         with dask.config.set(EMBEDDED_SCHEDULER_CONFIG):
             with interrupts_deferred(), _frozen_for_the_fork():
                 cluster = LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
-                                       host=LOOPBACK, dashboard_address=None,
+                                       host=LOOPBACK, dashboard_address=f"{LOOPBACK}:0",
+                                       scheduler_kwargs={"dashboard": False},
                                        silence_logs=logging.CRITICAL,
                                        scheduler_sync_interval=CLUSTER_SYNC,
                                        heartbeat_interval=HEARTBEAT)

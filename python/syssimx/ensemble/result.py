@@ -21,7 +21,6 @@ from ..errors import ConfigurationError, MissingDependencyError
 from ..extras import install_hint, require
 from .member import STATISTICS, MemberResult
 from .member_list import MemberList
-from .members import ParameterSet
 
 WRITERS = (".csv", ".parquet", ".nc")
 # xarray's engines for .nc files, in order of preference, and the modules each needs
@@ -74,8 +73,8 @@ class EnsembleResult:
     def failed(self) -> list[MemberResult]:
         """The members that did not complete, each with its status, reason and the samples it
         recorded before."""
-        return [self.members[index] for index, status in
-                enumerate(self.members.field("status")) if status != "ok"]
+        return [self.members[int(index)]
+                for index in np.flatnonzero(self.members.text("status") != "ok")]
 
     @property
     def output_names(self) -> list[str]:
@@ -100,30 +99,19 @@ class EnsembleResult:
 
         count = len(self.members)
         time, micro, outputs = self.members.padded(self.output_names)
-        events = self.members.field("events")
-        most_events = max(map(len, events), default=0)
-        event_time = np.full((count, most_events), np.nan)
-        event_micro = np.full((count, most_events), -1, dtype=np.int64)
-        event_source = np.full((count, most_events), "", dtype=object)
-        for row, member_events in enumerate(events):
-            for column, (t, step, source) in enumerate(member_events):
-                event_time[row, column], event_micro[row, column] = t, step
-                event_source[row, column] = source
-        field = self.members.field
+        event_time, event_micro, event_source = self.members.events()
         member_vars: dict[str, Any] = {
-            **{name: ("member", np.array(field(name), dtype=object))
+            **{name: ("member", self.members.text(name))
                for name in ("status", "error", "termination", "worker")},
-            "wall_time": ("member", np.array(field("wall_time"), dtype=np.float64)),
-            "samples": ("member", np.array(field("samples"), dtype=np.int64)),
-            **{statistic: ("member", np.array(self.members.statistic(statistic),
-                                              dtype=np.int64))
+            **{name: ("member", self.members.numbers(name)) for name in ("wall_time", "samples")},
+            **{statistic: ("member", self.members.statistic(statistic))
                for statistic in STATISTICS},
         }
         coords: dict[str, Any] = {
             "member": np.arange(count),
             "time": (("member", "sample"), time),
             "micro": (("member", "sample"), micro),
-            **{name: ("member", _column(self.members.parameters, name))
+            **{name: ("member", self.members.parameters.column(name))
                for name in self.parameters},
         }
         return xr.Dataset(
@@ -157,7 +145,7 @@ class EnsembleResult:
             rows = np.flatnonzero(on_grid)[first]
             for name, series in member.outputs.items():
                 values[name][row, columns] = series[rows]
-        parameters = {name: ("member", _column(self.members.parameters, name))
+        parameters = {name: ("member", self.members.parameters.column(name))
                       for name in self.parameters}
         return xr.Dataset({name: (("member", "time"), data) for name, data in values.items()},
                           coords={"member": np.arange(len(self.members)), "time": grid,
@@ -248,12 +236,6 @@ def netcdf_engine() -> str:
             return engine
     raise MissingDependencyError(f"writing .nc files needs scipy (or h5netcdf): "
                                  f"{install_hint('scipy')}", name="scipy")
-
-
-def _column(parameters: Sequence[ParameterSet], name: str) -> np.ndarray:
-    values = [member[name] for member in parameters]
-    array = np.array(values)
-    return array if array.dtype.kind in "biuf" else np.array(values, dtype=object)
 
 
 def _grid(t0: float, tf: float, dt: float) -> np.ndarray:

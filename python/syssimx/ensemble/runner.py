@@ -34,7 +34,7 @@ from .chunk import Experiment, MemberChunk, run_chunk
 from .cluster import check_processes
 from .member import MemberResult
 from .member_list import MemberList
-from .members import ParameterSet
+from .members import ParameterSet, ParameterTable
 from .progress import ProgressBar
 from .system_source import SystemSource
 
@@ -107,7 +107,7 @@ class _Ensemble:
     """The members' tasks on one client, their starts, and the results so far."""
 
     def __init__(self, client: Any, build: SystemSource, experiment: Experiment,
-                 sets: Sequence[ParameterSet], bar: ProgressBar, workers: int) -> None:
+                 sets: ParameterTable, bar: ProgressBar, workers: int) -> None:
         self.client, self.build, self.experiment, self.sets, self.bar = client, build, \
             experiment, sets, bar
         self.member_timeout = experiment.timeout
@@ -144,8 +144,7 @@ class _Ensemble:
                                  futures, by_key, pending)
                     later = None
                 if future.status == "finished":
-                    for status in self.results.add_block(outcome):
-                        self.bar.advance(status != "ok")
+                    self.bar.advance(*self.results.add_block(outcome))
                 elif future.status == "cancelled":  # the watchdog stopped one of its members
                     assert watchdog is not None
                     self._keep([watchdog.stopped[i] for i in chunk.indices
@@ -156,7 +155,9 @@ class _Ensemble:
         finally:
             if watchdog is not None:
                 watchdog.close()
-            self.client.cancel([future for future in futures if not future.done()])
+            running = [future for future in futures if not future.done()]
+            if running:  # a round trip to the scheduler, even for none
+                self.client.cancel(running)
         return suspects
 
     def _submit(self, chunks: Sequence[MemberChunk], futures: list[Any],
@@ -188,7 +189,7 @@ class _Ensemble:
     def _keep(self, results: Sequence[MemberResult]) -> None:
         for result in results:
             self.results.add(result)
-            self.bar.advance(not result.ok)
+        self.bar.advance(len(results), sum(not result.ok for result in results))
 
     def _failed(self, error: BaseException, chunk: MemberChunk, alone: bool) -> list[int]:
         """Results for a chunk whose task failed; returns its suspects."""
@@ -216,7 +217,7 @@ class _Ensemble:
 
 
 def run_members(client: Any, build: SystemSource, experiment: Experiment,
-                sets: Sequence[ParameterSet], progress: bool) -> MemberList:
+                sets: ParameterTable, progress: bool) -> MemberList:
     """Every member's result (member k runs `sets[k]`), in member order."""
     from .worker_signals import register
 
