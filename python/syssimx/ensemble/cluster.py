@@ -40,8 +40,8 @@ from .deferred_interrupt import interrupts_deferred
 # 6 s -> 0.3 s, its close 2.2 s -> 0.15 s. A forked worker shares its parent's FMU extraction
 # folders without owning them (fmu/extraction.py).
 WORKER_START_METHOD = "fork" if sys.platform == "linux" else "spawn"
+START_METHOD = "distributed.worker.multiprocessing-method"
 EMBEDDED_SCHEDULER_CONFIG = {
-    "distributed.worker.multiprocessing-method": WORKER_START_METHOD,
     "distributed.scheduler.allowed-failures": 0,
     "distributed.scheduler.worker-saturation": 2.0,
     "distributed.worker.profile.enabled": False,
@@ -113,8 +113,12 @@ def ensemble_client(client: Any = None, scheduler: str | None = None,
     # cluster starts or closes comes once it is whole, so that it is closed entirely.
     cluster = local = None
     try:
-        with dask.config.set(EMBEDDED_SCHEDULER_CONFIG):
-            with interrupts_deferred(), _frozen_for_the_fork():
+        # the start method for the cluster's life (a nanny reads it again to restart a worker
+        # after a crash); the rest is read as the cluster and the client are made, and set
+        # only meanwhile: a cluster the user makes beside it keeps the user's settings
+        with dask.config.set({START_METHOD: WORKER_START_METHOD}):
+            with dask.config.set(EMBEDDED_SCHEDULER_CONFIG), interrupts_deferred(), \
+                    _frozen_for_the_fork():
                 cluster = LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
                                        host=LOOPBACK, dashboard_address=f"{LOOPBACK}:0",
                                        scheduler_kwargs={"dashboard": False},
