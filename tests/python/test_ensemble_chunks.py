@@ -19,7 +19,8 @@ def sets(count: int) -> list[dict[str, float]]:
 
 
 def test_chunks_come_in_a_multiple_of_the_workers_and_differ_by_one_member_at_most() -> None:
-    assert (chunk_size(200, 2), chunk_size(800, 2), chunk_size(8000, 2)) == (33, 133, 1024)
+    assert (chunk_size(200, 2), chunk_size(800, 2), chunk_size(8000, 2)) == (34, 134, 1024)
+    assert len(split(sets(2000), chunk_size(2000, 2), 2, EXPERIMENT)) == 6  # 3 per worker
     # 13 chunks of 64 would leave one worker a chunk alone
     chunks = split(sets(800), 64, 2, EXPERIMENT)
     assert sorted(len(chunk) for chunk in chunks) == [57] * 12 + [58] * 2
