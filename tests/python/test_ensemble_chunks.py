@@ -106,6 +106,17 @@ def test_results_kept_as_blocks_give_the_dataset_of_the_members_run_alone() -> N
         theirs.drop_vars(["wall_time", "worker"]))
     assert np.array_equal(from_blocks.members[4].outputs["P.theta"],
                           one_by_one.members[4].outputs["P.theta"])
+    table = from_blocks.to_dataframe()  # from the padded arrays, no table per member
+    assert table.equals(one_by_one.to_dataframe())
+    for member in alone:  # each member's rows are its own samples, or one of NaN
+        rows = table[table.member == member.index]
+        assert list(rows.status.unique()) == [member.status]
+        if member.time.size:
+            assert np.array_equal(rows.time, member.time)
+            assert np.array_equal(rows.micro, member.micro)
+            assert np.array_equal(rows["P.omega"], member.outputs["P.omega"])
+        else:
+            assert len(rows) == 1 and np.isnan(rows.time.iloc[0])
 
 
 def test_chunks_after_the_probe_are_sized_by_the_members_after_a_block_s_first() -> None:
