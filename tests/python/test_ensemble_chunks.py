@@ -106,6 +106,14 @@ def test_results_kept_as_blocks_give_the_dataset_of_the_members_run_alone() -> N
         theirs.drop_vars(["wall_time", "worker"]))
     assert np.array_equal(from_blocks.members[4].outputs["P.theta"],
                           one_by_one.members[4].outputs["P.theta"])
+    grid = from_blocks.grid()  # every member at once, from the padded arrays
+    assert grid.identical(one_by_one.grid())
+    for member in alone:  # at each grid time, the first sample there (before an event)
+        expected = [next((value for t, value in zip(member.time, member.outputs["P.theta"],
+                                                       strict=True) if abs(t - g) < 1e-12),
+                         np.nan) if member.time.size else np.nan
+                    for g in grid["time"].values]
+        np.testing.assert_array_equal(grid["P.theta"].values[member.index], expected)
     table = from_blocks.to_dataframe()  # from the padded arrays, no table per member
     assert table.equals(one_by_one.to_dataframe())
     for member in alone:  # each member's rows are its own samples, or one of NaN

@@ -133,18 +133,19 @@ class EnsembleResult:
         tolerance = 1e-9 * self.dt
         values = {name: np.full((len(self.members), grid.size), np.nan)
                   for name in self.output_names}
-        for row, member in enumerate(self.members):
-            if member.time.size == 0:
-                continue
-            position = np.clip(np.searchsorted(grid, member.time), 1, grid.size - 1)
-            nearest = np.where(np.abs(grid[position - 1] - member.time)
-                               <= np.abs(grid[position] - member.time), position - 1, position)
-            on_grid = np.abs(grid[nearest] - member.time) <= tolerance
-            # the first sample at each grid time: the one recorded before an event there
-            columns, first = np.unique(nearest[on_grid], return_index=True)
-            rows = np.flatnonzero(on_grid)[first]
-            for name, series in member.outputs.items():
-                values[name][row, columns] = series[rows]
+        # every member's samples at once, from the padded arrays (NaN past a member's last)
+        time, _, outputs = self.members.padded(self.output_names)
+        position = np.clip(np.searchsorted(grid, time), 1, grid.size - 1)
+        nearest = np.where(np.abs(grid[position - 1] - time) <= np.abs(grid[position] - time),
+                           position - 1, position)
+        members, samples = np.nonzero(np.abs(grid[nearest] - time) <= tolerance)
+        columns = nearest[members, samples]
+        # the first sample of a member at each grid time: the one recorded before an event
+        # there (np.nonzero gives each member's samples in order)
+        _, first = np.unique(members * grid.size + columns, return_index=True)
+        members, samples, columns = members[first], samples[first], columns[first]
+        for name, series in outputs.items():
+            values[name][members, columns] = series[members, samples]
         parameters = {name: ("member", self.members.parameters.column(name))
                       for name in self.parameters}
         return xr.Dataset({name: (("member", "time"), data) for name, data in values.items()},
