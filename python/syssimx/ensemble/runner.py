@@ -112,8 +112,8 @@ class _Starts:
 def chunk_size(members: int, workers: int) -> int:
     """Members per Dask task: short members share a task, so the per-task cost of the
     scheduler is paid once for several; CHUNKS_PER_WORKER tasks per worker keep the load
-    balanced (rounded up: 2000 members on 2 workers are 6 chunks of 334, not 8 of 286 after
-    7 of 333)."""
+    balanced (rounded up: 2000 members on 2 workers are 6 chunks of 333-334; chunks of at
+    most 333 were 7, made 8 of 250 for an even count)."""
     return max(1, min(MAX_CHUNK, -(-members // (CHUNKS_PER_WORKER * max(workers, 1)))))
 
 
