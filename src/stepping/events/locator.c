@@ -118,9 +118,9 @@ static double slope_point(const indicator_bracket *end, const bracket_state *st)
         return NAN;
     }
     if (st->moved == SIDE_NONE) {
-        /* a zero within the margin of the near end: halfway to it */
-        double t = fmax(zero - fmax(HERMITE_MARGIN * (st->b - st->a), st->tol_time),
-                        0.5 * (st->a + zero));
+        /* a zero within the margin of the near end is left to the values: there the cubic's
+         * zero may be the near end's own residue (an indicator handled on its far side) */
+        double t = zero - fmax(HERMITE_MARGIN * (st->b - st->a), st->tol_time);
         return t > st->a && t < st->b ? t : NAN;
     }
     double past = 0.25 * st->tol_time;
