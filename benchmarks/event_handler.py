@@ -23,9 +23,10 @@ records (Python objects) only when they are first asked for: `read` is that firs
 same event times and samples (checked). The FMU calls per event come from the run's
 statistics: doStep calls and state restores beyond the run without events.
 
-With --builds, each round runs every meson build directory (SYSSIMX_BUILD_DIR) in a fresh
-process, the builds in turn, so that two engines (one kept aside and the current one) are
-compared in one run; the figures pool the repeats of every round.
+With --builds, each round runs every meson build directory (SYSSIMX_BUILD_DIR, with the Python
+package of the source tree it was built from) in a fresh process, the builds in turn, so that
+two versions (one kept aside and the current one) are compared in one run; the figures pool
+the repeats of every round.
 
     python benchmarks/event_handler.py [--stop 300] [--repeats 11] [--rounds 1]
                                        [--builds build/before,build/dev] [--solvers euler]
@@ -124,8 +125,12 @@ def measure(stop: float, repeats: int, solvers: list[str]) -> dict[str, Any]:
 
 
 def measure_in(build_dir: str, stop: float, repeats: int, solvers: list[str]) -> dict[str, Any]:
-    """measure() in a fresh process on the engine and FMUs of a meson build directory."""
-    env = dict(os.environ, SYSSIMX_BUILD_DIR=str(Path(build_dir).resolve()))
+    """measure() in a fresh process on the engine and FMUs of a meson build directory and the
+    Python package of the source tree it was built from."""
+    build = Path(build_dir).resolve()
+    info = json.loads((build / "meson-info" / "meson-info.json").read_text())
+    source = Path(info["directories"]["source"])
+    env = dict(os.environ, SYSSIMX_BUILD_DIR=str(build), PYTHONPATH=str(source / "python"))
     out = subprocess.run(
         [sys.executable, __file__, "--child", "--stop", str(stop), "--repeats", str(repeats),
          "--solvers", ",".join(solvers)],
