@@ -88,29 +88,23 @@ fmu_status fmu_solver_step(fmu_instance *inst, double t_end)
     long substeps = 0;
     int events = 0;
     double t = inst->time;
-    /* the last substep ends exactly at t_end; a sliver below 1e-9 h joins it */
-    double last_start = t_end - 1e-9 * h;
     while (t < t_end) {
         double t_next = segment_start + (double)(substeps + 1) * h;
-        if (t_next >= last_start)
+        /* the last substep ends exactly at t_end; a sliver below 1e-9 h joins it */
+        if (t_next >= t_end - 1e-9 * h)
             t_next = t_end;
         double step = t_next - t;
         fmu_inputs_at(inst, t);
         model->derivatives(inst->values, t, inst->x, inst->dx);
-        if (model->n_event_indicators == 0) {
-            /* nothing to locate inside the substep: the state moves in place */
-            for (size_t i = 0; i < n; ++i)
-                inst->x[i] += step * inst->dx[i];
-            t = t_next;
-            ++substeps;
-            continue;
-        }
         for (size_t i = 0; i < n; ++i)
             data->x_next[i] = inst->x[i] + step * inst->dx[i];
-        model->event_indicators(inst->values, t, inst->x, inst->z_before);
-        fmu_inputs_at(inst, t_next);
-        model->event_indicators(inst->values, t_next, data->x_next, inst->z_after);
-        double fraction = earliest_crossing(inst);
+        double fraction = 2.0;
+        if (model->n_event_indicators > 0) {
+            model->event_indicators(inst->values, t, inst->x, inst->z_before);
+            fmu_inputs_at(inst, t_next);
+            model->event_indicators(inst->values, t_next, data->x_next, inst->z_after);
+            fraction = earliest_crossing(inst);
+        }
         if (fraction > 1.0) {
             for (size_t i = 0; i < n; ++i)
                 inst->x[i] = data->x_next[i];
