@@ -6,7 +6,8 @@
  * A component whose trajectory depends on how it was stepped (a clock that runs late once it
  * has been stepped on from where it stood) can leave a final bracket whose far end, reached
  * from an earlier near end, does not cross on the trajectory through the last one: the system
- * then goes on from that end without an event, and the crossing is found after it, once. */
+ * then goes on from that end without an event, and the crossing is found after it, once, on
+ * the fixed grid and under error-controlled steps alike. */
 #include <math.h>
 
 #include "test_support.h"
@@ -123,7 +124,9 @@ static int count(void *user, const int *indicators, int n, double t)
     return 0;
 }
 
-static void no_crossing_through_the_last_near_end(void)
+/* adaptive: the same under error-controlled steps (which start at the grid step, and with no
+ * input to judge stay there), whose pieces go on from where the last one reached */
+static void no_crossing_through_the_last_near_end(int adaptive)
 {
     /* bisection of [0.5, 0.6]: the first trial, 0.55, lands just past T (reached from the
      * macro step's start, on time); every later trial steps on from a near end and runs late,
@@ -141,6 +144,12 @@ static void no_crossing_through_the_last_near_end(void)
     CHECK(ssx_add_indicator_output(sys, c.component, 0, -1) == 0);
     CHECK_OK(sys, ssx_add_event_connection(sys, 0, c.component));
     CHECK_OK(sys, ssx_set_hybrid_options(sys, tol_time, 0.0, 100, 5, 0, SSX_BISECTION, 0.0));
+    if (adaptive) {
+        ssx_step_control control = {.enabled = 1, .rtol = 1e-3, .atol = 1e-3, .min_step = 1e-6,
+                                    .initial_step = 0.1, .safety = 0.9, .min_change = 0.2,
+                                    .max_change = 5.0};
+        CHECK_OK(sys, ssx_set_step_control(sys, &control));
+    }
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
     CHECK_OK(sys, ssx_run(sys, 0.0, 1.0, 0.1));
     ssx_statistics stats;
@@ -148,8 +157,8 @@ static void no_crossing_through_the_last_near_end(void)
     CHECK(ssx_event_count(sys) == 1 && stats.events == 1 && c.handled == 1);
     ssx_event_record event;
     CHECK(ssx_event_get(sys, 0, &event) == 0);
-    printf("late clock: the event at 0.55 + %.3g s, after a bracket that closed on 0.55 without "
-           "a crossing\n", event.t - 0.55);
+    printf("late clock%s: the event at 0.55 + %.3g s, after a bracket that closed on 0.55 "
+           "without a crossing\n", adaptive ? " (adaptive steps)" : "", event.t - 0.55);
     /* found in the piece that starts at 0.55, where the clock runs on time again */
     CHECK(event.t > 0.55 && event.t - 0.55 <= tol_time);
     CHECK_CLOSE(event.t_left, 0.55, 1e-15);
@@ -166,6 +175,7 @@ int main(void)
 {
     one_restore_before_the_trials("pendulum_euler");
     one_restore_before_the_trials("pendulum_cvode");
-    no_crossing_through_the_last_near_end();
+    no_crossing_through_the_last_near_end(0);
+    no_crossing_through_the_last_near_end(1);
     return 0;
 }
