@@ -73,7 +73,10 @@ nitpick_ignore = [
     ("py:class", "syssimx.system.results.HistoryView"),
     # what System.run hands the result it makes (SimulationResult and its from_system)
     ("py:class", "syssimx.system.results.StatisticsReading"),
+    ("py:class", "syssimx.system.recorded_events.RecordedEvents"),
     ("py:class", "syssimx.bridge.run_outcome.RunOutcome"),
+    # SimulationResult.events: a list of EventRecords with lookups by (component, event)
+    ("py:class", "syssimx.system.event_log.EventLog"),
     ("py:class", "syssimx.components.switch_regions.RegionBoundary"),
     ("py:class", "syssimx.components.restart.Term"),
     # the parts of an FMUInfo (syssimx.fmu): the modelDescription as read, its variables

@@ -19,7 +19,8 @@ def sets(count: int) -> list[dict[str, float]]:
 
 
 def test_chunks_come_in_a_multiple_of_the_workers_and_differ_by_one_member_at_most() -> None:
-    assert (chunk_size(200, 2), chunk_size(800, 2), chunk_size(8000, 2)) == (33, 133, 1024)
+    assert (chunk_size(200, 2), chunk_size(800, 2), chunk_size(8000, 2)) == (34, 134, 1024)
+    assert len(split(sets(2000), chunk_size(2000, 2), 2, EXPERIMENT)) == 6  # 3 per worker
     # 13 chunks of 64 would leave one worker a chunk alone
     chunks = split(sets(800), 64, 2, EXPERIMENT)
     assert sorted(len(chunk) for chunk in chunks) == [57] * 12 + [58] * 2
@@ -84,14 +85,15 @@ def test_results_kept_as_blocks_give_the_dataset_of_the_members_run_alone() -> N
 
     pytest.importorskip("xarray")
     from syssimx.ensemble.member_list import MemberList
+    from syssimx.ensemble.members import ParameterTable
     from syssimx.ensemble.result import EnsembleResult
 
     values = [{"P.theta0": 0.3}, {"P.theta0": "text"}, {"P.theta0": 0.5}, {"P.theta0": 0.4},
               {"P.theta0": 0.6}]
     experiment = Experiment(0.0, 1.0, 0.05, ensemble="blocks")
     tasks = [experiment.task(index, parameters) for index, parameters in enumerate(values)]
-    kept = MemberList(values)
-    assert kept.add_block(run_block(_seed, tasks[:3])) == ["ok", "ok", "failed"]  # loose last
+    kept = MemberList(ParameterTable.of(values))
+    assert kept.add_block(run_block(_seed, tasks[:3])) == (3, 1)  # members, failed
     kept.add_block(run_block(_seed, tasks[4:]))
     kept.add(run_member(_seed, tasks[3]))
     assert kept[2].parameters == values[2]  # cut before the dataset is built
@@ -104,6 +106,25 @@ def test_results_kept_as_blocks_give_the_dataset_of_the_members_run_alone() -> N
         theirs.drop_vars(["wall_time", "worker"]))
     assert np.array_equal(from_blocks.members[4].outputs["P.theta"],
                           one_by_one.members[4].outputs["P.theta"])
+    grid = from_blocks.grid()  # every member at once, from the padded arrays
+    assert grid.identical(one_by_one.grid())
+    for member in alone:  # at each grid time, the first sample there (before an event)
+        expected = [next((value for t, value in zip(member.time, member.outputs["P.theta"],
+                                                       strict=True) if abs(t - g) < 1e-12),
+                         np.nan) if member.time.size else np.nan
+                    for g in grid["time"].values]
+        np.testing.assert_array_equal(grid["P.theta"].values[member.index], expected)
+    table = from_blocks.to_dataframe()  # from the padded arrays, no table per member
+    assert table.equals(one_by_one.to_dataframe())
+    for member in alone:  # each member's rows are its own samples, or one of NaN
+        rows = table[table.member == member.index]
+        assert list(rows.status.unique()) == [member.status]
+        if member.time.size:
+            assert np.array_equal(rows.time, member.time)
+            assert np.array_equal(rows.micro, member.micro)
+            assert np.array_equal(rows["P.omega"], member.outputs["P.omega"])
+        else:
+            assert len(rows) == 1 and np.isnan(rows.time.iloc[0])
 
 
 def test_chunks_after_the_probe_are_sized_by_the_members_after_a_block_s_first() -> None:

@@ -106,13 +106,13 @@ class Terminal(io.StringIO):
 def test_progress_is_drawn_on_a_terminal_only():
     log = io.StringIO()
     bar = ProgressBar(3, stream=log)
-    for failed in (False, True, False):
-        bar.advance(failed)
+    for failed in (0, 1, 0):
+        bar.advance(1, failed)
     bar.close()
     assert log.getvalue() == ""  # a log file gets no carriage-return frames
     terminal = Terminal()
     bar = ProgressBar(3, stream=terminal)
-    for failed in (False, True, False):
-        bar.advance(failed)
+    bar.advance(1, 0)
+    bar.advance(2, 1)  # a task's block of two members, one failed
     bar.close()
     assert "3/3" in terminal.getvalue() and "1 failed" in terminal.getvalue()

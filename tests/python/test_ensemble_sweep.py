@@ -239,3 +239,58 @@ def test_a_probed_ensemble_s_members_and_dataset_are_those_run_in_process(client
         assert np.array_equal(dataset["P.theta"].values[k, :t.size], series["theta"])
         assert np.array_equal(result.members[k].outputs["P.omega"], series["omega"])
     assert list(dataset["P.theta0"].values) == list(values)
+
+
+def test_a_later_ensemble_of_the_same_system_and_run_skips_the_probe(client, monkeypatch) -> None:
+    """The probe's member cost is remembered for the system and run: the same 40 members
+    again are cut by it at once (one submission covering every member, no probe of 4 per
+    worker first), and come out bit-identical."""
+    from syssimx.ensemble import runner
+
+    submitted: list[list[int]] = []
+    submit = runner._Ensemble._submit
+
+    def recording(ensemble, chunks, *rest):
+        submitted.append([len(chunk) for chunk in chunks])
+        return submit(ensemble, chunks, *rest)
+
+    monkeypatch.setattr(runner._Ensemble, "_submit", recording)
+    monkeypatch.setattr(runner, "_COSTS", {})
+    values = np.linspace(0.2, 0.6, 40)
+    first = sweep(seed_pendulum, {"P.theta0": values}, t0=0.0, tf=0.2, dt=0.05,
+                  client=client, progress=False)
+    assert submitted[0] == [runner.PROBE] * 2 and len(submitted) == 2
+    submitted.clear()
+    again = sweep(seed_pendulum, {"P.theta0": values}, t0=0.0, tf=0.2, dt=0.05,
+                  client=client, progress=False)
+    assert len(submitted) == 1 and sum(submitted[0]) == 40
+    assert not first.failed and not again.failed
+    assert first.dataset.drop_vars(["wall_time", "worker"]).identical(
+        again.dataset.drop_vars(["wall_time", "worker"]))
+    other_run = sweep(seed_pendulum, {"P.theta0": values}, t0=0.0, tf=0.25, dt=0.05,
+                      client=client, progress=False)
+    assert not other_run.failed and submitted[1] == [runner.PROBE] * 2  # another run: probed
+
+
+async def heartbeat_interval(dask_worker) -> float:
+    """Seconds to the worker's next heartbeat after one now (the scheduler's reply sets it)."""
+    await dask_worker.heartbeat()
+    return dask_worker.periodic_callbacks["heartbeat"].callback_time / 1000
+
+
+def test_the_quiet_housekeeping_is_the_embedded_cluster_s_alone(client) -> None:
+    """The embedded cluster's workers heartbeat every HEARTBEAT seconds and its scheduler runs
+    no active memory manager; a cluster of the user's own keeps Dask's settings through a
+    sweep on it."""
+    from distributed import Client, LocalCluster
+    from syssimx.ensemble.cluster import HEARTBEAT
+
+    assert set(client.run(heartbeat_interval).values()) == {HEARTBEAT}
+    assert not client.cluster.scheduler.extensions["amm"].running
+    with LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=":0") as theirs, \
+            Client(theirs) as their_client:
+        result = sweep(seed_pendulum, {"P.theta0": [0.5]}, t0=0.0, tf=0.3, dt=0.05,
+                       client=their_client, progress=False)
+        assert not result.failed
+        assert set(their_client.run(heartbeat_interval).values()) == {0.5}  # Dask's own
+        assert theirs.scheduler.extensions["amm"].running

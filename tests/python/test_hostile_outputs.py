@@ -224,8 +224,8 @@ def test_ctrl_c_in_a_sweep_keeps_the_finished_members(monkeypatch: pytest.Monkey
 
     advance = progress.ProgressBar.advance
 
-    def advance_then_interrupt(bar: progress.ProgressBar, failed: bool) -> None:
-        advance(bar, failed)
+    def advance_then_interrupt(bar: progress.ProgressBar, done: int, failed: int) -> None:
+        advance(bar, done, failed)
         if bar.done == 2:
             os.kill(os.getpid(), signal.SIGINT)
 

@@ -1,7 +1,7 @@
 """Localization from the indicator's slope: an indicator on a state whose FMU declares the
 state's derivative (a Real's `derivative` attribute) is located from that slope, two trials per
-wall hit on the seed's scenario instead of three or four, and the handlers (Python and
-declarative) still agree to the bit."""
+wall hit on the seed's scenario instead of three or four, the second stepping on from the
+first, and the handlers (Python and declarative) still agree to the bit."""
 
 from __future__ import annotations
 
@@ -39,3 +39,23 @@ def test_two_trials_per_wall_hit_and_the_same_times_from_both_handlers(solver: s
     assert min(bisection_iterations) > 20
     for k, (t, reference) in enumerate(zip(times, bisection_times, strict=True)):
         assert t == pytest.approx(reference, abs=(k + 1) * 1e-9)
+
+
+@pytest.mark.parametrize("solver", ["euler", "cvode"])
+def test_the_second_trial_steps_on_from_the_first(solver: str) -> None:
+    """The first trial lands short of the crossing and the system stays there: the second
+    steps on from it. Per wall hit: one restore of the macro step's start and one after the
+    probe; doSteps: the step that crossed, the two trials and the probe."""
+    system, pendulum = pendulum_wall.build(solver, "illinois",
+                                           Reinitialize(theta0="theta", omega0="-omega"))
+    result = system.run(0.0, 30.0, 0.05)
+    pendulum.free()
+    assert len(result.events) == 32
+    for k, event in enumerate(result.events):
+        short, across = event.trials
+        assert short.a == short.t < across.t == event.t
+        assert across.a == short.t and across.value < 0.0 < short.value
+        assert (event.rollbacks, event.do_steps) == (2, 4)
+        if solver == "cvode":  # the odd multiples of the quarter period (Euler drifts)
+            assert event.t == pytest.approx((2 * k + 1) * pendulum_wall.QUARTER_PERIOD,
+                                            abs=2e-8)

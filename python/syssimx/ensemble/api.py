@@ -7,13 +7,15 @@ import uuid
 from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
+import numpy as np
+
 from ..errors import ConfigurationError, RunInterrupted
 from .chunk import Experiment
 from .cluster import ensemble_client
 from .main_guard import check_main_guard
 from .member import MemberResult
 from .member_list import MemberList
-from .members import ParameterSet, parameter_sets
+from .members import ParameterTable, parameter_table
 from .result import EnsembleResult
 from .runner import MembersInterrupted, run_members
 from .sampling import draw
@@ -36,7 +38,7 @@ def sweep(system: Any, parameters: Mapping[str, Iterable[Any]], *, mode: str = "
     ("tcp://host:8786"); else an embedded LocalCluster of `workers` processes (default one per
     core). member_timeout: seconds of wall time a member's run may take (see runner.py for a
     hang inside an FMU). progress: a progress bar on stderr."""
-    return _run("sweep", system, parameter_sets(parameters, mode), t0, tf, dt, outputs, client,
+    return _run("sweep", system, parameter_table(parameters, mode), t0, tf, dt, outputs, client,
                 scheduler, workers, member_timeout, progress)
 
 
@@ -53,7 +55,7 @@ def monte_carlo(system: Any, distributions: Mapping[str, Any], samples: int,
                 client, scheduler, workers, member_timeout, progress)
 
 
-def _run(function: str, system: Any, sets: list[ParameterSet], t0: float | None, tf: float | None,
+def _run(function: str, system: Any, sets: ParameterTable, t0: float | None, tf: float | None,
          dt: float | None, outputs: Sequence[str] | None, client: Any, scheduler: str | None,
          workers: int | None, member_timeout: float | None, progress: bool) -> EnsembleResult:
     build = system_source(system)
@@ -89,11 +91,11 @@ def _run(function: str, system: Any, sets: list[ParameterSet], t0: float | None,
                                                    "interrupted (Ctrl-C) before it started",
                                                    "KeyboardInterrupt")
                                       for index, values in enumerate(sets)])
-        partial = EnsembleResult(finished, list(sets[0]), settings["t0"], settings["tf"],
+        partial = EnsembleResult(finished, list(sets.names), settings["t0"], settings["tf"],
                                  settings["dt"], time.perf_counter() - start)
-        done = sum(kind != "KeyboardInterrupt" for kind in finished.field("error_type"))
+        done = int(np.count_nonzero(finished.text("error_type") != "KeyboardInterrupt"))
         raise RunInterrupted(f"the ensemble was interrupted: {done} of {len(finished)} "
                              "members had finished (partial_result holds them)",
                              partial) from stop
-    return EnsembleResult(finished, list(sets[0]), settings["t0"], settings["tf"],
+    return EnsembleResult(finished, list(sets.names), settings["t0"], settings["tf"],
                           settings["dt"], time.perf_counter() - start)

@@ -21,11 +21,18 @@ from .deferred_interrupt import interrupts_deferred
 # runs: the next starts without waiting for the scheduler, and a crash takes at most one
 # innocent task with it. The workers' statistical profiler is off: it samples the running
 # thread every 10 ms and made Python-heavy members (building a System) about twice as slow.
-# Dask's housekeeping is slowed where it only measures: every process's event-loop tick (a
-# check for a blocked loop, every 20 ms), the system monitor (the dashboard's figures) and the
-# memory monitor (a nanny still ends a worker past its memory limit, within half a second).
-# Idle, they cost the client's process (scheduler, nannies) and two workers about 11% of one
-# core, after 2.5%: on two cores, that was CPU taken from the members.
+# Dask's housekeeping is slowed or left out where it serves what an ensemble does not use, as
+# it costs the client's process (scheduler, nannies, client) CPU every second, whether members
+# run or not, and more with each worker (measured on the 2-core VM with two workers, idle:
+# 12.8 -> 5.0 ms of CPU per second, with the heartbeats below):
+# - every process's event-loop tick (a check for a blocked loop, every 20 ms) every second;
+# - the system monitor (the dashboard's figures; the cluster has no dashboard) every 10 s;
+# - the memory monitor of each nanny every second, not 0.5 s (a nanny still ends a worker past
+#   its memory limit, within a second);
+# - no active memory manager: it drops extra copies of data the workers hold, and an
+#   ensemble's workers hold none (each task's block is fetched once and released);
+# - the client's copy of the scheduler's description (its repr) every 30 s, not 2 s: what the
+#   ensemble asks of the scheduler it asks when it needs it.
 # On Linux the worker processes are forked from this one instead of spawned: a spawned worker
 # imports Python, numpy, distributed and syssimx again, and the first member in it loads what
 # its System needs (pint alone: 2.5 s); a forked one starts with all of this process has
@@ -33,20 +40,34 @@ from .deferred_interrupt import interrupts_deferred
 # 6 s -> 0.3 s, its close 2.2 s -> 0.15 s. A forked worker shares its parent's FMU extraction
 # folders without owning them (fmu/extraction.py).
 WORKER_START_METHOD = "fork" if sys.platform == "linux" else "spawn"
+START_METHOD = "distributed.worker.multiprocessing-method"
 EMBEDDED_SCHEDULER_CONFIG = {
-    "distributed.worker.multiprocessing-method": WORKER_START_METHOD,
     "distributed.scheduler.allowed-failures": 0,
     "distributed.scheduler.worker-saturation": 2.0,
     "distributed.worker.profile.enabled": False,
     "distributed.admin.tick.interval": "1s",
     "distributed.admin.system-monitor.interval": "10s",
-    "distributed.worker.memory.monitor-interval": "500ms",
+    "distributed.worker.memory.monitor-interval": "1s",
+    "distributed.scheduler.active-memory-manager.start": False,
+    "distributed.client.scheduler-info-interval": "30s",
 }
+# A worker's heartbeat tells the scheduler its metrics for the dashboard and that it is alive;
+# Dask asks for one every 0.5 s up to 10 workers, each a message through the scheduler (the
+# client's process): 3-4 ms of its CPU per second with two workers. A dead worker is found
+# by its nanny (the process ends) and its closed connection, not by a missed heartbeat, and
+# the scheduler waits 5 minutes (distributed.scheduler.worker-ttl) before it counts one as
+# missed. The embedded cluster asks every HEARTBEAT seconds instead; the cluster's own record
+# of itself kept on the scheduler (for tools that reconnect to a cluster by name) is sent
+# every CLUSTER_SYNC seconds, not every second.
+HEARTBEAT = 5.0
+CLUSTER_SYNC = 30.0
 
 
-# Every socket of the embedded cluster (scheduler, workers, nannies, the dashboard) listens on
-# loopback only: the dashboard shows the workers, their memory and local folders to anyone who
-# reaches it. A cluster of the user's own (client=, scheduler=) is theirs to expose.
+# Every socket of the embedded cluster (scheduler, workers, nannies, the scheduler's HTTP
+# server) listens on loopback only, at a port the system picks. It has no dashboard: the
+# cluster lives for one sweep and nobody is told its address, and a dashboard shows the
+# workers, their memory and local folders to anyone who reaches it. A cluster of the user's
+# own (client=, scheduler=) is theirs to expose.
 LOOPBACK = "127.0.0.1"
 
 
@@ -92,11 +113,19 @@ def ensemble_client(client: Any = None, scheduler: str | None = None,
     # cluster starts or closes comes once it is whole, so that it is closed entirely.
     cluster = local = None
     try:
-        with dask.config.set(EMBEDDED_SCHEDULER_CONFIG):
-            with interrupts_deferred(), _frozen_for_the_fork():
+        # the start method for the cluster's life (a nanny reads it again to restart a worker
+        # after a crash); the rest is read as the cluster and the client are made, and set
+        # only meanwhile: a cluster the user makes beside it keeps the user's settings
+        with dask.config.set({START_METHOD: WORKER_START_METHOD}):
+            with dask.config.set(EMBEDDED_SCHEDULER_CONFIG), interrupts_deferred(), \
+                    _frozen_for_the_fork():
                 cluster = LocalCluster(n_workers=count, threads_per_worker=1, processes=True,
                                        host=LOOPBACK, dashboard_address=f"{LOOPBACK}:0",
-                                       silence_logs=logging.CRITICAL)
+                                       scheduler_kwargs={"dashboard": False},
+                                       silence_logs=logging.CRITICAL,
+                                       scheduler_sync_interval=CLUSTER_SYNC,
+                                       heartbeat_interval=HEARTBEAT)
+                _slow_heartbeats(cluster.scheduler)
                 local = Client(cluster)
             yield local
     finally:
@@ -113,6 +142,23 @@ def ensemble_client(client: Any = None, scheduler: str | None = None,
             from ..fmu.extraction import remove_stale_folders
 
             remove_stale_folders(Path(tempfile.gettempdir()))
+
+
+def _slow_heartbeats(scheduler: Any) -> None:
+    """The workers of `scheduler` (in this process) told to come back every HEARTBEAT seconds
+    at the least: the worker sets its next heartbeat from the scheduler's reply to the last
+    (its first comes HEARTBEAT seconds after its start, the interval it was started with)."""
+    handler = scheduler.handlers.get("heartbeat_worker")
+    if handler is None:  # a Dask that names it otherwise: Dask's interval, at its cost
+        return
+
+    def heartbeat_worker(**message: Any) -> Any:
+        reply = handler(**message)
+        if isinstance(reply, dict) and "heartbeat-interval" in reply:
+            reply["heartbeat-interval"] = max(reply["heartbeat-interval"], HEARTBEAT)
+        return reply
+
+    scheduler.handlers["heartbeat_worker"] = heartbeat_worker
 
 
 @contextmanager

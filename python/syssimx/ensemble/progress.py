@@ -20,13 +20,14 @@ class ProgressBar:
             self._bar = tqdm(total=total, unit="member", file=self.stream, disable=None,
                              leave=True, dynamic_ncols=True)
 
-    def advance(self, failed: bool) -> None:
-        self.done += 1
+    def advance(self, done: int, failed: int) -> None:
+        """`done` more members finished, `failed` of them failed."""
+        self.done += done
         self.failed += failed
         if self._bar is not None:
             if self.failed:
                 self._bar.set_postfix_str(f"{self.failed} failed", refresh=False)
-            self._bar.update(1)
+            self._bar.update(done)
 
     def close(self) -> None:
         if self._bar is not None:

@@ -5,8 +5,10 @@ task's results come back as one block (block.py). A large ensemble first runs a 
 chunk of PROBE members per worker; the CPU time of the first probe block's members after its
 first (which built the System and loaded what it needs: 2.5 s of pint for the seed scenario,
 against 1-2 ms for a member after it) is the member's cost, and the rest goes in chunks of
-about TASK_SECONDS of CPU each (chunk_size's bounds kept). A member's own failures come
-back as its result (member.py). Two faults need the client:
+about TASK_SECONDS of CPU each (chunk_size's bounds kept). The cost is remembered for the
+system and run (t0, tf, dt, outputs): a later ensemble of them in this process is cut by it
+at once, without a probe. A member's own failures come back as its result (member.py). Two
+faults need the client:
 - a member still running `member_timeout` (+ KILL_GRACE) seconds after it started is stuck
   where its run's own timeout cannot reach (inside an FMU call): its task is cancelled and its
   worker process restarted (the worker's nanny starts a fresh one);
@@ -34,7 +36,7 @@ from .chunk import Experiment, MemberChunk, run_chunk
 from .cluster import check_processes
 from .member import MemberResult
 from .member_list import MemberList
-from .members import ParameterSet
+from .members import ParameterSet, ParameterTable
 from .progress import ProgressBar
 from .system_source import SystemSource
 
@@ -56,6 +58,37 @@ PROBED_FROM = 16  # members per worker from which an ensemble starts with a prob
 # Ctrl-C (the finished tasks are kept) and a crash's reruns stay at half a second (on an
 # unloaded machine)
 TASK_SECONDS = 0.5
+# how many systems and runs a member's cost is remembered for (the last ones run): a probe
+# is W tasks more, 2 of a sweep's 8 for 2000 seed members on two workers
+REMEMBERED = 32
+_COSTS: dict[tuple[Any, ...], float] = {}
+
+
+def remembered_cost(build: SystemSource, experiment: Experiment) -> float | None:
+    """The member cost last measured for this system and run, if any."""
+    key = _cost_key(build, experiment)
+    return None if key is None else _COSTS.get(key)
+
+
+def remember_cost(build: SystemSource, experiment: Experiment, cost: float) -> None:
+    key = _cost_key(build, experiment)
+    if key is None:
+        return
+    _COSTS.pop(key, None)
+    _COSTS[key] = cost  # the newest last: the oldest goes first
+    while len(_COSTS) > REMEMBERED:
+        del _COSTS[next(iter(_COSTS))]
+
+
+def _cost_key(build: SystemSource, experiment: Experiment) -> tuple[Any, ...] | None:
+    """What a member's cost depends on besides its parameters; None for a system function
+    that cannot be a key (an object without a hash)."""
+    key = (build, experiment.t0, experiment.tf, experiment.dt, experiment.outputs)
+    try:
+        hash(key)
+    except TypeError:
+        return None
+    return key
 
 
 class _Starts:
@@ -78,9 +111,10 @@ class _Starts:
 
 def chunk_size(members: int, workers: int) -> int:
     """Members per Dask task: short members share a task, so the per-task cost of the
-    scheduler is paid once for several; at least CHUNKS_PER_WORKER tasks per worker keep the
-    load balanced."""
-    return max(1, min(MAX_CHUNK, members // (CHUNKS_PER_WORKER * max(workers, 1))))
+    scheduler is paid once for several; CHUNKS_PER_WORKER tasks per worker keep the load
+    balanced (rounded up: 2000 members on 2 workers are 6 chunks of 333-334; chunks of at
+    most 333 were 7, made 8 of 250 for an even count)."""
+    return max(1, min(MAX_CHUNK, -(-members // (CHUNKS_PER_WORKER * max(workers, 1)))))
 
 
 def sized(members: int, workers: int, cost: float | None) -> int:
@@ -107,7 +141,7 @@ class _Ensemble:
     """The members' tasks on one client, their starts, and the results so far."""
 
     def __init__(self, client: Any, build: SystemSource, experiment: Experiment,
-                 sets: Sequence[ParameterSet], bar: ProgressBar, workers: int) -> None:
+                 sets: ParameterTable, bar: ProgressBar, workers: int) -> None:
         self.client, self.build, self.experiment, self.sets, self.bar = client, build, \
             experiment, sets, bar
         self.member_timeout = experiment.timeout
@@ -144,8 +178,9 @@ class _Ensemble:
                                  futures, by_key, pending)
                     later = None
                 if future.status == "finished":
-                    for status in self.results.add_block(outcome):
-                        self.bar.advance(status != "ok")
+                    self.bar.advance(*self.results.add_block(outcome))
+                    if outcome.cost is not None:
+                        remember_cost(self.build, self.experiment, outcome.cost)
                 elif future.status == "cancelled":  # the watchdog stopped one of its members
                     assert watchdog is not None
                     self._keep([watchdog.stopped[i] for i in chunk.indices
@@ -156,7 +191,9 @@ class _Ensemble:
         finally:
             if watchdog is not None:
                 watchdog.close()
-            self.client.cancel([future for future in futures if not future.done()])
+            running = [future for future in futures if not future.done()]
+            if running:  # a round trip to the scheduler, even for none
+                self.client.cancel(running)
         return suspects
 
     def _submit(self, chunks: Sequence[MemberChunk], futures: list[Any],
@@ -188,7 +225,7 @@ class _Ensemble:
     def _keep(self, results: Sequence[MemberResult]) -> None:
         for result in results:
             self.results.add(result)
-            self.bar.advance(not result.ok)
+        self.bar.advance(len(results), sum(not result.ok for result in results))
 
     def _failed(self, error: BaseException, chunk: MemberChunk, alone: bool) -> list[int]:
         """Results for a chunk whose task failed; returns its suspects."""
@@ -216,7 +253,7 @@ class _Ensemble:
 
 
 def run_members(client: Any, build: SystemSource, experiment: Experiment,
-                sets: Sequence[ParameterSet], progress: bool) -> MemberList:
+                sets: ParameterTable, progress: bool) -> MemberList:
     """Every member's result (member k runs `sets[k]`), in member order."""
     from .worker_signals import register
 
@@ -225,14 +262,15 @@ def run_members(client: Any, build: SystemSource, experiment: Experiment,
     bar = ProgressBar(len(sets), progress)
     ensemble = _Ensemble(client, build, experiment, sets, bar, workers)
     announce_each = experiment.timeout is not None
+    cost = remembered_cost(build, experiment)
     try:
-        if len(sets) >= PROBED_FROM * workers:
+        if cost is None and len(sets) >= PROBED_FROM * workers:
             probed = PROBE * workers
             suspects = ensemble.run(
                 split(sets[:probed], PROBE, workers, experiment, ensemble.topic, announce_each),
                 alone=False, later=functools.partial(ensemble.after_probe, probed))
         else:
-            suspects = ensemble.run(split(sets, chunk_size(len(sets), workers), workers,
+            suspects = ensemble.run(split(sets, sized(len(sets), workers, cost), workers,
                                           experiment, ensemble.topic, announce_each),
                                     alone=False)
         for suspect in suspects:

@@ -8,12 +8,12 @@ from typing import Any
 import numpy as np
 
 from ..errors import ConfigurationError
-from .members import ParameterSet, parameter_sets
+from .members import ParameterTable, parameter_table
 
 Sampler = Callable[[np.random.Generator, int], Any]
 
 
-def draw(distributions: Mapping[str, Any], samples: int, seed: int | None) -> list[ParameterSet]:
+def draw(distributions: Mapping[str, Any], samples: int, seed: int | None) -> ParameterTable:
     """`samples` parameter sets. A distribution is a frozen scipy.stats distribution (anything
     with `rvs(size=, random_state=)`) or a function (generator, count) -> values. One
     numpy Generator seeded with `seed` draws the parameters in the order given, so the same
@@ -23,7 +23,7 @@ def draw(distributions: Mapping[str, Any], samples: int, seed: int | None) -> li
     generator = np.random.default_rng(seed)
     columns = {name: _draw_one(name, distribution, generator, samples)
                for name, distribution in distributions.items()}
-    return parameter_sets(columns, mode="zip")
+    return parameter_table(columns, mode="zip")
 
 
 def _draw_one(name: str, distribution: Any, generator: np.random.Generator,

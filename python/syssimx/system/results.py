@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
-from functools import cache
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Protocol
 
@@ -15,12 +14,12 @@ from ..bridge.history_arrays import HistoryArrays
 from ..bridge.plan import recorded_columns
 from ..bridge.run_outcome import RunOutcome
 from ..core.suggest import did_you_mean
-from ..engine import enum_name, ffi, lib
 from ..errors import ConfigurationError, UnknownNameError
 from ..extras import require
 from . import csv_export
 from .event_log import EventLog
-from .event_record import EventRecord, LocalizationTrial
+from .event_record import EventRecord
+from .recorded_events import RecordedEvents, as_recorded
 from .termination import Termination
 
 if TYPE_CHECKING:
@@ -87,80 +86,20 @@ class Statistics:
         return statistics_html(self)
 
 
-_RECORD_FIELDS = ("t", "micro", "indicator", "component", "own", "iterations", "rollbacks",
-                  "do_steps", "t_left", "t_right", "value_left", "value_right", "first_trial",
-                  "n_trials")
-_TRIAL_FIELDS = ("t", "a", "b", "value")
-
-
-@cache
-def _struct_dtype(ctype: str) -> np.dtype:
-    """The numpy dtype of the engine's struct `ctype`, laid out as the compiler laid it out."""
-    names, formats, offsets = [], [], []
-    for name, field in ffi.typeof(ctype).fields:
-        size = ffi.sizeof(field.type)
-        kind = "f" if field.type.cname in ("double", "float") else \
-            "u" if field.type.cname.startswith(("unsigned", "size_t", "uint")) else "i"
-        names.append(name)
-        formats.append(np.dtype(f"{kind}{size}"))
-        offsets.append(field.offset)
-    return np.dtype({"names": names, "formats": formats, "offsets": offsets,
-                     "itemsize": ffi.sizeof(ctype)})
-
-
-def _copied(copy: Any, plan: EnginePlan, ctype: str, count: int,
-            fields: tuple[str, ...]) -> list[tuple[Any, ...]]:
-    """The engine's first `count` structs `ctype`, copied by `copy` in one call, as rows of
-    Python numbers in the order of `fields`."""
-    if count == 0:
-        return []
-    block = ffi.new(f"{ctype}[]", count)
-    copied = int(copy(plan.sys, 0, count, block))
-    array = np.frombuffer(ffi.buffer(block), dtype=_struct_dtype(ctype), count=copied)
-    return list(zip(*(array[name].tolist() for name in fields), strict=True))
-
-
-def read_events(plan: EnginePlan, count: int | None = None) -> list[EventRecord]:
-    """The events since initialize (`count` of them, when the caller knows) and their trials,
-    copied from the engine in two calls."""
-    engine = lib()
-    count = int(engine.ssx_event_count(plan.sys)) if count is None else count
-    records = _copied(engine.ssx_events_copy, plan, "ssx_event_record", count, _RECORD_FIELDS)
-    if not records:
-        return []
-    trials = [LocalizationTrial(*row) for row in _copied(
-        engine.ssx_event_trials_copy, plan, "ssx_localization_trial",
-        int(engine.ssx_event_trial_count(plan.sys)), _TRIAL_FIELDS)]
-    names = list(plan.index)
-    events = []
-    for (t, micro, indicator, component, own, iterations, rollbacks, do_steps, t_left, t_right,
-         value_left, value_right, first_trial, n_trials) in records:
-        if indicator >= 0:
-            source, event = plan.indicators[indicator]
-        else:
-            source = names[component]
-            event = enum_name("ssx_own_event_kind", "SSX_OWN_", own)
-        events.append(EventRecord(
-            t, micro, source, event, iterations, rollbacks, do_steps, t_left, t_right,
-            value_left, value_right, tuple(trials[first_trial:first_trial + n_trials]),
-            indicator < 0))
-    return events
-
-
 class StatisticsReading:
     """The engine's counters as they were at one instant (an ssx_statistics of the caller's,
     which nothing changes later), made a Statistics only when asked for: a result that
     nobody asks for its statistics costs no Python for them."""
 
-    def __init__(self, counters: Any, events: Sequence[EventRecord],
+    def __init__(self, counters: Any, events: RecordedEvents | Sequence[EventRecord],
                  termination: Termination | None, owner: Any = None) -> None:
         self._counters = counters
         self._owner = owner  # holds the memory of `counters` when they are a struct inside it
-        self._events = events
+        self._events = as_recorded(events)
         self.termination = termination
 
     def statistics(self) -> Statistics:
-        raw, events, termination = self._counters, self._events, self.termination
+        raw, events, termination = self._counters, self._events.made(), self.termination
         return Statistics(int(raw.macro_steps), int(raw.do_step_calls), int(raw.state_saves),
                           int(raw.state_restores), int(raw.events),
                           int(raw.localization_iterations), int(raw.loop_iterations),
@@ -181,11 +120,11 @@ class HistoryView:
     for, so a run's result costs nothing per component; the view holds neither the plan nor
     the components (it outlives them)."""
 
-    def __init__(self, plan: EnginePlan, events: Sequence[EventRecord],
+    def __init__(self, plan: EnginePlan, events: RecordedEvents | Sequence[EventRecord],
                  arrays: HistoryArrays | None = None) -> None:
         """`arrays`: the samples to view (a run's outcome), else those recorded now."""
         self._recorded = plan.recorded()
-        self._events = events
+        self._events = as_recorded(events)
         self._arrays = arrays if arrays is not None else plan.history()
         self._micro: np.ndarray | None = None  # made when first asked for
         self._data: dict[str, tuple[np.ndarray, dict[str, np.ndarray]]] = {}
@@ -193,7 +132,7 @@ class HistoryView:
     def _event_column(self, t: np.ndarray, component: str, event: str) -> np.ndarray:
         """EVENT output: True on the sample taken right after the event was handled."""
         column = np.zeros(len(t), dtype=bool)
-        for e in self._events:
+        for e in self._events.made():
             if (e.component, e.event) == (component, event):
                 # samples are in time order: look only at those taken at the event's instant
                 first, end = np.searchsorted(t, e.t, "left"), np.searchsorted(t, e.t, "right")
@@ -254,20 +193,32 @@ class SimulationResult:
     ({component: {port: unit or None}}) are SysSimX's."""
 
     def __init__(self, system_name: str, algorithm: str, history: HistoryView,
-                 events: Sequence[EventRecord], statistics: Statistics | StatisticsReading,
+                 events: RecordedEvents | Sequence[EventRecord],
+                 statistics: Statistics | StatisticsReading,
                  units: Mapping[str, dict[str, str | None]], t0: float, tf: float, dt: float,
                  wall_time: float, mode_switches: dict[str, tuple[Any, ...]] | None = None
                  ) -> None:
         self.system_name = system_name
         self.algorithm = algorithm
         self._history = history
-        self.events = EventLog(events)
+        self._events: RecordedEvents | EventLog = as_recorded(events)
         # {component: (ModeSwitchEvent, ...)} of the MultiComponents that switched
         self.mode_switches = mode_switches or {}
         self._statistics = statistics
         self.termination = statistics.termination
         self.units = units
         self.t0, self.tf, self.dt, self.wall_time = t0, tf, dt, wall_time
+
+    @property
+    def events(self) -> EventLog:
+        """The run's events in handling order, made when first asked for."""
+        if isinstance(self._events, RecordedEvents):
+            self._events = EventLog(self._events.made())
+        return self._events
+
+    @events.setter
+    def events(self, events: Sequence[EventRecord]) -> None:
+        self._events = EventLog(events)
 
     @property
     def statistics(self) -> Statistics:
@@ -287,7 +238,7 @@ class SimulationResult:
             raise ConfigurationError(f"{system.name}: nothing recorded yet; call initialize")
         if outcome is None:
             outcome = RunOutcome(plan)
-        events = system.history.events
+        events = system.history.recorded_events
         return cls(system.name, type(system._run_algorithm(plan)).__name__,
                    HistoryView(plan, events, outcome.history),
                    events, StatisticsReading(outcome.statistics, events, system.termination,

@@ -30,7 +30,8 @@ from .algorithms.coupling import default_coupling, loop_jacobians
 from .algorithms.hybrid import log_events
 from .connection import Connection, EventConnection
 from .progress import ProgressCallback, run_progress
-from .results import HistoryView, SimulationResult, read_events
+from .recorded_events import RecordedEvents
+from .results import HistoryView, SimulationResult
 from .run_stream import RunStream
 from .system_history import SystemHistory
 from .table_starts import start_tables
@@ -446,7 +447,7 @@ class System:
                 stream.finish()
         wall = time.perf_counter() - start
         outcome = RunOutcome(plan)
-        events = read_events(plan, outcome.event_count)
+        events = RecordedEvents(plan, outcome.event_count)
         self.history = SystemHistory(events, self)
         self.t = outcome.time
         if status < 0:
@@ -470,7 +471,7 @@ class System:
         plan.ran(self.t)
         algorithm = self._run_algorithm(plan)
         if isinstance(algorithm, HybridAlgorithm):
-            log_events([e for e in events if e.t >= t0], algorithm.method)
+            log_events(events, t0, algorithm.method)
         logger.info("Simulation completed in %.2f seconds", wall)
         return SimulationResult.from_system(self, t0, tf, dt, wall, outcome)
 
@@ -489,7 +490,7 @@ class System:
         "ModeSwitches": {component: (ModeSwitchEvent, ...)}."""
         if self._plan is None:
             raise ConfigurationError(f"{self.name}: nothing recorded yet; call initialize")
-        view = HistoryView(self._plan, self.history.events)
+        view = HistoryView(self._plan, self.history.recorded_events)
         history: dict[str, Any] = {name: view[name] for name in self.components}
         history["Events"] = self.history.get_all_event_histories()
         history["ModeSwitches"] = self._mode_switches()

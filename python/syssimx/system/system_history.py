@@ -15,6 +15,7 @@ from ..core.suggest import did_you_mean
 from ..errors import ConfigurationError, UnknownNameError
 from . import csv_export
 from .event_record import EventRecord
+from .recorded_events import RecordedEvents, as_recorded
 from .results import recorded_units
 
 if TYPE_CHECKING:
@@ -34,11 +35,23 @@ class SystemHistory:
     """A system's record (SysSimX's `system.history`): its events, and through `system` (when
     given) its samples: trajectories of ports and CSV files."""
 
-    def __init__(self, events: Sequence[EventRecord] = (),
+    def __init__(self, events: RecordedEvents | Sequence[EventRecord] = (),
                  system: HistorySource | None = None) -> None:
-        self.events = list(events)
+        self.recorded_events = as_recorded(events)
+        self._events: list[EventRecord] | None = None  # made when first asked for
         # weak: the system holds its history, and a cycle would keep both until a collection
         self._system = weakref.ref(system) if system is not None else None
+
+    @property
+    def events(self) -> list[EventRecord]:
+        """The events since initialize, in handling order."""
+        if self._events is None:
+            self._events = list(self.recorded_events.made())
+        return self._events
+
+    @events.setter
+    def events(self, events: Sequence[EventRecord]) -> None:
+        self._events = list(events)
 
     def get_event_history(self, component: str, event: str) -> list[DenseTime]:
         """The instants at which `component`'s indicator `event` fired."""

@@ -19,7 +19,8 @@
 #include "recording.h"
 #include "zeno.h"
 
-enum { PROBE_SLOT = 1 };
+/* Slot 1 serves localization (the bracket's near end) and then the probe after the event. */
+enum { NEAR_SLOT = 1, PROBE_SLOT = 1 };
 
 /* The hybrid algorithm's own state: made by hybrid_prepare at ssx_initialize, held for it by
  * the system (sys->algorithm_workspace), freed by hybrid_release. */
@@ -58,22 +59,14 @@ typedef struct {
     int *turned_back; /* the first probe moved a fired indicator towards its near side */
 } instant_work;
 
-/* The whole system, restored to a0, to time t: one coupled step, the indicators at t. */
-static int step_from_restored(ssx_system *sys, double a0, double t)
+/* The whole system, in the state it has at time `from`, to time t: one coupled step, the
+ * indicators at t. */
+static int step_on(ssx_system *sys, double from, double t)
 {
-    if (coupling_step(sys, a0, t - a0) != 0) {
+    if (coupling_step(sys, from, t - from) != 0) {
         return -1;
     }
     return indicators_evaluate(sys, t);
-}
-
-/* The whole system from the macro snapshot at a0 to time t: one restore, one coupled step. */
-static int step_from_snapshot(ssx_system *sys, double a0, double t)
-{
-    if (system_restore(sys, MACRO_SLOT, a0) != 0) {
-        return -1;
-    }
-    return step_from_restored(sys, a0, t);
 }
 
 /* The indicators' slopes at the current state (time t) into one end of their brackets (those
@@ -136,7 +129,14 @@ static int log_row(ssx_system *sys, double t, double a, double b, int left)
     return 0;
 }
 
-/* Shrinks [a0, t_end] around the earliest crossing; leaves the system in the state at b. */
+/* Shrinks [a0, t_end] around the earliest crossing; leaves the system in the state at b.
+ * Every trial steps from the bracket's near end: on from where the system is when the trial
+ * before moved that end (its state is then kept in NEAR_SLOT for later trials), else from that
+ * slot, or from the piece's start a0 while no trial has landed on the near side. Only the
+ * stretch past the near end is stepped again, and the trajectory is the one through the near
+ * end. The far end of a final bracket that the near end moved into last was reached from an
+ * earlier near end: stepped again on this trajectory it may not cross there yet (the caller
+ * then goes on from b, hybrid_end_piece). */
 static int locate(ssx_system *sys, event_bracket *br)
 {
     const ssx_hybrid_options *opt = &sys->hybrid;
@@ -167,6 +167,7 @@ static int locate(ssx_system *sys, event_bracket *br)
                         .moved_before = SIDE_NONE, .tol_time = opt->tol_time,
                         .tol_value = opt->tol_value};
     br->iterations = 0;
+    int near_saved = 0; /* NEAR_SLOT holds the state at st.a */
     while (st.b - st.a > opt->tol_time && !far_side_converged(sys)) {
         if (br->iterations >= opt->max_iterations) {
             return fail(sys, -1, -1, st.a,
@@ -174,15 +175,24 @@ static int locate(ssx_system *sys, event_bracket *br)
                         "bracket [%.17g, %.17g]",
                         opt->tol_time, opt->max_iterations, st.a, st.b);
         }
-        /* the slopes at a0 are read after the first restore, before the first estimate */
-        if (system_restore(sys, MACRO_SLOT, br->a0) != 0 ||
-            (br->iterations == 0 && read_slopes(sys, br->a0, SIDE_LEFT) != 0)) {
+        if (st.moved == SIDE_LEFT) {
+            if (system_snapshot(sys, NEAR_SLOT) != 0) {
+                return -1;
+            }
+            near_saved = 1;
+        } else if (near_saved) {
+            if (system_restore(sys, NEAR_SLOT, st.a) != 0) {
+                return -1;
+            }
+        } else if (system_restore(sys, MACRO_SLOT, br->a0) != 0 ||
+                   /* the slopes at a0, read once before the first estimate */
+                   (br->iterations == 0 && read_slopes(sys, br->a0, SIDE_LEFT) != 0)) {
             return -1;
         }
         double t = locator_next_trial(method, ends, n, &st, final_width, budget, br->iterations);
         br->iterations++;
         sys->stats.localization_iterations++;
-        if (step_from_restored(sys, br->a0, t) != 0) {
+        if (step_on(sys, st.a, t) != 0) {
             return -1;
         }
         if (opt->record_internal_steps && record_sample(sys, t, -1) != 0) {
@@ -216,14 +226,12 @@ static int locate(ssx_system *sys, event_bracket *br)
             return -1;
         }
     }
-    a = st.a;
-    b = st.b;
-    int state_at_b = st.moved != SIDE_LEFT;
-    if (!state_at_b && step_from_snapshot(sys, br->a0, b) != 0) {
+    /* the last trial moved the near end: on from there to the far one */
+    if (st.moved == SIDE_LEFT && step_on(sys, st.a, st.b) != 0) {
         return -1;
     }
-    br->a = a;
-    br->b = b;
+    br->a = st.a;
+    br->b = st.b;
     return 0;
 }
 
@@ -574,6 +582,17 @@ int hybrid_prepare(ssx_system *sys, void **out)
     return 0;
 }
 
+/* The system at t, where no indicator crosses: the indicators' sides follow their values. */
+static int pass_without_event(ssx_system *sys, double t, double *reached)
+{
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        indicator_follow(&sys->indicator_states[i], sys->indicator_states[i].value);
+    }
+    sys->time = t;
+    *reached = t;
+    return event_sources_commit_own(sys, t);
+}
+
 int hybrid_begin_piece(ssx_system *sys, double a0, double t_end, hybrid_piece *piece)
 {
     sys->time = a0;
@@ -592,24 +611,27 @@ int hybrid_begin_piece(ssx_system *sys, double a0, double t_end, hybrid_piece *p
 int hybrid_end_piece(ssx_system *sys, const hybrid_piece *piece, double t_end, double grid_step,
                      double *reached, int *event)
 {
-    *reached = t_end;
     *event = 0;
     if (indicators_evaluate(sys, t_end) != 0) {
         return -1;
     }
     if (!any_fires(sys)) {
-        for (int i = 0; i < sys->n_indicators; ++i) {
-            indicator_follow(&sys->indicator_states[i], sys->indicator_states[i].value);
-        }
-        sys->time = t_end;
-        return event_sources_commit_own(sys, t_end);
+        return pass_without_event(sys, t_end, reached);
     }
     event_bracket br = {.a0 = piece->a0,
                         .t_end = t_end,
                         .grid_step = grid_step,
                         .do_steps_before = piece->do_steps_before,
                         .restores_before = piece->restores_before};
-    if (locate(sys, &br) != 0 || event_sources_commit_own(sys, br.b) != 0) {
+    if (locate(sys, &br) != 0) {
+        return -1;
+    }
+    if (!any_fires(sys)) {
+        /* the trajectory through the final near end has not crossed by b: no event up to b,
+         * and the piece goes on from there */
+        return pass_without_event(sys, br.b, reached);
+    }
+    if (event_sources_commit_own(sys, br.b) != 0) {
         return -1;
     }
     sys->time = br.b;
@@ -649,7 +671,7 @@ int hybrid_step(ssx_system *sys, double t, double t_next)
         if (hybrid_end_piece(sys, &piece, t_next, t_next - t, &reached, &event) != 0) {
             return -1;
         }
-        if (!event) {
+        if (!event && reached == t_next) {
             return record_grid_point(sys, t_next);
         }
         a0 = reached;

@@ -17,8 +17,9 @@ enum { MACRO_SLOT = 0 };
 /* A macro piece for an algorithm that chooses its own steps (adaptive.h): begin at a0 (an
  * indicator starting on zero is resolved there), then take the MACRO_SLOT snapshot and the
  * coupled step to t_end, then end the piece: the earliest crossing in it is located to
- * tol_time and handled. *reached is where the system is then (t_end, or the event's instant,
- * *event set); the grid point is not recorded. */
+ * tol_time and handled. *reached is where the system is then: t_end, or the event's instant
+ * (*event set), or, rarely, a point before t_end where the trajectory the localization followed
+ * has not crossed yet (the next piece starts there); the grid point is not recorded. */
 typedef struct {
     double a0;
     long do_steps_before; /* statistics at the piece's start, for the event's cost */

@@ -20,6 +20,7 @@ from .signature import EngineDefaults
 
 if TYPE_CHECKING:
     from ..event_record import EventRecord
+    from ..recorded_events import RecordedEvents
 
 logger = logging.getLogger("syssimx.hybrid")
 
@@ -152,13 +153,15 @@ def _log_localization(group: Sequence[EventRecord], method: str) -> None:
         logger.debug("Indicator %s.%s = %.4e", r.component, r.event, r.located_value)
 
 
-def log_events(records: Sequence[EventRecord], method: str) -> None:
-    """The run's event instants: bracket, localization trials (DEBUG), handled events."""
+def log_events(records: RecordedEvents, t0: float, method: str) -> None:
+    """The event instants of the run from t0: bracket, localization trials (DEBUG), handled
+    events. The records are made only when INFO is on."""
     if not logger.isEnabledFor(logging.INFO):
         return
     instants: dict[tuple[float, int], list[EventRecord]] = {}
-    for record in records:
-        instants.setdefault((record.t, record.micro), []).append(record)
+    for record in records.made():
+        if record.t >= t0:
+            instants.setdefault((record.t, record.micro), []).append(record)
     rule = "=" * 80
     for (t, micro), group in instants.items():
         names = ", ".join(f"{r.component}.{r.event}" for r in group)
