@@ -44,7 +44,8 @@ def chain(n: int) -> tuple[System, list[FMUComponent]]:
     from syssimx import Connection, FMUComponent, System, fmus
 
     system = System(f"chain of {n}")
-    gains = [FMUComponent(f"G{i}", fmus.path("gain")) for i in range(n)]
+    gain_fmu = fmus.path("gain")
+    gains = [FMUComponent(f"G{i}", gain_fmu) for i in range(n)]
     for gain in gains:
         system.add_component(gain)
     for i in range(1, n):
@@ -67,6 +68,28 @@ def cost_per_step(n: int, repeats: int) -> float:
     for gain in gains:
         gain.free()
     return statistics.median(cpu) / (n * steps) * 1e9
+
+
+def costs_together(sizes: list[int], runs: int) -> dict[int, list[float]]:
+    """CPU nanoseconds per FMU step of each size in `runs` runs, the sizes built side by side
+    in this process and run in turn, run by run: a machine whose speed drifts (other virtual
+    machines on the host sharing its caches) slows every size alike."""
+    chains = {n: chain(n) for n in sizes}
+    per_step: dict[int, list[float]] = {n: [] for n in sizes}
+    for run in range(runs):
+        # each size first in turn: no size always runs right after the same one
+        for n in sizes[run % len(sizes):] + sizes[:run % len(sizes)]:
+            system = chains[n][0]
+            steps = FMU_STEPS // n
+            system.initialize(0.0)
+            start = time.process_time()
+            system.run(0.0, steps * 1e-3, 1e-3)
+            per_step[n].append((time.process_time() - start) / (n * steps) * 1e9)
+    for system, gains in chains.values():
+        system.reset()
+        for gain in gains:
+            gain.free()
+    return per_step
 
 
 def source_of(build: str) -> str:
@@ -128,6 +151,21 @@ def print_table(title: str, sizes: list[int], builds: list[str | None],
         print(line, flush=True)
 
 
+def print_together(sizes: list[int], runs: int) -> None:
+    per_step = costs_together(sizes, runs)
+    print(f"chain of gain FMUs, {FMU_STEPS} FMU steps per run, CPU time, the sizes in one "
+          f"process run in turn, {runs} runs each; ns per FMU step and ratio to N={sizes[0]}")
+    print(f"{'N':>7}{'minimum':>10}{'ratio':>8}{'median':>10}{'ratio':>8}  runs")
+    best = min(per_step[sizes[0]])
+    middle = statistics.median(per_step[sizes[0]])
+    for n in sizes:
+        runs_of_n = per_step[n]
+        print(f"{n:>7}{min(runs_of_n):>10.1f}{min(runs_of_n) / best:>7.2f}x"
+              f"{statistics.median(runs_of_n):>10.1f}"
+              f"{statistics.median(runs_of_n) / middle:>7.2f}x  "
+              + " ".join(f"{value:.0f}" for value in runs_of_n), flush=True)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--sizes", default="100,1000,10000")
@@ -138,10 +176,16 @@ def main() -> None:
     parser.add_argument("--builds", help="meson build directories to compare, comma-separated")
     parser.add_argument("--direct", action="store_true",
                         help="also the chain stepped by a C loop straight through FMI")
+    parser.add_argument("--together", type=int, metavar="RUNS",
+                        help="build every size in this one process and run them in turn, "
+                             "RUNS runs each; print each size's runs, minimum and median")
     parser.add_argument("--child", type=int, help=argparse.SUPPRESS)
     args = parser.parse_args()
     if args.child is not None:
         print(cost_per_step(args.child, args.repeats))
+        return
+    if args.together is not None:
+        print_together([int(n) for n in args.sizes.split(",")], args.together)
         return
     sizes = [int(n) for n in args.sizes.split(",")]
     builds = args.builds.split(",") if args.builds else [None]

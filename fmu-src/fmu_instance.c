@@ -68,45 +68,81 @@ void fmu_instance_free(fmu_instance *inst)
     if (inst == NULL)
         return;
     fmu_solver_free(inst);
-    free(inst->values);
-    free(inst->x);
-    free(inst->dx);
-    free(inst->z_before);
-    free(inst->z_after);
-    free(inst->fired);
-    free(inst->z_previous);
-    free(inst->input_derivatives);
-    free(inst->input_base);
-    free(inst->values_scratch);
-    free(inst->x_scratch);
     free(inst->name);
-    free(inst);
+    free(inst); /* the arrays with it */
 }
 
-static int allocate_arrays(fmu_instance *inst)
+enum { LINE = 64 };
+
+_Static_assert(offsetof(fmu_instance, solver) + sizeof(void *) <= LINE,
+               "what every step reads must stay in the instance's first cache line");
+
+static size_t lines(size_t bytes)
+{
+    return (bytes + LINE - 1) / LINE * LINE;
+}
+
+/* The arrays the model's sizes need, one after the other (each one longer than needed: never
+ * of size 0), the values and the states first, right after the instance: a step reads them. */
+static size_t arrays_bytes(const model_definition *model, size_t n_variables)
+{
+    size_t n_states = model->n_states;
+    size_t n_indicators = model->n_event_indicators;
+    size_t doubles = (n_variables + 1)           /* values */
+                     + 2 * (n_states + 1)        /* x, dx */
+                     + 3 * (n_indicators + 1)    /* z_before, z_after, z_previous */
+                     + (2 * n_variables + 1)     /* input_derivatives */
+                     + 2 * (n_variables + 1)     /* input_base, values_scratch */
+                     + (2 * n_states + 1);       /* x_scratch */
+    return doubles * sizeof(double) + (n_indicators + 1) * sizeof(int); /* fired, last */
+}
+
+static void place_arrays(fmu_instance *inst, double *at)
 {
     size_t n_states = inst->model->n_states;
     size_t n_indicators = inst->model->n_event_indicators;
-    /* calloc(0) may return NULL: allocate at least one element so NULL always means failure */
-    inst->values = calloc(inst->n_variables + 1, sizeof(double));
-    inst->x = calloc(n_states + 1, sizeof(double));
-    inst->dx = calloc(n_states + 1, sizeof(double));
-    inst->z_before = calloc(n_indicators + 1, sizeof(double));
-    inst->z_after = calloc(n_indicators + 1, sizeof(double));
-    inst->fired = calloc(n_indicators + 1, sizeof(int));
-    inst->z_previous = calloc(n_indicators + 1, sizeof(double));
-    inst->input_derivatives = calloc(2 * inst->n_variables + 1, sizeof(double));
-    inst->input_base = calloc(inst->n_variables + 1, sizeof(double));
-    inst->values_scratch = calloc(inst->n_variables + 1, sizeof(double));
-    inst->x_scratch = calloc(2 * n_states + 1, sizeof(double));
-    return inst->values && inst->x && inst->dx && inst->z_before && inst->z_after && inst->fired &&
-           inst->z_previous && inst->input_derivatives && inst->input_base &&
-           inst->values_scratch && inst->x_scratch;
+    inst->values = at;
+    at += inst->n_variables + 1;
+    inst->x = at;
+    at += n_states + 1;
+    inst->dx = at;
+    at += n_states + 1;
+    inst->z_before = at;
+    at += n_indicators + 1;
+    inst->z_after = at;
+    at += n_indicators + 1;
+    inst->z_previous = at;
+    at += n_indicators + 1;
+    inst->input_derivatives = at;
+    at += 2 * inst->n_variables + 1;
+    inst->input_base = at;
+    at += inst->n_variables + 1;
+    inst->values_scratch = at;
+    at += inst->n_variables + 1;
+    inst->x_scratch = at;
+    at += 2 * n_states + 1;
+    inst->fired = (int *)at;
+}
+
+/* The instance (`size` bytes) and its arrays in one zeroed block aligned to a cache line. */
+static fmu_instance *allocate_instance(size_t size)
+{
+    size_t n_variables = fmu_model.n_variables + fmu_solver_variable_count;
+    size_t head = lines(size);
+    size_t bytes = lines(head + arrays_bytes(&fmu_model, n_variables));
+    fmu_instance *inst = aligned_alloc(LINE, bytes);
+    if (inst == NULL)
+        return NULL;
+    memset(inst, 0, bytes);
+    inst->model = &fmu_model;
+    inst->n_variables = n_variables;
+    place_arrays(inst, (double *)((char *)inst + head));
+    return inst;
 }
 
 fmu_instance *fmu_instance_create(const fmu_instance *reporter, size_t size, const char *function)
 {
-    fmu_instance *inst = calloc(1, size);
+    fmu_instance *inst = allocate_instance(size);
     if (inst == NULL) {
         fmu_error(reporter, "%s: out of memory", function);
         return NULL;
@@ -114,13 +150,11 @@ fmu_instance *fmu_instance_create(const fmu_instance *reporter, size_t size, con
     inst->callbacks = reporter->callbacks;
     inst->logging_on = reporter->logging_on;
     inst->log_categories = LOG_ALL_CATEGORIES;
-    inst->model = &fmu_model;
     inst->solver_variables = fmu_solver_variables;
-    inst->n_variables = fmu_model.n_variables + fmu_solver_variable_count;
     inst->phase = PHASE_INSTANTIATED;
     inst->running_phase = PHASE_STEP;
     inst->name = malloc(strlen(reporter->name) + 1);
-    if (inst->name == NULL || !allocate_arrays(inst)) {
+    if (inst->name == NULL) {
         fmu_error(reporter, "%s: out of memory", function);
         fmu_instance_free(inst);
         return NULL;

@@ -56,36 +56,31 @@ typedef struct fmu_logging_callbacks {
 } fmu_logging_callbacks;
 
 typedef struct fmu_instance {
-    char *name;
-    char guid[FMU_GUID_LENGTH]; /* computed once: states carry it to reject foreign bytes */
-    fmu_logging_callbacks callbacks;
-    int logging_on;
-    unsigned log_categories; /* bit set of enabled categories (fmu_log.h) */
+    /* What every Set, doStep and Get reads, in the instance's first cache line (the instance is
+     * allocated aligned to one): where thousands of instances step in turn, each costs one
+     * trip to memory here, not one per field. */
     fmu_phase phase;
-    fmu_phase running_phase; /* entered by exiting initialization mode: step or event mode */
-
-    const model_definition *model;
-    size_t n_variables;      /* model variables followed by the back-end's parameters */
-    const model_variable *solver_variables;
-    double *values;          /* by value reference */
-    double *x;               /* continuous states */
-    double time;
     /* set when an input, a parameter, the state or the time changed since the outputs were last
      * computed: a get then recomputes them, otherwise it serves the values doStep computed */
     int outputs_stale;
-
-    int tolerance_defined;
-    double tolerance;
-
-    /* scratch for derivatives and events, sized by the model */
-    double *dx;
-    double *z_before;
-    double *z_after;
-    int *fired;
-    /* Model Exchange: each indicator at the last event mode, or a positive value it took on the
-     * trajectory since; part of the FMU state */
-    double *z_previous;
-
+    const model_definition *model;
+    double *values;          /* by value reference; the line after the instance's last */
+    double *x;               /* continuous states */
+    double time;
+    size_t n_variables;      /* model variables followed by the back-end's parameters */
+    const model_variable *solver_variables;
+    void *solver;            /* back-end data */
+    /* Higher-order inputs (fmu_interpolation.h): per variable its first and second time
+     * derivative (nonzero for Real inputs only), the inputs at the step's start, and FMI 3.0's
+     * intermediate update (NULL when the importer gave no callback). Not part of the FMU state:
+     * a restored state holds its inputs until the importer sets derivatives again. Read by
+     * every doStep: the second line. */
+    input_motion_kind input_motion;
+    int has_input_derivatives;
+    void (*intermediate_update)(struct fmu_instance *inst, double t);
+    double step_start;
+    double *input_derivatives; /* 2 per variable: first, then second derivatives */
+    double *input_base;
     /* Internal events left to the importer (FMI 3.0 event mode with early return): a step
      * stops at the first one, which `fired` marks and event_pending keeps until the importer
      * applies it with fmu_apply_pending_events. in_event_mode: the importer entered FMI 3.0
@@ -95,22 +90,26 @@ typedef struct fmu_instance {
     int importer_handles_events;
     int event_pending;
     int in_event_mode;
-
-    /* Higher-order inputs (fmu_interpolation.h): per variable its first and second time
-     * derivative (nonzero for Real inputs only), the inputs at the step's start, and FMI 3.0's
-     * intermediate update (NULL when the importer gave no callback). Not part of the FMU state:
-     * a restored state holds its inputs until the importer sets derivatives again. */
-    input_motion_kind input_motion;
-    int has_input_derivatives;
-    double *input_derivatives; /* 2 per variable: first, then second derivatives */
-    double *input_base;
-    double step_start;
-    void (*intermediate_update)(struct fmu_instance *inst, double t);
+    fmu_phase running_phase; /* entered by exiting initialization mode: step or event mode */
+    int tolerance_defined;
+    double tolerance;
+    /* scratch for derivatives and events, sized by the model */
+    double *dx;
+    double *z_before;
+    double *z_after;
+    int *fired;
+    /* Model Exchange: each indicator at the last event mode, or a positive value it took on the
+     * trajectory since; part of the FMU state */
+    double *z_previous;
     /* scratch for output derivatives: variable values and 2 * n_states */
     double *values_scratch;
     double *x_scratch;
-
-    void *solver;            /* back-end data */
+    /* what only messages and states read */
+    char *name;
+    char guid[FMU_GUID_LENGTH]; /* computed once: states carry it to reject foreign bytes */
+    fmu_logging_callbacks callbacks;
+    int logging_on;
+    unsigned log_categories; /* bit set of enabled categories (fmu_log.h) */
 } fmu_instance;
 
 /* Logs that `function` is not allowed in the instance's phase; returns NULL. */

@@ -7,6 +7,7 @@ SYSSIMX_BUILD_DIR to a meson build directory of this repository uses that build 
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 from pathlib import Path
@@ -65,14 +66,21 @@ def engine_header() -> Path:
     raise FileNotFoundError(f"the engine header {ENGINE_HEADER} was not found")
 
 
-def installed_from_build() -> set[str] | None:
+def installed_from_build() -> frozenset[str] | None:
     """The files a meson build (SYSSIMX_BUILD_DIR) installs, by their path in the build; None
     for an installed package or a build without meson's introspection data."""
     build = build_dir()
     listing = build / "meson-info" / "intro-installed.json" if build else None
     if listing is None or not listing.is_file():
         return None
-    return {str(Path(built).resolve()) for built in json.loads(listing.read_text())}
+    return _installed_listing(str(listing), listing.stat().st_mtime_ns)
+
+
+@functools.lru_cache(maxsize=4)
+def _installed_listing(listing: str, modified_ns: int) -> frozenset[str]:
+    """The files a build's listing names, read again only when the listing changes."""
+    del modified_ns  # part of the cache key only
+    return frozenset(str(Path(built).resolve()) for built in json.loads(Path(listing).read_text()))
 
 
 def fmu_dir() -> Path:

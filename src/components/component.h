@@ -56,9 +56,11 @@ typedef struct ssx_component_ops {
     /* What two components must never use on two threads at once (their FMU instance), NULL:
      * nothing shared. Only kinds whose built-in step may run on a worker thread have it. */
     const void *(*shared_with_threads)(const ssx_component *c);
-    /* At initialization, after the ports are final: what the kind builds from them; -1: out
-     * of memory. */
+    /* At initialization, after the ports are final: what the kind builds from them, in the
+     * system's prepared blocks (system.h); -1: out of memory. */
     int (*prepare)(ssx_system *sys, ssx_component *c);
+    /* Forgets what prepare built, before the system gives those blocks back. */
+    void (*unprepare)(ssx_component *c);
     /* Whether the component can save and restore its state (with its hooks as set). */
     int (*can_roll_back)(const ssx_component *c);
     /* What it can do (directional derivatives, moving inputs). NULL: nothing. */
@@ -106,6 +108,7 @@ struct ssx_component {
     int n_inputs;
     int n_outputs;
     int ports_in_block; /* inputs and outputs lie in the system's port block (port_block.h) */
+    int has_step_hook;  /* hooks.do_step is set: told in the line every step reads */
     ssx_hooks hooks;
 
     char *name;

@@ -12,7 +12,7 @@
 int component_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
 {
     sys->stats.do_step_calls++;
-    if (c->hooks.do_step != NULL) {
+    if (c->has_step_hook) {
         if (c->hooks.do_step(c->hooks.user, t, dt) != 0) {
             return fail_hook(sys, c, t, "do_step");
         }
@@ -116,37 +116,51 @@ int component_can_roll_back(const ssx_component *c)
     return c->ops->can_roll_back(c);
 }
 
-/* The links and the snapshot copies are one allocation, starting with the links. */
-static void free_prepared(ssx_component *c)
+void component_unprepare(ssx_component *c)
 {
-    free(c->links);
     c->links = NULL;
     c->n_links = 0;
     for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
         c->saved_outputs[slot] = NULL;
         c->saved_inputs[slot] = NULL;
     }
+    if (c->ops->unprepare != NULL) {
+        c->ops->unprepare(c);
+    }
+}
+
+size_t component_prepared_bytes(const ssx_component *c)
+{
+    /* a link and a snapshot copy per port, and about as much again for what the kind builds */
+    size_t ports = (size_t)c->n_inputs + (size_t)c->n_outputs + 2;
+    return ports * (sizeof(ssx_input_link) + (SSX_SNAPSHOT_SLOTS + 3) * sizeof(double));
 }
 
 int component_prepare(ssx_system *sys, ssx_component *c)
 {
-    free_prepared(c);
-    /* one more of each than needed: never an allocation of size 0 */
-    size_t n_links = (size_t)c->n_inputs + 1;
-    size_t n_saved = (size_t)c->n_outputs + (size_t)c->n_inputs + 2;
-    ssx_input_link *links = calloc(1, n_links * sizeof *links +
-                                          SSX_SNAPSHOT_SLOTS * n_saved * sizeof(double));
-    if (links == NULL) {
+    /* one more than needed: never a block of size 0 */
+    c->links = arena_allocate(&sys->prepared_blocks,
+                              ((size_t)c->n_inputs + 1) * sizeof *c->links, sizeof(double));
+    if (c->links == NULL) {
         return -1;
     }
-    c->links = links;
-    double *saved = (double *)(links + n_links);
+    return c->ops->prepare != NULL ? c->ops->prepare(sys, c) : 0;
+}
+
+int component_prepare_snapshots(ssx_system *sys, ssx_component *c)
+{
+    size_t n_saved = (size_t)c->n_outputs + (size_t)c->n_inputs + 2;
+    double *saved = arena_allocate(&sys->prepared_blocks,
+                                   SSX_SNAPSHOT_SLOTS * n_saved * sizeof(double), sizeof(double));
+    if (saved == NULL) {
+        return -1;
+    }
     for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
         c->saved_outputs[slot] = saved;
         c->saved_inputs[slot] = saved + c->n_outputs + 1;
         saved += n_saved;
     }
-    return c->ops->prepare != NULL ? c->ops->prepare(sys, c) : 0;
+    return 0;
 }
 
 void component_free(ssx_component *c)
@@ -159,7 +173,6 @@ void component_free(ssx_component *c)
     if (c->ops->release != NULL) {
         c->ops->release(c);
     }
-    free_prepared(c);
     own_event_list_free(&c->own_events);
     free(c->name);
     free(c->output_ports);

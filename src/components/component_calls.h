@@ -22,10 +22,17 @@ int component_initialize(ssx_system *sys, ssx_component *c, double t0);
 int component_record(ssx_system *sys, ssx_component *c, double t);
 int component_can_roll_back(const ssx_component *c);
 
-/* Its links' room (filled by the coupling), the snapshot copies of its ports and what the
- * kind builds from them; called when the system initializes, member after member in schedule
- * order, so that what each step reads lies in that order. */
+/* Its links' room (filled by the coupling) and what the kind builds from its ports, in the
+ * system's prepared blocks; called when the system initializes, member after member in
+ * schedule order, so that what each step reads lies in that order. */
 int component_prepare(ssx_system *sys, ssx_component *c);
+/* The snapshot copies of its ports, in the prepared blocks after every member's step data
+ * (read only by rollbacks). */
+int component_prepare_snapshots(ssx_system *sys, ssx_component *c);
+/* Forgets what the two above made: the system gives those blocks back next. */
+void component_unprepare(ssx_component *c);
+/* About how many bytes the two above take, for sizing the blocks in advance. */
+size_t component_prepared_bytes(const ssx_component *c);
 /* Frees what the component holds; its block goes with the system's arena. */
 void component_free(ssx_component *c);
 

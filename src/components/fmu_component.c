@@ -16,6 +16,9 @@
 #include "own_events.h"
 #include "system.h"
 
+_Static_assert(offsetof(fmu_component_data, int_scratch) + sizeof(int *) <= 128,
+               "what every step reads must stay in the data's first two cache lines");
+
 /* The status every standard gives a step it could not complete (fmi2Discard, fmi3Discard). */
 enum { STATUS_DISCARD = 2, STATUS_ERROR = 3 };
 
@@ -39,7 +42,7 @@ int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t)
     /* x - x is 0 for a finite x and NaN for NaN and infinities: one subtraction per value
      * instead of a classification (Integer and Boolean values are always finite) */
     double residue = 0.0;
-    const fmu_port_batch *real = &d->output_batch[SSX_REAL];
+    const fmu_port_batch *real = &d->real_outputs;
     if (real->n > 0) {
         int status = ssx_fmu_get_real(d->fmu, real->vr, real->n, d->real_scratch);
         if (!fmi_ok(status)) {
@@ -51,8 +54,8 @@ int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t)
             residue += value - value;
         }
     }
-    for (int type = SSX_INTEGER; type <= SSX_BOOLEAN; ++type) {
-        const fmu_port_batch *b = &d->output_batch[type];
+    for (int type = SSX_INTEGER; type <= SSX_BOOLEAN && d->has_discrete_ports; ++type) {
+        const fmu_port_batch *b = &d->discrete_outputs[type - SSX_INTEGER];
         if (b->n == 0) {
             continue;
         }
@@ -117,7 +120,7 @@ static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
 static int write_values(ssx_system *sys, ssx_component *c)
 {
     fmu_component_data *d = fmu_data(c);
-    const fmu_port_batch *real = &d->input_batch[SSX_REAL];
+    const fmu_port_batch *real = &d->real_inputs;
     if (real->n > 0) {
         for (size_t i = 0; i < real->n; ++i) {
             d->real_scratch[i] = c->inputs[real->port[i]];
@@ -127,8 +130,8 @@ static int write_values(ssx_system *sys, ssx_component *c)
             return fmi_failed(sys, c, sys->time, status, SLOT_SET_REAL);
         }
     }
-    for (int type = SSX_INTEGER; type <= SSX_BOOLEAN; ++type) {
-        const fmu_port_batch *b = &d->input_batch[type];
+    for (int type = SSX_INTEGER; type <= SSX_BOOLEAN && d->has_discrete_ports; ++type) {
+        const fmu_port_batch *b = &d->discrete_inputs[type - SSX_INTEGER];
         if (b->n == 0) {
             continue;
         }
@@ -451,7 +454,7 @@ int fmu_component_can_roll_back(const ssx_component *c)
 int fmu_component_output_derivatives(ssx_system *sys, ssx_component *c, double t, double *slope)
 {
     fmu_component_data *d = fmu_data(c);
-    const fmu_port_batch *real = &d->output_batch[SSX_REAL];
+    const fmu_port_batch *real = &d->real_outputs;
     for (size_t j = 0; j < real->n; ++j) {
         d->int_scratch[j] = 1;
     }
@@ -470,7 +473,7 @@ int fmu_component_output_derivatives(ssx_system *sys, ssx_component *c, double t
  * out of memory. */
 static int lay_out_derivatives(fmu_component_data *d, int order)
 {
-    const fmu_port_batch *real = &d->input_batch[SSX_REAL];
+    const fmu_port_batch *real = &d->real_inputs;
     size_t n = real->n * (size_t)order;
     if (n > d->derivative_capacity) {
         unsigned int *vr = realloc(d->derivative_vr, n * sizeof *vr);
@@ -504,7 +507,7 @@ int fmu_component_set_input_derivatives(ssx_system *sys, ssx_component *c, int o
                                         const double *derivatives)
 {
     fmu_component_data *d = fmu_data(c);
-    const fmu_port_batch *real = &d->input_batch[SSX_REAL];
+    const fmu_port_batch *real = &d->real_inputs;
     size_t n = real->n * (size_t)order;
     if (n == 0) {
         return 0;
@@ -541,15 +544,18 @@ static void build_batch(fmu_port_batch *b, const ssx_port *ports, int n_ports,
     }
 }
 
+/* The step block lies in the system's prepared blocks, which go back after this; the
+ * derivatives' arrays grow as used and are the component's own. */
 static void free_prepared(fmu_component_data *d)
 {
-    free(d->step_block);
     free(d->derivative_vr);
     free(d->derivative_order);
     free(d->derivative_values);
     d->step_block = NULL;
-    memset(d->output_batch, 0, sizeof d->output_batch);
-    memset(d->input_batch, 0, sizeof d->input_batch);
+    d->real_outputs = d->real_inputs = (fmu_port_batch){0};
+    memset(d->discrete_outputs, 0, sizeof d->discrete_outputs);
+    memset(d->discrete_inputs, 0, sizeof d->discrete_inputs);
+    d->has_discrete_ports = 0;
     d->real_scratch = NULL;
     d->int_scratch = NULL;
     d->inputs_written = NULL;
@@ -559,19 +565,26 @@ static void free_prepared(fmu_component_data *d)
     d->derivative_capacity = 0;
 }
 
+void fmu_component_unprepare(ssx_component *c)
+{
+    free_prepared(fmu_data(c));
+}
+
 /* What a step reads besides the ports (batches, scratch, the inputs last written) in one
- * allocation, made in schedule order with the other members' (component_prepare): doubles
- * first, then value references, port indices and the Integer scratch. */
+ * block, right after the member's links (component_prepare): doubles first, then value
+ * references, port indices and the Integer scratch. */
 int fmu_component_prepare(ssx_system *sys, ssx_component *c)
 {
-    (void)sys;
     fmu_component_data *d = fmu_data(c);
     free_prepared(d);
     size_t widest = (size_t)(c->n_outputs > c->n_inputs ? c->n_outputs : c->n_inputs) + 1;
     size_t n_written = (size_t)c->n_inputs + 1;
     size_t n_ports = (size_t)c->n_outputs + (size_t)c->n_inputs + 1;
-    double *block = malloc((widest + n_written) * sizeof(double) +
-                           n_ports * (sizeof(unsigned int) + sizeof(int)) + widest * sizeof(int));
+    double *block = arena_allocate(&sys->prepared_blocks,
+                                   (widest + n_written) * sizeof(double) +
+                                       n_ports * (sizeof(unsigned int) + sizeof(int)) +
+                                       widest * sizeof(int),
+                                   sizeof(double));
     if (block == NULL) {
         return -1;
     }
@@ -581,15 +594,18 @@ int fmu_component_prepare(ssx_system *sys, ssx_component *c)
     unsigned int *vr = (unsigned int *)(d->inputs_written + n_written);
     int *port = (int *)(vr + n_ports);
     d->int_scratch = port + n_ports;
-    for (int type = 0; type < 3; ++type) {
-        build_batch(&d->output_batch[type], c->output_ports, c->n_outputs, (ssx_value_type)type,
-                    vr, port);
-        vr += d->output_batch[type].n;
-        port += d->output_batch[type].n;
-        build_batch(&d->input_batch[type], c->input_ports, c->n_inputs, (ssx_value_type)type,
-                    vr, port);
-        vr += d->input_batch[type].n;
-        port += d->input_batch[type].n;
+    for (int type = SSX_REAL; type <= SSX_BOOLEAN; ++type) {
+        fmu_port_batch *outputs = type == SSX_REAL ? &d->real_outputs
+                                                   : &d->discrete_outputs[type - SSX_INTEGER];
+        fmu_port_batch *inputs = type == SSX_REAL ? &d->real_inputs
+                                                  : &d->discrete_inputs[type - SSX_INTEGER];
+        build_batch(outputs, c->output_ports, c->n_outputs, (ssx_value_type)type, vr, port);
+        vr += outputs->n;
+        port += outputs->n;
+        build_batch(inputs, c->input_ports, c->n_inputs, (ssx_value_type)type, vr, port);
+        vr += inputs->n;
+        port += inputs->n;
+        d->has_discrete_ports |= type != SSX_REAL && outputs->n + inputs->n > 0;
     }
     d->inputs_written_epoch = -1;
     return 0;
@@ -730,6 +746,7 @@ const ssx_component_ops ssx_fmu_component_ops = {
     .directional_derivative = fmu_component_directional_derivative,
     .shared_with_threads = fmu_component_instance,
     .prepare = fmu_component_prepare,
+    .unprepare = fmu_component_unprepare,
     .can_roll_back = fmu_component_can_roll_back,
     .capabilities = fmu_component_capabilities,
     .output_derivatives = fmu_component_output_derivatives,

@@ -20,18 +20,23 @@ typedef struct {
 /* What an FMU component holds besides the ports: c->data of both FMU kinds starts with it
  * (the Model Exchange kind's data embeds it as its first member). */
 typedef struct {
-    /* what every step reads first, together */
+    /* What every step reads, in the data's first two cache lines (the data starts on one):
+     * where thousands of components step in turn, each line is a trip to memory. The batches
+     * are built at initialization. */
     ssx_fmu *fmu; /* borrowed */
-    fmu_port_batch output_batch[3]; /* by ssx_value_type, built at initialization */
-    fmu_port_batch input_batch[3];
-    double *real_scratch;
-    int *int_scratch;
-    /* one allocation holding the batches' arrays, the scratch and inputs_written */
-    void *step_block;
     /* the inputs as last written to the FMU and its values epoch right after that write
      * (-1: nothing written yet); equal inputs at an unchanged epoch need no Set call */
-    double *inputs_written;
     long inputs_written_epoch;
+    double *inputs_written;
+    double *real_scratch;
+    fmu_port_batch real_outputs;
+    int has_discrete_ports; /* Integer or Boolean ports: their batches are read too */
+    fmu_port_batch real_inputs;
+    int *int_scratch;
+    fmu_port_batch discrete_outputs[2]; /* Integer, Boolean: [type - SSX_INTEGER] */
+    fmu_port_batch discrete_inputs[2];
+    /* one block holding the batches' arrays, the scratch and inputs_written */
+    void *step_block;
     ssx_component_capabilities capabilities;
     /* one reused FMU state per snapshot slot, valid for one instance generation */
     void *fmu_state[SSX_SNAPSHOT_SLOTS];
@@ -58,6 +63,7 @@ ssx_fmu *fmu_component_binding(const ssx_component *c);
 
 /* The FMU kinds' shared operations (component.h describes each). */
 int fmu_component_prepare(ssx_system *sys, ssx_component *c);
+void fmu_component_unprepare(ssx_component *c);
 ssx_fmu *fmu_component_fmu(const ssx_component *c);
 int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0);
 int fmu_component_directional_derivative(ssx_system *sys, ssx_component *c,

@@ -673,6 +673,7 @@ const ssx_component_ops ssx_model_exchange_component_ops = {
     .directional_derivative = fmu_component_directional_derivative,
     .shared_with_threads = fmu_component_instance,
     .prepare = fmu_component_prepare,
+    .unprepare = fmu_component_unprepare,
     .can_roll_back = fmu_component_can_roll_back,
     .capabilities = fmu_component_capabilities,
     .handle_events = fmu_component_handle_events,

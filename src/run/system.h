@@ -125,6 +125,9 @@ struct ssx_system {
     int initialized;
     int stepping_hybrid; /* FMUs are told that a rollback may follow */
     arena component_blocks; /* every component's block (system_add_component) */
+    /* what initialize prepares for the members' steps (component_prepare), made again at each
+     * initialize: in schedule order and in large pages, beside nothing else */
+    arena prepared_blocks;
     /* 0: no component holds an own event (own_events.h), so a commit need not ask each one;
      * set by a report, on a worker thread too */
     atomic_int own_events_pending;

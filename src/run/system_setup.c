@@ -5,6 +5,7 @@
 #include "system.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -23,6 +24,9 @@
 
 /* A component block starts on a cache line: the fields a step reads lead it. */
 enum { COMPONENT_ALIGNMENT = 64 };
+
+_Static_assert(offsetof(ssx_component, has_step_hook) + sizeof(int) <= COMPONENT_ALIGNMENT,
+               "what every step reads must stay in the component's first cache line");
 
 void ssx_get_defaults(ssx_defaults *out)
 {
@@ -114,6 +118,7 @@ void ssx_system_free(ssx_system *sys)
         component_free(sys->components[i]);
     }
     arena_free(&sys->component_blocks);
+    arena_free(&sys->prepared_blocks);
     free(sys->components);
     free(sys->connections);
     free(sys->indicators);
@@ -158,16 +163,19 @@ int system_add_component(ssx_system *sys, const char *name, int can_snapshot,
                       (size_t)sys->n_components + 1, sizeof *sys->components, 8) != 0) {
         return fail_config(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
     }
-    /* data read on every step sits next to the ports' pointers, not in a block of its own;
-     * the blocks of a system's components lie side by side in the order they were added */
-    ssx_component *c = arena_allocate(&sys->component_blocks, sizeof *c + data_size,
+    /* data read on every step sits next to the ports' pointers, not in a block of its own,
+     * starting on a cache line of its own; the blocks of a system's components lie side by
+     * side in the order they were added */
+    size_t head = (sizeof(ssx_component) + COMPONENT_ALIGNMENT - 1) / COMPONENT_ALIGNMENT *
+                  COMPONENT_ALIGNMENT;
+    ssx_component *c = arena_allocate(&sys->component_blocks, head + data_size,
                                       COMPONENT_ALIGNMENT);
     if (c == NULL || (c->name = strdup(name)) == NULL) {
         return fail_config(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
     }
     c->index = sys->n_components;
     c->ops = ops;
-    c->data = data_size > 0 ? (void *)(c + 1) : NULL;
+    c->data = data_size > 0 ? (void *)((char *)c + head) : NULL;
     c->can_snapshot = can_snapshot != 0;
     sys->components[sys->n_components++] = c;
     structure_changed(sys);
@@ -190,6 +198,7 @@ int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks)
     } else {
         c->hooks = *hooks;
     }
+    c->has_step_hook = c->hooks.do_step != NULL;
     /* most systems have no record hook: no call for them on every sample */
     if (c->hooks.record != NULL && !sys->record_hooks_observed) {
         ssx_observer *observer = record_hooks_observer_new();

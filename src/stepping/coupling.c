@@ -78,13 +78,28 @@ static int prepare_schedule(ssx_system *sys)
     return 0;
 }
 
-/* In schedule order: what each member's step reads is then allocated in the order of the
- * steps. */
+/* In schedule order: what each member's step reads then lies in the order of the steps, one
+ * member's after the other's, and the snapshot copies (read only by rollbacks) after them all.
+ * Made afresh at each initialize, in blocks sized for all of it. */
 static int prepare_members(ssx_system *sys)
 {
+    size_t bytes = 0;
+    for (int i = 0; i < sys->n_components; ++i) {
+        component_unprepare(sys->components[i]);
+        bytes += component_prepared_bytes(sys->components[i]);
+    }
+    arena_free(&sys->prepared_blocks);
+    arena_expect(&sys->prepared_blocks, bytes);
     for (int k = 0; k < sys->n_components; ++k) {
         ssx_component *c = sys->components[sys->order[k]];
         if (component_prepare(sys, c) != 0) {
+            return fail(sys, c->index, -1, sys->time, "out of memory preparing component '%s'",
+                        c->name);
+        }
+    }
+    for (int k = 0; k < sys->n_components; ++k) {
+        ssx_component *c = sys->components[sys->order[k]];
+        if (component_prepare_snapshots(sys, c) != 0) {
             return fail(sys, c->index, -1, sys->time, "out of memory preparing component '%s'",
                         c->name);
         }

@@ -64,6 +64,18 @@ void *arena_allocate(arena *a, size_t size, size_t alignment)
     return block;
 }
 
+void arena_expect(arena *a, size_t bytes)
+{
+    if (a->chunks != NULL) {
+        return;
+    }
+    size_t chunk = FIRST_CHUNK_BYTES;
+    while (chunk < LARGE_PAGE_BYTES && chunk < CHUNK_HEADER + bytes) {
+        chunk *= 2;
+    }
+    a->next_chunk_bytes = chunk;
+}
+
 void arena_free(arena *a)
 {
     while (a->chunks != NULL) {

@@ -23,6 +23,9 @@ typedef struct {
 /* `size` zeroed bytes aligned to `alignment` (a power of two, at most 64), NULL when out of
  * memory. A block is never freed alone. */
 void *arena_allocate(arena *a, size_t size, size_t alignment);
+/* An empty arena's first chunk is made for about `bytes` of blocks: one 2 MiB large page or
+ * more where they need that much, not a 16 KiB chunk doubling up to it. */
+void arena_expect(arena *a, size_t bytes);
 /* Frees every block; the arena is empty again. */
 void arena_free(arena *a);
 
