@@ -67,20 +67,20 @@ typedef struct fmu_instance {
     double *values;          /* by value reference; the line after the instance's last */
     double *x;               /* continuous states */
     double time;
-    size_t n_variables;      /* model variables followed by the back-end's parameters */
-    const model_variable *solver_variables;
     void *solver;            /* back-end data */
     /* Higher-order inputs (fmu_interpolation.h): per variable its first and second time
      * derivative (nonzero for Real inputs only), the inputs at the step's start, and FMI 3.0's
      * intermediate update (NULL when the importer gave no callback). Not part of the FMU state:
-     * a restored state holds its inputs until the importer sets derivatives again. Read by
-     * every doStep: the second line. */
+     * a restored state holds its inputs until the importer sets derivatives again. */
     input_motion_kind input_motion;
     int has_input_derivatives;
     void (*intermediate_update)(struct fmu_instance *inst, double t);
-    double step_start;
+    /* the first line ends here */
+    double step_start; /* of the step whose inputs follow their polynomial */
     double *input_derivatives; /* 2 per variable: first, then second derivatives */
     double *input_base;
+    size_t n_variables;      /* model variables followed by the back-end's parameters */
+    const model_variable *solver_variables;
     /* Internal events left to the importer (FMI 3.0 event mode with early return): a step
      * stops at the first one, which `fired` marks and event_pending keeps until the importer
      * applies it with fmu_apply_pending_events. in_event_mode: the importer entered FMI 3.0

@@ -49,10 +49,11 @@ fmu_status fmu_set_input_derivatives(fmu_instance *inst, const char *function,
 
 void fmu_inputs_begin_step(fmu_instance *inst)
 {
-    inst->step_start = inst->time;
+    /* held inputs (most steps) write nothing here: the instance's second line stays unread */
     if (inst->intermediate_update != NULL) {
         inst->input_motion = INPUTS_INTERMEDIATE_UPDATE;
     } else if (inst->has_input_derivatives) {
+        inst->step_start = inst->time;
         memcpy(inst->input_base, inst->values, inst->n_variables * sizeof(double));
         inst->input_motion = INPUTS_POLYNOMIAL;
     }
