@@ -15,17 +15,13 @@
 #include "fmu_environment.h"
 #include "fmu_remote.h"
 #include "shared_library.h"
+#include "round_up.h"
 #include "slot_pool.h"
 
 /* A slot number for "no call yet" (last_slot). */
 enum { NO_CALL = -1 };
 /* The binding is aligned to cache lines of this size (the common one). */
 enum { CACHE_LINE = 64 };
-
-static size_t round_up(size_t size, size_t to)
-{
-    return (size + to - 1) / to * to;
-}
 
 /* What no step reads: in an allocation of its own, so that a binding is small and the
  * bindings made in a pool lie close together. */

@@ -21,6 +21,7 @@
 #include "port_block.h"
 #include "record_hooks.h"
 #include "recording.h"
+#include "round_up.h"
 
 /* A component block starts on a cache line: the fields a step reads lead it. */
 enum { COMPONENT_ALIGNMENT = 64 };
@@ -166,8 +167,7 @@ int system_add_component(ssx_system *sys, const char *name, int can_snapshot,
     /* data read on every step sits next to the ports' pointers, not in a block of its own,
      * starting on a cache line of its own; the blocks of a system's components lie side by
      * side in the order they were added */
-    size_t head = (sizeof(ssx_component) + COMPONENT_ALIGNMENT - 1) / COMPONENT_ALIGNMENT *
-                  COMPONENT_ALIGNMENT;
+    size_t head = round_up(sizeof(ssx_component), COMPONENT_ALIGNMENT);
     ssx_component *c = arena_allocate(&sys->component_blocks, head + data_size,
                                       COMPONENT_ALIGNMENT);
     if (c == NULL || (c->name = strdup(name)) == NULL) {

@@ -7,6 +7,7 @@
 
 #include "large_buffer.h"
 #include "poison.h"
+#include "round_up.h"
 
 /* Each chunk starts with its link, padded to a cache line so that blocks start on one. */
 enum { CHUNK_HEADER = 64, FIRST_CHUNK_BYTES = 16 * 1024, MAX_ALIGNMENT = 64 };
@@ -14,11 +15,6 @@ enum { CHUNK_HEADER = 64, FIRST_CHUNK_BYTES = 16 * 1024, MAX_ALIGNMENT = 64 };
 struct arena_chunk {
     arena_chunk *next;
 };
-
-static size_t round_up(size_t size, size_t to)
-{
-    return (size + to - 1) / to * to;
-}
 
 /* A new chunk holding at least `size` bytes after its header; what the old one had left is
  * not used. */

@@ -9,14 +9,11 @@
 
 #include "large_buffer.h"
 #include "poison.h"
+#include "round_up.h"
 
 /* The first chunk's slots, and the most a chunk holds: a system of ten FMUs takes one small
  * chunk, one of ten thousand a few large ones. */
 enum { FIRST_CHUNK_SLOTS = 16, MAX_CHUNK_SLOTS = 4096 };
-/* A chunk that would reach a large page is one: a system of thousands of FMUs reaches its
- * bindings through a few translations. */
-static const size_t LARGE_PAGE = LARGE_PAGE_BYTES;
-
 typedef struct chunk {
     struct chunk *next;
 } chunk;
@@ -34,11 +31,6 @@ struct slot_pool {
     size_t fresh_left;
     void *given_back; /* slots given back, each holding the next one's address */
 };
-
-static size_t round_up(size_t size, size_t to)
-{
-    return (size + to - 1) / to * to;
-}
 
 slot_pool *slot_pool_new(size_t size, size_t alignment)
 {
@@ -70,10 +62,10 @@ static int grow(slot_pool *pool)
     size_t slots = pool->next_chunk_slots;
     size_t bytes = pool->header + slots * pool->size;
     size_t alignment = pool->alignment;
-    if (bytes >= LARGE_PAGE && pool->header + pool->size <= LARGE_PAGE) {
-        slots = (LARGE_PAGE - pool->header) / pool->size;
-        bytes = LARGE_PAGE;
-        alignment = LARGE_PAGE;
+    if (bytes >= LARGE_PAGE_BYTES && pool->header + pool->size <= LARGE_PAGE_BYTES) {
+        slots = (LARGE_PAGE_BYTES - pool->header) / pool->size;
+        bytes = LARGE_PAGE_BYTES;
+        alignment = LARGE_PAGE_BYTES;
     }
     chunk *c = large_buffer_chunk(round_up(bytes, alignment), alignment);
     if (c == NULL) {
