@@ -21,9 +21,9 @@ EXTRAS = {
 
 
 def install_hint(library: str) -> str:
-    """`pip install "syssimx[extra]"` for a library of EXTRAS, else `pip install library`."""
+    """`pip install "syssimx-engine[extra]"` for a library of EXTRAS, else `pip install library`."""
     extra = EXTRAS.get(library.split(".")[0])
-    return f'pip install "syssimx[{extra}]"' if extra else f"pip install {library}"
+    return f'pip install "syssimx-engine[{extra}]"' if extra else f"pip install {library}"
 
 
 def require(library: str, purpose: str) -> ModuleType:

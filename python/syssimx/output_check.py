@@ -10,12 +10,13 @@ from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
+from .atomic_file import is_special, resolved_target
 from .errors import ConfigurationError
 
 # suffix -> the modules of which one must be importable to write it, and what to install
 _WRITERS: dict[str, tuple[tuple[str, ...], str]] = {
     ".parquet": (("pyarrow", "fastparquet"), "pyarrow or fastparquet"),
-    ".nc": (("scipy", "netCDF4", "h5netcdf"), 'scipy (pip install "syssimx[ensemble]")'),
+    ".nc": (("scipy", "netCDF4", "h5netcdf"), 'scipy (pip install "syssimx-engine[ensemble]")'),
 }
 
 
@@ -32,7 +33,11 @@ def check_output(path: str | Path, what: str = "output",
         if suffix not in known:
             raise ConfigurationError(f"{what} {target}: unknown format {suffix or '(none)'!r}; "
                                      f"use one of {', '.join(known)}")
-    folder = target.parent
+    if is_special(target):  # a device or FIFO: written directly, whatever its folder allows
+        if not os.access(target, os.W_OK):
+            raise ConfigurationError(f"{what} {target} is not writable")
+        return target
+    folder = resolved_target(target).parent  # a link is written through, in its file's folder
     if not folder.is_dir():
         raise ConfigurationError(f"{what} {target}: the folder {folder} does not exist")
     if not os.access(folder, os.W_OK | os.X_OK):

@@ -111,9 +111,9 @@ def test_a_missing_optional_library_names_the_extra(wall, monkeypatch: pytest.Mo
     with pytest.raises(MissingDependencyError) as raised:
         result.to_dataframe()
     assert str(raised.value) == ("SimulationResult.to_dataframe needs pandas, which is not "
-                                 'installed: pip install "syssimx[results]"')
+                                 'installed: pip install "syssimx-engine[results]"')
     assert isinstance(raised.value, SysSimXError) and isinstance(raised.value, ImportError)
     monkeypatch.setitem(sys.modules, "xarray", None)
     ensemble = EnsembleResult([], [], 0.0, 1.0, 0.1, 0.0)
-    with pytest.raises(MissingDependencyError, match=r'pip install "syssimx\[ensemble\]"'):
+    with pytest.raises(MissingDependencyError, match=r'pip install "syssimx-engine\[ensemble\]"'):
         ensemble.grid()

@@ -23,7 +23,7 @@ class ParquetWriter:
             import pyarrow.parquet as pq
         except ImportError as exc:
             raise ImportError("streaming to Parquet needs pyarrow: pip install "
-                              "'syssimx[results]'") from exc
+                              "'syssimx-engine[results]'") from exc
         fields = [pa.field(TIME, pa.float64()), pa.field(MICRO, pa.int32())]
         fields += [pa.field(name, pa.float64()) for name in columns]
         self._schema = pa.schema(fields)
