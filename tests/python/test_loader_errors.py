@@ -41,7 +41,8 @@ BUILD_ERRORS = {
         ", line 2: components[0]: needs a 'name' (a non-empty string)",
     "components:\n  - name: A\n    class: 'quickstart:LinearSource'\n    parameter: {}\n":
         ", line 2: components[0] 'A': unknown key(s) ['parameter']; known: ['name', 'class', "
-        "'fmu', 'interface', 'args', 'parameters', 'event_indicators', 'event_handlers']",
+        "'fmu', 'interface', 'args', 'parameters', 'inputs', 'event_indicators', "
+        "'event_handlers']",
     "components:\n  - name: A\n":
         ", line 2: components[0] 'A': needs 'class' (\"module:Class\") or 'fmu' (a bundled "
         "FMU name or a path to an .fmu file)",
@@ -72,6 +73,16 @@ BUILD_ERRORS = {
         f"known parameters: {PENDULUM_PARAMETERS}",
     PENDULUM + "    parameters: {theta0: abc}\n":
         ", line 2: components[0] 'P' parameters: P.theta0 is Real; got str 'abc'",
+    "components:\n  - {name: PI, fmu: pi_controller, inputs: {setpont: 1}}\n":
+        ", line 2: components[0] 'PI' inputs: component 'PI' has no input 'setpont'; inputs: "
+        "['measurement', 'setpoint']",
+    "components:\n  - {name: PI, fmu: pi_controller, inputs: {kp: 1}}\n":
+        ", line 2: components[0] 'PI' inputs: component 'PI' has no input 'kp' (a parameter: "
+        "give it under 'parameters'); inputs: ['measurement', 'setpoint']",
+    "components:\n  - {name: PI, fmu: pi_controller, inputs: {setpoint: one}}\n":
+        ", line 2: components[0] 'PI' inputs: port 'setpoint' is REAL; got str",
+    "components:\n  - {name: PI, fmu: pi_controller, inputs: [setpoint]}\n":
+        ", line 2: components[0] 'PI': 'inputs' must be a mapping, got list ['setpoint']",
     PENDULUM + "    class: 'syssimx:FMUComponent'\n":
         ", line 2: components[0] 'P': give either 'class' or 'fmu', not both",
     "components:\n  - {name: A, class: 'quickstart:LinearSource'}\n"

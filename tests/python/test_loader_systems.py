@@ -10,7 +10,15 @@ import coupled_pendulums
 import numpy as np
 import pytest
 import yaml
-from syssimx import GaussSeidelAlgorithm, HybridAlgorithm, IJCSAAlgorithm, System
+from syssimx import (
+    Connection,
+    FMUComponent,
+    GaussSeidelAlgorithm,
+    HybridAlgorithm,
+    IJCSAAlgorithm,
+    System,
+    fmus,
+)
 from syssimx.system.loader import build_system, load_config, run_from_config
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -103,6 +111,38 @@ def test_a_description_mapping_builds_without_a_file():
     result = system.run(0.0, 1.0, 0.1)
     # the algebraic loop holds at every sample: u = ki I / (1 + kp k), y = k u
     np.testing.assert_allclose(result["Gain"][1]["y"], 0.5 * result["PI"][1]["u"], atol=1e-12)
+
+
+def test_an_input_held_at_a_constant_equals_the_python_built_system(tmp_path: Path):
+    """`inputs: {setpoint: 2}` holds the unconnected input as set_inputs does, while the
+    measurement follows the plant (an algebraic loop: u = kp e + ki integral(e))."""
+    path = tmp_path / "held.yaml"
+    path.write_text(
+        "components:\n"
+        "  - {name: PI, fmu: pi_controller, parameters: {kp: 0.5, ki: 2.0},\n"
+        "     inputs: {setpoint: 2.0}}\n"
+        "  - {name: Plant, fmu: gain, parameters: {k: 0.25}}\n"
+        "connections:\n"
+        "  - {src: PI.u, dst: Plant.u}\n"
+        "  - {src: Plant.y, dst: PI.measurement}\n"
+        "run: {t0: 0, tf: 1, dt: 0.1}\n")
+    declared = run_from_config(path)
+    python_built = System("held")
+    controller = FMUComponent("PI", fmus.path("pi_controller"))
+    controller.set_parameters(kp=0.5, ki=2.0)
+    controller.set_inputs({"setpoint": 2.0})
+    plant = FMUComponent("Plant", fmus.path("gain"))
+    plant.set_parameters(k=0.25)
+    for component in (controller, plant):
+        python_built.add_component(component)
+    python_built.add_connection(Connection("PI", "u", "Plant", "u"))
+    python_built.add_connection(Connection("Plant", "y", "PI", "measurement"))
+    python_built.initialize(0.0)
+    reference = python_built.run(0.0, 1.0, 0.1)
+    for name, port in (("PI", "u"), ("Plant", "y")):
+        np.testing.assert_array_equal(declared[name][1][port], reference[name][1][port])
+    # the held setpoint drives the loop: at t = 0, u = kp (2 - k u), so u = 2 kp / (1 + kp k)
+    assert declared["PI"][1]["u"][0] == pytest.approx(2 * 0.5 / (1 + 0.5 * 0.25), abs=1e-12)
 
 
 def test_hybrid_options_and_coupling_from_the_file(tmp_path: Path):

@@ -1,6 +1,7 @@
 """One component of a system description: its class, constructor arguments, parameters and
-(syssimx's extensions) a bundled or relative FMU, event indicators on outputs and event
-handlers that restart the component from its outputs."""
+(syssimx's extensions) a bundled or relative FMU, start values of inputs (held while nothing
+drives them), event indicators on outputs and event handlers that restart the component from
+its outputs."""
 
 from __future__ import annotations
 
@@ -13,7 +14,7 @@ from .component_classes import resolve_component_class
 from .config_handlers import reinitialize_handler
 from .config_source import Source, kind, quoted
 
-COMPONENT_KEYS = ("name", "class", "fmu", "interface", "args", "parameters",
+COMPONENT_KEYS = ("name", "class", "fmu", "interface", "args", "parameters", "inputs",
                   "event_indicators", "event_handlers")
 INDICATOR_KEYS = ("name", "variable", "direction")
 HANDLER_KEYS = ("input", "reinitialize")
@@ -68,11 +69,28 @@ def build_component(source: Source, index: int, entry: Any) -> CoSimComponent:
         component.set_parameters(**parameters)
     except (KeyError, TypeError, ValueError) as exc:
         raise source.error(f"{label} parameters", str(exc), entry) from exc
+    _set_inputs(source, label, entry, component)
     for k, indicator in enumerate(_sequence(source, label, entry, "event_indicators")):
         _add_indicator(source, f"{label} event_indicators[{k}]", component, indicator)
     for k, handler in enumerate(_sequence(source, label, entry, "event_handlers")):
         _add_handler(source, f"{label} event_handlers[{k}]", component, handler)
     return component
+
+
+def _set_inputs(source: Source, label: str, entry: dict, component: CoSimComponent) -> None:
+    """`inputs`: start values of inputs, each held until a connection (if any) drives it."""
+    inputs = _mapping(source, label, entry, "inputs")
+    known = sorted(component.input_specs)
+    for name in inputs:
+        if name not in known:
+            where = " (a parameter: give it under 'parameters')" \
+                if name in getattr(component, "parameters", {}) else ""
+            raise source.error(f"{label} inputs", f"component {component.name!r} has no input "
+                               f"{name!r}{where}; inputs: {known or 'none'}", entry)
+    try:
+        component.set_inputs(inputs)
+    except (TypeError, ValueError) as exc:
+        raise source.error(f"{label} inputs", str(exc), entry) from exc
 
 
 def _mapping(source: Source, label: str, entry: dict, key: str) -> dict[str, Any]:
