@@ -230,6 +230,21 @@ static int set_integer(const ssx_fmu_function *fn, void *instance, const unsigne
          FMI1(fn, SLOT_SET_INTEGER, fmi1SetIntegerTYPE)(COMPONENT(instance), vr, n, values));
 }
 
+/* The texts fmiGetString returns are the FMU's until its next call: the caller copies them. */
+static int get_string(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                      size_t n, const char **values)
+{
+    CALL(instance,
+         FMI1(fn, SLOT_GET_STRING, fmi1GetStringTYPE)(COMPONENT(instance), vr, n, values));
+}
+
+static int set_string(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                      size_t n, const char *const *values)
+{
+    CALL(instance,
+         FMI1(fn, SLOT_SET_STRING, fmi1SetStringTYPE)(COMPONENT(instance), vr, n, values));
+}
+
 /* fmiBoolean is a char: the engine's ints cross in chunks through a buffer on the stack. */
 enum { BOOLEAN_CHUNK = 64 };
 
@@ -392,7 +407,9 @@ static int completed_integrator_step(const ssx_fmu_function *fn, void *instance,
     {"fmiGetBoolean", SLOT_GET_BOOLEAN, 1},                                                   \
     {"fmiSetReal", SLOT_SET_REAL, 1},                                                         \
     {"fmiSetInteger", SLOT_SET_INTEGER, 1},                                                   \
-    {"fmiSetBoolean", SLOT_SET_BOOLEAN, 1},
+    {"fmiSetBoolean", SLOT_SET_BOOLEAN, 1},                                                   \
+    {"fmiGetString", SLOT_GET_STRING, 0},                                                     \
+    {"fmiSetString", SLOT_SET_STRING, 0},
 
 static const ssx_fmu_function_row fmi1_functions[] = {
     {"fmiInstantiateSlave", SLOT_INSTANTIATE, 1},
@@ -435,7 +452,8 @@ static const char *const fmi1_status_names[] = {SSX_STATUS_NAMES(FMI1_NAME)};
     .version = "FMI 1.0", .status_names = fmi1_status_names,                                  \
     .context_size = sizeof(fmi1_context), .enter_initialization_mode = no_call,               \
     .get_real = get_real, .get_integer = get_integer, .get_boolean = get_boolean,             \
-    .set_real = set_real, .set_integer = set_integer, .set_boolean = set_boolean
+    .set_real = set_real, .set_integer = set_integer, .set_boolean = set_boolean,             \
+    .get_string = get_string, .set_string = set_string
 
 const ssx_fmu_backend ssx_fmi1_backend = {
     FMI1_ADAPTERS,

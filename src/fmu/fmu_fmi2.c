@@ -24,6 +24,8 @@
     {"fmi2SetInteger", SLOT_SET_INTEGER, 1},                                                  \
     {"fmi2SetBoolean", SLOT_SET_BOOLEAN, 1},
 #define FMI2_OPTIONAL_ROWS                                                                    \
+    {"fmi2GetString", SLOT_GET_STRING, 0},                                                    \
+    {"fmi2SetString", SLOT_SET_STRING, 0},                                                    \
     {"fmi2GetFMUstate", SLOT_GET_STATE, 0},                                                   \
     {"fmi2SetFMUstate", SLOT_SET_STATE, 0},                                                   \
     {"fmi2FreeFMUstate", SLOT_FREE_STATE, 0},                                                 \
@@ -185,6 +187,19 @@ static int set_boolean(const ssx_fmu_function *fn, void *instance, const unsigne
                        size_t n, const int *values)
 {
     return (int)FMI2(fn, SLOT_SET_BOOLEAN, fmi2SetBooleanTYPE)(instance, vr, n, values);
+}
+
+/* The texts fmi2GetString returns are the FMU's until its next call: the caller copies them. */
+static int get_string(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                      size_t n, const char **values)
+{
+    return (int)FMI2(fn, SLOT_GET_STRING, fmi2GetStringTYPE)(instance, vr, n, values);
+}
+
+static int set_string(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
+                      size_t n, const char *const *values)
+{
+    return (int)FMI2(fn, SLOT_SET_STRING, fmi2SetStringTYPE)(instance, vr, n, values);
 }
 
 static int do_step(const ssx_fmu_function *fn, void *instance, double t, double h,
@@ -358,7 +373,8 @@ static int completed_integrator_step(const ssx_fmu_function *fn, void *instance,
     .exit_initialization_mode = exit_initialization_mode, .terminate = terminate,             \
     .reset = reset, .get_real = get_real, .get_integer = get_integer,                         \
     .get_boolean = get_boolean, .set_real = set_real, .set_integer = set_integer,             \
-    .set_boolean = set_boolean, .get_state = get_state, .set_state = set_state,               \
+    .set_boolean = set_boolean, .get_string = get_string, .set_string = set_string,           \
+    .get_state = get_state, .set_state = set_state,                                            \
     .free_state = free_state, .serialized_state_size = serialized_state_size,                 \
     .serialize_state = serialize_state, .deserialize_state = deserialize_state,               \
     .directional_derivative = directional_derivative,                                          \

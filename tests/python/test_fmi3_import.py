@@ -283,9 +283,9 @@ def test_a_string_cannot_be_connected():
     with pytest.raises(ConfigurationError) as info:
         system.add_connection(Connection("A", "String_output", "B", "String_input"))
     assert str(info.value).startswith(
-        "A.String_output -> B.String_input: 'A' has no output 'String_output' (it is an FMI "
-        "3.0 String variable: set it with set_parameters, read it with get_state; it cannot "
-        "be connected); outputs: [")
+        "A.String_output -> B.String_input: 'A' has no output 'String_output' (it is a String "
+        "variable: set it with set_parameters, read it with get_state; it cannot be "
+        "connected); outputs: [")
 
 
 def driven(column: str, value: int) -> System:

@@ -22,8 +22,8 @@ An FMI 3.0 Co-Simulation FMU is instantiated with event mode when it declares ha
 and with early return when it can return early: it then handles its own events inside the
 engine's step, at their time, without rollback (they appear in the result's events as its own),
 as a Model Exchange FMU of either version does inside its integration. Its Float32 and
-integer types travel as Real and Integer ports; String and Binary variables are set with
-set_parameters (inputs too) and read with get_state, never connected.
+integer types travel as Real and Integer ports. String variables (every version) and FMI 3.0
+Binary ones are set with set_parameters (inputs too) and read with get_state, never connected.
 """
 
 from __future__ import annotations
@@ -112,8 +112,8 @@ class FMUComponent(CoSimComponent):
         self.inputs = self.input_specs.mapped(lambda _, spec: self._make_port(spec))
         self.outputs = self.output_specs.mapped(lambda _, spec: self._make_port(spec))
         self._inputs_set: set[str] = set()
-        # String or Binary parameters (FMI 3.0; arrays are never String ones): the engine
-        # writes numbers only
+        # String or Binary parameters (arrays are never String ones): the engine writes
+        # numbers only
         self._has_text_parameters = any(parameter.type == PortType.STRING for parameter
                                         in made_items(self.info.parameters).values())
         # name -> (value type, value reference) of what _by_type wrote so far
@@ -175,7 +175,7 @@ class FMUComponent(CoSimComponent):
             parameter.fmi_type if parameter is not None else ""
         if kind not in ("String", "Binary"):
             return ""
-        return (f" (it is an FMI 3.0 {kind} variable: set it with set_parameters, read it with "
+        return (f" (it is a {kind} variable: set it with set_parameters, read it with "
                 "get_state; it cannot be connected)")
 
     def input_start(self, name: str) -> float:
@@ -228,7 +228,7 @@ class FMUComponent(CoSimComponent):
         self._write_texts(values)
 
     def _write_texts(self, values: dict[str, Any]) -> None:
-        """The FMI 3.0 String and Binary parameters among `values`."""
+        """The String and Binary parameters among `values`."""
         setters = {"String": self.instance.setString, "Binary": self.instance.setBinary}
         for name, value in values.items():
             parameter = self.info.parameters.get(name)
@@ -236,8 +236,8 @@ class FMUComponent(CoSimComponent):
                 setters[parameter.fmi_type]([parameter.value_reference], [value])
 
     def _by_type(self, values: dict[str, Any]) -> dict[PortType, tuple[list[int], list[Any]]]:
-        """Value references and values of parameters and inputs, grouped by value type (FMI
-        3.0 String and Binary ones are written by _write_texts)."""
+        """Value references and values of parameters and inputs, grouped by value type (String
+        and Binary ones are written by _write_texts)."""
         by_type: dict[PortType, tuple[list[int], list[Any]]] = {}
         written = self._written_variables
         for name, value in values.items():

@@ -43,7 +43,7 @@ PORT_TYPES = {"Real": PortType.REAL, "Integer": PortType.INT, "Enumeration": Por
 
 
 class Parameter(NamedTuple):
-    """A settable FMU parameter (causality "parameter"; for FMI 3.0 also a String or Binary
+    """A settable FMU parameter (causality "parameter"; also a String or, FMI 3.0, Binary
     input, which no port carries). Immutable; a tuple because a large model has 10**5 of them
     and a tuple is made in half the time of a frozen dataclass. `fmi_type` is the variable's
     type element ("Real", "Float32", "String", "Binary", ...)."""
@@ -99,9 +99,9 @@ class FMUInfo:
     number_of_states: int = 0
     number_of_event_indicators: int = 0
     standard: Standard = field(default_factory=Standard)  # the FMI version's
-    # FMI 3.0: every scalar the engine may get or set and the array ports, the String and
-    # Binary outputs, which no port carries, and each structural parameter with the arrays it
-    # sizes
+    # FMI 3.0: every scalar the engine may get or set and the array ports, and each
+    # structural parameter with the arrays it sizes; every version: the String (and FMI 3.0
+    # Binary) outputs, which no port carries
     fmi3_variables: EngineTable = field(default_factory=lambda: EngineTable([], []))
     text_outputs: dict[str, ScalarVariable] = field(default_factory=dict)
     structural_parameters: dict[str, list[str]] = field(default_factory=dict)
@@ -313,7 +313,7 @@ def _collect_ports_and_parameters(info: FMUInfo, ports: list[Any]) -> None:
             if variable.type in info.standard.text_types:
                 parts.value_references.append((variable.name, variable.valueReference))
                 _collect_text(info, variable, parts)
-            continue  # FMI 2.0 String variables have no place among doubles
+            continue
         unit = variable_unit(variable) if kind == PortType.REAL else None
         if unit:
             if unit not in readable:
@@ -378,8 +378,8 @@ def _collect_array(parts: _Parts, array: ArrayPort, kind: PortType, unit: str | 
 
 
 def _collect_text(info: FMUInfo, variable: ScalarVariable, parts: _Parts) -> None:
-    """An FMI 3.0 String or Binary variable: an output is readable, a parameter or an input is
-    set like a parameter."""
+    """A String (any FMI version) or Binary (FMI 3.0) variable: an output is readable, a
+    parameter or an input is set like a parameter."""
     if variable.causality == "output":
         info.text_outputs[variable.name] = variable
         return

@@ -250,18 +250,18 @@ class FMUInstance:
                                               ffi.new("int[]", [int(bool(v)) for v in values])),
                     "fmi2SetBoolean")
 
-    # FMI 3.0's texts and bytes (other FMUs refuse them)
+    # texts (every standard) and FMI 3.0's bytes (other FMUs refuse them)
     def getString(self, vr: Sequence[int]) -> list[str]:  # noqa: N802
         refs, n = self._vrs(vr)
         values = ffi.new("const char *[]", n)
-        self._check(lib().ssx_fmu_get_string(self.fmu, refs, n, values), "fmi3GetString")
+        self._check(lib().ssx_fmu_get_string(self.fmu, refs, n, values), "fmi2GetString")
         return [string(v) for v in values]
 
     def setString(self, vr: Sequence[int], values: Sequence[str]) -> None:  # noqa: N802
         refs, n = self._vrs(vr)
         texts = [ffi.new("char[]", str(v).encode()) for v in values]
         self._check(lib().ssx_fmu_set_string(self.fmu, refs, n,
-                                             ffi.new("const char *[]", texts)), "fmi3SetString")
+                                             ffi.new("const char *[]", texts)), "fmi2SetString")
 
     def getBinary(self, vr: Sequence[int]) -> list[bytes]:  # noqa: N802
         refs, n = self._vrs(vr)

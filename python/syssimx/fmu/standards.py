@@ -60,8 +60,8 @@ class Standard:
     platform = "linux64" if _LINUX else sys.platform
     isolatable = True  # the FMU host process speaks it
     has_fmu_state = True  # get/set FMU state exists (whether an FMU has it, it declares)
-    # value types set and read as values, never connected (FMI 3.0's String and Binary)
-    text_types: tuple[str, ...] = ()
+    # value types the engine's float64 ports do not carry: set and read as texts
+    text_types: tuple[str, ...] = ("String",)
 
     @property
     def name(self) -> str:
