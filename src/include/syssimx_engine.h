@@ -735,7 +735,6 @@ typedef enum {
     SSX_MD_NO_FMI_ROOT,            /* the root element is not an fmiModelDescription */
     SSX_MD_TYPE_WITHOUT_ELEMENT,   /* subject: the SimpleType's name (NULL when absent) */
     SSX_MD_VARIABLE_WITHOUT_NAME,  /* text: its valueReference (NULL when absent) */
-    SSX_MD_DUPLICATE_NAME,         /* subject */
     SSX_MD_NO_TYPE_ELEMENT,        /* subject */
     SSX_MD_VALUE_REFERENCE_NOT_INTEGER, /* subject, text (NULL when absent) */
     SSX_MD_VALUE_REFERENCE_OUT_OF_RANGE, /* subject, text */
@@ -810,13 +809,15 @@ typedef struct {
     ssx_md_names *names;
     /* the Unknowns of ModelStructure/Derivatives: a Model Exchange FMU's continuous states */
     size_t derivative_count;
+    /* variables named as an earlier one was (ssx_md_find gives the first of a name) */
+    size_t duplicate_count;
 } ssx_md;
 
 /* Reads the modelDescription in xml[0..size). Returns NULL only when out of memory; otherwise
  * check error.problem (the arrays hold what was read before a problem). */
 ssx_md *ssx_md_read(const char *xml, size_t size);
 void ssx_md_free(ssx_md *md);
-/* The index of the variable called name (NUL-terminated UTF-8), or -1. */
+/* The index of the (first) variable called name (NUL-terminated UTF-8), or -1. */
 int64_t ssx_md_find(const ssx_md *md, const char *name);
 const char *ssx_md_word_text(int word); /* "calculatedParameter", "Real", ...; "" for none */
 /* The texts at offsets[0..n) of md's pool (0: absent, written as ""), separated by NULs, into

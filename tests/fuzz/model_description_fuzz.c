@@ -21,8 +21,10 @@ static void walk(const ssx_md *md)
     }
     free(joined);
     for (size_t i = 0; i < md->variable_count; ++i) {
-        if (ssx_md_find(md, md->strings + md->name[i]) != (int64_t)i) {
-            abort(); /* names are unique once accepted */
+        int64_t first = ssx_md_find(md, md->strings + md->name[i]);
+        if (first < 0 || first > (int64_t)i ||
+            strcmp(md->strings + md->name[first], md->strings + md->name[i]) != 0) {
+            abort(); /* every name is found, as its first variable */
         }
         ssx_md_join(md, &md->description[i], 1, NULL, 0);
         ssx_md_join(md, &md->start[i], 1, NULL, 0);

@@ -151,8 +151,6 @@ CASES: dict[str, tuple[Build, str]] = {
         "modelIdentifier '/tmp/evil' is not a file name"),
     "no modelIdentifier": (lambda tmp: edited(tmp, CO_SIMULATION_ID, "<CoSimulation"),
                            "no modelIdentifier"),
-    "duplicate name": (lambda tmp: edited(tmp, 'name="u"', 'name="y"'),
-                       "variable 'y': the name is not unique"),
     "negative value reference": (
         lambda tmp: edited(tmp, VARIABLE_U, '<ScalarVariable name="u" valueReference="-1"'),
         "variable 'u': valueReference -1 is outside 0..4294967295"),

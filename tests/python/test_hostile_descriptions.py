@@ -90,8 +90,6 @@ def test_an_end_tag_where_the_root_belongs_is_refused_in_every_front_end(tmp_pat
     (K.replace('valueReference="2"', 'valueReference="4294967296"'),
      ["'k'", "valueReference 4294967296", "0 to 4294967295"]),
     (K.replace('valueReference="2"', 'valueReference="-1"'), ["'k'", "valueReference -1"]),
-    (K + K.replace('valueReference="2"', 'valueReference="7"'),
-     ["two variables are named 'k'"]),
     (K.replace('start="1"/>', 'start="1"><Dimension start="-3"/></Float64>'),
      ["'k'", "dimension of -3 (from its start)"]),
     (STRUCTURAL.format(type="Int64", n=-2) + K.replace('start="1"/>', 'start="1"><Dimension '

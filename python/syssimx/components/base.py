@@ -169,8 +169,8 @@ class CoSimComponent:
         self._sync_ports()
         for name, value in signals.items():
             if name not in self.inputs:
-                raise ConfigurationError(f"component {self.name!r} has no input {name!r}"
-                                         f"{did_you_mean(name, self.inputs)}; "
+                why = self.why_no_port(name) or did_you_mean(name, self.inputs)
+                raise ConfigurationError(f"component {self.name!r} has no input {name!r}{why}; "
                                          f"inputs: {sorted(self.inputs) or 'none'}")
             self.inputs[name].set(value, t)
         if self._binding is not None:
@@ -202,7 +202,8 @@ class CoSimComponent:
             raise ConfigurationError(f"{self.name}: the name {name!r} is already in use")
         if variable is not None and variable not in self.engine_outputs():
             raise ConfigurationError(f"{self.name}.{name}: variable {variable!r} is not an "
-                                     f"output; outputs: {self.engine_outputs()}")
+                                     f"output{self.why_no_port(variable)}; outputs: "
+                                     f"{self.engine_outputs()}")
         self.event_indicators[name] = EventIndicator(name, direction, func, variable)
         self.output_specs[name] = PortSpec(name, PortType.EVENT, "out")
 

@@ -168,7 +168,12 @@ class FMUComponent(CoSimComponent):
             else value
 
     def why_no_port(self, name: str) -> str:
-        """FMI 3.0 String and Binary variables are values, never ports."""
+        """A name several variables have is ambiguous; String and Binary variables are values,
+        never ports."""
+        references = self.info.ambiguous_names.get(name)
+        if references is not None:
+            return (f" (the FMU names {len(references)} variables {name!r}, value references "
+                    f"{', '.join(map(str, references))}: the name is ambiguous)")
         variable = self.info.text_outputs.get(name)
         parameter = self.info.parameters.get(name)
         kind = variable.type if variable is not None else \
@@ -281,7 +286,7 @@ class FMUComponent(CoSimComponent):
             if parameter is None:
                 raise ConfigurationError(
                     f"component {self.name!r} has no parameter {name!r}"
-                    f"{did_you_mean(name, self.info.parameters)}; "
+                    f"{self.why_no_port(name) or did_you_mean(name, self.info.parameters)}; "
                     f"known parameters: {sorted(self.info.parameters) or 'none'}")
             self.parameters[name] = _coerce_parameter(self.name, parameter, value)
             self._parameters_set.add(name)

@@ -105,7 +105,6 @@ _MESSAGES: dict[str, Callable[[_Problem], str]] = {
     "SSX_MD_TYPE_WITHOUT_ELEMENT": lambda p: f"SimpleType {p.subject!r} has no type element",
     "SSX_MD_VARIABLE_WITHOUT_NAME": lambda p: f"a ScalarVariable has no name (valueReference "
                                               f"{p.text!r})",
-    "SSX_MD_DUPLICATE_NAME": lambda p: f"variable {p.subject!r}: the name is not unique",
     "SSX_MD_NO_TYPE_ELEMENT": lambda p: f"variable {p.subject!r} has no type element "
                                         f"({', '.join(_value_types())})",
     "SSX_MD_VALUE_REFERENCE_NOT_INTEGER": lambda p: f"variable {p.subject!r}: valueReference "

@@ -74,13 +74,8 @@ def read_fmi3_description(path: Path) -> ModelDescription:
         raise FMUFileError(f"{path}: modelDescription.xml declares FMI 3.0 but is not a "
                            f"readable FMI 3.0 description ({type(exc).__name__}: {exc})"
                            ) from exc
-    seen: set[str] = set()
     elements = 0
     for variable in description.modelVariables:
-        if variable.name in seen:
-            raise FMUFileError(f"{path}: two variables are named {_quoted(variable.name)} (FMI "
-                               "3.0 requires unique names)")
-        seen.add(variable.name)
         _check_variable(variable, path)
         if variable.dimensions:
             elements += math.prod(variable.shape)

@@ -26,7 +26,7 @@ from .description import Described, read_description
 from .description_fmi3 import EngineTable
 from .fmi3_arrays import ArrayPort
 from .standards import Standard
-from .variable_table import ScalarVariable
+from .variable_table import ScalarVariable, VariableTable
 
 if TYPE_CHECKING:
     from fmpy.model_description import ModelDescription
@@ -107,6 +107,8 @@ class FMUInfo:
     structural_parameters: dict[str, list[str]] = field(default_factory=dict)
     # every variable (FMI 3.0: its array ports as elements), made when iterated
     all_variables: Iterable[Any] = ()
+    # each name several variables have -> their value references: no port or parameter
+    ambiguous_names: dict[str, list[int]] = field(default_factory=dict)
 
     def binary_name(self, interface: str | None = None) -> str:
         """The binary of `interface` (None: the one "auto" takes)."""
@@ -210,9 +212,30 @@ def _read_fmu(path: Path) -> FMUInfo:
             raise FMUFileError(f"{path} has no {standard.platform} binary "
                                f"({info.binary_name()} missing)")
     info.all_variables = variables.all
+    info.ambiguous_names = _ambiguous_names(description.modelVariables, path)
     _collect_ports_and_parameters(info, variables.ports)
     _collect_feedthrough(info, variables.ports, variables.outputs)
     return info
+
+
+def _ambiguous_names(variables: Any, path: Path) -> dict[str, list[int]]:
+    """The names several variables have (the standard forbids it, but FMPy and libcosim run
+    such FMUs), warned about once: they become no port or parameter, so the rest of the FMU
+    runs and only addressing one of them is an error."""
+    if isinstance(variables, VariableTable):
+        found = variables.duplicates()
+    else:
+        references: dict[str, list[int]] = {}
+        for variable in variables:
+            references.setdefault(variable.name, []).append(variable.valueReference)
+        found = {name: vrs for name, vrs in references.items() if len(vrs) > 1}
+    if found:
+        listed = ", ".join(f"{name!r} (value references {', '.join(map(str, vrs))})"
+                           for name, vrs in found.items())
+        logger.warning("%s: the modelDescription names several variables alike: %s; syssimx "
+                       "leaves them out (addressing one of these names is an error)",
+                       path.name, listed)
+    return found
 
 
 def _read_description(archive: zipfile.ZipFile, path: Path) -> Described:
@@ -306,8 +329,11 @@ def _collect_ports_and_parameters(info: FMUInfo, ports: list[Any]) -> None:
     unreadable: dict[str, list[str]] = {}  # unit pint cannot read -> the variables using it
     readable: dict[str, str | None] = {}  # the FMI unit -> what pint reads (a large FMU
     parts = _Parts()  # repeats a few units many times)
+    ambiguous = info.ambiguous_names
     for port in ports:
         variable = port.variable if isinstance(port, ArrayPort) else port
+        if ambiguous and variable.name in ambiguous:
+            continue
         kind = PORT_TYPES.get(variable.type)
         if kind is None:
             if variable.type in info.standard.text_types:

@@ -100,6 +100,16 @@ class VariableTable(Sequence[ScalarVariable]):
         """The index of the variable called `name`, or -1 (a hash lookup in the engine)."""
         return int(lib().ssx_md_find(self._md, name.encode()))
 
+    def duplicates(self) -> dict[str, list[int]]:
+        """Each name several variables have, with their value references in document order
+        (the engine counts them as it reads, so an FMU without any costs nothing here)."""
+        if self._md.duplicate_count == 0:
+            return {}
+        references: dict[str, list[int]] = {}
+        for name, reference in zip(self.names(), self._value_reference.tolist(), strict=True):
+            references.setdefault(name, []).append(reference)
+        return {name: found for name, found in references.items() if len(found) > 1}
+
     def derivative_of(self, index: int) -> int:
         """The index of the Real variable declared the time derivative of variable `index`
         (its `derivative` attribute names it), or -1."""

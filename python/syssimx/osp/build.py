@@ -148,7 +148,7 @@ class _Builder:
         for component, end in ((first, a), (second, b)):
             if end.name not in component.output_specs and end.name not in component.input_specs:
                 raise OSPError(f"{where}: {end.owner!r} ({component.fmu_path}) has no input or "
-                               f"output {end.name!r}")
+                               f"output {end.name!r}{component.why_no_port(end.name)}")
         if a.name in first.output_specs and b.name in second.input_specs:
             src, dst = a, b
         elif b.name in second.output_specs and a.name in first.input_specs:
@@ -219,7 +219,7 @@ def _set_start(component: FMUComponent, name: str, value: float | int | bool | s
     """An initial value: an input's start or a parameter's value."""
     if name not in component.input_specs and name not in component.info.parameters:
         raise OSPError(f"{where}: {component.name!r} ({component.fmu_path}) has no parameter "
-                       f"or input {name!r}")
+                       f"or input {name!r}{component.why_no_port(name)}")
     try:
         if name in component.input_specs:
             component.set_inputs({name: value})

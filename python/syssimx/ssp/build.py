@@ -64,8 +64,9 @@ def _check_connector(component: FMUComponent, connector: Connector) -> None:
     spec = specs.get(connector.name)
     kind = spec.type if spec is not None else parameter.type if parameter is not None else None
     if kind is None:
+        why = component.why_no_port(connector.name)
         raise SSPError(f"{connector.label}: {component.name!r} ({component.fmu_path}) has no "
-                       f"{connector.kind} {connector.name!r}")
+                       f"{connector.kind} {connector.name!r}{why}")
     if connector.type is not None and connector.type not in _SSP_TYPES.get(kind, set()):
         raise SSPError(f"{connector.label}: type {connector.type} does not match the FMU's "
                        f"{kind.name} variable {connector.name!r} of {component.name!r}")
@@ -92,7 +93,8 @@ def _set_values(component: FMUComponent, entry: ComponentEntry,
         is_input = value.name in component.input_specs
         if not is_input and value.name not in component.info.parameters:
             unsupported.ignore(f"{value.where}: component {component.name!r} has no parameter "
-                               f"or input {value.name!r}", "the value is ignored")
+                               f"or input {value.name!r}{component.why_no_port(value.name)}",
+                               "the value is ignored")
             continue
         target = component.input_specs[value.name].unit if is_input \
             else component.info.parameters[value.name].unit

@@ -84,7 +84,7 @@ def _set_inputs(source: Source, label: str, entry: dict, component: CoSimCompone
     for name in inputs:
         if name not in known:
             where = " (a parameter: give it under 'parameters')" \
-                if name in getattr(component, "parameters", {}) else ""
+                if name in getattr(component, "parameters", {}) else component.why_no_port(name)
             raise source.error(f"{label} inputs", f"component {component.name!r} has no input "
                                f"{name!r}{where}; inputs: {known or 'none'}", entry)
     try:

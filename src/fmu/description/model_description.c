@@ -81,6 +81,7 @@ typedef struct {
     size_t *first_dependency;
     int64_t *dependency_count;
     size_t derivative_count;
+    size_t duplicate_count;
     ssx_md_names *names;
 } reader;
 
@@ -466,13 +467,15 @@ static bool finish_variable(reader *r)
     if (!store(r, v->name, &name)) {
         return false;
     }
+    /* A name declared again is read (tools run such FMUs: only the name is ambiguous); the
+     * index keeps the first, and the caller learns of the others from duplicate_count. */
     int64_t seen = name_index_put(r->names, r->strings.text, name, (uint32_t)r->count, false);
     if (seen == -2) {
         return out_of_memory(r);
     }
     const char *subject = r->strings.text + name;
     if (seen >= 0) {
-        return fail(r, SSX_MD_DUPLICATE_NAME, line, subject, none, none);
+        ++r->duplicate_count;
     }
     if (v->type == SSX_MD_NONE) {
         return fail(r, SSX_MD_NO_TYPE_ELEMENT, line, subject, none, none);
@@ -924,6 +927,7 @@ static void publish(reader *r)
     md->dependency_total = r->dependency_total;
     md->names = r->names;
     md->derivative_count = r->derivative_count;
+    md->duplicate_count = r->duplicate_count;
     xml_tokenizer_free(&r->xml);
     name_index_free(&r->type_index);
 }
