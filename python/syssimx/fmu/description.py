@@ -20,6 +20,10 @@ if TYPE_CHECKING:
     from fmpy.model_description import ModelDescription
 
 _CHUNK = 2**20
+# The most bytes modelDescription.xml may inflate to: far above any exported model's (a
+# million variables take about 250 MB), far below what would exhaust a machine's memory while
+# it is read and decoded (a 1 MB archive can inflate to GiBs).
+DESCRIPTION_SIZE_LIMIT = 256 * 2**20
 
 
 class Described(NamedTuple):
@@ -29,17 +33,31 @@ class Described(NamedTuple):
     description: ModelDescription
 
 
-def read_description(stream: IO[bytes], where: str | Path) -> Described:
-    """Read modelDescription.xml from `stream` (of the FMU archive `where`); FMUFileError
-    naming `where` if it is unusable or of an FMI version syssimx does not run."""
-    text = bytearray()
-    while chunk := stream.read(_CHUNK):
-        text += chunk
-    md = engine_description(as_utf8(text, where), where)
-    del text  # the engine copied what it keeps
+def read_description(stream: IO[bytes], where: str | Path, declared_size: int) -> Described:
+    """Read modelDescription.xml from `stream` (of the FMU archive `where`, whose directory
+    declares it `declared_size` bytes long); FMUFileError naming `where` if it is unusable,
+    larger than DESCRIPTION_SIZE_LIMIT or of an FMI version syssimx does not run."""
+    md = engine_description(as_utf8(_bounded_read(stream, where, declared_size), where), where)
     version = declared_version(md)
     standard = standard_of(version)
     if standard is None:
         raise FMUFileError(problem_message(md, where) or f"{where}: FMI version {version} is "
                            f"not supported (syssimx runs {supported()})")
     return Described(standard, standard.describe(md, Path(where)))
+
+
+def _bounded_read(stream: IO[bytes], where: str | Path, declared_size: int) -> bytearray:
+    """The whole stream, refused before reading when its declared size is over the limit, and
+    while reading once it is (a header may understate what a member inflates to)."""
+    limit = DESCRIPTION_SIZE_LIMIT
+    if declared_size > limit:
+        raise FMUFileError(f"{where}: modelDescription.xml declares {declared_size} bytes, more "
+                           f"than the {limit} bytes syssimx reads of a description")
+    text = bytearray()
+    while chunk := stream.read(min(_CHUNK, limit + 1 - len(text))):
+        text += chunk
+        if len(text) > limit:
+            raise FMUFileError(f"{where}: modelDescription.xml inflates to more than the "
+                               f"{limit} bytes syssimx reads of a description (its archive "
+                               f"declares {declared_size})")
+    return text

@@ -241,7 +241,8 @@ def _ambiguous_names(variables: Any, path: Path) -> dict[str, list[int]]:
 def _read_description(archive: zipfile.ZipFile, path: Path) -> Described:
     try:
         with archive.open("modelDescription.xml") as stream:
-            return read_description(stream, path)
+            declared_size = archive.getinfo("modelDescription.xml").file_size
+            return read_description(stream, path, declared_size)
     except (zipfile.BadZipFile, zlib.error, EOFError, NotImplementedError, OSError) as exc:
         raise FMUFileError(f"{path}: cannot read modelDescription.xml from the archive: "
                            f"{exc or type(exc).__name__}") from exc
