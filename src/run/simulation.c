@@ -34,6 +34,16 @@ static int check_components(ssx_system *sys)
                         "event indicators: locating an event restores every component",
                         c->name);
         }
+        /* a rejected step is taken again from the state saved at its start: never ask an FMU
+         * for a state it does not declare it can give */
+        if (sys->step_control.enabled && sys->step_control.rollback &&
+            !component_can_roll_back(c)) {
+            return fail_config(sys, i, -1, sys->time,
+                               "component '%s' cannot save and restore its state (its FMU does "
+                               "not declare canGetAndSetFMUstate), but the step control rejects "
+                               "steps by rolling back: use a step control with rollback off",
+                               c->name);
+        }
     }
     return 0;
 }
