@@ -1,6 +1,6 @@
 """An FMU that does not declare canGetAndSetFMUstate is never asked for its state: a step
 control that rolls back is refused at initialize, naming the component; one without rollback
-runs without a single state save (issue 34, item 7 of its second part: 6 678 fmi2GetFMUstate
+runs without a single state save (issue 34, item 10: 6 678 fmi2GetFMUstate
 calls to such an FMU before)."""
 
 from __future__ import annotations
