@@ -97,6 +97,12 @@ typedef struct {
     unsigned int vr;
 } ssx_port;
 
+/* What the engine knows of an output's values (finite_outputs.h), set at each initialize. */
+typedef struct {
+    int feeds;               /* a connection or an event indicator reads it */
+    double first_non_finite; /* the first time it was NaN or infinite, NaN: never */
+} ssx_output_watch;
+
 struct ssx_component {
     /* what every step reads, together at the start */
     const ssx_component_ops *ops;
@@ -125,6 +131,8 @@ struct ssx_component {
     double *saved_inputs[SSX_SNAPSHOT_SLOTS];
     /* events handled inside its steps, until the master accepts them (own_events.h) */
     ssx_own_event_list own_events;
+    /* one per output, from ssx_initialize on (NULL before) */
+    ssx_output_watch *output_watch;
 };
 
 extern const ssx_component_ops ssx_fmu_component_ops;

@@ -120,6 +120,7 @@ void component_unprepare(ssx_component *c)
 {
     c->links = NULL;
     c->n_links = 0;
+    c->output_watch = NULL;
     for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
         c->saved_outputs[slot] = NULL;
         c->saved_inputs[slot] = NULL;
@@ -131,9 +132,11 @@ void component_unprepare(ssx_component *c)
 
 size_t component_prepared_bytes(const ssx_component *c)
 {
-    /* a link and a snapshot copy per port, and about as much again for what the kind builds */
+    /* a link, a snapshot copy and a watch per port, and about as much again for what the kind
+     * builds */
     size_t ports = (size_t)c->n_inputs + (size_t)c->n_outputs + 2;
-    return ports * (sizeof(ssx_input_link) + (SSX_SNAPSHOT_SLOTS + 3) * sizeof(double));
+    return ports * (sizeof(ssx_input_link) + sizeof(ssx_output_watch) +
+                    (SSX_SNAPSHOT_SLOTS + 3) * sizeof(double));
 }
 
 int component_prepare(ssx_system *sys, ssx_component *c)
@@ -160,7 +163,11 @@ int component_prepare_snapshots(ssx_system *sys, ssx_component *c)
         c->saved_inputs[slot] = saved + c->n_outputs + 1;
         saved += n_saved;
     }
-    return 0;
+    /* read only when an output is not finite: among the cold copies */
+    c->output_watch = arena_allocate(&sys->prepared_blocks,
+                                     ((size_t)c->n_outputs + 1) * sizeof *c->output_watch,
+                                     sizeof(double));
+    return c->output_watch != NULL ? 0 : -1; /* filled by finite_outputs_watch */
 }
 
 void component_free(ssx_component *c)

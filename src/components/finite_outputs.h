@@ -1,11 +1,19 @@
-/* Whether a component's outputs are finite: a NaN or an infinity stops the run (unless the
- * system allows them), named with the output and the time. */
+/* Whether a component's outputs are finite. A NaN or an infinity that reaches something (a
+ * connected input, an event indicator, and through the connections a step control) stops the
+ * run, named with the output and the time; one that feeds nothing is recorded, and the time it
+ * first appeared is kept for the caller to warn of. Either way when the system allows them,
+ * nothing is checked. */
 #ifndef SSX_FINITE_OUTPUTS_H
 #define SSX_FINITE_OUTPUTS_H
 
 #include "component.h"
 
-/* Fails on the first NaN or infinite output, unless the system allows them. */
-int component_check_outputs(ssx_system *sys, const ssx_component *c, double t);
+/* Marks the outputs that feed something and forgets every first time (at ssx_initialize, once
+ * the components are prepared). */
+void finite_outputs_watch(ssx_system *sys);
+
+/* Fails on the first NaN or infinite output that feeds something, unless the system allows
+ * them; keeps the first time of the others. */
+int component_check_outputs(ssx_system *sys, ssx_component *c, double t);
 
 #endif

@@ -556,10 +556,16 @@ int ssx_set_hybrid_options(ssx_system *sys, double tol_time, double tol_value, i
                            double zeno_min_interval);
 
 const ssx_termination *ssx_get_termination(const ssx_system *sys);
-/* Off by default: a NaN or infinite output stops the run with an error naming the component,
- * the output and the time (the samples before it are kept). On: such values are recorded. An
- * event indicator must be finite either way. */
+/* Off by default: a NaN or infinite output that feeds something (a connected input, an event
+ * indicator) stops the run with an error naming the component, the output and the time (the
+ * samples before it are kept); one that feeds nothing is recorded, and the run goes on. On:
+ * such values are recorded wherever they go. An event indicator must be finite either way. */
 int ssx_set_allow_non_finite(ssx_system *sys, int allow);
+/* The outputs that were NaN or infinite since ssx_initialize though they feed nothing: how
+ * many, and the first `max` of them (component, output, the first time one was seen) in
+ * components, outputs and times. */
+int ssx_non_finite_outputs(const ssx_system *sys, int *components, int *outputs, double *times,
+                           int max);
 
 /* initialize: the components are already initialized (each FMU by ssx_fmu_initialize); this
  * reads outputs, applies connections (solving loops), clears and starts

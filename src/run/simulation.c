@@ -8,6 +8,7 @@
 #include "component_calls.h"
 #include "coupling.h"
 #include "error.h"
+#include "finite_outputs.h"
 #include "fmu_binding.h"
 #include "fmu_component.h"
 #include "fmu_remote.h"
@@ -72,6 +73,7 @@ int ssx_initialize(ssx_system *sys, double t0)
         input_order_prepare(sys) != 0 || master_algorithm_choose(sys) != 0) {
         return -1;
     }
+    finite_outputs_watch(sys);
     for (int i = 0; i < sys->n_components; ++i) {
         ssx_component *c = sys->components[i];
         for (int k = 0; k < c->n_inputs; ++k) {

@@ -131,6 +131,9 @@ struct ssx_system {
     /* 0: no component holds an own event (own_events.h), so a commit need not ask each one;
      * set by a report, on a worker thread too */
     atomic_int own_events_pending;
+    /* outputs that were NaN or infinite though they feed nothing (finite_outputs.h); counted
+     * on a worker thread too */
+    atomic_int non_finite_unfed;
 };
 
 /* Appends a component of the given kind, with data_size bytes of zeroed data for the kind in

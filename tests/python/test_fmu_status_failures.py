@@ -1,15 +1,18 @@
 """What an FMU's failing statuses mean to a run: a discard that is no termination, fmi2Fatal
-(after which nothing calls the FMU again), a failing fmi2GetReal, non-finite outputs; and numpy
-scalars as times and steps."""
+(after which nothing calls the FMU again), a failing fmi2GetReal, non-finite outputs (a run
+stops where one feeds an input, and records one that feeds nothing); and numpy scalars as times
+and steps."""
 
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
 from fixture_fmus import fmu_path
 from syssimx import (
+    Connection,
     CoSimComponent,
     FMUComponent,
     FMUError,
@@ -19,8 +22,36 @@ from syssimx import (
     System,
 )
 from syssimx.engine import lib, string
+from syssimx.errors import SysSimXWarning
 
 FAILURES = {"error": 0, "fatal": 1, "discard": 2, "read": 3, "nan": 4}
+
+
+class Sink(CoSimComponent):
+    """One input and nothing else: what an output feeds."""
+
+    def __init__(self, name: str) -> None:
+        super().__init__(name)
+        self.input_specs["u"] = PortSpec(name="u", type=PortType.REAL, direction="in")
+
+    def _do_step_internal(self, t: float, dt: float) -> None:
+        pass
+
+    def _update_output_states(self, t: float | None = None, event_names=None) -> None:
+        pass
+
+    def snapshot_state(self) -> None:  # no state: it rolls back with any system
+        return None
+
+    def restore_state(self, snapshot: None, t: float) -> None:
+        pass
+
+
+def fed(system: System, component: str, output: str) -> System:
+    """The system with the output connected to a sink's input."""
+    system.add_component(Sink("Sink"))
+    system.add_connection(Connection(component, output, "Sink", "u"))
+    return system
 
 
 def broken_system(failure: str) -> tuple[System, FMUComponent]:
@@ -81,7 +112,7 @@ def test_a_failing_read_is_reported_at_the_end_of_the_step():
 
 
 def test_a_non_finite_output_stops_the_run_naming_the_port_and_the_time():
-    system, _ = broken_system("nan")
+    system = fed(broken_system("nan")[0], "Broken", "y")
     system.initialize(0.0)
     with pytest.raises(SimulationError) as info:
         system.run(0.0, 1.0, 0.25)
@@ -99,6 +130,7 @@ def test_non_finite_outputs_are_recorded_when_allowed():
     t, data = system.run(0.0, 1.0, 0.25)["Broken"]
     np.testing.assert_array_equal(t, [0.0, 0.25, 0.5, 0.75, 1.0])
     assert data["y"][:3].tolist() == [2.0, 2.0, 2.0] and np.isnan(data["y"][3:]).all()
+    fed(system, "Broken", "y")
     system.initialize(0.0)  # each initialize starts from the engine's default: stop
     with pytest.raises(SimulationError, match="output 'y' is nan"):
         system.run(0.0, 1.0, 0.25)
@@ -139,9 +171,58 @@ class Reciprocal(CoSimComponent):
 def test_a_python_component_with_an_infinite_output_stops_the_run_too():
     system = System("S")
     system.add_component(Reciprocal("R"))
+    fed(system, "R", "y")
     system.initialize(0.0)
     with pytest.raises(SimulationError) as info:
         system.run(0.0, 2.0, 0.5)
     assert str(info.value) == ("component 'R': output 'y' is inf at t=1 (non-finite values stop "
                                "the run unless they are allowed)")
     np.testing.assert_array_equal(system.get_history()["R"][1]["y"], [1.0, 2.0])
+
+
+def late_nan_system(stem: str) -> tuple[System, FMUComponent]:
+    """late_nan's y = t feeds a sink; its `limit` is 1, then NaN from t = 0.5, and feeds
+    nothing (libcosim's 20-sim KnuckleBoomCrane: Act_Limits[1] NaN from t = 2.048)."""
+    late = FMUComponent("Crane", fmu_path(stem))
+    system = System("S")
+    system.add_component(late)
+    return fed(system, "Crane", "y"), late
+
+
+@pytest.mark.parametrize("stem", ["late_nan", "late_nan_fmi3"])
+def test_a_non_finite_output_that_feeds_nothing_is_recorded_and_warned_once(stem):
+    """Before: the run stopped at t=0.5 ("non-finite values stop the run unless they are
+    allowed"); FMPy records the NaN and goes on."""
+    system, _ = late_nan_system(stem)
+    system.initialize(0.0)
+    with pytest.warns(SysSimXWarning) as warned:
+        result = system.run(0.0, 1.0, 0.25)
+    assert [str(w.message) for w in warned] == [
+        "Crane: output 'limit' is NaN or infinite from t=0.5; it feeds no input and no event "
+        "indicator, so it is recorded as it is and the run goes on"]
+    t, data = result["Crane"]
+    np.testing.assert_array_equal(t, [0.0, 0.25, 0.5, 0.75, 1.0])
+    np.testing.assert_array_equal(data["y"], t)
+    assert data["limit"][:2].tolist() == [1.0, 1.0] and np.isnan(data["limit"][2:]).all()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # warned once: the next run says nothing again
+        system.run(1.0, 1.5, 0.25)
+
+
+def test_a_non_finite_output_that_feeds_an_input_still_stops_the_run():
+    system, _ = late_nan_system("late_nan")
+    system.add_component(Sink("Limiter"))
+    system.add_connection(Connection("Crane", "limit", "Limiter", "u"))
+    system.initialize(0.0)
+    with pytest.raises(SimulationError) as info:
+        system.run(0.0, 1.0, 0.25)
+    assert str(info.value) == ("component 'Crane': output 'limit' is nan at t=0.5 (non-finite "
+                               "values stop the run unless they are allowed)")
+
+
+def test_a_non_finite_output_watched_by_an_event_indicator_still_stops_the_run():
+    system, late = late_nan_system("late_nan")
+    late.add_event_indicator("limit_reached", variable="limit", direction=-1)
+    system.initialize(0.0)
+    with pytest.raises(SimulationError, match=r"output 'limit' is nan at t=0\.5 "):
+        system.run(0.0, 1.0, 0.25)

@@ -13,6 +13,7 @@ from typing import Any
 
 from .. import units
 from ..bridge.failure import raise_failure
+from ..bridge.non_finite import warn_non_finite_outputs
 from ..bridge.observers import add_observer, remove_observer
 from ..bridge.observers import keep_history as keep_history_samples
 from ..bridge.plan import EnginePlan
@@ -340,6 +341,7 @@ class System:
             component._start(t0, tolerance)
         if plan.initialize(t0) < 0:
             raise_failure(plan)
+        warn_non_finite_outputs(plan)
         self.history = SystemHistory(system=self)
         self.t = t0
         self.is_initialized = True
@@ -446,6 +448,7 @@ class System:
             if stream is not None:
                 stream.finish()
         wall = time.perf_counter() - start
+        warn_non_finite_outputs(plan)
         outcome = RunOutcome(plan)
         events = RecordedEvents(plan, outcome.event_count)
         self.history = SystemHistory(events, self)

@@ -163,17 +163,36 @@ static void read_failure_at_the_step_end(void)
     ssx_fmu_free(fmu);
 }
 
+/* The failing FMU, its output feeding a gain's input. */
+static ssx_system *fed_system(ssx_fmu *fmu, ssx_fmu *gain)
+{
+    start(gain, NULL, NULL, 0);
+    ssx_system *sys = ssx_system_new("fed");
+    add_one_output(sys, "broken", fmu, FAILING_Y);
+    int g = add_one_output(sys, "gain", gain, GAIN_Y);
+    CHECK(ssx_add_input(sys, g, SSX_REAL, GAIN_U, 0.0) == 0);
+    CHECK(ssx_connect(sys, 0, 0, g, 0, 1.0, 0.0) == 0);
+    return sys;
+}
+
+/* A NaN output that feeds an input stops the run; allowed, it is recorded; one that feeds
+ * nothing is recorded, and the time it first appeared kept. */
 static void non_finite_outputs(void)
 {
     ssx_fmu *fmu = failing(4);
-    ssx_system *sys = failing_system(fmu);
+    ssx_fmu *gain = load_fmu("gain");
+    ssx_system *sys = fed_system(fmu, gain);
+    CHECK_OK(sys, ssx_initialize(sys, 0.0));
     CHECK(ssx_run(sys, 0.0, 1.0, 0.1) == -1);
     CHECK_MESSAGE(sys, "component 'broken': output 0 is nan at t=0.60000000000000009");
     CHECK(ssx_last_error(sys)->output == 0);
     CHECK(ssx_last_error(sys)->component == 0);
     CHECK(ssx_history_length(sys) == 6); /* the samples up to 0.5 stay */
+    CHECK(ssx_non_finite_outputs(sys, NULL, NULL, NULL, 0) == 0);
     ssx_system_free(sys);
     ssx_fmu_free(fmu);
+
+    ssx_fmu_free(gain);
 
     fmu = failing(4);
     sys = ssx_system_new("allowed");
@@ -183,6 +202,21 @@ static void non_finite_outputs(void)
     CHECK_OK(sys, ssx_run(sys, 0.0, 1.0, 0.1));
     CHECK(ssx_history_length(sys) == 11);
     CHECK(ssx_history_values(sys, 0)[5] == 0.0 && isnan(ssx_history_values(sys, 0)[6]));
+    CHECK(ssx_non_finite_outputs(sys, NULL, NULL, NULL, 0) == 0); /* allowed: nothing checked */
+    ssx_system_free(sys);
+    ssx_fmu_free(fmu);
+
+    fmu = failing(4);
+    sys = failing_system(fmu);
+    CHECK_OK(sys, ssx_run(sys, 0.0, 1.0, 0.1));
+    CHECK(ssx_history_length(sys) == 11);
+    CHECK(ssx_history_values(sys, 0)[5] == 0.0 && isnan(ssx_history_values(sys, 0)[6]));
+    int component = -1, output = -1;
+    double first = 0.0;
+    CHECK(ssx_non_finite_outputs(sys, NULL, NULL, NULL, 0) == 1);
+    CHECK(ssx_non_finite_outputs(sys, &component, &output, &first, 1) == 1);
+    CHECK(component == 0 && output == 0);
+    CHECK_CLOSE(first, 0.6, 1e-15);
     ssx_system_free(sys);
     ssx_fmu_free(fmu);
 }
