@@ -7,6 +7,7 @@ resolved on first access, and `is_quantity` answers without importing pint at al
 
 from __future__ import annotations
 
+import hashlib
 import re
 import sys
 from functools import cache, lru_cache
@@ -113,6 +114,38 @@ def conversion(src_unit: str | None, dst_unit: str | None) -> tuple[float, float
     zero = registry().Quantity(0.0, src).to(dst).magnitude
     one = registry().Quantity(1.0, src).to(dst).magnitude
     return float(one - zero), float(zero)
+
+
+# The SI base units a unit definition (SSP's ssc:BaseUnit, FMI's BaseUnit) raises to powers.
+BASE_UNITS = ("kg", "m", "s", "A", "K", "mol", "cd", "rad")
+
+
+def si_expression(exponents: tuple[int, ...]) -> str:
+    """The SI base units with `exponents` (in BASE_UNITS order) as pint reads them."""
+    factors = [unit if power == 1 else f"{unit}**{power}"
+               for unit, power in zip(BASE_UNITS, exponents, strict=True) if power]
+    return "*".join(factors) or "dimensionless"
+
+
+_HEX_AS_LETTERS = str.maketrans("0123456789", "ghijklmnop")
+
+
+def defined_unit(label: str, exponents: tuple[int, ...], factor: float, offset: float) -> str:
+    """A unit pint reads for a unit defined by its base units (value in SI = factor * value +
+    offset), whatever its label says. A pure product of base units is written as one; any
+    other is entered in the registry under a name made of its label and its definition, so
+    two files that give one label different meanings do not meet."""
+    si = si_expression(exponents)
+    if factor == 1.0 and offset == 0.0:
+        return si
+    # letters only: FMI's spelling reads a digit after a letter as a power
+    digest = hashlib.sha1(repr((exponents, factor, offset)).encode()).hexdigest()[:8]
+    stem = re.sub(r"[^A-Za-z]+", "_", label).strip("_") or "unit"
+    name = f"{stem}_{digest.translate(_HEX_AS_LETTERS)}"
+    units = registry()
+    if name not in units:
+        units.define(f"{name} = {factor!r} * ({si}); offset: {offset!r}")
+    return name
 
 
 def magnitude_in(value: object, unit: str | None) -> float:

@@ -26,6 +26,7 @@ from .description import Described, read_description
 from .description_fmi3 import EngineTable
 from .fmi3_arrays import ArrayPort
 from .standards import Standard
+from .unit_definitions import unit_definitions
 from .variable_table import ScalarVariable, VariableTable
 
 if TYPE_CHECKING:
@@ -330,6 +331,7 @@ def _collect_ports_and_parameters(info: FMUInfo, ports: list[Any]) -> None:
     unreadable: dict[str, list[str]] = {}  # unit pint cannot read -> the variables using it
     readable: dict[str, str | None] = {}  # the FMI unit -> what pint reads (a large FMU
     parts = _Parts()  # repeats a few units many times)
+    defined: dict[str, str] | None = None  # the units the FMU defines, read when needed
     ambiguous = info.ambiguous_names
     for port in ports:
         variable = port.variable if isinstance(port, ArrayPort) else port
@@ -345,6 +347,9 @@ def _collect_ports_and_parameters(info: FMUInfo, ports: list[Any]) -> None:
         if unit:
             if unit not in readable:
                 readable[unit] = _pint_unit(unit)
+                if readable[unit] is None:  # then the FMU's own definition, if it has one
+                    defined = unit_definitions(info.path) if defined is None else defined
+                    readable[unit] = defined.get(unit)
             if readable[unit] is None:
                 unreadable.setdefault(unit, []).append(variable.name)
             unit = readable[unit]

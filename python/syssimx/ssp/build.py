@@ -3,6 +3,7 @@ connections with their transformations and unit conversions, each checked agains
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from ..components.fmu import FMUComponent
@@ -10,11 +11,18 @@ from ..core.port import PortType
 from ..errors import ConfigurationError
 from ..system.connection import Connection
 from ..system.system import System
-from ..units import DIMENSIONLESS_SPELLINGS, is_quantity, magnitude_in, quantity, to_unit
+from ..units import (
+    DIMENSIONLESS_SPELLINGS,
+    conversion,
+    is_quantity,
+    magnitude_in,
+    quantity,
+    si_expression,
+)
 from .errors import SSPError
 from .parameters import ParameterValue
 from .structure import ComponentEntry, Connector, Structure
-from .units import UnitDefinition, defined_conversion, si_expression
+from .units import UnitDefinition, defined_conversion
 from .unsupported import Unsupported
 
 # the SSP connector types each FMU variable type may be declared as
@@ -30,7 +38,7 @@ def build(structure: Structure, unsupported: Unsupported) -> System:
         except ConfigurationError as exc:
             raise SSPError(f"{entry.label}: {exc}") from exc
         for connector in entry.connectors.values():
-            _check_connector(component, connector)
+            _check_connector(component, connector, structure.units)
         _set_values(component, entry, structure.units, unsupported)
         system.add_component(component)
     for c in structure.connections:
@@ -56,8 +64,10 @@ def _connector_unit(structure: Structure, endpoint: tuple[str, str]) -> str | No
     return connector.unit if connector is not None else None
 
 
-def _check_connector(component: FMUComponent, connector: Connector) -> None:
-    """The connector names a variable of the FMU of the same kind, type and unit."""
+def _check_connector(component: FMUComponent, connector: Connector,
+                     units: dict[str, UnitDefinition]) -> None:
+    """The connector names a variable of the FMU of the same kind, type and unit (a unit the
+    SSD defines is compared by its definition, not its name)."""
     specs = {"input": component.input_specs, "output": component.output_specs}.get(
         connector.kind, {})
     parameter = component.info.parameters.get(connector.name)
@@ -71,18 +81,22 @@ def _check_connector(component: FMUComponent, connector: Connector) -> None:
         raise SSPError(f"{connector.label}: type {connector.type} does not match the FMU's "
                        f"{kind.name} variable {connector.name!r} of {component.name!r}")
     unit = spec.unit if spec is not None else parameter.unit  # type: ignore[union-attr]
-    if connector.unit and unit and _differ(connector.unit, unit):
+    defined = units.get(connector.unit) if connector.unit else None
+    if connector.unit and unit and _differ(
+            defined.pint_unit() if defined is not None else connector.unit, unit):
         raise SSPError(f"{connector.label}: unit {connector.unit!r} does not match the FMU's "
                        f"unit {unit!r} of {component.name}.{connector.name}")
 
 
 def _differ(a: str, b: str) -> bool:
+    """Whether a value in unit `a` is not the same number in unit `b`."""
     if a.strip() in DIMENSIONLESS_SPELLINGS and b.strip() in DIMENSIONLESS_SPELLINGS:
         return False
     try:
-        return to_unit(a) != to_unit(b)
-    except ValueError:
+        scale, offset = conversion(a, b)
+    except Exception:  # an unreadable unit (ValueError) or another quantity (pint's error)
         return a != b
+    return not (math.isclose(scale, 1.0, rel_tol=1e-12) and abs(offset) <= 1e-12)
 
 
 def _set_values(component: FMUComponent, entry: ComponentEntry,

@@ -1,15 +1,16 @@
 """Unit conversion between connectors from the units an SSD defines (ssc:Units): each unit is
 a factor and offset to SI base units, so two units with the same base exponents convert
-without pint. Units the SSD does not define are left to pint by the System."""
+without pint. A defined unit's name is only a label (OMSimulator writes "[m]"): where it meets
+an FMU's unit it is read by its definition. Units the SSD does not define are left to pint by
+the System."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 from typing import Any
 
+from ..units import BASE_UNITS, defined_unit
 from .documents import NS
-
-_EXPONENTS = ("kg", "m", "s", "A", "K", "mol", "cd", "rad")
 
 
 @dataclass(frozen=True)
@@ -19,6 +20,10 @@ class UnitDefinition:
     factor: float  # value in SI = factor * value + offset
     offset: float
 
+    def pint_unit(self) -> str:
+        """The unit as pint reads it, by its definition."""
+        return defined_unit(self.name, self.exponents, self.factor, self.offset)
+
 
 def read_units(root: Any, prefix: str = "ssd") -> dict[str, UnitDefinition]:
     """The ssc:Unit definitions of an SSD (or, with `prefix` "ssv", of a parameter set), by
@@ -27,7 +32,7 @@ def read_units(root: Any, prefix: str = "ssd") -> dict[str, UnitDefinition]:
     for unit in root.iterfind(f"{prefix}:Units/ssc:Unit", NS):
         base = unit.find("ssc:BaseUnit", NS)
         units[unit.get("name")] = UnitDefinition(
-            unit.get("name"), tuple(int(base.get(e, 0)) for e in _EXPONENTS),
+            unit.get("name"), tuple(int(base.get(e, 0)) for e in BASE_UNITS),
             float(base.get("factor", 1.0)), float(base.get("offset", 0.0)))
     return units
 
@@ -42,10 +47,3 @@ def defined_conversion(units: dict[str, UnitDefinition], src: str | None,
     if a.exponents != b.exponents:
         raise ValueError(f"units {src!r} and {dst!r} measure different quantities")
     return a.factor / b.factor, (a.offset - b.offset) / b.factor
-
-
-def si_expression(exponents: tuple[int, ...]) -> str:
-    """The SI base units with `exponents` (in _EXPONENTS order) as pint reads them."""
-    factors = [f"{unit}**{power}" for unit, power in zip(_EXPONENTS, exponents, strict=True)
-               if power]
-    return "*".join(factors) or "dimensionless"
