@@ -98,6 +98,30 @@ def without(tmp_path: Path, name: str) -> Path:
     return write_archive(tmp_path / "partial.fmu", entries)
 
 
+def with_member_header(tmp_path: Path, name: str, flag_bits: int = 0,
+                       method: int | None = None) -> Path:
+    """gain.fmu, stored, with member `name`'s general purpose flags OR-ed with `flag_bits`
+    and its compression method set to `method`, in its local and its central header (as an
+    archiver that encrypts, or compresses with Deflate64, writes them)."""
+    path = tmp_path / "patched.fmu"
+    with zipfile.ZipFile(path, "w", zipfile.ZIP_STORED) as archive:
+        for entry, data in gain_entries().items():
+            archive.writestr(entry, data)
+    raw = bytearray(path.read_bytes())
+    with zipfile.ZipFile(path) as archive:
+        local = archive.getinfo(name).header_offset
+    encoded, central = name.encode(), 0
+    while raw[central + 46:central + 46 + len(encoded)] != encoded:
+        central = raw.index(b"PK\x01\x02", central + 1)
+    for flags_at in (local + 6, central + 8):
+        raw[flags_at] |= flag_bits
+    if method is not None:
+        for method_at in (local + 8, central + 10):
+            raw[method_at:method_at + 2] = method.to_bytes(2, "little")
+    path.write_bytes(bytes(raw))
+    return path
+
+
 def garbage_binary(tmp_path: Path) -> Path:
     return write_archive(tmp_path / "garbage.fmu", {**gain_entries(), BINARY: b"not ELF"})
 
@@ -127,6 +151,15 @@ CASES: dict[str, tuple[Build, str]] = {
                             "longer than 255 bytes"),
     "size over the limit": (oversized, f"inflates to more than {LIMIT} bytes"),
     "corrupt binary": (lambda tmp: corrupt(tmp, BINARY), "corrupt archive member"),
+    # before: RuntimeError (password required), "corrupt archive" for Deflate64
+    "encrypted modelDescription": (
+        lambda tmp: with_member_header(tmp, "modelDescription.xml", flag_bits=1),
+        "archive entry 'modelDescription.xml' is encrypted"),
+    "encrypted binary": (lambda tmp: with_member_header(tmp, BINARY, flag_bits=1),
+                         f"archive entry '{BINARY}' is encrypted"),
+    "Deflate64 binary": (lambda tmp: with_member_header(tmp, BINARY, method=9),
+                         "is compressed with Deflate64 (method 9), which syssimx cannot "
+                         "inflate"),
     "corrupt modelDescription": (lambda tmp: corrupt(tmp, "modelDescription.xml"),
                                  "modelDescription.xml"),
     "binary that is not a library": (garbage_binary, "cannot load binaries/linux64/gain.so"),
@@ -243,3 +276,20 @@ def test_extraction_folders_are_removed_at_exit(tmp_path: Path):
     folders = [Path(p) for p in done.stdout.split()]
     assert len(folders) == 2 and all(f.parent == tmp_path for f in folders)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_fmi1_continuous_states_beyond_the_limit_are_refused(tmp_path: Path):
+    """Before: OverflowError ("integer 3000000000 does not fit 'int'") when the engine
+    allocated the states."""
+    source = Path(fmus.path("pendulum_cvode_fmi1_me"))
+    with zipfile.ZipFile(source) as archive:
+        entries = {name: archive.read(name) for name in archive.namelist()}
+    text, count = re.subn(rb'numberOfContinuousStates="\d+"',
+                          b'numberOfContinuousStates="3000000000"', entries["modelDescription.xml"])
+    assert count == 1
+    path = write_archive(tmp_path / "states.fmu", {**entries, "modelDescription.xml": text})
+    with pytest.raises(FMUFileError) as caught:
+        FMUComponent("X", path)
+    assert str(caught.value) == (f"{path.resolve()}: modelDescription.xml: "
+                                 "numberOfContinuousStates='3000000000' is beyond syssimx's "
+                                 "limit of 1000000")

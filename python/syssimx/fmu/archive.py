@@ -29,6 +29,10 @@ SIZE_LIMIT_VARIABLE = "SYSSIMX_FMU_SIZE_LIMIT"
 NAME_MAX = 255  # bytes per path component on the file systems syssimx runs on
 _CHUNK = 2**20
 _DRIVE = re.compile(r"^[A-Za-z]:")
+_ENCRYPTED = 0x1  # bit 0 of a zip entry's general purpose flags
+# the compression methods Python's zipfile inflates; other archivers may write Deflate64 (9)
+_INFLATABLE = (zipfile.ZIP_STORED, zipfile.ZIP_DEFLATED, zipfile.ZIP_BZIP2, zipfile.ZIP_LZMA)
+_METHOD_NAMES = {9: "Deflate64 (method 9)"}
 
 
 def size_limit(path: Path) -> int:
@@ -92,6 +96,11 @@ def _entry_problem(info: zipfile.ZipInfo) -> str:
         return "is a symbolic link"
     if any(len(part.encode()) > NAME_MAX for part in parts):
         return f"has a name component longer than {NAME_MAX} bytes"
+    if info.flag_bits & _ENCRYPTED:
+        return "is encrypted: syssimx reads no password-protected archive"
+    if info.compress_type not in _INFLATABLE:
+        method = _METHOD_NAMES.get(info.compress_type, f"method {info.compress_type}")
+        return f"is compressed with {method}, which syssimx cannot inflate (repack it with Deflate)"
     return ""
 
 

@@ -20,6 +20,8 @@ from .description_fmi2 import describe, interface_flags, kept_attributes
 if TYPE_CHECKING:
     from fmpy.model_description import ModelDescription
 
+MAX_CONTINUOUS_STATES = 1_000_000  # as many as event indicators (description_fmi2.py)
+
 def describe_fmi1(md: Any, path: Path) -> ModelDescription:
     """The description of an FMI 1.0 modelDescription the engine read without a problem."""
     from fmpy.model_description import CoSimulation, ModelExchange
@@ -39,6 +41,8 @@ def describe_fmi1(md: Any, path: Path) -> ModelDescription:
 
 
 def _count(root: dict[str | None, str | None], name: str, path: Path) -> int:
+    """A count on the root: absent means none; at most MAX_CONTINUOUS_STATES, checked before
+    anything is allocated for them (the engine counts states in a C int)."""
     text = root.get(name)
     try:
         count = int(text) if text is not None else 0
@@ -47,4 +51,7 @@ def _count(root: dict[str | None, str | None], name: str, path: Path) -> int:
     if count < 0:
         raise FMUFileError(f"{path}: modelDescription.xml: {name}={text!r} is not a "
                            "non-negative integer")
+    if count > MAX_CONTINUOUS_STATES:
+        raise FMUFileError(f"{path}: modelDescription.xml: {name}={text!r} is beyond "
+                           f"syssimx's limit of {MAX_CONTINUOUS_STATES}")
     return count
