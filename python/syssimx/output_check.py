@@ -36,16 +36,8 @@ def check_output(path: str | Path, what: str = "output",
     if is_special(target):  # a device or FIFO: written directly, whatever its folder allows
         if not os.access(target, os.W_OK):
             raise ConfigurationError(f"{what} {target} is not writable")
-        return target
-    folder = resolved_target(target).parent  # a link is written through, in its file's folder
-    if not folder.is_dir():
-        raise ConfigurationError(f"{what} {target}: the folder {folder} does not exist")
-    if not os.access(folder, os.W_OK | os.X_OK):
-        raise ConfigurationError(f"{what} {target}: the folder {folder} is not writable")
-    if target.is_dir():
-        raise ConfigurationError(f"{what} {target} is a folder, not a file")
-    if target.exists() and not os.access(target, os.W_OK):
-        raise ConfigurationError(f"{what} {target} exists and is not writable")
+    else:
+        _check_file(target, what)
     modules, install = ((writer,), writer) if writer is not None \
         else _WRITERS.get(suffix, ((), ""))
     if modules and not any(importlib.util.find_spec(m) is not None for m in modules):
@@ -67,3 +59,16 @@ def check_command_outputs(args: Any) -> None:
     plot = getattr(args, "plot", None)
     if plot is not None:  # a PNG whatever its name
         check_output(plot, "plot", writer="matplotlib")
+
+
+def _check_file(target: Path, what: str) -> None:
+    """A regular file (or none yet) at `target`, written through its links: its folder."""
+    folder = resolved_target(target).parent
+    if not folder.is_dir():
+        raise ConfigurationError(f"{what} {target}: the folder {folder} does not exist")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise ConfigurationError(f"{what} {target}: the folder {folder} is not writable")
+    if target.is_dir():
+        raise ConfigurationError(f"{what} {target} is a folder, not a file")
+    if target.exists() and not os.access(target, os.W_OK):
+        raise ConfigurationError(f"{what} {target} exists and is not writable")

@@ -41,7 +41,8 @@ from .termination import Termination, read_termination
 logger = logging.getLogger("syssimx.system")
 
 _COMPATIBLE = {PortType.REAL: {PortType.REAL, PortType.INT, PortType.BOOL},
-               PortType.INT: {PortType.INT, PortType.BOOL}, PortType.BOOL: {PortType.BOOL}}
+               PortType.INT: {PortType.INT, PortType.BOOL}, PortType.BOOL: {PortType.BOOL},
+               PortType.STRING: {PortType.STRING}}
 
 
 class System:
@@ -431,8 +432,10 @@ class System:
         if grid_steps != plan.run_output_interval:
             plan.check(lib().ssx_set_run_output_interval(plan.sys, grid_steps), "output_interval")
             plan.run_output_interval = grid_steps
-        stream = RunStream(plan, stream_to, t0, self._streamed) if stream_to is not None \
-            else None
+        # a run the engine will refuse opens no stream: its file (perhaps an earlier run's)
+        # is left as it is
+        stream = RunStream(plan, stream_to, t0, self._streamed) \
+            if stream_to is not None and _engine_accepts(t0, tf, dt) else None
         if not keep_history:
             keep_history_samples(plan, False)
             self._history_off = True
@@ -608,6 +611,15 @@ def _check_step(system: str, t0: float, tf: float, dt: float) -> None:
         warnings.warn(f"{system}: dt={dt!r} does not divide tf - t0 = {span!r}: the last step "
                       f"is {last:.6g} s, so that the run ends at tf={tf!r}", SysSimXWarning,
                       stacklevel=3)
+
+
+# the most grid steps the engine takes in one run (SSX_MAX_GRID_STEPS)
+MAX_GRID_STEPS = 1e12
+
+
+def _engine_accepts(t0: float, tf: float, dt: float) -> bool:
+    """Whether ssx_run takes these times (its checks of them, made before anything runs)."""
+    return dt > 0 and tf >= t0 and (tf - t0) / dt <= MAX_GRID_STEPS
 
 
 def _grid_steps(system: str, output_interval: object, dt: float) -> int:
