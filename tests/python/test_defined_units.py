@@ -114,8 +114,10 @@ def test_units_an_fmu_defines_convert_a_connection(tmp_path: Path) -> None:
                                                                                     abs=1e-9)
 
 
-def test_an_ssd_connects_fmus_whose_units_both_define(tmp_path: Path) -> None:
-    """The SSD's "[degF]" and "[K]" labels match the FMUs' own definitions of theirs."""
+@pytest.mark.parametrize("units", [LABELS, ""], ids=["the SSD defines them", "only the FMUs"])
+def test_an_ssd_connects_fmus_whose_units_both_define(tmp_path: Path, units: str) -> None:
+    """The SSD's "[degF]" and "[K]" labels match the FMUs' own definitions of theirs, and the
+    FMUs' labels when the SSD defines none."""
     hot, cold = gain_in(tmp_path, "[degF]", FAHRENHEIT), gain_in(tmp_path, "[K]",
                                                                   '<BaseUnit K="1"/>')
     system_text = """
@@ -142,7 +144,9 @@ def test_an_ssd_connects_fmus_whose_units_both_define(tmp_path: Path) -> None:
     <ssd:Connection startElement="Hot" startConnector="y" endElement="Cold" endConnector="u"/>
   </ssd:Connections>
 </ssd:System>"""
-    path = write_ssp(tmp_path / "heat.ssp", ssd(system_text, "heat", "", LABELS))
+    if not units:  # a value in a unit only the FMUs define: given in the FMU's own
+        system_text = system_text.replace('value="373.15" unit="[K]"', 'value="212"')
+    path = write_ssp(tmp_path / "heat.ssp", ssd(system_text, "heat", "", units))
     with zipfile.ZipFile(path, "a") as archive:
         archive.write(hot, "hot.fmu")
         archive.write(cold, "cold.fmu")

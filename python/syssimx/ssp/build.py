@@ -9,6 +9,7 @@ from typing import Any
 from ..components.fmu import FMUComponent
 from ..core.port import PortType
 from ..errors import ConfigurationError
+from ..fmu.info import variable_unit
 from ..system.connection import Connection
 from ..system.system import System
 from ..units import (
@@ -81,8 +82,10 @@ def _check_connector(component: FMUComponent, connector: Connector,
         raise SSPError(f"{connector.label}: type {connector.type} does not match the FMU's "
                        f"{kind.name} variable {connector.name!r} of {component.name!r}")
     unit = spec.unit if spec is not None else parameter.unit  # type: ignore[union-attr]
+    variable = component.info.variables.get(connector.name)
+    declared = variable_unit(variable) if variable is not None else None  # as the FMU spells it
     defined = units.get(connector.unit) if connector.unit else None
-    if connector.unit and unit and _differ(
+    if connector.unit and unit and connector.unit != declared and _differ(
             defined.pint_unit() if defined is not None else connector.unit, unit):
         raise SSPError(f"{connector.label}: unit {connector.unit!r} does not match the FMU's "
                        f"unit {unit!r} of {component.name}.{connector.name}")
