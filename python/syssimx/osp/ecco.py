@@ -5,6 +5,7 @@ libcosim holds them."""
 
 from __future__ import annotations
 
+from ..errors import ConfigurationError
 from ..system.algorithms import JacobiAlgorithm, StepControl
 from .build import PowerBond
 from .errors import OSPError
@@ -44,4 +45,9 @@ def ecco_algorithm(config: dict[str, float], bonds: list[PowerBond],
     if bonds:
         settings.update(error="energy",
                         power_bonds=tuple(bond_ends(bond, where) for bond in bonds))
-    return JacobiAlgorithm(step_control=StepControl(rollback=False, **settings))  # type: ignore[arg-type]
+    algorithm = JacobiAlgorithm(step_control=StepControl(rollback=False, **settings))  # type: ignore[arg-type]
+    try:
+        algorithm.validate()
+    except ConfigurationError as exc:
+        raise OSPError(f"{where}: <EccoConfiguration>: {exc}") from exc
+    return algorithm

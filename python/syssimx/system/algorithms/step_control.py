@@ -9,6 +9,7 @@ from typing import Any
 
 from ...bridge.options import engine_refusal
 from ...engine import defaults, ffi, lib
+from ...errors import ConfigurationError
 
 
 @dataclass
@@ -65,26 +66,30 @@ class StepControl:
             "integral_gain": self.integral_gain})
 
     def validate(self, owner: str) -> None:
+        if not isinstance(self.rollback, bool):
+            raise ConfigurationError(f"{owner}: step_control.rollback must be true or false, "
+                                     f"got {self.rollback!r}")
         if self.error not in ("coupling", "energy"):
-            raise ValueError(f"{owner}: step_control.error must be 'coupling' or 'energy', got "
-                             f"{self.error!r}")
+            raise ConfigurationError(f"{owner}: step_control.error must be 'coupling' or "
+                                     f"'energy', got {self.error!r}")
         if not isinstance(self.power_bonds, tuple):
-            raise ValueError(f"{owner}: step_control.power_bonds must be a list of bonds, got "
-                             f"{self.power_bonds!r}")
+            raise ConfigurationError(f"{owner}: step_control.power_bonds must be a list of "
+                                     f"bonds, got {self.power_bonds!r}")
         for bond in self.power_bonds:
             if not (isinstance(bond, tuple) and len(bond) == 2 and all(
                     isinstance(end, tuple) and len(end) == 2 and
                     all(isinstance(name, str) for name in end) for end in bond)):
-                raise ValueError(f"{owner}: step_control.power_bonds: each bond is two "
-                                 f"(component, input) ends, got {bond!r}")
+                raise ConfigurationError(f"{owner}: step_control.power_bonds: each bond is "
+                                         f"two (component, input) ends, got {bond!r}")
         if self.error == "energy" and not self.power_bonds:
-            raise ValueError(f"{owner}: step_control.error 'energy' needs power_bonds")
+            raise ConfigurationError(f"{owner}: step_control.error 'energy' needs power_bonds")
         for name in ("rtol", "atol", "min_step", "max_step", "initial_step", "safety",
                      "min_change", "max_change", "proportional_gain", "integral_gain"):
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int | float):
-                raise ValueError(f"{owner}: step_control.{name} must be a number, got {value!r}")
+                raise ConfigurationError(f"{owner}: step_control.{name} must be a number, "
+                                         f"got {value!r}")
         control = self.engine_struct()
         refusal = engine_refusal(lambda system: lib().ssx_set_step_control(system, control))
         if refusal is not None:
-            raise ValueError(f"{owner}: {refusal}")
+            raise ConfigurationError(f"{owner}: {refusal}")
