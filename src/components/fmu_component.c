@@ -36,6 +36,41 @@ static int fmi_failed(ssx_system *sys, const ssx_component *c, double t, int sta
     return fail_fmi(sys, c, fmu_data(c)->fmu, t, status, call_name(c, slot));
 }
 
+static int out_of_text_memory(ssx_system *sys, const ssx_component *c, double t)
+{
+    return fail(sys, c->index, -1, t, "out of memory keeping a String value of component '%s'",
+                c->name);
+}
+
+/* The String outputs: each text's number in the system's table. */
+static int read_texts(ssx_system *sys, ssx_component *c, double t)
+{
+    fmu_component_data *d = fmu_data(c);
+    const fmu_port_batch *b = &d->text_outputs;
+    int status = ssx_fmu_get_string(d->fmu, b->vr, b->n, d->text_scratch);
+    if (!fmi_ok(status)) {
+        return fmi_failed(sys, c, t, status, SLOT_GET_STRING);
+    }
+    for (size_t i = 0; i < b->n; ++i) {
+        if (text_table_number(&sys->texts, d->text_scratch[i], &c->outputs[b->port[i]]) != 0) {
+            return out_of_text_memory(sys, c, t);
+        }
+    }
+    return 0;
+}
+
+/* The text of String input k, or NULL after failing: its value is no text's number. */
+static const char *input_text(ssx_system *sys, const ssx_component *c, int k, double t)
+{
+    const char *text = text_table_text(&sys->texts, c->inputs[k]);
+    if (text == NULL) {
+        fail(sys, c->index, -1, t,
+             "component '%s': String input %d holds %.17g, which numbers no text", c->name, k,
+             c->inputs[k]);
+    }
+    return text;
+}
+
 int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t)
 {
     fmu_component_data *d = fmu_data(c);
@@ -70,6 +105,9 @@ int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t)
             int value = d->int_scratch[i];
             c->outputs[b->port[i]] = type == SSX_BOOLEAN ? (value != 0) : (double)value;
         }
+    }
+    if (d->text_outputs.n > 0 && read_texts(sys, c, t) != 0) {
+        return -1;
     }
     return residue == 0.0 ? 0 : component_check_outputs(sys, c, t);
 }
@@ -150,6 +188,19 @@ static int write_values(ssx_system *sys, ssx_component *c)
         if (!fmi_ok(status)) {
             ssx_fmu_slot slot = type == SSX_INTEGER ? SLOT_SET_INTEGER : SLOT_SET_BOOLEAN;
             return fmi_failed(sys, c, sys->time, status, slot);
+        }
+    }
+    const fmu_port_batch *texts = &d->text_inputs;
+    if (texts->n > 0) {
+        for (size_t i = 0; i < texts->n; ++i) {
+            d->text_scratch[i] = input_text(sys, c, texts->port[i], sys->time);
+            if (d->text_scratch[i] == NULL) {
+                return -1;
+            }
+        }
+        int status = ssx_fmu_set_string(d->fmu, texts->vr, texts->n, d->text_scratch);
+        if (!fmi_ok(status)) {
+            return fmi_failed(sys, c, sys->time, status, SLOT_SET_STRING);
         }
     }
     if (c->n_inputs > 0) {
@@ -394,6 +445,17 @@ int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0)
         }
         unsigned int vr = c->input_ports[k].vr;
         ssx_value_type type = c->input_ports[k].type;
+        if (type == SSX_STRING) {
+            const char *text = NULL;
+            int status = ssx_fmu_get_string(d->fmu, &vr, 1, &text);
+            if (!fmi_ok(status)) {
+                return fmi_failed(sys, c, t0, status, SLOT_GET_STRING);
+            }
+            if (text_table_number(&sys->texts, text, &c->inputs[k]) != 0) {
+                return out_of_text_memory(sys, c, t0);
+            }
+            continue;
+        }
         double real = 0.0;
         int integer = 0;
         int status = type == SSX_REAL      ? ssx_fmu_get_real(d->fmu, &vr, 1, &real)
@@ -563,6 +625,9 @@ static void free_prepared(fmu_component_data *d)
     d->derivative_order = NULL;
     d->derivative_values = NULL;
     d->derivative_capacity = 0;
+    free(d->text_scratch);
+    d->text_scratch = NULL;
+    d->text_outputs = d->text_inputs = (fmu_port_batch){0};
 }
 
 void fmu_component_unprepare(ssx_component *c)
@@ -606,6 +671,19 @@ int fmu_component_prepare(ssx_system *sys, ssx_component *c)
         vr += inputs->n;
         port += inputs->n;
         d->has_discrete_ports |= type != SSX_REAL && outputs->n + inputs->n > 0;
+    }
+    build_batch(&d->text_outputs, c->output_ports, c->n_outputs, SSX_STRING, vr, port);
+    vr += d->text_outputs.n;
+    port += d->text_outputs.n;
+    build_batch(&d->text_inputs, c->input_ports, c->n_inputs, SSX_STRING, vr, port);
+    size_t n_texts = d->text_outputs.n > d->text_inputs.n ? d->text_outputs.n
+                                                          : d->text_inputs.n;
+    if (n_texts > 0) {
+        d->text_scratch = calloc(n_texts, sizeof *d->text_scratch);
+        if (d->text_scratch == NULL) {
+            return fail_config(sys, c->index, -1, NAN,
+                               "out of memory preparing the String ports of '%s'", c->name);
+        }
     }
     d->inputs_written_epoch = -1;
     return 0;

@@ -47,6 +47,11 @@ typedef struct {
     double *derivative_values;
     size_t derivative_capacity;
     ssx_restart *restart; /* its declarative event handler, NULL for none */
+    /* String ports (their values are numbers in the system's text table) and the FMU's texts
+     * of one batch, built at initialization */
+    fmu_port_batch text_outputs;
+    fmu_port_batch text_inputs;
+    const char **text_scratch;
 } fmu_component_data;
 
 static inline fmu_component_data *fmu_data(const ssx_component *c)

@@ -19,7 +19,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-typedef enum { SSX_REAL = 0, SSX_INTEGER = 1, SSX_BOOLEAN = 2 } ssx_value_type;
+/* SSX_STRING: an FMU's String variable; the port's value is the number of its text in the
+ * system's text table (ssx_text_number, ssx_text). */
+typedef enum { SSX_REAL = 0, SSX_INTEGER = 1, SSX_BOOLEAN = 2, SSX_STRING = 3 } ssx_value_type;
 typedef enum { SSX_GAUSS_SEIDEL = 0, SSX_JACOBI = 1 } ssx_coupling;
 /* Event localization. SSX_ILLINOIS: Illinois (modified regula falsi) held within two trials of
  * bisection's count; SSX_BISECTION; SSX_ILLINOIS_UNGUARDED: Illinois alone, for comparison. */
@@ -404,6 +406,13 @@ int ssx_set_restart_handler(ssx_system *sys, int component, const ssx_fmu_experi
  * the port's index. */
 int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned int vr);
 int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned int vr, double start);
+/* The texts of String ports (FMU components only; no connection scales or offsets one): each
+ * distinct text has a number, kept until the system is freed. ssx_text_number gives the
+ * number of `text` (added when new), -1 when out of memory; ssx_text the text of a number
+ * (the system's until it is freed; NULL for none); ssx_text_count how many there are. */
+int ssx_text_number(ssx_system *sys, const char *text, double *number);
+const char *ssx_text(ssx_system *sys, double number);
+size_t ssx_text_count(ssx_system *sys);
 /* Before initializing a system again (its plan reused): every input's start value, the
  * components' inputs in order, n in all; each input holds its start again, as when added. */
 int ssx_reset_inputs(ssx_system *sys, const double *starts, size_t n);

@@ -11,6 +11,7 @@
 #include "localization_log.h"
 #include "monitor.h"
 #include "syssimx_engine.h"
+#include "text_table.h"
 
 typedef struct ssx_component ssx_component;
 typedef struct ssx_component_ops ssx_component_ops;
@@ -111,6 +112,7 @@ struct ssx_system {
     ssx_loop_options loop;
     ssx_hybrid_options hybrid;
 
+    text_table texts; /* of the String ports (ssx_text_number) */
     ssx_recording *recording;
     int record_hooks_observed; /* a component's record hook was set: its observer is added */
     ssx_localization_log localization;

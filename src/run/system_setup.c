@@ -130,6 +130,7 @@ void ssx_system_free(ssx_system *sys)
     free(sys->order);
     free(sys->groups);
     recording_free(sys->recording);
+    text_table_free(&sys->texts);
     parallel_free(sys->parallel);
     localization_log_free(&sys->localization);
     free(sys->name);
@@ -214,7 +215,7 @@ int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks)
 
 static int valid_type(ssx_value_type type)
 {
-    return type == SSX_REAL || type == SSX_INTEGER || type == SSX_BOOLEAN;
+    return type == SSX_REAL || type == SSX_INTEGER || type == SSX_BOOLEAN || type == SSX_STRING;
 }
 
 int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned int vr)
@@ -368,6 +369,14 @@ int ssx_connect(ssx_system *sys, int src_component, int src_output, int dst_comp
     if (!isfinite(scale) || !isfinite(offset)) {
         return fail_config(sys, dst_component, -1, NAN,
                            "connection %s.out[%d] -> %s.in[%d]: scale and offset must be finite",
+                           src->name, src_output, dst->name, dst_input);
+    }
+    int texts = (src->output_ports[src_output].type == SSX_STRING) +
+                (dst->input_ports[dst_input].type == SSX_STRING);
+    if (texts == 1 || (texts == 2 && (scale != 1.0 || offset != 0.0))) {
+        return fail_config(sys, dst_component, -1, NAN,
+                           "connection %s.out[%d] -> %s.in[%d]: a String port connects to a "
+                           "String port only, unscaled",
                            src->name, src_output, dst->name, dst_input);
     }
     int driver = dst->input_driver[dst_input];

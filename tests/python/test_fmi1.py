@@ -56,10 +56,12 @@ def test_identity_is_read_as_fmi1_cosimulation():
     assert component.fmu_interface.model_identifier == "identity"
     assert not component.can_get_set_state  # FMI 1.0 has no FMU state
     assert {n: s.type.name for n, s in component.input_specs.items()} == {
-        "realIn": "REAL", "integerIn": "INT", "booleanIn": "BOOL"}
-    assert sorted(component.output_specs) == ["booleanOut", "integerOut", "realOut"]
+        "realIn": "REAL", "integerIn": "INT", "booleanIn": "BOOL", "stringIn": "STRING"}
+    assert sorted(component.output_specs) == ["booleanOut", "integerOut", "realOut",
+                                              "stringOut"]
     # no ModelStructure in FMI 1.0: every output depends on every input
-    assert component.direct_feedthrough["realOut"] == {"realIn", "integerIn", "booleanIn"}
+    assert component.direct_feedthrough["realOut"] == {"realIn", "integerIn", "booleanIn",
+                                                       "stringIn"}
 
 
 def test_identity_driven_by_a_table_equals_fmpy():

@@ -21,7 +21,7 @@ import pytest
 from coupling_samples import coupling_samples_root
 from reference_root import reference_root
 from samples_root import samples_root
-from syssimx import FMUComponent, JacobiAlgorithm, System
+from syssimx import Connection, FMUComponent, JacobiAlgorithm, System
 from syssimx.cli import main
 from syssimx.errors import ConfigurationError
 from syssimx.osp import read as read_osp
@@ -242,3 +242,63 @@ def test_an_fmi3_string_parameter_is_set_from_python():
     system.initialize(0.0)
     system.run(0.0, 0.1, 0.1)
     assert feedthrough.get_state()["String_output"]["value"] == "drei"
+
+
+# ---------------------------------------------------------------- String ports
+
+
+def feedthrough_pair(path: Path) -> tuple[System, FMUComponent]:
+    """A.String_output -> B.String_input of two Feedthrough FMUs, A's input set to "first"."""
+    system = System("texts")
+    a = FMUComponent("A", needs(path))
+    system.add_component(a)
+    system.add_component(FMUComponent("B", path))
+    a.set_inputs({"String_input": "first"})
+    system.add_connection(Connection("A", "String_output", "B", "String_input"))
+    system.set_algorithm(JacobiAlgorithm())
+    system.initialize(0.0)
+    return system, a
+
+
+@pytest.mark.parametrize("path", [FEEDTHROUGH2, FEEDTHROUGH3], ids=["fmi2", "fmi3"])
+def test_string_outputs_are_recorded_and_connected(path: Path):
+    """Recorded as object arrays of texts; a new input value reaches the connected FMU one
+    step later (Jacobi), as a number would."""
+    system, a = feedthrough_pair(path)
+    system.run(0.0, 0.2, 0.1)
+    a.set_inputs({"String_input": "second"})
+    result = system.run(0.2, 0.4, 0.1)
+    t, a_values = result["A"]
+    _, b_values = result["B"]
+    np.testing.assert_allclose(t, [0.0, 0.1, 0.2, 0.3, 0.4], atol=1e-12)
+    assert a_values["String_output"].dtype == object
+    assert a_values["String_output"].tolist() == ["first"] * 3 + ["second"] * 2
+    assert b_values["String_output"].tolist() == ["first"] * 4 + ["second"]
+    assert system.components["B"].inputs["String_input"].raw() == "second"
+
+
+def test_fmi1_string_ports_are_recorded_and_connected():
+    system = System("texts")
+    first = FMUComponent("I1", identity())
+    system.add_component(first)
+    system.add_component(FMUComponent("I2", identity()))
+    first.set_inputs({"stringIn": "one point zero"})
+    system.add_connection(Connection("I1", "stringOut", "I2", "stringIn"))
+    system.initialize(0.0)
+    result = system.run(0.0, 0.2, 0.1)
+    assert result["I1"][1]["stringOut"].tolist() == ["one point zero"] * 3
+    assert result["I2"][1]["stringOut"].tolist()[-1] == "one point zero"
+
+
+def test_a_string_connects_to_a_string_only():
+    system = System("texts")
+    system.add_component(FMUComponent("A", needs(FEEDTHROUGH2)))
+    system.add_component(FMUComponent("B", FEEDTHROUGH2))
+    with pytest.raises(ConfigurationError) as info:
+        system.add_connection(Connection("A", "String_output", "B", "Float64_continuous_input"))
+    assert str(info.value) == ("A.String_output -> B.Float64_continuous_input: a STRING "
+                               "output cannot drive a REAL input")
+    with pytest.raises(ConfigurationError) as info:
+        system.add_connection(Connection("A", "Float64_continuous_output", "B", "String_input"))
+    assert str(info.value) == ("A.Float64_continuous_output -> B.String_input: a REAL output "
+                               "cannot drive a STRING input")

@@ -30,9 +30,10 @@ class _BufferOwner:
 class HistoryArrays:
     """The samples recorded so far by one engine system, as read-only numpy arrays."""
 
-    def __init__(self, sys: Any, release: Any) -> None:
+    def __init__(self, sys: Any, release: Any, texts: tuple[str, ...] = ()) -> None:
         """`release` is ssx_history_release, resolved by the caller before any collection can
-        need it (a finalizer must not look up a library function)."""
+        need it (a finalizer must not look up a library function); `texts` the system's texts
+        of String ports, by number."""
         engine = lib()
         self.length = int(engine.ssx_history_length(sys))
         raw = engine.ssx_history_retain(sys) if self.length > 0 else ffi.NULL
@@ -40,17 +41,24 @@ class HistoryArrays:
         # the block's buffers, read now: the arrays need nothing of the system afterwards
         self._time = engine.ssx_history_time(sys)
         self._micro = engine.ssx_history_micro(sys)
+        self.texts = texts
 
     @classmethod
     def of_retained(cls, block: Any, length: int, time: Any, micro: Any,
-                    release: Any) -> HistoryArrays:
+                    release: Any, texts: tuple[str, ...] = ()) -> HistoryArrays:
         """The arrays of a history reference the caller got (ssx_get_run_outcome) with the
         history's length, times and micro steps: released with the last of them."""
         arrays = cls.__new__(cls)
         arrays.length = length
         arrays._block = ffi.gc(block, release) if block != ffi.NULL else None
         arrays._time, arrays._micro = time, micro
+        arrays.texts = texts
         return arrays
+
+    def texts_of(self, numbers: np.ndarray) -> np.ndarray:
+        """A String port's column: the text of each number, as an object array."""
+        # "" after the texts: a table still empty gives the 0 of a port never read a text
+        return np.asarray((*self.texts, ""), dtype=object)[numbers.astype(np.intp)]
 
     def _view(self, pointer: Any, shape: tuple[int, ...], typestr: str) -> np.ndarray:
         if self._block is None or 0 in shape:

@@ -21,7 +21,7 @@ import numpy as np
 
 from ..core.events import OWN_EVENTS
 from ..core.port import PortType
-from ..engine import ffi, lib
+from ..engine import ffi, lib, string
 from ..errors import ConfigurationError, SimulationTimeoutError
 from .history_arrays import HistoryArrays
 
@@ -54,7 +54,7 @@ def engine_type(kind: PortType) -> int:
 
 
 _ENGINE_TYPE_NAMES = {PortType.REAL: "SSX_REAL", PortType.INT: "SSX_INTEGER",
-                      PortType.BOOL: "SSX_BOOLEAN"}
+                      PortType.BOOL: "SSX_BOOLEAN", PortType.STRING: "SSX_STRING"}
 
 
 @dataclass(frozen=True)
@@ -256,6 +256,8 @@ class EnginePlan:
         for port in self.inputs[name]:
             spec = component.input_specs[port]
             start = component.input_start(port)
+            if isinstance(start, str):  # a String input's text
+                start = self.text_number(start)
             self.check(lib().ssx_add_input(self.sys, index, engine_type(spec.type),
                                            vr(port) if vr else 0, start), f"{name}.{port}")
 
@@ -379,31 +381,52 @@ class EnginePlan:
         return self._array(component, "in")
 
     def port_value(self, component: Component, direction: str, port: str) -> float:
+        """The engine's value of a port (a String port's: its text's number, see text)."""
         names = self.outputs if direction == "out" else self.inputs
         return float(self._array(component, direction)[names[component.name].index(port)])
+
+    def text_number(self, text: str) -> float:
+        """The number of `text` in the system's text table (String ports hold numbers)."""
+        number = ffi.new("double *")
+        self.check(lib().ssx_text_number(self.sys, text.encode(), number), "a String value")
+        return float(number[0])
+
+    def text(self, number: float) -> str:
+        """The text a String port's number stands for."""
+        return string(lib().ssx_text(self.sys, number))
+
+    def to_engine(self, kind: PortType, value: Any) -> float:
+        """A port value as the engine holds it."""
+        return self.text_number(value) if kind == PortType.STRING else float(value)
+
+    def from_engine(self, kind: PortType, value: float) -> Any:
+        """An engine value as the value of a port of type `kind`."""
+        return self.text(value) if kind == PortType.STRING else typed(kind, value)
 
     def write_inputs(self, component: Component,
                      values: Mapping[str, Any] | None = None) -> None:
         """Copy input values (the component's ports, or `values`) into the engine."""
         array = self._array(component, "in")
         for i, name in enumerate(self.inputs[component.name]):
+            kind = component.input_specs[name].type
             if values is None:
-                array[i] = float(component.inputs[name].raw())
+                array[i] = self.to_engine(kind, component.inputs[name].raw())
             elif name in values:
-                array[i] = float(component.input_specs[name].coerce(values[name]))
+                array[i] = self.to_engine(kind, component.input_specs[name].coerce(values[name]))
 
     def pull_inputs(self, component: Component) -> None:
         """Engine inputs -> the component's input ports (Python components)."""
         array = self._array(component, "in")
         for i, name in enumerate(self.inputs[component.name]):
             port = component.inputs[name]
-            port._raw = typed(port.spec.type, array[i])
+            port._raw = self.from_engine(port.spec.type, array[i])
 
     def push_outputs(self, component: Component) -> None:
         """The component's output ports -> engine outputs (Python components)."""
         array = self._array(component, "out")
         for i, name in enumerate(self.outputs[component.name]):
-            array[i] = float(component.outputs[name].raw())
+            port = component.outputs[name]
+            array[i] = self.to_engine(port.spec.type, port.raw())
 
     def read_outputs(self, component: Component) -> None:
         index = self.index[component.name]
@@ -423,7 +446,13 @@ class EnginePlan:
     # ------------------------------------------------------------------ history
     def history(self) -> HistoryArrays:
         """The samples recorded so far, as arrays that stay valid and unchanged for their life."""
-        return HistoryArrays(self.sys, self.release_history)
+        return HistoryArrays(self.sys, self.release_history, self.texts())
+
+    def texts(self) -> tuple[str, ...]:
+        """Every text of the system's String ports so far, by number."""
+        engine = lib()
+        return tuple(string(engine.ssx_text(self.sys, k))
+                     for k in range(engine.ssx_text_count(self.sys)))
 
     def component_history(self, component: Component, arrays: HistoryArrays | None = None
                           ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
@@ -463,7 +492,7 @@ class RecordedComponent:
 def recorded_columns(recorded: RecordedComponent, arrays: HistoryArrays
                      ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
     """(time, {output: values}) of one component in `arrays`, without a copy (Real outputs;
-    Integer and Boolean ones converted)."""
+    Integer and Boolean ones converted, String ones an object array of their texts)."""
     matrix = arrays.values(recorded.index, len(recorded.outputs))
     if recorded.real_only:
         return arrays.time(), {name: matrix[:, j] for j, name in enumerate(recorded.outputs)}
@@ -471,7 +500,8 @@ def recorded_columns(recorded: RecordedComponent, arrays: HistoryArrays
     for j, (name, kind) in enumerate(zip(recorded.outputs, recorded.types, strict=True)):
         column = matrix[:, j]
         columns[name] = (column.astype(np.int64) if kind == PortType.INT
-                         else column != 0.0 if kind == PortType.BOOL else column)
+                         else column != 0.0 if kind == PortType.BOOL
+                         else arrays.texts_of(column) if kind == PortType.STRING else column)
     return arrays.time(), columns
 
 
@@ -502,9 +532,12 @@ class _HookBuilder:
         # names with the conversion of an engine value to the port's type
         self.ports: tuple[Any, Any] = (ffi.NULL, ffi.NULL)
         self.take_port_addresses()
-        self.input_names = [(name, _FROM_ENGINE[component.input_specs[name].type])
-                            for name in plan.inputs[component.name]]
-        self.output_names = list(enumerate(plan.outputs[component.name]))
+        self.input_names = [(name, plan.text if kind == PortType.STRING else _FROM_ENGINE[kind])
+                            for name in plan.inputs[component.name]
+                            for kind in (component.input_specs[name].type,)]
+        self.output_names = [(i, name, plan.text_number if component.output_specs[name].type
+                              == PortType.STRING else float)
+                             for i, name in enumerate(plan.outputs[component.name])]
 
     def take_port_addresses(self) -> None:
         """The engine's (inputs, outputs) arrays of the component, where they are now."""
@@ -584,8 +617,8 @@ class _HookBuilder:
                 c.t = t + dt
                 c._update_output_states(t + dt)
                 ports = c.outputs
-                for i, name in output_names:
-                    outputs[i] = ports[name].raw()
+                for i, name, convert in output_names:
+                    outputs[i] = convert(ports[name].raw())
                 return 0
             except BaseException as exc:  # kept and re-raised by System.run
                 plan.fail(c, "do_step", t, exc)

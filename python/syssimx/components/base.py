@@ -29,7 +29,8 @@ if TYPE_CHECKING:
 
 EventHandler = Callable[[Any, list[str], float], None]
 
-ENGINE_TYPES = (PortType.REAL, PortType.INT, PortType.BOOL)
+# the port types the engine carries (a STRING port's value: its text's number in the system)
+ENGINE_TYPES = (PortType.REAL, PortType.INT, PortType.BOOL, PortType.STRING)
 
 
 @dataclass(frozen=True)

@@ -22,8 +22,10 @@ An FMI 3.0 Co-Simulation FMU is instantiated with event mode when it declares ha
 and with early return when it can return early: it then handles its own events inside the
 engine's step, at their time, without rollback (they appear in the result's events as its own),
 as a Model Exchange FMU of either version does inside its integration. Its Float32 and
-integer types travel as Real and Integer ports. String variables (every version) and FMI 3.0
-Binary ones are set with set_parameters (inputs too) and read with get_state, never connected.
+integer types travel as Real and Integer ports. String inputs and outputs (every version) are
+ports whose values are texts: connected to String ports, recorded as object arrays of texts;
+String parameters, and FMI 3.0 Binary variables, are set with set_parameters (inputs too) and
+read with get_state.
 """
 
 from __future__ import annotations
@@ -155,15 +157,19 @@ class FMUComponent(CoSimComponent):
         return Port(spec, self._input_starts.get(spec.name),
                     reader=lambda n=spec.name: self._engine_value("in", n))
 
-    def _engine_value(self, direction: str, name: str) -> float | int | bool:
+    def _engine_value(self, direction: str, name: str) -> float | int | bool | str:
         """The engine's current value of a port. Before the component runs in a system, an
-        input reads its start value and an output 0 (the FMU computes it at initialization)."""
+        input reads its start value and an output 0 ("" a String one: the FMU computes it at
+        initialization)."""
+        kind = (self.output_specs if direction == "out" else self.input_specs)[name].type
         if self._binding is None:
-            return self._input_starts[name] if direction == "in" else 0.0
+            return self._input_starts[name] if direction == "in" else \
+                "" if kind == PortType.STRING else 0.0
         value = self._binding.plan.port_value(self, direction, name)
         if math.isnan(value) and direction == "in":
             return self._input_starts[name]  # not yet read from the FMU (see input_start)
-        kind = (self.output_specs if direction == "out" else self.input_specs)[name].type
+        if kind == PortType.STRING:
+            return self._binding.plan.text(value)
         return int(value) if kind == PortType.INT else bool(value) if kind == PortType.BOOL \
             else value
 
@@ -183,9 +189,13 @@ class FMUComponent(CoSimComponent):
         return (f" (it is a {kind} variable: set it with set_parameters, read it with "
                 "get_state; it cannot be connected)")
 
-    def input_start(self, name: str) -> float:
-        """What set_inputs gave, else NaN: the engine then keeps the FMU's own value."""
-        return float(self._input_starts[name]) if name in self._inputs_set else math.nan
+    def input_start(self, name: str) -> float | str:
+        """What set_inputs gave (a String input's text), else NaN: the engine then keeps the
+        FMU's own value."""
+        if name not in self._inputs_set:
+            return math.nan
+        start = self._input_starts[name]
+        return start if isinstance(start, str) else float(start)
 
     def value_reference(self, name: str) -> int:
         """The FMU's value reference of the variable `name`."""

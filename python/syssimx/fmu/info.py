@@ -89,8 +89,9 @@ class FMUInfo:
     input_specs: MutableMapping[str, PortSpec] = field(default_factory=ElementMap)
     output_specs: MutableMapping[str, PortSpec] = field(default_factory=ElementMap)
     parameters: MutableMapping[str, Parameter] = field(default_factory=ElementMap)
-    # 0 if none given
-    input_starts: MutableMapping[str, float | int | bool] = field(default_factory=ElementMap)
+    # 0 if none given ("" for a String input)
+    input_starts: MutableMapping[str, float | int | bool | str] = field(
+        default_factory=ElementMap)
     # of ports and parameters
     value_references: MutableMapping[str, int] = field(default_factory=ElementMap)
     feedthrough: MutableMapping[str, set[str]] = field(default_factory=ElementMap)
@@ -101,8 +102,8 @@ class FMUInfo:
     number_of_event_indicators: int = 0
     standard: Standard = field(default_factory=Standard)  # the FMI version's
     # FMI 3.0: every scalar the engine may get or set and the array ports, and each
-    # structural parameter with the arrays it sizes; every version: the String (and FMI 3.0
-    # Binary) outputs, which no port carries
+    # structural parameter with the arrays it sizes, and the Binary outputs, which no port
+    # carries
     fmi3_variables: EngineTable = field(default_factory=lambda: EngineTable([], []))
     text_outputs: dict[str, ScalarVariable] = field(default_factory=dict)
     structural_parameters: dict[str, list[str]] = field(default_factory=dict)
@@ -410,10 +411,19 @@ def _collect_array(parts: _Parts, array: ArrayPort, kind: PortType, unit: str | 
 
 
 def _collect_text(info: FMUInfo, variable: ScalarVariable, parts: _Parts) -> None:
-    """A String (any FMI version) or Binary (FMI 3.0) variable: an output is readable, a
-    parameter or an input is set like a parameter."""
+    """A String (any FMI version) or Binary (FMI 3.0) variable. A String input or output is a
+    port (its values are texts); a Binary output is read with get_state; a parameter or an
+    input of either is set like a parameter."""
+    if variable.type == "String" and variable.causality in ("input", "output"):
+        direction = "in" if variable.causality == "input" else "out"
+        spec = PortSpec(variable.name, PortType.STRING, direction, None, variable.description)
+        (parts.input_specs if direction == "in" else parts.output_specs).append(
+            (variable.name, spec))
+        if direction == "in":
+            parts.input_starts.append((variable.name, variable.start or ""))
     if variable.causality == "output":
-        info.text_outputs[variable.name] = variable
+        if variable.type == "Binary":
+            info.text_outputs[variable.name] = variable
         return
     start = variable.start
     if variable.type == "Binary" and start is not None:

@@ -3,6 +3,7 @@ for the run, handed the samples the history keeps, detached when the run returns
 
 from __future__ import annotations
 
+from collections import Counter
 from pathlib import Path
 from typing import Any
 
@@ -27,7 +28,13 @@ class RunStream:
             except ValueError as exc:
                 raise ConfigurationError(str(exc)) from None
             self.owned = True
-            self.writer.open(Path(stream_to), columns(plan))
+            names = columns(plan)
+            _refuse_repeated(names, stream_to)
+            try:
+                self.writer.open(Path(stream_to), names)
+            except OSError as exc:  # a folder, a missing folder, no permission
+                raise ConfigurationError(f"cannot stream a run to {stream_to}: "
+                                         f"{exc.strerror or exc}") from exc
         elif callable(getattr(stream_to, "write", None)):
             self.writer = stream_to
             self.owned = False
@@ -64,3 +71,13 @@ class RunStream:
         remove_observer(self.plan, self.observer)
         if self.owned:
             self.writer.close()
+
+
+def _refuse_repeated(names: list[str], target: Any) -> None:
+    """Column names are component.output: a component "a.b" with an output "c" and a component
+    "a" with an output "b.c" both give "a.b.c", which no file format holds twice."""
+    repeated = sorted(name for name, count in Counter(names).items() if count > 1)
+    if repeated:
+        raise ConfigurationError(f"cannot stream a run to {target}: the columns "
+                                 f"{', '.join(map(repr, repeated))} would each be written twice "
+                                 "(component.output names that coincide); rename a component")
