@@ -640,7 +640,9 @@ int ssx_add_observer(ssx_system *sys, const ssx_observer_callbacks *callbacks, v
  * (times, micro steps, and every component's outputs in component order, row-major: n_rows x
  * n_columns) and handed to `write` when a block is full, at the last point of each run, and
  * after a failed run with what came before the failure. The arrays are valid during the call.
- * How a file is written while the run goes on in bounded memory. Returns its id, or -1. */
+ * `write` returns 0 (written), > 0 (written; the run stops, failed) or < 0 (not written; the
+ * run stops, failed, and the rows are handed again as it ends). How a file is written while the
+ * run goes on in bounded memory. Returns its id, or -1. */
 typedef int (*ssx_block_writer)(void *user, const double *t, const int *micro,
                                 const double *values, size_t n_rows, size_t n_columns);
 int ssx_add_block_observer(ssx_system *sys, size_t rows, ssx_block_writer write, void *user);

@@ -30,14 +30,19 @@ static void free_block(block_observer *o)
     o->micro = NULL;
 }
 
+/* The writer answers 0 (written), > 0 (written, but stop the run) or < 0 (not written: the rows
+ * stay, handed again when the run ends, so that a writer stopped before it began, by Ctrl-C in
+ * Python, loses none of them). */
 static int hand_over(ssx_system *sys, block_observer *o, double t)
 {
     if (o->n == 0) {
         return 0;
     }
-    size_t n = o->n;
-    o->n = 0;
-    if (o->write(o->user, o->t, o->micro, o->values, n, o->columns) != 0) {
+    int status = o->write(o->user, o->t, o->micro, o->values, o->n, o->columns);
+    if (status >= 0) {
+        o->n = 0;
+    }
+    if (status != 0) {
         return fail_kind(sys, SSX_ERROR_CALLBACK, -1, -1, t,
                          "observer %d: its block writer failed at t=%.17g", o->base.id, t);
     }
@@ -87,8 +92,9 @@ static int block_step_complete(ssx_observer *self, ssx_system *sys, const ssx_sa
     return o->n == o->rows || sample->run_end ? hand_over(sys, o, sample->t) : 0;
 }
 
-/* After a run that ended early (a failure, a component's request to stop): what was gathered
- * before is written too. The run's own status stands, whatever the writer says. */
+/* After a run that ended early (a failure, a component's request to stop, a block its writer
+ * did not write): what was gathered before is written too. The run's own status stands,
+ * whatever the writer says. */
 static void block_run_end(ssx_observer *self, ssx_system *sys)
 {
     (void)sys;

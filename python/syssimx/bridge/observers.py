@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from ..engine import enum_name, ffi, lib
+from .deferred_interrupt import interrupts_deferred
 from .plan import CallbackFailure, EnginePlan
 
 # A block a writer is handed holds about this many bytes (time, micro and the values): large
@@ -119,10 +120,21 @@ def add_block_writer(plan: EnginePlan, write: BlockWriter, rows: int | None = No
         rows = max(1, BLOCK_BYTES // (12 + 8 * len(columns(plan))))
     def on_block(_user: Any, t: Any, micro: Any, values: Any, n_rows: int,
                  n_columns: int) -> int:
-        write(np.frombuffer(ffi.buffer(t, n_rows * 8), dtype=np.float64),
-              np.frombuffer(ffi.buffer(micro, n_rows * 4), dtype=np.int32),
-              np.frombuffer(ffi.buffer(values, n_rows * n_columns * 8),
-                            dtype=np.float64).reshape(n_rows, n_columns))
+        # Ctrl-C before the block is begun: -1, and the engine hands it again as the run ends;
+        # once written, 1: the run stops with the block written once
+        written = False
+        try:
+            with interrupts_deferred():
+                write(np.frombuffer(ffi.buffer(t, n_rows * 8), dtype=np.float64),
+                      np.frombuffer(ffi.buffer(micro, n_rows * 4), dtype=np.int32),
+                      np.frombuffer(ffi.buffer(values, n_rows * n_columns * 8),
+                                    dtype=np.float64).reshape(n_rows, n_columns))
+                written = True
+        except BaseException as exc:
+            if not written:
+                raise
+            keep(exc)
+            return 1
         return 0
 
     def keep(exc: BaseException) -> None:

@@ -465,9 +465,11 @@ class System:
                 for component in self.components.values():
                     component.t = self.t
                 partial = SimulationResult.from_system(self, t0, self.t, dt, wall, outcome)
+                kept = "partial_result holds the samples up to there" if keep_history \
+                    else "keep_history=False: partial_result holds no samples" + (
+                        "" if stream_to is None else f"; they are all in {stream_to!r}")
                 raise RunInterrupted(f"system {self.name!r}: the run was interrupted at "
-                                     f"t={self.t:.12g} (partial_result holds the samples up "
-                                     "to there)", partial) from stop
+                                     f"t={self.t:.12g} ({kept})", partial) from stop
         if reports is not None:
             reports.finish(self.t)
         self.termination = read_termination(plan, outcome.termination)

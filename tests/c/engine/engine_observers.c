@@ -248,9 +248,48 @@ static void check_blocks(void)
     stop_bouncing(&p);
 }
 
+/* A writer that stops the run at its third block: answering -1 it has not written the block,
+ * which is handed again as the run ends; answering 1 it has, and it is not handed again.
+ * Either way what was gathered is the history, each sample once. */
+typedef struct {
+    gathered g;
+    int calls, answer;
+} stopping_writer;
+
+static int stop_at_third_block(void *user, const double *t, const int *micro,
+                               const double *values, size_t n_rows, size_t n_columns)
+{
+    stopping_writer *w = user;
+    if (++w->calls == 3 && w->answer < 0) {
+        return w->answer;
+    }
+    gather(&w->g, t, micro, values, n_rows, n_columns);
+    return w->calls == 3 ? w->answer : 0;
+}
+
+static void check_block_writer_stopping_the_run(int answer)
+{
+    bouncing_pendulum p;
+    start_bouncing(&p, 1);
+    static stopping_writer w;
+    w = (stopping_writer){.answer = answer};
+    CHECK(ssx_add_block_observer(p.sys, 16, stop_at_third_block, &w) > 0);
+    CHECK_OK(p.sys, ssx_initialize(p.sys, 0.0));
+    CHECK(ssx_run(p.sys, 0.0, 1.0, 0.01) != 0);
+    CHECK(ssx_last_error(p.sys)->kind == SSX_ERROR_CALLBACK);
+    size_t n = ssx_history_length(p.sys);
+    CHECK(n == 1 + 2 * 16 && w.g.n == n);
+    CHECK(memcmp(w.g.t, ssx_history_time(p.sys), n * sizeof(double)) == 0);
+    CHECK(memcmp(w.g.values, ssx_history_values(p.sys, 0), n * PENDULUM_OUTPUTS * sizeof(double)) ==
+          0);
+    stop_bouncing(&p);
+}
+
 int main(void)
 {
     check_blocks();
+    check_block_writer_stopping_the_run(-1);
+    check_block_writer_stopping_the_run(1);
     check_equal_to_history(1);
     check_equal_to_history(7);
     check_history_off();
