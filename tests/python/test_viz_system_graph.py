@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import shutil
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
@@ -195,3 +196,38 @@ def test_describe_reports_units_groups_order_and_loops() -> None:
         "Algebraic loops:",
         "  * Gain, Sum: Sum.y -> Gain.u; Gain.y -> Sum.u",
     ]
+
+
+HOSTILE_NAMES = ("<A>", "B\\", 'C"q', "<D\\>", "E\\n")
+
+
+def test_names_with_dot_syntax_are_drawn_as_they_are() -> None:
+    """Before: graphviz's "syntax error" for a name in <...> (read as an HTML label) or with a
+    trailing backslash (which escaped the closing quote)."""
+    components = {name: Component("<G>\\", [real(f"in{name}", "in")], [real(f"out{name}", "out")])
+                  for name in HOSTILE_NAMES}
+    links = [Link(a, f"out{a}", b, f"in{b}")
+             for a, b in itertools.pairwise(HOSTILE_NAMES)]
+    svg = system_svg(System("<S>\\", components, links, []))
+    root = ET.fromstring(svg)
+    nodes = {g.get("id") for g in root.iter(f"{SVG}g") if g.get("class") == "node"}
+    assert nodes == {f"component:{name}" for name in HOSTILE_NAMES}
+    assert set(edges_by_id(svg)) == {f"connection:{c.src_comp}.{c.src_port}->{c.dst_comp}."
+                                     f"{c.dst_port}" for c in links}
+    all_text = texts(root)
+    for name in HOSTILE_NAMES:
+        assert name in all_text and f"out{name}" in all_text
+    assert "<G>\\" in all_text and any(text.startswith("<S>\\") for text in all_text)
+
+
+def test_a_drawing_dot_refuses_is_a_runtime_error_a_display_catches(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    import graphviz
+
+    def refuse(*args: object, **kwargs: object) -> str:
+        raise graphviz.CalledProcessError(1, ["dot"], stderr="syntax error in line 1")
+
+    monkeypatch.setattr(graphviz.Digraph, "pipe", refuse)
+    with pytest.raises(RuntimeError, match="Graphviz's dot could not draw 'Demo <system>': "
+                                           "syntax error in line 1"):
+        system_svg(sample_system())

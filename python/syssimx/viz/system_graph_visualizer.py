@@ -77,6 +77,9 @@ def system_svg(system: Any) -> str:
         return drawing.pipe(format="svg", encoding="utf-8")
     except graphviz.ExecutableNotFound as error:
         raise RuntimeError(_NO_DOT) from error
+    except graphviz.CalledProcessError as error:  # a RuntimeError, which a display catches
+        raise RuntimeError(f"Graphviz's dot could not draw {getattr(system, 'name', '')!r}: "
+                           f"{error.stderr}") from error
 
 
 _NO_DOT = "drawing a system needs Graphviz's 'dot' program on PATH (e.g. apt install graphviz)"
@@ -90,6 +93,12 @@ def _render(drawing: graphviz.Digraph, stem: Path, format: str, keep_source: boo
     except graphviz.ExecutableNotFound as error:
         raise RuntimeError(_NO_DOT) from error
     return Path(rendered)
+
+
+def _literal(text: str) -> str:
+    """A name as a DOT attribute's text, shown as it is: a backslash is no escape (a trailing
+    one would swallow the closing quote) and "<...>" no HTML label."""
+    return graphviz.escape(text)
 
 
 class _SystemDrawing:
@@ -115,9 +124,9 @@ class _SystemDrawing:
 
     def draw(self) -> graphviz.Digraph:
         title = str(getattr(self.system, "name", "") or "system")
-        drawing = graphviz.Digraph(name=title)
+        drawing = graphviz.Digraph(name=_literal(title))
         drawing.attr(rankdir="LR", fontname="Helvetica", labelloc="t",
-                     label=f"{title}\n{LEGEND}", fontsize="11")
+                     label=_literal(f"{title}\n{LEGEND}"), fontsize="11")
         drawing.attr("node", shape="plaintext", fontname="Helvetica", fontsize="10")
         drawing.attr("edge", fontname="Helvetica", fontsize="9", color=DATA_COLOR)
         self._add_components(drawing)
@@ -136,8 +145,8 @@ class _SystemDrawing:
         for index, (group, members) in enumerate(groups.items()):
             fill = GROUP_FILLS[index % len(GROUP_FILLS)]
             with drawing.subgraph(name=f"cluster_{index}") as cluster:
-                cluster.attr(label=group, style="rounded,filled", fillcolor=fill,
-                             color="#a0a0a0", id=f"group:{group}")
+                cluster.attr(label=_literal(group), style="rounded,filled", fillcolor=fill,
+                             color="#a0a0a0", id=_literal(f"group:{group}"))
                 for name in members:
                     self._add_component(cluster, name, fill="#ffffff")
 
@@ -159,7 +168,8 @@ class _SystemDrawing:
             f'<<TABLE BORDER="1" CELLBORDER="0" CELLSPACING="0" CELLPADDING="3" '
             f'COLOR="{border}" BGCOLOR="{fill}">{"".join(rows)}</TABLE>>'
         )
-        drawing.node(self.node_ids[name], label=label, id=f"component:{name}", tooltip=name)
+        drawing.node(self.node_ids[name], label=label, id=_literal(f"component:{name}"),
+                     tooltip=_literal(name))
 
     def _port_cell(self, component: str, direction: str, spec: Any) -> str:
         align = "LEFT" if direction == "in" else "RIGHT"
@@ -184,7 +194,8 @@ class _SystemDrawing:
             src_spec = self.components[c.src_comp].output_specs.get(c.src_port)
             dst_spec = self.components[c.dst_comp].input_specs.get(c.dst_port)
             attributes = {
-                "id": f"connection:{c.src_comp}.{c.src_port}->{c.dst_comp}.{c.dst_port}",
+                "id": _literal(f"connection:{c.src_comp}.{c.src_port}->{c.dst_comp}."
+                               f"{c.dst_port}"),
                 "class": "loop" if key in in_loop else "data",
                 "label": connection_unit_label(src_spec, dst_spec) or "",
             }
@@ -198,7 +209,7 @@ class _SystemDrawing:
             drawing.edge(
                 self._endpoint(c.src_comp, "out", c.src_port),
                 self._endpoint(c.dst_comp, "in", c.dst_port),
-                id=f"event:{c.src_comp}.{c.src_port}->{c.dst_comp}.{c.dst_port}",
+                id=_literal(f"event:{c.src_comp}.{c.src_port}->{c.dst_comp}.{c.dst_port}"),
                 **{"class": "event"},
                 color=EVENT_COLOR,
                 fontcolor=EVENT_COLOR,
