@@ -7,12 +7,14 @@ import pytest
 from fixture_fmus import fmu_path
 from syssimx import (
     AlgebraicLoopError,
+    Connection,
     FMUComponent,
     GaussSeidelAlgorithm,
     HybridAlgorithm,
     JacobiAlgorithm,
     SimulationError,
     System,
+    fmus,
 )
 from syssimx.engine import defaults, enum_values
 
@@ -55,6 +57,9 @@ def non_finite_system(name: str) -> System:
     broken.set_inputs({"u": 2.0})
     system = System("S")
     system.add_component(broken)
+    # a NaN stops the run where it reaches an input
+    system.add_component(FMUComponent("G", fmus.path("gain")))
+    system.add_connection(Connection(name, "y", "G", "u", convert_units=False))
     system.initialize(0.0)
     return system
 

@@ -18,7 +18,7 @@ from fixture_fmus import fmu_path
 pytest.importorskip("distributed")
 pytest.importorskip("xarray")
 import pendulum_wall
-from syssimx import FMUComponent, System, fmus
+from syssimx import Connection, FMUComponent, System, fmus
 from syssimx.ensemble import sweep
 from syssimx.ensemble.cluster import ensemble_client
 from syssimx.ensemble.runner import chunk_size
@@ -35,11 +35,14 @@ def client() -> Iterator[object]:
 
 def failing_system() -> System:
     """The failing FMU (y = u) fed a constant input: it fails after fail_time as `failure`
-    says (0 error, 1 fatal, 2 discard, 3 read failure, 4 NaN)."""
+    says (0 error, 1 fatal, 2 discard, 3 read failure, 4 NaN, which stops the run where it
+    reaches an input: y feeds a gain)."""
     failing = FMUComponent("F", fmu_path("failing"))
     failing.set_inputs({"u": 2.0})
     system = System("failing")
     system.add_component(failing)
+    system.add_component(FMUComponent("G", fmus.path("gain")))
+    system.add_connection(Connection("F", "y", "G", "u", convert_units=False))
     return system
 
 

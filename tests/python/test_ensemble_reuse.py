@@ -14,6 +14,7 @@ import pendulum_wall
 import pytest
 from fixture_fmus import fmu_path
 from syssimx import (
+    Connection,
     CoSimComponent,
     FMUComponent,
     JacobiAlgorithm,
@@ -93,11 +94,14 @@ def test_coupled_pendulums_varying_two_components_on_one_system() -> None:
 
 def failing_system() -> System:
     """The failing FMU (y = u) fed a constant input: it fails after fail_time as `failure`
-    says (0 error, 1 fatal, 2 discard, 3 read failure, 4 NaN)."""
+    says (0 error, 1 fatal, 2 discard, 3 read failure, 4 NaN, which stops the run where it
+    reaches an input: y feeds a gain)."""
     failing = FMUComponent("F", fmu_path("failing"))
     failing.set_inputs({"u": 2.0})
     system = System("failing")
     system.add_component(failing)
+    system.add_component(FMUComponent("G", fmus.path("gain")))
+    system.add_connection(Connection("F", "y", "G", "u", convert_units=False))
     return system
 
 
