@@ -4,6 +4,7 @@ the temporary folder. Unsupported elements: one SSPWarning each, naming it."""
 from __future__ import annotations
 
 import re
+import shutil
 import stat
 import tempfile
 import warnings
@@ -12,6 +13,7 @@ from pathlib import Path
 
 import pytest
 from ssp_archive import ssd, write_ssp
+from syssimx import fmus
 from syssimx.ssp import SSPError, SSPWarning, load
 
 MASS = """<ssd:Component name="Mass" source="resources/sliding_mass.fmu">
@@ -195,3 +197,35 @@ def test_a_source_outside_the_archive_is_refused(tmp_path: Path, source: str) ->
                                                  f"'Far'> (line 3): source {source!r} lies "
                                                  "outside the archive")):
         load(path)
+
+
+@pytest.mark.parametrize("kind", ["FMU", "SSV"])
+def test_a_plain_ssd_refuses_an_absolute_source(tmp_path: Path, kind: str) -> None:
+    """Before: a plain .ssd read an FMU or .ssv by its absolute path, from any folder."""
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    shutil.copy(fmus.path("sliding_mass"), elsewhere / "sliding_mass.fmu")
+    (elsewhere / "p.ssv").write_text(
+        '<ssv:ParameterSet xmlns:ssv="http://ssp-standard.org/SSP1/'
+        'SystemStructureParameterValues" version="1.0" name="p"><ssv:Parameters/>'
+        '</ssv:ParameterSet>')
+    folder = tmp_path / "system"
+    (folder / "resources").mkdir(parents=True)
+    shutil.copy(fmus.path("sliding_mass"), folder / "resources" / "sliding_mass.fmu")
+    source = str(elsewhere / ("sliding_mass.fmu" if kind == "FMU" else "p.ssv"))
+    mass = MASS.format(connectors=X_OUTPUT)
+    if kind == "FMU":
+        mass = mass.replace("resources/sliding_mass.fmu", source)
+        bindings, element = "", "<Component 'Mass'> (line 3)"
+    else:
+        bindings = (f'<ssd:ParameterBindings><ssd:ParameterBinding source="{source}"/>'
+                    '</ssd:ParameterBindings>')
+        element = "<ParameterBinding> (line 3)"
+    path = folder / "SystemStructure.ssd"
+    path.write_text(ssd(f'<ssd:System name="s">{bindings}<ssd:Elements>{mass}</ssd:Elements>'
+                        '</ssd:System>'))
+    with pytest.raises(SSPError) as caught:
+        load(path)
+    assert str(caught.value) == (f"{path}: {element}: source {source!r} is an absolute path; "
+                                 "syssimx reads references relative to the system structure's "
+                                 "folder only")

@@ -66,6 +66,9 @@ def resolve(package: Package, reference: str, where: str) -> Path:
     target = (package.base / reference).resolve()
     if package.temporary is not None and not target.is_relative_to(package.base.resolve()):
         raise SSPError(f"{where}: source {reference!r} lies outside the archive")
+    if reference.startswith(("/", "\\")):
+        raise SSPError(f"{where}: source {reference!r} is an absolute path; syssimx reads "
+                       "references relative to the system structure's folder only")
     if not target.is_file():
         raise SSPError(f"{where}: source {reference!r} not found"
                        + (" in the archive" if package.temporary is not None else ""))
