@@ -99,7 +99,7 @@ class EnsembleResult:
 
         count = len(self.members)
         time, micro, outputs = self.members.padded(self.output_names)
-        event_time, event_micro, event_source = self.members.events()
+        event_time, event_micro, event_source = _at_least_one_event(*self.members.events())
         member_vars: dict[str, Any] = {
             **{name: ("member", self.members.text(name))
                for name in ("status", "error", "termination", "worker")},
@@ -215,19 +215,22 @@ class EnsembleResult:
         return target
 
     def _netcdf_dataset(self) -> Any:
-        """netCDF holds fixed-width strings, not Python objects; scipy's netCDF reader fails
-        on a variable of an empty dimension, so without events the event variables are left
-        out."""
+        """netCDF holds fixed-width strings, not Python objects; a name NetCDF or scipy cannot
+        hold as it is (a '/', a line break, beyond ASCII) is encoded, itself kept as the
+        variable's long_name (streaming.netcdf_names)."""
+        from ..streaming.netcdf_names import netcdf_name
+
         dataset = self.dataset.copy()
-        if dataset.sizes["event"] == 0:
-            dataset = dataset.drop_vars(["event_time", "event_micro", "event_source"])
-        for name in ("status", "error", "termination", "worker",
-                     *dataset.data_vars.keys() & {"event_source"}):
+        for name in ("status", "error", "termination", "worker", "event_source"):
             dataset[name] = dataset[name].astype(str)
         for name in self.parameters:
             if dataset[name].dtype == object:
                 dataset[name] = dataset[name].astype(str)
-        return dataset
+        encoded = {name: netcdf_name(str(name)) for name in dataset.variables}
+        for name, written in encoded.items():
+            if written != name:
+                dataset[name].attrs["long_name"] = name
+        return dataset.rename({n: w for n, w in encoded.items() if w != n})
 
 
 def netcdf_engine() -> str:
@@ -239,6 +242,18 @@ def netcdf_engine() -> str:
             return engine
     raise MissingDependencyError(f"writing .nc files needs scipy (or h5netcdf): "
                                  f"{install_hint('scipy')}", name="scipy")
+
+
+def _at_least_one_event(time: np.ndarray, micro: np.ndarray, source: np.ndarray
+                        ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """member x event arrays with one event column at least, empty (NaN, -1, "") where no
+    member had an event: NetCDF readers (scipy's, and xarray through it) cannot reopen a
+    variable of an empty dimension, and `dataset.to_netcdf()` is the user's own call."""
+    if time.shape[1] > 0:
+        return time, micro, source
+    members = time.shape[0]
+    return (np.full((members, 1), np.nan), np.full((members, 1), -1, dtype=micro.dtype),
+            np.full((members, 1), "", dtype=source.dtype))
 
 
 def _grid(t0: float, tf: float, dt: float) -> np.ndarray:

@@ -1,9 +1,10 @@
-"""Streaming a run to CSV: one header line (time, micro, then component.output), one line per
-sample, every float written with 17 significant digits so that reading it back gives the same
-doubles."""
+"""Streaming a run to CSV: one header line (time, micro, then component.output, quoted where a
+name holds a comma, a quote or a line break), one line per sample, every float written with 17
+significant digits so that reading it back gives the same doubles."""
 
 from __future__ import annotations
 
+import csv
 from pathlib import Path
 from typing import IO
 
@@ -18,7 +19,8 @@ class CsvWriter:
 
     def open(self, path: Path, columns: list[str]) -> None:
         self._file = open(path, "w", encoding="utf-8", newline="")
-        self._file.write(",".join([TIME, MICRO, *columns]) + "\n")
+        # quoted as the csv module quotes: a port named "a[1,2]" stays one column
+        csv.writer(self._file, lineterminator="\n").writerow([TIME, MICRO, *columns])
 
     def write(self, t: np.ndarray, micro: np.ndarray, values: np.ndarray) -> None:
         assert self._file is not None, "open() first"

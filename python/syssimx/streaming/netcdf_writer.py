@@ -1,8 +1,9 @@
 """Streaming a run to NetCDF (the classic format, 64-bit offset version, readable by xarray,
 scipy, netCDF4 and every NetCDF tool): one unlimited dimension `sample`, a variable per value
-(time, micro, then component.output). A classic file stores the record variables interleaved,
-one record per sample, so a block of samples is appended as it comes; the record count in the
-header is written when the file is closed.
+(time, micro, then component.output, encoded where the format or a reader needs it: see
+netcdf_names). A classic file stores the record variables interleaved, one record per sample,
+so a block of samples is appended as it comes; the record count in the header is written when
+the file is closed.
 
 Written here from the format's specification (NetCDF Classic and 64-bit Offset Format), so
 that it needs nothing beyond numpy.
@@ -16,11 +17,12 @@ from typing import IO
 
 import numpy as np
 
+from .netcdf_names import netcdf_name
 from .writer import MICRO, TIME
 
 _MAGIC = b"CDF\x02"  # 64-bit offset: files over 2 GiB
-_NC_DIMENSION, _NC_VARIABLE = 0x0A, 0x0B
-_NC_INT, _NC_DOUBLE = 4, 6
+_NC_DIMENSION, _NC_VARIABLE, _NC_ATTRIBUTE = 0x0A, 0x0B, 0x0C
+_NC_CHAR, _NC_INT, _NC_DOUBLE = 2, 4, 6
 _ABSENT = struct.pack(">ii", 0, 0)
 _NUMRECS_AT = 4  # bytes into the file
 
@@ -28,6 +30,16 @@ _NUMRECS_AT = 4  # bytes into the file
 def _name(text: str) -> bytes:
     raw = text.encode("utf-8")
     return struct.pack(">i", len(raw)) + raw + b"\0" * (-len(raw) % 4)
+
+
+def _attributes(name: str, written: str) -> bytes:
+    """A variable's attributes: none, or `long_name`, the name itself where it is written
+    encoded (see netcdf_names)."""
+    if written == name:
+        return _ABSENT
+    text = name.encode("utf-8")
+    return (struct.pack(">ii", _NC_ATTRIBUTE, 1) + _name("long_name") +
+            struct.pack(">ii", _NC_CHAR, len(text)) + text + b"\0" * (-len(text) % 4))
 
 
 class NetcdfWriter:
@@ -49,8 +61,9 @@ class NetcdfWriter:
         entries = []
         for name, kind in zip(names, types, strict=True):
             size = 4 if kind == _NC_INT else 8
-            entries.append((_name(name) + struct.pack(">ii", 1, 0) + _ABSENT +
-                            struct.pack(">ii", kind, size), size))
+            written = netcdf_name(name)
+            entries.append((_name(written) + struct.pack(">ii", 1, 0) +
+                            _attributes(name, written) + struct.pack(">ii", kind, size), size))
         header_size = len(header) + sum(len(entry) + 8 for entry, _ in entries)
         offset = header_size
         for entry, size in entries:
