@@ -48,6 +48,12 @@ typedef struct ssx_component_ops {
     /* After initialization: unconnected inputs whose start is NaN take the value the
      * component holds (an FMU's own start). NULL: every start is given. */
     int (*adopt_inputs)(ssx_system *sys, ssx_component *c, double t0);
+    /* The system's initialization of a component left in initialization mode (an FMU started
+     * by ssx_fmu_enter_initialization). Both write its driven inputs there; initial_outputs
+     * then reads its outputs where its standard allows, leave_initialization makes it leave.
+     * Once it left, both do nothing. NULL: the kind has no such mode. */
+    int (*initial_outputs)(ssx_system *sys, ssx_component *c, double t0);
+    int (*leave_initialization)(ssx_system *sys, ssx_component *c, double t0);
     /* d outputs / d inputs (value references) in the direction seed, into out, as the
      * component stands at t; fails with the error set. NULL: the kind cannot tell. */
     int (*directional_derivative)(ssx_system *sys, ssx_component *c, const unsigned int *outputs,

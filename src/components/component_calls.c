@@ -103,6 +103,25 @@ int component_initialize(ssx_system *sys, ssx_component *c, double t0)
     return c->hooks.initialize(c->hooks.user, t0) == 0 ? 0 : fail_hook(sys, c, t0, "initialize");
 }
 
+int component_initial_outputs(ssx_system *sys, ssx_component *c, double t0)
+{
+    if (c->hooks.evaluate_outputs == NULL && c->ops->initial_outputs != NULL) {
+        return c->ops->initial_outputs(sys, c, t0);
+    }
+    return component_evaluate_outputs(sys, c, t0);
+}
+
+int component_start(ssx_system *sys, ssx_component *c, double t0)
+{
+    if (c->ops->leave_initialization != NULL && c->ops->leave_initialization(sys, c, t0) != 0) {
+        return -1;
+    }
+    if (component_initialize(sys, c, t0) != 0) {
+        return -1;
+    }
+    return c->ops->adopt_inputs != NULL ? c->ops->adopt_inputs(sys, c, t0) : 0;
+}
+
 int component_record(ssx_system *sys, ssx_component *c, double t)
 {
     if (c->hooks.record == NULL) {

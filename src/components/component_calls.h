@@ -19,6 +19,13 @@ int component_restore(ssx_system *sys, ssx_component *c, int slot, double t);
 int component_handle_events(ssx_system *sys, ssx_component *c, const int *sources, int n,
                             double t_event, double t);
 int component_initialize(ssx_system *sys, ssx_component *c, double t0);
+/* At ssx_initialize, its driven inputs set: its outputs at t0 while it may still be in
+ * initialization mode (a hook evaluates them, else the kind's initial_outputs, else
+ * evaluate_outputs). */
+int component_initial_outputs(ssx_system *sys, ssx_component *c, double t0);
+/* At ssx_initialize, its driven inputs set: it leaves initialization mode with them (when its
+ * kind has one), its initialize hook runs and its unset inputs adopt the values it holds. */
+int component_start(ssx_system *sys, ssx_component *c, double t0);
 int component_record(ssx_system *sys, ssx_component *c, double t);
 int component_can_roll_back(const ssx_component *c);
 

@@ -472,6 +472,71 @@ int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0)
     return 0;
 }
 
+/* The driven inputs in initialization mode, one call each: an input with no driver keeps what
+ * the FMU was given (its NaN start, the FMU's own value, is not read until it leaves). */
+static int write_driven_inputs(ssx_system *sys, ssx_component *c, double t0)
+{
+    fmu_component_data *d = fmu_data(c);
+    for (int k = 0; k < c->n_inputs; ++k) {
+        if (c->input_driver[k] < 0) {
+            continue;
+        }
+        unsigned int vr = c->input_ports[k].vr;
+        ssx_value_type type = c->input_ports[k].type;
+        double value = c->inputs[k];
+        if (type == SSX_STRING) {
+            const char *text = input_text(sys, c, k, t0);
+            int status = text != NULL ? ssx_fmu_set_string(d->fmu, &vr, 1, &text) : 0;
+            if (text == NULL || !fmi_ok(status)) {
+                return text == NULL ? -1 : fmi_failed(sys, c, t0, status, SLOT_SET_STRING);
+            }
+            continue;
+        }
+        if (type == SSX_INTEGER && !(value > INT_MIN - 0.5 && value < INT_MAX + 0.5)) {
+            return integer_out_of_range(sys, c, vr, value);
+        }
+        int discrete = type == SSX_BOOLEAN ? (value != 0.0)
+                                           : (int)(value < 0 ? value - 0.5 : value + 0.5);
+        int status = type == SSX_REAL      ? ssx_fmu_set_real(d->fmu, &vr, 1, &value)
+                     : type == SSX_INTEGER ? ssx_fmu_set_integer(d->fmu, &vr, 1, &discrete)
+                                           : ssx_fmu_set_boolean(d->fmu, &vr, 1, &discrete);
+        if (!fmi_ok(status)) {
+            return fmi_failed(sys, c, t0, status,
+                              type == SSX_REAL      ? SLOT_SET_REAL
+                              : type == SSX_INTEGER ? SLOT_SET_INTEGER
+                                                    : SLOT_SET_BOOLEAN);
+        }
+    }
+    return 0;
+}
+
+int fmu_component_initial_outputs(ssx_system *sys, ssx_component *c, double t0)
+{
+    fmu_component_data *d = fmu_data(c);
+    if (!ssx_fmu_in_initialization_mode(d->fmu)) {
+        return 0;
+    }
+    if (write_driven_inputs(sys, c, t0) != 0) {
+        return -1;
+    }
+    /* FMI 1.0 computes its outputs in its initializing call: there are none to read before */
+    return ssx_fmu_reads_in_initialization_mode(d->fmu) ? fmu_component_read_outputs_at(sys, c, t0)
+                                                         : 0;
+}
+
+int fmu_component_leave_initialization(ssx_system *sys, ssx_component *c, double t0)
+{
+    fmu_component_data *d = fmu_data(c);
+    if (!ssx_fmu_in_initialization_mode(d->fmu)) {
+        return 0;
+    }
+    if (write_driven_inputs(sys, c, t0) != 0) {
+        return -1;
+    }
+    int status = ssx_fmu_exit_initialization_mode(d->fmu);
+    return fmi_ok(status) ? 0 : fmi_failed(sys, c, t0, status, SLOT_EXIT_INITIALIZATION_MODE);
+}
+
 int fmu_component_directional_derivative(ssx_system *sys, ssx_component *c,
                                          const unsigned int *outputs, size_t n_outputs,
                                          const unsigned int *inputs, size_t n_inputs,
@@ -821,6 +886,8 @@ const ssx_component_ops ssx_fmu_component_ops = {
     .restore = fmu_restore,
     .release = fmu_release,
     .adopt_inputs = fmu_component_adopt_inputs,
+    .initial_outputs = fmu_component_initial_outputs,
+    .leave_initialization = fmu_component_leave_initialization,
     .directional_derivative = fmu_component_directional_derivative,
     .shared_with_threads = fmu_component_instance,
     .prepare = fmu_component_prepare,

@@ -37,6 +37,9 @@ typedef struct {
      * uses */
     int tolerance_defined;
     double tolerance;
+    /* between a completed enterInitializationMode and the exitInitializationMode after it */
+    int in_initialization_mode;
+    int reads_in_initialization_mode; /* see ssx_fmu_reads_in_initialization_mode */
     /* FMU states handed out by the live instance, freed with it */
     void **states;
     size_t n_states;
@@ -292,6 +295,7 @@ ssx_fmu *ssx_fmu_load(const ssx_fmu_load_spec *spec, char *error, size_t error_s
         return NULL;
     }
     fmu->rest->logging_on = spec->logging_on;
+    fmu->rest->reads_in_initialization_mode = spec->version != SSX_FMI1;
     if (backend->prepare != NULL &&
         backend->prepare(fmu->rest->context, spec, error, error_size) != 0) {
         ssx_fmu_free(fmu);
@@ -502,6 +506,7 @@ int ssx_fmu_instantiate(ssx_fmu *fmu)
     /* a state the old instance fails to free is its leak, not a reason to refuse a new one */
     (void)ssx_fmu_free_instance(fmu);
     fmu->rest->environment.last_message[0] = '\0';
+    fmu->rest->in_initialization_mode = 0;
     binding_rest *rest = fmu->rest;
     fmu->instance = fmu->backend->instantiate(fmu->fn, rest->context, &rest->environment,
                                               rest->instance_name, rest->guid,
@@ -532,12 +537,29 @@ int ssx_fmu_setup_experiment(ssx_fmu *fmu, int tolerance_defined, double toleran
 
 int ssx_fmu_enter_initialization_mode(ssx_fmu *fmu)
 {
-    return CHECKED0(fmu, SLOT_ENTER_INITIALIZATION_MODE, enter_initialization_mode);
+    int status = CHECKED0(fmu, SLOT_ENTER_INITIALIZATION_MODE, enter_initialization_mode);
+    if (status == 0 || status == 1) { /* OK or Warning */
+        fmu->rest->in_initialization_mode = 1;
+    }
+    return status;
 }
 
 int ssx_fmu_exit_initialization_mode(ssx_fmu *fmu)
 {
+    if (fmu != NULL) {
+        fmu->rest->in_initialization_mode = 0; /* whatever it answers, it is not asked again */
+    }
     return CHECKED0(fmu, SLOT_EXIT_INITIALIZATION_MODE, exit_initialization_mode);
+}
+
+int ssx_fmu_in_initialization_mode(const ssx_fmu *fmu)
+{
+    return fmu->rest->in_initialization_mode;
+}
+
+int ssx_fmu_reads_in_initialization_mode(const ssx_fmu *fmu)
+{
+    return fmu->rest->reads_in_initialization_mode;
 }
 
 int ssx_fmu_reset(ssx_fmu *fmu)
@@ -545,6 +567,7 @@ int ssx_fmu_reset(ssx_fmu *fmu)
     int status = CHECKED0(fmu, SLOT_RESET, reset);
     if (status == 0 || status == 1) { /* OK or Warning */
         fmu->starts++;
+        fmu->rest->in_initialization_mode = 0;
     }
     return status;
 }

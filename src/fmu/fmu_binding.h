@@ -63,6 +63,12 @@ int ssx_fmu_get_number_of_event_indicators(ssx_fmu *fmu, size_t *n);
 int ssx_fmu_experiment_tolerance(const ssx_fmu *fmu, double *tolerance);
 /* Whether the FMU was loaded for Model Exchange. */
 int ssx_fmu_is_model_exchange(const ssx_fmu *fmu);
+/* Whether the live instance entered initialization mode and has not been asked to leave it
+ * (FMI 1.0: is instantiated, its initializing call not made yet). */
+int ssx_fmu_in_initialization_mode(const ssx_fmu *fmu);
+/* Whether its standard lets values be read in initialization mode (FMI 1.0 computes them in
+ * its initializing call). */
+int ssx_fmu_reads_in_initialization_mode(const ssx_fmu *fmu);
 
 /* An isolated FMU's host process (to watch a run's calls), NULL when the binary runs here. */
 ssx_remote *ssx_fmu_remote(const ssx_fmu *fmu);

@@ -1,5 +1,6 @@
 /* FMU initialization as one call: the sequence every user of an FMU repeats (the Python
- * component, the engine's tests), written once. */
+ * component, the engine's tests), written once; or all of it but leaving initialization mode,
+ * which a system does once the connected inputs are given (ssx_initialize). */
 #include <stddef.h>
 
 #include "syssimx_engine.h"
@@ -42,25 +43,35 @@ static int start_instance(ssx_fmu *fmu)
     return ssx_fmu_instantiate(fmu);
 }
 
-int ssx_fmu_initialize(ssx_fmu *fmu, const ssx_fmu_experiment *experiment,
-                       const ssx_fmu_values *starts, int (*in_initialization_mode)(void *user),
-                       void *user)
+int ssx_fmu_enter_initialization(ssx_fmu *fmu, const ssx_fmu_experiment *experiment,
+                                 const ssx_fmu_values *starts,
+                                 int (*in_initialization_mode)(void *user), void *user)
 {
     if (fmu == NULL || experiment == NULL) {
         return -1;
     }
     const ssx_fmu_experiment *e = experiment;
     int highest = 0;
-    if (!went_on(start_instance(fmu), &highest) ||
-        !went_on(ssx_fmu_setup_experiment(fmu, e->tolerance_defined, e->tolerance, e->start_time,
-                                          e->stop_time_defined, e->stop_time),
-                 &highest) ||
-        !went_on(ssx_fmu_enter_initialization_mode(fmu), &highest) ||
-        (starts != NULL && !write_starts(fmu, starts, &highest)) ||
-        (in_initialization_mode != NULL &&
-         !went_on(in_initialization_mode(user) == 0 ? 0 : -1, &highest))) {
-        return highest;
+    /* each call only while the ones before it went on */
+    (void)(went_on(start_instance(fmu), &highest) &&
+           went_on(ssx_fmu_setup_experiment(fmu, e->tolerance_defined, e->tolerance,
+                                            e->start_time, e->stop_time_defined, e->stop_time),
+                   &highest) &&
+           went_on(ssx_fmu_enter_initialization_mode(fmu), &highest) &&
+           (starts == NULL || write_starts(fmu, starts, &highest)) &&
+           (in_initialization_mode == NULL ||
+            went_on(in_initialization_mode(user) == 0 ? 0 : -1, &highest)));
+    return highest;
+}
+
+int ssx_fmu_initialize(ssx_fmu *fmu, const ssx_fmu_experiment *experiment,
+                       const ssx_fmu_values *starts, int (*in_initialization_mode)(void *user),
+                       void *user)
+{
+    int highest = ssx_fmu_enter_initialization(fmu, experiment, starts, in_initialization_mode,
+                                               user);
+    if (highest == 0 || highest == 1) {
+        (void)went_on(ssx_fmu_exit_initialization_mode(fmu), &highest);
     }
-    (void)went_on(ssx_fmu_exit_initialization_mode(fmu), &highest);
     return highest;
 }

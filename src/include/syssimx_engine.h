@@ -210,6 +210,12 @@ typedef struct {
 int ssx_fmu_initialize(ssx_fmu *fmu, const ssx_fmu_experiment *experiment,
                        const ssx_fmu_values *starts, int (*in_initialization_mode)(void *user),
                        void *user);
+/* ssx_fmu_initialize without its last call: the instance stays in initialization mode, for
+ * ssx_initialize to give it its connected inputs and make it leave (the system's
+ * initial-value problem). */
+int ssx_fmu_enter_initialization(ssx_fmu *fmu, const ssx_fmu_experiment *experiment,
+                                 const ssx_fmu_values *starts,
+                                 int (*in_initialization_mode)(void *user), void *user);
 int ssx_fmu_instantiate(ssx_fmu *fmu); /* a live instance is freed first */
 int ssx_fmu_free_instance(ssx_fmu *fmu);
 int ssx_fmu_setup_experiment(ssx_fmu *fmu, int tolerance_defined, double tolerance,
@@ -576,9 +582,13 @@ int ssx_set_allow_non_finite(ssx_system *sys, int allow);
 int ssx_non_finite_outputs(const ssx_system *sys, int *components, int *outputs, double *times,
                            int max);
 
-/* initialize: the components are already initialized (each FMU by ssx_fmu_initialize); this
- * reads outputs, applies connections (solving loops), clears and starts
- * the history with the sample at t0 and evaluates the indicators. */
+/* initialize: the components are initialized, each FMU by ssx_fmu_initialize or left in
+ * initialization mode by ssx_fmu_enter_initialization. In schedule order, each component's
+ * driven inputs take its drivers' outputs at t0 (converted by the connections); an FMU still in
+ * initialization mode is given them there and then leaves it (an algebraic loop's members are
+ * iterated there first where their standard lets outputs be read, FMI 2.0 and 3.0), so that
+ * what it computes on leaving sees them. Then its outputs are read, loops solved, the history
+ * cleared and started with the sample at t0 and the indicators evaluated. */
 int ssx_initialize(ssx_system *sys, double t0);
 /* run from the current time t0 to tf on the grid t0 + k*dt (the last point is exactly tf),
  * plus event instants. Recorded samples stay readable after a failure. */

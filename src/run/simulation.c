@@ -81,12 +81,8 @@ int ssx_initialize(ssx_system *sys, double t0)
                 c->inputs[k] = c->input_starts[k];
             }
         }
-        if (component_initialize(sys, c, t0) != 0 ||
-            (c->ops->adopt_inputs != NULL && c->ops->adopt_inputs(sys, c, t0) != 0)) {
-            return -1;
-        }
     }
-    if (coupling_settle(sys, t0) != 0 || recording_start(sys) != 0 ||
+    if (coupling_initialize(sys, t0) != 0 || recording_start(sys) != 0 ||
         indicators_evaluate(sys, t0) != 0) {
         return -1;
     }

@@ -2,6 +2,7 @@
  * (parallel_step.h). */
 #include "coupling.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 #include "algebraic_loop.h"
@@ -226,19 +227,211 @@ static int step_jacobi(ssx_system *sys, double t, double h)
     return 0;
 }
 
+/* One Gauss-Seidel sweep over a loop's members at t0: each one's driven inputs from the latest
+ * outputs, then its outputs (in initialization mode where it still is). Returns how far the
+ * inputs moved (NaN when one became NaN), or -1 on a failure. */
+static double initial_sweep(ssx_system *sys, const ssx_group *g, double t0)
+{
+    double moved = 0.0;
+    for (int m = 0; m < g->size; ++m) {
+        ssx_component *c = member(sys, g, m);
+        for (int i = 0; i < c->n_links; ++i) {
+            const ssx_input_link *link = &c->links[i];
+            double value = link->scale * *link->source + link->offset;
+            double change = fabs(value - c->inputs[link->input]);
+            moved = isnan(change) || change > moved ? change : moved;
+            c->inputs[link->input] = value;
+        }
+        if (component_initial_outputs(sys, c, t0) != 0) {
+            return -1.0;
+        }
+    }
+    return moved;
+}
+
+/* A loop's members, before they leave initialization mode, are swept until no input moves by
+ * more than the loop tolerance. Sweeps that stop contracting end early: the loop is solved once
+ * they left, as at any instant, and decides then. */
+static int iterate_initial_loop(ssx_system *sys, const ssx_group *g, double t0)
+{
+    double previous = INFINITY;
+    for (int sweep = 0; sweep < sys->loop.max_iterations; ++sweep) {
+        double moved = initial_sweep(sys, g, t0);
+        if (moved < 0.0) {
+            return -1;
+        }
+        if (moved <= sys->loop.tolerance || !(moved < previous)) {
+            return 0;
+        }
+        previous = moved;
+    }
+    return 0;
+}
+
+/* A group's outputs at t consistent with its inputs from the outputs as they are. */
+static int settle_group(ssx_system *sys, const ssx_group *g, double t)
+{
+    for (int m = 0; m < g->size; ++m) {
+        ssx_component *c = member(sys, g, m);
+        coupling_propagate_inputs(sys, c);
+        if (!g->is_loop && component_evaluate_outputs(sys, c, t) != 0) {
+            return -1;
+        }
+    }
+    return g->is_loop ? loop_solve(sys, g, t) : 0;
+}
+
+/* A group's members leave initialization mode with their driven inputs at t0: a loop is
+ * iterated there first; then each member's inputs are set and it starts, its outputs are
+ * evaluated, and a loop is solved as at any instant. */
+static int start_group(ssx_system *sys, const ssx_group *g, double t0)
+{
+    if (g->is_loop && iterate_initial_loop(sys, g, t0) != 0) {
+        return -1;
+    }
+    for (int m = 0; m < g->size; ++m) {
+        ssx_component *c = member(sys, g, m);
+        coupling_propagate_inputs(sys, c);
+        if (component_start(sys, c, t0) != 0 ||
+            (!g->is_loop && component_evaluate_outputs(sys, c, t0) != 0)) {
+            return -1;
+        }
+    }
+    return g->is_loop ? loop_solve(sys, g, t0) : 0;
+}
+
+/* The order in which the groups start: every driver before the groups it drives (an input's
+ * value at t0 is its driver's output once the driver left initialization mode: a 20-sim FMU
+ * computes its outputs as it leaves), whatever the schedule, which steps the consumer of a
+ * delayed output before its producer. Groups that drive one another through delayed outputs
+ * (a strongly connected set of the connections, Tarjan's algorithm) start in schedule order,
+ * which follows the outputs that depend on inputs at once. */
+typedef struct {
+    const ssx_system *sys;
+    int *group_of; /* each component's group */
+    int *number;   /* each group's visit number, -1 before its visit */
+    int *low;      /* the lowest visit number it reaches */
+    int *on_stack;
+    int *stack;
+    int depth;
+    int visits;
+    int *order; /* the start order, filled from the front */
+    int ordered;
+    int *drives_itself; /* each group's: a member's output drives a member, with a delay */
+    /* where each strongly connected set starts in order, and whether it drives itself (its
+     * first groups started from outputs of later ones) */
+    int *set_first;
+    int *set_cyclic;
+    int n_sets;
+} start_order;
+
+static int compare_groups(const void *a, const void *b)
+{
+    int x = *(const int *)a, y = *(const int *)b;
+    return (x > y) - (x < y);
+}
+
+static void visit(start_order *o, int gi)
+{
+    o->number[gi] = o->low[gi] = o->visits++;
+    o->stack[o->depth++] = gi;
+    o->on_stack[gi] = 1;
+    const ssx_group *g = &o->sys->groups[gi];
+    for (int m = 0; m < g->size; ++m) {
+        const ssx_component *c = o->sys->components[o->sys->order[g->first + m]];
+        for (int k = 0; k < c->n_inputs; ++k) {
+            if (c->input_driver[k] < 0) {
+                continue;
+            }
+            int driver = o->group_of[o->sys->connections[c->input_driver[k]].src_component];
+            o->drives_itself[gi] |= driver == gi && !g->is_loop;
+            if (o->number[driver] < 0) {
+                visit(o, driver);
+                o->low[gi] = o->low[driver] < o->low[gi] ? o->low[driver] : o->low[gi];
+            } else if (o->on_stack[driver] && o->number[driver] < o->low[gi]) {
+                o->low[gi] = o->number[driver];
+            }
+        }
+    }
+    if (o->low[gi] != o->number[gi]) {
+        return;
+    }
+    /* gi roots a strongly connected set, all of whose drivers are ordered already */
+    int first = o->ordered;
+    int member_group;
+    do {
+        member_group = o->stack[--o->depth];
+        o->on_stack[member_group] = 0;
+        o->order[o->ordered++] = member_group;
+    } while (member_group != gi);
+    qsort(&o->order[first], (size_t)(o->ordered - first), sizeof *o->order, compare_groups);
+    o->set_first[o->n_sets] = first;
+    o->set_cyclic[o->n_sets++] = o->ordered - first > 1 || o->drives_itself[gi];
+}
+
+/* Starts the groups of one strongly connected set, in order. In a set that drives itself the
+ * first groups started from outputs the later ones changed as they left initialization mode:
+ * the set is settled again, as at any instant. */
+static int start_set(ssx_system *sys, const int *groups, int n, int cyclic, double t0)
+{
+    for (int i = 0; i < n; ++i) {
+        if (start_group(sys, &sys->groups[groups[i]], t0) != 0) {
+            return -1;
+        }
+    }
+    for (int i = 0; i < n && cyclic; ++i) {
+        if (settle_group(sys, &sys->groups[groups[i]], t0) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int coupling_initialize(ssx_system *sys, double t0)
+{
+    input_order_forget(sys);
+    size_t n = (size_t)sys->n_groups;
+    int *arrays = malloc(((size_t)sys->n_components + 9 * n + 1) * sizeof *arrays);
+    if (arrays == NULL) {
+        return fail(sys, -1, -1, t0, "out of memory initializing system '%s'", sys->name);
+    }
+    start_order o = {.sys = sys, .group_of = arrays};
+    o.number = o.group_of + sys->n_components;
+    o.low = o.number + n;
+    o.on_stack = o.low + n;
+    o.stack = o.on_stack + n;
+    o.order = o.stack + n;
+    o.drives_itself = o.order + n;
+    o.set_first = o.drives_itself + n;
+    o.set_cyclic = o.set_first + n;
+    for (int gi = 0; gi < sys->n_groups; ++gi) {
+        o.number[gi] = -1;
+        o.on_stack[gi] = 0;
+        o.drives_itself[gi] = 0;
+        for (int m = 0; m < sys->groups[gi].size; ++m) {
+            o.group_of[sys->order[sys->groups[gi].first + m]] = gi;
+        }
+    }
+    for (int gi = 0; gi < sys->n_groups; ++gi) {
+        if (o.number[gi] < 0) {
+            visit(&o, gi);
+        }
+    }
+    int status = 0;
+    for (int set = 0; set < o.n_sets && status == 0; ++set) {
+        int end = set + 1 < o.n_sets ? o.set_first[set + 1] : o.ordered;
+        status = start_set(sys, &o.order[o.set_first[set]], end - o.set_first[set],
+                           o.set_cyclic[set], t0);
+    }
+    free(arrays);
+    return status;
+}
+
 int coupling_settle(ssx_system *sys, double t)
 {
     input_order_forget(sys); /* the outputs may jump here */
     for (int gi = 0; gi < sys->n_groups; ++gi) {
-        const ssx_group *g = &sys->groups[gi];
-        for (int m = 0; m < g->size; ++m) {
-            ssx_component *c = member(sys, g, m);
-            coupling_propagate_inputs(sys, c);
-            if (!g->is_loop && component_evaluate_outputs(sys, c, t) != 0) {
-                return -1;
-            }
-        }
-        if (g->is_loop && loop_solve(sys, g, t) != 0) {
+        if (settle_group(sys, &sys->groups[gi], t) != 0) {
             return -1;
         }
     }

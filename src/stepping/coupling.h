@@ -21,5 +21,10 @@ static inline int coupling_step(ssx_system *sys, double t, double h)
 }
 /* Makes all outputs at t consistent with the connections (zero-time evaluation, loops solved). */
 int coupling_settle(ssx_system *sys, double t);
+/* coupling_settle at ssx_initialize, the system's initial-value problem: drivers first, each
+ * component gets its driven inputs before it leaves initialization mode (component_start), so
+ * that what it computes on leaving sees them; an algebraic loop's members are iterated in that
+ * mode first. */
+int coupling_initialize(ssx_system *sys, double t0);
 
 #endif

@@ -27,8 +27,9 @@ def fixture_dir() -> Path:
 
 
 def fmu_path(name: str) -> str:
-    """The path of a test fixture (e.g. "failing", "terminating_fmi3") or a bundled FMU."""
-    if name.removesuffix("_fmi3") not in FIXTURES:
+    """The path of a test fixture (e.g. "failing", "terminating_fmi3", "hostile_ball_fmi1_me")
+    or a bundled FMU."""
+    if re.sub(r"_fmi(3|1|1_me)$", "", name) not in FIXTURES:
         return fmus.path(name)
     path = fixture_dir() / f"{name}.fmu"
     if not path.is_file():

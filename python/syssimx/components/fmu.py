@@ -111,6 +111,8 @@ class FMUComponent(CoSimComponent):
         self._declared_parameters = self.parameters.copy()
         self._parameters_set: set[str] = set()  # named in set_parameters: written even if equal
         self._input_starts = self.info.input_starts.copy()  # set_inputs changes the copy
+        if isolated:
+            self._drop_text_ports()
         self.inputs = self.input_specs.mapped(lambda _, spec: self._make_port(spec))
         self.outputs = self.output_specs.mapped(lambda _, spec: self._make_port(spec))
         self._inputs_set: set[str] = set()
@@ -127,6 +129,16 @@ class FMUComponent(CoSimComponent):
         self._finalizer = weakref.finalize(self, _release, lib().ssx_fmu_free, self.instance,
                                            self._unzip_dir, extraction_key)
         self._sync_ports()
+
+    def _drop_text_ports(self) -> None:
+        """The host process that runs an FMU apart forwards no String calls: its String
+        inputs and outputs are no ports (arrays are never String ones)."""
+        for specs in (self.input_specs, self.output_specs):
+            for name in [n for n, s in made_items(specs).items() if s.type == PortType.STRING]:
+                del specs[name]
+                self.direct_feedthrough.pop(name, None)
+        for inputs in self.direct_feedthrough.values():
+            inputs.intersection_update(self.input_specs)
 
     @property
     def _fmu(self) -> Any:
@@ -358,7 +370,12 @@ class FMUComponent(CoSimComponent):
             tolerance, f"{self.name}: the tolerance given to System.initialize")
         self._experiment_tolerance = _first_given(self.tolerance, system_tolerance,
                                                   self.info.default_tolerance)
-        self.reinitialize(t0)
+        if type(self).reinitialize is FMUComponent.reinitialize and self._binding is not None:
+            # the System's initialize gives the instance its connected inputs in
+            # initialization mode and makes it leave (the initial-value problem)
+            self._reinitialize(t0, {}, system_exits=True)
+        else:
+            self.reinitialize(t0)
         self._set_event_ports(t0, None)
         self._set_engine_restart()
 
@@ -369,6 +386,11 @@ class FMUComponent(CoSimComponent):
         exit. `start_values` (parameters, numbers or pint quantities) override `parameters`
         for this instance only, so a later System.initialize starts from the parameters the
         user set."""
+        self._reinitialize(t, start_values, system_exits=False)
+
+    def _reinitialize(self, t: float, start_values: dict[str, Any], system_exits: bool) -> None:
+        """reinitialize; system_exits: the instance stays in initialization mode for the
+        System's initialize to make it leave (its outputs are read then)."""
         saved, saved_set = self.parameters, self._parameters_set
         overrides = {}
         for name, value in start_values.items():
@@ -384,22 +406,24 @@ class FMUComponent(CoSimComponent):
             self.parameters.update(overrides)
             self._parameters_set = saved_set | set(overrides)
             try:
-                self._initialize_instance(t)
+                self._initialize_instance(t, system_exits)
             finally:
                 self.parameters, self._parameters_set = saved, saved_set
         else:
-            self._initialize_instance(t)
+            self._initialize_instance(t, system_exits)
         self.t = t
         if self._binding is not None:
             self._binding.plan.waiting_parameters.pop(self.name, None)
-            self._binding.plan.read_outputs(self)
+            if not system_exits:
+                self._binding.plan.read_outputs(self)
 
-    def _initialize_instance(self, t: float) -> None:
+    def _initialize_instance(self, t: float, system_exits: bool = False) -> None:
         """The instance ready to step at t with the parameters and inputs the user set: the
         engine writes the values itself (one call) unless a subclass's hooks do."""
         if self._start_hooks_overridden():
             self.instance.initialize(t, self._experiment_tolerance,
-                                     in_initialization_mode=self._apply_starts)
+                                     in_initialization_mode=self._apply_starts,
+                                     system_exits=system_exits)
             return
         starts = self.user_parameters()  # every one: the FMU is in initialization mode
         starts.update(self._input_starts_to_write())
@@ -409,7 +433,8 @@ class FMUComponent(CoSimComponent):
             if self._has_text_parameters else None
         self.instance.initialize(
             t, self._experiment_tolerance, self._by_type(starts),
-            in_initialization_mode=(lambda: self._write_texts(texts)) if texts else None)
+            in_initialization_mode=(lambda: self._write_texts(texts)) if texts else None,
+            system_exits=system_exits)
 
     def _add_to_plan(self, plan: EnginePlan) -> None:
         """The engine steps the FMU itself; only what a subclass overrides runs in Python. An

@@ -118,11 +118,15 @@ class FMUInstance:
     # ------------------------------------------------------------ life cycle
     def initialize(self, start_time: float, tolerance: float | None = None,
                    starts: Values | None = None,
-                   in_initialization_mode: Callable[[], None] | None = None) -> None:
+                   in_initialization_mode: Callable[[], None] | None = None,
+                   system_exits: bool = False) -> None:
         """An instance ready to step, in one engine call: reset (a live instance) or
         instantiate, setupExperiment,
         enterInitializationMode, write `starts`, call `in_initialization_mode` (it may write
-        more through this proxy; what it raises is raised here), exitInitializationMode."""
+        more through this proxy; what it raises is raised here), exitInitializationMode.
+        system_exits: all but the exit, which the system's initialize (ssx_initialize) makes
+        right after, with the connected inputs given; the proxy counts the instance as
+        stepping from here on."""
         self.mode = "init"  # what the FMU is in while in_initialization_mode runs
         experiment = self._experiment
         experiment.start_time = start_time
@@ -142,7 +146,9 @@ class FMUInstance:
         callback = ffi.NULL if in_initialization_mode is None \
             else ffi.callback("int(void *)", during)
         fmu = self._fmu if self._fmu is not None else self.fmu  # (FMUError once released)
-        status = lib().ssx_fmu_initialize(fmu, experiment, values, callback, ffi.NULL)
+        initialize = lib().ssx_fmu_enter_initialization if system_exits \
+            else lib().ssx_fmu_initialize
+        status = initialize(fmu, experiment, values, callback, ffi.NULL)
         if status in (0, 1):
             self.mode = "step"
             return
