@@ -106,8 +106,9 @@ def test_reference_fmus_isolated_give_the_in_process_outputs(name: str,
         _, data = system.run(0.0, 3.0, 0.01)["R"]
         runs.append({k: v.copy() for k, v in data.items()})
         fmu.free()
-    assert runs[0].keys() == runs[1].keys()
-    for port in runs[0]:
+    # the host forwards no String calls: isolated, String outputs are no ports
+    assert {k for k, v in runs[0].items() if v.dtype != object} == runs[1].keys()
+    for port in runs[1]:
         assert np.array_equal(runs[0][port], runs[1][port]), port
     if name == "Feedthrough":
         assert runs[1]["Int32_output"][-1] == 7 and runs[1]["Boolean_output"][-1] == 1

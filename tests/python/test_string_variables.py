@@ -302,3 +302,17 @@ def test_a_string_connects_to_a_string_only():
         system.add_connection(Connection("A", "Float64_continuous_output", "B", "String_input"))
     assert str(info.value) == ("A.Float64_continuous_output -> B.String_input: a REAL output "
                                "cannot drive a STRING input")
+
+
+def test_an_isolated_fmu_runs_without_its_string_ports():
+    """The host process that runs an FMU apart forwards no String calls: its String inputs and
+    outputs are no ports there, and the rest of the FMU runs as before."""
+    system = System("isolated")
+    feedthrough = FMUComponent("F", needs(FEEDTHROUGH2), isolated=True)
+    assert "String_output" not in feedthrough.output_specs
+    assert "String_input" not in feedthrough.input_specs
+    system.add_component(feedthrough)
+    feedthrough.set_inputs({"Float64_continuous_input": 2.5})
+    system.initialize(0.0)
+    result = system.run(0.0, 0.2, 0.1)
+    assert result["F"][1]["Float64_continuous_output"].tolist() == [2.5, 2.5, 2.5]
