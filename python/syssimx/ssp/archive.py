@@ -69,7 +69,11 @@ def resolve(package: Package, reference: str, where: str) -> Path:
     if reference.startswith(("/", "\\")):
         raise SSPError(f"{where}: source {reference!r} is an absolute path; syssimx reads "
                        "references relative to the system structure's folder only")
-    if not target.is_file():
+    try:
+        found = target.is_file()
+    except OSError as exc:  # a name too long for the file system, ...
+        raise SSPError(f"{where}: source {reference!r} cannot be read: {exc.strerror}") from exc
+    if not found:
         raise SSPError(f"{where}: source {reference!r} not found"
                        + (" in the archive" if package.temporary is not None else ""))
     return target

@@ -68,8 +68,8 @@ BOOLEANS = {"true": True, "false": False, "1": True, "0": False}
 
 def _value(parameter: Any, origin: str, units: dict[str, UnitDefinition],
            unsupported: Unsupported) -> ParameterValue | None:
-    name = parameter.get("name")
     where = f"{origin}: {element_label(parameter)}"
+    name = _required(parameter, "name", where)
     for kind in _TYPES:
         typed = parameter.find(f"ssv:{kind}", NS)
         if typed is None:
@@ -116,11 +116,31 @@ def _mapping(binding: Any, package: Package,
             for name in _MAP_TRANSFORMATIONS:
                 if entry.find(f"ssc:{name}", NS) is not None:
                     unsupported.warn(f"ssc:{name}", f"{shown}: {element_label(entry)}")
-            mapping.setdefault(entry.get("source"), []).append(_Entry(
-                entry.get("target"),
-                float(linear.get("factor", 1.0)) if linear is not None else 1.0,
-                float(linear.get("offset", 0.0)) if linear is not None else 0.0))
+            where = f"{shown}: {element_label(entry)}"
+            mapping.setdefault(_required(entry, "source", where), []).append(_Entry(
+                _required(entry, "target", where),
+                _number(linear, "factor", 1.0, where), _number(linear, "offset", 0.0, where)))
     return mapping
+
+
+def _required(element: Any, attribute: str, where: str) -> str:
+    value = element.get(attribute)
+    if value is None:
+        raise SSPError(f"{where}: the attribute {attribute!r} is missing")
+    return str(value)
+
+
+def _number(transformation: Any, attribute: str, default: float, where: str) -> float:
+    """A LinearTransformation's factor or offset (`default` without the element or the
+    attribute)."""
+    text = transformation.get(attribute) if transformation is not None else None
+    if text is None:
+        return default
+    try:
+        return float(text)
+    except ValueError as exc:
+        raise SSPError(f"{where}: LinearTransformation {attribute} {text!r} is not a number") \
+            from exc
 
 
 def _mapped(value: ParameterValue, mapping: dict[str, list[_Entry]],
