@@ -113,8 +113,6 @@ class FMUComponent(CoSimComponent):
         self._input_starts = self.info.input_starts.copy()  # set_inputs changes the copy
         if isolated:
             self._drop_text_ports()
-        if isolated:
-            self._drop_text_ports()
         self.inputs = self.input_specs.mapped(lambda _, spec: self._make_port(spec))
         self.outputs = self.output_specs.mapped(lambda _, spec: self._make_port(spec))
         self._inputs_set: set[str] = set()
@@ -131,16 +129,6 @@ class FMUComponent(CoSimComponent):
         self._finalizer = weakref.finalize(self, _release, lib().ssx_fmu_free, self.instance,
                                            self._unzip_dir, extraction_key)
         self._sync_ports()
-
-    def _drop_text_ports(self) -> None:
-        """The host process that runs an FMU apart forwards no String calls: its String
-        inputs and outputs are no ports (arrays are never String ones)."""
-        for specs in (self.input_specs, self.output_specs):
-            for name in [n for n, s in made_items(specs).items() if s.type == PortType.STRING]:
-                del specs[name]
-                self.direct_feedthrough.pop(name, None)
-        for inputs in self.direct_feedthrough.values():
-            inputs.intersection_update(self.input_specs)
 
     def _drop_text_ports(self) -> None:
         """The host process that runs an FMU apart forwards no String calls: its String
