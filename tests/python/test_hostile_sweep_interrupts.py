@@ -129,3 +129,20 @@ def test_ctrl_c_while_syssimx_sweep_starts_its_cluster_exits_130_leaving_nothing
                                                    "interrupted: 0 of 2"), done.stderr
     assert processes_marked(marker) == []
     assert [p.name for p in tmp_path.iterdir() if p.name.startswith("syssimx_")] == []
+
+
+def test_ctrl_c_after_the_last_member_keeps_every_member(monkeypatch: pytest.MonkeyPatch):
+    """SIGINT while the sweep unsubscribes from its members' announcements, after both had
+    finished. Before: RunInterrupted with "0 of 2 members had finished", both marked failed."""
+    from syssimx.ensemble import runner
+
+    def interrupted_close(ensemble: Any) -> None:
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(runner._Ensemble, "close", interrupted_close)
+    with pytest.raises(RunInterrupted) as caught:
+        sweep_of_two()
+    members = caught.value.partial_result.members
+    assert [m.ok for m in members] == [True, True]
+    assert members[1].outputs["P.theta"][0] == pytest.approx(0.2)
+    assert "2 of 2 members had finished" in str(caught.value)

@@ -277,16 +277,26 @@ def run_members(client: Any, build: SystemSource, experiment: Experiment,
             ensemble.run([MemberChunk(suspect, sets[suspect:suspect + 1], experiment,
                                       ensemble.topic, announce_each)], alone=True)
     except KeyboardInterrupt as stop:  # Ctrl-C: the finished members are kept
-        for index, values in enumerate(sets):
-            if not ensemble.results.has(index):
-                ensemble.results.add(MemberResult(
-                    index, values, "failed", "interrupted (Ctrl-C) before it finished",
-                    "KeyboardInterrupt"))
-        raise MembersInterrupted(ensemble.results) from stop
+        raise _interrupted(ensemble, sets) from stop
     finally:
-        bar.close()
-        ensemble.close()
+        try:
+            try:
+                bar.close()
+            finally:
+                ensemble.close()
+        except KeyboardInterrupt as stop:  # Ctrl-C while closing, after every member too
+            raise _interrupted(ensemble, sets) from stop
     return ensemble.results
+
+
+def _interrupted(ensemble: _Ensemble, sets: ParameterTable) -> MembersInterrupted:
+    """The interrupt carrying every member's result, the unfinished ones failed."""
+    for index, values in enumerate(sets):
+        if not ensemble.results.has(index):
+            ensemble.results.add(MemberResult(
+                index, values, "failed", "interrupted (Ctrl-C) before it finished",
+                "KeyboardInterrupt"))
+    return MembersInterrupted(ensemble.results)
 
 
 class MembersInterrupted(KeyboardInterrupt):
