@@ -42,12 +42,16 @@
 #include "zeno.h"
 
 /* What the engine holds of the component's state besides the FMU state: the continuous
- * states, the pending time event and when each event indicator last crossed (a restore before
- * a crossing forgets it, so a step taken again does not see its own event as a repetition). */
+ * states, the pending time event and when and which way each event indicator last crossed (a
+ * restore before a crossing forgets it, so a step taken again does not see its own event as a
+ * repetition). */
 typedef struct {
     double *x;
     ssx_fmu_event_info event;
     double *last_crossing; /* per event indicator, -INFINITY before any */
+    /* per event indicator: +1 rising, -1 falling at its last crossing; 0 before any and once
+     * that crossing's residue was taken (is_residue) */
+    int *last_direction;
 } me_state;
 
 typedef struct {
@@ -77,6 +81,7 @@ typedef struct {
     const int *allow_non_finite; /* the system's setting, read by the callbacks */
     /* set by a CVODE callback whose FMU call failed, reported when CVODE returns */
     long non_finite_indicator; /* -1, or the indicator that was NaN or infinite */
+    long non_finite_derivative; /* -1, or the derivative that was NaN or infinite */
     double non_finite_value;
     int failed_status;
     const char *failed_call;
@@ -139,7 +144,21 @@ static int derivatives(sunrealtype t, N_Vector y, N_Vector ydot, void *user)
         return -1;
     }
     int status = ssx_fmu_get_derivatives(me->base.fmu, N_VGetArrayPointer(ydot), me->nx);
-    return fmi_ok(status) ? 0 : callback_failed(me, status, SLOT_GET_DERIVATIVES, t);
+    if (!fmi_ok(status)) {
+        return callback_failed(me, status, SLOT_GET_DERIVATIVES, t);
+    }
+    const double *dx = N_VGetArrayPointer(ydot);
+    for (size_t i = 0; i < me->nx; ++i) {
+        if (!isfinite(dx[i])) {
+            /* unrecoverable: told to retry, CVODE shortens its steps towards the instant the
+             * derivative turns NaN, ever shorter, without end */
+            me->non_finite_derivative = (long)i;
+            me->non_finite_value = dx[i];
+            me->failed_time = t;
+            return -1;
+        }
+    }
+    return 0;
 }
 
 static int indicators(sunrealtype t, N_Vector y, sunrealtype *z, void *user)
@@ -181,6 +200,14 @@ static int fail_cvode(ssx_system *sys, ssx_component *c, me_data *me, double t, 
         const char *failed = me->failed_call;
         me->failed_call = NULL;
         return fail_fmi(sys, c, fmu_of(c), me->failed_time, me->failed_status, failed);
+    }
+    if (me->non_finite_derivative >= 0) {
+        long i = me->non_finite_derivative;
+        me->non_finite_derivative = -1;
+        return fail(sys, c->index, -1, me->failed_time,
+                    "component '%s': derivative %ld (of %zu) is %g at t=%.17g: the integrator "
+                    "cannot go on from a non-finite derivative",
+                    c->name, i, me->nx, me->non_finite_value, me->failed_time);
     }
     if (me->non_finite_indicator >= 0) {
         long i = me->non_finite_indicator;
@@ -343,13 +370,16 @@ static int start_instance(ssx_system *sys, ssx_component *c, me_data *me, double
     me->warm_at = NAN;
     for (size_t i = 0; i < me->nz; ++i) {
         me->now.last_crossing[i] = -INFINITY;
+        me->now.last_direction[i] = 0;
     }
     return 0;
 }
 
-/* An event at t: event mode, the discrete states, continuous-time mode, reported. */
+/* An event at t: event mode, the discrete states, continuous-time mode, reported unless it is
+ * an event's residue (the FMU still needs its event mode then: its discrete states may follow
+ * the indicator's sign). */
 static int handle_event(ssx_system *sys, ssx_component *c, me_data *me, double t,
-                        ssx_own_event_kind kind)
+                        ssx_own_event_kind kind, int report)
 {
     int status = ssx_fmu_enter_event_mode(fmu_of(c));
     if (!fmi_ok(status)) {
@@ -362,7 +392,7 @@ static int handle_event(ssx_system *sys, ssx_component *c, me_data *me, double t
     if (!me->now.event.terminate_simulation && leave_event_mode(sys, c, me, t, 0) != 0) {
         return -1;
     }
-    return own_event_report(sys, c, kind, t);
+    return report ? own_event_report(sys, c, kind, t) : 0;
 }
 
 /* ------------------------------------------------------------------ the step */
@@ -429,22 +459,42 @@ static int integrate(ssx_system *sys, ssx_component *c, me_data *me, double stop
     return 0;
 }
 
+/* A crossing back the way the indicator came, within the interval of two distinct events
+ * after its last crossing, is that event's residue, not an event of its own: an FMU that
+ * leaves its indicator a hair past zero after the event (FMUSDK's bouncing ball puts the ball
+ * slightly below the floor) sees it cross back as the state moves away. One residue per
+ * event: a third crossing that close is chattering again. */
+static int is_residue(const ssx_system *sys, const me_state *state, size_t i, int direction,
+                      double interval)
+{
+    return state->last_direction[i] != 0 && direction == -state->last_direction[i] &&
+           interval < distinct_events_interval(&sys->hybrid);
+}
+
 /* Chattering, by the rule of the master's indicators (zeno.h), with no grid to resolve: the
  * engine's integrator resolves every crossing. Near an accumulation point (a ball whose
  * bounces never end) CVODE would soon miss a crossing and let the state sink through: the run
- * ends here instead. */
-static int state_event_chatters(ssx_system *sys, ssx_component *c, me_data *me, double t)
+ * ends here instead. *residue: every crossing at t is a residue (is_residue). */
+static int state_event_chatters(ssx_system *sys, ssx_component *c, me_data *me, double t,
+                                int *residue)
 {
     if (CVodeGetRootInfo(me->cvode, me->roots_found) != CV_SUCCESS) {
         return fail(sys, c->index, -1, t, "component '%s': CVodeGetRootInfo failed at t=%.17g",
                     c->name, t);
     }
+    *residue = 1;
     for (size_t i = 0; i < me->nz; ++i) {
         if (me->roots_found[i] == 0) {
             continue;
         }
         double interval = t - me->now.last_crossing[i];
+        if (is_residue(sys, &me->now, i, me->roots_found[i], interval)) {
+            me->now.last_direction[i] = 0;
+            continue;
+        }
+        *residue = 0;
         me->now.last_crossing[i] = t;
+        me->now.last_direction[i] = me->roots_found[i];
         if (zeno_judge(&sys->hybrid, interval, INFINITY, 0.0) != ZENO_NONE) {
             return fail_zeno(sys, c->index, -1, t,
                              "component '%s': its event indicator %zu crossed again at t=%.17g, "
@@ -514,9 +564,11 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
         ssx_own_event_kind kind = root         ? SSX_OWN_STATE_EVENT
                                   : time_event ? SSX_OWN_TIME_EVENT
                                                : SSX_OWN_STEP_EVENT;
-        if ((root ? state_event_chatters(sys, c, me, now)
+        int residue = 0;
+        if ((root ? state_event_chatters(sys, c, me, now, &residue)
                   : events_stall(sys, c, now, &last_event, &repeated_events)) != 0 ||
-            handle_event(sys, c, me, now, kind) != 0) {
+            handle_event(sys, c, me, now, kind, !(residue && !time_event && !enter_event_mode)) !=
+                0) {
             return -1;
         }
         if (me->now.event.terminate_simulation) {
@@ -588,6 +640,7 @@ static void copy_state(const me_data *me, me_state *to, const me_state *from)
     memcpy(to->x, from->x, me->n * sizeof(double));
     if (me->nz > 0) {
         memcpy(to->last_crossing, from->last_crossing, me->nz * sizeof(double));
+        memcpy(to->last_direction, from->last_direction, me->nz * sizeof(int));
     }
 }
 
@@ -648,9 +701,11 @@ static void me_free(me_data *me)
     free(me->roots_found);
     free(me->now.x);
     free(me->now.last_crossing);
+    free(me->now.last_direction);
     for (int slot = 0; slot < SSX_SNAPSHOT_SLOTS; ++slot) {
         free(me->saved[slot].x);
         free(me->saved[slot].last_crossing);
+        free(me->saved[slot].last_direction);
     }
     free(me);
 }
@@ -687,7 +742,8 @@ static int state_new(me_state *state, size_t n, size_t nz)
 {
     state->x = calloc(n, sizeof *state->x);
     state->last_crossing = malloc((nz + 1) * sizeof *state->last_crossing);
-    if (state->x == NULL || state->last_crossing == NULL) {
+    state->last_direction = calloc(nz + 1, sizeof *state->last_direction);
+    if (state->x == NULL || state->last_crossing == NULL || state->last_direction == NULL) {
         return -1;
     }
     for (size_t i = 0; i < nz; ++i) {
@@ -786,6 +842,7 @@ int ssx_add_model_exchange_component(ssx_system *sys, const char *name, ssx_fmu 
     me->c = c;
     me->allow_non_finite = &sys->allow_non_finite;
     me->non_finite_indicator = -1;
+    me->non_finite_derivative = -1;
     c->data = me;
     return index;
 }
