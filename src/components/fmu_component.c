@@ -59,6 +59,37 @@ static int read_texts(ssx_system *sys, ssx_component *c, double t)
     return 0;
 }
 
+/* The Binary outputs: each value's number in the system's table. */
+static int read_binaries(ssx_system *sys, ssx_component *c, double t)
+{
+    fmu_component_data *d = fmu_data(c);
+    const fmu_port_batch *b = &d->binary_outputs;
+    int status = ssx_fmu_get_binary(d->fmu, b->vr, b->n, d->size_scratch, d->binary_scratch);
+    if (!fmi_ok(status)) {
+        return fmi_failed(sys, c, t, status, SLOT_GET_BINARY);
+    }
+    for (size_t i = 0; i < b->n; ++i) {
+        if (text_table_bytes_number(&sys->texts, d->binary_scratch[i], d->size_scratch[i],
+                                    &c->outputs[b->port[i]]) != 0) {
+            return out_of_text_memory(sys, c, t);
+        }
+    }
+    return 0;
+}
+
+/* The bytes of Binary input k and their size, or NULL after failing. */
+static const unsigned char *input_bytes(ssx_system *sys, const ssx_component *c, int k,
+                                        size_t *size, double t)
+{
+    const unsigned char *bytes = text_table_bytes(&sys->texts, c->inputs[k], size);
+    if (bytes == NULL) {
+        fail(sys, c->index, -1, t,
+             "component '%s': Binary input %d holds %.17g, which numbers no value", c->name, k,
+             c->inputs[k]);
+    }
+    return bytes;
+}
+
 /* The text of String input k, or NULL after failing: its value is no text's number. */
 static const char *input_text(ssx_system *sys, const ssx_component *c, int k, double t)
 {
@@ -107,6 +138,9 @@ int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t)
         }
     }
     if (d->text_outputs.n > 0 && read_texts(sys, c, t) != 0) {
+        return -1;
+    }
+    if (d->binary_outputs.n > 0 && read_binaries(sys, c, t) != 0) {
         return -1;
     }
     return residue == 0.0 ? 0 : component_check_outputs(sys, c, t);
@@ -201,6 +235,21 @@ static int write_values(ssx_system *sys, ssx_component *c)
         int status = ssx_fmu_set_string(d->fmu, texts->vr, texts->n, d->text_scratch);
         if (!fmi_ok(status)) {
             return fmi_failed(sys, c, sys->time, status, SLOT_SET_STRING);
+        }
+    }
+    const fmu_port_batch *binaries = &d->binary_inputs;
+    if (binaries->n > 0) {
+        for (size_t i = 0; i < binaries->n; ++i) {
+            d->binary_scratch[i] = input_bytes(sys, c, binaries->port[i], &d->size_scratch[i],
+                                               sys->time);
+            if (d->binary_scratch[i] == NULL) {
+                return -1;
+            }
+        }
+        int status = ssx_fmu_set_binary(d->fmu, binaries->vr, binaries->n, d->size_scratch,
+                                        d->binary_scratch);
+        if (!fmi_ok(status)) {
+            return fmi_failed(sys, c, sys->time, status, SLOT_SET_BINARY);
         }
     }
     if (c->n_inputs > 0) {
@@ -456,6 +505,18 @@ int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0)
             }
             continue;
         }
+        if (type == SSX_BINARY) {
+            const unsigned char *bytes = NULL;
+            size_t size = 0;
+            int status = ssx_fmu_get_binary(d->fmu, &vr, 1, &size, &bytes);
+            if (!fmi_ok(status)) {
+                return fmi_failed(sys, c, t0, status, SLOT_GET_BINARY);
+            }
+            if (text_table_bytes_number(&sys->texts, bytes, size, &c->inputs[k]) != 0) {
+                return out_of_text_memory(sys, c, t0);
+            }
+            continue;
+        }
         double real = 0.0;
         int integer = 0;
         int status = type == SSX_REAL      ? ssx_fmu_get_real(d->fmu, &vr, 1, &real)
@@ -489,6 +550,15 @@ static int write_driven_inputs(ssx_system *sys, ssx_component *c, double t0)
             int status = text != NULL ? ssx_fmu_set_string(d->fmu, &vr, 1, &text) : 0;
             if (text == NULL || !fmi_ok(status)) {
                 return text == NULL ? -1 : fmi_failed(sys, c, t0, status, SLOT_SET_STRING);
+            }
+            continue;
+        }
+        if (type == SSX_BINARY) {
+            size_t size = 0;
+            const unsigned char *bytes = input_bytes(sys, c, k, &size, t0);
+            int status = bytes != NULL ? ssx_fmu_set_binary(d->fmu, &vr, 1, &size, &bytes) : 0;
+            if (bytes == NULL || !fmi_ok(status)) {
+                return bytes == NULL ? -1 : fmi_failed(sys, c, t0, status, SLOT_SET_BINARY);
             }
             continue;
         }
@@ -693,6 +763,11 @@ static void free_prepared(fmu_component_data *d)
     free(d->text_scratch);
     d->text_scratch = NULL;
     d->text_outputs = d->text_inputs = (fmu_port_batch){0};
+    free(d->binary_scratch);
+    free(d->size_scratch);
+    d->binary_scratch = NULL;
+    d->size_scratch = NULL;
+    d->binary_outputs = d->binary_inputs = (fmu_port_batch){0};
 }
 
 void fmu_component_unprepare(ssx_component *c)
@@ -741,14 +816,28 @@ int fmu_component_prepare(ssx_system *sys, ssx_component *c)
     vr += d->text_outputs.n;
     port += d->text_outputs.n;
     build_batch(&d->text_inputs, c->input_ports, c->n_inputs, SSX_STRING, vr, port);
+    vr += d->text_inputs.n;
+    port += d->text_inputs.n;
+    build_batch(&d->binary_outputs, c->output_ports, c->n_outputs, SSX_BINARY, vr, port);
+    vr += d->binary_outputs.n;
+    port += d->binary_outputs.n;
+    build_batch(&d->binary_inputs, c->input_ports, c->n_inputs, SSX_BINARY, vr, port);
     size_t n_texts = d->text_outputs.n > d->text_inputs.n ? d->text_outputs.n
                                                           : d->text_inputs.n;
+    size_t n_binaries = d->binary_outputs.n > d->binary_inputs.n ? d->binary_outputs.n
+                                                                 : d->binary_inputs.n;
     if (n_texts > 0) {
         d->text_scratch = calloc(n_texts, sizeof *d->text_scratch);
-        if (d->text_scratch == NULL) {
-            return fail_config(sys, c->index, -1, NAN,
-                               "out of memory preparing the String ports of '%s'", c->name);
-        }
+    }
+    if (n_binaries > 0) {
+        d->binary_scratch = calloc(n_binaries, sizeof *d->binary_scratch);
+        d->size_scratch = calloc(n_binaries, sizeof *d->size_scratch);
+    }
+    if ((n_texts > 0 && d->text_scratch == NULL) ||
+        (n_binaries > 0 && (d->binary_scratch == NULL || d->size_scratch == NULL))) {
+        return fail_config(sys, c->index, -1, NAN,
+                           "out of memory preparing the String and Binary ports of '%s'",
+                           c->name);
     }
     d->inputs_written_epoch = -1;
     return 0;

@@ -52,6 +52,11 @@ typedef struct {
     fmu_port_batch text_outputs;
     fmu_port_batch text_inputs;
     const char **text_scratch;
+    /* the same for Binary ports (FMI 3.0): their bytes and sizes */
+    fmu_port_batch binary_outputs;
+    fmu_port_batch binary_inputs;
+    const unsigned char **binary_scratch;
+    size_t *size_scratch;
 } fmu_component_data;
 
 static inline fmu_component_data *fmu_data(const ssx_component *c)

@@ -19,9 +19,15 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* SSX_STRING: an FMU's String variable; the port's value is the number of its text in the
- * system's text table (ssx_text_number, ssx_text). */
-typedef enum { SSX_REAL = 0, SSX_INTEGER = 1, SSX_BOOLEAN = 2, SSX_STRING = 3 } ssx_value_type;
+/* SSX_STRING, SSX_BINARY: an FMU's String or (FMI 3.0) Binary variable; the port's value is
+ * the number of its text or bytes in the system's text table (ssx_text_number, ssx_text). */
+typedef enum {
+    SSX_REAL = 0,
+    SSX_INTEGER = 1,
+    SSX_BOOLEAN = 2,
+    SSX_STRING = 3,
+    SSX_BINARY = 4
+} ssx_value_type;
 typedef enum { SSX_GAUSS_SEIDEL = 0, SSX_JACOBI = 1 } ssx_coupling;
 /* Event localization. SSX_ILLINOIS: Illinois (modified regula falsi) held within two trials of
  * bisection's count; SSX_BISECTION; SSX_ILLINOIS_UNGUARDED: Illinois alone, for comparison. */
@@ -412,12 +418,16 @@ int ssx_set_restart_handler(ssx_system *sys, int component, const ssx_fmu_experi
  * the port's index. */
 int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned int vr);
 int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned int vr, double start);
-/* The texts of String ports (FMU components only; no connection scales or offsets one): each
- * distinct text has a number, kept until the system is freed. ssx_text_number gives the
- * number of `text` (added when new), -1 when out of memory; ssx_text the text of a number
- * (the system's until it is freed; NULL for none); ssx_text_count how many there are. */
+/* The values of String and Binary ports (a String or Binary port connects only to one of its
+ * type, unscaled): each distinct value has a number, kept until the system is freed.
+ * ssx_text_number and ssx_bytes_number give the number of a text or of `size` bytes (added
+ * when new), -1 when out of memory; ssx_text and ssx_bytes the value of a number (the
+ * system's until it is freed, NUL-terminated; NULL for none); ssx_text_count how many
+ * values there are. */
 int ssx_text_number(ssx_system *sys, const char *text, double *number);
+int ssx_bytes_number(ssx_system *sys, const void *data, size_t size, double *number);
 const char *ssx_text(ssx_system *sys, double number);
+const unsigned char *ssx_bytes(ssx_system *sys, double number, size_t *size);
 size_t ssx_text_count(ssx_system *sys);
 /* Before initializing a system again (its plan reused): every input's start value, the
  * components' inputs in order, n in all; each input holds its start again, as when added. */

@@ -215,7 +215,7 @@ int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks)
 
 static int valid_type(ssx_value_type type)
 {
-    return type == SSX_REAL || type == SSX_INTEGER || type == SSX_BOOLEAN || type == SSX_STRING;
+    return type >= SSX_REAL && type <= SSX_BINARY;
 }
 
 int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned int vr)
@@ -371,12 +371,13 @@ int ssx_connect(ssx_system *sys, int src_component, int src_output, int dst_comp
                            "connection %s.out[%d] -> %s.in[%d]: scale and offset must be finite",
                            src->name, src_output, dst->name, dst_input);
     }
-    int texts = (src->output_ports[src_output].type == SSX_STRING) +
-                (dst->input_ports[dst_input].type == SSX_STRING);
-    if (texts == 1 || (texts == 2 && (scale != 1.0 || offset != 0.0))) {
+    ssx_value_type from = src->output_ports[src_output].type;
+    ssx_value_type to = dst->input_ports[dst_input].type;
+    int numbered = from >= SSX_STRING || to >= SSX_STRING; /* values are table numbers */
+    if (numbered && (from != to || scale != 1.0 || offset != 0.0)) {
         return fail_config(sys, dst_component, -1, NAN,
-                           "connection %s.out[%d] -> %s.in[%d]: a String port connects to a "
-                           "String port only, unscaled",
+                           "connection %s.out[%d] -> %s.in[%d]: a String or Binary port "
+                           "connects to a port of its own type only, unscaled",
                            src->name, src_output, dst->name, dst_input);
     }
     int driver = dst->input_driver[dst_input];

@@ -6,21 +6,27 @@
 #include <stdlib.h>
 #include <string.h>
 
-static uint64_t hash(const char *text)
+static uint64_t hash(const unsigned char *data, size_t size)
 {
     uint64_t h = 14695981039346656037u;
-    for (const unsigned char *p = (const unsigned char *)text; *p != '\0'; ++p) {
-        h = (h ^ *p) * 1099511628211u;
+    for (size_t k = 0; k < size; ++k) {
+        h = (h ^ data[k]) * 1099511628211u;
     }
     return h;
 }
 
-/* The slot that holds `text`, or the empty slot where it belongs. */
-static size_t find(const text_table *table, const char *text)
+static int holds(const text_table *table, size_t number, const unsigned char *data, size_t size)
+{
+    return table->sizes[number] == size && (size == 0 || memcmp(table->values[number], data,
+                                                                 size) == 0);
+}
+
+/* The slot that holds the value, or the empty slot where it belongs. */
+static size_t find(const text_table *table, const unsigned char *data, size_t size)
 {
     size_t mask = table->n_slots - 1;
-    size_t slot = (size_t)hash(text) & mask;
-    while (table->slots[slot] != 0 && strcmp(table->texts[table->slots[slot] - 1], text) != 0) {
+    size_t slot = (size_t)hash(data, size) & mask;
+    while (table->slots[slot] != 0 && !holds(table, table->slots[slot] - 1, data, size)) {
         slot = (slot + 1) & mask;
     }
     return slot;
@@ -37,8 +43,26 @@ static int grow_index(text_table *table)
     table->slots = slots;
     table->n_slots = n_slots;
     for (size_t k = 0; k < table->count; ++k) {
-        table->slots[find(table, table->texts[k])] = k + 1;
+        table->slots[find(table, table->values[k], table->sizes[k])] = k + 1;
     }
+    return 0;
+}
+
+static int grow_values(text_table *table)
+{
+    size_t capacity = table->capacity == 0 ? 8 : 2 * table->capacity;
+    unsigned char **values = realloc(table->values, capacity * sizeof *values);
+    if (values != NULL) {
+        table->values = values;
+    }
+    size_t *sizes = realloc(table->sizes, capacity * sizeof *sizes);
+    if (sizes != NULL) {
+        table->sizes = sizes;
+    }
+    if (values == NULL || sizes == NULL) {
+        return -1;
+    }
+    table->capacity = capacity;
     return 0;
 }
 
@@ -53,53 +77,61 @@ static void unlock(text_table *table)
     atomic_flag_clear_explicit(&table->lock, memory_order_release);
 }
 
-static int add(text_table *table, const char *text, double *number)
+static int add(text_table *table, const unsigned char *data, size_t size, double *number)
 {
     if (2 * (table->count + 1) > table->n_slots && grow_index(table) != 0) {
         return -1;
     }
-    size_t slot = find(table, text);
+    size_t slot = find(table, data, size);
     if (table->slots[slot] == 0) {
-        if (table->count == table->capacity) {
-            size_t capacity = table->capacity == 0 ? 8 : 2 * table->capacity;
-            char **texts = realloc(table->texts, capacity * sizeof *texts);
-            if (texts == NULL) {
-                return -1;
-            }
-            table->texts = texts;
-            table->capacity = capacity;
+        if (table->count == table->capacity && grow_values(table) != 0) {
+            return -1;
         }
-        size_t size = strlen(text) + 1;
-        char *copy = malloc(size);
+        unsigned char *copy = malloc(size + 1);
         if (copy == NULL) {
             return -1;
         }
-        memcpy(copy, text, size);
-        table->texts[table->count++] = copy;
-        table->slots[slot] = table->count;
+        if (size > 0) {
+            memcpy(copy, data, size);
+        }
+        copy[size] = '\0';
+        table->values[table->count] = copy;
+        table->sizes[table->count] = size;
+        table->slots[slot] = ++table->count;
     }
     *number = (double)(table->slots[slot] - 1);
     return 0;
 }
 
-int text_table_number(text_table *table, const char *text, double *number)
+int text_table_bytes_number(text_table *table, const void *data, size_t size, double *number)
 {
+    static const unsigned char empty[1] = {0};
     lock(table);
-    /* an FMU that returns no text returns the empty one */
-    int result = add(table, text != NULL ? text : "", number);
+    int result = add(table, data != NULL ? data : empty, data != NULL ? size : 0, number);
     unlock(table);
     return result;
 }
 
-const char *text_table_text(text_table *table, double number)
+int text_table_number(text_table *table, const char *text, double *number)
+{
+    /* an FMU that returns no text returns the empty one */
+    return text_table_bytes_number(table, text, text != NULL ? strlen(text) : 0, number);
+}
+
+const unsigned char *text_table_bytes(text_table *table, double number, size_t *size)
 {
     lock(table);
-    const char *text = number >= 0.0 && number < (double)table->count &&
-                               number == floor(number)
-                           ? table->texts[(size_t)number]
-                           : NULL;
+    int known = number >= 0.0 && number < (double)table->count && number == floor(number);
+    const unsigned char *value = known ? table->values[(size_t)number] : NULL;
+    *size = known ? table->sizes[(size_t)number] : 0;
     unlock(table);
-    return text;
+    return value;
+}
+
+const char *text_table_text(text_table *table, double number)
+{
+    size_t size;
+    return (const char *)text_table_bytes(table, number, &size);
 }
 
 size_t text_table_count(text_table *table)
@@ -113,11 +145,13 @@ size_t text_table_count(text_table *table)
 void text_table_free(text_table *table)
 {
     for (size_t k = 0; k < table->count; ++k) {
-        free(table->texts[k]);
+        free(table->values[k]);
     }
-    free(table->texts);
+    free(table->values);
+    free(table->sizes);
     free(table->slots);
-    table->texts = NULL;
+    table->values = NULL;
+    table->sizes = NULL;
     table->slots = NULL;
     table->count = table->capacity = table->n_slots = 0;
 }

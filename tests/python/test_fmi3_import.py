@@ -1,7 +1,8 @@
 """FMI 3.0 Co-Simulation import: events an FMU handles itself (early return, event mode), state
 rollback, types, String and Binary values, units, and the clear errors for what syssimx does
-not run (no interface it runs, String arrays, isolation, connecting a Binary). Model Exchange is
-tested in test_fmi3_model_exchange.py; arrays and 64-bit integers in test_fmi3_arrays.py.
+not run (no interface it runs, String arrays, isolation). Model Exchange is tested in
+test_fmi3_model_exchange.py; arrays and 64-bit integers in test_fmi3_arrays.py; String and
+Binary ports in test_string_variables.py.
 
 The FMUs are our own FMI 3.0 builds (`<stem>_fmi3`, the same models as the FMI 2.0 ones), the
 Reference FMUs built for FMI 3.0 (SYSSIMX_REFERENCE_FMUS or <repository>/../shared/
@@ -273,20 +274,6 @@ def test_strings_and_binaries_are_set_as_parameters_and_read_back():
     with pytest.raises(ConfigurationError) as info:
         feedthrough.set_parameters(Binary_input="00ff")
     assert str(info.value) == "F.Binary_input is Binary; got str '00ff'"
-
-
-@reference
-def test_a_binary_cannot_be_connected():
-    """(String ports connect: test_string_variables.)"""
-    system = System("texts")
-    system.add_component(FMUComponent("A", FEEDTHROUGH))
-    system.add_component(FMUComponent("B", FEEDTHROUGH))
-    with pytest.raises(ConfigurationError) as info:
-        system.add_connection(Connection("A", "Binary_output", "B", "Binary_input"))
-    assert str(info.value).startswith(
-        "A.Binary_output -> B.Binary_input: 'A' has no output 'Binary_output' (it is a Binary "
-        "variable: set it with set_parameters, read it with get_state; it cannot be "
-        "connected); outputs: [")
 
 
 def driven(column: str, value: int) -> System:

@@ -316,3 +316,36 @@ def test_an_isolated_fmu_runs_without_its_string_ports():
     system.initialize(0.0)
     result = system.run(0.0, 0.2, 0.1)
     assert result["F"][1]["Float64_continuous_output"].tolist() == [2.5, 2.5, 2.5]
+
+
+def test_fmi3_binary_ports_are_recorded_and_connected(tmp_path: Path):
+    """Binary values are bytes (NUL and 0xff included), recorded as object arrays of bytes and
+    written to CSV in hex, as FMI writes a Binary start."""
+    system = System("bytes")
+    a = FMUComponent("A", needs(FEEDTHROUGH3))
+    system.add_component(a)
+    system.add_component(FMUComponent("B", FEEDTHROUGH3))
+    assert a.input_start("Binary_input") != a.input_start("Binary_input")  # NaN: not set
+    a.set_inputs({"Binary_input": b"\x00\xffab"})
+    system.add_connection(Connection("A", "Binary_output", "B", "Binary_input"))
+    system.set_algorithm(JacobiAlgorithm())
+    system.initialize(0.0)
+    result = system.run(0.0, 0.2, 0.1)
+    assert result["A"][1]["Binary_output"].tolist() == [b"\x00\xffab"] * 3
+    assert result["B"][1]["Binary_output"].tolist() == [b"\x00\xffab"] * 3
+    assert system.components["B"].inputs["Binary_input"].raw() == b"\x00\xffab"
+    out = result.to_csv(tmp_path / "bytes.csv", component="A")
+    assert "00ff6162" in out.read_text()
+    with pytest.raises(ConfigurationError) as info:
+        system.add_connection(Connection("A", "String_output", "B", "Binary_input"))
+    assert str(info.value).endswith("a STRING output cannot drive a BINARY input")
+
+
+def test_a_string_parameter_is_no_port():
+    system = System("texts")
+    system.add_component(FMUComponent("wheel", needs(TRUCK / "Wheel.fmu")))
+    system.add_component(FMUComponent("chassis", TRUCK / "Chassis.fmu"))
+    with pytest.raises(ConfigurationError) as info:
+        system.add_connection(Connection("wheel", "position", "chassis", "solverType"))
+    assert "'chassis' has no input 'solverType' (it is a String variable: set it with " \
+        "set_parameters, read it with get_state; it cannot be connected)" in str(info.value)

@@ -30,10 +30,10 @@ class _BufferOwner:
 class HistoryArrays:
     """The samples recorded so far by one engine system, as read-only numpy arrays."""
 
-    def __init__(self, sys: Any, release: Any, texts: tuple[str, ...] = ()) -> None:
+    def __init__(self, sys: Any, release: Any, values: tuple[bytes, ...] = ()) -> None:
         """`release` is ssx_history_release, resolved by the caller before any collection can
-        need it (a finalizer must not look up a library function); `texts` the system's texts
-        of String ports, by number."""
+        need it (a finalizer must not look up a library function); `values` the system's
+        values of String and Binary ports, by number."""
         engine = lib()
         self.length = int(engine.ssx_history_length(sys))
         raw = engine.ssx_history_retain(sys) if self.length > 0 else ffi.NULL
@@ -41,24 +41,30 @@ class HistoryArrays:
         # the block's buffers, read now: the arrays need nothing of the system afterwards
         self._time = engine.ssx_history_time(sys)
         self._micro = engine.ssx_history_micro(sys)
-        self.texts = texts
+        self.values_by_number = values
 
     @classmethod
     def of_retained(cls, block: Any, length: int, time: Any, micro: Any,
-                    release: Any, texts: tuple[str, ...] = ()) -> HistoryArrays:
+                    release: Any, values: tuple[bytes, ...] = ()) -> HistoryArrays:
         """The arrays of a history reference the caller got (ssx_get_run_outcome) with the
         history's length, times and micro steps: released with the last of them."""
         arrays = cls.__new__(cls)
         arrays.length = length
         arrays._block = ffi.gc(block, release) if block != ffi.NULL else None
         arrays._time, arrays._micro = time, micro
-        arrays.texts = texts
+        arrays.values_by_number = values
         return arrays
 
-    def texts_of(self, numbers: np.ndarray) -> np.ndarray:
-        """A String port's column: the text of each number, as an object array."""
-        # "" after the texts: a table still empty gives the 0 of a port never read a text
-        return np.asarray((*self.texts, ""), dtype=object)[numbers.astype(np.intp)]
+    def tabled(self, numbers: np.ndarray, kind: str) -> np.ndarray:
+        """A String or Binary port's column: the text ("string") or bytes of each number, as
+        an object array."""
+        # b"" after the values: a table still empty gives the 0 of a port never read a value
+        values = [*self.values_by_number, b""]
+        if kind == "string":
+            values = [value.decode("utf-8", "replace") for value in values]
+        column = np.empty(len(values), dtype=object)
+        column[:] = values
+        return column[numbers.astype(np.intp)]
 
     def _view(self, pointer: Any, shape: tuple[int, ...], typestr: str) -> np.ndarray:
         if self._block is None or 0 in shape:

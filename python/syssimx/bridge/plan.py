@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from ..core.events import OWN_EVENTS
-from ..core.port import PortType
+from ..core.port import TABLED_TYPES, PortType
 from ..engine import ffi, lib, string
 from ..errors import ConfigurationError, SimulationTimeoutError
 from .history_arrays import HistoryArrays
@@ -54,7 +54,8 @@ def engine_type(kind: PortType) -> int:
 
 
 _ENGINE_TYPE_NAMES = {PortType.REAL: "SSX_REAL", PortType.INT: "SSX_INTEGER",
-                      PortType.BOOL: "SSX_BOOLEAN", PortType.STRING: "SSX_STRING"}
+                      PortType.BOOL: "SSX_BOOLEAN", PortType.STRING: "SSX_STRING",
+                      PortType.BINARY: "SSX_BINARY"}
 
 
 @dataclass(frozen=True)
@@ -256,8 +257,8 @@ class EnginePlan:
         for port in self.inputs[name]:
             spec = component.input_specs[port]
             start = component.input_start(port)
-            if isinstance(start, str):  # a String input's text
-                start = self.text_number(start)
+            if isinstance(start, str | bytes):  # a String input's text, a Binary one's bytes
+                start = self.to_engine(spec.type, start)
             self.check(lib().ssx_add_input(self.sys, index, engine_type(spec.type),
                                            vr(port) if vr else 0, start), f"{name}.{port}")
 
@@ -385,23 +386,33 @@ class EnginePlan:
         names = self.outputs if direction == "out" else self.inputs
         return float(self._array(component, direction)[names[component.name].index(port)])
 
-    def text_number(self, text: str) -> float:
-        """The number of `text` in the system's text table (String ports hold numbers)."""
+    def text_number(self, value: str | bytes) -> float:
+        """The number of a text or of bytes in the system's table of values (String and
+        Binary ports hold numbers)."""
+        data = value.encode() if isinstance(value, str) else bytes(value)
         number = ffi.new("double *")
-        self.check(lib().ssx_text_number(self.sys, text.encode(), number), "a String value")
+        self.check(lib().ssx_bytes_number(self.sys, data, len(data), number),
+                   "a String or Binary value")
         return float(number[0])
 
     def text(self, number: float) -> str:
         """The text a String port's number stands for."""
         return string(lib().ssx_text(self.sys, number))
 
+    def tabled_bytes(self, number: float) -> bytes:
+        """The bytes a Binary port's number stands for."""
+        size = ffi.new("size_t *")
+        data = lib().ssx_bytes(self.sys, number, size)
+        return b"" if data == ffi.NULL else ffi.buffer(data, size[0])[:]
+
     def to_engine(self, kind: PortType, value: Any) -> float:
         """A port value as the engine holds it."""
-        return self.text_number(value) if kind == PortType.STRING else float(value)
+        return self.text_number(value) if kind in TABLED_TYPES else float(value)
 
     def from_engine(self, kind: PortType, value: float) -> Any:
         """An engine value as the value of a port of type `kind`."""
-        return self.text(value) if kind == PortType.STRING else typed(kind, value)
+        return self.text(value) if kind == PortType.STRING else \
+            self.tabled_bytes(value) if kind == PortType.BINARY else typed(kind, value)
 
     def write_inputs(self, component: Component,
                      values: Mapping[str, Any] | None = None) -> None:
@@ -446,13 +457,11 @@ class EnginePlan:
     # ------------------------------------------------------------------ history
     def history(self) -> HistoryArrays:
         """The samples recorded so far, as arrays that stay valid and unchanged for their life."""
-        return HistoryArrays(self.sys, self.release_history, self.texts())
+        return HistoryArrays(self.sys, self.release_history, self.tabled_values())
 
-    def texts(self) -> tuple[str, ...]:
-        """Every text of the system's String ports so far, by number."""
-        engine = lib()
-        return tuple(string(engine.ssx_text(self.sys, k))
-                     for k in range(engine.ssx_text_count(self.sys)))
+    def tabled_values(self) -> tuple[bytes, ...]:
+        """Every value of the system's String and Binary ports so far, by number."""
+        return tuple(self.tabled_bytes(k) for k in range(lib().ssx_text_count(self.sys)))
 
     def component_history(self, component: Component, arrays: HistoryArrays | None = None
                           ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
@@ -492,7 +501,8 @@ class RecordedComponent:
 def recorded_columns(recorded: RecordedComponent, arrays: HistoryArrays
                      ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
     """(time, {output: values}) of one component in `arrays`, without a copy (Real outputs;
-    Integer and Boolean ones converted, String ones an object array of their texts)."""
+    Integer and Boolean ones converted, String and Binary ones object arrays of their texts
+    and bytes)."""
     matrix = arrays.values(recorded.index, len(recorded.outputs))
     if recorded.real_only:
         return arrays.time(), {name: matrix[:, j] for j, name in enumerate(recorded.outputs)}
@@ -501,7 +511,7 @@ def recorded_columns(recorded: RecordedComponent, arrays: HistoryArrays
         column = matrix[:, j]
         columns[name] = (column.astype(np.int64) if kind == PortType.INT
                          else column != 0.0 if kind == PortType.BOOL
-                         else arrays.texts_of(column) if kind == PortType.STRING else column)
+                         else arrays.tabled(column, kind) if kind in TABLED_TYPES else column)
     return arrays.time(), columns
 
 
@@ -532,11 +542,12 @@ class _HookBuilder:
         # names with the conversion of an engine value to the port's type
         self.ports: tuple[Any, Any] = (ffi.NULL, ffi.NULL)
         self.take_port_addresses()
-        self.input_names = [(name, plan.text if kind == PortType.STRING else _FROM_ENGINE[kind])
+        self.input_names = [(name, functools.partial(plan.from_engine, kind)
+                             if kind in TABLED_TYPES else _FROM_ENGINE[kind])
                             for name in plan.inputs[component.name]
                             for kind in (component.input_specs[name].type,)]
         self.output_names = [(i, name, plan.text_number if component.output_specs[name].type
-                              == PortType.STRING else float)
+                              in TABLED_TYPES else float)
                              for i, name in enumerate(plan.outputs[component.name])]
 
     def take_port_addresses(self) -> None:

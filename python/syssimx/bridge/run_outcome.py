@@ -27,7 +27,7 @@ class RunOutcome:
         # the history reference belongs to the arrays from here on (released with them)
         self.history = HistoryArrays.of_retained(raw.history, int(raw.history_length),
                                                  raw.history_time, raw.history_micro,
-                                                 plan.release_history, plan.texts())
+                                                 plan.release_history, plan.tabled_values())
         self.time = float(raw.time)
         self.event_count = int(raw.n_events)
         self.termination = raw.termination

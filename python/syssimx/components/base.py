@@ -29,8 +29,9 @@ if TYPE_CHECKING:
 
 EventHandler = Callable[[Any, list[str], float], None]
 
-# the port types the engine carries (a STRING port's value: its text's number in the system)
-ENGINE_TYPES = (PortType.REAL, PortType.INT, PortType.BOOL, PortType.STRING)
+# the port types the engine carries (a STRING or BINARY port's value: the number of its text
+# or bytes in the system)
+ENGINE_TYPES = (PortType.REAL, PortType.INT, PortType.BOOL, PortType.STRING, PortType.BINARY)
 
 
 @dataclass(frozen=True)

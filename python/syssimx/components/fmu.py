@@ -38,7 +38,7 @@ from typing import TYPE_CHECKING, Any
 
 from .. import units
 from ..core.element_map import made_items
-from ..core.port import Port, PortSpec, PortType
+from ..core.port import TABLED_TYPES, Port, PortSpec, PortType
 from ..core.suggest import did_you_mean
 from ..engine import lib
 from ..errors import ConfigurationError, FMUError
@@ -134,7 +134,7 @@ class FMUComponent(CoSimComponent):
         """The host process that runs an FMU apart forwards no String calls: its String
         inputs and outputs are no ports (arrays are never String ones)."""
         for specs in (self.input_specs, self.output_specs):
-            for name in [n for n, s in made_items(specs).items() if s.type == PortType.STRING]:
+            for name in [n for n, s in made_items(specs).items() if s.type in TABLED_TYPES]:
                 del specs[name]
                 self.direct_feedthrough.pop(name, None)
         for inputs in self.direct_feedthrough.values():
@@ -176,38 +176,36 @@ class FMUComponent(CoSimComponent):
         kind = (self.output_specs if direction == "out" else self.input_specs)[name].type
         if self._binding is None:
             return self._input_starts[name] if direction == "in" else \
-                "" if kind == PortType.STRING else 0.0
+                "" if kind == PortType.STRING else b"" if kind == PortType.BINARY else 0.0
         value = self._binding.plan.port_value(self, direction, name)
         if math.isnan(value) and direction == "in":
             return self._input_starts[name]  # not yet read from the FMU (see input_start)
-        if kind == PortType.STRING:
-            return self._binding.plan.text(value)
+        if kind in TABLED_TYPES:
+            return self._binding.plan.from_engine(kind, value)
         return int(value) if kind == PortType.INT else bool(value) if kind == PortType.BOOL \
             else value
 
     def why_no_port(self, name: str) -> str:
-        """A name several variables have is ambiguous; String and Binary variables are values,
-        never ports."""
+        """A name several variables have is ambiguous; String and Binary parameters are
+        values, never ports."""
         references = self.info.ambiguous_names.get(name)
         if references is not None:
             return (f" (the FMU names {len(references)} variables {name!r}, value references "
                     f"{', '.join(map(str, references))}: the name is ambiguous)")
-        variable = self.info.text_outputs.get(name)
         parameter = self.info.parameters.get(name)
-        kind = variable.type if variable is not None else \
-            parameter.fmi_type if parameter is not None else ""
+        kind = parameter.fmi_type if parameter is not None else ""
         if kind not in ("String", "Binary"):
             return ""
         return (f" (it is a {kind} variable: set it with set_parameters, read it with "
                 "get_state; it cannot be connected)")
 
-    def input_start(self, name: str) -> float | str:
-        """What set_inputs gave (a String input's text), else NaN: the engine then keeps the
-        FMU's own value."""
+    def input_start(self, name: str) -> float | str | bytes:
+        """What set_inputs gave (a String input's text, a Binary one's bytes), else NaN: the
+        engine then keeps the FMU's own value."""
         if name not in self._inputs_set:
             return math.nan
         start = self._input_starts[name]
-        return start if isinstance(start, str) else float(start)
+        return start if isinstance(start, str | bytes) else float(start)
 
     def value_reference(self, name: str) -> int:
         """The FMU's value reference of the variable `name`."""
@@ -272,7 +270,7 @@ class FMUComponent(CoSimComponent):
             if known is None:
                 known = written[name] = self._written_variable(name)
             kind, reference = known
-            if kind == PortType.STRING:
+            if kind in TABLED_TYPES:
                 continue
             if kind == PortType.INT and not INT_MIN <= value <= INT_MAX:
                 raise ConfigurationError(f"{self.name}.{name}: {value} is outside the range of "
@@ -287,7 +285,7 @@ class FMUComponent(CoSimComponent):
         (fixed by its modelDescription: _by_type keeps them, looked up once per name)."""
         kind = self.input_specs[name].type if name in self.input_specs \
             else self.info.parameters[name].type
-        return kind, -1 if kind == PortType.STRING else self.value_reference(name)
+        return kind, -1 if kind in TABLED_TYPES else self.value_reference(name)
 
     # ---------------------------------------------------------------- parameters
     def set_parameters(self, **parameters: Any) -> None:
@@ -349,8 +347,10 @@ class FMUComponent(CoSimComponent):
         if not names:
             return {}
         engine = plan.input_array(self)
-        return {n: _typed_input(self.input_specs[n].type, engine[i])
-                for i, n in enumerate(names) if not math.isnan(engine[i])}
+        return {n: plan.from_engine(kind, engine[i]) if kind in TABLED_TYPES
+                else _typed_input(kind, engine[i])
+                for i, n in enumerate(names) if not math.isnan(engine[i])
+                for kind in (self.input_specs[n].type,)}
 
     def _start_hooks_overridden(self) -> bool:
         """Whether a subclass writes the start values itself (SysSimX's hooks)."""

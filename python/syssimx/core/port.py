@@ -20,6 +20,7 @@ class PortType(StrEnum):
     INT = "int"
     BOOL = "bool"
     STRING = "string"
+    BINARY = "binary"  # FMI 3.0 Binary: bytes
     EVENT = "event"
 
 
@@ -65,6 +66,11 @@ class PortSpec:
                 raise ConfigurationTypeError(
                     f"port {self.name!r} is {self.type.name}; got {value!r}")
             return bool(value)
+        if self.type == PortType.BINARY:
+            if not isinstance(value, bytes | bytearray):
+                raise ConfigurationTypeError(
+                    f"port {self.name!r} is BINARY; got {type(value).__name__}")
+            return bytes(value)
         if not isinstance(value, str):
             raise ConfigurationTypeError(
                 f"port {self.name!r} is STRING; got {type(value).__name__}")
@@ -79,8 +85,11 @@ class PortSpec:
 
 _DEFAULTS: dict[PortType, float | int | bool | str] = {
     PortType.REAL: 0.0, PortType.INT: 0, PortType.BOOL: False, PortType.STRING: "",
-    PortType.EVENT: False,
+    PortType.BINARY: b"", PortType.EVENT: False,
 }
+
+# the port types whose values the engine holds as numbers in the system's table of values
+TABLED_TYPES = (PortType.STRING, PortType.BINARY)
 
 
 class Port:

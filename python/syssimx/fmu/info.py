@@ -102,10 +102,8 @@ class FMUInfo:
     number_of_event_indicators: int = 0
     standard: Standard = field(default_factory=Standard)  # the FMI version's
     # FMI 3.0: every scalar the engine may get or set and the array ports, and each
-    # structural parameter with the arrays it sizes, and the Binary outputs, which no port
-    # carries
+    # structural parameter with the arrays it sizes
     fmi3_variables: EngineTable = field(default_factory=lambda: EngineTable([], []))
-    text_outputs: dict[str, ScalarVariable] = field(default_factory=dict)
     structural_parameters: dict[str, list[str]] = field(default_factory=dict)
     # every variable (FMI 3.0: its array ports as elements), made when iterated
     all_variables: Iterable[Any] = ()
@@ -411,23 +409,22 @@ def _collect_array(parts: _Parts, array: ArrayPort, kind: PortType, unit: str | 
 
 
 def _collect_text(info: FMUInfo, variable: ScalarVariable, parts: _Parts) -> None:
-    """A String (any FMI version) or Binary (FMI 3.0) variable. A String input or output is a
-    port (its values are texts); a Binary output is read with get_state; a parameter or an
-    input of either is set like a parameter."""
-    if variable.type == "String" and variable.causality in ("input", "output"):
+    """A String (any FMI version) or Binary (FMI 3.0) variable. An input or output is a port
+    (its values are texts or bytes); a parameter or an input is set like a parameter."""
+    binary = variable.type == "Binary"
+    start: str | bytes | None = variable.start
+    if binary and start is not None:
+        start = bytes.fromhex(start.strip())
+    if variable.causality in ("input", "output"):
         direction = "in" if variable.causality == "input" else "out"
-        spec = PortSpec(variable.name, PortType.STRING, direction, None, variable.description)
+        spec = PortSpec(variable.name, PortType.BINARY if binary else PortType.STRING,
+                        direction, None, variable.description)
         (parts.input_specs if direction == "in" else parts.output_specs).append(
             (variable.name, spec))
         if direction == "in":
-            parts.input_starts.append((variable.name, variable.start or ""))
+            parts.input_starts.append((variable.name, start or (b"" if binary else "")))
     if variable.causality == "output":
-        if variable.type == "Binary":
-            info.text_outputs[variable.name] = variable
         return
-    start = variable.start
-    if variable.type == "Binary" and start is not None:
-        start = bytes.fromhex(start.strip())
     parts.parameters.append((variable.name, Parameter(
         variable.name, variable.valueReference, PortType.STRING, None,
         variable.causality == "input" or variable.variability == "tunable", start,

@@ -28,7 +28,8 @@ from .unsupported import Unsupported
 
 # the SSP connector types each FMU variable type may be declared as
 _SSP_TYPES = {PortType.REAL: {"Real"}, PortType.INT: {"Integer", "Enumeration"},
-              PortType.BOOL: {"Boolean"}, PortType.STRING: {"String"}}
+              PortType.BOOL: {"Boolean"}, PortType.STRING: {"String"},
+              PortType.BINARY: {"Binary"}}
 
 
 def build(structure: Structure, unsupported: Unsupported) -> System:

@@ -30,7 +30,7 @@ class WrittenSystem(Protocol):
 OSP_NAMESPACE = "http://opensimulationplatform.com/SSP/OSPAnnotations"
 OSP_TYPE = "com.opensimulationplatform"
 _SSP_TYPE = {PortType.REAL: "Real", PortType.INT: "Integer", PortType.BOOL: "Boolean",
-             PortType.STRING: "String"}
+             PortType.STRING: "String", PortType.BINARY: "Binary"}
 
 
 def write_ssp(system: WrittenSystem, path: str | Path,

@@ -73,8 +73,11 @@ def write_wide_with_units(path: str | Path, t: np.ndarray, signals: Mapping[str,
 
 def _cells(values: np.ndarray) -> list[Any]:
     """Python numbers: csv writes a float as its shortest form that reads back exactly, a
-    boolean as True/False."""
-    return np.asarray(values).tolist()
+    boolean as True/False; bytes (a Binary port's) are written in hex, as FMI writes them."""
+    cells = np.asarray(values).tolist()
+    if cells and isinstance(cells[0], bytes):
+        return [cell.hex() for cell in cells]
+    return cells
 
 
 def _write(path: str | Path, header: Sequence[Sequence[str]], rows: Iterable[Sequence[Any]]

@@ -42,7 +42,7 @@ logger = logging.getLogger("syssimx.system")
 
 _COMPATIBLE = {PortType.REAL: {PortType.REAL, PortType.INT, PortType.BOOL},
                PortType.INT: {PortType.INT, PortType.BOOL}, PortType.BOOL: {PortType.BOOL},
-               PortType.STRING: {PortType.STRING}}
+               PortType.STRING: {PortType.STRING}, PortType.BINARY: {PortType.BINARY}}
 
 
 class System:

@@ -51,7 +51,7 @@ static void strings_connect_to_strings(void)
     int real_in = ssx_add_input(sys, b, SSX_REAL, 0, 0.0);
     CHECK(text_out >= 0 && real_out >= 0 && text_in >= 0 && real_in >= 0);
     CHECK(ssx_connect(sys, a, text_out, b, real_in, 1.0, 0.0) != 0);
-    CHECK_MESSAGE(sys, "a String port connects to a String port only");
+    CHECK_MESSAGE(sys, "connects to a port of its own type only");
     CHECK(ssx_connect(sys, a, real_out, b, text_in, 1.0, 0.0) != 0);
     CHECK(ssx_connect(sys, a, text_out, b, text_in, 2.0, 0.0) != 0);
     CHECK(ssx_connect(sys, a, text_out, b, text_in, 1.0, 1.0) != 0);
