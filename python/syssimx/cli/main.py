@@ -30,6 +30,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt as stop:  # what was finished has been written by the command
         print(f"syssimx: interrupted{': ' + str(stop) if str(stop) else ''}", file=sys.stderr)
         return 130
+    except MemoryError:  # its message is empty, or a C extension's unrelated one
+        print(f"syssimx: error: out of memory in 'syssimx {args.command}': the run or its "
+              "results need more memory than this process may use; shorten the run "
+              "(--stop-time), record less (--output-interval) or allow more memory",
+              file=sys.stderr)
+        return 1
     except Exception as error:  # the command line shows messages, never tracebacks
         print(f"syssimx: error: {_describe(error, args)}", file=sys.stderr)
         return 1

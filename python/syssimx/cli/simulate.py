@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 from typing import Any, TextIO
 
@@ -213,7 +214,24 @@ def _experiment(args: argparse.Namespace, experiment: Any, fixed_step: str | Non
         dt = float(auto_interval(tf - t0))
     if not dt > 0:
         raise CommandError(f"need step size > 0; got {dt}")
+    _check_run_length(t0, tf, dt)
     return t0, tf, dt
+
+
+def _check_run_length(t0: float, tf: float, dt: float) -> None:
+    """Finite times and at most the engine's number of steps, refused here before anything
+    is built: an infinite or astronomic stop time would otherwise walk (or, FMPy's way, list)
+    its communication points without end."""
+    from ..system.system import MAX_GRID_STEPS
+
+    for label, value in (("--start-time", t0), ("--stop-time", tf), ("--step-size", dt)):
+        if not math.isfinite(value):
+            raise CommandError(f"{label} must be a finite number of seconds; got {value}")
+    steps = (tf - t0) / dt
+    if steps > MAX_GRID_STEPS:
+        raise CommandError(f"the run from {t0:g} s to {tf:g} s in steps of {dt:g} s takes "
+                           f"{steps:.3g} steps; syssimx runs at most {MAX_GRID_STEPS:.0e} "
+                           "steps: give a smaller --stop-time or a larger --step-size")
 
 
 def _event_name(variable: str) -> str:

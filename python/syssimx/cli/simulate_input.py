@@ -7,6 +7,7 @@ import itertools
 import math
 import sys
 import time
+from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -18,40 +19,67 @@ from .common import CommandError
 if TYPE_CHECKING:
     from ..components.table_source import TableSource
 
+# a stretch of regular steps is run in pieces of this many steps, the clock (--timeout) looked
+# at every _DEADLINE_CHECKS points walked
+_STRETCH_POINTS = 100_000
+_DEADLINE_CHECKS = 4096
 # the numpy type FMPy casts an input column to, by the input's type
 _TABLE_DTYPES = {PortType.REAL: np.float64, PortType.INT: np.int32, PortType.BOOL: np.bool_}
 
 
-def communication_points(t0: float, tf: float, dt: float, events: Any) -> list[float]:
+def communication_points(t0: float, tf: float, dt: float, events: Iterable[float]
+                         ) -> Iterator[float]:
     """FMPy's steps for an FMU that can vary its step: the grid t0 + k*dt plus every input
-    event between grid points (one within 1e-9 relative of a grid point is that point)."""
-    points, regular_steps, t = [t0], 0, t0
+    event between grid points (one within 1e-9 relative of a grid point is that point), made
+    one at a time: a long run holds none of them in memory."""
+    upcoming_events, k = sorted(events), 0
+    t, regular_steps = t0, 0
+    yield t
     while not (t > tf or math.isclose(t, tf)):
         regular = t0 + (regular_steps + 1) * dt
-        upcoming = next((e for e in events if e > t and not math.isclose(e, t)), math.inf)
+        while k < len(upcoming_events) and (upcoming_events[k] <= t
+                                            or math.isclose(upcoming_events[k], t)):
+            k += 1
+        upcoming = upcoming_events[k] if k < len(upcoming_events) else math.inf
         step_end = upcoming if regular > upcoming and not math.isclose(regular, upcoming) \
             else regular
         t = tf if step_end > tf and not math.isclose(step_end, tf) else step_end
-        points.append(t)
+        yield t
         regular_steps += math.isclose(t, regular)
-    return points
 
 
-def run_through(system: Any, points: list[float], dt: float, timeout: float | None = None
-                ) -> Any:
-    """Runs through the communication points: stretches of regular steps of dt in one run each,
-    every step off that grid (to or from an input event, to the stop time) in a run of its own;
-    stops when a component terminates. `timeout` (wall seconds) covers all the runs."""
+def run_through(system: Any, points: Iterable[float], dt: float,
+                timeout: float | None = None) -> Any:
+    """Runs through the communication points: stretches of regular steps of dt in a run each
+    (of up to _STRETCH_POINTS steps), every step off that grid (to or from an input event, to
+    the stop time) in a run of its own; stops when a component terminates. `timeout` (wall
+    seconds) covers all the runs, and the walk through the points between them."""
+    from ..errors import SimulationTimeoutError
+
     deadline = None if timeout is None else time.monotonic() + timeout
 
     def run(t0: float, tf: float, step: float) -> Any:
         left = None if deadline is None else max(deadline - time.monotonic(), 1e-6)
         return system.run(t0, tf, step, timeout=left)
 
-    start, result = points[0], None
-    for previous, point in itertools.pairwise(points):
+    points = iter(points)
+    start = last = next(points)
+    result, stretch = None, 0
+    for previous, point in itertools.pairwise(itertools.chain([start], points)):
+        last = point
         if math.isclose(point - previous, dt):
+            stretch += 1
+            if stretch % _STRETCH_POINTS == 0:  # run what is walked: --timeout and Ctrl-C see it
+                result = run(start, point, dt)
+                if result.termination is not None:
+                    return result
+                start = point
+            elif deadline is not None and stretch % _DEADLINE_CHECKS == 0 \
+                    and time.monotonic() >= deadline:
+                raise SimulationTimeoutError(f"the run exceeded timeout={timeout} s of wall "
+                                             f"time at t={start:.12g}", time=start)
             continue
+        stretch = 0
         if previous > start:
             result = run(start, previous, dt)
             if result.termination is not None:
@@ -60,8 +88,8 @@ def run_through(system: Any, points: list[float], dt: float, timeout: float | No
         if result.termination is not None:
             return result
         start = point
-    if points[-1] > start:
-        result = run(start, points[-1], dt)
+    if last > start:
+        result = run(start, last, dt)
     return result
 
 
