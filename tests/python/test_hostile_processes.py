@@ -367,3 +367,38 @@ def test_a_signal_to_a_sweep_worker_removes_its_extraction_folders(
         release.touch()
         running.join(timeout=300)
     assert not running.is_alive() and len(outcome) == 1
+
+
+FORKING_SCRIPT = """
+import sys
+sys.path.insert(0, {tests!r})
+from syssimx import FMUComponent, System
+from test_isolation import hostile_fmu
+
+hostile = FMUComponent("H", hostile_fmu(), isolated=True)
+hostile.set_parameters(mode={mode}, fail_time=0.05)
+system = System("forks")
+system.add_component(hostile)
+system.initialize(0.0)
+system.run(0.0, 0.2, 0.1)
+"""  # the process exits with the isolated FMU still instantiated
+
+
+@pytest.mark.parametrize("ending", ["exit", "SIGKILL"])
+def test_what_an_isolated_fmu_forks_ends_when_the_engine_process_ends(
+        tmp_path: Path, ending: str):
+    """Before: the host ended with the engine's process, the child it forked lived on."""
+    pid_file = tmp_path / "child.pid"
+    script = FORKING_SCRIPT.format(tests=str(Path(__file__).parent), mode=FORK_CHILD)
+    if ending == "SIGKILL":
+        script += "import os, signal\nos.kill(os.getpid(), signal.SIGKILL)\n"
+    engine = subprocess.run([sys.executable, "-c", script], timeout=120,
+                            env={**os.environ, "SYSSIMX_TEST_CHILD_PID_FILE": str(pid_file)})
+    assert engine.returncode == (0 if ending == "exit" else -signal.SIGKILL)
+    child = read_pid(pid_file)
+    deadline = time.monotonic() + 10
+    while alive(child) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    if alive(child):
+        os.kill(child, signal.SIGKILL)
+        pytest.fail("the process the isolated FMU forked outlived the engine's process")

@@ -8,6 +8,7 @@
  * and the call's result. It ends when the engine closes the socket, even while the FMU is
  * still inside a call (the engine's process died). */
 #include <pthread.h>
+#include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -259,13 +260,21 @@ static int serve_requests(host *h)
     }
 }
 
+/* Once the engine closed its end of the socket: the host ends, and what the FMU forked with
+ * it (the host leads their process group; an engine that was killed cannot end them). */
+static _Noreturn void end_with_forked_processes(void)
+{
+    kill(0, SIGKILL); /* the group, the host included */
+    _Exit(0);
+}
+
 /* Ends the host when the engine's end of the socket closes. The main thread cannot notice
  * while the FMU runs away inside a call, and PR_SET_PDEATHSIG would fire when the engine's
  * thread that started the host ends, not its process. */
 static void *watch_engine(void *socket)
 {
     channel_wait_for_hangup(*(const int *)socket);
-    _Exit(0);
+    end_with_forked_processes();
 }
 
 int main(int argc, char **argv)
@@ -295,6 +304,9 @@ int main(int argc, char **argv)
     }
     int failed = send_reply(&h, REPLY_HELLO, 0, resolve(&h, library, argv[2]), NULL, 0) != 0 ||
                  serve_requests(&h) != 0;
+    if (!failed) { /* the engine closed the socket, maybe before the watchdog saw it */
+        end_with_forked_processes();
+    }
     free(h.request);
     free(h.reply);
     shared_library_close(library);
