@@ -19,6 +19,7 @@ from .common import (
     working_directory_importable,
 )
 from .options import add_output_file, add_run_limits, add_time_options
+from .result_file import finished_despite_ctrl_c, write_bar
 
 
 def add_command(commands: Any) -> argparse.ArgumentParser:
@@ -28,6 +29,9 @@ def add_command(commands: Any) -> argparse.ArgumentParser:
     add_time_options(run, "the description's run entry; for an SSP or OSP file its experiment")
     add_output_file(run, "write the results to this CSV file (long: component, port, time, "
                          "micro, value, unit)")
+    run.add_argument("--wide", action="store_true",
+                     help="write the CSV file wide, as FMPy and 'syssimx simulate -o' do: time, "
+                          "then a column per Component.port (an event instant twice)")
     add_run_limits(run)
     run.add_argument("--algorithm", choices=ALGORITHM_NAMES, default=None,
                      help="the master algorithm (default: the description's; for an SSP "
@@ -71,7 +75,7 @@ def run_config(args: argparse.Namespace, out: TextIO) -> None:
         if args.output is None:
             raise
         recorded = SimulationResult.from_system(system, t0, tf, dt)
-        written = write_or_fallback(args.output, recorded.to_csv)
+        written = _write_results(recorded, args, bar)
         raise CommandError(f"{error} (--timeout {args.timeout:g} s); the samples up to there "
                            f"are written to {written}") from error
     verb = "Completed" if interrupted is None else "Interrupted (what was finished)"
@@ -84,10 +88,44 @@ def run_config(args: argparse.Namespace, out: TextIO) -> None:
     if termination is not None:  # a component asked to stop: the end of the run, not a failure
         out.write(f"{termination}\n")
     if args.output is not None:
-        write_or_fallback(args.output, result.to_csv)
-        out.write(f"Results written to {args.output}\n")
+        with finished_despite_ctrl_c(str(args.output)):
+            _write_results(result, args, bar)
+            out.write(f"Results written to {args.output}\n")
     if interrupted is not None:
         raise interrupted
+
+
+def _write_results(result: Any, args: argparse.Namespace, bar: bool) -> Path:
+    """The result as --output asks (long, or --wide), a bar on a terminal if it takes long."""
+    samples = len(result.micro)
+    ports = sum(len(p) for _, p in result.histories.values())
+    progress = write_bar(str(args.output), samples if args.wide else samples * ports, bar)
+
+    def write(path: Path) -> object:
+        if progress is not None:
+            progress.reset()
+        report = None if progress is None else progress.update
+        return _write_wide(path, result, report) if args.wide \
+            else result.to_csv(path, progress=report)
+    try:
+        return write_or_fallback(args.output, write)
+    finally:
+        if progress is not None:
+            progress.close()
+
+
+def _write_wide(path: Path, result: Any, progress: Any) -> Path:
+    """FMPy's CSV of every component: time, then Component.port columns (the components
+    share the samples' times)."""
+    import numpy as np
+
+    from ..system.csv_export import write_wide
+
+    histories = result.histories
+    t = next(iter(histories.values()))[0] if histories else np.empty(0)
+    columns = {f"{component}.{port}": values
+               for component, (_, ports) in histories.items() for port, values in ports.items()}
+    return write_wide(path, t, columns, progress=progress)
 
 
 def _prepare_config(args: argparse.Namespace) -> tuple[Any, tuple[float, float, float]]:

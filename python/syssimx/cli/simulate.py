@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import sys
 from pathlib import Path
 from typing import Any, TextIO
 
@@ -16,6 +17,7 @@ from ..partial_results import run_keeping_partial
 from ..system.csv_export import write_wide
 from .common import CommandError, choose, resolve_fmu
 from .options import add_output_file, add_run_limits, add_time_options
+from .result_file import finished_despite_ctrl_c, write_bar
 from .simulate_input import communication_points, connect_input, run_through
 
 # FMPy's interface names, and ours
@@ -154,8 +156,16 @@ def run_simulate(args: argparse.Namespace, out: TextIO) -> None:
     columns = {name: values[name] for name in written if name in values}
     if args.output is not None:
         units = result.units[component.name] if args.units else {}
-        write_or_fallback(args.output, lambda path: write_wide(path, t, columns, units))
-        out.write(f"wrote {len(t)} samples of {len(columns)} outputs to {args.output}\n")
+        with finished_despite_ctrl_c(str(args.output)):
+            progress = write_bar(str(args.output), len(t),
+                                 sys.stdout.isatty() and sys.stderr.isatty())
+            try:
+                write_or_fallback(args.output, lambda path: write_wide(
+                    path, t, columns, units, None if progress is None else progress.update))
+            finally:
+                if progress is not None:
+                    progress.close()
+            out.write(f"wrote {len(t)} samples of {len(columns)} outputs to {args.output}\n")
     if timed_out is not None:
         raise CommandError(f"{timed_out} (--timeout {args.timeout:g} s)")
     if args.plot is not None:

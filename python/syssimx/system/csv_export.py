@@ -18,7 +18,8 @@ FMPy's own results do.
 from __future__ import annotations
 
 import csv
-from collections.abc import Iterable, Mapping, Sequence
+import itertools
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -35,12 +36,16 @@ NO_UNIT = "-"  # the unit row's mark for a port without a unit
 # {component: (t, {port: values})} and {component: {port: unit or None}}
 Histories = Mapping[str, tuple[np.ndarray, Mapping[str, np.ndarray]]]
 Units = Mapping[str, Mapping[str, str | None]]
+# told the number of rows written since it was last called
+Progress = Callable[[int], object]
+_ROWS_PER_REPORT = 20_000
 
 
-def write_long(path: str | Path, histories: Histories, units: Units, micro: np.ndarray
-               ) -> Path:
+def write_long(path: str | Path, histories: Histories, units: Units, micro: np.ndarray,
+               progress: Progress | None = None) -> Path:
     """Every port of every component in the tidy long layout; `micro` is the superdense index
-    of each sample (the components share the samples' times)."""
+    of each sample (the components share the samples' times). `progress(rows)` is told the
+    rows written as the write goes on."""
     micros = _cells(micro)
 
     def rows() -> Iterable[Sequence[Any]]:
@@ -50,17 +55,19 @@ def write_long(path: str | Path, histories: Histories, units: Units, micro: np.n
                 unit = units.get(component, {}).get(port) or ""
                 for time, index, value in zip(times, micros, _cells(values), strict=True):
                     yield component, port, time, index, value, unit
-    return _write(path, [LONG_HEADER], rows())
+    return _write(path, [LONG_HEADER], rows(), progress)
 
 
 def write_wide(path: str | Path, t: np.ndarray, ports: Mapping[str, np.ndarray],
-               units: Mapping[str, str | None] | None = None) -> Path:
-    """FMPy's CSV: time, then a column per port, ``port [unit]`` where `units` gives one."""
+               units: Mapping[str, str | None] | None = None,
+               progress: Progress | None = None) -> Path:
+    """FMPy's CSV: time, then a column per port, ``port [unit]`` where `units` gives one;
+    `progress` as write_long's."""
     units = units or {}
     header = ["time", *(f"{p} [{units[p]}]" if units.get(p) else p for p in ports)]
     columns = [_cells(np.asarray(v, dtype=np.int8) if np.asarray(v).dtype == np.bool_ else v)
                for v in ports.values()]  # FMPy's reader reads numbers only
-    return _write(path, [header], zip(_cells(t), *columns, strict=True))
+    return _write(path, [header], zip(_cells(t), *columns, strict=True), progress)
 
 
 def write_wide_with_units(path: str | Path, t: np.ndarray, signals: Mapping[str, np.ndarray],
@@ -80,13 +87,19 @@ def _cells(values: np.ndarray) -> list[Any]:
     return cells
 
 
-def _write(path: str | Path, header: Sequence[Sequence[str]], rows: Iterable[Sequence[Any]]
-           ) -> Path:
+def _write(path: str | Path, header: Sequence[Sequence[str]], rows: Iterable[Sequence[Any]],
+           progress: Progress | None = None) -> Path:
     target = Path(path)
     with atomic_path(target) as temporary, temporary.open("w", newline="") as stream:
         writer = csv.writer(stream, lineterminator="\n")
         writer.writerows(header)
-        writer.writerows(rows)
+        if progress is None:
+            writer.writerows(rows)
+            return target
+        rows = iter(rows)
+        while batch := list(itertools.islice(rows, _ROWS_PER_REPORT)):
+            writer.writerows(batch)
+            progress(len(batch))
     return target
 
 

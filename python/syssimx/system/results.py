@@ -62,6 +62,10 @@ class Statistics:
     largest_step: float = 0.0
     largest_error: float = 0.0  # the largest weighted coupling error of an accepted step
     mean_error: float = 0.0  # over the accepted steps
+    steps_over_tolerance: int = 0  # accepted at min_step though over the tolerance
+    # FMUs that refused an input derivative order / told non-finite output derivatives
+    input_order_fallbacks: int = 0
+    output_derivative_fallbacks: int = 0
 
     def __str__(self) -> str:
         lines = [f"macro steps: {self.macro_steps}",
@@ -75,7 +79,12 @@ class Statistics:
         if self.accepted_steps:
             lines.append(f"step control: {self.accepted_steps} accepted, {self.rejected_steps} "
                          f"rejected, steps {self.smallest_step:.3g}..{self.largest_step:.3g}, "
-                         f"errors mean {self.mean_error:.3g}, largest {self.largest_error:.3g}")
+                         f"errors mean {self.mean_error:.3g}, largest {self.largest_error:.3g}, "
+                         f"{self.steps_over_tolerance} over the tolerance at min_step")
+        if self.input_order_fallbacks or self.output_derivative_fallbacks:
+            lines.append(f"fallbacks: {self.input_order_fallbacks} FMU(s) at a lower input "
+                         f"order, {self.output_derivative_fallbacks} with output derivatives "
+                         "estimated")
         if self.termination is not None:
             lines.append(f"terminated: {self.termination}")
         return "\n".join(lines)
@@ -110,7 +119,8 @@ class StatisticsReading:
                           float(raw.smallest_step), float(raw.largest_step),
                           float(raw.largest_error),
                           float(raw.error_sum) / raw.accepted_steps if raw.accepted_steps
-                          else 0.0)
+                          else 0.0, int(raw.steps_over_tolerance),
+                          int(raw.input_order_fallbacks), int(raw.output_derivative_fallbacks))
 
 
 class HistoryView:
@@ -318,14 +328,16 @@ class SimulationResult:
         return array
 
     def to_csv(self, path: str | Path, component: str | None = None,
-               units: bool = False) -> Path:
+               units: bool = False, progress: csv_export.Progress | None = None) -> Path:
         """Write a CSV (no pandas needed): the tidy long table (component, port, time, micro,
         value, unit), or with `component` FMPy's CSV: time, then a column per port, headed
-        "port [unit]" with `units`. Returns the path."""
+        "port [unit]" with `units`. `progress(rows)` is told the rows written as it goes.
+        Returns the path."""
         if component is not None:
             t, ports = self[component]
-            return csv_export.write_wide(path, t, ports, self.units[component] if units else None)
-        return csv_export.write_long(path, self.histories, self.units, self.micro)
+            return csv_export.write_wide(path, t, ports, self.units[component] if units else None,
+                                         progress)
+        return csv_export.write_long(path, self.histories, self.units, self.micro, progress)
 
     def plot(self, signals: Sequence[str] | None = None, path: str | Path | None = None,
              **options: Any) -> Any:
