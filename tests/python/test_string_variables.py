@@ -349,3 +349,18 @@ def test_a_string_parameter_is_no_port():
         system.add_connection(Connection("wheel", "position", "chassis", "solverType"))
     assert "'chassis' has no input 'solverType' (it is a String variable: set it with " \
         "set_parameters, read it with get_state; it cannot be connected)" in str(info.value)
+
+
+def test_string_ports_step_on_several_threads():
+    """FMUs stepping on worker threads add texts to one table: every text of every member
+    arrives intact and numbered once."""
+    system = System("threads")
+    members = [FMUComponent(f"F{k}", needs(FEEDTHROUGH2)) for k in range(8)]
+    for k, member in enumerate(members):
+        system.add_component(member)
+        member.set_inputs({"String_input": f"member {k}"})
+    system.set_algorithm(JacobiAlgorithm(threads=4))
+    system.initialize(0.0)
+    result = system.run(0.0, 0.5, 0.01)
+    for k in range(8):
+        assert set(result[f"F{k}"][1]["String_output"].tolist()) == {f"member {k}"}
