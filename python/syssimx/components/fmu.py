@@ -22,10 +22,10 @@ An FMI 3.0 Co-Simulation FMU is instantiated with event mode when it declares ha
 and with early return when it can return early: it then handles its own events inside the
 engine's step, at their time, without rollback (they appear in the result's events as its own),
 as a Model Exchange FMU of either version does inside its integration. Its Float32 and
-integer types travel as Real and Integer ports. String inputs and outputs (every version) are
-ports whose values are texts: connected to String ports, recorded as object arrays of texts;
-String parameters, and FMI 3.0 Binary variables, are set with set_parameters (inputs too) and
-read with get_state.
+integer types travel as Real and Integer ports. String inputs and outputs (every version) and
+FMI 3.0 Binary ones are ports whose values are texts or bytes: connected to ports of their
+type, recorded as object arrays; String and Binary parameters are set with set_parameters
+(inputs too) and read with get_state.
 """
 
 from __future__ import annotations

@@ -89,8 +89,8 @@ class FMUInfo:
     input_specs: MutableMapping[str, PortSpec] = field(default_factory=ElementMap)
     output_specs: MutableMapping[str, PortSpec] = field(default_factory=ElementMap)
     parameters: MutableMapping[str, Parameter] = field(default_factory=ElementMap)
-    # 0 if none given ("" for a String input)
-    input_starts: MutableMapping[str, float | int | bool | str] = field(
+    # 0 if none given ("" for a String input, b"" for a Binary one)
+    input_starts: MutableMapping[str, float | int | bool | str | bytes] = field(
         default_factory=ElementMap)
     # of ports and parameters
     value_references: MutableMapping[str, int] = field(default_factory=ElementMap)
