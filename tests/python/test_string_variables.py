@@ -5,8 +5,10 @@ parameter, against libcosim's own run of it.
 - FMI 1.0: libcosim's identity.fmu echoes its String input on its String output; a copy
   whose String variable is a parameter (FMI 1.0: variability "parameter") echoes that.
 - FMI 2.0: the Reference FMUs' Feedthrough (a String input and output); the quarter truck's
-  Chassis and Wheel (String parameters: solverType, which picks the FMU's integrator).
-- FMI 3.0: the Reference FMUs' Feedthrough (see also test_fmi3_import).
+  Chassis and Wheel (String parameters: solverType, which picks the FMU's integrator), the
+  Chassis alone equal to FMPy for each solverType.
+- FMI 3.0: the Reference FMUs' Feedthrough, String and Binary (see also test_fmi3_import).
+- String and Binary ports connected and recorded (object arrays of texts and bytes).
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from coupling_samples import coupling_samples_root
+from fmpy import simulate_fmu
 from reference_root import reference_root
 from samples_root import samples_root
 from syssimx import Connection, FMUComponent, JacobiAlgorithm, System
@@ -364,3 +367,27 @@ def test_string_ports_step_on_several_threads():
     result = system.run(0.0, 0.5, 0.01)
     for k in range(8):
         assert set(result[f"F{k}"][1]["String_output"].tolist()) == {f"member {k}"}
+
+
+def test_a_string_parameter_gives_fmpys_numbers():
+    """The quarter truck's Chassis alone under a constant force, its integrator chosen by the
+    String parameter solverType: FMPy's numbers on the same grid for each choice (bit for bit),
+    and the choices differ (Euler at 1e-5 s against the FMU's default VRK2)."""
+    path = str(needs(TRUCK / "Chassis.fmu"))
+    positions = {}
+    for solver in ("Euler", "VRK2"):
+        reference = simulate_fmu(path, stop_time=0.1, output_interval=1e-3, step_size=1e-3,
+                                 start_values={"force": 1000.0, "solverType": solver,
+                                               "timeStep": 1e-5},
+                                 output=["position", "velocity"])
+        chassis = FMUComponent("chassis", path)
+        chassis.set_parameters(solverType=solver, timeStep=1e-5)
+        chassis.set_inputs({"force": 1000.0})
+        system = System("chassis alone")
+        system.add_component(chassis)
+        system.initialize(0.0)
+        _, values = system.run(0.0, 0.1, 1e-3)["chassis"]
+        for name in ("position", "velocity"):
+            np.testing.assert_array_equal(values[name], reference[name])
+        positions[solver] = values["position"][-1]
+    assert abs(positions["Euler"] - positions["VRK2"]) > 1e-7
