@@ -76,7 +76,7 @@ typedef struct ssx_component_ops {
     int (*output_derivatives)(ssx_system *sys, ssx_component *c, double t, double *slope);
     /* Hands the component the first `order` time derivatives of its Real inputs over the
      * coming step, derivatives[2 * input + k - 1] the k-th of input `input`. Only kinds that
-     * can interpolate inputs. */
+     * can interpolate inputs. 1: the component refused this order (nothing set, no error). */
     int (*set_input_derivatives)(ssx_system *sys, ssx_component *c, int order,
                                  const double *derivatives);
     /* The kind's own reaction to an event at t when no Python hook handles it (an FMU's

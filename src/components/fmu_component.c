@@ -721,6 +721,9 @@ int fmu_component_set_input_derivatives(ssx_system *sys, ssx_component *c, int o
     }
     int status = ssx_fmu_set_real_input_derivatives(d->fmu, d->derivative_vr, n,
                                                     d->derivative_order, d->derivative_values);
+    if (status == 2 || status == 3) { /* Discard or Error, not Fatal */
+        return 1; /* this order refused: the caller offers a lower one */
+    }
     if (!fmi_ok(status)) {
         return fmi_failed(sys, c, sys->time, status, SLOT_SET_INPUT_DERIVATIVES);
     }

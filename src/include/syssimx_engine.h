@@ -311,6 +311,10 @@ typedef struct {
     double largest_step;
     double largest_error;        /* the largest weighted coupling error of an accepted step */
     double error_sum;            /* of the accepted steps' errors: their mean is this / accepted */
+    long steps_over_tolerance;   /* accepted at min_step (no shorter one allowed) with error > 1 */
+    /* FMUs that could not give what the input order asks (ssx_coupling_fallbacks) */
+    long input_order_fallbacks;       /* refused an input derivative order: a lower one since */
+    long output_derivative_fallbacks; /* told non-finite output derivatives: estimated since */
 } ssx_statistics;
 
 /* Who found an event: the master, by an indicator's crossing (located by rollback), or a
@@ -564,8 +568,23 @@ typedef struct {
     int energy;
     double proportional_gain; /* >= 0, energy only */
     double integral_gain;     /* > 0, energy only */
+    int strict; /* a step at min_step still over the tolerance fails the run (else counted) */
 } ssx_step_control;
 int ssx_set_step_control(ssx_system *sys, const ssx_step_control *control);
+/* What the coupling does instead where an FMU cannot give what the input order asks, per
+ * component, since ssx_initialize: an FMU whose fmi2SetRealInputDerivatives
+ * (fmiSetRealInputDerivatives) returns Discard or Error for an order gets the next lower one
+ * from then on (at 0 its inputs are held over each step); one whose output derivatives come back
+ * NaN or infinite has them estimated from its outputs at the communication points instead, from
+ * then on. Each counts once in the statistics. */
+typedef struct {
+    int component;
+    int input_order;                /* the input derivative order it is given now */
+    double input_order_time;        /* when it refused one; NaN: never */
+    double output_derivatives_time; /* when its output derivatives were non-finite; NaN: never */
+} ssx_coupling_fallback;
+/* How many components fell back; the first `max` into out. */
+int ssx_coupling_fallbacks(const ssx_system *sys, ssx_coupling_fallback *out, int max);
 /* The power bonds of the energy error: bond k joins input ends[4k + 1] of component ends[4k]
  * (a force or torque, say) and input ends[4k + 3] of component ends[4k + 2] (the velocity), each
  * driven by a Real output of the other component. Replaces the bonds set before; checked at

@@ -22,6 +22,9 @@ typedef struct {
      * component's inputs are held at their value at the step's start */
     double *input_derivatives;
     int holds_mean; /* it cannot interpolate: its inputs are held at the polynomials' mean */
+    int order;      /* the input derivative order it is given: the system's, lower once refused */
+    double order_refused_at;  /* NaN: it took every order it was given */
+    double slopes_failed_at;  /* its output derivatives were non-finite there; NaN: never */
 } component_track;
 
 struct input_motion {
@@ -117,6 +120,9 @@ static int prepare_track(ssx_system *sys, struct input_motion *w, int i)
         return -1;
     }
     tr->holds_mean = holds_extrapolated(sys, c);
+    tr->order = sys->input_order;
+    tr->order_refused_at = NAN;
+    tr->slopes_failed_at = NAN;
     if (!tr->holds_mean && !interpolates(sys, c)) {
         return 0;
     }
@@ -223,14 +229,23 @@ static void remember(component_track *tr, const ssx_component *c, double t)
     }
 }
 
+/* Output derivatives that are NaN or infinite (as some exported FMUs tell) are never handed
+ * on: from then on the component's slopes come from its communication points. */
 static int read_slopes(ssx_system *sys, ssx_component *c, component_track *tr, double t)
 {
     tr->has_slope = 0;
-    if (!tells_output_derivatives(c) || !has_real_output(c)) {
+    if (!tells_output_derivatives(c) || !has_real_output(c) || !isnan(tr->slopes_failed_at)) {
         return 0;
     }
     if (c->ops->output_derivatives(sys, c, t, tr->slope) != 0) {
         return -1;
+    }
+    for (int o = 0; o < c->n_outputs; ++o) {
+        if (c->output_ports[o].type == SSX_REAL && !isfinite(tr->slope[o])) {
+            tr->slopes_failed_at = t;
+            sys->stats.output_derivative_fallbacks++;
+            return 0;
+        }
     }
     tr->has_slope = 1;
     return 0;
@@ -362,9 +377,25 @@ void input_order_propagate(ssx_system *sys, ssx_component *c)
         double d1, d2;
         double y = driver_polynomial(sys, w, k, &d1, &d2);
         c->inputs[i] = cn->scale * y + cn->offset;
-        d[0] = cn->scale * d1;
-        d[1] = w->order >= 2 ? cn->scale * d2 : 0.0;
+        d[0] = tr->order >= 1 ? cn->scale * d1 : 0.0;
+        d[1] = tr->order >= 2 ? cn->scale * d2 : 0.0;
         c->inputs[i] += mean_at * (0.5 * d[0] + mean_at * d[1] / 6.0);
+    }
+}
+
+/* One order lower for good: the derivatives beyond it are dropped (at 0 the inputs are held
+ * at their values at the step's start). */
+static void lower_input_order(ssx_system *sys, ssx_component *c, component_track *tr)
+{
+    tr->order--;
+    for (int i = 0; i < c->n_inputs; ++i) {
+        for (int k = tr->order; k < 2; ++k) {
+            tr->input_derivatives[2 * i + k] = 0.0;
+        }
+    }
+    if (isnan(tr->order_refused_at)) {
+        tr->order_refused_at = sys->time;
+        sys->stats.input_order_fallbacks++;
     }
 }
 
@@ -378,7 +409,36 @@ int input_order_write(ssx_system *sys, ssx_component *c)
     if (tr->holds_mean) {
         return 0; /* it holds its inputs (extrapolated) */
     }
-    return c->ops->set_input_derivatives(sys, c, w->order, tr->input_derivatives);
+    /* an FMU that refuses an order (FMUs that take first derivatives only refuse the second)
+     * is offered the next lower one */
+    while (tr->order > 0) {
+        int status = c->ops->set_input_derivatives(sys, c, tr->order, tr->input_derivatives);
+        if (status <= 0) {
+            return status;
+        }
+        lower_input_order(sys, c, tr);
+    }
+    return 0;
+}
+
+int ssx_coupling_fallbacks(const ssx_system *sys, ssx_coupling_fallback *out, int max)
+{
+    const struct input_motion *w = sys->input_motion;
+    int count = 0;
+    for (int i = 0; w != NULL && i < w->n_components; ++i) {
+        const component_track *tr = &w->tracks[i];
+        if (isnan(tr->order_refused_at) && isnan(tr->slopes_failed_at)) {
+            continue;
+        }
+        if (count < max && out != NULL) {
+            out[count] = (ssx_coupling_fallback){.component = i,
+                                                 .input_order = tr->order,
+                                                 .input_order_time = tr->order_refused_at,
+                                                 .output_derivatives_time = tr->slopes_failed_at};
+        }
+        count++;
+    }
+    return count;
 }
 
 /* After the step: each input at the value its polynomial reached at t + h (what an

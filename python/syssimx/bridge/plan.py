@@ -117,6 +117,8 @@ class EnginePlan:
         self.failure: CallbackFailure | None = None
         # (component, output) of the outputs warned of as non-finite since the last initialize
         self.non_finite_warned: set[tuple[int, int]] = set()
+        # (component or -1, what) of the coupling's fallbacks warned of since (coupling_fallbacks)
+        self.coupling_warned: set[tuple[int, str]] = set()
         # the first component that was bound elsewhere since (initialized in another System)
         self.left: str | None = None
         # parameters set on running FMUs (component -> names): they apply only at the next
@@ -145,6 +147,7 @@ class EnginePlan:
         """ssx_initialize at t0 (its status); the port values may have moved into the engine's
         block in schedule order, so what keeps their addresses takes them again."""
         self.non_finite_warned.clear()
+        self.coupling_warned.clear()
         status = int(lib().ssx_initialize(self.sys, t0))
         for holder in self._port_holders:
             holder.take_port_addresses()

@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import Any
 
 from .. import units
+from ..bridge.coupling_fallbacks import warn_coupling_fallbacks
 from ..bridge.failure import raise_failure
 from ..bridge.non_finite import warn_non_finite_outputs
 from ..bridge.observers import add_observer, remove_observer
@@ -343,6 +344,7 @@ class System:
         if plan.initialize(t0) < 0:
             raise_failure(plan)
         warn_non_finite_outputs(plan)
+        warn_coupling_fallbacks(plan)
         self.history = SystemHistory(system=self)
         self.t = t0
         self.is_initialized = True
@@ -452,6 +454,7 @@ class System:
                 stream.finish()
         wall = time.perf_counter() - start
         warn_non_finite_outputs(plan)
+        warn_coupling_fallbacks(plan)
         outcome = RunOutcome(plan)
         events = RecordedEvents(plan, outcome.event_count)
         self.history = SystemHistory(events, self)
