@@ -71,6 +71,15 @@ static double first_step(const ssx_system *sys, double grid_step)
     return 0.1 * grid_step * pow(tolerance, 1.0 / (double)(sys->input_order + 1));
 }
 
+/* A step of about h from where room is left to the grid point: within [shortest, room], and
+ * all of room where the rest would be shorter than the shortest step (it would make a step
+ * below min_step next). */
+static double step_length(double h, double shortest, double room)
+{
+    h = fmin(fmax(h, shortest), room);
+    return room - h < fmax(shortest, 1e-9 * room) ? room : h;
+}
+
 static double clamp_step(const ssx_step_control *sc, double h)
 {
     double longest = sc->max_step > 0.0 ? sc->max_step : INFINITY;
@@ -87,6 +96,21 @@ static void count_accepted(ssx_system *sys, double h, double error)
     st->accepted_steps++;
 }
 
+/* A step no shorter one may replace, still over the tolerance: counted, or with a strict step
+ * control a failure (the result would not be what the tolerance promises). */
+static int over_tolerance_at_min_step(ssx_system *sys, double a, double h, double error)
+{
+    if (!sys->step_control.strict) {
+        sys->stats.steps_over_tolerance++;
+        return 0;
+    }
+    return fail(sys, -1, -1, a,
+                "system '%s': the step of %g from t=%.17g, at the step control's min_step=%g, "
+                "still has an error of %g times the tolerance (strict step control: lower "
+                "min_step, or loosen rtol and atol)",
+                sys->name, h, a, sys->step_control.min_step, error);
+}
+
 /* One accepted step from a, at most to t_next; *reached is where it ends (before t_next at an
  * event). */
 static int accepted_step(ssx_system *sys, double a, double t_next, double *reached, int *event)
@@ -100,12 +124,11 @@ static int accepted_step(ssx_system *sys, double a, double t_next, double *reach
         return -1;
     }
     double room = t_next - a;
-    double h = fmin(w->proposed, room);
-    /* a remainder shorter than the smallest step joins this one */
-    if (room - h < fmax(sc->min_step, 1e-9 * room)) {
-        h = room;
-    }
+    double shortest = sc->min_step;
+    double h = step_length(w->proposed, shortest, room);
     int cut_by_grid = h < w->proposed;
+    /* no shorter step may replace it: any would leave less than the shortest step behind */
+    int at_limit = !(step_length(shortest, shortest, room) < h);
     double error;
     for (;;) {
         if ((restorable && system_snapshot(sys, MACRO_SLOT) != 0) ||
@@ -113,15 +136,20 @@ static int accepted_step(ssx_system *sys, double a, double t_next, double *reach
             return -1;
         }
         error = input_order_error(sys);
-        if (!(error > 1.0) || !sc->rollback || h <= sc->min_step) {
+        double shorter = step_length(h * step_factor(sys, error), shortest, room);
+        if (!(error > 1.0) || !sc->rollback || !(shorter < h)) {
             break;
         }
         if (system_restore(sys, MACRO_SLOT, a) != 0) {
             return -1;
         }
         sys->stats.rejected_steps++;
-        h = fmax(sc->min_step, h * step_factor(sys, error));
+        h = shorter;
+        at_limit = !(step_length(shortest, shortest, room) < h);
         cut_by_grid = 0;
+    }
+    if (error > 1.0 && at_limit && over_tolerance_at_min_step(sys, a, h, error) != 0) {
+        return -1;
     }
     sys->stats.macro_steps++;
     count_accepted(sys, h, error);

@@ -33,7 +33,10 @@ class StepControl:
     side's power is its input times its output that drives the other end; the error is the
     root mean square over the bonds of abs(dP) h / (atol + rtol max(abs(P)) h), and the next
     step is the last times safety * error^-(integral_gain + proportional_gain) *
-    previous_error^proportional_gain (a PI controller, Sadjina et al.)."""
+    previous_error^proportional_gain (a PI controller, Sadjina et al.).
+
+    A step at min_step whose error still exceeds 1 is kept, counted in the statistics
+    (steps_over_tolerance) and warned of once; strict=True makes it stop the run instead."""
 
     rtol: float = field(default_factory=lambda: defaults().step_rtol)
     atol: float = field(default_factory=lambda: defaults().step_atol)
@@ -48,6 +51,7 @@ class StepControl:
     power_bonds: tuple[tuple[tuple[str, str], tuple[str, str]], ...] = ()
     proportional_gain: float = field(default_factory=lambda: defaults().step_proportional_gain)
     integral_gain: float = field(default_factory=lambda: defaults().step_integral_gain)
+    strict: bool = False
 
     def __post_init__(self) -> None:
         # from YAML, lists: hashable and comparable as tuples
@@ -63,12 +67,13 @@ class StepControl:
             "initial_step": self.initial_step, "safety": self.safety,
             "min_change": self.min_change, "max_change": self.max_change,
             "energy": int(self.error == "energy"), "proportional_gain": self.proportional_gain,
-            "integral_gain": self.integral_gain})
+            "integral_gain": self.integral_gain, "strict": int(bool(self.strict))})
 
     def validate(self, owner: str) -> None:
-        if not isinstance(self.rollback, bool):
-            raise ConfigurationError(f"{owner}: step_control.rollback must be true or false, "
-                                     f"got {self.rollback!r}")
+        for flag in ("rollback", "strict"):
+            if not isinstance(getattr(self, flag), bool):
+                raise ConfigurationError(f"{owner}: step_control.{flag} must be true or false, "
+                                         f"got {getattr(self, flag)!r}")
         if self.error not in ("coupling", "energy"):
             raise ConfigurationError(f"{owner}: step_control.error must be 'coupling' or "
                                      f"'energy', got {self.error!r}")
