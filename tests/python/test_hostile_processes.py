@@ -370,7 +370,8 @@ def test_a_signal_to_a_sweep_worker_removes_its_extraction_folders(
 
 
 FORKING_SCRIPT = """
-import sys
+import os, sys, time
+from pathlib import Path
 sys.path.insert(0, {tests!r})
 from syssimx import FMUComponent, System
 from test_isolation import hostile_fmu
@@ -381,7 +382,10 @@ system = System("forks")
 system.add_component(hostile)
 system.initialize(0.0)
 system.run(0.0, 0.2, 0.1)
-"""  # the process exits with the isolated FMU still instantiated
+child = Path(os.environ["SYSSIMX_TEST_CHILD_PID_FILE"])
+while not (child.is_file() and child.read_text().strip()):  # the child has started
+    time.sleep(0.01)
+"""  # the process ends with the isolated FMU still instantiated
 
 
 @pytest.mark.parametrize("ending", ["exit", "SIGKILL"])
