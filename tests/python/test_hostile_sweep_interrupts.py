@@ -146,3 +146,24 @@ def test_ctrl_c_after_the_last_member_keeps_every_member(monkeypatch: pytest.Mon
     assert [m.ok for m in members] == [True, True]
     assert members[1].outputs["P.theta"][0] == pytest.approx(0.2)
     assert "2 of 2 members had finished" in str(caught.value)
+
+
+def test_ctrl_c_keeps_members_finished_on_the_workers_but_not_yet_taken(
+        monkeypatch: pytest.MonkeyPatch):
+    """SIGINT while the sweep waits for its next result, once the members' task has finished
+    and its result has arrived. Before: those members were marked failed."""
+    import time
+
+    def interrupted_next(completed: Any) -> Any:
+        while completed.queue.empty():
+            time.sleep(0.01)
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(distributed.as_completed, "__next__", interrupted_next)
+    with pytest.raises(RunInterrupted) as caught:
+        sweep_of_two()
+    members = caught.value.partial_result.members
+    assert members[0].ok
+    assert members[0].outputs["P.theta"][0] == pytest.approx(0.1)
+    done = sum(m.ok for m in members)
+    assert f"{done} of 2 members had finished" in str(caught.value)

@@ -188,6 +188,9 @@ class _Ensemble:
                     suspects += [i for i in chunk.indices if i not in watchdog.stopped]
                 else:
                     suspects += self._failed(future.exception(), chunk, alone)
+        except KeyboardInterrupt:
+            self._keep_finished(pending)
+            raise
         finally:
             if watchdog is not None:
                 watchdog.close()
@@ -195,6 +198,13 @@ class _Ensemble:
             if running:  # a round trip to the scheduler, even for none
                 self.client.cancel(running)
         return suspects
+
+    def _keep_finished(self, pending: Any) -> None:
+        """On Ctrl-C: the members whose task had finished, with its result here, but that
+        `run` had not taken yet."""
+        for future, outcome in pending.next_batch(block=False):
+            if future.status == "finished":
+                self.bar.advance(*self.results.add_block(outcome))
 
     def _submit(self, chunks: Sequence[MemberChunk], futures: list[Any],
                 by_key: dict[Any, MemberChunk], pending: Any) -> None:
