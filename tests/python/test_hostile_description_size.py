@@ -68,3 +68,16 @@ def test_a_description_at_the_limit_loads(tmp_path: Path, monkeypatch: pytest.Mo
         size = archive.getinfo("modelDescription.xml").file_size
     monkeypatch.setattr(description_module, "DESCRIPTION_SIZE_LIMIT", size)
     assert "u" in FMUComponent("G", str(path)).input_specs
+
+
+def test_syssimx_info_refuses_it_before_fmpy_reads_it(tmp_path: Path, small_limit: int,
+                                                     capsys: pytest.CaptureFixture[str]):
+    """Before: FMPy read the whole description (and lxml refused a text node over 10 MB)."""
+    from syssimx.cli import main
+
+    path = padded_gain(tmp_path, "UTF-8")
+    assert main(["info", str(path)]) == 1
+    error = capsys.readouterr().err
+    assert error.startswith(f"syssimx: error: {path} is not a readable FMU: {path}: "
+                            "modelDescription.xml declares ")
+    assert f"more than the {small_limit} bytes syssimx reads of a description" in error

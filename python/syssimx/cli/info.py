@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import zipfile
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, TextIO
@@ -73,7 +74,12 @@ def run_info(args: argparse.Namespace, out: TextIO) -> None:
 def _read_description(path: Path) -> Any:
     from fmpy import read_model_description
 
+    from ..fmu.description import check_declared_size
+
     try:
+        with zipfile.ZipFile(path) as archive:  # FMPy reads the description whole
+            check_declared_size(sum(entry.file_size for entry in archive.infolist()
+                                    if entry.filename == "modelDescription.xml"), path)
         md = read_model_description(str(path), validate=False)
     except Exception as error:  # fmpy raises many kinds for a broken archive
         raise CommandError(f"{path} is not a readable FMU: {error}") from error

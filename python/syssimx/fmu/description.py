@@ -46,13 +46,20 @@ def read_description(stream: IO[bytes], where: str | Path, declared_size: int) -
     return Described(standard, standard.describe(md, Path(where)))
 
 
+def check_declared_size(declared_size: int, where: str | Path) -> None:
+    """FMUFileError when the archive `where` declares its description larger than
+    DESCRIPTION_SIZE_LIMIT."""
+    if declared_size > DESCRIPTION_SIZE_LIMIT:
+        raise FMUFileError(f"{where}: modelDescription.xml declares {declared_size} bytes, more "
+                           f"than the {DESCRIPTION_SIZE_LIMIT} bytes syssimx reads of a "
+                           "description")
+
+
 def _bounded_read(stream: IO[bytes], where: str | Path, declared_size: int) -> bytearray:
     """The whole stream, refused before reading when its declared size is over the limit, and
     while reading once it is (a header may understate what a member inflates to)."""
+    check_declared_size(declared_size, where)
     limit = DESCRIPTION_SIZE_LIMIT
-    if declared_size > limit:
-        raise FMUFileError(f"{where}: modelDescription.xml declares {declared_size} bytes, more "
-                           f"than the {limit} bytes syssimx reads of a description")
     text = bytearray()
     while chunk := stream.read(min(_CHUNK, limit + 1 - len(text))):
         text += chunk
