@@ -361,7 +361,9 @@ static int refuse(ssx_fmu *fmu, ssx_fmu_slot call)
 }
 
 /* Every call on the instance starts here: refused without a live instance or when the binary
- * lacks the function. Inline: it runs before every doStep. */
+ * lacks the function; else the call is marked as this thread's, for the FMU's callbacks
+ * (fmu_environment.h), until finish or refused_after_begin. Inline: it runs before every
+ * doStep. */
 static inline int begin(ssx_fmu *fmu, ssx_fmu_slot call)
 {
     if (fmu == NULL) {
@@ -371,7 +373,15 @@ static inline int begin(ssx_fmu *fmu, ssx_fmu_slot call)
     if (fmu->instance == NULL || fmu->fn[call] == NULL) {
         return refuse(fmu, call);
     }
+    ssx_fmu_environment_enter(&fmu->rest->environment);
     return 1;
+}
+
+/* A call begun and then refused by the binding, before the FMU was called. */
+static int refused_after_begin(void)
+{
+    ssx_fmu_environment_leave();
+    return -1;
 }
 
 static void abandon(ssx_fmu *fmu, ssx_fmu_slot call)
@@ -385,6 +395,7 @@ static void abandon(ssx_fmu *fmu, ssx_fmu_slot call)
  * calls. `call` is a constant at every use, so the counting folds away. */
 static inline int finish(ssx_fmu *fmu, ssx_fmu_slot call, int status)
 {
+    ssx_fmu_environment_leave();
     if (effects[call].counter != 0) {
         long *counter = (long *)((char *)&fmu->counters + effects[call].counter - 1);
         ++*counter;
@@ -448,6 +459,7 @@ int ssx_fmu_free_instance(ssx_fmu *fmu)
     }
     int worst = 0;
     if (fmu->instance != NULL) {
+        ssx_fmu_environment_enter(&fmu->rest->environment);
         /* States belong to their instance: release them while it still exists. */
         while (fmu->rest->n_states > 0) {
             void *state = fmu->rest->states[--fmu->rest->n_states];
@@ -458,6 +470,7 @@ int ssx_fmu_free_instance(ssx_fmu *fmu)
         }
         fmu->backend->free_instance(fmu->fn, fmu->instance);
         fmu->instance = NULL;
+        ssx_fmu_environment_leave();
     }
     return worst; /* the worst status of freeing the states; the instance is gone either way */
 }
@@ -469,7 +482,9 @@ void ssx_fmu_free(ssx_fmu *fmu)
     }
     if (fmu->instance != NULL) {
         /* Teardown goes on whatever the FMU answers: there is no one left to report to. */
+        ssx_fmu_environment_enter(&fmu->rest->environment);
         (void)fmu->backend->terminate(fmu->fn, fmu->instance);
+        ssx_fmu_environment_leave();
     }
     (void)ssx_fmu_free_instance(fmu);
     free(fmu->rest->states);
@@ -508,6 +523,7 @@ int ssx_fmu_instantiate(ssx_fmu *fmu)
     fmu->rest->environment.last_message[0] = '\0';
     fmu->rest->in_initialization_mode = 0;
     binding_rest *rest = fmu->rest;
+    ssx_fmu_environment_enter(&rest->environment);
     fmu->instance = fmu->backend->instantiate(fmu->fn, rest->context, &rest->environment,
                                               rest->instance_name, rest->guid,
                                               rest->resource_uri, rest->logging_on);
@@ -779,7 +795,7 @@ int ssx_fmu_get_state(ssx_fmu *fmu, void **state)
         snprintf(fmu->rest->environment.last_message, sizeof fmu->rest->environment.last_message,
                  "%s: the state to reuse does not belong to the live instance",
                  ssx_fmu_last_call(fmu));
-        return -1;
+        return refused_after_begin();
     }
     void *reused = *state;
     int status =
@@ -790,7 +806,9 @@ int ssx_fmu_get_state(ssx_fmu *fmu, void **state)
     }
     if (*state != reused && *state != NULL && remember_state(fmu, *state) != 0) {
         if (fmu->fn[SLOT_FREE_STATE] != NULL) {
+            ssx_fmu_environment_enter(&fmu->rest->environment);
             fmu->backend->free_state(fmu->fn, fmu->instance, state);
+            ssx_fmu_environment_leave();
         }
         note(fmu, "out of memory tracking FMU states");
         return -1;
@@ -806,7 +824,7 @@ int ssx_fmu_set_state(ssx_fmu *fmu, void *state)
     if (!knows_state(fmu, state)) {
         snprintf(fmu->rest->environment.last_message, sizeof fmu->rest->environment.last_message,
                  "%s: the state does not belong to the live instance", ssx_fmu_last_call(fmu));
-        return -1;
+        return refused_after_begin();
     }
     return finish(fmu, SLOT_SET_STATE, fmu->backend->set_state(fmu->fn, fmu->instance, state));
 }
@@ -847,7 +865,7 @@ int ssx_fmu_deserialize_state(ssx_fmu *fmu, const char *bytes, size_t size, void
         snprintf(fmu->rest->environment.last_message, sizeof fmu->rest->environment.last_message,
                  "%s: the state to reuse does not belong to the live instance",
                  ssx_fmu_last_call(fmu));
-        return -1;
+        return refused_after_begin();
     }
     void *reused = *state;
     int status = finish(fmu, SLOT_DESERIALIZE_STATE,

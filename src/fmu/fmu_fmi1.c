@@ -13,6 +13,7 @@
 #include <stdlib.h>
 
 #include "fmi1Functions.h"
+#include "fmu_message.h"
 
 /* FMI 1.0 Model Exchange passes three callbacks by value (the Co-Simulation struct of
  * fmi1Functions.h adds stepFinished): the standard's struct and the instantiate function that
@@ -28,7 +29,6 @@ typedef fmi1Component fmi1_instantiate_model(fmi1String instance_name, fmi1Strin
 
 typedef struct {
     fmi1Component component;
-    ssx_fmu_environment *environment; /* where the FMU's log messages go */
     double start_time;
     int stop_time_defined;
     double stop_time;
@@ -41,9 +41,7 @@ typedef struct {
 
 /* FMI 1.0's logger names the FMU's own component, which is NULL while it is instantiated,
  * not an environment of ours: the FMU that logs is the one whose call is in progress on this
- * thread (each thread calls one FMU at a time). */
-static _Thread_local fmi1_context *calling;
-
+ * thread, which the binding marks (ssx_fmu_environment_enter). */
 static void logger(fmi1Component component, fmi1String instance_name, fmi1Status status,
                    fmi1String category, fmi1String message, ...)
 {
@@ -51,26 +49,22 @@ static void logger(fmi1Component component, fmi1String instance_name, fmi1Status
     (void)instance_name;
     (void)status;
     (void)category;
-    if (calling == NULL || message == NULL) {
+    if (message == NULL) {
         return;
     }
+    char text[SSX_FMU_MESSAGE_SIZE];
     va_list args;
     va_start(args, message);
-    ssx_fmu_environment_log(calling->environment, message, args);
+    ssx_format_fmu_message(text, sizeof text, message, args);
     va_end(args);
+    ssx_fmu_environment_log(ssx_fmu_environment_calling(), text);
 }
 
 /* The function in `slot` with its FMI 1.0 type (ISO C converts between function pointers). */
 #define FMI1(fn, slot, type) ((type *)(fn)[slot])
-/* A call on the context's component, with the logger pointed at its FMU. */
-#define CALL(ctx, expression)                                                                 \
-    do {                                                                                      \
-        fmi1_context *outer = calling;                                                        \
-        calling = (ctx);                                                                      \
-        int status_ = (int)(expression);                                                      \
-        calling = outer;                                                                      \
-        return status_;                                                                       \
-    } while (0)
+/* A call on the context's component, as an int status (the binding marks the call for the
+ * logger). */
+#define CALL(ctx, expression) return (void)(ctx), (int)(expression)
 #define COMPONENT(instance) (((fmi1_context *)(instance))->component)
 
 /* ------------------------------------------------------------------ life cycle */
@@ -86,14 +80,12 @@ static void *instantiate_slave(const ssx_fmu_function *fn, void *context, ssx_fm
                                const char *fmu_location, int logging_on)
 {
     fmi1_context *ctx = context;
-    *ctx = (fmi1_context){.environment = environment};
+    (void)environment; /* FMI 1.0 hands the FMU none */
+    *ctx = (fmi1_context){0};
     fmi1CallbackFunctions callbacks = {logger, calloc, free, NULL};
-    fmi1_context *outer = calling;
-    calling = ctx;
     fmi1Component component = FMI1(fn, SLOT_INSTANTIATE, fmi1InstantiateSlaveTYPE)(
         instance_name, guid, fmu_location, "application/x-fmu-sharedlibrary", 0.0, fmi1False,
         fmi1False, callbacks, logging_on ? fmi1True : fmi1False);
-    calling = outer;
     return instantiated(ctx, component);
 }
 
@@ -103,30 +95,22 @@ static void *instantiate_model(const ssx_fmu_function *fn, void *context, ssx_fm
 {
     (void)resource_uri; /* FMI 1.0 Model Exchange has no resources */
     fmi1_context *ctx = context;
-    *ctx = (fmi1_context){.environment = environment};
+    (void)environment; /* FMI 1.0 hands the FMU none */
+    *ctx = (fmi1_context){0};
     fmi1_model_callbacks callbacks = {logger, calloc, free};
-    fmi1_context *outer = calling;
-    calling = ctx;
     fmi1Component component = FMI1(fn, SLOT_INSTANTIATE, fmi1_instantiate_model)(
         instance_name, guid, callbacks, logging_on ? fmi1True : fmi1False);
-    calling = outer;
     return instantiated(ctx, component);
 }
 
 static void free_slave(const ssx_fmu_function *fn, void *instance)
 {
-    fmi1_context *outer = calling;
-    calling = instance;
     FMI1(fn, SLOT_FREE_INSTANCE, fmi1FreeSlaveInstanceTYPE)(COMPONENT(instance));
-    calling = outer;
 }
 
 static void free_model(const ssx_fmu_function *fn, void *instance)
 {
-    fmi1_context *outer = calling;
-    calling = instance;
     FMI1(fn, SLOT_FREE_INSTANCE, fmi1FreeModelInstanceTYPE)(COMPONENT(instance));
-    calling = outer;
 }
 
 /* Kept for the initializing call; Model Exchange sets its start time now. */
@@ -251,8 +235,6 @@ enum { BOOLEAN_CHUNK = 64 };
 static int get_boolean(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
                        size_t n, int *values)
 {
-    fmi1_context *outer = calling;
-    calling = instance;
     int worst = 0;
     for (size_t first = 0; first < n && worst <= 1; first += BOOLEAN_CHUNK) {
         fmi1Boolean chunk[BOOLEAN_CHUNK];
@@ -264,15 +246,12 @@ static int get_boolean(const ssx_fmu_function *fn, void *instance, const unsigne
         }
         worst = status > worst ? status : worst;
     }
-    calling = outer;
     return worst;
 }
 
 static int set_boolean(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
                        size_t n, const int *values)
 {
-    fmi1_context *outer = calling;
-    calling = instance;
     int worst = 0;
     for (size_t first = 0; first < n && worst <= 1; first += BOOLEAN_CHUNK) {
         fmi1Boolean chunk[BOOLEAN_CHUNK];
@@ -284,7 +263,6 @@ static int set_boolean(const ssx_fmu_function *fn, void *instance, const unsigne
             COMPONENT(instance), vr + first, count, chunk);
         worst = status > worst ? status : worst;
     }
-    calling = outer;
     return worst;
 }
 
@@ -371,11 +349,8 @@ static int event_update(const ssx_fmu_function *fn, void *instance, ssx_fmu_even
         }
     }
     fmi1EventInfo event = {0};
-    fmi1_context *outer = calling;
-    calling = ctx;
     int status = (int)FMI1(fn, SLOT_NEW_DISCRETE_STATES, fmi1EventUpdateTYPE)(
         ctx->component, fmi1False, &event);
-    calling = outer;
     tell(&event, info);
     return status;
 }
@@ -386,11 +361,8 @@ static int completed_integrator_step(const ssx_fmu_function *fn, void *instance,
 {
     (void)no_set_state_prior;
     fmi1Boolean call_event_update = fmi1False;
-    fmi1_context *outer = calling;
-    calling = instance;
     int status = (int)FMI1(fn, SLOT_COMPLETED_INTEGRATOR_STEP, fmi1CompletedIntegratorStepTYPE)(
         COMPONENT(instance), &call_event_update);
-    calling = outer;
     *enter_event_mode = call_event_update != fmi1False;
     *terminate_simulation = 0;
     return status;

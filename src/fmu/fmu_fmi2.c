@@ -7,6 +7,7 @@
 
 #include "fmi2Functions.h"
 #include "fmu_binding.h"
+#include "fmu_message.h"
 
 /* The rows both interfaces share: required, then optional. */
 #define FMI2_COMMON_ROWS                                                                      \
@@ -81,13 +82,16 @@ static void logger(fmi2ComponentEnvironment environment, fmi2String instance_nam
     (void)instance_name;
     (void)status;
     (void)category;
-    if (environment == NULL || message == NULL) {
+    if (message == NULL) {
         return;
     }
+    char text[SSX_FMU_MESSAGE_SIZE];
     va_list args;
     va_start(args, message);
-    ssx_fmu_environment_log(environment, message, args);
+    ssx_format_fmu_message(text, sizeof text, message, args);
     va_end(args);
+    /* some FMUs name no environment, or another: the pointer is checked, never read */
+    ssx_fmu_environment_log(ssx_fmu_environment_claimed(environment), text);
 }
 
 /* The callbacks live in the context: FMI 2.0 lets the instance keep the pointer. */
@@ -97,6 +101,7 @@ static void *instantiate_as(fmi2Type type, const ssx_fmu_function *fn, void *con
 {
     fmi2CallbackFunctions *callbacks = context;
     *callbacks = (fmi2CallbackFunctions){logger, calloc, free, NULL, environment};
+    environment->handed = environment;
     return FMI2(fn, SLOT_INSTANTIATE, fmi2InstantiateTYPE)(
         instance_name, type, guid, resource_uri, callbacks, fmi2False,
         logging_on ? fmi2True : fmi2False);

@@ -112,8 +112,9 @@ static void logger(fmi3InstanceEnvironment environment, fmi3Status status, fmi3S
 {
     (void)status;
     (void)category;
-    if (environment != NULL && message != NULL) {
-        fmi3_say(environment, "%s", message);
+    /* FMI 3.0's message is text, no format; the environment is checked, never read */
+    if (message != NULL) {
+        ssx_fmu_environment_log(ssx_fmu_environment_claimed(environment), message);
     }
 }
 
@@ -127,11 +128,12 @@ static void answer_intermediate_update(fmi3InstanceEnvironment environment, fmi3
                                        fmi3Float64 *early_return_time)
 {
     (void)get_allowed, (void)step_finished, (void)can_return_early, (void)early_return_time;
-    fmi3_context *ctx = environment;
     if (early_return_requested != NULL) {
         *early_return_requested = fmi3False;
     }
-    if (!set_requested || !ctx->moving) {
+    /* an environment not the one handed to the FMU being called is never read through */
+    fmi3_context *ctx = ssx_fmu_environment_claimed(environment) != NULL ? environment : NULL;
+    if (!set_requested || ctx == NULL || !ctx->moving) {
         return;
     }
     size_t n = ctx->n_intermediate;
@@ -152,6 +154,7 @@ static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu_envi
 {
     fmi3_context *ctx = context;
     ctx->environment = environment;
+    environment->handed = ctx;
     ctx->fn = fn;
     ctx->outcome = (ssx_step_outcome){0};
     size_t n_moving = ctx->n_intermediate;
@@ -526,6 +529,7 @@ static void *instantiate_model_exchange(const ssx_fmu_function *fn, void *contex
 {
     fmi3_context *ctx = context;
     ctx->environment = environment;
+    environment->handed = ctx;
     ctx->outcome = (ssx_step_outcome){0};
     ctx->instance = FMI3(fn, SLOT_INSTANTIATE, fmi3InstantiateModelExchangeTYPE)(
         instance_name, token, resource_path, fmi3False, logging_on ? fmi3True : fmi3False, ctx,

@@ -71,7 +71,7 @@ static inline int worse_status(int a, int b)
     return a > b ? a : b;
 }
 
-/* A message in the FMU's log, as the instance's own. */
+/* The engine's own message about the instance (a trusted format), as its last message. */
 void fmi3_say(fmi3_context *ctx, const char *format, ...);
 
 /* The engine's get or set of `port` type: one fmi3 call per FMI 3.0 type among the scalars of

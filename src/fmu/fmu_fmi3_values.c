@@ -175,7 +175,8 @@ void fmi3_say(fmi3_context *ctx, const char *format, ...)
 {
     va_list args;
     va_start(args, format);
-    ssx_fmu_environment_log(ctx->environment, format, args);
+    vsnprintf(ctx->environment->last_message, sizeof ctx->environment->last_message, format,
+              args);
     va_end(args);
 }
 

@@ -53,13 +53,18 @@ static int send_reply(const host *h, remote_reply_kind kind, int status, uint64_
     return channel_send(h->socket, &reply, sizeof reply, payload, size);
 }
 
-/* Sent while the call runs: the engine hands it to its own logger before the result. */
+/* What the host hands the FMU as its callbacks' environment: a mark to compare, never read,
+ * for some FMUs hand back something else (1, 2, NULL). The logger needs no state of the host:
+ * the engine's end of the socket is always on REMOTE_SOCKET_FD. */
+static const char handed_environment;
+
+/* Sent while the call runs: the engine keeps it as the FMU's last message. A message naming
+ * another environment is still the FMU's (the host runs no other), attributed to "an FMU". */
 static void logger(fmi2ComponentEnvironment environment, fmi2String instance_name,
                    fmi2Status status, fmi2String category, fmi2String message, ...)
 {
     (void)instance_name;
-    const host *h = environment;
-    if (h == NULL || message == NULL) {
+    if (message == NULL) {
         return;
     }
     char text[2048];
@@ -69,12 +74,17 @@ static void logger(fmi2ComponentEnvironment environment, fmi2String instance_nam
     }
     memcpy(text, category != NULL ? category : "", category_size - 1);
     text[category_size - 1] = '\0';
+    const char *attribution = environment == &handed_environment ? "" : "an FMU: ";
+    size_t attribution_size = strlen(attribution);
+    memcpy(text + category_size, attribution, attribution_size + 1);
     va_list args;
     va_start(args, message);
-    ssx_format_fmu_message(text + category_size, sizeof text - category_size, message, args);
+    ssx_format_fmu_message(text + category_size + attribution_size,
+                           sizeof text - category_size - attribution_size, message, args);
     va_end(args);
     size_t size = category_size + strlen(text + category_size) + 1;
-    (void)send_reply(h, REPLY_LOG, (int)status, 0, text, size);
+    remote_reply reply = {.kind = REPLY_LOG, .status = (int)status, .payload = size};
+    (void)channel_send(REMOTE_SOCKET_FD, &reply, sizeof reply, text, size);
 }
 
 /* The fmi2 function of a call, as its own type. */
@@ -293,7 +303,7 @@ int main(int argc, char **argv)
     h.callbacks.logger = logger;
     h.callbacks.allocateMemory = calloc;
     h.callbacks.freeMemory = free;
-    h.callbacks.componentEnvironment = &h;
+    h.callbacks.componentEnvironment = (fmi2ComponentEnvironment)&handed_environment;
     const char *reason = NULL;
     void *library = shared_library_open(argv[1], &reason);
     if (library == NULL) {

@@ -169,12 +169,13 @@ void ssx_remote_restart(ssx_remote *r)
 
 /* ------------------------------------------------------------------ one call */
 
-static void deliver(const ssx_remote *r, int status, const char *category, const char *text)
+/* What the host sent as the FMU's message, kept as its last message (the engine's logger would
+ * read a '%' in it as a conversion). */
+static void deliver(const ssx_remote *r, const char *text)
 {
-    if (r->callbacks != NULL && r->callbacks->logger != NULL) {
-        r->callbacks->logger(r->callbacks->componentEnvironment,
-                             r->instance_name != NULL ? r->instance_name : "",
-                             (fmi2Status)status, category, "%s", text);
+    if (r->callbacks != NULL) {
+        ssx_fmu_environment_log(ssx_fmu_environment_claimed(r->callbacks->componentEnvironment),
+                                text);
     }
 }
 
@@ -199,7 +200,7 @@ static int lost(ssx_remote *r, remote_call call, channel_receive_result why)
         snprintf(r->gone, sizeof r->gone, "the FMU process %s in %s", how,
                  remote_call_names[call]);
     }
-    deliver(r, fmi2Fatal, "logStatusFatal", r->gone);
+    deliver(r, r->gone);
     return fmi2Fatal;
 }
 
@@ -210,7 +211,7 @@ static int call(ssx_remote *r, remote_request *rq, void *out, size_t out_size, u
 {
     r->read_ready = 0;
     if (r->pid == 0) {
-        deliver(r, fmi2Fatal, "logStatusFatal", r->gone);
+        deliver(r, r->gone);
         return fmi2Fatal;
     }
     double deadline = call_deadline(r);
@@ -235,10 +236,9 @@ static int call(ssx_remote *r, remote_request *rq, void *out, size_t out_size, u
         }
         if (reply.kind == REPLY_LOG) {
             r->buffer[reply.payload] = '\0';
-            const char *category = r->buffer;
-            size_t category_size = strnlen(category, (size_t)reply.payload) + 1;
-            deliver(r, reply.status, category,
-                    category_size < reply.payload ? category + category_size : "");
+            /* the category, then the text */
+            size_t category_size = strnlen(r->buffer, (size_t)reply.payload) + 1;
+            deliver(r, category_size < reply.payload ? r->buffer + category_size : "");
             continue;
         }
         if (reply.kind != REPLY_RESULT || reply.payload != out_size) {
@@ -299,7 +299,7 @@ static fmi2Component remote_instantiate(fmi2String instance_name, fmi2Type type,
     if (r->pid == 0) { /* the last host died: this instance gets a new one */
         char error[1024];
         if (start_host(r, error, sizeof error) != 0) {
-            deliver(r, fmi2Fatal, "logStatusFatal", error);
+            deliver(r, error);
             return NULL;
         }
     }
@@ -308,7 +308,7 @@ static fmi2Component remote_instantiate(fmi2String instance_name, fmi2Type type,
                          .flag2 = (uint32_t)logging_on, .n = (uint64_t)type};
     if (r->instance_name == NULL ||
         stage(r, &rq, instance_name, sizes[0], guid, sizes[1], resource_uri, sizes[2]) != 0) {
-        deliver(r, fmi2Fatal, "logStatusFatal", "out of memory instantiating the isolated FMU");
+        deliver(r, "out of memory instantiating the isolated FMU");
         return NULL;
     }
     return call(r, &rq, NULL, 0, NULL) == fmi2OK ? r : NULL;

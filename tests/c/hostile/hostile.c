@@ -3,7 +3,9 @@
  *   0 behaves, 1 segfaults, 2 aborts, 3 calls _exit(3), 4 never returns (a busy loop),
  *   5 logs the format "%s%s%n" without its arguments and returns fmi2Error,
  *   6 forks a child that lives on (it waits for signals; its process id goes to the file
- *     named by SYSSIMX_TEST_CHILD_PID_FILE) and goes on behaving, once.
+ *     named by SYSSIMX_TEST_CHILD_PID_FILE) and goes on behaving, once,
+ *   7 logs naming the environments 1 and 2, not the one it was given (as some exported FMUs
+ *     do), and goes on behaving.
  * Written against the FMI 2.0 API directly (not the framework of fmu-src/): the framework
  * never calls the logger with a bad format, and that is the point here. */
 #define _DEFAULT_SOURCE /* fork, pause */
@@ -18,7 +20,7 @@
 #include "fmi2Functions.h"
 
 enum { VR_Y, VR_MODE, VR_FAIL_TIME };
-enum { BEHAVE, SEGFAULT, ABORT, EXIT, ENDLESS_LOOP, BAD_LOG_FORMAT, FORK_CHILD };
+enum { BEHAVE, SEGFAULT, ABORT, EXIT, ENDLESS_LOOP, BAD_LOG_FORMAT, FORK_CHILD, FOREIGN_ENVIRONMENT };
 
 typedef struct {
     double time;
@@ -194,6 +196,12 @@ static void misbehave(hostile *h)
     case ENDLESS_LOOP:
         for (volatile int spin = 1; spin;) {
         }
+        break;
+    case FOREIGN_ENVIRONMENT:
+        h->callbacks.logger((fmi2ComponentEnvironment)1, h->name, fmi2OK, "logAll",
+                            "naming environment 1");
+        h->callbacks.logger((fmi2ComponentEnvironment)2, h->name, fmi2OK, "logAll",
+                            "naming environment 2 at t=%g", h->time);
         break;
     default:
         break;
