@@ -3,13 +3,16 @@ logger call naming an environment that is not the one the FMU was given (FMI 2.0
 FMI 3.0's 1) or a component not its own (FMI 1.0), and formats with conversions but no
 arguments. Before, each killed the Python process; now the run completes and the message is
 kept as the FMU's last message, attributed to "an FMU" where its environment is unknown.
+Also an empty FMI 3.0 instantiationToken (issue 33 item 8), read with a warning.
 
 The FMUs are built by meson beside the tests, never installed: tests/c/hostile (FMI 2.0, mode
 7), tests/fmus/fmi3_arrays built with FMI3_FOREIGN_ENVIRONMENT and tests/fmus/fmi1_logger."""
 
 from __future__ import annotations
 
+import logging
 import re
+import zipfile
 from pathlib import Path
 
 import pytest
@@ -55,6 +58,25 @@ def test_fmi3_message_naming_a_foreign_instance_environment_is_kept_as_an_fmus()
         "A", built_fmu("tests", "fmus", "fmi3_arrays", "fmi3_foreign_environment.fmu"))
     run_alone(component, 1.0)
     assert last_message(component) == "an FMU: stepped naming environment 1"
+
+
+def test_an_empty_fmi3_instantiation_token_is_warned_about_and_the_fmu_runs(
+        tmp_path: Path, caplog: pytest.LogCaptureFixture) -> None:
+    """As FMPy 0.3.32's FMI 3.0 containers are written. Before: refused on reading."""
+    source = built_fmu("tests", "fmus", "fmi3_arrays", "fmi3_foreign_environment.fmu")
+    emptied = tmp_path / "empty_token.fmu"
+    with zipfile.ZipFile(source) as original, zipfile.ZipFile(emptied, "w") as copy:
+        for item in original.infolist():
+            data = original.read(item.filename)
+            if item.filename == "modelDescription.xml":
+                data = re.sub(rb'instantiationToken="[^"]*"', b'instantiationToken=""', data)
+            copy.writestr(item, data)
+    with caplog.at_level(logging.WARNING, logger="syssimx.fmu"):
+        component = FMUComponent("A", str(emptied))
+    assert caplog.messages == [f"{emptied}: the FMI 3.0 description's instantiationToken is "
+                               "empty; the FMU is instantiated with the empty token"]
+    run_alone(component, 1.0)
+    assert component.instance.getReal([0]) == [pytest.approx(1.0)]  # the time
 
 
 def test_fmi1_formats_without_arguments_and_a_foreign_component_are_logged() -> None:

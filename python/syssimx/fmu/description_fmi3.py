@@ -18,6 +18,7 @@ one FMU hold at most MAX_ARRAY_ELEMENTS elements together.
 
 from __future__ import annotations
 
+import logging
 import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple
@@ -28,6 +29,8 @@ from ..core.element_map import Block
 from ..engine import ffi
 from ..errors import FMUFileError
 from .fmi3_arrays import ArrayPort
+
+logger = logging.getLogger("syssimx.fmu")
 
 if TYPE_CHECKING:  # fmpy is imported by the first read, not with syssimx
     from fmpy.model_description import ModelDescription
@@ -90,8 +93,13 @@ def read_fmi3_description(path: Path) -> ModelDescription:
                                "clocks)")
         raise FMUFileError(f"{path}: the FMI 3.0 description declares neither CoSimulation nor "
                            "ModelExchange")
-    if not description.instantiationToken:
+    if description.instantiationToken is None:
         raise FMUFileError(f"{path}: the FMI 3.0 description has no instantiationToken")
+    if not description.instantiationToken:
+        # FMPy 0.3.32's FMI 3.0 containers write instantiationToken="", and their binaries
+        # accept it: the binary is the judge of the token it is handed
+        logger.warning("%s: the FMI 3.0 description's instantiationToken is empty; the FMU "
+                       "is instantiated with the empty token", path)
     # fmpy keeps FMI 3.0's token under both names; syssimx passes it where FMI 2.0 has the guid
     description.guid = description.instantiationToken
     # the engine's references of array elements are not the FMU's: with array ports the
