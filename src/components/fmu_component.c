@@ -533,8 +533,53 @@ int fmu_component_adopt_inputs(ssx_system *sys, ssx_component *c, double t0)
     return 0;
 }
 
-/* The driven inputs in initialization mode, one call each: an input with no driver keeps what
- * the FMU was given (its NaN start, the FMU's own value, is not read until it leaves). */
+/* The driven inputs of one numeric batch, in one Set call as write_values makes (an FMI 3.0
+ * array's elements together). */
+static int write_driven_batch(ssx_system *sys, ssx_component *c, const fmu_port_batch *b,
+                              ssx_value_type type, double t0)
+{
+    fmu_component_data *d = fmu_data(c);
+    unsigned int *vr = malloc((b->n + 1) * sizeof *vr);
+    double *reals = malloc((b->n + 1) * sizeof *reals);
+    int *discrete = malloc((b->n + 1) * sizeof *discrete);
+    int status = vr != NULL && reals != NULL && discrete != NULL
+                     ? 0
+                     : fail(sys, c->index, -1, t0, "out of memory initializing component '%s'",
+                            c->name);
+    size_t n = 0;
+    for (size_t i = 0; i < b->n && status == 0; ++i) {
+        double value = c->inputs[b->port[i]];
+        if (c->input_driver[b->port[i]] < 0) {
+            continue;
+        }
+        if (type == SSX_INTEGER && !(value > INT_MIN - 0.5 && value < INT_MAX + 0.5)) {
+            status = integer_out_of_range(sys, c, b->vr[i], value);
+            break;
+        }
+        vr[n] = b->vr[i];
+        reals[n] = value;
+        discrete[n++] = type == SSX_BOOLEAN ? (value != 0.0)
+                                            : (int)(value < 0 ? value - 0.5 : value + 0.5);
+    }
+    if (status == 0 && n > 0) {
+        int set = type == SSX_REAL      ? ssx_fmu_set_real(d->fmu, vr, n, reals)
+                  : type == SSX_INTEGER ? ssx_fmu_set_integer(d->fmu, vr, n, discrete)
+                                        : ssx_fmu_set_boolean(d->fmu, vr, n, discrete);
+        status = fmi_ok(set) ? 0
+                             : fmi_failed(sys, c, t0, set,
+                                          type == SSX_REAL      ? SLOT_SET_REAL
+                                          : type == SSX_INTEGER ? SLOT_SET_INTEGER
+                                                                : SLOT_SET_BOOLEAN);
+    }
+    free(vr);
+    free(reals);
+    free(discrete);
+    return status;
+}
+
+/* The driven inputs in initialization mode, texts and bytes one call each, numbers one call per
+ * type: an input with no driver keeps what the FMU was given (its NaN start, the FMU's own
+ * value, is not read until it leaves). */
 static int write_driven_inputs(ssx_system *sys, ssx_component *c, double t0)
 {
     fmu_component_data *d = fmu_data(c);
@@ -544,7 +589,6 @@ static int write_driven_inputs(ssx_system *sys, ssx_component *c, double t0)
         }
         unsigned int vr = c->input_ports[k].vr;
         ssx_value_type type = c->input_ports[k].type;
-        double value = c->inputs[k];
         if (type == SSX_STRING) {
             const char *text = input_text(sys, c, k, t0);
             int status = text != NULL ? ssx_fmu_set_string(d->fmu, &vr, 1, &text) : 0;
@@ -560,21 +604,14 @@ static int write_driven_inputs(ssx_system *sys, ssx_component *c, double t0)
             if (bytes == NULL || !fmi_ok(status)) {
                 return bytes == NULL ? -1 : fmi_failed(sys, c, t0, status, SLOT_SET_BINARY);
             }
-            continue;
         }
-        if (type == SSX_INTEGER && !(value > INT_MIN - 0.5 && value < INT_MAX + 0.5)) {
-            return integer_out_of_range(sys, c, vr, value);
-        }
-        int discrete = type == SSX_BOOLEAN ? (value != 0.0)
-                                           : (int)(value < 0 ? value - 0.5 : value + 0.5);
-        int status = type == SSX_REAL      ? ssx_fmu_set_real(d->fmu, &vr, 1, &value)
-                     : type == SSX_INTEGER ? ssx_fmu_set_integer(d->fmu, &vr, 1, &discrete)
-                                           : ssx_fmu_set_boolean(d->fmu, &vr, 1, &discrete);
-        if (!fmi_ok(status)) {
-            return fmi_failed(sys, c, t0, status,
-                              type == SSX_REAL      ? SLOT_SET_REAL
-                              : type == SSX_INTEGER ? SLOT_SET_INTEGER
-                                                    : SLOT_SET_BOOLEAN);
+    }
+    if (write_driven_batch(sys, c, &d->real_inputs, SSX_REAL, t0) != 0) {
+        return -1;
+    }
+    for (int type = SSX_INTEGER; type <= SSX_BOOLEAN && d->has_discrete_ports; ++type) {
+        if (write_driven_batch(sys, c, &d->discrete_inputs[type - SSX_INTEGER], type, t0) != 0) {
+            return -1;
         }
     }
     return 0;

@@ -130,8 +130,9 @@ def test_an_input_element_set_alone_keeps_the_others_start_values(arrays_fmu: st
 
 def test_array_elements_connect_between_two_fmus(arrays_fmu: str):
     """A.y -> B.u element by element, crossed: B.u[i] = A.y[2 - i]. B's output at each point
-    is kB times A's output at the point before (B starts from u = 0), as the same chain of
-    scalar gain FMUs records it: the engine's sampling, not the arrays'."""
+    is kB times A's output at the point before, as the same chain of scalar gain FMUs records
+    it: the engine's sampling, not the arrays'. At t0 it is kB times A's output at t0, the
+    input B was given in initialization mode."""
     system, _ = driven_system(arrays_fmu)
     second = FMUComponent("B", arrays_fmu)
     system.add_component(second)
@@ -144,7 +145,7 @@ def test_array_elements_connect_between_two_fmus(arrays_fmu: str):
     _, b = results["B"]
     for i in range(3):
         np.testing.assert_array_equal(b[f"y[{2 - i}]"][1:], (3 - i) * a[f"y[{i}]"][:-1])
-        assert b[f"y[{2 - i}]"][0] == 0.0
+        assert b[f"y[{2 - i}]"][0] == (3 - i) * a[f"y[{i}]"][0]
     assert [b[f"y[{i}]"][-1] for i in range(3)] == [1.0, 4.0, 18.0]
 
 

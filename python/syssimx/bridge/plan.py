@@ -112,6 +112,7 @@ class EnginePlan:
         self.index = {name: i for i, name in enumerate(components)}
         self.outputs = {n: c.engine_outputs() for n, c in components.items()}
         self.inputs = {n: c.engine_inputs() for n, c in components.items()}
+        self.driven: set[tuple[str, str]] = set()  # (component, input) of the connections
         self.indicators: list[tuple[str, str]] = []  # engine index -> (component, event)
         self.indicator_index: dict[tuple[str, str], int] = {}
         self.failure: CallbackFailure | None = None
@@ -320,6 +321,7 @@ class EnginePlan:
         self.check(lib().ssx_connect(self.sys, self.index[src], self.outputs[src].index(src_port),
                                      self.index[dst], self.inputs[dst].index(dst_port), scale,
                                      offset), f"connection {src}.{src_port} -> {dst}.{dst_port}")
+        self.driven.add((dst, dst_port))
 
     def add_indicator(self, component: Component, event: str) -> None:
         indicator = component.event_indicators[event]

@@ -426,7 +426,11 @@ class FMUComponent(CoSimComponent):
                                      system_exits=system_exits)
             return
         starts = self.user_parameters()  # every one: the FMU is in initialization mode
-        starts.update(self._input_starts_to_write())
+        inputs = self._input_starts_to_write()
+        if system_exits:  # the engine gives the connected inputs their values at t0
+            driven = self._binding.plan.driven  # type: ignore[union-attr]
+            inputs = {n: v for n, v in inputs.items() if (self.name, n) not in driven}
+        starts.update(inputs)
         texts = {n: v for n, v in starts.items()
                  if n in self.info.parameters
                  and self.info.parameters[n].type == PortType.STRING} \
