@@ -122,3 +122,17 @@ def test_ctrl_c_without_history_keeps_every_sample_in_the_file(
     steps = round(reached / 1e-3)
     assert steps >= (INTERRUPTED_BLOCK - 1) * ROWS_PER_BLOCK
     np.testing.assert_allclose(t_file, np.arange(steps + 1) * 1e-3, rtol=0, atol=1e-9)
+
+
+def test_ctrl_c_held_back_reaches_the_handler_in_place_once_the_block_is_done():
+    from syssimx.bridge.deferred_interrupt import interrupts_deferred
+
+    received: list[int] = []
+    previous = signal.signal(signal.SIGINT, lambda number, _frame: received.append(number))
+    try:
+        with interrupts_deferred():
+            os.kill(os.getpid(), signal.SIGINT)
+            assert received == []
+        assert received == [signal.SIGINT]
+    finally:
+        signal.signal(signal.SIGINT, previous)

@@ -16,7 +16,10 @@ def interrupts_deferred() -> Iterator[None]:
     """SIGINT that arrives inside is remembered and handed to the handler that was in place when
     the block ends. Python runs signal handlers in the main thread only: elsewhere nothing is
     needed, and nothing is done."""
-    if threading.current_thread() is not threading.main_thread():
+    previous: Any = signal.getsignal(signal.SIGINT)
+    # elsewhere than the main thread, or under a handler not set from Python (which could not
+    # be put back): nothing held back
+    if threading.current_thread() is not threading.main_thread() or previous is None:
         yield
         return
     arrived: list[FrameType | None] = []
@@ -24,10 +27,18 @@ def interrupts_deferred() -> Iterator[None]:
     def remember(_signal: int, frame: FrameType | None) -> None:
         arrived.append(frame)
 
-    previous: Any = signal.signal(signal.SIGINT, remember)
+    signal.signal(signal.SIGINT, remember)
     try:
         yield
     finally:
         signal.signal(signal.SIGINT, previous)
-        if arrived and callable(previous):
-            previous(signal.SIGINT, arrived[0])
+        if arrived:
+            deliver(previous, arrived[0])
+
+
+def deliver(handler: Any, frame: FrameType | None) -> None:
+    """What SIGINT would have done under `handler` (Python's, the default's, or ignored)."""
+    if callable(handler):
+        handler(signal.SIGINT, frame)
+    elif handler == signal.SIG_DFL:
+        signal.raise_signal(signal.SIGINT)

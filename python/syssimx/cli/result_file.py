@@ -21,7 +21,8 @@ def finished_despite_ctrl_c(what: str) -> Iterator[None]:
     KeyboardInterrupt after it; a second Ctrl-C abandons the write (an atomic write then leaves
     the previous file). Python handles signals in the main thread only: elsewhere nothing is
     held back."""
-    if threading.current_thread() is not threading.main_thread():
+    previous: Any = signal.getsignal(signal.SIGINT)
+    if threading.current_thread() is not threading.main_thread() or previous is None:
         yield
         return
     pressed: list[bool] = []
@@ -33,7 +34,7 @@ def finished_despite_ctrl_c(what: str) -> Iterator[None]:
         print(f"syssimx: finishing the write of {what} first (Ctrl-C again abandons it)",
               file=sys.stderr, flush=True)
 
-    previous: Any = signal.signal(signal.SIGINT, on_ctrl_c)
+    signal.signal(signal.SIGINT, on_ctrl_c)
     try:
         yield
     finally:
