@@ -198,3 +198,59 @@ def test_feedthrough_from_model_structure(tmp_path: Path) -> None:
         "only_b": {"b"},  # the state among its dependencies is not an input
         "anything": {"a", "b"},  # no dependencies attribute: depends on all inputs
     }
+
+
+# OMSimulator's DualMassOscillator shape: mass 1 (x1, v1 states; a1 = F / m1 - ...) feeds the
+# coupling spring, whose force F depends on x1 and v1; a1 goes to the spring, which reads it
+# for nothing. The components drive each other, the variables do not.
+DUAL_MASS = {"mass1": {"x1": set(), "v1": set(), "a1": {"F"}},
+             "spring": {"F": {"x1", "v1"}}}
+DUAL_MASS_CONNECTIONS = [("mass1", "x1", "spring", "x1"), ("mass1", "v1", "spring", "v1"),
+                         ("mass1", "a1", "spring", "a1"), ("spring", "F", "mass1", "F")]
+
+
+def test_component_cycle_without_a_variable_cycle_is_no_loop() -> None:
+    # Added spring first: the order comes from the variables (x1 and v1 depend on nothing),
+    # not from the order of addition.
+    components = {"spring": DUAL_MASS["spring"], "mass1": DUAL_MASS["mass1"]}
+    analysis = analyze(components, DUAL_MASS_CONNECTIONS)
+    assert analysis.loops == []
+    assert analysis.order == ["mass1", "spring"]
+    assert analysis.schedule() == (["mass1", "spring"], [1, 1], [False, False])
+    # a1 needs F, which needs x1: the connection that closes the component cycle is delayed
+    assert analysis.delayed_connections == [("spring", "F", "mass1", "F")]
+    assert sorted(analysis.graph.edges) == [("mass1", "spring")]
+
+
+def test_a_loop_through_variables_is_found_beside_a_component_cycle() -> None:
+    # the same shape where F also depends on a1: now a variable cycle F -> a1 -> F
+    components = {"mass1": DUAL_MASS["mass1"], "spring": {"F": {"x1", "v1", "a1"}}}
+    analysis = analyze(components, DUAL_MASS_CONNECTIONS)
+    assert analysis.loops == [["mass1", "spring"]]
+    assert analysis.delayed_connections == []
+
+
+# libcosim's quarter truck shape: two FMUs that declare no output dependencies, one power bond
+TRUCK = {"chassis": {"velocity": {"force"}}, "wheel": {"out_spring_damper_f": {"in_vel"}}}
+TRUCK_CONNECTIONS = [("chassis", "velocity", "wheel", "in_vel"),
+                     ("wheel", "out_spring_damper_f", "chassis", "force")]
+TRUCK_UNDECLARED = {"chassis": {"velocity"}, "wheel": {"out_spring_damper_f"}}
+
+
+def test_a_loop_made_by_undeclared_dependencies_is_solved_or_coupled_as_chosen() -> None:
+    solved = analyze(TRUCK, TRUCK_CONNECTIONS, TRUCK_UNDECLARED, "all")
+    assert solved.loops == [["chassis", "wheel"]]
+    assert solved.undeclared_in_loops == ["chassis", "wheel"]
+    coupled = analyze(TRUCK, TRUCK_CONNECTIONS, TRUCK_UNDECLARED, "none")
+    assert coupled.loops == []
+    assert coupled.undeclared_in_loops == ["chassis", "wheel"]
+    assert coupled.undeclared_dependencies == "none"
+    # a declared dependency stays, whatever is chosen for undeclared ones
+    declared = analyze(TRUCK, TRUCK_CONNECTIONS, {"wheel": {"out_spring_damper_f"}}, "none")
+    assert declared.loops == []
+    assert declared.undeclared_in_loops == ["wheel"]
+    real_loop = analyze(TRUCK, TRUCK_CONNECTIONS, {}, "none")
+    assert real_loop.loops == [["chassis", "wheel"]]
+    assert real_loop.undeclared_in_loops == []
+    with pytest.raises(ValueError, match="undeclared_dependencies"):
+        analyze(TRUCK, TRUCK_CONNECTIONS, TRUCK_UNDECLARED, "some")

@@ -132,6 +132,11 @@ class CoSimComponent:
         """Output -> inputs it depends on directly (the declared `direct_feedthrough`)."""
         return {name: set(self.direct_feedthrough.get(name, ())) for name in self.engine_outputs()}
 
+    def undeclared_outputs(self) -> set[str]:
+        """The outputs whose dependencies the component does not declare (their feedthrough
+        is the standard's assumption, every input); a Python component declares all."""
+        return set()
+
     # ---------------------------------------------------------------- parameters
     def _remember_default_parameters(self) -> None:
         """The parameters before anything changed them: at the end of construction (the

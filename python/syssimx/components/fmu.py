@@ -33,6 +33,7 @@ from __future__ import annotations
 import copy
 import math
 import weakref
+from collections.abc import Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -107,6 +108,7 @@ class FMUComponent(CoSimComponent):
         self.input_specs = self.info.input_specs.copy()
         self.output_specs = self.info.output_specs.copy()
         self.direct_feedthrough = self.info.feedthrough.mapped(lambda _, inputs: set(inputs))
+        self._declared_outputs: set[str] = set()  # by declare_dependencies
         self.parameters = self.info.parameters.mapped(lambda _, parameter: parameter.start)
         self._declared_parameters = self.parameters.copy()
         self._parameters_set: set[str] = set()  # named in set_parameters: written even if equal
@@ -129,6 +131,28 @@ class FMUComponent(CoSimComponent):
         self._finalizer = weakref.finalize(self, _release, lib().ssx_fmu_free, self.instance,
                                            self._unzip_dir, extraction_key)
         self._sync_ports()
+
+    def undeclared_outputs(self) -> set[str]:
+        """The outputs whose dependencies the FMU's ModelStructure does not declare (an
+        array's elements when the array's are not), unless declare_dependencies gave them."""
+        undeclared = self.info.undeclared_outputs
+        return {name for name in self.feedthrough() if name not in self._declared_outputs
+                and (name in undeclared or name.split("[", 1)[0] in undeclared)}
+
+    def declare_dependencies(self, **outputs: Iterable[str]) -> None:
+        """The inputs each named output depends on directly, for an FMU whose ModelStructure
+        declares none (by the standard, every input): ``declare_dependencies(force=[])``."""
+        for output, inputs in outputs.items():
+            if output not in self.output_specs:
+                raise ConfigurationError(f"{self.name}: no output {output!r} to declare "
+                                         f"dependencies of; outputs: {sorted(self.output_specs)}")
+            names = [inputs] if isinstance(inputs, str) else list(inputs)
+            unknown = [name for name in names if name not in self.input_specs]
+            if unknown:
+                raise ConfigurationError(f"{self.name}.{output}: no input(s) {unknown}; inputs: "
+                                         f"{sorted(self.input_specs)}")
+            self.direct_feedthrough[output] = set(names)
+            self._declared_outputs.add(output)
 
     def _drop_text_ports(self) -> None:
         """The host process that runs an FMU apart forwards no String calls: its String

@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple
 from ..core.element_map import Block, ElementMap
 from ..core.port import PortSpec, PortType
 from ..errors import FMUFileError
-from ..graph.analysis import feedthrough_from_model_description
+from ..graph.analysis import feedthrough_from_model_description, undeclared_outputs
 from ..units import plainly_readable, to_unit
 from .archive import open_archive
 from .description import Described, read_description
@@ -95,6 +95,9 @@ class FMUInfo:
     # of ports and parameters
     value_references: MutableMapping[str, int] = field(default_factory=ElementMap)
     feedthrough: MutableMapping[str, set[str]] = field(default_factory=ElementMap)
+    # outputs (variables) whose dependencies ModelStructure does not declare: their
+    # feedthrough is the standard's assumption, every input
+    undeclared_outputs: set[str] = field(default_factory=set)
     interfaces: dict[str, FMUInterface] = field(default_factory=dict)  # by INTERFACES name
     # Model Exchange: ModelStructure/Derivatives, numberOfEventIndicators (FMI 3.0:
     # ModelStructure/EventIndicator)
@@ -443,6 +446,7 @@ def _collect_feedthrough(info: FMUInfo, ports: list[Any], outputs: list[Any]) ->
     ports_only.modelVariables = [v for v in variables if v.causality in ("input", "output")]
     ports_only.outputs = outputs
     declared = feedthrough_from_model_description(ports_only)
+    info.undeclared_outputs = undeclared_outputs(ports_only)
     arrays = {p.name: p for p in ports if isinstance(p, ArrayPort)}
     inputs = {v.name for v in ports_only.modelVariables if v.causality == "input" and
               (v.name in arrays or v.name in info.input_specs)}

@@ -49,6 +49,12 @@ class SystemAnalysis:
             feedthrough output feeds its own input).
         order: every component once, the generations flattened.
         loop_connections: the zero-delay connections inside the loops (the tear variables).
+        delayed_connections: zero-delay connections that close a cycle of components without a
+            cycle of variables; they carry the value of the start of the step.
+        undeclared_dependencies: what outputs without declared dependencies were taken to
+            depend on ("all" inputs or "none").
+        undeclared_in_loops: the components with outputs whose dependencies they do not
+            declare and that form a loop only by the standard's assumption (every input).
     """
 
     components: list[str]
@@ -57,6 +63,9 @@ class SystemAnalysis:
     loops: list[list[str]]
     order: list[str]
     loop_connections: list[ConnectionKey]
+    delayed_connections: list[ConnectionKey]
+    undeclared_dependencies: str
+    undeclared_in_loops: list[str]
 
     @property
     def graph(self) -> nx.DiGraph:
@@ -92,18 +101,30 @@ class SystemAnalysis:
 
 
 def analyze(
-    components: Mapping[str, FeedthroughMap], connections: Sequence[ConnectionKey]
+    components: Mapping[str, FeedthroughMap], connections: Sequence[ConnectionKey],
+    undeclared: Mapping[str, set[str]] | None = None, undeclared_dependencies: str = "all"
 ) -> SystemAnalysis:
     """Analyze a system given as feedthrough maps per component and its data connections.
+
+    Loops are found per variable: a cycle of connections and feedthrough dependencies through
+    the ports. Components that drive one another without such a cycle (one's output depends on
+    the other's, but not back on the same path) are no loop; they are ordered so that the
+    outputs that depend on no input of the cycle are produced first, and the connection that
+    would close the cycle carries its value of the start of the step.
 
     Args:
         components: component name -> {output port: input ports it depends on without delay},
             in the order the components were added (the tie-break of the execution order).
         connections: (src_comp, src_port, dst_comp, dst_port) for every data connection.
+        undeclared: component name -> its outputs whose dependencies it does not declare (their
+            feedthrough in ``components`` is the standard's assumption: every input).
+        undeclared_dependencies: "all" takes that assumption (a loop it makes is solved), "none"
+            takes such outputs to depend on no input (the loop is coupled explicitly, as
+            libcosim couples every connection).
 
     Raises:
         ConfigurationError: (also a ValueError) a connection names a component that is not in
-            ``components``.
+            ``components``, or ``undeclared_dependencies`` is neither "all" nor "none".
     """
     names = list(components)
     for connection in connections:
@@ -114,32 +135,180 @@ def analyze(
                     f"connection {_format_connection(connection)} names the unknown component "
                     f"{name!r}{did_you_mean(name, names)}; components: {known}"
                 )
+    check_undeclared_dependencies(undeclared_dependencies)
+    undeclared = {name: set(outputs) for name, outputs in (undeclared or {}).items() if outputs}
+    assumed_none = _without_undeclared(components, undeclared)
+    effective = assumed_none if undeclared_dependencies == "none" else components
 
-    zero_delay = _zero_delay_edges(components, connections)
-    successors: dict[str, list[str]] = {}
-    for src, dst in zero_delay:
-        successors.setdefault(src, []).append(dst)
+    loops_found = _variable_loops(names, effective, connections)
+    loop_members = {name for loop in loops_found for name in loop}
+    without_assumption = {name for loop in _variable_loops(names, assumed_none, connections)
+                          for name in loop}
+    # the loops that the standard's assumption makes (or would make, under "none")
+    assumed = [loop for loop in _variable_loops(names, components, connections)
+               if not set(loop) <= without_assumption]
+    undeclared_in_loops = [name for name in names if name in undeclared
+                           and any(name in loop for loop in assumed)]
+
+    zero_delay = _zero_delay_edges(effective, connections)
+    for name in names:  # a component feeding itself is a loop only through a variable cycle
+        if name not in loop_members:
+            zero_delay.pop((name, name), None)
     added = {name: i for i, name in enumerate(names)}
-    sccs = sorted(
-        (sorted(scc, key=added.__getitem__) for scc in strongly_connected(names, successors)),
-        key=lambda members: added[members[0]],
-    )
-    loops = [scc for scc in sccs if len(scc) > 1 or (scc[0], scc[0]) in zero_delay]
+    unit_of = {name: index for index, loop in enumerate(loops_found) for name in loop}
+    units = [list(loop) for loop in loops_found]
+    for name in names:
+        if name not in unit_of:
+            unit_of[name] = len(units)
+            units.append([name])
+    delayed = _order_cycles_without_loops(
+        names, effective, connections, zero_delay, unit_of, [added[u[0]] for u in units])
+    for edge in delayed:
+        del zero_delay[edge]
+    sccs = sorted((sorted(unit, key=added.__getitem__) for unit in units),
+                  key=lambda members: added[members[0]])
+    loops = [scc for scc in sccs if scc[0] in loop_members]
     generations = _generations(zero_delay, sccs, connections)
     order = [name for generation in generations for name in generation]
     position = {name: index for index, name in enumerate(order)}
     loops.sort(key=lambda loop: position[loop[0]])
 
-    loop_members = {name: index for index, loop in enumerate(loops) for name in loop}
+    loop_index = {name: index for index, loop in enumerate(loops) for name in loop}
     loop_connections = [
         connection
         for (src, dst), behind in zero_delay.items()
-        if src in loop_members and loop_members[src] == loop_members.get(dst)
+        if src in loop_index and loop_index[src] == loop_index.get(dst)
         for connection in behind
     ]
     given_order = {connection: i for i, connection in enumerate(connections)}
     loop_connections.sort(key=given_order.__getitem__)
-    return SystemAnalysis(names, zero_delay, generations, loops, order, loop_connections)
+    delayed_connections = sorted((c for edge in delayed.values() for c in edge),
+                                 key=given_order.__getitem__)
+    return SystemAnalysis(names, zero_delay, generations, loops, order, loop_connections,
+                          delayed_connections, undeclared_dependencies, undeclared_in_loops)
+
+
+UNDECLARED_DEPENDENCIES = ("all", "none")
+"""What an output whose dependencies its FMU does not declare depends on: every input (the
+standard's assumption: a loop it makes is solved) or none (coupled explicitly, as libcosim
+does)."""
+
+
+def check_undeclared_dependencies(value: Any) -> str:
+    """``value`` when it is one of UNDECLARED_DEPENDENCIES, else a ConfigurationError."""
+    if value not in UNDECLARED_DEPENDENCIES:
+        raise ConfigurationError(f"undeclared_dependencies must be 'all' (the standard: solve "
+                                 f"the loops it makes) or 'none' (couple them explicitly), "
+                                 f"not {value!r}")
+    return str(value)
+
+
+def _without_undeclared(components: Mapping[str, FeedthroughMap],
+                        undeclared: Mapping[str, set[str]]) -> dict[str, FeedthroughMap]:
+    return {name: {output: set() if output in undeclared.get(name, ()) else set(inputs)
+                   for output, inputs in feedthrough.items()}
+            for name, feedthrough in components.items()}
+
+
+Port = tuple[str, str, str]
+"""("in" or "out", component, port)"""
+
+
+def _port_graph(components: Mapping[str, FeedthroughMap], connections: Sequence[ConnectionKey]
+                ) -> dict[Port, list[Port]]:
+    """Successors per port: a connection leads from an output to an input, a feedthrough
+    dependency from an input to a connected output of the same component."""
+    connected = {(src, port) for src, port, _, _ in connections}
+    successors: dict[Port, list[Port]] = {}
+    for src, src_port, dst, dst_port in connections:
+        successors.setdefault(("out", src, src_port), []).append(("in", dst, dst_port))
+    for name, feedthrough in components.items():
+        for output, inputs in feedthrough.items():
+            if (name, output) in connected:
+                for port in inputs:
+                    successors.setdefault(("in", name, port), []).append(("out", name, output))
+    return successors
+
+
+def _variable_loops(names: list[str], components: Mapping[str, FeedthroughMap],
+                    connections: Sequence[ConnectionKey]) -> list[list[str]]:
+    """The components of each cycle through ports; cycles that share a component are one
+    loop (the engine solves a loop as a group of components). In the order added."""
+    successors = _port_graph(components, connections)
+    parent = {name: name for name in names}
+
+    def root(name: str) -> str:
+        while parent[name] != name:
+            parent[name] = parent[parent[name]]
+            name = parent[name]
+        return name
+
+    in_loop: set[str] = set()
+    for scc in strongly_connected(list(successors), successors):
+        if len(scc) > 1:
+            members = {port[1] for port in scc}
+            in_loop |= members
+            first = root(next(iter(members)))
+            for member in members:
+                parent[root(member)] = first
+    groups: dict[str, list[str]] = {}
+    for name in names:
+        if name in in_loop:
+            groups.setdefault(root(name), []).append(name)
+    return list(groups.values())
+
+
+def _order_cycles_without_loops(
+    names: list[str], components: Mapping[str, FeedthroughMap],
+    connections: Sequence[ConnectionKey],
+    zero_delay: Mapping[tuple[str, str], list[ConnectionKey]], unit_of: Mapping[str, int],
+    added: list[int]
+) -> dict[tuple[str, str], list[ConnectionKey]]:
+    """The zero-delay edges to delay so that the units (a loop or a single component) form
+    no cycle. Such a cycle has no cycle through ports (that would be a loop): inside it, a
+    unit ranks by the earliest of its outputs in the ports' dependency order, ties by the
+    order added, and an edge from a later unit to an earlier one is delayed."""
+    unit_successors: dict[int, set[int]] = {}
+    for src, dst in zero_delay:
+        if unit_of[src] != unit_of[dst]:
+            unit_successors.setdefault(unit_of[src], set()).add(unit_of[dst])
+    cycle_of = {unit: index for index, scc in enumerate(
+        strongly_connected(sorted(set(unit_of.values())), unit_successors)) if len(scc) > 1
+        for unit in scc}
+    if not cycle_of:
+        return {}
+    depth = _port_depths(components, connections)
+    rank: dict[int, tuple[int, int]] = {}
+    for (src, dst), behind in zero_delay.items():
+        unit = unit_of[src]
+        if unit in cycle_of and cycle_of[unit] == cycle_of.get(unit_of[dst]):
+            earliest = min(depth[("out", c[0], c[1])] for c in behind)
+            rank[unit] = min(rank.get(unit, (earliest, added[unit])), (earliest, added[unit]))
+    delayed = {}
+    for (src, dst), behind in zero_delay.items():
+        a, b = unit_of[src], unit_of[dst]
+        if a != b and a in cycle_of and cycle_of[a] == cycle_of.get(b) \
+                and rank.get(a, (0, added[a])) > rank.get(b, (0, added[b])):
+            delayed[src, dst] = behind
+    return delayed
+
+
+def _port_depths(components: Mapping[str, FeedthroughMap],
+                 connections: Sequence[ConnectionKey]) -> dict[Port, int]:
+    """The longest chain of dependencies that leads to each port (ports of one cycle share
+    theirs)."""
+    successors = _port_graph(components, connections)
+    depth: dict[Port, int] = {}
+    # Tarjan lists a component after every component it reaches: reversed, sources come first
+    for scc in reversed(strongly_connected(list(successors), successors)):
+        level = max((depth.get(port, 0) for port in scc), default=0)
+        for port in scc:
+            depth[port] = level
+        for port in scc:
+            for child in successors.get(port, ()):
+                if child not in scc:
+                    depth[child] = max(depth.get(child, 0), level + 1)
+    return depth
 
 
 def analyze_system(system: Any) -> SystemAnalysis:
@@ -153,7 +322,15 @@ def analyze_system(system: Any) -> SystemAnalysis:
     connections = [
         (c.src_comp, c.src_port, c.dst_comp, c.dst_port) for c in system.connections
     ]
-    return analyze(components, connections)
+    undeclared = {name: _undeclared_of(component)
+                  for name, component in system.components.items()}
+    return analyze(components, connections, undeclared,
+                   getattr(system, "undeclared_dependencies", "all"))
+
+
+def _undeclared_of(component: Any) -> set[str]:
+    method = getattr(component, "undeclared_outputs", None)
+    return method() if callable(method) else set()
 
 
 def _feedthrough_of(component: Any) -> FeedthroughMap:
@@ -184,6 +361,15 @@ def feedthrough_from_model_description(model_description: Any) -> dict[str, set[
     return {
         v.name: declared.get(v.name, set(inputs)) for v in variables if v.causality == "output"
     }
+
+
+def undeclared_outputs(model_description: Any) -> set[str]:
+    """The outputs of an FMU (fmpy ModelDescription) whose dependencies it does not declare:
+    ModelStructure lists them without ``dependencies``, or not at all."""
+    declared = {unknown.variable.name for unknown in model_description.outputs
+                if unknown.dependencies is not None}
+    return {v.name for v in model_description.modelVariables
+            if v.causality == "output" and v.name not in declared}
 
 
 def _zero_delay_edges(

@@ -65,6 +65,22 @@ def describe_system(system: Any) -> str:
             if src in members
         ]
         lines.append(f"  * {', '.join(loop)}: {'; '.join(tears)}")
+    if analysis.delayed_connections:
+        lines.append("Cycles of components without a cycle of variables (no loop; these "
+                     "connections carry their value of the step's start):")
+        lines.extend(f"  {src}.{src_port} -> {dst}.{dst_port}"
+                     for src, src_port, dst, dst_port in analysis.delayed_connections)
+    undeclared = [name for name, component in components.items()
+                  if getattr(component, "undeclared_outputs", lambda: set())()]
+    if undeclared:
+        choice = ("all inputs (the standard; a loop this makes is solved)"
+                  if analysis.undeclared_dependencies == "all" else
+                  "no input (coupled explicitly, like libcosim)")
+        lines.append(f"Undeclared output dependencies ({', '.join(undeclared)}): taken as "
+                     f"{choice}; undeclared_dependencies={analysis.undeclared_dependencies!r}")
+        if analysis.undeclared_in_loops:
+            lines.append("  loops made by that assumption: "
+                         + ", ".join(analysis.undeclared_in_loops))
     return "\n".join(lines)
 
 

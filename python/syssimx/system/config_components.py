@@ -15,7 +15,7 @@ from .config_handlers import reinitialize_handler
 from .config_source import Source, kind, quoted
 
 COMPONENT_KEYS = ("name", "class", "fmu", "interface", "args", "parameters", "inputs",
-                  "event_indicators", "event_handlers")
+                  "dependencies", "event_indicators", "event_handlers")
 INDICATOR_KEYS = ("name", "variable", "direction")
 HANDLER_KEYS = ("input", "reinitialize")
 FMU_CLASS = "syssimx:FMUComponent"
@@ -70,11 +70,29 @@ def build_component(source: Source, index: int, entry: Any) -> CoSimComponent:
     except (KeyError, TypeError, ValueError) as exc:
         raise source.error(f"{label} parameters", str(exc), entry) from exc
     _set_inputs(source, label, entry, component)
+    _declare_dependencies(source, label, entry, component)
     for k, indicator in enumerate(_sequence(source, label, entry, "event_indicators")):
         _add_indicator(source, f"{label} event_indicators[{k}]", component, indicator)
     for k, handler in enumerate(_sequence(source, label, entry, "event_handlers")):
         _add_handler(source, f"{label} event_handlers[{k}]", component, handler)
     return component
+
+
+def _declare_dependencies(source: Source, label: str, entry: dict,
+                          component: CoSimComponent) -> None:
+    """'dependencies: {output: [inputs]}': what an FMU's outputs depend on where its
+    ModelStructure declares nothing."""
+    dependencies = _mapping(source, label, entry, "dependencies")
+    if not dependencies:
+        return
+    declare = getattr(component, "declare_dependencies", None)
+    if declare is None:
+        raise source.error(f"{label} dependencies", "only an FMU component's dependencies can "
+                           "be declared (a Python component declares direct_feedthrough)", entry)
+    try:
+        declare(**dependencies)
+    except (ConfigurationError, TypeError) as exc:
+        raise source.error(f"{label} dependencies", str(exc), entry) from exc
 
 
 def _set_inputs(source: Source, label: str, entry: dict, component: CoSimComponent) -> None:

@@ -60,6 +60,12 @@ def _build(source: Source, config: dict[str, Any]) -> System:
         raise source.error("top level", f"unknown key(s) {unknown}; known: "
                            f"{list(TOP_LEVEL_KEYS)}", config)
     system = System(_system_name(source, config))
+    undeclared = (config.get("system") or {}).get("undeclared_dependencies", "all")
+    try:
+        system.undeclared_dependencies = undeclared
+    except ConfigurationError as exc:
+        raise source.error("system.undeclared_dependencies", str(exc), config["system"]) \
+            from exc
     components = config.get("components")
     if not isinstance(components, list) or not components:
         raise source.error("components", "a system needs a non-empty list of components",
@@ -139,9 +145,9 @@ def _open(config: dict[str, Any] | str | Path, allowed_modules: Iterable[str] | 
 
 def _system_name(source: Source, config: dict[str, Any]) -> str:
     system = config.get("system") or {}
-    if not isinstance(system, dict) or set(system) - {"name"}:
-        raise source.error("system", f"must be a mapping {{name: ...}}, got {quoted(system)}",
-                           config)
+    if not isinstance(system, dict) or set(system) - {"name", "undeclared_dependencies"}:
+        raise source.error("system", "must be a mapping {name: ..., undeclared_dependencies: "
+                           f"all or none}}, got {quoted(system)}", config)
     name = system.get("name", "System")
     if not isinstance(name, str) or not name:
         raise source.error("system.name", f"must be a non-empty string, got {quoted(name)}", system)

@@ -25,7 +25,7 @@ from ..core.port import PortType
 from ..core.suggest import did_you_mean
 from ..engine import defaults, ffi, lib
 from ..errors import ConfigurationError, RunInterrupted, SysSimXWarning
-from ..graph.analysis import analyze
+from ..graph.analysis import SystemAnalysis, analyze_system, check_undeclared_dependencies
 from ..units import conversion
 from .algorithms import Algorithm, HybridAlgorithm, JacobiAlgorithm, StepControl
 from .algorithms.coupling import default_coupling, loop_jacobians
@@ -49,8 +49,13 @@ _COMPATIBLE = {PortType.REAL: {PortType.REAL, PortType.INT, PortType.BOOL},
 class System:
     """A co-simulated system. Build it, `initialize(t0)`, then `run(t0, tf, dt)`."""
 
-    def __init__(self, name: str) -> None:
+    def __init__(self, name: str, *, undeclared_dependencies: str = "all") -> None:
+        """undeclared_dependencies: what an FMU output whose dependencies its ModelStructure
+        does not declare depends on: "all" inputs (the standard; a loop this makes is solved
+        at every communication point) or "none" (the loop is coupled explicitly, as libcosim
+        couples every connection)."""
         self.name = name
+        self._undeclared_dependencies = check_undeclared_dependencies(undeclared_dependencies)
         self.components: dict[str, CoSimComponent] = {}
         self.connections: list[Connection] = []
         self._drivers: dict[tuple[str, str], Connection] = {}  # (component, input) -> its driver
@@ -70,6 +75,17 @@ class System:
 
     def __repr__(self) -> str:
         return f"System({self.name!r}, components={list(self.components)})"
+
+    @property
+    def undeclared_dependencies(self) -> str:
+        """"all" or "none": see the constructor. Changing it takes effect at the next
+        initialize."""
+        return self._undeclared_dependencies
+
+    @undeclared_dependencies.setter
+    def undeclared_dependencies(self, value: str) -> None:
+        self._undeclared_dependencies = check_undeclared_dependencies(value)
+        self.is_initialized = False
 
     # ------------------------------------------------------------------ algorithm
     @property
@@ -229,8 +245,8 @@ class System:
         for component in self.components.values():
             for event in component.self_handled_events():
                 plan.add_event_connection(component.name, event, component.name)
-        analysis = analyze({n: c.feedthrough() for n, c in self.components.items()},
-                           [c.key() for c in self.connections])
+        analysis = analyze_system(self)
+        _warn_undeclared_dependencies(self.name, analysis)
         order, sizes, loops = analysis.schedule()
         if order:
             plan.check(lib().ssx_set_schedule(
@@ -246,14 +262,15 @@ class System:
         taken at every initialize."""
         components = tuple([
             (name, id(c), type(c), len(c.input_specs), len(c.output_specs),
-             len(c.direct_feedthrough),
+             len(c.direct_feedthrough), len(getattr(c, "_declared_outputs", ())),
              tuple(id(h) for hs in c.event_handlers.values() for h in hs)
              if c.event_handlers else (),
              tuple(c.event_indicators.values()) if c.event_indicators else ())
             for name, c in self.components.items()])
         connections = tuple((*c.key(), c.factor, c.offset, c.convert_units)
                             for c in self.connections)
-        return components, connections, tuple(c.key() for c in self.event_connections)
+        return components, connections, tuple(c.key() for c in self.event_connections), \
+            self._undeclared_dependencies
 
     def _reusable_plan(self) -> EnginePlan | None:
         """The plan of the last initialize when nothing it was compiled from changed and every
@@ -647,3 +664,28 @@ def _warn_waiting_parameters(waiting: dict[str, tuple[str, ...]]) -> None:
                       "running FMU keeps its values; they apply at the next initialize (or "
                       "reinitialize)", SysSimXWarning, stacklevel=3)
     waiting.clear()
+
+
+def _warn_undeclared_dependencies(name: str, analysis: SystemAnalysis) -> None:
+    """One warning when a loop exists only because FMUs declare no output dependencies."""
+    members = analysis.undeclared_in_loops
+    if not members:
+        return
+    fmus = ", ".join(repr(member) for member in members)
+    how = ("declare each output's dependencies: in the FMU's modelDescription.xml "
+           "(ModelStructure/Outputs/Unknown dependencies=\"...\", empty for none), with "
+           "component.declare_dependencies(output=[inputs]) or a YAML component's "
+           "'dependencies: {output: [inputs]}'")
+    if analysis.undeclared_dependencies == "all":
+        warnings.warn(
+            f"{name}: {fmus} declare no output dependencies, so by the standard every output "
+            "depends on every input, which makes an algebraic loop that is solved at every "
+            f"communication point; {how}, or couple the loop explicitly as libcosim does with "
+            "System(..., undeclared_dependencies=\"none\") (a YAML file's system: "
+            "{undeclared_dependencies: none})", SysSimXWarning, stacklevel=4)
+    else:
+        warnings.warn(
+            f"{name}: {fmus} declare no output dependencies; with undeclared_dependencies="
+            "\"none\" their outputs are taken to depend on no input and the loop the "
+            "standard's assumption would make is coupled explicitly, without iterations; "
+            f"{how} for the exact structure", SysSimXWarning, stacklevel=4)
