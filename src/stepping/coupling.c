@@ -155,6 +155,7 @@ int coupling_step_member(ssx_system *sys, ssx_component *c, double t, double h)
  * the snapshots, so a restore brings them back too). */
 static int solve_loop_at(ssx_system *sys, const ssx_group *g, double t)
 {
+    input_order_measure_loop(sys, g);
     for (int m = 0; m < g->size; ++m) {
         coupling_propagate_inputs(sys, member(sys, g, m));
     }

@@ -38,6 +38,11 @@ struct input_motion {
     component_track *tracks;
     unsigned char *interpolated; /* per connection: its driver steps first (Gauss-Seidel) */
     unsigned char *held;         /* per component: a loop member, its inputs held */
+    /* measured before the loops were solved (input_order_measure_loop): the largest weighted
+     * coupling error of the loops' inputs, and per power bond its residual (NaN: not yet) */
+    double loop_error;
+    double *bond_error;
+    int n_bonds;
 };
 
 static int tracked_step(ssx_system *sys, double t, double h);
@@ -59,6 +64,7 @@ void input_order_free(ssx_system *sys)
     free(w->tracks);
     free(w->interpolated);
     free(w->held);
+    free(w->bond_error);
     free(w);
     sys->input_motion = NULL;
 }
@@ -161,13 +167,15 @@ int input_order_prepare(ssx_system *sys)
         w->tracks = calloc((size_t)sys->n_components + 1, sizeof *w->tracks);
         w->interpolated = calloc((size_t)sys->n_connections + 1, 1);
         w->held = calloc((size_t)sys->n_components + 1, 1);
+        w->bond_error = calloc((size_t)sys->n_power_bonds + 1, sizeof *w->bond_error);
+        w->n_bonds = sys->n_power_bonds;
     }
     sys->input_motion = w;
     if (w != NULL) {
         w->n_components = sys->n_components;
     }
     int ok = w != NULL && position != NULL && w->tracks != NULL && w->interpolated != NULL &&
-             w->held != NULL;
+             w->held != NULL && w->bond_error != NULL;
     for (int i = 0; ok && i < sys->n_components; ++i) {
         ok = prepare_track(sys, w, i) == 0;
     }
@@ -479,12 +487,56 @@ static double end_step(ssx_system *sys, struct input_motion *w)
         }
     }
     w->stepping = 0;
-    return energy ? energy_residual_error(sys, h) : error;
+    return energy ? energy_residual_error(sys, h, w->bond_error) : fmax(error, w->loop_error);
+}
+
+/* The weighted difference between what a driven Real input was given over the step and
+ * what its driver produced at its end. */
+static double input_error(const ssx_system *sys, const ssx_component *c, int input)
+{
+    const ssx_connection *cn = &sys->connections[c->input_driver[input]];
+    double y = cn->scale * sys->components[cn->src_component]->outputs[cn->src_output] +
+               cn->offset;
+    const ssx_step_control *sc = &sys->step_control;
+    return fabs(y - c->inputs[input]) / (sc->atol + sc->rtol * fabs(y));
+}
+
+void input_order_measure_loop(ssx_system *sys, const ssx_group *g)
+{
+    struct input_motion *w = sys->input_motion;
+    if (w == NULL || !w->stepping || !sys->step_control.enabled) {
+        return;
+    }
+    if (sys->step_control.energy) {
+        for (int b = 0; b < w->n_bonds && b < sys->n_power_bonds; ++b) {
+            const int *end = &sys->power_bonds[4 * b];
+            for (int m = 0; m < g->size; ++m) {
+                int member = sys->order[g->first + m];
+                if (member == end[0] || member == end[2]) {
+                    w->bond_error[b] = energy_residual_bond(sys, b, w->h);
+                    break;
+                }
+            }
+        }
+        return;
+    }
+    for (int m = 0; m < g->size; ++m) {
+        const ssx_component *c = sys->components[sys->order[g->first + m]];
+        for (int i = 0; i < c->n_inputs; ++i) {
+            if (c->input_driver[i] >= 0 && c->input_ports[i].type == SSX_REAL) {
+                w->loop_error = fmax(w->loop_error, input_error(sys, c, i));
+            }
+        }
+    }
 }
 
 static int tracked_step(ssx_system *sys, double t, double h)
 {
     struct input_motion *w = sys->input_motion;
+    w->loop_error = 0.0;
+    for (int b = 0; b < w->n_bonds; ++b) {
+        w->bond_error[b] = NAN;
+    }
     if (begin_step(sys, w, t, h) != 0) {
         w->stepping = 0;
         return -1;

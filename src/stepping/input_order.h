@@ -30,6 +30,11 @@ void input_order_propagate(ssx_system *sys, ssx_component *c);
 int input_order_write(ssx_system *sys, ssx_component *c);
 /* The outputs changed at an instant (an event): the coupling history starts again. */
 void input_order_forget(ssx_system *sys);
+/* Inside a coupled step, after the members of loop group g stepped and before the loop is
+ * solved: the error of the loop's inputs (held over the step) against what their drivers
+ * produced, and the residuals of the power bonds with an end in the loop, while the solution
+ * has not yet made the inputs equal their drivers' outputs. */
+void input_order_measure_loop(ssx_system *sys, const ssx_group *g);
 /* The weighted coupling error of the last coupled step (0 without a workspace). */
 double input_order_error(const ssx_system *sys);
 

@@ -269,10 +269,11 @@ def test_model_exchange_pendulums_under_step_control():
 def test_algebraic_loop_is_solved_at_every_adaptive_step():
     """A PI controller and a gain in an algebraic loop (tests/python/test_loop_samples.py):
     the loop is solved at the end of every accepted step, so each grid sample satisfies
-    Gain.y = k PI.u; the loop members' inputs are held and add no coupling error."""
+    Gain.y = k PI.u; the loop members' inputs are held over the step, and how far their
+    drivers moved from them before the loop is solved is the error the control sees."""
     from test_loop_samples import K, controlled_gain
 
-    control = StepControl(rtol=1e-6, atol=1e-6)
+    control = StepControl(rtol=1e-4, atol=1e-4)
     system = controlled_gain(GaussSeidelAlgorithm(input_order=1, step_control=control))
     system.initialize(0.0)
     result = system.run(0.0, 2.0, 0.1)
@@ -281,4 +282,4 @@ def test_algebraic_loop_is_solved_at_every_adaptive_step():
     np.testing.assert_allclose(result["Gain"][1]["y"], K * controller["u"], rtol=0, atol=1e-10)
     stats = result.statistics
     assert stats.loop_solves == 1 + stats.accepted_steps + stats.rejected_steps
-    assert stats.largest_error == 0.0
+    assert 0.0 < stats.largest_error
