@@ -315,6 +315,9 @@ typedef struct {
     /* FMUs that could not give what the input order asks (ssx_coupling_fallbacks) */
     long input_order_fallbacks;       /* refused an input derivative order: a lower one since */
     long output_derivative_fallbacks; /* told non-finite output derivatives: estimated since */
+    /* driven inputs the coupling-error step control cannot measure (String, Binary): left out
+     * of its error */
+    long unmeasured_inputs;
 } ssx_statistics;
 
 /* Who found an event: the master, by an indicator's crossing (located by rollback), or a

@@ -155,6 +155,26 @@ static void classify(ssx_system *sys, struct input_motion *w, int *position)
     }
 }
 
+/* A String or Binary value is a number of the system's table: no distance to weigh. */
+static int measurable(const ssx_port *port)
+{
+    return port->type != SSX_STRING && port->type != SSX_BINARY;
+}
+
+static void count_unmeasured(ssx_system *sys)
+{
+    if (!sys->step_control.enabled || sys->step_control.energy) {
+        return;
+    }
+    for (int ci = 0; ci < sys->n_components; ++ci) {
+        const ssx_component *c = sys->components[ci];
+        for (int i = 0; i < c->n_inputs; ++i) {
+            sys->stats.unmeasured_inputs += c->input_driver[i] >= 0 &&
+                                            !measurable(&c->input_ports[i]);
+        }
+    }
+}
+
 int input_order_prepare(ssx_system *sys)
 {
     input_order_free(sys);
@@ -186,6 +206,7 @@ int input_order_prepare(ssx_system *sys)
     }
     classify(sys, w, position);
     free(position);
+    count_unmeasured(sys);
     if (sys->step_control.enabled && sys->step_control.energy &&
         energy_residual_check(sys) != 0) {
         input_order_free(sys);
@@ -477,7 +498,7 @@ static double end_step(ssx_system *sys, struct input_motion *w)
                 c->inputs[i] += h * (moved * d[0] + rest * h * d[1]);
             }
             const ssx_connection *cn = &sys->connections[k];
-            if (!measured) {
+            if (!measured || !measurable(&c->input_ports[i])) {
                 continue;
             }
             double y = cn->scale * sys->components[cn->src_component]->outputs[cn->src_output] +

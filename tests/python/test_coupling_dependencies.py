@@ -17,8 +17,18 @@ from pathlib import Path
 import numpy as np
 import pytest
 from coupling_samples import coupling_samples_root
+from reference_root import reference_root
 from scipy.integrate import solve_ivp
-from syssimx import Connection, CoSimComponent, PortSpec, PortType, StepControl, System
+from syssimx import (
+    Connection,
+    CoSimComponent,
+    FMUComponent,
+    GaussSeidelAlgorithm,
+    PortSpec,
+    PortType,
+    StepControl,
+    System,
+)
 from syssimx.errors import SysSimXWarning
 from syssimx.osp import read as read_osp
 from syssimx.system.loader import build_system
@@ -234,3 +244,25 @@ def test_ecco_as_read_measures_the_loop_it_solves():
     # before the loop was measured: 22 steps, largest_error 0, an error of 7.0e-2
     assert statistics.macro_steps <= LIBCOSIM_ECCO_STEPS
     assert error <= LIBCOSIM_ECCO_ERROR
+
+
+def test_an_input_the_step_control_cannot_measure_is_counted_and_warned_of():
+    """A String connection has no distance to weigh (its value is a number of the system's text
+    table): it is left out of the coupling error, counted, and warned of once."""
+    feedthrough = needs(reference_root() / "fmi2" / "Feedthrough.fmu")
+    system = System("texts under a step control")
+    system.add_component(FMUComponent("A", feedthrough))
+    system.add_component(FMUComponent("B", feedthrough))
+    system.components["A"].set_parameters(String_input="one")
+    system.add_connection(Connection("A", "String_output", "B", "String_input"))
+    system.add_connection(Connection("A", "Float64_continuous_output",
+                                     "B", "Float64_continuous_input"))
+    control = StepControl(rtol=1e-3, atol=1e-3, rollback=False)
+    system.set_algorithm(GaussSeidelAlgorithm(step_control=control))
+    with pytest.warns(SysSimXWarning, match="1 coupled input.*String or Binary"):
+        system.initialize(0.0)
+    with warnings.catch_warnings():
+        warnings.filterwarnings("error", message=".*String or Binary")  # once
+        result = system.run(0.0, 0.2, 0.1)
+    assert result.statistics.unmeasured_inputs == 1
+    assert "1 input(s) not measured" in str(result.statistics)

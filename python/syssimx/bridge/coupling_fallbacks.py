@@ -1,7 +1,7 @@
 """Warnings of what the coupling did instead of what was asked: FMUs that refused an input
 derivative order or told non-finite output derivatives (the engine's ssx_coupling_fallbacks),
-and steps at the step control's min_step still over its tolerance. Each is warned of once per
-initialize; the statistics count them."""
+steps at the step control's min_step still over its tolerance, and coupled inputs its error
+cannot measure. Each is warned of once per initialize; the statistics count them."""
 
 from __future__ import annotations
 
@@ -40,6 +40,12 @@ def warn_coupling_fallbacks(plan: CoupledPlan, stacklevel: int = 3) -> None:
                       f"{statistics.largest_error:.3g} times it): the result is less accurate "
                       "than rtol and atol ask. Lower min_step, or StepControl(strict=True) to "
                       "stop there instead", SysSimXWarning, stacklevel=stacklevel)
+    if statistics.unmeasured_inputs > 0 and (-1, "unmeasured") not in plan.coupling_warned:
+        plan.coupling_warned.add((-1, "unmeasured"))
+        warnings.warn(f"{statistics.unmeasured_inputs} coupled input(s) carry String or Binary "
+                      "values, which the step control's coupling error cannot measure: their "
+                      "coupling is left out of the error (statistics.unmeasured_inputs)",
+                      SysSimXWarning, stacklevel=stacklevel)
 
 
 def _warn_fallback(plan: CoupledPlan, name: str, fallback: Any, stacklevel: int) -> None:

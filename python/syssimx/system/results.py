@@ -66,6 +66,8 @@ class Statistics:
     # FMUs that refused an input derivative order / told non-finite output derivatives
     input_order_fallbacks: int = 0
     output_derivative_fallbacks: int = 0
+    # driven inputs the coupling-error control cannot measure (String, Binary): not in its error
+    unmeasured_inputs: int = 0
 
     def __str__(self) -> str:
         lines = [f"macro steps: {self.macro_steps}",
@@ -80,7 +82,9 @@ class Statistics:
             lines.append(f"step control: {self.accepted_steps} accepted, {self.rejected_steps} "
                          f"rejected, steps {self.smallest_step:.3g}..{self.largest_step:.3g}, "
                          f"errors mean {self.mean_error:.3g}, largest {self.largest_error:.3g}, "
-                         f"{self.steps_over_tolerance} over the tolerance at min_step")
+                         f"{self.steps_over_tolerance} over the tolerance at min_step"
+                         + (f", {self.unmeasured_inputs} input(s) not measured"
+                            if self.unmeasured_inputs else ""))
         if self.input_order_fallbacks or self.output_derivative_fallbacks:
             lines.append(f"fallbacks: {self.input_order_fallbacks} FMU(s) at a lower input "
                          f"order, {self.output_derivative_fallbacks} with output derivatives "
@@ -120,7 +124,8 @@ class StatisticsReading:
                           float(raw.largest_error),
                           float(raw.error_sum) / raw.accepted_steps if raw.accepted_steps
                           else 0.0, int(raw.steps_over_tolerance),
-                          int(raw.input_order_fallbacks), int(raw.output_derivative_fallbacks))
+                          int(raw.input_order_fallbacks), int(raw.output_derivative_fallbacks),
+                          int(raw.unmeasured_inputs))
 
 
 class HistoryView:
