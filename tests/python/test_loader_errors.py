@@ -31,7 +31,8 @@ BUILD_ERRORS = {
     "system: {name: s}\ncomponents: []\n":
         ", line 1: components: a system needs a non-empty list of components",
     BASE.replace("system: {name: s}", "system: {title: s}"):
-        ", line 1: system: must be a mapping {name: ...}, got {'title': 's'}",
+        ", line 1: system: must be a mapping {name: ..., undeclared_dependencies: "
+        "all or none}, got {'title': 's'}",
     BASE.replace("system: {name: s}", "system: {name: 3}"):
         ", line 1: system.name: must be a non-empty string, got 3",
     "components:\n  - Src\n":
@@ -41,8 +42,8 @@ BUILD_ERRORS = {
         ", line 2: components[0]: needs a 'name' (a non-empty string)",
     "components:\n  - name: A\n    class: 'quickstart:LinearSource'\n    parameter: {}\n":
         ", line 2: components[0] 'A': unknown key(s) ['parameter']; known: ['name', 'class', "
-        "'fmu', 'interface', 'args', 'parameters', 'inputs', 'event_indicators', "
-        "'event_handlers']",
+        "'fmu', 'interface', 'args', 'parameters', 'inputs', 'dependencies', "
+        "'event_indicators', 'event_handlers']",
     "components:\n  - name: A\n":
         ", line 2: components[0] 'A': needs 'class' (\"module:Class\") or 'fmu' (a bundled "
         "FMU name or a path to an .fmu file)",
