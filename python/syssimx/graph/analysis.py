@@ -142,13 +142,14 @@ def analyze(
 
     loops_found = _variable_loops(names, effective, connections)
     loop_members = {name for loop in loops_found for name in loop}
-    without_assumption = {name for loop in _variable_loops(names, assumed_none, connections)
-                          for name in loop}
-    # the loops that the standard's assumption makes (or would make, under "none")
-    assumed = [loop for loop in _variable_loops(names, components, connections)
-               if not set(loop) <= without_assumption]
-    undeclared_in_loops = [name for name in names if name in undeclared
-                           and any(name in loop for loop in assumed)]
+    undeclared_in_loops: list[str] = []
+    if undeclared:  # the loops that the standard's assumption makes (or would, under "none")
+        without_assumption = {name for loop in _variable_loops(names, assumed_none, connections)
+                              for name in loop}
+        assumed = [loop for loop in _variable_loops(names, components, connections)
+                   if not set(loop) <= without_assumption]
+        undeclared_in_loops = [name for name in names if name in undeclared
+                               and any(name in loop for loop in assumed)]
 
     zero_delay = _zero_delay_edges(effective, connections)
     for name in names:  # a component feeding itself is a loop only through a variable cycle
@@ -162,7 +163,7 @@ def analyze(
             unit_of[name] = len(units)
             units.append([name])
     delayed = _order_cycles_without_loops(
-        names, effective, connections, zero_delay, unit_of, [added[u[0]] for u in units])
+        effective, connections, zero_delay, unit_of, [added[u[0]] for u in units])
     for edge in delayed:
         del zero_delay[edge]
     sccs = sorted((sorted(unit, key=added.__getitem__) for unit in units),
@@ -259,8 +260,7 @@ def _variable_loops(names: list[str], components: Mapping[str, FeedthroughMap],
 
 
 def _order_cycles_without_loops(
-    names: list[str], components: Mapping[str, FeedthroughMap],
-    connections: Sequence[ConnectionKey],
+    components: Mapping[str, FeedthroughMap], connections: Sequence[ConnectionKey],
     zero_delay: Mapping[tuple[str, str], list[ConnectionKey]], unit_of: Mapping[str, int],
     added: list[int]
 ) -> dict[tuple[str, str], list[ConnectionKey]]:
