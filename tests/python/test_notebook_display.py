@@ -117,3 +117,47 @@ def test_a_missing_optional_library_names_the_extra(wall, monkeypatch: pytest.Mo
     ensemble = EnsembleResult([], [], 0.0, 1.0, 0.1, 0.0)
     with pytest.raises(MissingDependencyError, match=r'pip install "syssimx-engine\[ensemble\]"'):
         ensemble.grid()
+
+
+def test_an_fmu_component_shows_its_fmu_version_interface_and_ports_with_units():
+    from syssimx import FMUComponent, fmus
+
+    ball = FMUComponent("ball", fmus.path("bouncing_ball_cvode"))
+    assert repr(ball) == ("FMUComponent('ball', bouncing_ball_cvode.fmu, FMI 2.0 co-simulation, "
+                          "inputs: none; outputs: h [m], v [m/s])")
+    page = ball._repr_html_()
+    assert f"<tr><th>FMU</th><td>{ball.fmu_path}</td></tr>" in page
+    assert "<tr><th>FMI version</th><td>2.0</td></tr>" in page
+    assert "<tr><th>interface</th><td>co-simulation</td></tr>" in page
+    assert "<tr><th>outputs</th><td>h [m], v [m/s]</td></tr>" in page
+    pendulum = FMUComponent("P", fmus.path("pendulum_cvode_fmi3"), interface="model-exchange")
+    assert "FMI 3.0 model-exchange, inputs: torque [N.m]; outputs: theta [rad]" in repr(pendulum)
+
+
+class _Printer:
+    """IPython's pretty printer, as far as _repr_pretty_ uses it."""
+
+    def __init__(self) -> None:
+        self.shown = ""
+
+    def text(self, text: str) -> None:
+        self.shown += text
+
+
+def test_a_system_without_graphviz_says_how_to_get_its_picture(
+        wall, monkeypatch: pytest.MonkeyPatch):
+    system, _ = wall
+    monkeypatch.setitem(sys.modules, "graphviz", None)
+    printer = _Printer()
+    system._repr_pretty_(printer, False)
+    first, hint = printer.shown.split("\n")
+    assert first == repr(system)
+    assert 'pip install "syssimx-engine[viz]"' in hint and "apt install graphviz" in hint
+
+
+def test_a_system_that_can_be_drawn_shows_only_its_repr_as_text(wall):
+    pytest.importorskip("graphviz")
+    system, _ = wall
+    printer = _Printer()
+    system._repr_pretty_(printer, False)
+    assert printer.shown == repr(system)

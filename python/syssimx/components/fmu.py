@@ -58,6 +58,7 @@ from ..fmu.loading import load
 from ..fmu.variable_table import VariableTable
 from ..units import is_quantity, magnitude_in
 from .base import CoSimComponent, _overrides
+from .fmu_display import component_html, component_text
 from .restart import Reinitialize, Term
 
 if TYPE_CHECKING:
@@ -131,6 +132,12 @@ class FMUComponent(CoSimComponent):
         self._finalizer = weakref.finalize(self, _release, lib().ssx_fmu_free, self.instance,
                                            self._unzip_dir, extraction_key)
         self._sync_ports()
+
+    def __repr__(self) -> str:
+        return component_text(self)
+
+    def _repr_html_(self) -> str:
+        return component_html(self)
 
     def undeclared_outputs(self) -> set[str]:
         """The outputs whose dependencies the FMU's ModelStructure does not declare (an

@@ -327,12 +327,16 @@ class System:
                    ) -> None:
         """Build the engine system, initialize every component at t0, record the first sample.
 
-        tolerance: the relative tolerance of FMUs given none of their own (default: each FMU's
-        DefaultExperiment tolerance). allow_non_finite: record NaN and infinite outputs instead
-        of stopping the run at the first one (None keeps the engine's default: stop).
-        output_interval: record every output_interval-th communication point (from t0), the
-        last point of each run and every event instant; 1 records every point (None keeps the
-        engine's default, every point)."""
+        Args:
+            t0: the start time.
+            tolerance: the relative tolerance of FMUs given none of their own (default: each
+                FMU's DefaultExperiment tolerance).
+            allow_non_finite: record NaN and infinite outputs instead of stopping the run at
+                the first one (None keeps the engine's default: stop).
+            output_interval: record every output_interval-th communication point (from t0),
+                the last point of each run and every event instant; 1 records every point
+                (None keeps the engine's default, every point).
+        """
         t0 = _time_value(self.name, "t0", t0)
         plan = self._reusable_plan()
         if plan is None:
@@ -410,20 +414,32 @@ class System:
             keep_history: bool = True) -> SimulationResult:
         """Simulate on the grid t0 + k*dt (the last point exactly tf) plus event instants.
 
-        progress: SysSimX's callback progress(t, tf), called with the time reached about every
-        50 ms of wall time and once at the end of the run; or True for a terminal bar that
-        appears after a second. Ctrl-C stops a run within about 0.1 s with KeyboardInterrupt,
-        and `timeout` (seconds of wall time) with SimulationTimeoutError; the samples recorded
-        up to the last completed step stay readable through get_history().
-        output_interval: a time, a whole multiple of dt (FMPy's meaning): this run records
-        t0 + j*output_interval, its last point and every event instant (None: what initialize's
-        output_interval says).
-        stream_to: write the run's samples to disk while it runs, exactly the history's (from
-        the state it starts at): a path whose suffix chooses the format (.csv, .parquet, .nc),
-        or a writer object of yours with write(t, micro, values) (and optionally
-        start(columns)) that you close, which may take several runs.
-        keep_history: False keeps no samples in memory from this run on (until the next
-        initialize): with stream_to, a run larger than memory keeps every sample on disk."""
+        Ctrl-C stops a run within about 0.1 s with KeyboardInterrupt; the samples recorded up
+        to the last completed step stay readable through get_history().
+
+        Args:
+            t0: the start time: where the system is (initialize's t0 or the last run's tf).
+            tf: the end time.
+            dt: the communication step.
+            progress: SysSimX's callback progress(t, tf), called with the time reached about
+                every 50 ms of wall time and once at the end of the run; or True for a
+                terminal bar that appears after a second.
+            timeout: seconds of wall time after which the run stops with
+                SimulationTimeoutError (None: no limit).
+            output_interval: a time, a whole multiple of dt (FMPy's meaning): this run records
+                t0 + j*output_interval, its last point and every event instant (None: what
+                initialize's output_interval says).
+            stream_to: write the run's samples to disk while it runs, exactly the history's
+                (from the state it starts at): a path whose suffix chooses the format (.csv,
+                .parquet, .nc), or a writer object of yours with write(t, micro, values) (and
+                optionally start(columns)) that you close, which may take several runs.
+            keep_history: False keeps no samples in memory from this run on (until the next
+                initialize): with stream_to, a run larger than memory keeps every sample on
+                disk.
+
+        Returns:
+            The run's samples, events and statistics.
+        """
         if not self.is_initialized or self._plan is None:
             raise ConfigurationError(f"{self.name}: call initialize(t0) before run()")
         if self._plan.waiting_parameters:
@@ -555,6 +571,16 @@ class System:
         except (ImportError, RuntimeError) as error:
             logger.debug("%s: shown as text: %s", self.name, error)
             return None
+
+    def _repr_pretty_(self, printer: Any, cycle: bool) -> None:
+        """IPython's text of the system (what Jupyter shows when _repr_svg_ has no picture):
+        the repr, and below it how to get the picture when it cannot be drawn."""
+        from ..viz.drawing_support import why_no_drawing
+
+        printer.text(repr(self))
+        reason = why_no_drawing()
+        if reason is not None:
+            printer.text("\n" + reason)
 
     def reset(self) -> None:
         """Drop the engine system; components keep their parameters and observers."""
