@@ -179,10 +179,15 @@ def test_undeclared_dependencies_make_a_loop_with_one_warning_and_a_choice():
                       r"dependencies.*declare_dependencies.*undeclared_dependencies=\"none\""):
         system.initialize(0.0)
 
+    assert system.run(0.0, 1e-3, 1e-3).statistics.loop_solves > 0
+
     system.undeclared_dependencies = "none"
     report = system.describe()
     assert "Algebraic loops: none" in report
     assert "undeclared_dependencies='none'" in report
+    with pytest.warns(SysSimXWarning, match="coupled explicitly"):
+        system.initialize(0.0)  # the plan is compiled again
+    assert system.run(0.0, 1e-3, 1e-3).statistics.loop_solves == 0
 
     declared = read_osp(path).system
     declared.components["chassis"].declare_dependencies(velocity=[])
