@@ -14,6 +14,7 @@ from pathlib import Path
 import pytest
 import syssimx
 from syssimx import GaussSeidelAlgorithm, HybridAlgorithm, JacobiAlgorithm
+from syssimx.ensemble import monte_carlo, sweep
 
 API_INDEX = Path(__file__).resolve().parents[2] / "docs" / "api" / "index.rst"
 
@@ -102,3 +103,26 @@ def test_signatures_show_the_engines_defaults(options: type):
         if field.init and field.name in signature.parameters:
             assert signature.parameters[field.name].default == getattr(made, field.name), \
                 field.name
+
+
+def _documented_parameters(function: object) -> set[str]:
+    """The parameters napoleon renders as fields (":param name:") from the docstring."""
+    from sphinx.ext.napoleon import Config
+    from sphinx.ext.napoleon.docstring import GoogleDocstring
+
+    rendered = str(GoogleDocstring(inspect.getdoc(function) or "", Config()))
+    return set(re.findall(r"^:param (\w+):", rendered, re.M))
+
+
+@pytest.mark.parametrize("function", [
+    syssimx.System.run, syssimx.System.initialize, syssimx.FMUComponent.__init__,
+    syssimx.components.CoSimComponent.add_event_indicator, sweep],
+    ids=lambda function: function.__qualname__)
+def test_the_parameters_are_a_list_of_fields(function) -> None:
+    parameters = set(inspect.signature(function).parameters) - {"self"}
+    assert _documented_parameters(function) == parameters
+
+
+def test_monte_carlo_lists_its_own_parameters_and_refers_to_sweep_for_the_rest() -> None:
+    assert _documented_parameters(monte_carlo) == {"system", "distributions", "samples", "seed"}
+    assert "The other arguments are sweep's." in (monte_carlo.__doc__ or "")

@@ -198,8 +198,14 @@ class CoSimComponent:
     # ---------------------------------------------------------------- events
     def add_event_indicator(self, name: str, func: Callable[[Any], float] | None = None,
                             direction: int = 0, variable: str | None = None) -> None:
-        """Declare a zero crossing. `func(component) -> float` runs in Python; `variable` names
-        an output evaluated in C. Creates the EVENT output port `name`."""
+        """Declare a zero crossing; creates the EVENT output port `name`.
+
+        Args:
+            name: the event, and its EVENT output port.
+            func: ``func(component) -> float``, evaluated in Python (give it or `variable`).
+            direction: -1 falling, +1 rising, 0 both.
+            variable: an output whose value is the indicator, evaluated in C.
+        """
         if (func is None) == (variable is None):
             raise ConfigurationError(f"{self.name}.{name}: give exactly one of func= or variable=")
         if direction not in (-1, 0, 1):

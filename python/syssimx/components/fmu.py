@@ -72,11 +72,19 @@ class FMUComponent(CoSimComponent):
     def __init__(self, name: str, fmu_path: str | Path, group: str | None = None,
                  tolerance: float | None = None, *, isolated: bool = False,
                  step_timeout: float | None = None, interface: str = "auto") -> None:
-        """`tolerance`: the relative tolerance for fmi2SetupExperiment (and the engine's
-        integrator under Model Exchange); `isolated`: run the binary in a process of its own;
-        `step_timeout` (seconds, needs isolation): an fmi2 call that takes longer kills that
-        process and fails the run; `interface`: "co-simulation", "model-exchange" or "auto"
-        (Co-Simulation when the FMU has it, else Model Exchange)."""
+        """
+        Args:
+            name: the component's name in its system.
+            fmu_path: the .fmu archive.
+            group: SysSimX's component group, kept as `group` (syssimx does not use it).
+            tolerance: the relative tolerance for fmi2SetupExperiment (and the engine's
+                integrator under Model Exchange).
+            isolated: run the binary in a process of its own.
+            step_timeout: seconds (needs isolation): an fmi2 call that takes longer kills that
+                process and fails the run.
+            interface: "co-simulation", "model-exchange" or "auto" (Co-Simulation when the FMU
+                has it, else Model Exchange).
+        """
         if step_timeout is not None and not isolated:
             raise ConfigurationError(f"component {name!r}: step_timeout needs isolated=True "
                                      "(a hung FMU inside this process cannot be stopped)")

@@ -29,15 +29,28 @@ def sweep(system: Any, parameters: Mapping[str, Iterable[Any]], *, mode: str = "
           member_timeout: float | None = None, progress: bool = True) -> EnsembleResult:
     """Run `system` once per parameter set, in Dask worker processes.
 
-    system: a YAML/JSON system file, or a picklable function returning a System (built once per
-    worker process, initialized again for each member: see reused_system.py). parameters:
-    {"Component.parameter": values}; an input's name holds that input at the value. mode: "grid"
-    (every combination) or "zip" (the i-th values together). t0, tf, dt: the run (a system
-    file's `run` entry gives the ones not given). outputs: the "Component.port" names to keep
-    (default: all). client: a distributed.Client to run on; else scheduler: an address
-    ("tcp://host:8786"); else an embedded LocalCluster of `workers` processes (default one per
-    core). member_timeout: seconds of wall time a member's run may take (see runner.py for a
-    hang inside an FMU). progress: a progress bar on stderr."""
+    Args:
+        system: a YAML/JSON system file, or a picklable function returning a System (built
+            once per worker process, initialized again for each member: see
+            reused_system.py).
+        parameters: {"Component.parameter": values}; an input's name holds that input at the
+            value.
+        mode: "grid" (every combination) or "zip" (the i-th values together).
+        t0: the run's start (a system file's `run` entry gives t0, tf and dt when not given).
+        tf: the run's end.
+        dt: the run's communication step.
+        outputs: the "Component.port" names to keep (default: all).
+        client: a distributed.Client to run on.
+        scheduler: without `client`, a scheduler's address ("tcp://host:8786").
+        workers: without either, the processes of an embedded LocalCluster (default one per
+            core).
+        member_timeout: seconds of wall time a member's run may take (see runner.py for a
+            hang inside an FMU).
+        progress: a progress bar on stderr.
+
+    Returns:
+        The members' results in member order (their parameters, outputs and events).
+    """
     return _run("sweep", system, parameter_table(parameters, mode), t0, tf, dt, outputs, client,
                 scheduler, workers, member_timeout, progress)
 
@@ -47,10 +60,17 @@ def monte_carlo(system: Any, distributions: Mapping[str, Any], samples: int,
                 dt: float | None = None, outputs: Sequence[str] | None = None,
                 client: Any = None, scheduler: str | None = None, workers: int | None = None,
                 member_timeout: float | None = None, progress: bool = True) -> EnsembleResult:
-    """Run `system` `samples` times with parameters drawn from `distributions`
-    ({"Component.parameter": a frozen scipy.stats distribution or a function (numpy
-    Generator, count) -> values}) by one generator seeded with `seed`. The other arguments
-    are sweep's."""
+    """Run `system` `samples` times with parameters drawn by one seeded generator.
+
+    Args:
+        system: as for sweep.
+        distributions: {"Component.parameter": a frozen scipy.stats distribution or a
+            function (numpy Generator, count) -> values}.
+        samples: the number of members.
+        seed: the generator's seed (None: a fresh one).
+
+    The other arguments are sweep's.
+    """
     return _run("monte_carlo", system, draw(distributions, samples, seed), t0, tf, dt, outputs,
                 client, scheduler, workers, member_timeout, progress)
 
