@@ -36,6 +36,7 @@
 #include "fmu_backend.h"
 #include "fmu_binding.h"
 #include "fmu_component.h"
+#include "interrupt.h"
 #include "own_events.h"
 #include "parallel_step.h"
 #include "system.h"
@@ -545,7 +546,7 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
         int time_event = event->next_event_time_defined && event->next_event_time <= reach;
         double stop = time_event ? fmin(fmax(event->next_event_time, now), t_end) : t_end;
         int root;
-        if (integrate(sys, c, me, stop, &now, &root) != 0) {
+        if (run_interrupted(sys, now) != 0 || integrate(sys, c, me, stop, &now, &root) != 0) {
             return -1;
         }
         int enter_event_mode = 0, terminate = 0;

@@ -14,6 +14,12 @@ void monitor_start(ssx_monitor *m)
     m->countdown = 1;
     m->last_reading = monotonic_seconds();
     m->last_call = m->last_reading;
+    m->running = 1;
+}
+
+void monitor_stop(ssx_monitor *m)
+{
+    m->running = 0;
 }
 
 /* The stride that would have taken `target` seconds at the pace of the last one: at most

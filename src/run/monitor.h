@@ -12,10 +12,14 @@ typedef struct {
     long countdown;     /* macro steps left until the next reading */
     double last_reading; /* seconds on the monotonic clock */
     double last_call;
+    int running;        /* between monitor_start and monitor_stop: a run is on */
 } ssx_monitor;
 
 /* At the start of a run: the interval and the stride start afresh. */
 void monitor_start(ssx_monitor *m);
+/* At the end of a run: nothing asks the monitor until the next starts (ssx_initialize's
+ * loops run with the last run's deadline long past). */
+void monitor_stop(ssx_monitor *m);
 /* Reads the clock, resizes the stride and calls the monitor when the interval has passed. */
 int monitor_check(ssx_monitor *m, double t);
 /* After each macro step, reached time t: 0 to go on, nonzero when the monitor stops the run. */

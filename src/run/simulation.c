@@ -14,6 +14,7 @@
 #include "fmu_remote.h"
 #include "indicator.h"
 #include "input_order.h"
+#include "interrupt.h"
 #include "own_events.h"
 #include "recording.h"
 #include "system.h"
@@ -94,12 +95,6 @@ int ssx_initialize(ssx_system *sys, double t0)
     return 0;
 }
 
-static int stopped_by_monitor(ssx_system *sys, double t)
-{
-    return fail_kind(sys, SSX_ERROR_CALLBACK, -1, -1, t,
-                     "system '%s': the run was stopped by its monitor at t=%.17g", sys->name, t);
-}
-
 /* An isolated FMU's call waits on its host's socket: the monitor (Ctrl-C, the run's timeout)
  * is asked while it waits, as between steps. */
 static int stop_requested_by_monitor(void *user)
@@ -134,8 +129,8 @@ static int run_grid(ssx_system *sys, double t0, double tf, double dt, long n_ste
             return -1;
         }
         t = t_next;
-        if (monitor_after_step(&sys->monitor, t) != 0) {
-            return stopped_by_monitor(sys, t);
+        if (run_interrupted(sys, t) != 0) {
+            return -1;
         }
     }
     sys->time = tf > t0 ? tf : sys->time;
@@ -191,6 +186,7 @@ int ssx_run(ssx_system *sys, double t0, double tf, double dt)
     }
     watch_isolated_fmus(sys, stop_requested_by_monitor);
     int status = run_grid(sys, t0, tf, dt, n_steps);
+    monitor_stop(&sys->monitor);
     watch_isolated_fmus(sys, NULL);
     recording_run_end(sys);
     return status;

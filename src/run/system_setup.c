@@ -4,6 +4,7 @@
 
 #include "system.h"
 
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -684,6 +685,13 @@ int ssx_set_step_control(ssx_system *sys, const ssx_step_control *control)
                            "1; got "
                            "rtol=%g atol=%g min_step=%g max_step=%g safety=%g",
                            sys->name, sc.rtol, sc.atol, sc.min_step, sc.max_step, sc.safety);
+    }
+    /* a step that vanishes in the rounding of the times it starts at never ends */
+    if (sc.enabled && sc.min_step < DBL_EPSILON) {
+        return fail_config(sys, -1, -1, NAN,
+                           "system '%s': step control min_step=%g is below the time resolution "
+                           "(%g s, the spacing of times near 1 s): t + min_step would equal t",
+                           sys->name, sc.min_step, DBL_EPSILON);
     }
     if (sc.enabled && !(sc.min_change > 0.0 && sc.min_change < 1.0 && sc.max_change > 1.0 &&
                         isfinite(sc.max_change))) {

@@ -1,5 +1,6 @@
 #include "adaptive.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -7,6 +8,7 @@
 #include "error.h"
 #include "hybrid.h"
 #include "input_order.h"
+#include "interrupt.h"
 #include "event_source.h"
 #include "recording.h"
 
@@ -80,10 +82,17 @@ static double step_length(double h, double shortest, double room)
     return room - h < fmax(shortest, 1e-9 * room) ? room : h;
 }
 
-static double clamp_step(const ssx_step_control *sc, double h)
+/* The shortest step from t: min_step, or where times are coarser than it, two of their
+ * roundings (so that t + h > t: a step that vanishes in t's rounding would never end). */
+static double shortest_step(const ssx_step_control *sc, double t)
+{
+    return fmax(sc->min_step, 2.0 * DBL_EPSILON * fabs(t));
+}
+
+static double clamp_step(const ssx_step_control *sc, double t, double h)
 {
     double longest = sc->max_step > 0.0 ? sc->max_step : INFINITY;
-    return fmin(longest, fmax(sc->min_step, h));
+    return fmin(longest, fmax(shortest_step(sc, t), h));
 }
 
 static void count_accepted(ssx_system *sys, double h, double error)
@@ -124,14 +133,15 @@ static int accepted_step(ssx_system *sys, double a, double t_next, double *reach
         return -1;
     }
     double room = t_next - a;
-    double shortest = sc->min_step;
+    double shortest = shortest_step(sc, a);
     double h = step_length(w->proposed, shortest, room);
     int cut_by_grid = h < w->proposed;
     /* no shorter step may replace it: any would leave less than the shortest step behind */
     int at_limit = !(step_length(shortest, shortest, room) < h);
     double error;
     for (;;) {
-        if ((restorable && system_snapshot(sys, MACRO_SLOT) != 0) ||
+        if (run_interrupted(sys, a) != 0 ||
+            (restorable && system_snapshot(sys, MACRO_SLOT) != 0) ||
             coupling_step(sys, a, h) != 0) {
             return -1;
         }
@@ -156,10 +166,10 @@ static int accepted_step(ssx_system *sys, double a, double t_next, double *reach
     double factor = step_factor(sys, error);
     w->previous_error = fmax(error, SMALLEST_ERROR);
     /* a step the grid cut short says nothing about how long the next may grow */
-    if (!(cut_by_grid && factor >= 1.0)) {
-        w->proposed = clamp_step(sc, h * factor);
-    }
     double t_end = h == room ? t_next : a + h;
+    if (!(cut_by_grid && factor >= 1.0)) {
+        w->proposed = clamp_step(sc, t_end, h * factor);
+    }
     if (hybrid) {
         return hybrid_end_piece(sys, &piece, t_end, h, reached, event);
     }
@@ -174,8 +184,8 @@ int adaptive_step(ssx_system *sys, double t, double t_next)
     struct adaptive_workspace *w = sys->adaptive;
     const ssx_step_control *sc = &sys->step_control;
     if (!(w->proposed > 0.0)) {
-        w->proposed = clamp_step(sc, sc->initial_step > 0.0 ? sc->initial_step
-                                                            : first_step(sys, t_next - t));
+        w->proposed = clamp_step(sc, t, sc->initial_step > 0.0 ? sc->initial_step
+                                                               : first_step(sys, t_next - t));
     }
     double a = t;
     int event = 0;

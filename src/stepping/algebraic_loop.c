@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "error.h"
+#include "interrupt.h"
 
 typedef struct {
     ssx_system *sys;
@@ -254,7 +255,7 @@ static int newton(loop_work *w, double *residual_norm)
     ssx_system *sys = w->sys;
     int n = w->n;
     for (int iteration = 0; iteration < sys->loop.max_iterations; ++iteration) {
-        if (residual(w, w->x, w->r) != 0) {
+        if (run_interrupted(sys, w->t) != 0 || residual(w, w->x, w->r) != 0) {
             return -1;
         }
         *residual_norm = norm_inf(w->r, n);
@@ -292,7 +293,7 @@ static int fixed_point(loop_work *w, const double *x_start, double *residual_nor
     int n = w->n;
     memcpy(w->x, x_start, (size_t)n * sizeof *w->x);
     for (int iteration = 0; iteration < sys->loop.max_iterations; ++iteration) {
-        if (residual(w, w->x, w->r) != 0) {
+        if (run_interrupted(sys, w->t) != 0 || residual(w, w->x, w->r) != 0) {
             return -1;
         }
         *residual_norm = norm_inf(w->r, n);

@@ -15,6 +15,7 @@
 #include "error.h"
 #include "event_source.h"
 #include "indicator.h"
+#include "interrupt.h"
 #include "locator.h"
 #include "recording.h"
 #include "zeno.h"
@@ -169,6 +170,9 @@ static int locate(ssx_system *sys, event_bracket *br)
     br->iterations = 0;
     int near_saved = 0; /* NEAR_SLOT holds the state at st.a */
     while (st.b - st.a > opt->tol_time && !far_side_converged(sys)) {
+        if (run_interrupted(sys, st.a) != 0) {
+            return -1;
+        }
         if (br->iterations >= opt->max_iterations) {
             return fail(sys, -1, -1, st.a,
                         "event localization did not reach tol_time=%g within %d iterations: "
@@ -661,7 +665,7 @@ int hybrid_step(ssx_system *sys, double t, double t_next)
     double a0 = t;
     while (a0 < t_next) {
         hybrid_piece piece;
-        if (hybrid_begin_piece(sys, a0, t_next, &piece) != 0 ||
+        if (run_interrupted(sys, a0) != 0 || hybrid_begin_piece(sys, a0, t_next, &piece) != 0 ||
             system_snapshot(sys, MACRO_SLOT) != 0 || coupling_step(sys, a0, t_next - a0) != 0) {
             return -1;
         }
