@@ -25,7 +25,9 @@ class StepControl:
     next step is the last times safety * error^(-1 / (input_order + 1)), between min_change and
     max_change times the last, within [min_step, max_step] (max_step 0: bounded only by the grid
     interval); initial_step 0 starts with a tenth of the first grid interval times
-    max(rtol, atol)^(1 / (input_order + 1)).
+    max(rtol, atol)^(1 / (input_order + 1)). min_step is at least the time resolution,
+    2.2e-16 s (below it t + min_step == t near 1 s); where times are coarser, a step is at
+    least two of their roundings.
 
     error="energy" measures, as libcosim's ECCO algorithm, the energy residual of the
     power_bonds instead: each bond is a pair of (component, input) ends, say a torque input
