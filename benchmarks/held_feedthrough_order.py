@@ -21,9 +21,9 @@ on a 0.01 s grid):
   (Adams-Moulton weights); "corrected" adds to each force sample the wheel's
   fmi2GetDirectionalDerivative d force / d in_vel times (velocity at t + h - velocity held),
   the force the wheel would have had with the velocity of t + h. The derivative is taken once,
-  after initialization: the wheel computes it numerically, and each call moves its outputs
-  (its force by about 1e-2 N). Its reference: the same master with held inputs at 1e-6 and
-  5e-7 s, extrapolated likewise.
+  after initialization (the wheel computes it numerically, a constant here; each call moves its
+  outputs until the next doStep, and taking it at every step gives the same errors). Its
+  reference: the same master with held inputs at 1e-6 and 5e-7 s, extrapolated likewise.
 
     python benchmarks/held_feedthrough_order.py --truck ../shared/coupling-samples/quarter_truck
 """
