@@ -29,7 +29,12 @@ static void write_start(FILE *out, const model_variable *v)
     fputc('"', out);
 }
 
-static void write_variable(FILE *out, const model_variable *v, size_t vr)
+static fmi3ValueReference clock_vr(size_t n_variables, size_t clock)
+{
+    return fmi3_clock_vr(n_variables, fmu_model.n_event_indicators, clock);
+}
+
+static void write_variable(FILE *out, const model_variable *v, size_t vr, size_t n_variables)
 {
     fprintf(out, "    <%s name=\"", type_names[v->type]);
     write_escaped(out, v->name);
@@ -48,6 +53,8 @@ static void write_variable(FILE *out, const model_variable *v, size_t vr)
         fprintf(out, " derivative=\"%d\"", v->derivative_of);
     if (fmi3_intermediate_input(v))
         fputs(" intermediateUpdate=\"true\"", out);
+    if (v->clock > 0)
+        fprintf(out, " clocks=\"%u\"", clock_vr(n_variables, (size_t)v->clock - 1));
     if (v->initial == INITIAL_EXACT || v->causality == CAUSALITY_INPUT)
         write_start(out, v);
     fputs("/>\n", out);
@@ -67,6 +74,19 @@ static void write_extra_variables(FILE *out, size_t n_variables)
                 "initial=\"calculated\" description=\"internal event indicator %zu: the event "
                 "occurs when it falls from above zero to zero or below\"/>\n",
                 fmi3_indicator_vr(n_variables, i), i);
+    }
+    for (size_t i = 0; i < fmu_model.n_clocks; ++i) {
+        const model_clock *clock = &fmu_model.clocks[i];
+        fputs("    <Clock name=\"", out);
+        write_escaped(out, clock->name);
+        fprintf(out,
+                "\" valueReference=\"%u\" causality=\"input\" variability=\"discrete\" "
+                "intervalVariability=\"constant\" intervalDecimal=\"",
+                clock_vr(n_variables, i));
+        write_real(out, clock->interval);
+        fputs("\" description=\"", out);
+        write_escaped(out, clock->description);
+        fputs("\"/>\n", out);
     }
 }
 
@@ -120,9 +140,10 @@ static void write_model_exchange(FILE *out, const char *model_identifier)
 
 static void write_co_simulation(FILE *out, const char *model_identifier)
 {
-    int has_events = fmu_model.n_event_indicators > 0;
+    /* the importer ticks input clocks in Event Mode */
+    int has_events = fmu_model.n_event_indicators > 0 || fmu_model.n_clocks > 0;
     /* the step ends early at an internal event (event mode) or where the model asks to stop */
-    int returns_early = has_events || fmu_model.termination_time != NULL;
+    int returns_early = fmu_model.n_event_indicators > 0 || fmu_model.termination_time != NULL;
     fprintf(out,
             "  <CoSimulation modelIdentifier=\"%s\" canHandleVariableCommunicationStepSize=\"true\"\n"
             "    canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\"",
@@ -149,6 +170,11 @@ int write_description_fmi3(FILE *out, const char *model_identifier)
     variable_list list;
     if (collect(&list) != 0)
         return -1;
+    if (fmu_model.n_clocks > FMI3_MAX_CLOCKS) {
+        fprintf(stderr, "%zu clocks: the framework serves at most %d\n", fmu_model.n_clocks,
+                FMI3_MAX_CLOCKS);
+        return -1;
+    }
     char guid[FMU_GUID_LENGTH];
     fmu_guid(guid);
     fputs("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n", out);
@@ -165,7 +191,7 @@ int write_description_fmi3(FILE *out, const char *model_identifier)
     write_default_experiment(out);
     fputs("  <ModelVariables>\n", out);
     for (size_t vr = 0; vr < list.count; ++vr)
-        write_variable(out, list.rows[vr], vr);
+        write_variable(out, list.rows[vr], vr, list.count);
     write_extra_variables(out, list.count);
     fputs("  </ModelVariables>\n", out);
     write_structure(out, &list);

@@ -7,6 +7,9 @@
 #include "fmi3Functions.h"
 #include "fmu_instance.h"
 
+/* The most input clocks a model may declare (the describe tool refuses more). */
+#define FMI3_MAX_CLOCKS 4
+
 typedef struct {
     fmu_instance core; /* first: the framework works on &core */
     fmi3InstanceEnvironment environment; /* what the intermediate update receives first */
@@ -14,6 +17,7 @@ typedef struct {
     int early_return_allowed;
     int model_exchange; /* made by fmi3InstantiateModelExchange */
     fmi3IntermediateUpdateCallback intermediate_update; /* NULL: the importer asked for none */
+    int clock_active[FMI3_MAX_CLOCKS]; /* set by fmi3SetClock, cleared when the tick is applied */
 } fmi3_instance;
 
 /* The variables an importer may set in Intermediate Update Mode (intermediateUpdate="true"):
@@ -88,6 +92,13 @@ static inline fmi3ValueReference fmi3_time_vr(size_t n_variables)
 static inline fmi3ValueReference fmi3_indicator_vr(size_t n_variables, size_t indicator)
 {
     return (fmi3ValueReference)(n_variables + 1 + indicator);
+}
+
+/* The model's clocks follow the event indicators. */
+static inline fmi3ValueReference fmi3_clock_vr(size_t n_variables, size_t n_indicators,
+                                               size_t clock)
+{
+    return (fmi3ValueReference)(n_variables + 1 + n_indicators + clock);
 }
 
 #define FMI3_INDICATOR_NAME "event_indicator_%zu"

@@ -43,9 +43,9 @@ static const char *refusal(fmi3String instanceName, fmi3String instantiationToke
         return "the instance name is missing";
     if (instantiationToken == NULL || strcmp(instantiationToken, guid) != 0)
         return "the instantiation token does not match this FMU's";
-    if (eventModeUsed && fmu_model.n_event_indicators == 0)
+    if (eventModeUsed && fmu_model.n_event_indicators == 0 && fmu_model.n_clocks == 0)
         return "eventModeUsed is true but this FMU has no event mode (hasEventMode=\"false\": "
-               "the model has no internal events)";
+               "the model has no internal events and no clocks)";
     if (nRequiredIntermediateVariables > 0 && requiredIntermediateVariables == NULL)
         return "requiredIntermediateVariables is NULL";
     for (size_t i = 0; i < nRequiredIntermediateVariables; ++i) {
@@ -200,6 +200,20 @@ fmi3Status fmi3EnterEventMode(fmi3Instance instance)
     return fmi3OK;
 }
 
+/* The clocks set active since the last update tick now, with the inputs set at the tick. */
+static void apply_clock_ticks(fmi3_instance *inst)
+{
+    const model_definition *model = inst->core.model;
+    int any = 0;
+    for (size_t i = 0; i < model->n_clocks; ++i)
+        any |= inst->clock_active[i];
+    if (!any)
+        return;
+    model->clock_tick(inst->core.values, inst->core.time, inst->clock_active);
+    for (size_t i = 0; i < model->n_clocks; ++i)
+        inst->clock_active[i] = 0;
+}
+
 fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discreteStatesNeedUpdate,
                                     fmi3Boolean *terminateSimulation,
                                     fmi3Boolean *nominalsOfContinuousStatesChanged,
@@ -215,7 +229,9 @@ fmi3Status fmi3UpdateDiscreteStates(fmi3Instance instance, fmi3Boolean *discrete
         !valuesOfContinuousStatesChanged || !nextEventTimeDefined || !nextEventTime)
         return fmi3_status(
             fmu_error(&inst->core, "fmi3UpdateDiscreteStates: an output argument is NULL"));
-    /* the model's events change the state once; nothing else is discrete, so one call settles */
+    apply_clock_ticks(inst);
+    /* the model's events and clock ticks change the state once; nothing else is discrete, so
+     * one call settles */
     *discreteStatesNeedUpdate = false;
     *nominalsOfContinuousStatesChanged = false;
     if (inst->model_exchange) {
@@ -268,5 +284,7 @@ fmi3Status fmi3Reset(fmi3Instance instance)
     if (inst == NULL)
         return fmi3Error;
     fmu_reset(&inst->core);
+    for (size_t i = 0; i < FMI3_MAX_CLOCKS; ++i)
+        inst->clock_active[i] = 0;
     return fmi3OK;
 }

@@ -1,4 +1,4 @@
-/* FMI 3.0 functions this FMU exports but does not support: Scheduled Execution, clocks, configuration mode, dependencies at run time, and adjoint
+/* FMI 3.0 functions this FMU exports but does not support: Scheduled Execution, clock intervals and shifts, configuration mode, dependencies at run time, and adjoint
  * derivatives. Each returns fmi3Error (or NULL) with a message naming the call. */
 #include "fmi3_instance.h"
 #include "fmu_log.h"

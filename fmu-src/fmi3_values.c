@@ -240,18 +240,52 @@ fmi3Status fmi3SetBinary(fmi3Instance instance, const fmi3ValueReference valueRe
                                 nValueReferences);
 }
 
+/* The index of the model's clock with value reference vr, or -1. */
+static int clock_index(const fmu_instance *inst, fmi3ValueReference vr)
+{
+    for (size_t i = 0; i < inst->model->n_clocks; ++i)
+        if (vr == fmi3_clock_vr(inst->n_variables, inst->model->n_event_indicators, i))
+            return (int)i;
+    return -1;
+}
+
+/* The model's clocks are input clocks: the importer ticks them, nothing reads them back. */
 fmi3Status fmi3GetClock(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                         size_t nValueReferences, fmi3Clock values[])
 {
     (void)values;
+    fmi3_instance *self = fmi3_checked(instance, FMI3_CALL(fmi3GetClock));
+    if (self == NULL)
+        return fmi3Error;
+    for (size_t i = 0; i < nValueReferences && valueReferences != NULL; ++i)
+        if (clock_index(&self->core, valueReferences[i]) >= 0)
+            return fmi3_status(fmu_error(&self->core,
+                                         "fmi3GetClock: value reference %u is an input clock "
+                                         "(only output clocks are read)",
+                                         valueReferences[i]));
     return no_variables_of_type(instance, FMI3_CALL(fmi3GetClock), valueReferences,
                                 nValueReferences);
 }
 
+/* Ticks input clocks, in Event Mode only; the tick applies at fmi3UpdateDiscreteStates. */
 fmi3Status fmi3SetClock(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                         size_t nValueReferences, const fmi3Clock values[])
 {
-    (void)values;
-    return no_variables_of_type(instance, FMI3_CALL(fmi3SetClock), valueReferences,
-                                nValueReferences);
+    fmi3_instance *self = fmi3_checked(instance, FMI3_CALL(fmi3SetClock));
+    if (self == NULL)
+        return fmi3Error;
+    fmu_instance *inst = &self->core;
+    if (nValueReferences > 0 && (valueReferences == NULL || values == NULL))
+        return fmi3_status(fmu_error(inst, "fmi3SetClock: an array argument is NULL"));
+    if (fmi3_mode_of(inst) != MODE_EVENT)
+        return fmi3_status(fmu_error(inst, "fmi3SetClock: clocks tick in Event Mode only "
+                                           "(the instance is in %s)",
+                                     fmi3_mode_name(fmi3_mode_of(inst))));
+    for (size_t i = 0; i < nValueReferences; ++i)
+        if (clock_index(inst, valueReferences[i]) < 0)
+            return no_variables_of_type(instance, FMI3_CALL(fmi3SetClock), &valueReferences[i],
+                                        1);
+    for (size_t i = 0; i < nValueReferences; ++i)
+        self->clock_active[clock_index(inst, valueReferences[i])] = values[i] ? 1 : 0;
+    return fmi3OK;
 }

@@ -50,6 +50,9 @@ typedef struct {
     /* NULL: modelDescription.xml declares `start` exactly. Otherwise the text it declares
      * instead, for test models that mimic exporters printing starts rounded (e.g. "%f"). */
     const char *declared_start;
+    /* 0: not clocked; otherwise 1 + the index of the model's clock (FMI 3.0 only) at whose
+     * ticks alone the variable changes */
+    int clock;
 } model_variable;
 
 /* The rows of the variable table, one macro per kind of variable, each naming the fields it
@@ -123,6 +126,25 @@ typedef struct {
               .unit = (unit_), .description = (description_), .depends = (depends_),              \
               .initial_depends = (initial_depends_))
 
+/* A discrete output or local that changes only at the ticks of clock `clock_index` (FMI 3.0
+ * clocked variables), `start_` until the first tick. */
+#define REAL_CLOCKED_OUTPUT(vr, name, unit_, start_, description_, clock_index, depends_)         \
+    MODEL_ROW(vr, name, TYPE_REAL, CAUSALITY_OUTPUT, VARIABILITY_DISCRETE, INITIAL_EXACT, -1,     \
+              .unit = (unit_), .start = (start_), .description = (description_),                  \
+              .depends = (depends_), .clock = (clock_index) + 1)
+#define REAL_CLOCKED_LOCAL(vr, name, unit_, start_, description_, clock_index)                    \
+    MODEL_ROW(vr, name, TYPE_REAL, CAUSALITY_LOCAL, VARIABILITY_DISCRETE, INITIAL_EXACT, -1,      \
+              .unit = (unit_), .start = (start_), .description = (description_),                  \
+              .clock = (clock_index) + 1)
+
+/* A periodic input clock (FMI 3.0, intervalVariability="constant"): the importer ticks it every
+ * `interval` seconds from the start time and calls fmi3UpdateDiscreteStates in Event Mode. */
+typedef struct {
+    const char *name;
+    const char *description;
+    double interval;
+} model_clock;
+
 /* How a refused step fails: the step fails and may be retried (FMU_ERROR), or the step could
  * not be completed (FMU_DISCARD: the FMU stays at the step's start), or the model is broken for
  * good (FMU_FATAL: every later call is refused). */
@@ -171,6 +193,11 @@ typedef struct {
      * point), for any output and input value reference. Serves fmi2GetDirectionalDerivative. */
     double (*partial_derivative)(const double *v, const double *x, unsigned output,
                                  unsigned input);
+    /* FMI 3.0 only: the model's input clocks, and the update of its clocked variables when the
+     * clocks marked in active[] tick at time t (the inputs are those set at the tick) */
+    const model_clock *clocks;
+    size_t n_clocks;
+    void (*clock_tick)(double *v, double t, const int *active);
 } model_definition;
 
 extern const model_definition fmu_model;

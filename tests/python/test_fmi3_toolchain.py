@@ -402,7 +402,8 @@ def test_event_mode_needs_internal_events(tmp_path) -> None:
                           logMessage=lambda env, status, category, message:
                           messages.append(message.decode()))
     assert messages == ["fmi3InstantiateCoSimulation: eventModeUsed is true but this FMU has no "
-                        "event mode (hasEventMode=\"false\": the model has no internal events)"]
+                        "event mode (hasEventMode=\"false\": the model has no internal events "
+                        "and no clocks)"]
 
 
 @pytest.mark.parametrize(("failure", "status", "kind"), [

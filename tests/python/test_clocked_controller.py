@@ -1,0 +1,192 @@
+"""The toolchain's clocked FMU (models/SampledPIController, FMI 3.0 only): a PI controller whose
+output u is clocked by a periodic input clock. Driven here through FMPy's FMI 3.0 calls, the way
+the standard lays out Co-Simulation with event mode: at each tick the importer enters Event
+Mode, sets the inputs, ticks the clock (fmi3SetClock) and calls fmi3UpdateDiscreteStates."""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ElementTree
+import zipfile
+from collections.abc import Iterator
+
+import pytest
+from fixture_fmus import fmu_path
+from fmpy import extract, read_model_description
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi3 import FMU3Slave
+from fmpy.validation import validate_fmu
+from scipy.integrate import solve_ivp
+
+CONTROLLER = "sampled_pi_controller_fmi3"
+PERIOD = 0.1  # the clock's intervalDecimal
+FMI3_ERROR = 3
+
+
+class Slave:
+    """An FMPy FMI 3.0 slave with its variables by name and the messages it logged."""
+
+    def __init__(self, stem: str, directory, event_mode: bool) -> None:
+        path = fmu_path(stem)
+        description = read_model_description(path)
+        self.vrs = {v.name: v.valueReference for v in description.modelVariables}
+        self.slave = FMU3Slave(guid=description.guid,
+                               unzipDirectory=extract(path, unzipdir=directory / stem),
+                               modelIdentifier=description.coSimulation.modelIdentifier,
+                               instanceName=stem)
+        self.messages: list[str] = []
+
+        def record(environment, status, category, message) -> None:
+            self.messages.append(message.decode())
+
+        self.slave.instantiate(loggingOn=True, eventModeUsed=event_mode,
+                               earlyReturnAllowed=False, logMessage=record)
+
+    def get(self, name: str) -> float:
+        return self.slave.getFloat64([self.vrs[name]])[0]
+
+    def set(self, name: str, value: float) -> None:
+        self.slave.setFloat64([self.vrs[name]], [value])
+
+    def initialize(self, starts: dict[str, float], tolerance: float | None = None) -> None:
+        self.slave.enterInitializationMode(tolerance=tolerance, startTime=0.0)
+        for name, value in starts.items():
+            self.set(name, value)
+        self.slave.exitInitializationMode()
+
+    def step(self, t: float, dt: float) -> None:
+        event_needed = self.slave.doStep(t, dt)[0]
+        assert not event_needed
+
+    def tick(self, inputs: dict[str, float]) -> None:
+        """In Event Mode: set the inputs, tick the sample clock, update, back to Step Mode."""
+        for name, value in inputs.items():
+            self.set(name, value)
+        self.slave.setClock([self.vrs["sample"]], [True])
+        assert self.slave.updateDiscreteStates()[0] is False
+        self.slave.enterStepMode()
+
+
+@pytest.fixture
+def slaves(tmp_path) -> Iterator[list[Slave]]:
+    opened: list[Slave] = []
+    yield opened
+    for slave in opened:
+        slave.slave.freeInstance()
+
+
+def open_slave(slaves: list[Slave], tmp_path, stem: str, event_mode: bool) -> Slave:
+    slaves.append(Slave(stem, tmp_path, event_mode))
+    return slaves[-1]
+
+
+def test_fmpy_validates_the_clocked_controller() -> None:
+    assert validate_fmu(fmu_path(CONTROLLER)) == []
+
+
+def test_the_description_declares_the_clock_and_the_clocked_output() -> None:
+    with zipfile.ZipFile(fmu_path(CONTROLLER)) as archive:
+        root = ElementTree.fromstring(archive.read("modelDescription.xml"))
+    clock = root.find("ModelVariables/Clock").attrib
+    assert (clock["name"], clock["causality"], clock["intervalVariability"]) == (
+        "sample", "input", "constant")
+    assert float(clock["intervalDecimal"]) == PERIOD
+    clocked = {v.get("name") for v in root.find("ModelVariables")
+               if v.get("clocks") == clock["valueReference"]}
+    assert clocked == {"u", "integral"}
+    assert root.find("CoSimulation").get("hasEventMode") == "true"
+
+
+def test_u_changes_only_at_ticks_at_before_and_after_each(slaves, tmp_path) -> None:
+    """The setpoint is a ramp set at every communication point, so a controller that followed
+    its inputs between ticks would show it; u must stay at its tick's value until the next
+    tick, be unchanged on entering Event Mode at the tick, and change only when the clock
+    ticks."""
+    kp, ki, eps = 2.0, 3.0, 1e-6
+    fmu = open_slave(slaves, tmp_path, CONTROLLER, event_mode=True)
+    fmu.initialize({"kp": kp, "ki": ki})
+    integral, held = 0.0, 0.0
+    t = 0.0
+    for k in range(6):
+        tick = k * PERIOD
+        if k > 0:
+            fmu.set("setpoint", tick - eps)  # just before the tick
+            fmu.step(t, tick - eps - t)
+            assert fmu.get("u") == held, f"u moved before the tick at {tick}"
+            fmu.step(tick - eps, eps)
+            fmu.slave.enterEventMode()
+            assert fmu.get("u") == held, f"u moved on entering Event Mode at {tick}"
+        error = tick - 0.25  # setpoint ramp, measurement 0.25
+        fmu.tick({"setpoint": tick, "measurement": 0.25})
+        held = kp * error + ki * integral
+        assert fmu.get("u") == pytest.approx(held, abs=1e-15), f"u at the tick {tick}"
+        held = fmu.get("u")
+        integral += PERIOD * error
+        fmu.set("setpoint", tick + 5.0)  # a jump just after the tick leaves u alone
+        fmu.step(tick, eps)
+        assert fmu.get("u") == held, f"u moved just after the tick at {tick}"
+        t = tick + eps
+
+
+def test_the_clock_ticks_in_event_mode_only_and_is_not_read(slaves, tmp_path) -> None:
+    fmu = open_slave(slaves, tmp_path, CONTROLLER, event_mode=True)
+    fmu.initialize({})
+    fmu.slave.enterStepMode()
+    with pytest.raises(FMICallException) as caught:
+        fmu.slave.setClock([fmu.vrs["sample"]], [True])
+    assert caught.value.status == FMI3_ERROR
+    assert "Event Mode only" in fmu.messages[-1]
+    with pytest.raises(FMICallException):
+        fmu.slave.getClock([fmu.vrs["sample"]])
+    assert "input clock" in fmu.messages[-1]
+
+
+def pendulum_acceleration(theta: float, torque: float) -> float:
+    """Pendulum.mo with its defaults: m = 40 kg, L = 0.6 m, g = 9.81 m/s2, inertia 20 kg m2."""
+    return -(40.0 * 9.81 * 0.6 / 20.0) * math.sin(theta) + torque / 20.0
+
+
+def sampled_data_reference(kp: float, ki: float, setpoint: float,
+                           ticks: int) -> list[tuple[float, float]]:
+    """theta and u at each tick: the PI law by hand, the pendulum by scipy's solve_ivp at tight
+    tolerance between ticks, its torque held at the tick's u."""
+    theta, omega, integral = 0.0, 0.0, 0.0
+    samples = []
+    for k in range(ticks):
+        error = setpoint - theta
+        u = kp * error + ki * integral
+        integral += PERIOD * error
+        samples.append((theta, u))
+        solution = solve_ivp(lambda t, y, torque=u: [y[1], pendulum_acceleration(y[0], torque)],
+                             (k * PERIOD, (k + 1) * PERIOD), [theta, omega], method="DOP853",
+                             rtol=1e-12, atol=1e-14)
+        theta, omega = solution.y[0, -1], solution.y[1, -1]
+    return samples
+
+
+def test_the_loop_with_the_pendulum_equals_the_sampled_data_reference(slaves, tmp_path) -> None:
+    """The controller's u drives the pendulum's torque, theta its measurement, sampled every
+    0.1 s for 3 s; the pendulum steps 10 times per sample period (CVODE at tolerance 1e-10)."""
+    kp, ki, setpoint, ticks = 400.0, 200.0, 0.5, 30
+    controller = open_slave(slaves, tmp_path, CONTROLLER, event_mode=True)
+    pendulum = open_slave(slaves, tmp_path, "pendulum_cvode_fmi3", event_mode=False)
+    controller.initialize({"kp": kp, "ki": ki})
+    pendulum.initialize({}, tolerance=1e-10)
+    samples = []
+    for k in range(ticks):
+        t = k * PERIOD
+        if k > 0:
+            controller.step(t - PERIOD, PERIOD)
+            controller.slave.enterEventMode()
+        theta = pendulum.get("theta")
+        controller.tick({"setpoint": setpoint, "measurement": theta})
+        samples.append((theta, controller.get("u")))
+        pendulum.set("torque", controller.get("u"))
+        for i in range(10):
+            pendulum.step(t + i * PERIOD / 10, PERIOD / 10)
+    reference = sampled_data_reference(kp, ki, setpoint, ticks)
+    for k, ((theta, u), (theta_ref, u_ref)) in enumerate(zip(samples, reference, strict=True)):
+        assert theta == pytest.approx(theta_ref, abs=1e-7), f"theta at tick {k}"
+        assert u == pytest.approx(u_ref, abs=1e-4), f"u at tick {k}"
+    # the loop does something: the pendulum swings towards the setpoint
+    assert max(theta for theta, _ in samples) > 0.3
