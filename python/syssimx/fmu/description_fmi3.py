@@ -6,10 +6,10 @@ states ModelStructure by value reference. FMPy reads all of that into the same o
 attribute names), so the rest of syssimx reads an FMI 3.0 description like an FMI 2.0 one.
 
 syssimx steps FMI 3.0 Co-Simulation FMUs and integrates FMI 3.0 Model Exchange ones. It
-refuses, naming the file and the element: scheduled execution only, any Clock variable (clocked
-partitions need a scheduler syssimx does not have), and String or Binary arrays among the
-inputs, outputs and parameters. Numeric and Boolean arrays become one port per element, made
-when asked for (fmi3_arrays.py).
+reads every Clock (clocks.py) and refuses, naming the file and the element: scheduled execution
+only, a Co-Simulation or Model Exchange FMU with a Clock (naming the clock: the engine does not
+tick clocks there), and String or Binary arrays among the inputs, outputs and parameters.
+Numeric and Boolean arrays become one port per element, made when asked for (fmi3_arrays.py).
 
 A description is data: every value reference, dimension and start value is checked here, and
 an FMUFileError names the file and the variable, before anything is sized by it. The arrays of
@@ -28,6 +28,7 @@ import numpy as np
 from ..core.element_map import Block
 from ..engine import ffi
 from ..errors import FMUFileError
+from .clocks import ClockStructure, read_clocks
 from .fmi3_arrays import ArrayPort
 
 logger = logging.getLogger("syssimx.fmu")
@@ -86,13 +87,15 @@ def read_fmi3_description(path: Path) -> ModelDescription:
                 raise FMUFileError(f"{path}: array {_quoted(variable.name)} of shape "
                                    f"{tuple(variable.shape)} takes the FMU's array elements "
                                    f"past syssimx's limit of {MAX_ARRAY_ELEMENTS}")
+    clocks = clock_structure(path)
     if description.coSimulation is None and description.modelExchange is None:
         if description.scheduledExecution is not None:
-            raise FMUFileError(f"{path}: FMI 3.0 Scheduled Execution is not supported (syssimx "
-                               "runs FMI 3.0 Co-Simulation and Model Exchange FMUs without "
-                               "clocks)")
+            raise FMUFileError(f"{path}: FMI 3.0 Scheduled Execution is not supported as a "
+                               "Co-Simulation or Model Exchange component (syssimx runs FMI "
+                               "3.0 Co-Simulation and Model Exchange FMUs without clocks)")
         raise FMUFileError(f"{path}: the FMI 3.0 description declares neither CoSimulation nor "
                            "ModelExchange")
+    _refuse_clocks(clocks, path)
     if description.instantiationToken is None:
         raise FMUFileError(f"{path}: the FMI 3.0 description has no instantiationToken")
     if not description.instantiationToken:
@@ -112,6 +115,22 @@ def read_fmi3_description(path: Path) -> ModelDescription:
             part.providesDirectionalDerivative = \
                 provides_directional_derivatives(path, element) and not has_array_ports
     return description
+
+
+def _refuse_clocks(clocks: ClockStructure, path: Path) -> None:
+    """FMUFileError naming the first clock of a Co-Simulation or Model Exchange FMU: the
+    engine does not yet tick clocks or run model partitions in those interfaces."""
+    if clocks.clocks:
+        clock = clocks.clocks[0]
+        raise FMUFileError(f"{path}: Clock {clock.name!r} ({clock.causality}, "
+                           f"intervalVariability {clock.interval_variability}): clocked FMI "
+                           "3.0 Co-Simulation and Model Exchange FMUs (ticking clocks, model "
+                           "partitions) are not supported")
+
+
+def clock_structure(path: Path) -> ClockStructure:
+    """The clocks of the FMI 3.0 FMU archive `path`, whatever interfaces it has."""
+    return read_clocks(_description_root(path), path)
 
 
 def provides_directional_derivatives(path: Path, element: str = "CoSimulation") -> bool:
@@ -162,9 +181,6 @@ def _check_variable(variable: Any, path: Path) -> None:
             raise FMUFileError(f"{path}: variable {name} has a dimension of {extent} (from "
                                f"{source}); a dimension is 0 or more")
     _check_start(variable, path)
-    if variable.type == "Clock":
-        raise FMUFileError(f"{path}: variable {variable.name!r} is a Clock: clocked FMI 3.0 FMUs "
-                           "(clocks, model partitions) are not supported")
     if variable.dimensions and variable.causality in _PORT_CAUSALITIES \
             and variable.type in ("String", "Binary"):
         raise FMUFileError(f"{path}: variable {variable.name!r} is a {variable.type} array "

@@ -22,8 +22,9 @@ from ..errors import FMUFileError
 from ..graph.analysis import feedthrough_from_model_description, undeclared_outputs
 from ..units import plainly_readable, to_unit
 from .archive import open_archive
+from .clocks import ClockStructure
 from .description import Described, read_description
-from .description_fmi3 import EngineTable
+from .description_fmi3 import EngineTable, clock_structure
 from .fmi3_arrays import ArrayPort
 from .standards import Standard
 from .unit_definitions import unit_definitions
@@ -112,6 +113,8 @@ class FMUInfo:
     all_variables: Iterable[Any] = ()
     # each name several variables have -> their value references: no port or parameter
     ambiguous_names: dict[str, list[int]] = field(default_factory=dict)
+    # FMI 3.0: the Clock variables, the clocked variables and the clock dependencies
+    clocks: ClockStructure = field(default_factory=ClockStructure)
 
     def binary_name(self, interface: str | None = None) -> str:
         """The binary of `interface` (None: the one "auto" takes)."""
@@ -210,7 +213,9 @@ def _read_fmu(path: Path) -> FMUInfo:
                        number_of_states=description.numberOfContinuousStates,
                        number_of_event_indicators=description.numberOfEventIndicators,
                        standard=standard, fmi3_variables=variables.engine_table,
-                       structural_parameters=variables.structural)
+                       structural_parameters=variables.structural,
+                       clocks=clock_structure(path) if standard.engine_version == 3
+                       else ClockStructure())
         if info.binary_name() not in names:
             raise FMUFileError(f"{path} has no {standard.platform} binary "
                                f"({info.binary_name()} missing)")
