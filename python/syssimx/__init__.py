@@ -42,6 +42,7 @@ _MODULES = {
     "PortSpec": ".core",
     "PortType": ".core",
     "Reinitialize": ".components",
+    "ScheduledExecutionComponent": ".components",
     "SimulationError": ".errors",
     "SimulationResult": ".system",
     "SimulationTimeoutError": ".errors",

@@ -14,6 +14,7 @@ _MODULES = {
     "MultiComponent": ".multi",
     "OpenSimComponent": ".optional",
     "Reinitialize": ".restart",
+    "ScheduledExecutionComponent": ".scheduled_execution",
     "SwitchRegions": ".switch_regions",
     "TableSource": ".table_source",
 }

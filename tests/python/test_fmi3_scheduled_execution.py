@@ -1,0 +1,157 @@
+"""FMI 3.0 Scheduled Execution: the Reference FMUs' Clocks.fmu run as a component of a System
+(ScheduledExecutionComponent), tick by tick against the table in its modelDescription's
+comment, and the order of ticks at one instant.
+
+FMPy 0.3.32 does not run Scheduled Execution FMUs (its simulate_fmu accepts only
+fmi_type="ModelExchange" or "CoSimulation" and refuses Clocks.fmu), so the expected ticks are
+the description's table and the FMU's documented rule for outClock: it ticks after the
+partition that makes the total of input clock ticks a multiple of 5.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from reference_root import reference_root
+from syssimx import ScheduledExecutionComponent, System
+from syssimx.components.scheduled_execution import Tick
+from syssimx.errors import ConfigurationError, FMUFileError
+from test_fmi3_import import edited
+
+FOLDER = reference_root() / "fmi3"
+pytestmark = pytest.mark.skipif(not FOLDER.is_dir(), reason=(
+    f"the FMI 3.0 Reference FMUs are absent (no folder {FOLDER}): set SYSSIMX_REFERENCE_FMUS "
+    "to the folder holding fmi3/"))
+CLOCKS = str(FOLDER / "Clocks.fmu")
+
+# the table in Clocks.fmu's modelDescription: which input clock ticks when over 10 s
+TABLE = {"inClock1": [0, 1, 2, 3, 4, 5, 6, 7, 8, 9], "inClock2": [0, 1, 8, 9],
+         "inClock3": [4]}
+
+
+def _component(path: str = CLOCKS) -> ScheduledExecutionComponent:
+    component = ScheduledExecutionComponent("C", path)
+    component.schedule_clock("inClock2", times=[0, 1, 8, 9])
+    return component
+
+
+def _run(component: ScheduledExecutionComponent, dt: float) -> dict:
+    system = System("clocks")
+    system.add_component(component)
+    system.initialize(0.0)
+    return system.run(0.0, 10.0, dt)
+
+
+def _expected_ticks() -> list[tuple[float, str]]:
+    """The table's ticks in the order syssimx activates them (by time, then priority: inClock1
+    0, inClock2 1, inClock3 2), each followed by outClock when it brings the total of input
+    ticks to a multiple of 5."""
+    order = {"inClock1": 0, "inClock2": 1, "inClock3": 2}
+    ticks = sorted(((t, clock) for clock, times in TABLE.items() for t in times),
+                   key=lambda tick: (tick[0], order[tick[1]]))
+    expected = []
+    for total, tick in enumerate(ticks, start=1):
+        expected.append(tick)
+        if total % 5 == 0:
+            expected.append((tick[0], "outClock"))
+    return expected
+
+
+def test_clocks_fmu_ticks_as_its_description_tabulates():
+    component = _component()
+    result = _run(component, 1.0)
+    assert [(tick.time, tick.clock) for tick in component.ticks] == _expected_ticks()
+    outclock = [tick.time for tick in component.ticks if tick.clock == "outClock"]
+    assert outclock == [2.0, 6.0, 9.0]
+    # each partition's counters, read right after it
+    for clock, times in TABLE.items():
+        counts = [tick.values[f"{clock}Ticks"] for tick in component.ticks
+                  if tick.clock == clock]
+        assert counts == list(range(1, len(times) + 1))
+    totals = [tick.values["totalInClockTicks"] for tick in component.ticks
+              if tick.clock != "outClock"]
+    assert totals == list(range(1, 16))
+    assert component.ticks[8] == Tick(4.0, "inClock3", {"inClock3Ticks": 1,
+                                                         "totalInClockTicks": 8,
+                                                         "output3": 1000})
+    # the ports at t hold what the ticks before t left: the step from t activates [t, t + dt)
+    t, values = result["C"]
+    assert t.tolist() == [float(i) for i in range(11)]
+    assert values["inClock1Ticks"].tolist() == list(range(11))
+    assert values["inClock2Ticks"].tolist() == [0, 1, 2, 2, 2, 2, 2, 2, 2, 3, 4]
+    assert values["inClock3Ticks"].tolist() == [0] * 5 + [1] * 6
+    assert values["totalInClockTicks"].tolist() == [0, 2, 4, 5, 6, 8, 9, 10, 11, 13, 15]
+
+
+@pytest.mark.parametrize("dt", [10.0, 0.25, 2.5])
+def test_the_ticks_do_not_depend_on_the_step(dt: float):
+    component = _component()
+    _run(component, dt)
+    assert [(tick.time, tick.clock) for tick in component.ticks] == _expected_ticks()
+
+
+def test_ticks_at_one_instant_run_in_priority_order(tmp_path: Path):
+    swapped = edited(tmp_path, CLOCKS,
+                     ('intervalDecimal="1.0" priority="0"', 'intervalDecimal="1.0" priority="1"'),
+                     ('intervalVariability="triggered" priority="1"',
+                      'intervalVariability="triggered" priority="0"'))
+    component = _component(swapped)
+    _run(component, 1.0)
+    at_zero = [tick.clock for tick in component.ticks if tick.time == 0.0]
+    assert at_zero == ["inClock2", "inClock1"]
+    as_given = _component()
+    _run(as_given, 1.0)
+    assert [tick.clock for tick in as_given.ticks if tick.time == 0.0] == ["inClock1",
+                                                                          "inClock2"]
+
+
+def test_the_inputs_are_set_before_each_partition():
+    component = _component()
+    component.set_inputs({"input2": 3})
+    _run(component, 10.0)  # one step: input2 is set again before each inClock2 tick
+    assert [tick.values["result2"] for tick in component.ticks
+            if tick.clock == "inClock2"] == [3, 6, 9, 12]
+
+
+def test_a_component_on_its_own_runs_its_ticks():
+    component = _component()
+    component.initialize(0.0)
+    component.do_step(0.0, 10.0)
+    assert [(tick.time, tick.clock) for tick in component.ticks] == _expected_ticks()
+    assert component.get_outputs()["totalInClockTicks"] == 15
+    component.free()
+
+
+def test_schedule_clock_takes_only_a_triggered_input_clock():
+    component = ScheduledExecutionComponent("C", CLOCKS)
+    with pytest.raises(ConfigurationError) as info:
+        component.schedule_clock("inClock1", times=[0.5])
+    assert str(info.value) == (
+        "component 'C': clock 'inClock1' is input with intervalVariability constant; "
+        "schedule_clock takes the times of a triggered input clock (the others tick by "
+        "their interval or by the FMU)")
+    with pytest.raises(ConfigurationError) as info:
+        component.schedule_clock("inClock9", times=[0.5])
+    assert str(info.value) == ("component 'C': no clock 'inClock9' (clocks: inClock1, "
+                               "inClock2, inClock3, outClock)")
+
+
+def test_an_fmu_without_scheduled_execution_is_refused():
+    path = FOLDER / "Feedthrough.fmu"
+    with pytest.raises(FMUFileError) as info:
+        ScheduledExecutionComponent("F", path)
+    assert str(info.value) == (f"{path}: the FMU declares no ScheduledExecution "
+                               "(FMUComponent runs Co-Simulation and Model Exchange FMUs)")
+
+
+def test_a_dropped_component_frees_its_instance():
+    import gc
+    import weakref
+
+    component = _component()
+    _run(component, 10.0)
+    gone = weakref.ref(component)
+    del component
+    gc.collect()
+    assert gone() is None
