@@ -337,15 +337,21 @@ static int step_call(ssx_system *sys, ssx_component *c, double t, double t_end,
     return 1;
 }
 
-/* An event the FMU found at t_e and handled in event mode: its discrete states are updated
- * until they settle (more rounds than max_microsteps is chattering), then it steps again.
- * *terminate is set when the FMU asks to end the simulation there. */
-static int handle_own_event(ssx_system *sys, ssx_component *c, double t_e, int *terminate)
+/* An event the FMU found at t_e, or a tick of its periodic input clocks there (`tick`),
+ * handled in event mode: the clocks tick with the inputs of the step, its discrete states are
+ * updated until they settle (more rounds than max_microsteps is chattering), then it steps
+ * again. *terminate is set when the FMU asks to end the simulation there. */
+static int handle_own_event(ssx_system *sys, ssx_component *c, double t_e, int tick,
+                            int *terminate)
 {
     fmu_component_data *d = fmu_data(c);
     int status = ssx_fmu_enter_event_mode(d->fmu);
     if (!fmi_ok(status)) {
         return fmi_failed(sys, c, t_e, status, SLOT_ENTER_EVENT_MODE);
+    }
+    status = tick ? ssx_fmu_tick_clocks(d->fmu, t_e) : 0;
+    if (!fmi_ok(status)) {
+        return fmi_failed(sys, c, t_e, status, SLOT_SET_CLOCK);
     }
     ssx_fmu_event_info update = {.new_discrete_states_needed = 1};
     for (int round = 0; update.new_discrete_states_needed && !update.terminate_simulation;
@@ -369,7 +375,7 @@ static int handle_own_event(ssx_system *sys, ssx_component *c, double t_e, int *
             return fmi_failed(sys, c, t_e, status, SLOT_ENTER_STEP_MODE);
         }
     }
-    return own_event_report(sys, c, SSX_OWN_FMU_EVENT, t_e);
+    return own_event_report(sys, c, tick ? SSX_OWN_CLOCK_TICK : SSX_OWN_FMU_EVENT, t_e);
 }
 
 /* The rest of an FMI 3.0 step that returned early, needs its events handled or asks to stop:
@@ -395,7 +401,11 @@ static int step_on(ssx_system *sys, ssx_component *c, double t, double t_end,
         }
         int terminate = outcome.terminate_simulation;
         if (!terminate && outcome.event_handling_needed &&
-            handle_own_event(sys, c, reached, &terminate) != 0) {
+            handle_own_event(sys, c, reached, 0, &terminate) != 0) {
+            return -1;
+        }
+        if (!terminate && outcome.clock_tick &&
+            handle_own_event(sys, c, reached, 1, &terminate) != 0) {
             return -1;
         }
         if (terminate) {
@@ -427,7 +437,8 @@ static int fmu_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
     if (!step_call(sys, c, t, t + dt, &outcome, &done)) {
         return done;
     }
-    if (outcome.early_return || outcome.event_handling_needed || outcome.terminate_simulation) {
+    if (outcome.early_return || outcome.event_handling_needed || outcome.terminate_simulation ||
+        outcome.clock_tick) {
         return step_on(sys, c, t, t + dt, outcome);
     }
     return fmu_component_read_outputs_at(sys, c, t + dt);

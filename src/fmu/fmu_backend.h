@@ -77,6 +77,7 @@ typedef enum {
     SLOT_GET_BINARY,
     SLOT_SET_BINARY,
     SLOT_ENTER_STEP_MODE,
+    SLOT_SET_CLOCK,
     SLOT_COUNT
 } ssx_fmu_slot;
 
@@ -192,6 +193,8 @@ typedef struct {
     int (*set_binary)(const ssx_fmu_function *fn, void *instance, const unsigned int *vr,
                       size_t n, const size_t *sizes, const unsigned char *const *values);
     int (*enter_step_mode)(const ssx_fmu_function *fn, void *instance);
+    /* in event mode at t: fmi3SetClock on every periodic input clock that ticks at t */
+    int (*tick_clocks)(const ssx_fmu_function *fn, void *instance, double t);
     /* what the last doStep said besides its status; NULL: only the status (FMI 2.0) */
     void (*step_outcome)(void *instance, ssx_step_outcome *outcome);
     /* the name of the variable vr, NULL when unknown; NULL: the back-end keeps no names */

@@ -748,6 +748,11 @@ int ssx_fmu_enter_step_mode(ssx_fmu *fmu)
     return CHECKED0(fmu, SLOT_ENTER_STEP_MODE, enter_step_mode);
 }
 
+int ssx_fmu_tick_clocks(ssx_fmu *fmu, double t)
+{
+    return CHECKED(fmu, SLOT_SET_CLOCK, tick_clocks, t);
+}
+
 int ssx_fmu_enter_continuous_time_mode(ssx_fmu *fmu)
 {
     return CHECKED0(fmu, SLOT_ENTER_CONTINUOUS_TIME_MODE, enter_continuous_time_mode);

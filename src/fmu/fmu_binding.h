@@ -51,6 +51,8 @@ int ssx_fmu_get_nominals_of_continuous_states(ssx_fmu *fmu, double *nominals, si
 int ssx_fmu_enter_event_mode(ssx_fmu *fmu);
 int ssx_fmu_new_discrete_states(ssx_fmu *fmu, ssx_fmu_event_info *info);
 int ssx_fmu_enter_step_mode(ssx_fmu *fmu);
+/* FMI 3.0 Co-Simulation in event mode at t: ticks the periodic input clocks due at t */
+int ssx_fmu_tick_clocks(ssx_fmu *fmu, double t);
 int ssx_fmu_enter_continuous_time_mode(ssx_fmu *fmu);
 int ssx_fmu_completed_integrator_step(ssx_fmu *fmu, int no_set_state_prior,
                                       int *enter_event_mode, int *terminate_simulation);

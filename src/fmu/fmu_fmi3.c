@@ -10,6 +10,8 @@
  * beside the FMU's own instance. */
 #include "fmu_fmi3_context.h"
 
+#include <math.h>
+
 /* The rows both interfaces share: required, then optional. */
 #define FMI3_COMMON_ROWS                                                                      \
     {"fmi3FreeInstance", SLOT_FREE_INSTANCE, 1},                                              \
@@ -65,6 +67,7 @@ static const ssx_fmu_function_row fmi3_functions[] = {
     {"fmi3DoStep", SLOT_GET_TERMINATED, 1},
     {"fmi3DoStep", SLOT_GET_LAST_SUCCESSFUL_TIME, 1},
     {"fmi3EnterStepMode", SLOT_ENTER_STEP_MODE, 1},
+    {"fmi3SetClock", SLOT_SET_CLOCK, 1},
     {"fmi3GetOutputDerivatives", SLOT_GET_OUTPUT_DERIVATIVES, 0},
     /* input derivatives move the intermediate inputs within fmi3DoStep */
     {"fmi3DoStep", SLOT_SET_INPUT_DERIVATIVES, 1},
@@ -208,6 +211,8 @@ static int enter_initialization_mode(const ssx_fmu_function *fn, void *instance)
         ctx->start_time, ctx->stop_time_defined ? fmi3True : fmi3False, ctx->stop_time);
 }
 
+static int tick_clocks(const ssx_fmu_function *fn, void *instance, double t);
+
 /* With eventModeUsed the instance leaves initialization in event mode: its discrete states are
  * settled at the start time before stepping begins, as part of initializing it. */
 static int exit_initialization_mode(const ssx_fmu_function *fn, void *instance)
@@ -216,6 +221,11 @@ static int exit_initialization_mode(const ssx_fmu_function *fn, void *instance)
     int status =
         (int)FMI3(fn, SLOT_EXIT_INITIALIZATION_MODE, fmi3ExitInitializationModeTYPE)(ctx->instance);
     if (!ctx->event_mode_used || status > fmi3Warning) {
+        return status;
+    }
+    /* the clocks that tick at the start time tick as the instance leaves initialization */
+    status = worse_status(status, tick_clocks(fn, ctx, ctx->start_time));
+    if (status > fmi3Warning) {
         return status;
     }
     fmi3Boolean again = fmi3True;
@@ -384,10 +394,72 @@ static int start_moving(const ssx_fmu_function *fn, fmi3_context *ctx, double t)
     return status;
 }
 
+/* Two clock instants closer than this (relative to the period) are one: t + h of the engine's
+ * grid rounds. */
+#define CLOCK_INSTANT_CLOSENESS 1e-9
+
+/* Whether clock i ticks at t: t is start + shift + k period for some k >= 0. */
+static int ticks_at(const fmi3_context *ctx, size_t i, double t)
+{
+    double base = ctx->start_time + ctx->clock_shift[i], period = ctx->clock_period[i];
+    double k = nearbyint((t - base) / period);
+    return k >= 0.0 && fabs(base + k * period - t) <= CLOCK_INSTANT_CLOSENESS * period;
+}
+
+/* Whether the tick at `tick` is the instant t (the grid's t + h rounds). */
+static int ticks_near(const fmi3_context *ctx, double tick, double t)
+{
+    for (size_t i = 0; i < ctx->n_clocks; ++i) {
+        if (fabs(tick - t) <= CLOCK_INSTANT_CLOSENESS * ctx->clock_period[i]) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/* The first tick of any clock after t (not at t), INFINITY without clocks. */
+static double next_tick_after(const fmi3_context *ctx, double t)
+{
+    double next = INFINITY;
+    for (size_t i = 0; i < ctx->n_clocks; ++i) {
+        double base = ctx->start_time + ctx->clock_shift[i], period = ctx->clock_period[i];
+        double k = t < base ? 0.0 : floor((t - base) / period) + 1.0;
+        double tick = base + k * period;
+        if (tick <= t + CLOCK_INSTANT_CLOSENESS * period) {
+            tick += period;
+        }
+        next = fmin(next, tick);
+    }
+    return next;
+}
+
+/* In event mode at t: fmi3SetClock on the clocks that tick at t (none: nothing to call). */
+static int tick_clocks(const ssx_fmu_function *fn, void *instance, double t)
+{
+    fmi3_context *ctx = instance;
+    size_t n = 0;
+    for (size_t i = 0; i < ctx->n_clocks; ++i) {
+        ctx->clock_active[i] = ticks_at(ctx, i, t) ? fmi3True : fmi3False;
+        n += ctx->clock_active[i] != fmi3False;
+    }
+    if (n == 0) {
+        return fmi3OK;
+    }
+    return (int)FMI3(fn, SLOT_SET_CLOCK, fmi3SetClockTYPE)(ctx->instance, ctx->clock_vr,
+                                                           ctx->n_clocks, ctx->clock_active);
+}
+
 static int do_step(const ssx_fmu_function *fn, void *instance, double t, double h,
                    int no_set_state_prior)
 {
     fmi3_context *ctx = instance;
+    /* a step that passes a clock's tick ends there: the engine ticks the clock and steps on */
+    double full = h, tick = next_tick_after(ctx, t);
+    int cut = tick < t + h && !ticks_near(ctx, tick, t + h);
+    int at_tick = cut || ticks_near(ctx, tick, t + h);
+    if (cut) {
+        h = tick - t;
+    }
     fmi3Boolean event = fmi3False, terminate = fmi3False, early = fmi3False;
     fmi3Float64 reached = t;
     if (ctx->n_intermediate > 0) {
@@ -407,6 +479,11 @@ static int do_step(const ssx_fmu_function *fn, void *instance, double t, double 
         .early_return = ctx->early_return_allowed && early,
         .last_successful_time = reached,
     };
+    if (at_tick && !(ctx->outcome.early_return && reached < t + h)) {
+        ctx->outcome.clock_tick = 1;
+        ctx->outcome.early_return = cut;
+        ctx->outcome.last_successful_time = cut ? tick : t + full;
+    }
     return status;
 }
 
@@ -668,5 +745,6 @@ const ssx_fmu_backend ssx_fmi3_backend = {
     .get_terminated = get_terminated,
     .get_last_successful_time = get_last_successful_time,
     .enter_step_mode = enter_step_mode,
+    .tick_clocks = tick_clocks,
     .step_outcome = step_outcome,
 };

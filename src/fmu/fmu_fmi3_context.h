@@ -55,6 +55,12 @@ typedef struct {
     double *intermediate_base; /* 4 * n_intermediate: base, first, second, scratch */
     int moving;
     double step_start;
+    /* the periodic input clocks (ssx_fmi3_variables): ticks at start_time + shift + k period */
+    unsigned int *clock_vr;
+    double *clock_period;
+    double *clock_shift;
+    fmi3Clock *clock_active; /* scratch: which clocks tick at an instant */
+    size_t n_clocks;
     const ssx_fmu_function *fn; /* for the callback */
     /* one type's part of a batch: value references, positions in the engine's call, values */
     unsigned int *part_vr;

@@ -4,6 +4,7 @@
 #include "fmu_fmi3_context.h"
 
 #include <limits.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -114,6 +115,40 @@ static int collect_arrays(fmi3_context *ctx, const ssx_fmi3_variables *variables
     return 0;
 }
 
+/* The periodic input clocks, each with a positive finite period and a finite shift. */
+static int keep_clocks(fmi3_context *ctx, const ssx_fmi3_variables *variables, char *error,
+                       size_t error_size)
+{
+    size_t n = variables != NULL && variables->clock_vr != NULL ? variables->n_clocks : 0;
+    if (n == 0) {
+        return 0;
+    }
+    ctx->clock_vr = malloc(n * sizeof *ctx->clock_vr);
+    ctx->clock_period = malloc(n * sizeof *ctx->clock_period);
+    ctx->clock_shift = malloc(n * sizeof *ctx->clock_shift);
+    ctx->clock_active = malloc(n * sizeof *ctx->clock_active);
+    if (ctx->clock_vr == NULL || ctx->clock_period == NULL || ctx->clock_shift == NULL ||
+        ctx->clock_active == NULL) {
+        snprintf(error, error_size, "out of memory keeping %zu clocks", n);
+        return -1;
+    }
+    for (size_t i = 0; i < n; ++i) {
+        double period = variables->clock_period[i], shift = variables->clock_shift[i];
+        if (!(period > 0.0 && isfinite(period) && isfinite(shift))) {
+            snprintf(error, error_size,
+                     "clock (value reference %u): period %.17g and shift %.17g, a periodic "
+                     "clock needs a positive finite period and a finite shift",
+                     variables->clock_vr[i], period, shift);
+            return -1;
+        }
+        ctx->clock_vr[i] = variables->clock_vr[i];
+        ctx->clock_period[i] = period;
+        ctx->clock_shift[i] = shift;
+    }
+    ctx->n_clocks = n;
+    return 0;
+}
+
 int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *error,
                      size_t error_size)
 {
@@ -168,7 +203,7 @@ int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *e
                n_moving * sizeof *ctx->intermediate_vr);
         ctx->n_intermediate = n_moving;
     }
-    return 0;
+    return keep_clocks(ctx, variables, error, error_size);
 }
 
 void fmi3_say(fmi3_context *ctx, const char *format, ...)
@@ -193,6 +228,10 @@ void fmi3_values_free(fmi3_context *ctx)
     free(ctx->part_values);
     free(ctx->intermediate_vr);
     free(ctx->intermediate_base);
+    free(ctx->clock_vr);
+    free(ctx->clock_period);
+    free(ctx->clock_shift);
+    free(ctx->clock_active);
 }
 
 void fmi3_values_reset(fmi3_context *ctx)

@@ -129,6 +129,14 @@ typedef struct {
      * communication point. NULL / 0: none. */
     const unsigned int *intermediate_vr;
     size_t n_intermediate;
+    /* Co-Simulation: the periodic input clocks (intervalVariability constant or fixed) the
+     * engine ticks at start + shift + k * period, k = 0, 1, ...: doStep ends at each tick and
+     * the instance, made with event mode, ticks there (fmi3SetClock, fmi3UpdateDiscreteStates).
+     * NULL / 0: none. */
+    const unsigned int *clock_vr;
+    const double *clock_period;
+    const double *clock_shift;
+    size_t n_clocks;
 } ssx_fmi3_variables;
 
 /* The FMI standard and the interface a binary is loaded as. */
@@ -327,7 +335,8 @@ typedef enum {
     SSX_OWN_FMU_EVENT,     /* an FMI 3.0 FMU's event, handled in event mode after it returned */
     SSX_OWN_STATE_EVENT,   /* a Model Exchange FMU's event indicator crossed */
     SSX_OWN_TIME_EVENT,    /* a Model Exchange FMU's time event (nextEventTime) */
-    SSX_OWN_STEP_EVENT     /* a Model Exchange FMU asked for event mode after a completed step */
+    SSX_OWN_STEP_EVENT,    /* a Model Exchange FMU asked for event mode after a completed step */
+    SSX_OWN_CLOCK_TICK     /* an FMI 3.0 FMU's periodic input clocks ticked */
 } ssx_own_event_kind;
 
 typedef struct {

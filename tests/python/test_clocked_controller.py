@@ -10,6 +10,7 @@ import xml.etree.ElementTree as ElementTree
 import zipfile
 from collections.abc import Iterator
 
+import numpy as np
 import pytest
 from fixture_fmus import fmu_path
 from fmpy import extract, read_model_description
@@ -17,6 +18,10 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi3 import FMU3Slave
 from fmpy.validation import validate_fmu
 from scipy.integrate import solve_ivp
+from syssimx import Connection, FMUComponent, GaussSeidelAlgorithm, System, fmus
+from syssimx.errors import FMUFileError
+from syssimx.system import SimulationResult
+from syssimx.system.algorithms import Algorithm
 
 CONTROLLER = "sampled_pi_controller_fmi3"
 PERIOD = 0.1  # the clock's intervalDecimal
@@ -190,3 +195,55 @@ def test_the_loop_with_the_pendulum_equals_the_sampled_data_reference(slaves, tm
         assert u == pytest.approx(u_ref, abs=1e-4), f"u at tick {k}"
     # the loop does something: the pendulum swings towards the setpoint
     assert max(theta for theta, _ in samples) > 0.3
+
+
+# ------------------------------------------------------------------ the engine ticks the clock
+def closed_loop(dt: float, algorithm: Algorithm | None = None, tf: float = 3.0) -> SimulationResult:
+    """sampled_pi_controller_fmi3 (kp 400, ki 200, setpoint 0.5) driving pendulum_cvode_fmi3's
+    torque from its angle, run by syssimx with communication step dt."""
+    controller = FMUComponent("PI", fmus.path(CONTROLLER))
+    controller.set_parameters(kp=400.0, ki=200.0)
+    controller.set_inputs({"setpoint": 0.5})
+    pendulum = FMUComponent("P", fmus.path("pendulum_cvode_fmi3"), tolerance=1e-10)
+    system = System("clocked loop")
+    system.add_component(pendulum)
+    system.add_component(controller)
+    system.add_connection(Connection("P", "theta", "PI", "measurement"))
+    system.add_connection(Connection("PI", "u", "P", "torque"))
+    if algorithm is not None:
+        system.set_algorithm(algorithm)
+    system.initialize(0.0)
+    return system.run(0.0, tf, dt)
+
+
+def test_the_engine_ticks_the_clock_and_the_loop_equals_the_sampled_data_reference() -> None:
+    """Gauss-Seidel steps the pendulum first: the controller ticks at each communication point
+    with the angle there, as a sampled-data loop does."""
+    result = closed_loop(PERIOD, GaussSeidelAlgorithm())
+    t, pendulum = result["P"]
+    _, controller = result["PI"]
+    reference = sampled_data_reference(400.0, 200.0, 0.5, 30)
+    on_ticks = [int(np.argmin(np.abs(t - k * PERIOD))) for k in range(30)]
+    for k, i in enumerate(on_ticks):
+        theta_ref, u_ref = reference[k]
+        assert pendulum["theta"][i] == pytest.approx(theta_ref, abs=1e-7), f"theta at tick {k}"
+        assert controller["u"][i] == pytest.approx(u_ref, abs=1e-4), f"u at tick {k}"
+    ticks = [e for e in result.events if e.event == "clock_tick"]
+    assert [round(e.t, 9) for e in ticks] == [round(k * PERIOD, 9) for k in range(1, 31)]
+
+
+def test_ticks_inside_a_step_cut_only_the_clocked_fmu_s_step() -> None:
+    """With a communication step of 0.25 s, the ticks at 0.1, 0.2, 0.3, ... fall inside steps:
+    the controller's doStep ends at each and the tick is recorded there, while the system's
+    grid stays 0, 0.25, 0.5, ... and u is held between ticks."""
+    result = closed_loop(0.25, tf=1.0)
+    t, _ = result["PI"]
+    assert list(np.round(t, 9)) == [0.0, 0.25, 0.5, 0.75, 1.0]
+    ticks = [round(e.t, 9) for e in result.events if e.event == "clock_tick"]
+    assert ticks == [round(k * PERIOD, 9) for k in range(1, 11)]
+
+
+def test_as_model_exchange_the_clocked_fmu_is_refused_naming_the_clock() -> None:
+    with pytest.raises(FMUFileError, match=r"Clock 'sample': syssimx ticks clocks of FMI 3\.0 "
+                                           r"Co-Simulation FMUs only"):
+        FMUComponent("PI", fmus.path(CONTROLLER), interface="model-exchange")

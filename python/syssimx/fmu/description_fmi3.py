@@ -7,9 +7,10 @@ attribute names), so the rest of syssimx reads an FMI 3.0 description like an FM
 
 syssimx steps FMI 3.0 Co-Simulation FMUs and integrates FMI 3.0 Model Exchange ones. It
 reads every Clock (clocks.py) and refuses, naming the file and the element: scheduled execution
-only, a Co-Simulation or Model Exchange FMU with a Clock (naming the clock: the engine does not
-tick clocks there), and String or Binary arrays among the inputs, outputs and parameters.
-Numeric and Boolean arrays become one port per element, made when asked for (fmi3_arrays.py).
+only, a Clock the engine does not tick (naming the clock: it ticks the periodic input clocks of
+Co-Simulation FMUs with event mode, none in Model Exchange), and String or Binary arrays among
+the inputs, outputs and parameters. Numeric and Boolean arrays become one port per element,
+made when asked for (fmi3_arrays.py).
 
 A description is data: every value reference, dimension and start value is checked here, and
 an FMUFileError names the file and the variable, before anything is sized by it. The arrays of
@@ -28,7 +29,7 @@ import numpy as np
 from ..core.element_map import Block
 from ..engine import ffi
 from ..errors import FMUFileError
-from .clocks import ClockStructure, read_clocks
+from .clocks import ClockInfo, ClockStructure, read_clocks
 from .fmi3_arrays import ArrayPort
 
 logger = logging.getLogger("syssimx.fmu")
@@ -95,7 +96,7 @@ def read_fmi3_description(path: Path) -> ModelDescription:
                                "3.0 Co-Simulation and Model Exchange FMUs without clocks)")
         raise FMUFileError(f"{path}: the FMI 3.0 description declares neither CoSimulation nor "
                            "ModelExchange")
-    _refuse_clocks(clocks, path)
+    _refuse_clocks(clocks, path, description.coSimulation)
     if description.instantiationToken is None:
         raise FMUFileError(f"{path}: the FMI 3.0 description has no instantiationToken")
     if not description.instantiationToken:
@@ -117,15 +118,36 @@ def read_fmi3_description(path: Path) -> ModelDescription:
     return description
 
 
-def _refuse_clocks(clocks: ClockStructure, path: Path) -> None:
-    """FMUFileError naming the first clock of a Co-Simulation or Model Exchange FMU: the
-    engine does not yet tick clocks or run model partitions in those interfaces."""
-    if clocks.clocks:
-        clock = clocks.clocks[0]
+def _refuse_clocks(clocks: ClockStructure, path: Path, cosimulation: Any = None) -> None:
+    """FMUFileError naming the first clock the engine cannot tick: it ticks periodic input
+    clocks (intervalVariability constant or fixed, the interval in the description) of a
+    Co-Simulation FMU with event mode, and no other clock in either interface."""
+    if cosimulation is not None and cosimulation.hasEventMode:
+        untickable = [c for c in clocks.clocks if not _periodic_input(c)]
+    else:
+        untickable = list(clocks.clocks)
+    if untickable:
+        clock = untickable[0]
         raise FMUFileError(f"{path}: Clock {clock.name!r} ({clock.causality}, "
-                           f"intervalVariability {clock.interval_variability}): clocked FMI "
-                           "3.0 Co-Simulation and Model Exchange FMUs (ticking clocks, model "
-                           "partitions) are not supported")
+                           f"intervalVariability {clock.interval_variability}): syssimx ticks "
+                           "only periodic input clocks (intervalVariability constant or fixed) "
+                           "of FMI 3.0 Co-Simulation FMUs with event mode")
+
+
+def _periodic_input(clock: ClockInfo) -> bool:
+    return (clock.causality == "input" and clock.interval_variability in ("constant", "fixed")
+            and clock.period is not None)
+
+
+def ticked_clocks(clocks: ClockStructure, interface: str, path: Path) -> tuple[ClockInfo, ...]:
+    """The periodic input clocks the engine ticks in Co-Simulation; FMUFileError naming the
+    clock when the FMU runs as Model Exchange, where syssimx ticks no clock."""
+    if clocks.clocks and interface == "model-exchange":
+        clock = clocks.clocks[0]
+        raise FMUFileError(f"{path}: Clock {clock.name!r}: syssimx ticks clocks of FMI 3.0 "
+                           "Co-Simulation FMUs only, not as Model Exchange (choose "
+                           "interface='co-simulation')")
+    return clocks.clocks
 
 
 def clock_structure(path: Path) -> ClockStructure:
@@ -247,7 +269,8 @@ def engine_table(in_order: list[Any]) -> EngineTable:
 
 
 def engine_variables(table: EngineTable, cosimulation: Any, model_exchange: bool,
-                     intermediate: tuple[int, ...] = ()) -> tuple[Any, list[Any]]:
+                     intermediate: tuple[int, ...] = (),
+                     clocks: tuple[ClockInfo, ...] = ()) -> tuple[Any, list[Any]]:
     """The ssx_fmi3_variables of `table` and of how a Co-Simulation instance is made (event
     mode when the FMU has it, early return when it may return early, the inputs it moves by
     intermediate update), and what it points at: the struct does not keep that alive, the
@@ -278,6 +301,12 @@ def engine_variables(table: EngineTable, cosimulation: Any, model_exchange: bool
         "early_return_allowed": not model_exchange and bool(
             cosimulation.canReturnEarlyAfterIntermediateUpdate
             or cosimulation.mightReturnEarlyFromDoStep)}
+    if clocks:  # periodic input clocks the engine ticks (ticked_clocks)
+        fields.update({
+            "clock_vr": ffi.new("unsigned int[]", [c.value_reference for c in clocks]),
+            "clock_period": ffi.new("double[]", [c.period for c in clocks]),
+            "clock_shift": ffi.new("double[]", [c.first_tick for c in clocks]),
+            "n_clocks": len(clocks)})
     if intermediate and not model_exchange:  # inputs the engine moves inside a step
         fields.update({"intermediate_vr": ffi.new("unsigned int[]", list(intermediate)),
                        "n_intermediate": len(intermediate)})

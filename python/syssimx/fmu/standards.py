@@ -182,7 +182,8 @@ class FMI3(Standard):
         return description_fmi3.engine_variables(
             info.fmi3_variables, info.description.coSimulation,
             model_exchange=interface.name == "model-exchange",
-            intermediate=interface.intermediate_inputs)
+            intermediate=interface.intermediate_inputs,
+            clocks=description_fmi3.ticked_clocks(info.clocks, interface.name, info.path))
 
 
 STANDARDS: tuple[Standard, ...] = (FMI1(), Standard(), FMI3())
