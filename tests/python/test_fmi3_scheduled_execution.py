@@ -1,6 +1,8 @@
 """FMI 3.0 Scheduled Execution: the Reference FMUs' Clocks.fmu run as a component of a System
 (ScheduledExecutionComponent), tick by tick against the table in its modelDescription's
-comment, and the order of ticks at one instant.
+comment, and the order of ticks at one instant; our own Scheduled Execution FMU
+(tests/fmus/fmi3_scheduled, built by meson) for a clock whose interval only the FMU gives and
+changes, and for an FMU that unbalances its preemption lock or fails in a partition.
 
 FMPy 0.3.32 does not run Scheduled Execution FMUs (its simulate_fmu accepts only
 fmi_type="ModelExchange" or "CoSimulation" and refuses Clocks.fmu), so the expected ticks are
@@ -15,14 +17,16 @@ from pathlib import Path
 import pytest
 from reference_root import reference_root
 from syssimx import ScheduledExecutionComponent, System
+from syssimx._paths import build_dir
 from syssimx.components.scheduled_execution import Tick
-from syssimx.errors import ConfigurationError, FMUFileError
+from syssimx.errors import ConfigurationError, FMUFileError, SimulationError
 from test_fmi3_import import edited
 
 FOLDER = reference_root() / "fmi3"
-pytestmark = pytest.mark.skipif(not FOLDER.is_dir(), reason=(
+reference = pytest.mark.skipif(not FOLDER.is_dir(), reason=(
     f"the FMI 3.0 Reference FMUs are absent (no folder {FOLDER}): set SYSSIMX_REFERENCE_FMUS "
     "to the folder holding fmi3/"))
+ROOT = Path(__file__).resolve().parents[2]
 CLOCKS = str(FOLDER / "Clocks.fmu")
 
 # the table in Clocks.fmu's modelDescription: which input clock ticks when over 10 s
@@ -58,6 +62,7 @@ def _expected_ticks() -> list[tuple[float, str]]:
     return expected
 
 
+@reference
 def test_clocks_fmu_ticks_as_its_description_tabulates():
     component = _component()
     result = _run(component, 1.0)
@@ -84,6 +89,7 @@ def test_clocks_fmu_ticks_as_its_description_tabulates():
     assert values["totalInClockTicks"].tolist() == [0, 2, 4, 5, 6, 8, 9, 10, 11, 13, 15]
 
 
+@reference
 @pytest.mark.parametrize("dt", [10.0, 0.25, 2.5])
 def test_the_ticks_do_not_depend_on_the_step(dt: float):
     component = _component()
@@ -91,6 +97,7 @@ def test_the_ticks_do_not_depend_on_the_step(dt: float):
     assert [(tick.time, tick.clock) for tick in component.ticks] == _expected_ticks()
 
 
+@reference
 def test_ticks_at_one_instant_run_in_priority_order(tmp_path: Path):
     swapped = edited(tmp_path, CLOCKS,
                      ('intervalDecimal="1.0" priority="0"', 'intervalDecimal="1.0" priority="1"'),
@@ -106,6 +113,7 @@ def test_ticks_at_one_instant_run_in_priority_order(tmp_path: Path):
                                                                           "inClock2"]
 
 
+@reference
 def test_the_inputs_are_set_before_each_partition():
     component = _component()
     component.set_inputs({"input2": 3})
@@ -114,6 +122,7 @@ def test_the_inputs_are_set_before_each_partition():
             if tick.clock == "inClock2"] == [3, 6, 9, 12]
 
 
+@reference
 def test_a_component_on_its_own_runs_its_ticks():
     component = _component()
     component.initialize(0.0)
@@ -123,6 +132,7 @@ def test_a_component_on_its_own_runs_its_ticks():
     component.free()
 
 
+@reference
 def test_schedule_clock_takes_only_a_triggered_input_clock():
     component = ScheduledExecutionComponent("C", CLOCKS)
     with pytest.raises(ConfigurationError) as info:
@@ -137,6 +147,7 @@ def test_schedule_clock_takes_only_a_triggered_input_clock():
                                "inClock2, inClock3, outClock)")
 
 
+@reference
 def test_an_fmu_without_scheduled_execution_is_refused():
     path = FOLDER / "Feedthrough.fmu"
     with pytest.raises(FMUFileError) as info:
@@ -145,6 +156,7 @@ def test_an_fmu_without_scheduled_execution_is_refused():
                                "(FMUComponent runs Co-Simulation and Model Exchange FMUs)")
 
 
+@reference
 def test_a_dropped_component_frees_its_instance():
     import gc
     import weakref
@@ -155,3 +167,51 @@ def test_a_dropped_component_frees_its_instance():
     del component
     gc.collect()
     assert gone() is None
+
+
+def _own(stem: str) -> str:
+    build = build_dir() or ROOT / "build" / "release"
+    path = build / "tests" / "fmus" / "fmi3_scheduled" / f"{stem}.fmu"
+    if not path.is_file():
+        pytest.skip(f"the Scheduled Execution test FMU is not built ({path} is missing): run "
+                    "meson compile")
+    return str(path)
+
+
+def test_a_tunable_clock_ticks_at_the_fmus_intervals_and_countdown_and_output_clocks_follow():
+    component = ScheduledExecutionComponent("S", _own("fmi3_scheduled"))
+    component.set_inputs({"gain": 2.0})
+    result = _run_for(component, 4.0, 1.0)
+    # tick: 0.5 s, then 1 s from its second tick; later: 0.25 s after each odd tick; alarm:
+    # with every third tick
+    assert [(tick.time, tick.clock) for tick in component.ticks] == [
+        (0.0, "tick"), (0.25, "later"), (0.5, "tick"), (1.5, "tick"), (1.5, "alarm"),
+        (1.75, "later"), (2.5, "tick"), (3.5, "tick"), (3.75, "later")]
+    assert [tick.values for tick in component.ticks if tick.clock == "tick"] == [
+        {"count": n, "sum": 2.0 * n} for n in range(1, 6)]
+    assert [tick.values for tick in component.ticks if tick.clock == "later"] == [
+        {"laterCount": n} for n in range(1, 4)]
+    _, values = result["S"]
+    assert values["count"].tolist() == [0, 2, 3, 4, 5]
+
+
+def _run_for(component: ScheduledExecutionComponent, stop: float, dt: float) -> dict:
+    system = System("scheduled")
+    system.add_component(component)
+    system.initialize(0.0)
+    return system.run(0.0, stop, dt)
+
+
+def test_a_partition_that_unlocks_preemption_it_never_locked_is_an_error():
+    component = ScheduledExecutionComponent("S", _own("fmi3_scheduled_unbalanced"))
+    with pytest.raises(SimulationError, match=r"S: the FMU unlocked preemption it had not "
+                                              r"locked.* at t=0"):
+        _run_for(component, 1.0, 1.0)
+
+
+def test_a_failing_partition_names_the_function_and_time():
+    component = ScheduledExecutionComponent("S", _own("fmi3_scheduled_failing"))
+    with pytest.raises(SimulationError, match=r"S: fmi3ActivateModelPartition returned "
+                                              r"fmi3Error.* at t=1"):
+        _run_for(component, 4.0, 1.0)
+    assert [tick.time for tick in component.ticks if tick.clock == "tick"] == [0.0, 0.5]

@@ -113,7 +113,7 @@ class ScheduledInstance:
         """Run the model partition of input clock `clock` at `time`."""
         self._check("fmi3ActivateModelPartition",
                     self._library.fmi3ActivateModelPartition(self._instance, clock, time))
-        if self.preemption_depth and self.callback_error is None:
+        if self.preemption_depth > 0 and self.callback_error is None:
             self.callback_error = SimulationError(
                 f"{self.name}: the partition of clock {clock} returned with preemption locked")
         if self.callback_error is not None:
