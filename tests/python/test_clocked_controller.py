@@ -18,7 +18,15 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi3 import FMU3Slave
 from fmpy.validation import validate_fmu
 from scipy.integrate import solve_ivp
-from syssimx import Connection, FMUComponent, GaussSeidelAlgorithm, System, fmus
+from syssimx import (
+    Connection,
+    EventConnection,
+    FMUComponent,
+    GaussSeidelAlgorithm,
+    HybridAlgorithm,
+    System,
+    fmus,
+)
 from syssimx.errors import FMUFileError
 from syssimx.system import SimulationResult
 from syssimx.system.algorithms import Algorithm
@@ -247,3 +255,57 @@ def test_as_model_exchange_the_clocked_fmu_is_refused_naming_the_clock() -> None
     with pytest.raises(FMUFileError, match=r"Clock 'sample': syssimx ticks clocks of FMI 3\.0 "
                                            r"Co-Simulation FMUs only"):
         FMUComponent("PI", fmus.path(CONTROLLER), interface="model-exchange")
+
+
+# ------------------------------------------------------------------ ticks as hybrid events
+def ticks_and_peak(threads: int = 1) -> tuple[list[tuple[float, int, str, str]], list[float]]:
+    """The clocked loop at dt = 0.25 under the hybrid algorithm, with an indicator on the
+    pendulum's omega (its first peak, falling through zero, located by rollback inside a step
+    that also holds clock ticks), one on the controller's u (which falls below zero at the tick
+    of 0.4 s: a crossing at a tick's instant) and a Python listener of the controller's
+    ticks."""
+    controller = FMUComponent("PI", fmus.path(CONTROLLER))
+    controller.set_parameters(kp=400.0, ki=200.0)
+    controller.set_inputs({"setpoint": 0.5})
+    heard: list[float] = []
+    controller.add_event_handler("sampled", lambda _c, _names, t: heard.append(t))
+    controller.add_event_indicator("braking", variable="u", direction=-1)
+    controller.add_event_handler("braked", lambda *_: None)
+    pendulum = FMUComponent("P", fmus.path("pendulum_cvode_fmi3"), tolerance=1e-10)
+    pendulum.add_event_indicator("peak", variable="omega", direction=-1)
+    pendulum.add_event_handler("peaked", lambda *_: None)
+    system = System("ticks and a peak")
+    system.add_component(pendulum)
+    system.add_component(controller)
+    system.add_connection(Connection("P", "theta", "PI", "measurement"))
+    system.add_connection(Connection("PI", "u", "P", "torque"))
+    system.add_event_connection(EventConnection.own_events("PI", "PI", "sampled"))
+    system.add_event_connection(EventConnection("P", "peak", "P", "peaked"))
+    system.add_event_connection(EventConnection("PI", "braking", "PI", "braked"))
+    system.set_algorithm(HybridAlgorithm(tol_time=1e-10,
+                                         coupling=GaussSeidelAlgorithm(threads=threads)))
+    system.initialize(0.0)
+    events = system.run(0.0, 1.0, 0.25).events
+    return [(e.t, e.micro, e.component, e.event) for e in events], heard
+
+
+def test_ticks_and_an_indicator_in_one_step_are_recorded_in_superdense_order() -> None:
+    records, heard = ticks_and_peak()
+    peaks = [r for r in records if r[3] == "peak"]
+    ticks = [r for r in records if r[3] == "clock_tick"]
+    assert len(peaks) == 1 and [round(r[0], 9) for r in ticks] == [
+        round(k * PERIOD, 9) for k in range(1, 11)]
+    # u jumps below zero at the tick of 0.4: the crossing is located there (within tol_time)
+    # and recorded at the tick's instant, after the tick that caused it
+    braking = records.index(next(r for r in records if r[3] == "braking"))
+    assert records[braking - 1][3] == "clock_tick"
+    assert records[braking - 1][:2] == records[braking][:2]
+    assert records[braking][0] == pytest.approx(0.4, abs=1e-10)
+    # the peak lies inside a communication step that also holds ticks
+    step = math.floor(peaks[0][0] / 0.25)
+    assert any(step * 0.25 < r[0] < (step + 1) * 0.25 for r in ticks)
+    assert records == sorted(records, key=lambda r: (r[0], r[1]))
+    assert heard == [r[0] for r in ticks]  # the listener ran at each tick, in order
+    # the same records in every run and on two threads
+    assert ticks_and_peak() == (records, heard)
+    assert ticks_and_peak(threads=2) == (records, heard)
