@@ -23,6 +23,7 @@ extensions = [
     "sphinx.ext.autosummary",
     "sphinx.ext.napoleon",
     "sphinx.ext.mathjax",
+    "offline_mathjax",
     "cli_reference",
     "public_names",
 ]
@@ -101,4 +102,7 @@ html_theme_options = {
     "home_page_in_toc": True,
     "use_download_button": False,
 }
+# the theme's colour mode before a reader picks one (else its script logs a console error on
+# a first visit)
+html_context = {"default_mode": "auto"}
 html_last_updated_fmt = None

@@ -8,9 +8,11 @@ cd "$root"
 
 as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
 
-# clang and its runtimes: the fuzz target of the modelDescription reader (scripts/fuzz.sh)
+# clang and its runtimes: the fuzz target of the modelDescription reader (scripts/fuzz.sh);
+# chromium: the documentation opened in a browser (scripts/check-docs-browser.py);
+# libjs-mathjax and fonts-mathjax: the MathJax the documentation carries (docs/_ext)
 apt_packages=(build-essential pkg-config libsundials-dev graphviz python3-venv clang
-              libclang-rt-14-dev)
+              libclang-rt-14-dev chromium libjs-mathjax fonts-mathjax)
 missing=()
 for package in "${apt_packages[@]}"; do
   dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" \

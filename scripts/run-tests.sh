@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs and builds syssimx, then runs every test: the C tests (meson test) in the release
 # build and again under AddressSanitizer, a bounded fuzz run of the modelDescription reader,
-# the linter, the documentation build (warnings are errors, every notebook executed) and the
-# Python tests (pytest, which also runs the examples of the documentation's Markdown pages).
+# the linter, the documentation build (warnings are errors, every notebook executed) and its
+# check in a browser, and the Python tests (pytest, which also runs the examples of the
+# documentation's Markdown pages).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 bash "$root/scripts/install.sh"
@@ -42,6 +43,11 @@ echo "== documentation"
 # are checked (-n); links to the web are not (no network here).
 rm -rf build/docs docs/api/generated
 python -m sphinx -W --keep-going -n -q -b html docs build/docs/html
+
+echo "== documentation in headless Chromium"
+# every page without console errors and with its images, the search, the tutorials' figures,
+# maths typeset offline; skipped with a message where no Chromium is installed
+python scripts/check-docs-browser.py build/docs/html
 
 echo "== pytest"
 # pytest exits 5 when it collected nothing: that is a failure here too.
