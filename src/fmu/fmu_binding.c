@@ -173,8 +173,9 @@ static const char *unusable(const ssx_fmu_load_spec *spec, const ssx_fmu_backend
     if (backend == NULL) {
         return "the FMI version or interface is not one syssimx runs";
     }
-    if (spec->host_path != NULL && backend != &ssx_fmi2_backend) {
-        return "only FMI 2.0 Co-Simulation FMUs run in a host process";
+    if (spec->host_path != NULL && backend != &ssx_fmi2_backend &&
+        backend != &ssx_fmi1_backend) {
+        return "only FMI 2.0 and FMI 1.0 Co-Simulation FMUs run in a host process";
     }
     return NULL;
 }
@@ -262,8 +263,9 @@ ssx_fmu *ssx_fmu_load(const ssx_fmu_load_spec *spec, char *error, size_t error_s
     fmu->last_slot = NO_CALL;
     if (spec->host_path != NULL) {
         fmu->rest->environment.remote = ssx_remote_start(spec->host_path, spec->binary_path,
-                                       spec->model_identifier, spec->step_timeout, error,
-                                       error_size);
+                                       spec->model_identifier,
+                                       backend == &ssx_fmi1_backend, spec->step_timeout,
+                                       error, error_size);
         if (fmu->rest->environment.remote == NULL) {
             release_binding(fmu);
             return NULL;

@@ -117,10 +117,26 @@ def test_an_fmi1_fmu_beside_a_master_indicator_is_refused_at_initialize():
         system.initialize(0.0)
 
 
-def test_isolation_is_refused_for_fmi1():
-    with pytest.raises(ConfigurationError, match=r"isolated=True is not supported for FMI 1\.0 "
-                       "FMUs"):
-        FMUComponent("I", identity(), isolated=True)
+def run_identity(isolated: bool) -> dict[str, np.ndarray]:
+    component = FMUComponent("I", identity(), isolated=isolated)
+    system = System("identity")
+    system.add_component(component)
+    system.initialize(0.0)
+    component.set_inputs({"realIn": 2.5, "integerIn": 7, "booleanIn": True})
+    _, data = system.run(0.0, 1.0, 0.1)["I"]
+    return data
+
+
+def test_identity_runs_isolated_with_the_in_process_values():
+    """Reals, integers and booleans (fmiBoolean is a char) cross the host process; string
+    variables are no ports of an isolated FMU, as for FMI 2.0."""
+    here, there = run_identity(isolated=False), run_identity(isolated=True)
+    assert set(there) == {"realOut", "integerOut", "booleanOut"}
+    for name in there:
+        assert np.array_equal(here[name], there[name]), name
+    assert there["realOut"][-1] == 2.5
+    assert there["integerOut"][-1] == 7
+    assert there["booleanOut"][-1]
 
 
 def test_cli_simulate_and_info_accept_fmi1(tmp_path: Path, capsys: pytest.CaptureFixture[str]):

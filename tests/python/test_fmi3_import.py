@@ -361,4 +361,5 @@ def test_isolation_is_refused_for_fmi3():
     with pytest.raises(ConfigurationError) as info:
         FMUComponent("Ball", BALL, isolated=True)
     assert str(info.value) == (f"component 'Ball': isolated=True is not supported for FMI 3.0 "
-                               f"FMUs ({BALL}): the FMU host process speaks FMI 2.0 only")
+                               f"FMUs ({BALL}): the FMU host process speaks FMI 2.0 and "
+                               "FMI 1.0 Co-Simulation only")

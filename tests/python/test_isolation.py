@@ -67,7 +67,7 @@ def run_pendulum(fmu: str, isolated: bool) -> tuple[np.ndarray, dict[str, np.nda
     return t.copy(), {k: v.copy() for k, v in data.items()}, pendulum.instance.counters()
 
 
-@pytest.mark.parametrize("fmu", ["pendulum_euler", "pendulum_cvode"])
+@pytest.mark.parametrize("fmu", ["pendulum_euler", "pendulum_cvode", "pendulum_cvode_fmi1"])
 def test_isolated_fmu_gives_the_in_process_results_bit_for_bit(fmu: str) -> None:
     t_here, here, calls_here = run_pendulum(fmu, isolated=False)
     t_there, there, calls_there = run_pendulum(fmu, isolated=True)

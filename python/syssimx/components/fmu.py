@@ -99,7 +99,8 @@ class FMUComponent(CoSimComponent):
         if isolated and not self.info.standard.isolatable:
             raise ConfigurationError(f"component {name!r}: isolated=True is not supported for "
                                      f"{self.info.standard.name} FMUs ({self.fmu_path}): the "
-                                     "FMU host process speaks FMI 2.0 only")
+                                     "FMU host process speaks FMI 2.0 and FMI 1.0 "
+                                     "Co-Simulation only")
         self.fmu_interface: FMUInterface = _chosen_interface(self.info, name, interface)
         if isolated and self.model_exchange:
             raise ConfigurationError(

@@ -130,7 +130,6 @@ class FMI1(Standard):
     version = "1.0"
     engine_version = 1
     function_prefix = "fmi"
-    isolatable = False
     has_fmu_state = False
 
     def _described(self, md: Any, path: Path) -> ModelDescription:

@@ -1,11 +1,12 @@
 /* The FMU host: runs one FMU binary in a process of its own for an isolated FMUComponent, so
  * that a crash, an abort or an endless loop in the FMU ends this process, not the user's.
  *
- *     syssimx-fmu-host <binary> <model identifier>
+ *     syssimx-fmu-host <binary> <model identifier> fmi2|fmi1
  *
  * The engine starts it with the socket on descriptor REMOTE_SOCKET_FD (fmu_remote_protocol.h)
- * and forwards every fmi2 call; the host makes the call and answers with what the FMU logged
- * and the call's result. It ends when the engine closes the socket, even while the FMU is
+ * and forwards every fmi2 call (for an FMI 1.0 Co-Simulation binary, the fmi2 call that stands
+ * for each FMI 1.0 function: remote_fmi1_call_names); the host makes the call and answers with
+ * what the FMU logged and the call's result. It ends when the engine closes the socket, even while the FMU is
  * still inside a call (the engine's process died). */
 #include <pthread.h>
 #include <signal.h>
@@ -15,6 +16,7 @@
 #include <string.h>
 
 #include "channel.h"
+#include "fmi1Functions.h"
 #include "fmi2Functions.h"
 #include "fmu_message.h"
 #include "fmu_remote_protocol.h"
@@ -24,9 +26,11 @@ typedef void (*any_function)(void);
 
 typedef struct {
     int socket;
+    int fmi1; /* the binary is FMI 1.0 Co-Simulation: fn holds remote_fmi1_call_names */
     any_function fn[CALL_COUNT];
     fmi2Component instance;
     fmi2CallbackFunctions callbacks; /* the FMU keeps the pointer: lives as long as the host */
+    fmi1CallbackFunctions callbacks1;
     char *request;                   /* the request's payload */
     size_t request_capacity;
     char *reply;                     /* the result's payload */
@@ -58,15 +62,10 @@ static int send_reply(const host *h, remote_reply_kind kind, int status, uint64_
  * the engine's end of the socket is always on REMOTE_SOCKET_FD. */
 static const char handed_environment;
 
-/* Sent while the call runs: the engine keeps it as the FMU's last message. A message naming
- * another environment is still the FMU's (the host runs no other), attributed to "an FMU". */
-static void logger(fmi2ComponentEnvironment environment, fmi2String instance_name,
-                   fmi2Status status, fmi2String category, fmi2String message, ...)
+/* Sent while the call runs: the engine keeps it as the FMU's last message. */
+static void send_log(int status, const char *category, const char *attribution,
+                     const char *message, va_list args)
 {
-    (void)instance_name;
-    if (message == NULL) {
-        return;
-    }
     char text[2048];
     size_t category_size = strlen(category != NULL ? category : "") + 1;
     if (category_size > 256) {
@@ -74,17 +73,44 @@ static void logger(fmi2ComponentEnvironment environment, fmi2String instance_nam
     }
     memcpy(text, category != NULL ? category : "", category_size - 1);
     text[category_size - 1] = '\0';
-    const char *attribution = environment == &handed_environment ? "" : "an FMU: ";
     size_t attribution_size = strlen(attribution);
     memcpy(text + category_size, attribution, attribution_size + 1);
-    va_list args;
-    va_start(args, message);
     ssx_format_fmu_message(text + category_size + attribution_size,
                            sizeof text - category_size - attribution_size, message, args);
-    va_end(args);
     size_t size = category_size + strlen(text + category_size) + 1;
-    remote_reply reply = {.kind = REPLY_LOG, .status = (int)status, .payload = size};
+    remote_reply reply = {.kind = REPLY_LOG, .status = status, .payload = size};
     (void)channel_send(REMOTE_SOCKET_FD, &reply, sizeof reply, text, size);
+}
+
+/* A message naming another environment is still the FMU's (the host runs no other),
+ * attributed to "an FMU". */
+static void logger(fmi2ComponentEnvironment environment, fmi2String instance_name,
+                   fmi2Status status, fmi2String category, fmi2String message, ...)
+{
+    (void)instance_name;
+    if (message == NULL) {
+        return;
+    }
+    va_list args;
+    va_start(args, message);
+    send_log((int)status, category, environment == &handed_environment ? "" : "an FMU: ",
+             message, args);
+    va_end(args);
+}
+
+/* FMI 1.0 names the FMU's component, not an environment: every message is the FMU's. */
+static void logger1(fmi1Component component, fmi1String instance_name, fmi1Status status,
+                    fmi1String category, fmi1String message, ...)
+{
+    (void)component;
+    (void)instance_name;
+    if (message == NULL) {
+        return;
+    }
+    va_list args;
+    va_start(args, message);
+    send_log((int)status, category, "", message, args);
+    va_end(args);
 }
 
 /* The fmi2 function of a call, as its own type. */
@@ -219,16 +245,133 @@ static int serve(host *h, const remote_request *rq, uint64_t *value, size_t *rep
     return fmi2Fatal;
 }
 
-/* Unprefixed names first; FMUs compiled with FMI2_FUNCTION_PREFIX export <id>_fmi2Name. */
+/* fmiBoolean is a char: the engine's ints are narrowed and widened through a buffer. */
+static int serve_fmi1_booleans(host *h, const remote_request *rq, size_t *reply_size)
+{
+    size_t n = (size_t)rq->n;
+    const char *in = h->request;
+    fmi1Boolean *chunk = malloc(n + 1);
+    fmi2Boolean *out = grown(&h->reply, &h->reply_capacity, n * sizeof(fmi2Boolean));
+    if (chunk == NULL || (out == NULL && n > 0)) {
+        free(chunk);
+        return fmi2Fatal;
+    }
+    int status;
+    if (rq->call == CALL_GET_BOOLEAN) {
+        *reply_size = n * sizeof(fmi2Boolean);
+        status = FN(fmi1GetBooleanTYPE, rq->call)(h->instance, (const fmi1ValueReference *)in, n,
+                                                  chunk);
+        for (size_t i = 0; i < n; ++i) {
+            out[i] = chunk[i] != fmi1False;
+        }
+    } else {
+        const fmi2Boolean *values = (const fmi2Boolean *)in;
+        for (size_t i = 0; i < n; ++i) {
+            chunk[i] = values[i] ? fmi1True : fmi1False;
+        }
+        status = FN(fmi1SetBooleanTYPE, rq->call)(
+            h->instance, (const fmi1ValueReference *)(in + n * sizeof(fmi2Boolean)), n, chunk);
+    }
+    free(chunk);
+    return status;
+}
+
+/* The calls of an FMI 1.0 Co-Simulation binary (remote_fmi1_call_names); reals and integers
+ * have the same types in both standards, so those calls are serve's. */
+static int serve_fmi1(host *h, const remote_request *rq, uint64_t *value, size_t *reply_size)
+{
+    const char *in = h->request;
+    size_t n = (size_t)rq->n;
+    switch ((remote_call)rq->call) {
+    case CALL_INSTANTIATE: {
+        const char *name = in;
+        const char *guid = name + strlen(name) + 1;
+        const char *location = guid + strlen(guid) + 1;
+        h->instance = FN(fmi1InstantiateSlaveTYPE, CALL_INSTANTIATE)(
+            name, guid, location, "application/x-fmu-sharedlibrary", 0.0,
+            rq->flag ? fmi1True : fmi1False, fmi1False, h->callbacks1,
+            rq->flag2 ? fmi1True : fmi1False);
+        return h->instance != NULL ? fmi2OK : -1;
+    }
+    case CALL_FREE_INSTANCE:
+        FN(fmi1FreeSlaveInstanceTYPE, rq->call)(h->instance);
+        h->instance = NULL;
+        return fmi2OK;
+    case CALL_EXIT_INITIALIZATION_MODE:
+        return FN(fmi1InitializeSlaveTYPE, rq->call)(
+            h->instance, rq->b, rq->flag2 ? fmi1True : fmi1False, rq->c);
+    case CALL_TERMINATE:
+        return FN(fmi1TerminateSlaveTYPE, rq->call)(h->instance);
+    case CALL_RESET:
+        return FN(fmi1ResetSlaveTYPE, rq->call)(h->instance);
+    case CALL_DO_STEP: {
+        int status = FN(fmi1DoStepTYPE, rq->call)(h->instance, rq->a, rq->b,
+                                                  rq->flag ? fmi1True : fmi1False);
+        fmi1Real *out = grown(&h->reply, &h->reply_capacity, n * sizeof(fmi1Real));
+        if (out == NULL && n > 0) {
+            return fmi2Fatal;
+        }
+        *reply_size = n * sizeof(fmi1Real);
+        *value = REMOTE_NOT_READ;
+        if (n > 0 && status <= fmi1Warning) {
+            *value = (uint64_t)FN(fmi1GetRealTYPE, CALL_GET_REAL)(
+                h->instance, (const fmi1ValueReference *)in, n, out);
+        } else if (n > 0) {
+            memset(out, 0, n * sizeof(fmi1Real));
+        }
+        return status;
+    }
+    case CALL_GET_REAL:
+    case CALL_GET_INTEGER:
+    case CALL_SET_REAL:
+    case CALL_SET_INTEGER: {
+        size_t item = rq->call == CALL_GET_REAL || rq->call == CALL_SET_REAL ? sizeof(fmi1Real)
+                                                                            : sizeof(fmi1Integer);
+        const fmi1ValueReference *vr = (const fmi1ValueReference *)in;
+        if (rq->call == CALL_SET_REAL) {
+            return FN(fmi1SetRealTYPE, rq->call)(
+                h->instance, (const fmi1ValueReference *)(in + n * item), n,
+                (const fmi1Real *)in);
+        }
+        if (rq->call == CALL_SET_INTEGER) {
+            return FN(fmi1SetIntegerTYPE, rq->call)(
+                h->instance, (const fmi1ValueReference *)(in + n * item), n,
+                (const fmi1Integer *)in);
+        }
+        void *out = grown(&h->reply, &h->reply_capacity, n * item);
+        if (out == NULL && n > 0) {
+            return fmi2Fatal;
+        }
+        *reply_size = n * item;
+        if (rq->call == CALL_GET_REAL) {
+            return FN(fmi1GetRealTYPE, rq->call)(h->instance, vr, n, out);
+        }
+        return FN(fmi1GetIntegerTYPE, rq->call)(h->instance, vr, n, out);
+    }
+    case CALL_GET_BOOLEAN:
+    case CALL_SET_BOOLEAN:
+        return serve_fmi1_booleans(h, rq, reply_size);
+    default:
+        break;
+    }
+    return fmi2Fatal;
+}
+
+/* Unprefixed names first; FMUs compiled with FMI2_FUNCTION_PREFIX export <id>_fmi2Name, FMI 1.0
+ * binaries always <id>_fmiName. */
 static uint64_t resolve(host *h, void *library, const char *model_identifier)
 {
+    const char *const *names = h->fmi1 ? remote_fmi1_call_names : remote_call_names;
     uint64_t exported = 0;
     for (int call = 0; call < CALL_COUNT; ++call) {
-        void *symbol = shared_library_symbol(library, remote_call_names[call]);
+        if (names[call] == NULL) {
+            h->fn[call] = NULL;
+            continue;
+        }
+        void *symbol = shared_library_symbol(library, names[call]);
         if (symbol == NULL && model_identifier[0] != '\0') {
             char prefixed[256];
-            snprintf(prefixed, sizeof prefixed, "%s_%s", model_identifier,
-                     remote_call_names[call]);
+            snprintf(prefixed, sizeof prefixed, "%s_%s", model_identifier, names[call]);
             symbol = shared_library_symbol(library, prefixed);
         }
         /* a symbol is a void *; C11 has no direct cast to a function pointer. */
@@ -263,7 +406,8 @@ static int serve_requests(host *h)
         }
         uint64_t value = 0;
         size_t reply_size = 0;
-        int status = serve(h, &rq, &value, &reply_size);
+        int status = h->fmi1 ? serve_fmi1(h, &rq, &value, &reply_size)
+                             : serve(h, &rq, &value, &reply_size);
         if (send_reply(h, REPLY_RESULT, status, value, h->reply, reply_size) != 0) {
             return 0;
         }
@@ -289,12 +433,13 @@ static void *watch_engine(void *socket)
 
 int main(int argc, char **argv)
 {
-    if (argc != 3) {
-        fprintf(stderr, "usage: %s <FMU binary> <model identifier> (started by syssimx)\n",
-                argv[0]);
+    if (argc != 4 || (strcmp(argv[3], REMOTE_STANDARD_FMI2) != 0 &&
+                      strcmp(argv[3], REMOTE_STANDARD_FMI1) != 0)) {
+        fprintf(stderr, "usage: %s <FMU binary> <model identifier> %s|%s (started by "
+                "syssimx)\n", argv[0], REMOTE_STANDARD_FMI2, REMOTE_STANDARD_FMI1);
         return 2;
     }
-    host h = {.socket = REMOTE_SOCKET_FD};
+    host h = {.socket = REMOTE_SOCKET_FD, .fmi1 = strcmp(argv[3], REMOTE_STANDARD_FMI1) == 0};
     pthread_t watchdog;
     if (pthread_create(&watchdog, NULL, watch_engine, &h.socket) != 0) {
         fprintf(stderr, "%s: cannot start the watchdog thread\n", argv[0]);
@@ -304,6 +449,7 @@ int main(int argc, char **argv)
     h.callbacks.allocateMemory = calloc;
     h.callbacks.freeMemory = free;
     h.callbacks.componentEnvironment = (fmi2ComponentEnvironment)&handed_environment;
+    h.callbacks1 = (fmi1CallbackFunctions){logger1, calloc, free, NULL};
     const char *reason = NULL;
     void *library = shared_library_open(argv[1], &reason);
     if (library == NULL) {

@@ -1,5 +1,6 @@
-/* The engine's side of an isolated FMU: fmi2 functions that forward every call to the FMU host
- * process (fmu_host.c) and turn the host's death or silence into an fmi2Fatal that says why. */
+/* The engine's side of an isolated FMU: fmi2 functions (or FMI 1.0 Co-Simulation ones) that
+ * forward every call to the FMU host process (fmu_host.c) and turn the host's death or silence
+ * into an fmi2Fatal that says why. */
 #define _DEFAULT_SOURCE
 
 #include "fmu_remote.h"
@@ -11,6 +12,7 @@
 
 #include "channel.h"
 #include "child_process.h"
+#include "fmi1Functions.h"
 #include "fmi2Functions.h"
 #include "fmu_environment.h"
 #include "fmu_remote_protocol.h"
@@ -19,11 +21,12 @@ struct ssx_remote {
     int pid; /* 0 while no host runs */
     int socket;
     double call_timeout;
-    uint64_t exported; /* bit i: the binary exports remote_call_names[i] */
+    int fmi1;          /* the binary is FMI 1.0 Co-Simulation */
+    uint64_t exported; /* bit i: the binary exports remote_call_names[i] (or the FMI 1.0 one) */
     char *host_path;
     char *binary_path;
     char *model_identifier;
-    const fmi2CallbackFunctions *callbacks; /* of the live instance, for the FMU's messages */
+    const void *handed; /* the live instance's environment, for the FMU's messages */
     char *instance_name;
     char *buffer; /* a request's payload, then each reply's */
     size_t capacity;
@@ -77,7 +80,11 @@ static double call_deadline(const ssx_remote *r)
 /* Starts the host and reads its HELLO. */
 static int start_host(ssx_remote *r, char *error, size_t error_size)
 {
-    char *argv[] = {r->host_path, r->binary_path, r->model_identifier, NULL};
+    char standard[] = REMOTE_STANDARD_FMI2;
+    if (r->fmi1) {
+        memcpy(standard, REMOTE_STANDARD_FMI1, sizeof standard);
+    }
+    char *argv[] = {r->host_path, r->binary_path, r->model_identifier, standard, NULL};
     char reason_of_start[512];
     if (child_process_start(argv, REMOTE_SOCKET_FD, &r->pid, &r->socket, reason_of_start,
                             sizeof reason_of_start) != 0) {
@@ -116,8 +123,8 @@ static int start_host(ssx_remote *r, char *error, size_t error_size)
 }
 
 ssx_remote *ssx_remote_start(const char *host_path, const char *binary_path,
-                             const char *model_identifier, double call_timeout, char *error,
-                             size_t error_size)
+                             const char *model_identifier, int fmi1, double call_timeout,
+                             char *error, size_t error_size)
 {
     ssx_remote *r = calloc(1, sizeof *r);
     if (r == NULL) {
@@ -126,6 +133,7 @@ ssx_remote *ssx_remote_start(const char *host_path, const char *binary_path,
     }
     r->socket = -1;
     r->call_timeout = call_timeout;
+    r->fmi1 = fmi1;
     r->host_path = strdup(host_path);
     r->binary_path = strdup(binary_path);
     r->model_identifier = strdup(model_identifier);
@@ -173,10 +181,16 @@ void ssx_remote_restart(ssx_remote *r)
  * read a '%' in it as a conversion). */
 static void deliver(const ssx_remote *r, const char *text)
 {
-    if (r->callbacks != NULL) {
-        ssx_fmu_environment_log(ssx_fmu_environment_claimed(r->callbacks->componentEnvironment),
-                                text);
+    if (r->handed != NULL) {
+        ssx_fmu_environment_log(ssx_fmu_environment_claimed(r->handed), text);
     }
+}
+
+/* The name of `call` in the binary's standard, for messages. */
+static const char *call_name(const ssx_remote *r, remote_call call)
+{
+    return r->fmi1 && remote_fmi1_call_names[call] != NULL ? remote_fmi1_call_names[call]
+                                                           : remote_call_names[call];
 }
 
 /* The host died, hung or broke the protocol during `call`: it is gone, and the call fails. */
@@ -188,17 +202,17 @@ static int lost(ssx_remote *r, remote_call call, channel_receive_result why)
         close_host(r, how, sizeof how);
         snprintf(r->gone, sizeof r->gone,
                  "%s did not return within the step timeout of %g s: the FMU process was "
-                 "killed", remote_call_names[call], r->call_timeout);
+                 "killed", call_name(r, call), r->call_timeout);
     } else if (why == CHANNEL_STOPPED) {
         child_process_kill_group(r->pid);
         close_host(r, how, sizeof how);
         snprintf(r->gone, sizeof r->gone,
                  "the run was stopped (an interrupt or its timeout) while %s was running: the "
-                 "FMU process was killed", remote_call_names[call]);
+                 "FMU process was killed", call_name(r, call));
     } else {
         close_host(r, how, sizeof how);
         snprintf(r->gone, sizeof r->gone, "the FMU process %s in %s", how,
-                 remote_call_names[call]);
+                 call_name(r, call));
     }
     deliver(r, r->gone);
     return fmi2Fatal;
@@ -283,17 +297,15 @@ static int simple_call(fmi2Component c, remote_call which)
 
 /* ------------------------------------------------------------------ the fmi2 functions */
 
-static fmi2Component remote_instantiate(fmi2String instance_name, fmi2Type type,
-                                        fmi2String guid, fmi2String resource_uri,
-                                        const fmi2CallbackFunctions *callbacks,
-                                        fmi2Boolean visible, fmi2Boolean logging_on)
+/* handed: what the FMU's callbacks name as their environment (ssx_fmu_environment). */
+static ssx_remote *instantiate_in_host(ssx_remote *r, const void *handed,
+                                       const char *instance_name, int type, const char *guid,
+                                       const char *resource_uri, int visible, int logging_on)
 {
-    const ssx_fmu_environment *environment = callbacks->componentEnvironment;
-    ssx_remote *r = environment->remote;
     instance_name = instance_name != NULL ? instance_name : "";
     guid = guid != NULL ? guid : "";
     resource_uri = resource_uri != NULL ? resource_uri : "";
-    r->callbacks = callbacks;
+    r->handed = handed;
     free(r->instance_name);
     r->instance_name = strdup(instance_name);
     if (r->pid == 0) { /* the last host died: this instance gets a new one */
@@ -312,6 +324,16 @@ static fmi2Component remote_instantiate(fmi2String instance_name, fmi2Type type,
         return NULL;
     }
     return call(r, &rq, NULL, 0, NULL) == fmi2OK ? r : NULL;
+}
+
+static fmi2Component remote_instantiate(fmi2String instance_name, fmi2Type type,
+                                        fmi2String guid, fmi2String resource_uri,
+                                        const fmi2CallbackFunctions *callbacks,
+                                        fmi2Boolean visible, fmi2Boolean logging_on)
+{
+    const ssx_fmu_environment *environment = callbacks->componentEnvironment;
+    return instantiate_in_host(environment->remote, environment, instance_name, (int)type, guid,
+                               resource_uri, visible, logging_on);
 }
 
 static void remote_free_instance(fmi2Component c)
@@ -352,13 +374,11 @@ static fmi2Status remote_reset(fmi2Component c)
     return simple_call(c, CALL_RESET);
 }
 
-static fmi2Status remote_do_step(fmi2Component c, fmi2Real t, fmi2Real h,
-                                 fmi2Boolean no_set_state_prior)
+/* flag: noSetFMUStatePriorToCurrentPoint (FMI 2.0) or newStep (FMI 1.0) */
+static int do_step(ssx_remote *r, double t, double h, uint32_t flag)
 {
-    ssx_remote *r = c;
     size_t n = r->n_read_after_step;
-    remote_request rq = {.call = CALL_DO_STEP, .flag = (uint32_t)no_set_state_prior, .a = t,
-                         .b = h, .n = n};
+    remote_request rq = {.call = CALL_DO_STEP, .flag = flag, .a = t, .b = h, .n = n};
     if (stage(r, &rq, r->read_after_step, n * sizeof *r->read_after_step, NULL, 0, NULL, 0) !=
         0) {
         return fmi2Error;
@@ -370,6 +390,12 @@ static fmi2Status remote_do_step(fmi2Component c, fmi2Real t, fmi2Real h,
         r->read_ready = 1;
     }
     return status;
+}
+
+static fmi2Status remote_do_step(fmi2Component c, fmi2Real t, fmi2Real h,
+                                 fmi2Boolean no_set_state_prior)
+{
+    return do_step(c, t, h, (uint32_t)no_set_state_prior);
 }
 
 /* Remembers which outputs to read after each step: the last list read with fmi2GetReal. */
@@ -414,10 +440,8 @@ static int set_values(ssx_remote *r, remote_call which, const fmi2ValueReference
     return call(r, &rq, NULL, 0, NULL);
 }
 
-static fmi2Status remote_get_real(fmi2Component c, const fmi2ValueReference vr[], size_t n,
-                                  fmi2Real values[])
+static int get_reals(ssx_remote *r, const fmi2ValueReference vr[], size_t n, double values[])
 {
-    ssx_remote *r = c;
     if (r->read_ready && n == r->n_read_after_step &&
         memcmp(vr, r->read_after_step, n * sizeof *vr) == 0) {
         r->read_ready = 0;
@@ -427,6 +451,12 @@ static fmi2Status remote_get_real(fmi2Component c, const fmi2ValueReference vr[]
     int status = get_values(r, CALL_GET_REAL, vr, n, values, sizeof *values);
     read_after_steps(r, vr, n);
     return status;
+}
+
+static fmi2Status remote_get_real(fmi2Component c, const fmi2ValueReference vr[], size_t n,
+                                  fmi2Real values[])
+{
+    return get_reals(c, vr, n, values);
 }
 
 static fmi2Status remote_get_integer(fmi2Component c, const fmi2ValueReference vr[], size_t n,
@@ -538,8 +568,133 @@ static fmi2Status remote_get_directional_derivative(fmi2Component c,
     return call(r, &rq, derivatives, n_unknowns * sizeof *derivatives, NULL);
 }
 
+/* ------------------------------------------------------------------ the FMI 1.0 functions */
+
+/* FMI 1.0 hands the FMU no environment: the remote is that of the FMU the binding is calling
+ * on this thread (it marks instantiation too), and its environment is what messages name. */
+static fmi1Component remote1_instantiate_slave(fmi1String instance_name, fmi1String guid,
+                                               fmi1String fmu_location, fmi1String mime_type,
+                                               fmi1Real timeout, fmi1Boolean visible,
+                                               fmi1Boolean interactive,
+                                               fmi1CallbackFunctions callbacks,
+                                               fmi1Boolean logging_on)
+{
+    (void)mime_type;
+    (void)timeout;
+    (void)interactive;
+    (void)callbacks; /* the host hands the FMU its own */
+    ssx_fmu_environment *environment = ssx_fmu_environment_calling();
+    if (environment == NULL || environment->remote == NULL) {
+        return NULL;
+    }
+    return instantiate_in_host(environment->remote, environment, instance_name, 0, guid,
+                               fmu_location, visible != fmi1False, logging_on != fmi1False);
+}
+
+static void remote1_free_slave_instance(fmi1Component c)
+{
+    remote_free_instance(c);
+}
+
+static fmi1Status remote1_initialize_slave(fmi1Component c, fmi1Real start_time,
+                                           fmi1Boolean stop_time_defined, fmi1Real stop_time)
+{
+    remote_request rq = {.call = CALL_EXIT_INITIALIZATION_MODE,
+                         .flag2 = stop_time_defined != fmi1False, .b = start_time,
+                         .c = stop_time};
+    return (fmi1Status)call(c, &rq, NULL, 0, NULL);
+}
+
+static fmi1Status remote1_terminate_slave(fmi1Component c)
+{
+    return (fmi1Status)simple_call(c, CALL_TERMINATE);
+}
+
+static fmi1Status remote1_reset_slave(fmi1Component c)
+{
+    return (fmi1Status)simple_call(c, CALL_RESET);
+}
+
+static fmi1Status remote1_do_step(fmi1Component c, fmi1Real t, fmi1Real h, fmi1Boolean new_step)
+{
+    return (fmi1Status)do_step(c, t, h, new_step != fmi1False);
+}
+
+static fmi1Status remote1_get_real(fmi1Component c, const fmi1ValueReference vr[], size_t n,
+                                   fmi1Real values[])
+{
+    return (fmi1Status)get_reals(c, vr, n, values);
+}
+
+static fmi1Status remote1_get_integer(fmi1Component c, const fmi1ValueReference vr[], size_t n,
+                                      fmi1Integer values[])
+{
+    return (fmi1Status)get_values(c, CALL_GET_INTEGER, vr, n, values, sizeof *values);
+}
+
+static fmi1Status remote1_set_real(fmi1Component c, const fmi1ValueReference vr[], size_t n,
+                                   const fmi1Real values[])
+{
+    return (fmi1Status)set_values(c, CALL_SET_REAL, vr, n, values, sizeof *values);
+}
+
+static fmi1Status remote1_set_integer(fmi1Component c, const fmi1ValueReference vr[], size_t n,
+                                      const fmi1Integer values[])
+{
+    return (fmi1Status)set_values(c, CALL_SET_INTEGER, vr, n, values, sizeof *values);
+}
+
+/* Booleans cross as ints (the host narrows them to fmiBoolean): in chunks on the stack. */
+enum { BOOLEAN_CHUNK = 64 };
+
+static fmi1Status remote1_get_boolean(fmi1Component c, const fmi1ValueReference vr[], size_t n,
+                                      fmi1Boolean values[])
+{
+    int worst = fmi2OK;
+    for (size_t first = 0; first < n && worst <= fmi2Warning; first += BOOLEAN_CHUNK) {
+        fmi2Boolean chunk[BOOLEAN_CHUNK];
+        size_t count = n - first < BOOLEAN_CHUNK ? n - first : BOOLEAN_CHUNK;
+        int status = get_values(c, CALL_GET_BOOLEAN, vr + first, count, chunk, sizeof *chunk);
+        for (size_t i = 0; i < count; ++i) {
+            values[first + i] = chunk[i] ? fmi1True : fmi1False;
+        }
+        worst = status > worst ? status : worst;
+    }
+    return (fmi1Status)worst;
+}
+
+static fmi1Status remote1_set_boolean(fmi1Component c, const fmi1ValueReference vr[], size_t n,
+                                      const fmi1Boolean values[])
+{
+    int worst = fmi2OK;
+    for (size_t first = 0; first < n && worst <= fmi2Warning; first += BOOLEAN_CHUNK) {
+        fmi2Boolean chunk[BOOLEAN_CHUNK];
+        size_t count = n - first < BOOLEAN_CHUNK ? n - first : BOOLEAN_CHUNK;
+        for (size_t i = 0; i < count; ++i) {
+            chunk[i] = values[first + i] != fmi1False;
+        }
+        int status = set_values(c, CALL_SET_BOOLEAN, vr + first, count, chunk, sizeof *chunk);
+        worst = status > worst ? status : worst;
+    }
+    return (fmi1Status)worst;
+}
+
 void *ssx_remote_function(const ssx_remote *r, const char *name)
 {
+    void (*const fmi1_forwarders[CALL_COUNT])(void) = {
+        [CALL_INSTANTIATE] = (void (*)(void))remote1_instantiate_slave,
+        [CALL_FREE_INSTANCE] = (void (*)(void))remote1_free_slave_instance,
+        [CALL_EXIT_INITIALIZATION_MODE] = (void (*)(void))remote1_initialize_slave,
+        [CALL_TERMINATE] = (void (*)(void))remote1_terminate_slave,
+        [CALL_RESET] = (void (*)(void))remote1_reset_slave,
+        [CALL_GET_REAL] = (void (*)(void))remote1_get_real,
+        [CALL_GET_INTEGER] = (void (*)(void))remote1_get_integer,
+        [CALL_GET_BOOLEAN] = (void (*)(void))remote1_get_boolean,
+        [CALL_SET_REAL] = (void (*)(void))remote1_set_real,
+        [CALL_SET_INTEGER] = (void (*)(void))remote1_set_integer,
+        [CALL_SET_BOOLEAN] = (void (*)(void))remote1_set_boolean,
+        [CALL_DO_STEP] = (void (*)(void))remote1_do_step,
+    };
     void (*const forwarders[CALL_COUNT])(void) = {
         [CALL_INSTANTIATE] = (void (*)(void))remote_instantiate,
         [CALL_FREE_INSTANCE] = (void (*)(void))remote_free_instance,
@@ -563,11 +718,12 @@ void *ssx_remote_function(const ssx_remote *r, const char *name)
         [CALL_DESERIALIZE_FMU_STATE] = (void (*)(void))remote_deserialize_state,
         [CALL_GET_DIRECTIONAL_DERIVATIVE] = (void (*)(void))remote_get_directional_derivative,
     };
+    const char *const *names = r->fmi1 ? remote_fmi1_call_names : remote_call_names;
     for (int i = 0; i < CALL_COUNT; ++i) {
-        if (strcmp(name, remote_call_names[i]) == 0 && (r->exported >> i) & 1u) {
+        if (names[i] != NULL && strcmp(name, names[i]) == 0 && (r->exported >> i) & 1u) {
             void *symbol;
             /* the dlsym convention: a function travels as void * */
-            memcpy(&symbol, &forwarders[i], sizeof symbol);
+            memcpy(&symbol, r->fmi1 ? &fmi1_forwarders[i] : &forwarders[i], sizeof symbol);
             return symbol;
         }
     }

@@ -1,6 +1,6 @@
 /* The wire protocol between the engine (fmu_remote.c) and the FMU host process (fmu_host.c).
  *
- * One stream socket. The host starts by sending a HELLO reply: status 0 and the set of fmi2
+ * One stream socket. The host starts by sending a HELLO reply: status 0 and the set of
  * functions the binary exports in `value` (bit i for remote_call i), or status -1 and the
  * reason as text. Then, for every request the engine sends, the host answers with any number
  * of LOG replies (what the FMU logged during the call) followed by one RESULT reply. Both ends
@@ -60,6 +60,30 @@ static const char *const remote_call_names[CALL_COUNT] = {
     "fmi2DeSerializeFMUstate",
     "fmi2GetDirectionalDerivative",
 };
+
+/* An FMI 1.0 Co-Simulation binary is served through the same calls: the host resolves the
+ * function of this table in place of each fmi2 one (NULL: FMI 1.0 has none). Values cross as
+ * for FMI 2.0 (a boolean as an int); ExitInitializationMode is fmiInitializeSlave, with the
+ * start time in b, stopTimeDefined in flag2 and the stop time in c, as SetupExperiment sends
+ * them; Instantiate's resource URI is the fmuLocation; DoStep's flag is newStep. */
+static const char *const remote_fmi1_call_names[CALL_COUNT] = {
+    [CALL_INSTANTIATE] = "fmiInstantiateSlave",
+    [CALL_FREE_INSTANCE] = "fmiFreeSlaveInstance",
+    [CALL_EXIT_INITIALIZATION_MODE] = "fmiInitializeSlave",
+    [CALL_TERMINATE] = "fmiTerminateSlave",
+    [CALL_RESET] = "fmiResetSlave",
+    [CALL_GET_REAL] = "fmiGetReal",
+    [CALL_GET_INTEGER] = "fmiGetInteger",
+    [CALL_GET_BOOLEAN] = "fmiGetBoolean",
+    [CALL_SET_REAL] = "fmiSetReal",
+    [CALL_SET_INTEGER] = "fmiSetInteger",
+    [CALL_SET_BOOLEAN] = "fmiSetBoolean",
+    [CALL_DO_STEP] = "fmiDoStep",
+};
+
+/* The host's third argument: which standard's functions it serves. */
+#define REMOTE_STANDARD_FMI2 "fmi2"
+#define REMOTE_STANDARD_FMI1 "fmi1"
 
 /* A request; `payload` bytes follow it:
  * - Instantiate: instance name, GUID and resource URI, each ended by '\0'; flag: visible,

@@ -73,12 +73,12 @@ static void the_fmus_log_reaches_the_message_and_there_is_no_state(void)
 static void refuses_what_it_cannot_load(void)
 {
     char error[256];
-    ssx_fmu_load_spec spec = {.version = SSX_FMI1, .interface = SSX_CO_SIMULATION,
+    ssx_fmu_load_spec spec = {.version = SSX_FMI1, .interface = SSX_MODEL_EXCHANGE,
                               .binary_path = "x.so", .model_identifier = "x",
                               .host_path = "host"};
     CHECK(ssx_fmu_load(&spec, error, sizeof error) == NULL);
-    CHECK(strcmp(error, "ssx_fmu_load: only FMI 2.0 Co-Simulation FMUs run in a host process")
-          == 0);
+    CHECK(strcmp(error, "ssx_fmu_load: only FMI 2.0 and FMI 1.0 Co-Simulation FMUs run in a "
+                        "host process") == 0);
     spec = (ssx_fmu_load_spec){.version = 7, .binary_path = "x.so", .model_identifier = "x"};
     CHECK(ssx_fmu_load(&spec, error, sizeof error) == NULL);
     CHECK(strstr(error, "not one syssimx runs") != NULL);
