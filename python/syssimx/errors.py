@@ -102,3 +102,20 @@ class RunInterrupted(KeyboardInterrupt):
     def __init__(self, message: str, partial_result: object) -> None:
         super().__init__(message)
         self.partial_result = partial_result
+
+
+class RunTerminated(SystemExit):
+    """SIGTERM stopped a run: as for Ctrl-C, `partial_result` holds the samples up to the last
+    completed step and a streamed file holds the same. A SystemExit with status 143 (128 +
+    SIGTERM), so that a program that does not catch it ends as the signal asked, its cleanup
+    done; the message is in `message`."""
+
+    partial = True
+
+    def __init__(self, message: str, partial_result: object) -> None:
+        super().__init__(143)
+        self.message = message
+        self.partial_result = partial_result
+
+    def __str__(self) -> str:
+        return self.message

@@ -1,9 +1,12 @@
 """Every long loop of the engine stops within a second of the run's `timeout=` and on Ctrl-C,
 not at the next grid point: a Model Exchange component's integrator steps, the step
 control's retries and steps, the event localization's trials and an algebraic loop's
-iterations. Each system below runs one grid interval that would take minutes (hours for
-some); before, the monitor was asked only at grid points, so each ran on past its timeout
-until the interval was done. The samples up to the stop stay readable.
+iterations, and the wait for an isolated FMU's host (here an FMI 1.0 FMU stuck in fmiDoStep,
+which FMI 1.0 could not be isolated for before). Each system below runs one grid interval that
+would take minutes (hours for some); before, the monitor was asked only at grid points, so
+each ran on past its timeout until the interval was done. Each loop stops within a second of
+the timeout, of SIGINT and of SIGTERM (before, SIGTERM killed the process: its stream lacked
+the samples still in memory), and the file streamed holds exactly the samples recorded.
 
 A step control's min_step below the time resolution (the spacing of times near 1 s) is refused
 where the setting is read; where times are coarser than min_step, a step is at least two of
@@ -11,8 +14,11 @@ their roundings, so that time goes on (before, t + h == t: the run never ended).
 
 from __future__ import annotations
 
+import csv
 import os
 import signal
+import subprocess
+import sys
 import threading
 import time
 import warnings
@@ -36,6 +42,7 @@ from syssimx import (
     TableSource,
     fmus,
 )
+from syssimx._paths import build_dir
 from syssimx.errors import ConfigurationError, RunInterrupted, SimulationTimeoutError
 from syssimx.osp import read as read_osp
 from syssimx.osp.errors import OSPError
@@ -45,6 +52,8 @@ pytestmark = pytest.mark.filterwarnings("ignore:.*still exceeded its tolerance")
 
 TIMEOUT = 1.0
 STOP_WITHIN = 1.0  # seconds past the timeout or the signal
+SIGNAL_AFTER = 0.5  # seconds into the run
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def integrator_bound() -> System:
@@ -152,42 +161,116 @@ def loop_bound() -> System:
     return system
 
 
-def run_past_timeout(system: System, tf: float, dt: float) -> SimulationTimeoutError:
+def stuck_fmu() -> str:
+    """tests/fmus/fmi1_stuck, built by meson beside the tests (not installed)."""
+    build = build_dir() or ROOT / "build" / "release"
+    path = build / "tests" / "fmus" / "fmi1_stuck" / "fmi1_stuck.fmu"
+    if not path.is_file():
+        pytest.skip(f"the stuck FMI 1.0 test FMU is not built ({path} is missing)")
+    return str(path)
+
+
+def isolation_bound() -> System:
+    """An FMI 1.0 FMU in a host process whose fmiDoStep never returns from t = 0.5 on: the
+    engine waits for the host."""
+    system = System("isolation wait")
+    system.add_component(FMUComponent("F", stuck_fmu(), isolated=True))
+    system.initialize(0.0)
+    return system
+
+
+# a system whose loop runs long, and the run's tf and dt
+LOOPS = {"integrator": (integrator_bound, 1e7, 1e7),
+         "step control": (step_control_bound, 2.0, 1.0),
+         "locator": (locator_bound, 1.0, 1.0),
+         "algebraic loop": (loop_bound, 2.0, 1.0),
+         "isolation wait": (isolation_bound, 1.0, 0.1)}
+
+
+def assert_streamed(path: Path, recorded: object) -> None:
+    """Every column of the streamed CSV holds exactly the samples of `recorded` (a result or
+    a history), sample for sample."""
+    with path.open(newline="") as file:
+        header = next(csv.reader(file))
+    table = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+    assert len(header) > 2
+    for column, name in enumerate(header[2:], start=2):
+        component, output = name.split(".", 1)
+        t, data = recorded[component]  # type: ignore[index]
+        assert np.array_equal(table[:, 0], t)
+        assert np.array_equal(table[:, column], data[output]), name
+
+
+@pytest.mark.parametrize("loop", LOOPS)
+def test_each_long_loop_stops_within_a_second_of_the_timeout(loop: str, tmp_path: Path):
+    build, tf, dt = LOOPS[loop]
+    system = build()
+    stream = tmp_path / "run.csv"
     started = time.monotonic()
-    with pytest.raises(SimulationTimeoutError) as caught:
-        system.run(0.0, tf, dt, timeout=TIMEOUT)
+    with pytest.raises(SimulationTimeoutError):
+        system.run(0.0, tf, dt, timeout=TIMEOUT, stream_to=stream)
     assert time.monotonic() - started < TIMEOUT + STOP_WITHIN
-    return caught.value
-
-
-@pytest.mark.parametrize(("build", "tf", "dt"), [
-    (integrator_bound, 1e7, 1e7), (step_control_bound, 2.0, 1.0), (locator_bound, 1.0, 1.0),
-    (loop_bound, 2.0, 1.0)], ids=["integrator", "step control", "locator", "algebraic loop"])
-def test_each_long_loop_stops_within_a_second_of_the_timeout(build, tf: float, dt: float):
-    system = build()
-    run_past_timeout(system, tf, dt)
+    history = system.get_history()
     first = next(iter(system.components))
-    t, _ = system.get_history()[first]
-    assert t[0] == 0.0  # what was recorded stays readable
+    assert history[first][0][0] == 0.0  # what was recorded stays readable
+    assert_streamed(stream, history)
 
 
-@pytest.mark.parametrize(("build", "tf", "dt"), [
-    (integrator_bound, 1e7, 1e7), (step_control_bound, 2.0, 1.0)],
-    ids=["integrator", "step control"])
-def test_ctrl_c_stops_a_long_loop_with_the_partial_result(build, tf: float, dt: float):
+@pytest.mark.parametrize("loop", LOOPS)
+def test_ctrl_c_stops_a_long_loop_with_the_partial_result(loop: str, tmp_path: Path):
+    build, tf, dt = LOOPS[loop]
     system = build()
-    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    stream = tmp_path / "run.csv"
+    timer = threading.Timer(SIGNAL_AFTER, lambda: os.kill(os.getpid(), signal.SIGINT))
     started = time.monotonic()
     timer.start()
     try:
         with pytest.raises(RunInterrupted) as caught:
-            system.run(0.0, tf, dt)
+            system.run(0.0, tf, dt, stream_to=stream)
     finally:
         timer.cancel()
-    assert time.monotonic() - started < 0.5 + STOP_WITHIN
+    assert time.monotonic() - started < SIGNAL_AFTER + STOP_WITHIN
     first = next(iter(system.components))
-    t, _ = caught.value.partial_result[first]
-    assert t[0] == 0.0
+    assert caught.value.partial_result[first][0][0] == 0.0
+    assert_streamed(stream, caught.value.partial_result)
+
+
+SIGTERM_SCRIPT = """
+import os, signal, sys, threading, time
+import numpy as np
+sys.path.insert(0, {tests!r})
+from test_run_interruptible import LOOPS, SIGNAL_AFTER
+from syssimx.errors import RunTerminated
+build, tf, dt = LOOPS[{loop!r}]
+system = build()
+threading.Timer(SIGNAL_AFTER, lambda: os.kill(os.getpid(), signal.SIGTERM)).start()
+started = time.monotonic()
+try:
+    system.run(0.0, tf, dt, stream_to={stream!r})
+except RunTerminated as stop:
+    print(time.monotonic() - started, flush=True)
+    np.save({kept!r}, {{name: stop.partial_result[name] for name in system.components}},
+            allow_pickle=True)
+    raise
+"""
+
+
+@pytest.mark.parametrize("loop", LOOPS)
+def test_sigterm_stops_a_long_loop_with_the_stream_complete(loop: str, tmp_path: Path):
+    """SIGTERM ends the process (status 143) once the run has stopped as for Ctrl-C: the
+    partial result and the stream agree."""
+    if loop == "isolation wait":
+        stuck_fmu()  # a missing test FMU skips here, not in the child
+    stream, kept = tmp_path / "run.csv", tmp_path / "partial.npy"
+    script = SIGTERM_SCRIPT.format(tests=str(Path(__file__).parent), loop=loop,
+                                   stream=str(stream), kept=str(kept))
+    child = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                           timeout=60)
+    assert child.returncode == 143, child.stderr
+    assert float(child.stdout) < SIGNAL_AFTER + STOP_WITHIN
+    partial = np.load(kept, allow_pickle=True).item()
+    assert partial[next(iter(partial))][0][0] == 0.0
+    assert_streamed(stream, partial)
 
 
 @pytest.mark.parametrize("min_step", [5e-324, 1e-300, 1e-17])

@@ -24,7 +24,7 @@ from ..core.events import OWN_EVENTS
 from ..core.port import PortType
 from ..core.suggest import did_you_mean
 from ..engine import defaults, ffi, lib
-from ..errors import ConfigurationError, RunInterrupted, SysSimXWarning
+from ..errors import ConfigurationError, RunInterrupted, RunTerminated, SysSimXWarning
 from ..graph.analysis import SystemAnalysis, analyze_system, check_undeclared_dependencies
 from ..units import conversion
 from .algorithms import Algorithm, HybridAlgorithm, JacobiAlgorithm, StepControl
@@ -34,6 +34,7 @@ from .connection import Connection, EventConnection
 from .progress import ProgressCallback, run_progress
 from .recorded_events import RecordedEvents
 from .results import HistoryView, SimulationResult
+from .run_signals import sigterm_stops_the_run
 from .run_stream import RunStream
 from .system_history import SystemHistory
 from .table_starts import start_tables
@@ -414,8 +415,10 @@ class System:
             keep_history: bool = True) -> SimulationResult:
         """Simulate on the grid t0 + k*dt (the last point exactly tf) plus event instants.
 
-        Ctrl-C stops a run within about 0.1 s with KeyboardInterrupt; the samples recorded up
-        to the last completed step stay readable through get_history().
+        Ctrl-C stops a run within about 0.1 s with KeyboardInterrupt (RunInterrupted); the
+        samples recorded up to the last completed step stay readable through get_history().
+        SIGTERM stops it the same way with RunTerminated, a SystemExit (unless the program set
+        its own SIGTERM handler).
 
         Args:
             t0: the start time: where the system is (initialize's t0 or the last run's tf).
@@ -480,7 +483,8 @@ class System:
         plan.deadline = time.monotonic() + timeout if timeout is not None else None
         plan.progress = reports.report if reports is not None else None
         try:
-            status = lib().ssx_run(plan.sys, t0, tf, dt)
+            with sigterm_stops_the_run() as termination:
+                status = lib().ssx_run(plan.sys, t0, tf, dt)
         finally:
             plan.progress = None
             if stream is not None:
@@ -504,6 +508,9 @@ class System:
                 kept = "partial_result holds the samples up to there" if keep_history \
                     else "keep_history=False: partial_result holds no samples" + (
                         "" if stream_to is None else f"; they are all in {stream_to!r}")
+                if termination.requested:
+                    raise RunTerminated(f"system {self.name!r}: SIGTERM stopped the run at "
+                                        f"t={self.t:.12g} ({kept})", partial) from stop
                 raise RunInterrupted(f"system {self.name!r}: the run was interrupted at "
                                      f"t={self.t:.12g} ({kept})", partial) from stop
         if reports is not None:
