@@ -79,8 +79,8 @@ class System:
 
     @property
     def undeclared_dependencies(self) -> str:
-        """"all" or "none": see the constructor. Changing it takes effect at the next
-        initialize."""
+        """What an output that declares no dependencies depends on, ``"all"`` or ``"none"``
+        (see the constructor); a change takes effect at the next initialize."""
         return self._undeclared_dependencies
 
     @undeclared_dependencies.setter
