@@ -4,6 +4,7 @@
 #define _GNU_SOURCE
 #include <math.h>
 #include <string.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -333,12 +334,18 @@ typedef struct {
     pid_t stepped_on;
 } hooked_probe;
 
+/* the system call, not glibc's gettid(), which the wheel's glibc 2.17 lacks (2.30) */
+static pid_t thread_id(void)
+{
+    return (pid_t)syscall(SYS_gettid);
+}
+
 static int probe_step(void *user, double t, double dt)
 {
     (void)t;
     (void)dt;
     hooked_probe *p = user;
-    p->stepped_on = gettid();
+    p->stepped_on = thread_id();
     ssx_outputs(p->sys, p->component)[0] = (double)p->stepped_on;
     return 0;
 }
@@ -347,7 +354,7 @@ static int probe_outputs(void *user, double t)
 {
     (void)t;
     hooked_probe *p = user;
-    ssx_outputs(p->sys, p->component)[0] = (double)gettid();
+    ssx_outputs(p->sys, p->component)[0] = (double)thread_id();
     return 0;
 }
 
@@ -372,7 +379,7 @@ static void calling_thread_stays(void)
     CHECK_OK(sys, ssx_set_threads(sys, 2));
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
     CHECK_OK(sys, ssx_run(sys, 0.0, 0.5, 0.1));
-    const double caller = (double)gettid();
+    const double caller = (double)thread_id();
     const size_t last = ssx_history_length(sys) - 1;
     CHECK(last == 5);
     for (size_t k = 1; k <= last; ++k) {
