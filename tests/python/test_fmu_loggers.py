@@ -79,11 +79,14 @@ def test_an_empty_fmi3_instantiation_token_is_warned_about_and_the_fmu_runs(
     assert component.instance.getReal([0]) == [pytest.approx(1.0)]  # the time
 
 
-def test_fmi1_formats_without_arguments_and_a_foreign_component_are_logged() -> None:
+@pytest.mark.parametrize("isolated", [False, True])
+def test_fmi1_formats_without_arguments_and_a_foreign_component_are_logged(isolated: bool) -> None:
     """The FMU's format has a number conversion, fifteen string conversions and a floating one,
     and no arguments; it fills the stack with an address no string lies at, so a string
-    conversion read through always faulted. A missing number reads as a meaningless one."""
-    component = FMUComponent("L", built_fmu("tests", "fmus", "fmi1_logger", "fmi1_logger.fmu"))
+    conversion read through always faulted. A missing number reads as a meaningless one.
+    Isolated, the host formats the message and the engine keeps it as the FMU's."""
+    component = FMUComponent("L", built_fmu("tests", "fmus", "fmi1_logger", "fmi1_logger.fmu"),
+                             isolated=isolated)
     system = System("logging")
     system.add_component(component)
     system.initialize(0.0)

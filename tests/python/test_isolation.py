@@ -209,6 +209,26 @@ def test_step_timeout_kills_a_hung_fmu_and_leaves_nothing_behind() -> None:
     assert not unzip_dir.exists()
 
 
+def test_step_timeout_names_the_fmi1_call_of_a_hung_fmi1_fmu() -> None:
+    """tests/fmus/fmi1_stuck never returns from fmiDoStep at t = 0.5."""
+    path = (build_dir() or ROOT / "build" / "release") / "tests" / "fmus" / "fmi1_stuck" / \
+        "fmi1_stuck.fmu"
+    if not path.is_file():
+        pytest.skip(f"the stuck FMI 1.0 test FMU is not built ({path} is missing)")
+    before = child_processes()
+    stuck = FMUComponent("F", str(path), isolated=True, step_timeout=0.3)
+    system = System("stuck")
+    system.add_component(stuck)
+    system.initialize(0.0)
+    with pytest.raises(SimulationError) as info:
+        system.run(0.0, 1.0, 0.1)
+    assert info.value.time == pytest.approx(0.5)
+    assert info.value.fmu_message == ("fmiDoStep did not return within the step timeout of "
+                                      "0.3 s: the FMU process was killed")
+    stuck.free()
+    assert child_processes() <= before
+
+
 def test_after_a_crash_the_next_initialize_starts_a_new_host() -> None:
     before = child_processes()
     system, hostile = hostile_system(mode=1)

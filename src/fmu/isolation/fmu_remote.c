@@ -181,7 +181,12 @@ void ssx_remote_restart(ssx_remote *r)
  * read a '%' in it as a conversion). */
 static void deliver(const ssx_remote *r, const char *text)
 {
-    if (r->handed != NULL) {
+    if (r->fmi1) { /* FMI 1.0 hands the FMU no environment: the call in progress is this FMU's */
+        ssx_fmu_environment *calling = ssx_fmu_environment_calling();
+        if (calling != NULL && calling->remote == r) {
+            ssx_fmu_environment_log(calling, text);
+        }
+    } else if (r->handed != NULL) {
         ssx_fmu_environment_log(ssx_fmu_environment_claimed(r->handed), text);
     }
 }
@@ -297,7 +302,7 @@ static int simple_call(fmi2Component c, remote_call which)
 
 /* ------------------------------------------------------------------ the fmi2 functions */
 
-/* handed: what the FMU's callbacks name as their environment (ssx_fmu_environment). */
+/* handed: what the FMU's callbacks name as their environment (FMI 2.0; NULL for FMI 1.0). */
 static ssx_remote *instantiate_in_host(ssx_remote *r, const void *handed,
                                        const char *instance_name, int type, const char *guid,
                                        const char *resource_uri, int visible, int logging_on)
@@ -571,7 +576,7 @@ static fmi2Status remote_get_directional_derivative(fmi2Component c,
 /* ------------------------------------------------------------------ the FMI 1.0 functions */
 
 /* FMI 1.0 hands the FMU no environment: the remote is that of the FMU the binding is calling
- * on this thread (it marks instantiation too), and its environment is what messages name. */
+ * on this thread (it marks instantiation too), and messages go to that FMU (deliver). */
 static fmi1Component remote1_instantiate_slave(fmi1String instance_name, fmi1String guid,
                                                fmi1String fmu_location, fmi1String mime_type,
                                                fmi1Real timeout, fmi1Boolean visible,
@@ -587,8 +592,8 @@ static fmi1Component remote1_instantiate_slave(fmi1String instance_name, fmi1Str
     if (environment == NULL || environment->remote == NULL) {
         return NULL;
     }
-    return instantiate_in_host(environment->remote, environment, instance_name, 0, guid,
-                               fmu_location, visible != fmi1False, logging_on != fmi1False);
+    return instantiate_in_host(environment->remote, NULL, instance_name, 0, guid, fmu_location,
+                               visible != fmi1False, logging_on != fmi1False);
 }
 
 static void remote1_free_slave_instance(fmi1Component c)
