@@ -17,6 +17,8 @@
 #define FMI3_ALLOWED_fmi3EnterEventMode                MODE_BIT(MODE_STEP) | MODES_EVENT_OR_CONTINUOUS
 #define FMI3_ALLOWED_fmi3EnterInitializationMode       MODE_BIT(MODE_INSTANTIATED)
 #define FMI3_ALLOWED_fmi3EnterStepMode                 MODE_BIT(MODE_EVENT)
+#define FMI3_ALLOWED_fmi3GetIntervalDecimal            MODE_BIT(MODE_INITIALIZATION) | MODE_BIT(MODE_EVENT)
+#define FMI3_ALLOWED_fmi3GetShiftDecimal               MODE_BIT(MODE_INITIALIZATION) | MODE_BIT(MODE_EVENT)
 #define FMI3_ALLOWED_fmi3ExitInitializationMode        MODE_BIT(MODE_INITIALIZATION)
 #define FMI3_ALLOWED_fmi3FreeFMUState                  MODES_ANY
 #define FMI3_ALLOWED_fmi3GetBinary                     MODES_GET

@@ -1,5 +1,6 @@
-/* FMI 3.0 functions this FMU exports but does not support: Scheduled Execution, clock intervals and shifts, configuration mode, dependencies at run time, and adjoint
- * derivatives. Each returns fmi3Error (or NULL) with a message naming the call. */
+/* FMI 3.0 functions this FMU exports but does not support: Scheduled Execution, setting clock
+ * intervals and shifts and reading them as fractions (fmi3_values.c reads them as decimals),
+ * configuration mode, dependencies at run time, and adjoint derivatives. Each returns fmi3Error (or NULL) with a message naming the call. */
 #include "fmi3_instance.h"
 #include "fmu_log.h"
 
@@ -75,14 +76,6 @@ fmi3Status fmi3ExitConfigurationMode(fmi3Instance instance)
     return unsupported(instance, "fmi3ExitConfigurationMode");
 }
 
-fmi3Status fmi3GetIntervalDecimal(fmi3Instance instance, const fmi3ValueReference valueReferences[],
-                                  size_t nValueReferences, fmi3Float64 intervals[],
-                                  fmi3IntervalQualifier qualifiers[])
-{
-    (void)valueReferences, (void)nValueReferences, (void)intervals, (void)qualifiers;
-    return unsupported(instance, "fmi3GetIntervalDecimal");
-}
-
 fmi3Status fmi3GetIntervalFraction(fmi3Instance instance,
                                    const fmi3ValueReference valueReferences[],
                                    size_t nValueReferences, fmi3UInt64 counters[],
@@ -91,13 +84,6 @@ fmi3Status fmi3GetIntervalFraction(fmi3Instance instance,
     (void)valueReferences, (void)nValueReferences, (void)counters, (void)resolutions,
         (void)qualifiers;
     return unsupported(instance, "fmi3GetIntervalFraction");
-}
-
-fmi3Status fmi3GetShiftDecimal(fmi3Instance instance, const fmi3ValueReference valueReferences[],
-                               size_t nValueReferences, fmi3Float64 shifts[])
-{
-    (void)valueReferences, (void)nValueReferences, (void)shifts;
-    return unsupported(instance, "fmi3GetShiftDecimal");
 }
 
 fmi3Status fmi3GetShiftFraction(fmi3Instance instance, const fmi3ValueReference valueReferences[],

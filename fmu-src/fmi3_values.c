@@ -289,3 +289,46 @@ fmi3Status fmi3SetClock(fmi3Instance instance, const fmi3ValueReference valueRef
         self->clock_active[clock_index(inst, valueReferences[i])] = values[i] ? 1 : 0;
     return fmi3OK;
 }
+
+/* The clocks' constant intervals and their shifts (0: every clock ticks from the start time),
+ * as the description declares them; importers may ask in Initialization or Event Mode. */
+fmi3Status fmi3GetIntervalDecimal(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                                  size_t nValueReferences, fmi3Float64 intervals[],
+                                  fmi3IntervalQualifier qualifiers[])
+{
+    fmi3_instance *self = fmi3_checked(instance, FMI3_CALL(fmi3GetIntervalDecimal));
+    if (self == NULL)
+        return fmi3Error;
+    fmu_instance *inst = &self->core;
+    if (nValueReferences > 0 && (valueReferences == NULL || intervals == NULL || qualifiers == NULL))
+        return fmi3_status(fmu_error(inst, "fmi3GetIntervalDecimal: an array argument is NULL"));
+    for (size_t i = 0; i < nValueReferences; ++i) {
+        int clock = clock_index(inst, valueReferences[i]);
+        if (clock < 0)
+            return fmi3_status(fmu_error(inst, "fmi3GetIntervalDecimal: value reference %u is no "
+                                               "clock",
+                                         valueReferences[i]));
+        intervals[i] = inst->model->clocks[clock].interval;
+        qualifiers[i] = fmi3IntervalChanged;
+    }
+    return fmi3OK;
+}
+
+fmi3Status fmi3GetShiftDecimal(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                               size_t nValueReferences, fmi3Float64 shifts[])
+{
+    fmi3_instance *self = fmi3_checked(instance, FMI3_CALL(fmi3GetShiftDecimal));
+    if (self == NULL)
+        return fmi3Error;
+    fmu_instance *inst = &self->core;
+    if (nValueReferences > 0 && (valueReferences == NULL || shifts == NULL))
+        return fmi3_status(fmu_error(inst, "fmi3GetShiftDecimal: an array argument is NULL"));
+    for (size_t i = 0; i < nValueReferences; ++i) {
+        if (clock_index(inst, valueReferences[i]) < 0)
+            return fmi3_status(fmu_error(inst, "fmi3GetShiftDecimal: value reference %u is no "
+                                               "clock",
+                                         valueReferences[i]));
+        shifts[i] = 0.0;
+    }
+    return fmi3OK;
+}

@@ -5,6 +5,7 @@ Mode, sets the inputs, ticks the clock (fmi3SetClock) and calls fmi3UpdateDiscre
 
 from __future__ import annotations
 
+import ctypes
 import math
 import xml.etree.ElementTree as ElementTree
 import zipfile
@@ -139,6 +140,19 @@ def test_u_changes_only_at_ticks_at_before_and_after_each(slaves, tmp_path) -> N
         fmu.step(tick, eps)
         assert fmu.get("u") == held, f"u moved just after the tick at {tick}"
         t = tick + eps
+
+
+def test_the_clock_s_interval_and_shift_are_read_in_initialization_mode(slaves,
+                                                                         tmp_path) -> None:
+    """An importer may ask a constant clock's interval and shift in Initialization Mode."""
+    fmu = open_slave(slaves, tmp_path, CONTROLLER, event_mode=True)
+    fmu.slave.enterInitializationMode(startTime=0.0)
+    references = (ctypes.c_uint32 * 1)(fmu.vrs["sample"])
+    intervals, qualifiers, shifts = (ctypes.c_double * 1)(), (ctypes.c_int * 1)(), \
+        (ctypes.c_double * 1)()
+    fmu.slave.getIntervalDecimal(references, intervals, qualifiers)
+    fmu.slave.getShiftDecimal(references, shifts)
+    assert (intervals[0], qualifiers[0], shifts[0]) == (PERIOD, 2, 0.0)  # fmi3IntervalChanged
 
 
 def test_the_clock_ticks_in_event_mode_only_and_is_not_read(slaves, tmp_path) -> None:
