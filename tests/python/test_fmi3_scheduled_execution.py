@@ -215,3 +215,21 @@ def test_a_failing_partition_names_the_function_and_time():
                                               r"fmi3Error.* at t=1"):
         _run_for(component, 4.0, 1.0)
     assert [tick.time for tick in component.ticks if tick.clock == "tick"] == [0.0, 0.5]
+
+
+@reference
+def test_a_yaml_system_gives_the_triggered_clock_times(tmp_path: Path):
+    from syssimx.system.loader import build_system
+
+    description = tmp_path / "clocks.yaml"
+    description.write_text(
+        "system: {name: clocks}\n"
+        "components:\n"
+        "  - name: C\n"
+        "    class: syssimx:ScheduledExecutionComponent\n"
+        f"    args: {{fmu_path: {CLOCKS}, clock_times: {{inClock2: [0, 1, 8, 9]}}}}\n")
+    system = build_system(description)
+    system.initialize(0.0)
+    system.run(0.0, 10.0, 1.0)
+    component = system.components["C"]
+    assert [(tick.time, tick.clock) for tick in component.ticks] == _expected_ticks()

@@ -4,6 +4,13 @@
     clocks.schedule_clock("inClock2", times=[0, 1, 8, 9])
     system.add_component(clocks)
 
+or, the same in a YAML or JSON system (`clock_times` takes what schedule_clock does):
+
+    components:
+      - name: C
+        class: syssimx:ScheduledExecutionComponent
+        args: {fmu_path: Clocks.fmu, clock_times: {inClock2: [0, 1, 8, 9]}}
+
 A Scheduled Execution FMU has no step: the importer activates the model partition of each
 input clock at its ticks. syssimx schedules them in Python (fmu/fmi3_scheduled.py calls the
 FMU):
@@ -30,7 +37,7 @@ from __future__ import annotations
 import heapq
 import math
 import weakref
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -70,7 +77,9 @@ class _Variable:
 class ScheduledExecutionComponent(CoSimComponent):
     """An FMI 3.0 FMU that declares ScheduledExecution, run by activating its partitions."""
 
-    def __init__(self, name: str, fmu_path: str | Path, group: str | None = None) -> None:
+    def __init__(self, name: str, fmu_path: str | Path,
+                 clock_times: Mapping[str, Iterable[float]] | None = None,
+                 group: str | None = None) -> None:
         super().__init__(name, group=group)
         from fmpy import read_model_description
 
@@ -103,6 +112,8 @@ class ScheduledExecutionComponent(CoSimComponent):
         self._sync_ports()
         for name_, value in self._starts.items():
             self.inputs[name_].set(_parsed(value, self.input_specs[name_].type), 0.0)
+        for clock, times in (clock_times or {}).items():
+            self.schedule_clock(clock, times)
 
     # ------------------------------------------------------------------ scheduling
     def schedule_clock(self, clock: str, times: Iterable[float]) -> None:
