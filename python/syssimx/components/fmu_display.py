@@ -7,11 +7,26 @@ from __future__ import annotations
 import html
 from collections.abc import Mapping
 from itertools import islice
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Protocol
 
 if TYPE_CHECKING:
     from ..core.port import PortSpec
-    from .fmu import FMUComponent
+    from ..fmu.info import FMUInfo, FMUInterface
+
+
+class ShownFMU(Protocol):
+    """What the display reads of an FMU component (the component module imports this one)."""
+
+    @property
+    def name(self) -> str: ...
+    @property
+    def info(self) -> FMUInfo: ...
+    @property
+    def fmu_interface(self) -> FMUInterface: ...
+    @property
+    def input_specs(self) -> Mapping[str, PortSpec]: ...
+    @property
+    def output_specs(self) -> Mapping[str, PortSpec]: ...
 
 SHOWN_PORTS = 12  # per direction
 
@@ -29,7 +44,7 @@ def port_labels(specs: Mapping[str, PortSpec]) -> list[str]:
     return labels
 
 
-def component_text(component: FMUComponent) -> str:
+def component_text(component: ShownFMU) -> str:
     fmu = component.info.path.name
     return (f"FMUComponent({component.name!r}, {fmu}, {component.info.standard.name} "
             f"{component.fmu_interface.name}, "
@@ -37,7 +52,7 @@ def component_text(component: FMUComponent) -> str:
             f"outputs: {', '.join(port_labels(component.output_specs)) or 'none'})")
 
 
-def component_html(component: FMUComponent) -> str:
+def component_html(component: ShownFMU) -> str:
     def row(header: str, value: str) -> str:
         return f"<tr><th>{html.escape(header)}</th><td>{html.escape(value)}</td></tr>"
 
