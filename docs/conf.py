@@ -87,6 +87,7 @@ nitpick_ignore = [
     ("py:class", "Parameter"),
     ("py:class", "FMUInterface"),
     ("py:class", "Standard"),
+    ("py:class", "ClockStructure"),
     # what a reader or writer reads of the objects it is given (Protocols of syssimx's rooms)
     ("py:class", "syssimx.system.results.RecordedSystem"),
     ("py:class", "syssimx.ssp.writer.WrittenSystem"),
