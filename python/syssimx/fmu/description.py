@@ -33,10 +33,12 @@ class Described(NamedTuple):
     description: ModelDescription
 
 
-def read_description(stream: IO[bytes], where: str | Path, declared_size: int) -> Described:
+def read_description(stream: IO[bytes], where: str | Path,
+                     declared_size: int | None = None) -> Described:
     """Read modelDescription.xml from `stream` (of the FMU archive `where`, whose directory
-    declares it `declared_size` bytes long); FMUFileError naming `where` if it is unusable,
-    larger than DESCRIPTION_SIZE_LIMIT or of an FMI version syssimx does not run."""
+    declares it `declared_size` bytes long, when it is an archive's member); FMUFileError
+    naming `where` if it is unusable, larger than DESCRIPTION_SIZE_LIMIT or of an FMI version
+    syssimx does not run."""
     md = engine_description(as_utf8(_bounded_read(stream, where, declared_size), where), where)
     version = declared_version(md)
     standard = standard_of(version)
@@ -55,16 +57,19 @@ def check_declared_size(declared_size: int, where: str | Path) -> None:
                            "description")
 
 
-def _bounded_read(stream: IO[bytes], where: str | Path, declared_size: int) -> bytearray:
+def _bounded_read(stream: IO[bytes], where: str | Path,
+                  declared_size: int | None) -> bytearray:
     """The whole stream, refused before reading when its declared size is over the limit, and
     while reading once it is (a header may understate what a member inflates to)."""
-    check_declared_size(declared_size, where)
+    if declared_size is not None:
+        check_declared_size(declared_size, where)
     limit = DESCRIPTION_SIZE_LIMIT
     text = bytearray()
     while chunk := stream.read(min(_CHUNK, limit + 1 - len(text))):
         text += chunk
         if len(text) > limit:
             raise FMUFileError(f"{where}: modelDescription.xml inflates to more than the "
-                               f"{limit} bytes syssimx reads of a description (its archive "
-                               f"declares {declared_size})")
+                               f"{limit} bytes syssimx reads of a description"
+                               + (f" (its archive declares {declared_size})"
+                                  if declared_size is not None else ""))
     return text
