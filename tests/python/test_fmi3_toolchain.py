@@ -155,7 +155,7 @@ def test_description_declares_the_fmi3_interface(stem: str) -> None:
 
 def test_internal_events_declare_event_mode_and_early_return() -> None:
     with_events = {"bouncing_ball_euler", "bouncing_ball_cvode", "pendulum_contact_euler",
-                   "pendulum_contact_cvode", "sliding_mass"}
+                   "pendulum_contact_cvode", "sliding_mass", "hostile_ball"}
     for stem in BUILT:
         description = read_model_description(fmu_path(stem + "_fmi3"))
         flags = co_simulation_attributes(stem)
