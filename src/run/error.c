@@ -95,11 +95,14 @@ int fail_fmi(ssx_system *sys, const ssx_component *c, const ssx_fmu *fmu, double
              const char *call)
 {
     const char *log = ssx_fmu_last_message(fmu);
-    ssx_error *e = record(sys, SSX_ERROR_FMI, c->index, -1, t,
-                          "component '%s': %s failed at t=%.17g with status %s%s%s%s", c->name,
-                          call, t, ssx_fmu_status_text(fmu, status),
-                          log[0] ? " (FMU log: " : "", log,
-                          log[0] ? ")" : " (the FMU logged no message)");
+    /* no status: the engine refused the call before the FMU saw it, and its message says why */
+    ssx_error *e = status < 0
+        ? record(sys, SSX_ERROR_FMI, c->index, -1, t, "component '%s': %s refused at t=%.17g: %s",
+                 c->name, call, t, log[0] ? log : ssx_fmu_status_text(fmu, status))
+        : record(sys, SSX_ERROR_FMI, c->index, -1, t,
+                 "component '%s': %s failed at t=%.17g with status %s%s%s%s", c->name, call, t,
+                 ssx_fmu_status_text(fmu, status), log[0] ? " (FMU log: " : "", log,
+                 log[0] ? ")" : " (the FMU logged no message)");
     e->fmi_status = status;
     return -1;
 }

@@ -140,7 +140,8 @@ def test_feedthrough_refuses_the_collections_input_file_at_its_64_bit_extremes(
     signals = ROOT / "fmi2" / "Feedthrough_in.csv"
     assert main(["simulate", fmu("Feedthrough"), "--input", str(signals)]) == 1
     assert capsys.readouterr().err.splitlines()[-1] == (
-        "syssimx: error: Feedthrough: fmi3SetFloat64 returned failed: variable 'Int64_input' "
+        "syssimx: error: component 'Feedthrough': fmi3SetFloat64 refused at t=0: variable "
+        "'Int64_input' "
         "(Int64) cannot take -9.2233720368547758e+18: outside "
         "-9007199254740992..9007199254740992 (its range, within the 2^53 up to which the "
         "engine's Real ports carry integers exactly)")
