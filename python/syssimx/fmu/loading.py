@@ -28,8 +28,14 @@ def load(info: FMUInfo, interface: FMUInterface, name: str, isolated: bool,
         raise FMUFileError(f"{info.path}: {binary_name} is not a file inside the "
                            "extracted archive; refused to load it")
     error = ffi.new("char[1024]")
-    spec, _pointed_at = info.standard.load_spec(info, interface, binary, unzip_dir, name,
-                                                fmu_host() if isolated else None, step_timeout)
+    try:
+        spec, _pointed_at = info.standard.load_spec(info, interface, binary, unzip_dir, name,
+                                                    fmu_host() if isolated else None,
+                                                    step_timeout)
+    except BaseException:
+        # a refused description (a clock the interface cannot tick, ...) holds no extraction
+        extractions.release(unzip_dir, key)
+        raise
     # the components of one shared extraction make their bindings side by side
     spec.binding_pool = ffi.NULL if key is None else extractions.shared(key, _binding_pool)
     handle = lib().ssx_fmu_load(spec, error, 1024)
