@@ -200,7 +200,8 @@ def test_a_64_bit_output_beyond_2_53_names_the_variable(arrays_fmu: str):
     with pytest.raises(SimulationError) as info:
         system.run(0.0, 1.0, 0.1)
     assert str(info.value).endswith(
-        "(FMU log: variable 'wide' (UInt64) holds 9008298766368768, beyond 2^53, the largest "
-        "magnitude up to which the engine's Real ports carry integers exactly)")
+        "fmi3GetFloat64 refused at t=0.60000000000000009: variable 'wide' (UInt64) holds "
+        "9008298766368768, beyond 2^53, the largest magnitude up to which the engine's Real "
+        "ports carry integers exactly")
     t, values = system.get_history()["A"]
     assert list(values["wide"]) == [2**53] * 6 and t[-1] == pytest.approx(0.5)

@@ -304,9 +304,9 @@ def test_an_integer_beyond_the_engines_ports_names_the_input():
     with pytest.raises(SimulationError) as info:
         driven("Int64_input", 2**53 + 2).run(0.0, 1.0, 0.1)
     assert str(info.value).endswith(
-        "(FMU log: variable 'Int64_input' (Int64) cannot take 9007199254740994: outside "
-        "-9007199254740992..9007199254740992 (its range, within the 2^53 up to which the "
-        "engine's Real ports carry integers exactly))")
+        "fmi3SetFloat64 refused at t=0.5: variable 'Int64_input' (Int64) cannot take "
+        "9007199254740994: outside -9007199254740992..9007199254740992 (its range, within the "
+        "2^53 up to which the engine's Real ports carry integers exactly)")
     feedthrough = FMUComponent("G", FEEDTHROUGH)
     assert [feedthrough.input_specs[n].type for n in ("Int32_input", "UInt32_input",
                                                       "UInt64_input", "Enumeration_input")] \

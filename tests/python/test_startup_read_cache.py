@@ -29,9 +29,9 @@ def descriptions_read(monkeypatch: pytest.MonkeyPatch) -> list[str]:
     parsed: list[str] = []
     parse = model_description.read_description
 
-    def counting(stream, where):
+    def counting(stream, where, declared_size=None):
         parsed.append(str(where))
-        return parse(stream, where)
+        return parse(stream, where, declared_size)
 
     monkeypatch.setattr(model_description, "read_description", counting)
     return parsed
