@@ -2,8 +2,8 @@
 before anyone reads it, and a run stops with an error naming the component and the time.
 
 The FMI 3.0 FMU is tests/fmus/fmi3_arrays built with FMI3_MISBEHAVES: its Binary output `blob`
-comes back as NULL with a size of 4096 bytes, and from t = 0.45 on fmi3DoStep returns early at
-a lastSuccessfulTime one step past the step's end."""
+comes back as NULL with a size of 4096 bytes at t = 0.3, and from t = 0.45 on fmi3DoStep returns
+early at a lastSuccessfulTime one step past the step's end."""
 
 from __future__ import annotations
 
@@ -29,11 +29,17 @@ def misbehaving_fmu() -> str:
 
 
 def test_binary_data_null_with_a_size_is_an_fmu_error_naming_the_variable(misbehaving_fmu: str):
-    """Before: get_state() returned 4096 bytes of process memory as the value of blob."""
+    """Before: get_state() returned 4096 bytes of process memory as the value of blob. blob is
+    an output port, read after every step: the run stops at t = 0.3, and get_state() there
+    names the variable."""
     component = FMUComponent("A", misbehaving_fmu)
     system = System("s")
     system.add_component(component)
     system.initialize(0.0)
+    with pytest.raises(SimulationError) as stopped:
+        system.run(0.0, 0.4, 0.1)
+    assert str(stopped.value).startswith("component 'A': fmi3GetBinary failed at t=0.3")
+    assert "no data (NULL) with a size of 4096 bytes" in str(stopped.value)
     with pytest.raises(FMUError) as caught:
         component.get_state()
     message = str(caught.value)
@@ -48,9 +54,9 @@ def test_an_early_return_past_the_step_end_stops_the_run(misbehaving_fmu: str):
     component = FMUComponent("A", misbehaving_fmu)
     system = System("s")
     system.add_component(component)
-    system.initialize(0.0)
+    system.initialize(0.4)
     with pytest.raises(SimulationError) as caught:
-        system.run(0.0, 1.0, 0.1)
+        system.run(0.4, 1.0, 0.1)
     message = str(caught.value)
     assert "component 'A': fmi3DoStep from t=0.5" in message
     assert "returned early at lastSuccessfulTime=0.7" in message

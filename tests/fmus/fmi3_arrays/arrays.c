@@ -414,9 +414,13 @@ fmi3Status fmi3GetBinary(fmi3Instance instance, const fmi3ValueReference vr[], s
                          size_t valueSizes[], fmi3Binary values[], size_t nValues)
 {
 #ifdef FMI3_MISBEHAVES
-    if (n == 1 && nValues == 1 && vr[0] == 11) { /* "blob": no data, but a size */
-        values[0] = NULL;
-        valueSizes[0] = 4096;
+    const model *self = instance;
+    /* "blob": no data, but a size, at t = 0.3 only (a run from 0.4 meets the early return) */
+    static const fmi3Byte blob[] = {0x01, 0x02};
+    if (n == 1 && nValues == 1 && vr[0] == 11) {
+        const int lies = self->time > 0.25 && self->time < 0.35;
+        values[0] = lies ? NULL : blob;
+        valueSizes[0] = lies ? 4096 : sizeof blob;
         return fmi3OK;
     }
 #endif
