@@ -39,13 +39,14 @@ def read_description(stream: IO[bytes], where: str | Path,
     declares it `declared_size` bytes long, when it is an archive's member); FMUFileError
     naming `where` if it is unusable, larger than DESCRIPTION_SIZE_LIMIT or of an FMI version
     syssimx does not run."""
-    md = engine_description(as_utf8(_bounded_read(stream, where, declared_size), where), where)
+    text = as_utf8(_bounded_read(stream, where, declared_size), where)
+    md = engine_description(text, where)
     version = declared_version(md)
     standard = standard_of(version)
     if standard is None:
         raise FMUFileError(problem_message(md, where) or f"{where}: FMI version {version} is "
                            f"not supported (syssimx runs {supported()})")
-    return Described(standard, standard.describe(md, Path(where)))
+    return Described(standard, standard.describe(md, Path(where), text))
 
 
 def check_declared_size(declared_size: int, where: str | Path) -> None:

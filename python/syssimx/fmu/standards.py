@@ -71,17 +71,18 @@ class Standard:
         """Whether a description declaring fmiVersion `version` is of this standard."""
         return version == self.version
 
-    def describe(self, md: Any, path: Path) -> ModelDescription:
-        """The description of what the engine's reader read into `md` from the archive at
-        `path`; FMUFileError naming the file when it is unusable."""
+    def describe(self, md: Any, path: Path, text: bytes | bytearray) -> ModelDescription:
+        """The description of what the engine's reader read into `md` from `text` (the UTF-8
+        modelDescription of the archive at `path`); FMUFileError naming the file when it is
+        unusable."""
         from ..errors import FMUFileError
 
         problem = description_fmi2.problem_message(md, path)
         if problem is not None:
             raise FMUFileError(problem)
-        return self._described(md, path)
+        return self._described(md, path, text)
 
-    def _described(self, md: Any, path: Path) -> ModelDescription:
+    def _described(self, md: Any, path: Path, text: bytes | bytearray) -> ModelDescription:
         return description_fmi2.describe(md, path)
 
     def variables(self, description: ModelDescription, path: Path) -> Variables:
@@ -132,8 +133,8 @@ class FMI1(Standard):
     function_prefix = "fmi"
     has_fmu_state = False
 
-    def _described(self, md: Any, path: Path) -> ModelDescription:
-        return description_fmi1.describe_fmi1(md, path)
+    def _described(self, md: Any, path: Path, text: bytes | bytearray) -> ModelDescription:
+        return description_fmi1.describe_fmi1(md, path, text)
 
     def resource_location(self, unzip_dir: Path) -> str:
         """FMI 1.0 Co-Simulation gives the slave the URI of the extracted archive
@@ -153,7 +154,7 @@ class FMI3(Standard):
     def declared_by(self, version: str) -> bool:
         return version.startswith("3.")  # its release candidates too
 
-    def describe(self, md: Any, path: Path) -> ModelDescription:
+    def describe(self, md: Any, path: Path, text: bytes | bytearray) -> ModelDescription:
         """FMPy reads FMI 3.0 (the engine's reader stopped at the root element)."""
         return description_fmi3.read_fmi3_description(path)
 
