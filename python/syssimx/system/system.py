@@ -706,7 +706,8 @@ def _warn_undeclared_dependencies(name: str, analysis: SystemAnalysis) -> None:
         return
     fmus = ", ".join(repr(member) for member in members)
     how = ("declare each output's dependencies: in the FMU's modelDescription.xml "
-           "(ModelStructure/Outputs/Unknown dependencies=\"...\", empty for none), with "
+           "(FMI 2.0/3.0: ModelStructure/Outputs/Unknown dependencies=\"...\", empty for "
+           "none; FMI 1.0: an output's <DirectDependency>), with "
            "component.declare_dependencies(output=[inputs]) or a YAML component's "
            "'dependencies: {output: [inputs]}'")
     if analysis.undeclared_dependencies == "all":
