@@ -65,6 +65,10 @@ class ScheduledInstance:
                  on_clock_update: Callable[[], None]) -> None:
         self.name = name
         self._library: Any = _ffi.dlopen(str(binary))
+        # looked up now: free() may run from a finalizer during a lookup in the same library,
+        # whose lock is not reentrant (the lookup would wait for itself)
+        self._terminate = self._library.fmi3Terminate
+        self._free_instance = self._library.fmi3FreeInstance
         self._on_clock_update = on_clock_update
         self.preemption_depth = 0
         self.callback_error: BaseException | None = None
@@ -154,8 +158,8 @@ class ScheduledInstance:
         if self._instance == _ffi.NULL:
             return
         instance, self._instance = self._instance, _ffi.NULL
-        status = self._library.fmi3Terminate(instance)
-        self._library.fmi3FreeInstance(instance)
+        status = self._terminate(instance)
+        self._free_instance(instance)
         self._check("fmi3Terminate", status)
 
     def _check(self, function: str, status: int) -> None:
