@@ -4,6 +4,7 @@ FMUFileError whose message names the file, and no extraction folder is left behi
 from __future__ import annotations
 
 import re
+import shutil
 import stat
 import subprocess
 import sys
@@ -237,12 +238,16 @@ def test_every_loading_error_names_the_file_and_leaves_no_folder(case: str, tmp_
     assert list(private_tmp.iterdir()) == []
 
 
-def test_the_size_limit_must_be_a_number_of_bytes(monkeypatch: pytest.MonkeyPatch):
+def test_the_size_limit_must_be_a_number_of_bytes(monkeypatch: pytest.MonkeyPatch,
+                                                  tmp_path: Path):
+    # a copy of its own: a gain.fmu another test extracted is shared, not extracted again
+    gain = tmp_path / "gain.fmu"
+    shutil.copyfile(GAIN, gain)
     monkeypatch.setenv(SIZE_LIMIT_VARIABLE, "lots")
     with pytest.raises(ConfigurationError,
-                       match=f"{GAIN}: cannot check the archive's size: {SIZE_LIMIT_VARIABLE}="
+                       match=f"{gain}: cannot check the archive's size: {SIZE_LIMIT_VARIABLE}="
                              "'lots' is not a positive number of bytes"):
-        FMUComponent("X", GAIN)
+        FMUComponent("X", gain)
 
 
 def test_the_size_limit_counts_declared_sizes_before_writing(tmp_path: Path, private_tmp: Path):
