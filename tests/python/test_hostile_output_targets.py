@@ -16,7 +16,7 @@ import threading
 from pathlib import Path
 
 import pytest
-from syssimx import FMUComponent, System, fmus
+from syssimx import ConfigurationError, FMUComponent, System, fmus
 from syssimx.cli import main
 
 CLI = [sys.executable, "-c", "import sys; from syssimx.cli import main; sys.exit(main())"]
@@ -80,6 +80,22 @@ def test_a_refused_run_leaves_an_existing_stream_file_alone(tmp_path: Path):
     with pytest.raises(Exception, match="dt must be positive"):
         system.run(0.0, 1.0, -0.1, stream_to=streamed)
     assert streamed.read_text() == "the previous run\n"
+
+
+@pytest.mark.parametrize("suffix", [".nc", ".parquet"])
+def test_a_stream_that_seeks_is_refused_into_a_fifo_before_the_run(tmp_path: Path, suffix: str):
+    """Before: NetCDF failed at the end of the run with io.UnsupportedOperation (the samples
+    computed, then lost), Parquet with 'lseek failed'. The FIFO stays and nothing is run."""
+    fifo = tmp_path / f"run{suffix}"
+    os.mkfifo(fifo)
+    system = System("s")
+    system.add_component(FMUComponent("P", fmus.path("pendulum_euler")))
+    system.initialize(0.0)
+    with pytest.raises(ConfigurationError, match=f"cannot stream a run to {fifo}: a {suffix} "
+                                                 "file is written with seeks, which a FIFO"):
+        system.run(0.0, 1.0, 0.01, stream_to=fifo)
+    assert stat.S_ISFIFO(os.lstat(fifo).st_mode)
+    assert system.get_history()["P"][0][-1] == 0.0  # not run
 
 
 def _in_private_mount_namespace(script: str, folder: Path) -> subprocess.CompletedProcess[str]:

@@ -9,6 +9,7 @@ from typing import Any
 
 import numpy as np
 
+from ..atomic_file import is_special
 from ..bridge.observers import add_block_writer, columns, remove_observer
 from ..bridge.plan import EnginePlan
 from ..errors import ConfigurationError
@@ -28,6 +29,7 @@ class RunStream:
             except ValueError as exc:
                 raise ConfigurationError(str(exc)) from None
             self.owned = True
+            _refuse_seeking_into_a_stream(Path(stream_to))
             names = columns(plan)
             _refuse_repeated(names, stream_to)
             try:
@@ -71,6 +73,15 @@ class RunStream:
         remove_observer(self.plan, self.observer)
         if self.owned:
             self.writer.close()
+
+
+def _refuse_seeking_into_a_stream(target: Path) -> None:
+    """NetCDF and Parquet writers seek back (a record count, a footer's offsets): a FIFO or a
+    device cannot take that, and the run's samples would be lost after it is computed."""
+    if target.suffix.lower() != ".csv" and is_special(target):
+        raise ConfigurationError(f"cannot stream a run to {target}: a {target.suffix} file is "
+                                 "written with seeks, which a FIFO or a device cannot take; "
+                                 "stream CSV there, or write the result afterwards")
 
 
 def _refuse_repeated(names: list[str], target: Any) -> None:
