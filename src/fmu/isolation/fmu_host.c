@@ -116,6 +116,30 @@ static void logger1(fmi1Component component, fmi1String instance_name, fmi1Statu
 /* The fmi2 function of a call, as its own type. */
 #define FN(type, call) ((type *)h->fn[call])
 
+/* After a doStep that returned `status`: the n outputs the request names, read in the same
+ * round trip when the step succeeded (their getReal status in *value), zeros otherwise.
+ * FMI 1.0 and 2.0 share the statuses, value references and reals this needs. */
+static int step_reply(host *h, int status, size_t n, uint64_t *value, size_t *reply_size)
+{
+    double *out = grown(&h->reply, &h->reply_capacity, n * sizeof(double));
+    if (out == NULL && n > 0) {
+        return fmi2Fatal;
+    }
+    *reply_size = n * sizeof(double);
+    *value = REMOTE_NOT_READ;
+    if (n == 0) {
+        return status;
+    }
+    if (status > fmi2Warning) {
+        memset(out, 0, n * sizeof(double));
+        return status;
+    }
+    const unsigned int *vr = (const unsigned int *)h->request;
+    *value = h->fmi1 ? (uint64_t)FN(fmi1GetRealTYPE, CALL_GET_REAL)(h->instance, vr, n, out)
+                     : (uint64_t)FN(fmi2GetRealTYPE, CALL_GET_REAL)(h->instance, vr, n, out);
+    return status;
+}
+
 /* Makes the call. Returns its fmi2Status; *value and *reply_size describe the result. */
 static int serve(host *h, const remote_request *rq, uint64_t *value, size_t *reply_size)
 {
@@ -146,23 +170,10 @@ static int serve(host *h, const remote_request *rq, uint64_t *value, size_t *rep
         return FN(fmi2TerminateTYPE, rq->call)(h->instance);
     case CALL_RESET:
         return FN(fmi2ResetTYPE, rq->call)(h->instance);
-    case CALL_DO_STEP: {
-        int status = FN(fmi2DoStepTYPE, rq->call)(h->instance, rq->a, rq->b,
-                                                  (fmi2Boolean)rq->flag);
-        fmi2Real *out = grown(&h->reply, &h->reply_capacity, n * sizeof(fmi2Real));
-        if (out == NULL && n > 0) {
-            return fmi2Fatal;
-        }
-        *reply_size = n * sizeof(fmi2Real);
-        *value = REMOTE_NOT_READ;
-        if (n > 0 && status <= fmi2Warning) {
-            *value = (uint64_t)FN(fmi2GetRealTYPE, CALL_GET_REAL)(
-                h->instance, (const fmi2ValueReference *)in, n, out);
-        } else if (n > 0) {
-            memset(out, 0, n * sizeof(fmi2Real));
-        }
-        return status;
-    }
+    case CALL_DO_STEP:
+        return step_reply(h, FN(fmi2DoStepTYPE, rq->call)(h->instance, rq->a, rq->b,
+                                                          (fmi2Boolean)rq->flag),
+                          n, value, reply_size);
     case CALL_GET_REAL:
     case CALL_GET_INTEGER:
     case CALL_GET_BOOLEAN: {
@@ -304,23 +315,10 @@ static int serve_fmi1(host *h, const remote_request *rq, uint64_t *value, size_t
         return FN(fmi1TerminateSlaveTYPE, rq->call)(h->instance);
     case CALL_RESET:
         return FN(fmi1ResetSlaveTYPE, rq->call)(h->instance);
-    case CALL_DO_STEP: {
-        int status = FN(fmi1DoStepTYPE, rq->call)(h->instance, rq->a, rq->b,
-                                                  rq->flag ? fmi1True : fmi1False);
-        fmi1Real *out = grown(&h->reply, &h->reply_capacity, n * sizeof(fmi1Real));
-        if (out == NULL && n > 0) {
-            return fmi2Fatal;
-        }
-        *reply_size = n * sizeof(fmi1Real);
-        *value = REMOTE_NOT_READ;
-        if (n > 0 && status <= fmi1Warning) {
-            *value = (uint64_t)FN(fmi1GetRealTYPE, CALL_GET_REAL)(
-                h->instance, (const fmi1ValueReference *)in, n, out);
-        } else if (n > 0) {
-            memset(out, 0, n * sizeof(fmi1Real));
-        }
-        return status;
-    }
+    case CALL_DO_STEP:
+        return step_reply(h, FN(fmi1DoStepTYPE, rq->call)(h->instance, rq->a, rq->b,
+                                                          rq->flag ? fmi1True : fmi1False),
+                          n, value, reply_size);
     case CALL_GET_REAL:
     case CALL_GET_INTEGER:
     case CALL_SET_REAL:
