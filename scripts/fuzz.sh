@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Fuzzes the C modelDescription reader with libFuzzer under AddressSanitizer and UBSan for a
-# bounded time (FUZZ_SECONDS, default 90). The corpus is seeded at run time with the
+# bounded time (FUZZ_SECONDS, default 90), then the plan reader (PLAN_FUZZ_SECONDS, default 60,
+# seeded with tests/fuzz/plan_seeds, plans the writer wrote). The corpus is seeded at run time with the
 # modelDescriptions of the FMUs built in build/release and of the Reference FMUs (when their
 # folder is found), plus every committed crash in tests/fuzz/crashes. A crash fails this script
 # and leaves its input in build/fuzz/artifacts: copy it into tests/fuzz/crashes, where
@@ -48,3 +49,20 @@ if ! "$out/model_description_fuzz" -max_total_time="$seconds" -max_len=65536 -ti
   exit 1
 fi
 grep -E "^(Done|stat::number_of_executed_units|stat::peak_rss_mb)" "$out/fuzz.log" || true
+
+# the plan reader: its seeds, then the same bounded run
+plan_seconds=${PLAN_FUZZ_SECONDS:-60}
+rm -rf "$out/plan_corpus" && mkdir -p "$out/plan_corpus"
+clang -g -O1 -std=c11 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
+  -Isrc/include -Isrc/plan tests/fuzz/plan_fuzz.c src/plan/plan_reader.c src/plan/plan_writer.c \
+  src/plan/plan_schema.c -lm -o "$out/plan_fuzz"
+cp tests/fuzz/plan_seeds/* "$out/plan_corpus/"
+if ! "$out/plan_fuzz" -max_total_time="$plan_seconds" -max_len=65536 -timeout=10 \
+  -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$out/artifacts/plan-" \
+  "$out/plan_corpus" >"$out/plan_fuzz.log" 2>&1; then
+  tail -n 60 "$out/plan_fuzz.log" >&2
+  echo "fuzz: the plan reader crashed; the input is in $out/artifacts (copy it into" \
+    "tests/fuzz/plan_seeds)" >&2
+  exit 1
+fi
+grep -E "^(Done|stat::number_of_executed_units|stat::peak_rss_mb)" "$out/plan_fuzz.log" || true

@@ -769,6 +769,47 @@ int ssx_add_table_column(ssx_system *sys, int component, ssx_value_type type, in
 int ssx_table_values(ssx_system *sys, int component, double t, int after_event, double *values);
 
 /* ------------------------------------------------------------------------------------------
+ * Plans: a system as plain data, in the text format of docs/reference/plan-format.md, built
+ * into a system with no Python (an exported FMU's binary does so).
+ * ------------------------------------------------------------------------------------------ */
+typedef struct ssx_plan ssx_plan;
+/* Reads text[0..size). NULL on failure, with the reason in error (the line, the record, the
+ * field). Bounded: a text over 256 MiB, a line over 64 MiB, a string over 16 MiB, a list over
+ * 2^26 items and over 2^20 components are refused. */
+ssx_plan *ssx_plan_read(const char *text, size_t size, char *error, size_t error_size);
+/* The plan as text (NUL-terminated, its length without the NUL in *size), freed with
+ * ssx_plan_text_free; NULL when out of memory. Reading it gives the plan back, and writing
+ * that plan the same text. */
+char *ssx_plan_write(const ssx_plan *plan, size_t *size);
+void ssx_plan_text_free(char *text);
+void ssx_plan_free(ssx_plan *plan);
+/* A system made by the plan's records, in order. given[k] (k < n_given, non-NULL): the loaded
+ * FMU of the plan's k-th component, borrowed, which its caller initializes; every other FMU is
+ * loaded here from its unpacked folder (relative to base_folder unless absolute) and freed
+ * with the system. Python components and callback indicators are placeholders: their hooks
+ * (ssx_set_hooks) and functions (ssx_set_indicator_callback) are the caller's to attach. NULL
+ * on failure, with the reason in error (the record's line). */
+ssx_system *ssx_plan_build(const ssx_plan *plan, const char *base_folder, ssx_fmu *const *given,
+                           size_t n_given, char *error, size_t error_size);
+/* Initializes a system the plan built, at t0: every FMU the build loaded is made ready (as
+ * ssx_fmu_enter_initialization: its fmu_experiment, its start records, then its unconnected
+ * inputs' start values that are not NaN), then ssx_initialize(sys, t0). FMUs the caller gave
+ * must be in initialization mode (or initialized) already. 0, or -1 with the error set. */
+int ssx_plan_initialize(ssx_system *sys, const ssx_plan *plan, double t0);
+/* What an exporter maps its variables to: the components (in plan order), their names, and
+ * their outputs (is_input 0) or inputs (1) by index, with type and value reference. The
+ * experiment record's values, 0 when it has one, -1 when not. */
+int ssx_plan_component_count(const ssx_plan *plan);
+const char *ssx_plan_component_name(const ssx_plan *plan, int component);
+int ssx_plan_port_count(const ssx_plan *plan, int component, int is_input);
+int ssx_plan_port(const ssx_plan *plan, int component, int is_input, int port,
+                  ssx_value_type *type, unsigned int *vr);
+int ssx_plan_experiment(const ssx_plan *plan, double *start, double *stop, double *step);
+/* The function of callback indicator `indicator` (one a plan made, say). */
+int ssx_set_indicator_callback(ssx_system *sys, int indicator,
+                               int (*evaluate)(void *user, double t, double *value), void *user);
+
+/* ------------------------------------------------------------------------------------------
  * modelDescription.xml (FMI 2.0 and 1.0), read into compact arrays: one pass over the text,
  * no tree, no object per variable. The reader is a small XML tokenizer for what a modelDescription
  * uses (elements, attributes in either quote, the five predefined entities, character

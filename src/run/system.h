@@ -136,6 +136,10 @@ struct ssx_system {
     /* outputs that were NaN or infinite though they feed nothing (finite_outputs.h); counted
      * on a worker thread too */
     atomic_int non_finite_unfed;
+    /* per component, the FMU the system loaded itself (ssx_plan_build) and frees with itself;
+     * NULL where the FMU is borrowed */
+    ssx_fmu **owned_fmus;
+    int n_owned_fmus;
 };
 
 /* Appends a component of the given kind, with data_size bytes of zeroed data for the kind in

@@ -134,6 +134,10 @@ void ssx_system_free(ssx_system *sys)
     text_table_free(&sys->texts);
     parallel_free(sys->parallel);
     localization_log_free(&sys->localization);
+    for (int i = 0; i < sys->n_owned_fmus; ++i) { /* after the components that borrow them */
+        ssx_fmu_free(sys->owned_fmus[i]);
+    }
+    free(sys->owned_fmus);
     free(sys->name);
     free(sys);
 }
@@ -479,6 +483,27 @@ int ssx_add_indicator_callback(ssx_system *sys, int component,
                                               .evaluate = evaluate,
                                               .user = user,
                                               .direction = direction});
+}
+
+int ssx_set_indicator_callback(ssx_system *sys, int indicator,
+                               int (*evaluate)(void *user, double t, double *value), void *user)
+{
+    if (sys == NULL) {
+        return -1;
+    }
+    if (indicator < 0 || indicator >= sys->n_indicators) {
+        return fail_config(sys, -1, indicator, NAN, "no indicator %d (there are %d)", indicator,
+                           sys->n_indicators);
+    }
+    ssx_indicator *ind = &sys->indicators[indicator];
+    if (ind->output >= 0 || evaluate == NULL) {
+        return fail_config(sys, ind->component, indicator, NAN,
+                           "indicator %d: only a callback indicator takes a function, and "
+                           "needs one", indicator);
+    }
+    ind->evaluate = evaluate;
+    ind->user = user;
+    return 0;
 }
 
 int ssx_set_schedule(ssx_system *sys, const int *order, const int *group_sizes,
