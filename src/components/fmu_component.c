@@ -296,7 +296,7 @@ static int discarded_step(ssx_system *sys, ssx_component *c, double t, double t_
         reached = NAN;
     }
     if (!fmi_ok(asked) || !terminated) {
-        ssx_step_outcome outcome;
+        fmu_step_outcome outcome;
         ssx_fmu_step_outcome(d->fmu, &outcome);
         /* FMI 2.0 asks a status function; FMI 3.0's doStep says it itself */
         const char *reached_name = outcome.reported ? "lastSuccessfulTime"
@@ -320,7 +320,7 @@ static int discarded_step(ssx_system *sys, ssx_component *c, double t, double t_
  * left in *outcome. 1: the call completed; 0: the step is over (the FMU asked to stop, or the
  * call failed: the return of `done` says which). */
 static int step_call(ssx_system *sys, ssx_component *c, double t, double t_end,
-                     ssx_step_outcome *outcome, int *done)
+                     fmu_step_outcome *outcome, int *done)
 {
     fmu_component_data *d = fmu_data(c);
     /* In hybrid mode the engine may set an earlier state again, so it must not promise not to. */
@@ -383,7 +383,7 @@ static int handle_own_event(ssx_system *sys, ssx_component *c, double t_e, int t
  * component's own, and the FMU steps on from there until the step's end. No rollback: the FMU
  * knows the time of its events. */
 static int step_on(ssx_system *sys, ssx_component *c, double t, double t_end,
-                   ssx_step_outcome outcome)
+                   fmu_step_outcome outcome)
 {
     fmu_component_data *d = fmu_data(c);
     double close = 1e-9 * (t_end - t); /* the grid's own rounding */
@@ -432,7 +432,7 @@ static int step_on(ssx_system *sys, ssx_component *c, double t, double t_end,
 
 static int fmu_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
 {
-    ssx_step_outcome outcome;
+    fmu_step_outcome outcome;
     int done = 0;
     if (!step_call(sys, c, t, t + dt, &outcome, &done)) {
         return done;

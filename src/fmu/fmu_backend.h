@@ -196,7 +196,7 @@ typedef struct {
     /* in event mode at t: fmi3SetClock on every periodic input clock that ticks at t */
     int (*tick_clocks)(const ssx_fmu_function *fn, void *instance, double t);
     /* what the last doStep said besides its status; NULL: only the status (FMI 2.0) */
-    void (*step_outcome)(void *instance, ssx_step_outcome *outcome);
+    void (*step_outcome)(void *instance, fmu_step_outcome *outcome);
     /* the name of the variable vr, NULL when unknown; NULL: the back-end keeps no names */
     const char *(*variable_name)(const void *context, unsigned int vr);
     /* keeps what the back-end needs from the load spec in its zeroed context (-1, the reason

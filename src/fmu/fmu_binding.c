@@ -694,9 +694,9 @@ int ssx_fmu_set_binary(ssx_fmu *fmu, const unsigned int *vr, size_t n, const siz
 
 /* ------------------------------------------------------------------ events (FMI 3.0) */
 
-void ssx_fmu_step_outcome(const ssx_fmu *fmu, ssx_step_outcome *outcome)
+void ssx_fmu_step_outcome(const ssx_fmu *fmu, fmu_step_outcome *outcome)
 {
-    *outcome = (ssx_step_outcome){0};
+    *outcome = (fmu_step_outcome){0};
     if (fmu != NULL && fmu->instance != NULL && fmu->backend->step_outcome != NULL) {
         fmu->backend->step_outcome(fmu->instance, outcome);
     }

@@ -36,7 +36,7 @@ const char *ssx_fmu_function_name(const ssx_fmu *fmu, int slot);
 const char *ssx_fmu_variable_name(const ssx_fmu *fmu, unsigned int vr);
 
 /* The last doStep's out-arguments (all 0 before a step). */
-void ssx_fmu_step_outcome(const ssx_fmu *fmu, ssx_step_outcome *outcome);
+void ssx_fmu_step_outcome(const ssx_fmu *fmu, fmu_step_outcome *outcome);
 
 /* The Model Exchange calls of an FMU loaded with SSX_MODEL_EXCHANGE, checked like every other
  * call; each returns the status, or -1. Event mode (enter, new discrete states) serves an

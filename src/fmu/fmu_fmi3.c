@@ -159,7 +159,7 @@ static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu_envi
     ctx->environment = environment;
     environment->handed = ctx;
     ctx->fn = fn;
-    ctx->outcome = (ssx_step_outcome){0};
+    ctx->outcome = (fmu_step_outcome){0};
     size_t n_moving = ctx->n_intermediate;
     fmi3IntermediateUpdateCallback update = n_moving > 0 ? answer_intermediate_update : NULL;
     /* the logger's environment is the context, whose first use is to reach the FMU's
@@ -472,7 +472,7 @@ static int do_step(const ssx_fmu_function *fn, void *instance, double t, double 
         ctx->instance, t, h, no_set_state_prior ? fmi3True : fmi3False, &event, &terminate, &early,
         &reached);
     ctx->moving = 0;
-    ctx->outcome = (ssx_step_outcome){
+    ctx->outcome = (fmu_step_outcome){
         .reported = 1,
         .event_handling_needed = ctx->event_mode_used && event,
         .terminate_simulation = terminate != fmi3False,
@@ -487,7 +487,7 @@ static int do_step(const ssx_fmu_function *fn, void *instance, double t, double 
     return status;
 }
 
-static void step_outcome(void *instance, ssx_step_outcome *outcome)
+static void step_outcome(void *instance, fmu_step_outcome *outcome)
 {
     *outcome = ((const fmi3_context *)instance)->outcome;
 }
@@ -549,7 +549,7 @@ static int set_state(const ssx_fmu_function *fn, void *instance, void *state)
 {
     fmi3_context *ctx = instance;
     /* the restored instance has not stepped yet: no step's news apply to it */
-    ctx->outcome = (ssx_step_outcome){0};
+    ctx->outcome = (fmu_step_outcome){0};
     return (int)FMI3(fn, SLOT_SET_STATE, fmi3SetFMUStateTYPE)(ctx->instance, state);
 }
 
@@ -607,7 +607,7 @@ static void *instantiate_model_exchange(const ssx_fmu_function *fn, void *contex
     fmi3_context *ctx = context;
     ctx->environment = environment;
     environment->handed = ctx;
-    ctx->outcome = (ssx_step_outcome){0};
+    ctx->outcome = (fmu_step_outcome){0};
     ctx->instance = FMI3(fn, SLOT_INSTANTIATE, fmi3InstantiateModelExchangeTYPE)(
         instance_name, token, resource_path, fmi3False, logging_on ? fmi3True : fmi3False, ctx,
         (fmi3LogMessageCallback)logger);

@@ -47,7 +47,7 @@ typedef struct {
     double start_time;
     int stop_time_defined;
     double stop_time;
-    ssx_step_outcome outcome;
+    fmu_step_outcome outcome;
     /* intermediate update (ssx_fmi3_variables): the inputs, their values at the step's start
      * and first and second derivatives, and values scratch; moving while a step uses them */
     unsigned int *intermediate_vr;

@@ -15,7 +15,7 @@ typedef struct {
     /* the step ended at a tick of the FMU's periodic input clocks (FMI 3.0 Co-Simulation):
      * the engine ticks them there (ssx_fmu_tick_clocks) in event mode */
     int clock_tick;
-} ssx_step_outcome;
+} fmu_step_outcome;
 
 /* What fmi2NewDiscreteStates (fmi2EventInfo, Model Exchange) and fmi3UpdateDiscreteStates
  * (FMI 3.0 Co-Simulation in event mode) tell, version-neutral. */

@@ -636,6 +636,25 @@ int ssx_initialize(ssx_system *sys, double t0);
 int ssx_run(ssx_system *sys, double t0, double tf, double dt);
 double ssx_time(const ssx_system *sys);
 
+/* The execution: a run taken a stretch at a time (what an exported FMU's doStep does).
+ * ssx_step_until advances from the current time with communication step dt, exactly as
+ * ssx_run does (the algorithm, step control, loops, recording), and returns at t_stop, or right
+ * after the first event instant an indicator made was located and handled (then out->event is
+ * set and out->time is the instant, at most t_stop); calling it again goes on from there. The
+ * grid is t0 + k*dt from the time of ssx_initialize (or of the last ssx_run's t0); another dt
+ * starts a new grid at the current time. A t_stop off the grid ends the step that would cross
+ * it at t_stop (a remainder below 1e-9 steps joins it), as ssx_run's last step ends at tf; the
+ * next call completes the step to its grid point. Each call is one run for the recording and
+ * the observers (its samples, its run_end). ssx_run is a loop over the same steps. */
+typedef struct {
+    double time;   /* where the system is now (ssx_time) */
+    int event;     /* it stopped right after an event instant (time) */
+    long events;   /* event instants handled since ssx_initialize (statistics.events) */
+    int status;    /* the call's return: 0, or -1 (ssx_last_error says why) */
+    int terminated; /* a component asked to end the simulation (ssx_get_termination) */
+} ssx_step_outcome;
+int ssx_step_until(ssx_system *sys, double t_stop, double dt, ssx_step_outcome *out);
+
 /* A watch over ssx_run: between macro steps, about every SSX_MONITOR_INTERVAL_MS of wall
  * time, monitor(user, t) is called with the time reached; nonzero stops the run, which then
  * fails at t with kind SSX_ERROR_CALLBACK (the monitor keeps its reason). The clock is read only

@@ -59,6 +59,17 @@ typedef struct {
     double zeno_min_interval; /* <= 0: ten times tol_time */
 } ssx_hybrid_options;
 
+/* Where the execution stands on its communication grid origin + k*dt (simulation.c): the
+ * step under way, left before its end only at an event. */
+typedef struct {
+    double origin;
+    double dt;        /* 0: no step taken since ssx_initialize (the next call's dt is taken) */
+    long next;        /* index of the first grid point not reached */
+    double step_start; /* the communication step under way: [step_start, step_end] */
+    double step_end;
+    int in_step;      /* 0: the next step starts at the current time */
+} execution_grid;
+
 /* Where the current thread's failures and termination requests go (error.h): while a batch
  * of components steps on several threads, each thread's own (parallel_step.c sets them);
  * without them, the system's. */
@@ -124,6 +135,7 @@ struct ssx_system {
     ssx_monitor monitor;
 
     double time;
+    execution_grid grid;
     int initialized;
     int stepping_hybrid; /* FMUs are told that a rollback may follow */
     arena component_blocks; /* every component's block (system_add_component) */

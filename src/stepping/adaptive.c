@@ -179,7 +179,7 @@ static int accepted_step(ssx_system *sys, double a, double t_next, double *reach
     return event_sources_commit_own(sys, t_end);
 }
 
-int adaptive_step(ssx_system *sys, double t, double t_next)
+int adaptive_step(ssx_system *sys, double t, double from, double t_next, int *event_out)
 {
     struct adaptive_workspace *w = sys->adaptive;
     const ssx_step_control *sc = &sys->step_control;
@@ -187,14 +187,19 @@ int adaptive_step(ssx_system *sys, double t, double t_next)
         w->proposed = clamp_step(sc, t, sc->initial_step > 0.0 ? sc->initial_step
                                                                : first_step(sys, t_next - t));
     }
-    double a = t;
+    double a = from;
     int event = 0;
+    *event_out = 0;
     while (a < t_next) {
         double reached;
         if (accepted_step(sys, a, t_next, &reached, &event) != 0) {
             return -1;
         }
         if (sys->termination.component >= 0) {
+            return 0;
+        }
+        if (event) {
+            *event_out = 1;
             return 0;
         }
         a = reached;

@@ -10,9 +10,10 @@
 /* Makes the step controller's state (sys->adaptive) and, when the system has event
  * indicators, the hybrid algorithm's workspace in *workspace. */
 int adaptive_prepare(ssx_system *sys, void **workspace);
-/* Covers the grid interval [t, t_next] with accepted steps; events inside are located and
- * handled as the hybrid algorithm does. Records the grid point t_next. */
-int adaptive_step(ssx_system *sys, double t, double t_next);
+/* Covers the grid interval [t, t_next] from `from` with accepted steps, up to its end or the
+ * first event inside (located and handled as the hybrid algorithm does; *event set). Records
+ * the grid point t_next when it gets there without an event. */
+int adaptive_step(ssx_system *sys, double t, double from, double t_next, int *event);
 /* Frees both. */
 void adaptive_release(ssx_system *sys, void *workspace);
 

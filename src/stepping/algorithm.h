@@ -10,8 +10,11 @@ typedef struct ssx_master_algorithm {
     /* Makes the algorithm's own state for the system as built into *workspace, which the
      * system holds for it (sys->algorithm_workspace) until release. NULL: it keeps none. */
     int (*prepare)(ssx_system *sys, void **workspace);
-    /* Advances from t to the communication point t_next and records what it completes. */
-    int (*step)(ssx_system *sys, double t, double t_next);
+    /* Advances from `from` inside the communication step [t, t_next] (from is t unless an
+     * event ended the step's last call) and records what it completes. Returns at t_next, or
+     * right after an event instant an indicator made is handled (*event set, sys->time the
+     * instant; the grid point is not recorded when the instant is t_next itself). */
+    int (*step)(ssx_system *sys, double t, double from, double t_next, int *event);
     /* Frees what prepare made. NULL: prepare makes nothing to free. */
     void (*release)(ssx_system *sys, void *workspace);
 } ssx_master_algorithm;

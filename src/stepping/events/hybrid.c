@@ -660,9 +660,10 @@ void hybrid_release(ssx_system *sys, void *workspace)
     }
 }
 
-int hybrid_step(ssx_system *sys, double t, double t_next)
+int hybrid_step(ssx_system *sys, double t, double from, double t_next, int *event_out)
 {
-    double a0 = t;
+    double a0 = from;
+    *event_out = 0;
     while (a0 < t_next) {
         hybrid_piece piece;
         if (run_interrupted(sys, a0) != 0 || hybrid_begin_piece(sys, a0, t_next, &piece) != 0 ||
@@ -677,6 +678,10 @@ int hybrid_step(ssx_system *sys, double t, double t_next)
         }
         if (!event && reached == t_next) {
             return record_grid_point(sys, t_next);
+        }
+        if (event) {
+            *event_out = 1;
+            return 0;
         }
         a0 = reached;
     }

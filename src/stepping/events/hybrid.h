@@ -8,8 +8,9 @@
  * system as built. */
 int hybrid_prepare(ssx_system *sys, void **workspace);
 void hybrid_release(ssx_system *sys, void *workspace);
-/* Advances the system from t to t_next, locating and handling every event in between. */
-int hybrid_step(ssx_system *sys, double t, double t_next);
+/* Advances the system from `from` in the communication step [t, t_next] to t_next, or to the
+ * first event located and handled in between (*event set). */
+int hybrid_step(ssx_system *sys, double t, double from, double t_next, int *event);
 
 /* The snapshot slot of a macro piece's start: localization restores it. */
 enum { MACRO_SLOT = 0 };
