@@ -32,6 +32,26 @@ typedef struct {
     int max_output_derivative_order; /* maxOutputDerivativeOrder: tells its outputs' */
 } ssx_component_capabilities;
 
+struct byte_writer; /* support/byte_stream.h */
+struct byte_reader;
+
+/* A component's state held by its caller (a whole-system state, run/saved_state.c), apart
+ * from its port values, which the engine saves itself. Unlike the snapshot slots, each save
+ * makes a new state. */
+typedef struct component_state_ops {
+    /* The state as it stands: a new one, or NULL with the error set. */
+    void *(*save)(ssx_system *sys, ssx_component *c);
+    /* Back to `state`, now at time t: 0, or -1 with the error set. */
+    int (*restore)(ssx_system *sys, ssx_component *c, const void *state, double t);
+    /* Frees the state (it remembers what it needs for that). */
+    void (*free)(void *state);
+    /* Appends the state's bytes: 0, or -1 with the error set. */
+    int (*serialize)(ssx_system *sys, ssx_component *c, const void *state,
+                     struct byte_writer *out);
+    /* A state of c from bytes that serialize wrote: NULL with the error set. */
+    void *(*deserialize)(ssx_system *sys, ssx_component *c, struct byte_reader *in);
+} component_state_ops;
+
 typedef struct ssx_component_ops {
     int (*do_step)(ssx_system *sys, ssx_component *c, double t, double dt);
     int (*write_inputs)(ssx_system *sys, ssx_component *c);
@@ -84,6 +104,8 @@ typedef struct ssx_component_ops {
     int (*handle_events)(ssx_system *sys, ssx_component *c, double t);
     /* The FMU it runs (a run watches an isolated FMU's host). NULL: it runs none. */
     ssx_fmu *(*fmu)(const ssx_component *c);
+    /* Its state saved by handle (component_state_ops). NULL: it cannot be (a Python component). */
+    const component_state_ops *saved_state;
     /* The kind's reads check its outputs for NaN and infinities; a Python hook that steps
      * it calls them. 0: values Python wrote are checked after the hook. */
     int checks_own_outputs;
@@ -141,6 +163,8 @@ struct ssx_component {
     ssx_output_watch *output_watch;
 };
 
+/* The state of a kind that holds none beyond its ports (a table source): every member NULL. */
+extern const component_state_ops component_no_saved_state;
 extern const ssx_component_ops ssx_fmu_component_ops;
 /* A Model Exchange FMU integrated by the engine (me_component.c); its ports are an FMU
  * component's. */

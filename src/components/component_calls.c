@@ -9,6 +9,8 @@
 #include "own_events.h"
 #include "system.h"
 
+const component_state_ops component_no_saved_state = {0};
+
 int component_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
 {
     sys->stats.do_step_calls++;

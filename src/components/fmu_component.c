@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "fmu_component.h"
+#include "byte_stream.h"
 #include "error.h"
 #include "finite_outputs.h"
 #include "fmu_backend.h"
@@ -1017,6 +1018,130 @@ int ssx_set_interpolation(ssx_system *sys, int component, int can_interpolate_in
     return 0;
 }
 
+/* ------------------------------------------------------------------ state by handle */
+
+int fmu_state_save_into(ssx_system *sys, ssx_component *c, fmu_saved_state *s)
+{
+    fmu_component_data *d = fmu_data(c);
+    *s = (fmu_saved_state){.fmu = d->fmu, .generation = ssx_fmu_generation(d->fmu)};
+    int status = ssx_fmu_get_state(d->fmu, &s->fmu_state);
+    return fmi_ok(status) ? 0 : fmi_failed(sys, c, sys->time, status, SLOT_GET_STATE);
+}
+
+int fmu_state_restore_from(ssx_system *sys, ssx_component *c, const fmu_saved_state *s, double t)
+{
+    fmu_component_data *d = fmu_data(c);
+    if (s->fmu != d->fmu || s->generation != ssx_fmu_generation(d->fmu)) {
+        return fail_config(sys, c->index, -1, t,
+                           "component '%s': the saved state belongs to an earlier instance of "
+                           "its FMU (instantiated again since); a serialized state can be "
+                           "restored instead",
+                           c->name);
+    }
+    int status = ssx_fmu_set_state(d->fmu, s->fmu_state);
+    return fmi_ok(status) ? 0 : fmi_failed(sys, c, t, status, SLOT_SET_STATE);
+}
+
+void fmu_state_release(fmu_saved_state *s)
+{
+    if (s->fmu != NULL && s->fmu_state != NULL) {
+        /* a state of an instance already freed went with it: nothing to free then */
+        (void)ssx_fmu_free_state(s->fmu, &s->fmu_state);
+    }
+}
+
+int fmu_state_write(ssx_system *sys, ssx_component *c, const fmu_saved_state *s,
+                    byte_writer *out)
+{
+    fmu_component_data *d = fmu_data(c);
+    size_t size = 0;
+    int status = ssx_fmu_serialized_state_size(d->fmu, s->fmu_state, &size);
+    if (!fmi_ok(status)) {
+        return fmi_failed(sys, c, sys->time, status, SLOT_SERIALIZED_STATE_SIZE);
+    }
+    write_u64(out, size);
+    unsigned char *room = write_room(out, size);
+    if (room == NULL) {
+        return fail(sys, c->index, -1, sys->time, "out of memory serializing the state of '%s'",
+                    c->name);
+    }
+    status = ssx_fmu_serialize_state(d->fmu, s->fmu_state, (char *)room, size);
+    return fmi_ok(status) ? 0 : fmi_failed(sys, c, sys->time, status, SLOT_SERIALIZE_STATE);
+}
+
+int fmu_state_read(ssx_system *sys, ssx_component *c, byte_reader *in, fmu_saved_state *s)
+{
+    fmu_component_data *d = fmu_data(c);
+    *s = (fmu_saved_state){.fmu = d->fmu, .generation = ssx_fmu_generation(d->fmu)};
+    uint64_t size = read_u64(in);
+    const unsigned char *bytes = size <= SIZE_MAX ? read_span(in, (size_t)size) : NULL;
+    if (bytes == NULL) {
+        return fail_config(sys, c->index, -1, sys->time,
+                           "component '%s': the serialized state ends inside its FMU state",
+                           c->name);
+    }
+    int status = ssx_fmu_deserialize_state(d->fmu, (const char *)bytes, (size_t)size,
+                                           &s->fmu_state);
+    return fmi_ok(status) ? 0 : fmi_failed(sys, c, sys->time, status, SLOT_DESERIALIZE_STATE);
+}
+
+static void *fmu_state_new(ssx_system *sys, ssx_component *c)
+{
+    fmu_saved_state *s = calloc(1, sizeof *s);
+    if (s == NULL) {
+        fail(sys, c->index, -1, sys->time, "out of memory saving the state of '%s'", c->name);
+        return NULL;
+    }
+    return s;
+}
+
+static void fmu_state_free(void *state)
+{
+    if (state != NULL) {
+        fmu_state_release(state);
+        free(state);
+    }
+}
+
+static void *fmu_save_state(ssx_system *sys, ssx_component *c)
+{
+    fmu_saved_state *s = fmu_state_new(sys, c);
+    if (s != NULL && fmu_state_save_into(sys, c, s) != 0) {
+        fmu_state_free(s);
+        return NULL;
+    }
+    return s;
+}
+
+static int fmu_restore_state(ssx_system *sys, ssx_component *c, const void *state, double t)
+{
+    return fmu_state_restore_from(sys, c, state, t);
+}
+
+static int fmu_serialize_state(ssx_system *sys, ssx_component *c, const void *state,
+                               byte_writer *out)
+{
+    return fmu_state_write(sys, c, state, out);
+}
+
+static void *fmu_deserialize_state(ssx_system *sys, ssx_component *c, byte_reader *in)
+{
+    fmu_saved_state *s = fmu_state_new(sys, c);
+    if (s != NULL && fmu_state_read(sys, c, in, s) != 0) {
+        fmu_state_free(s);
+        return NULL;
+    }
+    return s;
+}
+
+static const component_state_ops fmu_saved_state_ops = {
+    .save = fmu_save_state,
+    .restore = fmu_restore_state,
+    .free = fmu_state_free,
+    .serialize = fmu_serialize_state,
+    .deserialize = fmu_deserialize_state,
+};
+
 const ssx_component_ops ssx_fmu_component_ops = {
     .do_step = fmu_do_step,
     .write_inputs = fmu_write_inputs,
@@ -1024,6 +1149,7 @@ const ssx_component_ops ssx_fmu_component_ops = {
     .evaluate_outputs = fmu_evaluate_outputs,
     .snapshot = fmu_snapshot,
     .restore = fmu_restore,
+    .saved_state = &fmu_saved_state_ops,
     .release = fmu_release,
     .adopt_inputs = fmu_component_adopt_inputs,
     .initial_outputs = fmu_component_initial_outputs,

@@ -96,4 +96,19 @@ int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t);
 int fmu_component_initial_outputs(ssx_system *sys, ssx_component *c, double t0);
 int fmu_component_leave_initialization(ssx_system *sys, ssx_component *c, double t0);
 
+/* The FMU kinds' state by handle (component_state_ops): their FMU's state, of the instance it
+ * was taken from. The Model Exchange kind adds its own to it. */
+typedef struct {
+    ssx_fmu *fmu;
+    void *fmu_state;
+    long generation;
+} fmu_saved_state;
+int fmu_state_save_into(ssx_system *sys, ssx_component *c, fmu_saved_state *s);
+int fmu_state_restore_from(ssx_system *sys, ssx_component *c, const fmu_saved_state *s, double t);
+void fmu_state_release(fmu_saved_state *s);
+int fmu_state_write(ssx_system *sys, ssx_component *c, const fmu_saved_state *s,
+                    struct byte_writer *out);
+int fmu_state_read(ssx_system *sys, ssx_component *c, struct byte_reader *in,
+                   fmu_saved_state *s);
+
 #endif

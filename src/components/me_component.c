@@ -31,6 +31,7 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
+#include "byte_stream.h"
 #include "component_calls.h"
 #include "error.h"
 #include "fmu_backend.h"
@@ -717,6 +718,116 @@ static void me_release(ssx_component *c)
     c->data = NULL;
 }
 
+/* ------------------------------------------------------------------ state by handle */
+
+/* The FMU's state and the engine's copy of the continuous states, events and crossings. */
+typedef struct {
+    fmu_saved_state fmu;
+    me_state engine;
+} me_saved_state;
+
+static void me_state_free(void *state)
+{
+    me_saved_state *s = state;
+    if (s == NULL) {
+        return;
+    }
+    fmu_state_release(&s->fmu);
+    free(s->engine.x);
+    free(s->engine.last_crossing);
+    free(s->engine.last_direction);
+    free(s);
+}
+
+static int state_new(me_state *state, size_t n, size_t nz);
+
+static me_saved_state *me_state_new(ssx_system *sys, ssx_component *c)
+{
+    const me_data *me = c->data;
+    me_saved_state *s = calloc(1, sizeof *s);
+    if (s == NULL || state_new(&s->engine, me->n, me->nz) != 0) {
+        me_state_free(s);
+        fail(sys, c->index, -1, sys->time, "out of memory saving the state of '%s'", c->name);
+        return NULL;
+    }
+    return s;
+}
+
+static void *me_save_state(ssx_system *sys, ssx_component *c)
+{
+    me_data *me = c->data;
+    me_saved_state *s = me_state_new(sys, c);
+    if (s == NULL || fmu_state_save_into(sys, c, &s->fmu) != 0) {
+        me_state_free(s);
+        return NULL;
+    }
+    copy_state(me, &s->engine, &me->now);
+    return s;
+}
+
+static int me_restore_state(ssx_system *sys, ssx_component *c, const void *state, double t)
+{
+    me_data *me = c->data;
+    const me_saved_state *s = state;
+    me->warm_at = NAN;
+    if (fmu_state_restore_from(sys, c, &s->fmu, t) != 0) {
+        return -1;
+    }
+    copy_state(me, &me->now, &s->engine);
+    if (me->nx == 0) {
+        return 0;
+    }
+    int status = ssx_fmu_set_continuous_states(fmu_of(c), me->now.x, me->nx);
+    return fmi_ok(status) ? 0 : fmi_failed(sys, c, t, status, SLOT_SET_CONTINUOUS_STATES);
+}
+
+static int me_serialize_state(ssx_system *sys, ssx_component *c, const void *state,
+                              byte_writer *out)
+{
+    const me_data *me = c->data;
+    const me_saved_state *s = state;
+    if (fmu_state_write(sys, c, &s->fmu, out) != 0) {
+        return -1;
+    }
+    write_doubles(out, s->engine.x, me->n);
+    write_bytes(out, &s->engine.event, sizeof s->engine.event);
+    write_doubles(out, s->engine.last_crossing, me->nz);
+    write_bytes(out, s->engine.last_direction, me->nz * sizeof(int));
+    return out->failed ? fail(sys, c->index, -1, sys->time,
+                              "out of memory serializing the state of '%s'", c->name)
+                       : 0;
+}
+
+static void *me_deserialize_state(ssx_system *sys, ssx_component *c, byte_reader *in)
+{
+    const me_data *me = c->data;
+    me_saved_state *s = me_state_new(sys, c);
+    if (s == NULL || fmu_state_read(sys, c, in, &s->fmu) != 0) {
+        me_state_free(s);
+        return NULL;
+    }
+    read_doubles(in, s->engine.x, me->n);
+    read_bytes(in, &s->engine.event, sizeof s->engine.event);
+    read_doubles(in, s->engine.last_crossing, me->nz);
+    read_bytes(in, s->engine.last_direction, me->nz * sizeof(int));
+    if (in->failed) {
+        me_state_free(s);
+        fail_config(sys, c->index, -1, sys->time,
+                    "component '%s': the serialized state ends inside its integrator's state",
+                    c->name);
+        return NULL;
+    }
+    return s;
+}
+
+static const component_state_ops me_saved_state_ops = {
+    .save = me_save_state,
+    .restore = me_restore_state,
+    .free = me_state_free,
+    .serialize = me_serialize_state,
+    .deserialize = me_deserialize_state,
+};
+
 const ssx_component_ops ssx_model_exchange_component_ops = {
     .do_step = me_do_step,
     .write_inputs = me_write_inputs,
@@ -724,6 +835,7 @@ const ssx_component_ops ssx_model_exchange_component_ops = {
     .evaluate_outputs = me_evaluate_outputs,
     .snapshot = me_snapshot,
     .restore = me_restore,
+    .saved_state = &me_saved_state_ops,
     .release = me_release,
     .adopt_inputs = fmu_component_adopt_inputs,
     .initial_outputs = fmu_component_initial_outputs,

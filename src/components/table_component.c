@@ -158,6 +158,7 @@ const ssx_component_ops ssx_table_component_ops = {
     .evaluate_outputs = table_evaluate_outputs,
     .snapshot = table_snapshot,
     .restore = table_restore,
+    .saved_state = &component_no_saved_state,
     .release = table_release,
     .can_roll_back = table_can_roll_back,
 };

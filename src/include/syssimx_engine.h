@@ -654,6 +654,32 @@ typedef struct {
     int terminated; /* a component asked to end the simulation (ssx_get_termination) */
 } ssx_step_outcome;
 int ssx_step_until(ssx_system *sys, double t_stop, double dt, ssx_step_outcome *out);
+/* The whole system's state by handle, between calls (after ssx_initialize): every component's
+ * state (an FMU's through fmi2GetFMUstate / fmi3GetFMUState, a Model Exchange component's also
+ * the engine's copy of its continuous states; a table holds none), every port value, the
+ * indicators' sides and the hybrid algorithm's event state, the step control's next step, the
+ * input motion, the grid the execution is on and the statistics. ssx_state_save returns NULL
+ * with the error set when a component cannot save its state (its FMU does not declare
+ * canGetAndSetFMUstate; a Python component or hook). ssx_state_restore puts the system back
+ * (observers are told: state_restored at the state's time): stepping on repeats what followed
+ * the save, as far as the FMUs step the same from a set state (an integrator that starts afresh
+ * from a set state differs within its tolerance). The recorded history and event records are
+ * not rewound: what was recorded stays, samples after a restore are appended. A state belongs to
+ * the system and to the FMU instances it was saved from: free it before them. Serialized, a
+ * state is bytes (malloc'd, the caller frees them) that begin with a magic, a format version
+ * and a digest of the system's layout (components, ports, indicators); ssx_state_deserialize
+ * refuses bytes of another layout naming what differs, and makes a state of this system that
+ * ssx_state_restore puts back (FMU states through fmi2DeSerializeFMUstate). String and Binary
+ * port values are numbers of the system's own text table: a system with such ports cannot
+ * serialize its state. */
+typedef struct ssx_system_state ssx_system_state;
+ssx_system_state *ssx_state_save(ssx_system *sys);
+int ssx_state_restore(ssx_system *sys, const ssx_system_state *state);
+void ssx_state_free(ssx_system_state *state);
+int ssx_state_serialize(ssx_system *sys, const ssx_system_state *state, unsigned char **bytes,
+                        size_t *size);
+ssx_system_state *ssx_state_deserialize(ssx_system *sys, const unsigned char *bytes,
+                                        size_t size);
 
 /* A watch over ssx_run: between macro steps, about every SSX_MONITOR_INTERVAL_MS of wall
  * time, monitor(user, t) is called with the time reached; nonzero stops the run, which then

@@ -45,6 +45,20 @@ void adaptive_release(ssx_system *sys, void *workspace)
     hybrid_release(sys, workspace);
 }
 
+void adaptive_carry_out(const ssx_system *sys, double *carried)
+{
+    hybrid_carry_out(sys, carried);
+    carried[1] = sys->adaptive->proposed;
+    carried[2] = sys->adaptive->previous_error;
+}
+
+void adaptive_carry_in(ssx_system *sys, const double *carried)
+{
+    hybrid_carry_in(sys, carried);
+    sys->adaptive->proposed = carried[1];
+    sys->adaptive->previous_error = carried[2];
+}
+
 /* The factor the error asks of the step, within [min_change, max_change] (a controller that
  * jumps further trusts an error estimate beyond what one step tells). The coupling error of held
  * inputs grows like h, of order-p inputs like h^(p + 1); the energy residual is under ECCO's PI

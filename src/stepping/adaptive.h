@@ -14,6 +14,10 @@ int adaptive_prepare(ssx_system *sys, void **workspace);
  * first event inside (located and handled as the hybrid algorithm does; *event set). Records
  * the grid point t_next when it gets there without an event. */
 int adaptive_step(ssx_system *sys, double t, double from, double t_next, int *event);
+/* What it carries between steps (algorithm.h): the hybrid algorithm's carried[0], then the
+ * next step's proposed length and the last accepted step's error. */
+void adaptive_carry_out(const ssx_system *sys, double *carried);
+void adaptive_carry_in(ssx_system *sys, const double *carried);
 /* Frees both. */
 void adaptive_release(ssx_system *sys, void *workspace);
 

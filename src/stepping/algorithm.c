@@ -25,10 +25,11 @@ static int plain_step(ssx_system *sys, double t, double from, double t_next, int
 enum { PLAIN, HYBRID, ADAPTIVE };
 
 static const ssx_master_algorithm ALGORITHMS[] = {
-    [PLAIN] = {NULL, plain_step, NULL},
-    [HYBRID] = {hybrid_prepare, hybrid_step, hybrid_release},
+    [PLAIN] = {NULL, plain_step, NULL, NULL, NULL},
+    [HYBRID] = {hybrid_prepare, hybrid_step, hybrid_release, hybrid_carry_out, hybrid_carry_in},
     /* events inside adaptive steps too: its workspace is the hybrid one */
-    [ADAPTIVE] = {adaptive_prepare, adaptive_step, adaptive_release},
+    [ADAPTIVE] = {adaptive_prepare, adaptive_step, adaptive_release, adaptive_carry_out,
+                  adaptive_carry_in},
 };
 
 void master_algorithm_release(ssx_system *sys)

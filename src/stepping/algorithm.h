@@ -17,7 +17,13 @@ typedef struct ssx_master_algorithm {
     int (*step)(ssx_system *sys, double t, double from, double t_next, int *event);
     /* Frees what prepare made. NULL: prepare makes nothing to free. */
     void (*release)(ssx_system *sys, void *workspace);
+    /* What it carries from one step to the next beyond the system's values (a saved state,
+     * saved_state.c): into carried[ALGORITHM_CARRIED] and back. NULL: nothing. */
+    void (*carry_out)(const ssx_system *sys, double *carried);
+    void (*carry_in)(ssx_system *sys, const double *carried);
 } ssx_master_algorithm;
+
+enum { ALGORITHM_CARRIED = 3 };
 
 /* Chooses the system's algorithm and prepares it, releasing the one before: hybrid when the
  * system has event indicators. */

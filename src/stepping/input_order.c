@@ -566,3 +566,56 @@ static int tracked_step(ssx_system *sys, double t, double h)
     w->error = end_step(sys, w);
     return status;
 }
+
+/* Per component: the history's times and count, its input order and when orders and slopes
+ * failed, then its outputs at each history point. */
+static size_t track_size(const ssx_component *c)
+{
+    return HISTORY + 4 + HISTORY * (size_t)c->n_outputs;
+}
+
+size_t input_order_state_size(const ssx_system *sys)
+{
+    const struct input_motion *w = sys->input_motion;
+    size_t n = 0;
+    for (int i = 0; w != NULL && i < w->n_components; ++i) {
+        n += track_size(sys->components[i]);
+    }
+    return n;
+}
+
+void input_order_state_save(const ssx_system *sys, double *values)
+{
+    const struct input_motion *w = sys->input_motion;
+    for (int i = 0; w != NULL && i < w->n_components; ++i) {
+        const component_track *tr = &w->tracks[i];
+        size_t n_out = (size_t)sys->components[i]->n_outputs;
+        memcpy(values, tr->t, sizeof tr->t);
+        values += HISTORY;
+        *values++ = tr->count;
+        *values++ = tr->order;
+        *values++ = tr->order_refused_at;
+        *values++ = tr->slopes_failed_at;
+        for (int k = 0; k < HISTORY; ++k, values += n_out) {
+            memcpy(values, tr->y[k], n_out * sizeof(double));
+        }
+    }
+}
+
+void input_order_state_restore(ssx_system *sys, const double *values)
+{
+    struct input_motion *w = sys->input_motion;
+    for (int i = 0; w != NULL && i < w->n_components; ++i) {
+        component_track *tr = &w->tracks[i];
+        size_t n_out = (size_t)sys->components[i]->n_outputs;
+        memcpy(tr->t, values, sizeof tr->t);
+        values += HISTORY;
+        tr->count = (int)*values++;
+        tr->order = (int)*values++;
+        tr->order_refused_at = *values++;
+        tr->slopes_failed_at = *values++;
+        for (int k = 0; k < HISTORY; ++k, values += n_out) {
+            memcpy(tr->y[k], values, n_out * sizeof(double));
+        }
+    }
+}

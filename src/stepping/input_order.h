@@ -38,4 +38,11 @@ void input_order_measure_loop(ssx_system *sys, const ssx_group *g);
 /* The weighted coupling error of the last coupled step (0 without a workspace). */
 double input_order_error(const ssx_system *sys);
 
+/* What the input motion carries from one communication step to the next (the coupling history,
+ * each component's input order), as doubles for a saved state: how many (0 without a
+ * workspace), and copies out and back into the same system. */
+size_t input_order_state_size(const ssx_system *sys);
+void input_order_state_save(const ssx_system *sys, double *values);
+void input_order_state_restore(ssx_system *sys, const double *values);
+
 #endif

@@ -650,6 +650,20 @@ int hybrid_end_piece(ssx_system *sys, const hybrid_piece *piece, double t_end, d
     return status;
 }
 
+void hybrid_carry_out(const ssx_system *sys, double *carried)
+{
+    const hybrid_workspace *hw = sys->algorithm_workspace;
+    carried[0] = hw != NULL ? hw->zero_start_pending : 0.0;
+}
+
+void hybrid_carry_in(ssx_system *sys, const double *carried)
+{
+    hybrid_workspace *hw = sys->algorithm_workspace;
+    if (hw != NULL) {
+        hw->zero_start_pending = carried[0] != 0.0;
+    }
+}
+
 void hybrid_release(ssx_system *sys, void *workspace)
 {
     (void)sys;

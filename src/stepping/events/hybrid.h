@@ -12,6 +12,11 @@ void hybrid_release(ssx_system *sys, void *workspace);
  * first event located and handled in between (*event set). */
 int hybrid_step(ssx_system *sys, double t, double from, double t_next, int *event);
 
+/* What the hybrid algorithm carries between steps (algorithm.h): carried[0], whether the
+ * indicators that started on zero still wait for their side. */
+void hybrid_carry_out(const ssx_system *sys, double *carried);
+void hybrid_carry_in(ssx_system *sys, const double *carried);
+
 /* The snapshot slot of a macro piece's start: localization restores it. */
 enum { MACRO_SLOT = 0 };
 
