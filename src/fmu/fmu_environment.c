@@ -8,8 +8,10 @@
  * process-wide table of live environments would be shared state behind a lock; the FMU that
  * logs, though, is the one this thread is calling (a message logged during a call comes from
  * the thread that made it). So each thread records, for the length of one call, which
- * environment it is calling: like errno, the thread's own, never shared and never locked. */
-static _Thread_local ssx_fmu_environment *calling;
+ * environment it is calling: like errno, the thread's own, never shared and never locked.
+ * The initial-exec model reaches it without the dynamic loader's __tls_get_addr, so that a
+ * binary built from the engine (an exported FMU) needs libc and libm only. */
+static _Thread_local ssx_fmu_environment *calling __attribute__((tls_model("initial-exec")));
 
 void ssx_fmu_environment_enter(ssx_fmu_environment *environment)
 {

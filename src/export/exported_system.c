@@ -1,0 +1,484 @@
+/* The exported system (exported_system.h) over the engine's public API: the plan builds it,
+ * ssx_step_until advances it, ssx_state_* save and restore it. */
+#include "exported_system.h"
+
+#include "export_map.h"
+#include "syssimx_engine.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { MESSAGE_SIZE = 2048 };
+/* bounds on what the FMU's own resources may hold, as the plan reader's */
+static const size_t max_plan_size = (size_t)256 << 20;
+static const size_t max_map_size = (size_t)64 << 20;
+
+static const char state_magic[8] = {'S', 'S', 'X', 'E', 'X', 'P', '0', '1'};
+
+struct exported_system {
+    export_map map;
+    char *plan_text;
+    size_t plan_size;
+    char *members;  /* the folder the member FMUs are unpacked in */
+    double *values; /* by variable: what the importer set (NaN: nothing) */
+    ssx_plan *plan;
+    ssx_system *sys;
+    long events; /* events located and handled inside since the start */
+    double last_event_time;
+    exported_log log;
+    void *user;
+};
+
+struct exported_state {
+    ssx_system_state *system;
+    long events;
+    double last_event_time;
+};
+
+static void report(const exported_system *es, const char *format, const char *detail)
+{
+    char message[MESSAGE_SIZE];
+    snprintf(message, sizeof message, format, detail);
+    es->log(es->user, 1, message);
+}
+
+static void report_engine(const exported_system *es, const char *what)
+{
+    const ssx_error *error = es->sys != NULL ? ssx_last_error(es->sys) : NULL;
+    char message[MESSAGE_SIZE + 128];
+    snprintf(message, sizeof message, "%s: %s", what,
+             error != NULL && error->message[0] ? error->message : "the engine failed");
+    es->log(es->user, 1, message);
+}
+
+/* The whole file at folder/name, NUL-terminated, at most limit bytes; NULL on failure. */
+static char *read_file(const char *folder, const char *name, size_t limit, size_t *size,
+                       char *error, size_t error_size)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", folder, name);
+    FILE *file = fopen(path, "rb");
+    if (file == NULL) {
+        snprintf(error, error_size, "cannot open %.1024s", path);
+        return NULL;
+    }
+    char *text = NULL;
+    long length = -1;
+    if (fseek(file, 0, SEEK_END) == 0) {
+        length = ftell(file);
+    }
+    if (length >= 0 && (size_t)length <= limit && fseek(file, 0, SEEK_SET) == 0) {
+        text = malloc((size_t)length + 1);
+    }
+    if (text != NULL && fread(text, 1, (size_t)length, file) == (size_t)length) {
+        text[length] = '\0';
+        *size = (size_t)length;
+    } else {
+        free(text);
+        text = NULL;
+        snprintf(error, error_size, "cannot read %.1024s (or it is over %zu bytes)", path, limit);
+    }
+    fclose(file);
+    return text;
+}
+
+exported_system *exported_system_new(const char *resources, const char *token, exported_log log,
+                                     void *user)
+{
+    exported_system *es = calloc(1, sizeof *es);
+    if (es == NULL) {
+        log(user, 1, "out of memory");
+        return NULL;
+    }
+    es->log = log;
+    es->user = user;
+    char error[MESSAGE_SIZE] = "";
+    size_t map_size = 0;
+    char *map_text =
+        read_file(resources, "export.map", max_map_size, &map_size, error, sizeof error);
+    int ok =
+        map_text != NULL && export_map_read(map_text, map_size, &es->map, error, sizeof error) == 0;
+    free(map_text);
+    if (ok && (token == NULL || strcmp(token, es->map.token) != 0)) {
+        snprintf(error, sizeof error,
+                 "the token given at instantiation (%.64s) is not this "
+                 "FMU's %.64s",
+                 token != NULL ? token : "none", es->map.token);
+        ok = 0;
+    }
+    if (ok) {
+        es->plan_text =
+            read_file(resources, "system.plan", max_plan_size, &es->plan_size, error, sizeof error);
+        size_t folder_size = strlen(resources) + sizeof "/members";
+        es->members = malloc(folder_size);
+        es->values = malloc((es->map.n ? es->map.n : 1) * sizeof *es->values);
+        ok = es->plan_text != NULL && es->members != NULL && es->values != NULL;
+        if (ok) {
+            snprintf(es->members, folder_size, "%s/members", resources);
+        } else if (error[0] == '\0') {
+            snprintf(error, sizeof error, "out of memory");
+        }
+    }
+    if (!ok) {
+        report(es, "%s", error);
+        exported_system_free(es);
+        return NULL;
+    }
+    exported_system_reset(es);
+    return es;
+}
+
+static void drop_system(exported_system *es)
+{
+    if (es->sys != NULL) {
+        ssx_system_free(es->sys);
+        es->sys = NULL;
+    }
+    if (es->plan != NULL) {
+        ssx_plan_free(es->plan);
+        es->plan = NULL;
+    }
+}
+
+void exported_system_reset(exported_system *es)
+{
+    drop_system(es);
+    for (size_t k = 0; k < es->map.n; k++) {
+        es->values[k] = NAN;
+    }
+    es->events = 0;
+    es->last_event_time = 0.0;
+}
+
+void exported_system_free(exported_system *es)
+{
+    if (es == NULL) {
+        return;
+    }
+    drop_system(es);
+    export_map_free(&es->map);
+    free(es->plan_text);
+    free(es->members);
+    free(es->values);
+    free(es);
+}
+
+/* The plan with a start record for each parameter the importer set: written after the
+ * exporter's own, so it is the one written last in initialization mode. */
+static char *plan_with_parameters(const exported_system *es, size_t *size)
+{
+    enum { RECORD_SIZE = 96 };
+    size_t capacity = es->plan_size + 1 + es->map.n * RECORD_SIZE + 1;
+    char *text = malloc(capacity);
+    if (text == NULL) {
+        return NULL;
+    }
+    memcpy(text, es->plan_text, es->plan_size);
+    size_t at = es->plan_size;
+    if (at > 0 && text[at - 1] != '\n') {
+        text[at++] = '\n';
+    }
+    for (size_t k = 0; k < es->map.n; k++) {
+        const export_variable *v = &es->map.variables[k];
+        if (v->role == EXPORT_PARAMETER && !isnan(es->values[k])) {
+            at += (size_t)snprintf(text + at, capacity - at, "start %d real %d %.17g\n",
+                                   v->component, v->index, es->values[k]);
+        }
+    }
+    *size = at;
+    return text;
+}
+
+/* The inputs the importer set, into the engine's input ports. */
+static void write_inputs(exported_system *es)
+{
+    for (size_t k = 0; k < es->map.n; k++) {
+        const export_variable *v = &es->map.variables[k];
+        if (v->role == EXPORT_INPUT && !isnan(es->values[k])) {
+            ssx_inputs(es->sys, v->component)[v->index] = es->values[k];
+        }
+    }
+}
+
+int exported_system_start(exported_system *es, double t0)
+{
+    drop_system(es);
+    char error[MESSAGE_SIZE] = "";
+    size_t size = 0;
+    char *text = plan_with_parameters(es, &size);
+    if (text == NULL) {
+        report(es, "%s", "out of memory");
+        return -1;
+    }
+    es->plan = ssx_plan_read(text, size, error, sizeof error);
+    free(text);
+    if (es->plan == NULL) {
+        report(es, "the system's plan: %s", error);
+        return -1;
+    }
+    es->sys = ssx_plan_build(es->plan, es->members, NULL, 0, error, sizeof error);
+    if (es->sys == NULL) {
+        report(es, "building the system: %s", error);
+        drop_system(es);
+        return -1;
+    }
+    /* an FMU keeps no history: the importer records what it wants */
+    if (ssx_set_history(es->sys, 0) != 0) {
+        report_engine(es, "history");
+        drop_system(es);
+        return -1;
+    }
+    write_inputs(es);
+    if (ssx_plan_initialize(es->sys, es->plan, t0) != 0) {
+        report_engine(es, "initializing the system");
+        drop_system(es);
+        return -1;
+    }
+    write_inputs(es); /* ssx_initialize gives the ports their start values again */
+    es->events = 0;
+    es->last_event_time = t0;
+    return 0;
+}
+
+int exported_system_started(const exported_system *es)
+{
+    return es->sys != NULL;
+}
+
+static long variable_of(const exported_system *es, unsigned int vr)
+{
+    long k = export_map_find(&es->map, vr);
+    if (k < 0) {
+        char reference[32];
+        snprintf(reference, sizeof reference, "%u", vr);
+        report(es, "no variable has the value reference %s", reference);
+    }
+    return k;
+}
+
+int exported_system_set_real(exported_system *es, const unsigned int *vr, size_t n,
+                             const double *values)
+{
+    for (size_t i = 0; i < n; i++) {
+        long k = variable_of(es, vr[i]);
+        if (k < 0) {
+            return -1;
+        }
+        const export_variable *v = &es->map.variables[k];
+        if (v->role != EXPORT_INPUT && v->role != EXPORT_PARAMETER) {
+            report(es, "%s", "only inputs and parameters can be set");
+            return -1;
+        }
+        if (v->role == EXPORT_PARAMETER && es->sys != NULL) {
+            report(es, "%s",
+                   "a parameter is set before initialization mode (the members "
+                   "are initialized with it there)");
+            return -1;
+        }
+        es->values[k] = values[i];
+        if (v->role == EXPORT_INPUT && es->sys != NULL) {
+            ssx_inputs(es->sys, v->component)[v->index] = values[i];
+        }
+    }
+    return 0;
+}
+
+int exported_system_get_real(exported_system *es, const unsigned int *vr, size_t n, double *values)
+{
+    for (size_t i = 0; i < n; i++) {
+        long k = variable_of(es, vr[i]);
+        if (k < 0) {
+            return -1;
+        }
+        const export_variable *v = &es->map.variables[k];
+        switch (v->role) {
+        case EXPORT_OUTPUT:
+            values[i] = es->sys != NULL ? ssx_outputs(es->sys, v->component)[v->index] : 0.0;
+            break;
+        case EXPORT_INPUT:
+            values[i] =
+                es->sys != NULL ? ssx_inputs(es->sys, v->component)[v->index] : es->values[k];
+            break;
+        case EXPORT_PARAMETER:
+            values[i] = es->values[k];
+            break;
+        case EXPORT_LAST_EVENT_TIME:
+            values[i] = es->last_event_time;
+            break;
+        case EXPORT_EVENTS:
+            report(es, "%s", "the event count is an Integer");
+            return -1;
+        }
+    }
+    return 0;
+}
+
+int exported_system_get_integer(exported_system *es, const unsigned int *vr, size_t n, int *values)
+{
+    for (size_t i = 0; i < n; i++) {
+        long k = variable_of(es, vr[i]);
+        if (k < 0) {
+            return -1;
+        }
+        if (es->map.variables[k].role != EXPORT_EVENTS) {
+            report(es, "%s", "only the event count is an Integer");
+            return -1;
+        }
+        values[i] = (int)(es->events < INT32_MAX ? es->events : INT32_MAX);
+    }
+    return 0;
+}
+
+static long events_handled(const ssx_system *sys)
+{
+    ssx_statistics statistics;
+    ssx_get_statistics(sys, &statistics);
+    return statistics.events;
+}
+
+int exported_system_step(exported_system *es, double t, double h, int may_return_early,
+                         double *reached, int *returned_early)
+{
+    *returned_early = 0;
+    *reached = t;
+    if (es->sys == NULL) {
+        report(es, "%s", "a step before initialization");
+        return -1;
+    }
+    double now = ssx_time(es->sys);
+    if (t != now) {
+        char times[96];
+        snprintf(times, sizeof times, "%.17g (the system is at %.17g)", t, now);
+        report(es, "a step from %s: steps go on from where the last one ended", times);
+        return -1;
+    }
+    double t_stop = t + h;
+    double dt = es->map.step > 0.0 ? es->map.step : h;
+    for (;;) {
+        long before = events_handled(es->sys);
+        ssx_step_outcome outcome;
+        if (ssx_step_until(es->sys, t_stop, dt, &outcome) != 0) {
+            report_engine(es, "the system's step");
+            return -1;
+        }
+        *reached = outcome.time;
+        long handled = events_handled(es->sys) - before;
+        if (handled > 0) {
+            es->events += handled;
+            es->last_event_time = outcome.time;
+        }
+        if (outcome.terminated) {
+            return 1;
+        }
+        if (!outcome.event) {
+            return 0;
+        }
+        if (may_return_early) {
+            *returned_early = 1;
+            return 0;
+        }
+    }
+}
+
+double exported_system_time(const exported_system *es)
+{
+    return es->sys != NULL ? ssx_time(es->sys) : 0.0;
+}
+
+exported_state *exported_state_save(exported_system *es)
+{
+    exported_state *state = calloc(1, sizeof *state);
+    if (state == NULL || es->sys == NULL) {
+        report(es, "%s", state == NULL ? "out of memory" : "no state before initialization");
+        free(state);
+        return NULL;
+    }
+    state->system = ssx_state_save(es->sys);
+    if (state->system == NULL) {
+        report_engine(es, "saving the system's state");
+        free(state);
+        return NULL;
+    }
+    state->events = es->events;
+    state->last_event_time = es->last_event_time;
+    return state;
+}
+
+int exported_state_restore(exported_system *es, const exported_state *state)
+{
+    if (es->sys == NULL || ssx_state_restore(es->sys, state->system) != 0) {
+        report_engine(es, "restoring the system's state");
+        return -1;
+    }
+    es->events = state->events;
+    es->last_event_time = state->last_event_time;
+    return 0;
+}
+
+void exported_state_free(exported_state *state)
+{
+    if (state != NULL) {
+        ssx_state_free(state->system);
+        free(state);
+    }
+}
+
+/* The serialized state: magic, the event count (int64) and the last event's time (double) in
+ * this machine's byte order, then the engine's bytes (which check the system they belong to). */
+enum { HEADER_SIZE = sizeof state_magic + sizeof(int64_t) + sizeof(double) };
+
+unsigned char *exported_state_serialize(exported_system *es, const exported_state *state,
+                                        size_t *size)
+{
+    unsigned char *system_bytes = NULL;
+    size_t system_size = 0;
+    if (es->sys == NULL ||
+        ssx_state_serialize(es->sys, state->system, &system_bytes, &system_size) != 0) {
+        report_engine(es, "serializing the system's state");
+        return NULL;
+    }
+    unsigned char *bytes = malloc(HEADER_SIZE + system_size);
+    if (bytes != NULL) {
+        int64_t events = state->events;
+        memcpy(bytes, state_magic, sizeof state_magic);
+        memcpy(bytes + sizeof state_magic, &events, sizeof events);
+        memcpy(bytes + sizeof state_magic + sizeof events, &state->last_event_time,
+               sizeof state->last_event_time);
+        memcpy(bytes + HEADER_SIZE, system_bytes, system_size);
+        *size = HEADER_SIZE + system_size;
+    } else {
+        report(es, "%s", "out of memory");
+    }
+    free(system_bytes);
+    return bytes;
+}
+
+exported_state *exported_state_deserialize(exported_system *es, const unsigned char *bytes,
+                                           size_t size)
+{
+    if (es->sys == NULL || size < HEADER_SIZE ||
+        memcmp(bytes, state_magic, sizeof state_magic) != 0) {
+        report(es, "%s", "the bytes are no serialized state of this exported FMU");
+        return NULL;
+    }
+    exported_state *state = calloc(1, sizeof *state);
+    if (state == NULL) {
+        report(es, "%s", "out of memory");
+        return NULL;
+    }
+    int64_t events;
+    memcpy(&events, bytes + sizeof state_magic, sizeof events);
+    memcpy(&state->last_event_time, bytes + sizeof state_magic + sizeof events,
+           sizeof state->last_event_time);
+    state->events = (long)events;
+    state->system = ssx_state_deserialize(es->sys, bytes + HEADER_SIZE, size - HEADER_SIZE);
+    if (state->system == NULL) {
+        report_engine(es, "deserializing the system's state");
+        free(state);
+        return NULL;
+    }
+    return state;
+}
