@@ -256,6 +256,7 @@ static const char seed_plan[] =
     "directional_derivatives 0 1\n"
     "interpolation 0 1 1\n"
     "indicator_output 0 0 -1\n"
+    "indicator_slope 0 3\n"
     "subscribe indicator 0 0\n"
     "restart_handler 0 0 0 0 0 1 11 1e-10 0 0 2 7 0 1 0 8 1 -1 0\n"
     "hybrid_options 1e-09 1e-09 100 10 0 illinois 0\n";
