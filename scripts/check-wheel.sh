@@ -101,10 +101,11 @@ assert syssimx.__version__ == installed and printed == f"syssimx {installed}", \
 assert "site-packages" in syssimx.__file__, syssimx.__file__
 print(f"   syssimx {installed} from {Path(syssimx.__file__).parent}")
 
-# the engine, its FMU host and every bundled FMU's binaries link no SUNDIALS, miss nothing and
-# need no glibc newer than the wheel's tag says (auditwheel does not look inside the FMUs)
+# the engine, its FMU host, an exported FMU's binary and every bundled FMU's binaries link no
+# SUNDIALS, miss nothing and need no glibc newer than the wheel's tag says (auditwheel does not
+# look inside the FMUs)
 oldest_glibc = tuple(map(int, sys.argv[2].split(".")))
-binaries = [_paths.engine_library(), _paths.fmu_host()]
+binaries = [_paths.engine_library(), _paths.fmu_host(), _paths.export_binary()]
 for archive in map(Path, map(fmus.path, fmus.available())):
     with zipfile.ZipFile(archive) as fmu:
         for member in fmu.namelist():
@@ -119,8 +120,8 @@ for binary in binaries:
     needed = {tuple(map(int, version.split("."))) for version in
               re.findall(r"GLIBC_([0-9.]+)\)", symbols)}
     assert max(needed) <= oldest_glibc, (binary, max(needed))
-print(f"   {len(binaries)} binaries (engine, FMU host, FMUs): no SUNDIALS, nothing missing, "
-      f"glibc {sys.argv[2]} is enough")
+print(f"   {len(binaries)} binaries (engine, FMU host, export binary, FMUs): no SUNDIALS, "
+      f"nothing missing, glibc {sys.argv[2]} is enough")
 
 example = re.findall(r"```python\n(.*?)```", Path(sys.argv[1]).read_text(), re.S)[0]
 namespace = {}

@@ -19,6 +19,7 @@ ENGINE_LIBRARY = "libsyssimx_engine.so"
 ENGINE_HEADER = "syssimx_engine.h"
 ENGINE_FFI_MODULE = "_engine_ffi.py"
 FMU_HOST = "syssimx-fmu-host"
+EXPORT_BINARY = "libsyssimx_fmu.so"
 
 
 # A relative SYSSIMX_BUILD_DIR means relative to where syssimx was imported, whatever the
@@ -32,10 +33,10 @@ def build_dir() -> Path | None:
     return (_IMPORT_DIR / value).resolve() if value else None
 
 
-def _built(name: str, what: str) -> Path:
-    """A file the meson build makes in src/ and installs beside this package's modules."""
+def _built(name: str, what: str, folder: str = "src") -> Path:
+    """A file the meson build makes in `folder` and installs beside this package's modules."""
     build = build_dir()
-    candidate = build / "src" / name if build else _PACKAGE_DIR / name
+    candidate = build / folder / name if build else _PACKAGE_DIR / name
     if not candidate.is_file():
         raise FileNotFoundError(
             f"{what} was not found at {candidate}; build the package (pip install .) or point "
@@ -56,6 +57,11 @@ def engine_ffi_module() -> Path:
 def fmu_host() -> Path:
     """The executable an isolated FMU runs in, installed beside the engine library."""
     return _built(FMU_HOST, "the syssimx FMU host")
+
+
+def export_binary() -> Path:
+    """The binary of an exported system's FMU: the engine under FMI entry points."""
+    return _built(EXPORT_BINARY, "the exported FMU's binary", "src/export")
 
 
 def engine_header() -> Path:

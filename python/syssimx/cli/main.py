@@ -9,9 +9,9 @@ from collections.abc import Sequence
 from .. import __version__
 from ..core.suggest import did_you_mean
 from ..output_check import check_command_outputs
-from . import describe, fmu_list, info, run, simulate, sweep
+from . import describe, export, fmu_list, info, run, simulate, sweep
 
-COMMANDS = (info, fmu_list, simulate, run, describe, sweep)
+COMMANDS = (info, fmu_list, simulate, run, describe, sweep, export)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -65,8 +65,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="syssimx",
         description="Hybrid co-simulation of FMUs (FMI 1.0, 2.0 and 3.0, Co-Simulation and Model "
-                    "Exchange): inspect an FMU, simulate it with FMPy's options, run, describe "
-                    "or sweep a system description or an SSP.",
+                    "Exchange): inspect an FMU, simulate it with FMPy's options, run, describe, "
+                    "sweep or export a system description or an SSP.",
     )
     parser.add_argument("--version", action="version", version=f"syssimx {__version__}")
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")

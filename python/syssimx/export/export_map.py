@@ -1,0 +1,17 @@
+"""The export map (resources/export.map): which exported value reference is which member port
+or parameter, read by the FMU's binary (src/export/export_map.h describes the format)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from .selection import ExportedVariable
+
+
+def export_map(token: str, step_size: float | None,
+               variables: Sequence[ExportedVariable]) -> str:
+    """The map's text; step_size None: each doStep is one communication step of the system."""
+    lines = ["syssimx-export 1", f'token "{token}"', f"step {float(step_size or 0.0)!r}"]
+    lines += [f"variable {v.value_reference} {v.role} {v.component} {v.index}"
+              for v in variables]
+    return "\n".join(lines) + "\n"

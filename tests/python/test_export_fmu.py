@@ -1,0 +1,240 @@
+"""System.export_fmu and `syssimx export`: the seed's pendulum against a wall as one
+Co-Simulation FMU (FMI 2.0 and 3.0) whose binary is the engine, run by FMPy alone (no syssimx
+importable, a copy in a fresh folder), validated by FMPy, and imported by syssimx itself, which
+rolls it back to locate an event on its outputs. What cannot go into the binary is refused."""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+import zipfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+from exported_fmus import STEP, STOP_TIME, export_seed, run_with_fmpy_alone, seed_system
+from fmpy.validation import validate_fmu
+from syssimx import (
+    CoSimComponent,
+    EventConnection,
+    FMUComponent,
+    HybridAlgorithm,
+    System,
+    _paths,
+    fmus,
+)
+from syssimx.cli.main import main
+from syssimx.errors import ConfigurationError
+
+QUARTER_PERIOD = 0.46507759431173046  # the seed's first wall hit (DESIGN.md)
+TOL_TIME = 1e-9  # the description's tol_time
+# libcosim (libcosimpy 0.0.6, its fixedStep algorithm at 0.05 s, 20 steps) running the FMI 2.0
+# export as the one simulator of an OSP system structure, measured once with
+# benchmarks/exported_fmu_peers.py: P.theta, P.omega and last_event_time after the steps that
+# end at 0.5 s and at 1 s. libcosim's communication points are whole nanoseconds (0.15, where
+# FMPy's are 0.15000000000000002), so the inner steps end at other doubles: CVODE's solution
+# (rtol 1e-10) differs by up to 5.4e-9 from syssimx's own run, the wall hit by 2e-13 s.
+LIBCOSIM = {0.5: (0.059146143026729284, 1.6855345129332961, 0.46507759392864845),
+            1.0: (0.4862917423803598, -0.39087992360397367, 0.46507759392864845)}
+
+
+@pytest.fixture(scope="module")
+def exported(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
+    folder = tmp_path_factory.mktemp("exported")
+    return {version: export_seed(folder, version) for version in ("2.0", "3.0")}
+
+
+@pytest.fixture(scope="module")
+def own_run() -> tuple[np.ndarray, dict[str, np.ndarray], float]:
+    """syssimx's own run of the description: the grid samples (the event instants' samples
+    left out) and the first event's time."""
+    system = seed_system()
+    system.initialize(0.0)
+    result = system.run(0.0, STOP_TIME, STEP)
+    times, values = system.components["P"].get_history_arrays(["theta", "omega"])
+    on_grid = np.isclose(times / STEP, np.round(times / STEP), rtol=0, atol=1e-9)
+    # an event instant's two samples: the grid keeps the last sample at each grid time
+    keep = on_grid & np.append(times[1:] != times[:-1], True)
+    return times[keep], {f"P.{n}": v[keep] for n, v in values.items()}, result.events[0].t
+
+
+@pytest.mark.parametrize("fmi_version", ["2.0", "3.0"])
+def test_fmpy_alone_runs_the_export_as_syssimx_runs_the_system(exported, own_run, fmi_version):
+    """Outputs equal at every grid point, the wall hit inside at syssimx's event time."""
+    times, values, event_time = own_run
+    result = run_with_fmpy_alone(exported[fmi_version])
+    np.testing.assert_array_equal(result["time"], times)
+    for name, expected in values.items():
+        np.testing.assert_array_equal(result[name], expected, err_msg=name)
+    assert abs(event_time - QUARTER_PERIOD) < TOL_TIME
+    hit = int(np.searchsorted(result["time"], event_time))  # the first grid point after it
+    assert result["events"][hit - 1] == 0 and result["events"][hit] == 1
+    assert abs(result["last_event_time"][hit] - event_time) <= TOL_TIME
+    # theta stays on its side of the wall: the omega jump happened inside the step
+    assert result["P.omega"][hit - 1] < 0 < result["P.omega"][hit]
+
+
+@pytest.mark.parametrize("fmi_version", ["2.0", "3.0"])
+def test_fmpy_validates_the_export(exported, fmi_version):
+    assert validate_fmu(str(exported[fmi_version])) == []
+
+
+@pytest.mark.parametrize("fmi_version", ["2.0", "3.0"])
+def test_the_archive_holds_binary_plan_map_and_members(exported, fmi_version):
+    platform = "linux64" if fmi_version == "2.0" else "x86_64-linux"
+    with zipfile.ZipFile(exported[fmi_version]) as archive:
+        names = set(archive.namelist())
+        description = archive.read("modelDescription.xml").decode()
+    identifier = exported[fmi_version].stem
+    assert {f"binaries/{platform}/{identifier}.so", "resources/system.plan",
+            "resources/export.map", "resources/members/pendulum_cvode/modelDescription.xml",
+            "resources/members/pendulum_cvode/binaries/linux64/pendulum_cvode.so"} <= names
+    state = "FMUState" if fmi_version == "3.0" else "FMUstate"
+    assert f'canGetAndSet{state}="true"' in description
+    assert f'canSerialize{state}="true"' in description
+    assert 'unit="rad"' in description
+
+
+def test_the_binary_needs_libc_and_libm_only_and_exports_fmi_functions():
+    binary = _paths.export_binary()
+    readelf = shutil.which("readelf")
+    assert readelf is not None, "binutils' readelf is needed to read the binary's dependencies"
+    dynamic = subprocess.run([readelf, "-d", str(binary)], check=True, capture_output=True,
+                             text=True).stdout
+    needed = {line.split("[")[1].rstrip("]") for line in dynamic.splitlines()
+              if "(NEEDED)" in line}
+    assert needed <= {"libc.so.6", "libm.so.6"}, needed
+    symbols = subprocess.run([readelf, "--dyn-syms", "-W", str(binary)], check=True,
+                             capture_output=True, text=True).stdout
+    defined = {line.split()[7] for line in symbols.splitlines()
+               if len(line.split()) >= 8 and line.split()[6] != "UND"
+               and line.split()[3] == "FUNC"}
+    assert defined and all(name.startswith(("fmi2", "fmi3")) for name in defined), defined
+    assert {"fmi2DoStep", "fmi2GetFMUstate", "fmi3DoStep", "fmi3EnterEventMode"} <= defined
+
+
+def test_syssimx_imports_its_export_and_locates_an_outer_event_by_rolling_it_back(exported,
+                                                                               own_run):
+    """The outer hybrid algorithm watches the export's output P.omega fall through zero: after
+    the elastic bounce inside, the pendulum climbs back to theta0, where omega is zero at twice
+    the wall hit's time (the motion after the bounce mirrors the motion before it). Locating it
+    rolls the FMU back (fmi2GetFMUstate/SetFMUstate of the whole inner system)."""
+    outer = System("outer")
+    wall = FMUComponent("W", exported["2.0"])
+    assert wall.can_get_set_state
+    wall.add_event_indicator("at_top", variable="P.omega", direction=-1)
+    wall.add_event_handler("seen", lambda component, events, t: None)
+    outer.add_component(wall)
+    outer.add_event_connection(EventConnection("W", "at_top", "W", "seen"))
+    outer.set_algorithm(HybridAlgorithm(tol_time=TOL_TIME))
+    outer.initialize(0.0)
+    result = outer.run(0.0, STOP_TIME, 0.25)
+    # omega starts at zero and falls: an event at the start, then the one at the top
+    times = [e.t for e in result.events]
+    assert times[0] == 0.0 and len(times) == 2
+    assert abs(times[1] - 2 * own_run[2]) < 2 * TOL_TIME
+    assert result.statistics.state_restores > 0
+    assert wall.instance.counters()["set_state"] > 0  # the export's fmi2SetFMUstate
+
+
+def test_libcosim_ran_the_fmi2_export_in_an_osp_file_as_syssimx_runs_the_system(own_run):
+    times, values, event_time = own_run
+    for t, (theta, omega, last_event_time) in LIBCOSIM.items():
+        k = int(np.argmin(np.abs(times - t)))
+        assert abs(theta - values["P.theta"][k]) < 1e-8
+        assert abs(omega - values["P.omega"][k]) < 1e-8
+        assert abs(last_event_time - event_time) < TOL_TIME
+
+
+def test_fmi3_importer_allowing_early_return_gets_the_step_back_at_the_wall_hit(exported):
+    """syssimx instantiates an FMI 3.0 FMU that can return early with earlyReturnAllowed: the
+    export's doStep returns right after the wall hit inside (one doStep more than the grid's
+    20), and the run goes on on the grid."""
+    outer = System("outer")
+    wall = FMUComponent("W", exported["3.0"])
+    outer.add_component(wall)
+    outer.initialize(0.0)
+    outer.run(0.0, STOP_TIME, STEP)
+    assert wall.instance.counters()["do_step"] == round(STOP_TIME / STEP) + 1
+    times, values = wall.get_history_arrays(["P.omega", "events"])
+    assert len(times) == round(STOP_TIME / STEP) + 1  # the grid only
+    assert values["events"][-1] == 1
+
+
+def test_parameters_and_inputs_set_by_the_importer_are_the_members(tmp_path):
+    """A pendulum with no events, its theta0 exported as a parameter and its torque as an
+    input: FMPy's start value and constant input give syssimx's run with the same values, to
+    the bit."""
+    def pendulum_system(theta0: float, torque: float) -> System:
+        system = System("swing")
+        pendulum = FMUComponent("P", fmus.path("pendulum_cvode"))
+        pendulum.set_parameters(theta0=theta0, cvode_relative_tolerance=1e-10)
+        pendulum.set_inputs({"torque": torque})
+        system.add_component(pendulum)
+        return system
+    fmu = tmp_path / "swing.fmu"
+    pendulum_system(0.5, 0.0).export_fmu(fmu, outputs=["P.theta"], parameters=["P.theta0"],
+                                         step_size=STEP)
+    result = run_with_fmpy_alone(fmu, ["P.theta"], {"P.theta0": 0.25}, {"P.torque": 0.75})
+    system = pendulum_system(0.25, 0.75)
+    system.initialize(0.0)
+    system.run(0.0, STOP_TIME, STEP)
+    times, values = system.components["P"].get_history_arrays(["theta"])
+    np.testing.assert_array_equal(result["time"], times)
+    np.testing.assert_array_equal(result["P.theta"], values["theta"])
+
+
+def test_the_command_line_exports_a_description(tmp_path, capsys):
+    target = tmp_path / "wall.fmu"
+    assert main(["export", str(Path(__file__).resolve().parents[2] / "examples"
+                                / "pendulum_wall.yaml"), "-o", str(target),
+                 "--fmi-version", "3.0", "--output", "P.theta"]) == 0
+    assert "FMI 3.0" in capsys.readouterr().out
+    with zipfile.ZipFile(target) as archive:
+        description = archive.read("modelDescription.xml").decode()
+    assert 'name="P.theta"' in description and 'name="P.torque"' in description
+    assert 'name="P.omega"' not in description  # only the output asked for
+    assert validate_fmu(str(target)) == []
+
+
+class Doubler(CoSimComponent):
+    """A component written in Python."""
+
+
+class Printer:
+    """An observer written in Python."""
+
+    def step_complete(self, t: float, micro: int, values: object) -> None:
+        print(t, micro, values)
+
+
+def test_every_part_that_runs_python_is_named_in_one_refusal(tmp_path):
+    system = seed_system()
+    pendulum = system.components["P"]
+    pendulum.add_event_indicator("low", func=lambda component: 1.0, direction=-1)
+    pendulum.add_event_handler("on_low", lambda component, events, t: None)
+    system.add_event_connection(EventConnection("P", "low", "P", "on_low"))
+    system.add_component(Doubler("D"))
+    system.add_observer(Printer())
+    with pytest.raises(ConfigurationError) as refused:
+        system.export_fmu(tmp_path / "never.fmu")
+    message = str(refused.value)
+    for part in ("Python component 'D'", "Python event indicator P.low",
+                 "Python event handler of 'P'", "Python observer Printer"):
+        assert part in message, (part, message)
+    assert not (tmp_path / "never.fmu").exists()
+
+
+def test_a_parameter_of_a_restarted_member_is_refused(tmp_path):
+    """The restart handler starts P again from the values of the export: a parameter set in
+    the FMU would hold until the first event only."""
+    with pytest.raises(ConfigurationError, match=r"P\.L.*restarts"):
+        seed_system().export_fmu(tmp_path / "never.fmu", parameters=["P.L"])
+
+
+def test_unknown_and_driven_ports_are_refused(tmp_path):
+    system = seed_system()
+    with pytest.raises(ConfigurationError, match="has no output 'nothing'"):
+        system.export_fmu(tmp_path / "never.fmu", outputs=["P.nothing"])
+    with pytest.raises(ConfigurationError, match="fmi_version"):
+        system.export_fmu(tmp_path / "never.fmu", fmi_version="1.0")
