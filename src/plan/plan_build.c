@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "component.h"
 #include "error.h"
 #include "plan.h"
 #include "system.h"
@@ -785,13 +786,30 @@ static int start_lists_make(const ssx_plan *p, int component, const char *driven
     return 0;
 }
 
+/* The plan's components are the system's, by name, and what the build loaded are FMUs. */
+static int built_from(const ssx_system *sys, const ssx_plan *plan)
+{
+    if (plan == NULL || plan->n_components != sys->n_components ||
+        sys->n_owned_fmus != sys->n_components) {
+        return 0;
+    }
+    for (int k = 0; k < sys->n_components; ++k) {
+        size_t record = plan->component_record[k];
+        plan_cursor cursor = plan_record_values(plan, record);
+        if (strcmp(plan_next_text(&cursor, NULL), sys->components[k]->name) != 0 ||
+            (sys->owned_fmus[k] != NULL && !is_fmu_record(plan->kind[record]))) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
 int ssx_plan_initialize(ssx_system *sys, const ssx_plan *plan, double t0)
 {
     if (sys == NULL) {
         return -1;
     }
-    if (plan == NULL || plan->n_components != sys->n_components ||
-        sys->n_owned_fmus != sys->n_components) {
+    if (!built_from(sys, plan)) {
         return fail_config(sys, -1, -1, t0, "system '%s': not built from this plan", sys->name);
     }
     for (int k = 0; k < sys->n_components; ++k) {

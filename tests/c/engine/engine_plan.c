@@ -314,11 +314,62 @@ static void given_fmu(void)
     ssx_plan_free(plan);
 }
 
+/* Refusals of the build and of the initialization name the record's line and the reason. */
+static void build_refusals(void)
+{
+    char error[1024];
+    const char twice[] = "syssimx-plan 1\nsystem \"s\"\npython \"p\" 0\noutput 0 real 0\n"
+                         "input 0 real 0 0\nconnect 0 0 0 0 1 0\nconnect 0 0 0 0 1 0\n";
+    ssx_plan *plan = ssx_plan_read(twice, sizeof twice - 1, error, sizeof error);
+    CHECK(plan != NULL);
+    CHECK(ssx_plan_build(plan, NULL, NULL, 0, error, sizeof error) == NULL);
+    CHECK(strncmp(error, "line 7: record 'connect': ", 26) == 0 && strlen(error) > 30);
+    ssx_plan_free(plan);
+
+    char base[512];
+    unpacked_pendulum(base, sizeof base);
+    const char isolated[] = "syssimx-plan 1\nsystem \"s\"\n"
+                            "fmu \"P\" 1 2 \"pendulum_cvode\" \"pendulum_cvode\" \"g\" \"\" 0\n"
+                            "isolated 0 1\n";
+    plan = ssx_plan_read(isolated, sizeof isolated - 1, error, sizeof error);
+    CHECK(plan != NULL);
+    CHECK(ssx_plan_build(plan, base, NULL, 0, error, sizeof error) == NULL);
+    CHECK(strstr(error, "line 4: record 'isolated': component 0 runs in a host process"));
+    ssx_plan_free(plan);
+
+    const char no_binary[] = "syssimx-plan 1\nsystem \"s\"\n"
+                             "fmu \"P\" 1 2 \"pendulum_cvode\" \"other_model\" \"g\" \"\" 0\n";
+    plan = ssx_plan_read(no_binary, sizeof no_binary - 1, error, sizeof error);
+    CHECK(plan != NULL);
+    CHECK(ssx_plan_build(plan, base, NULL, 0, error, sizeof error) == NULL);
+    CHECK(strstr(error, "line 3: record 'fmu': component 0: ") == error);
+    ssx_plan_free(plan);
+
+    /* a start value the FMU refuses fails the initialization, naming the component */
+    char refused[sizeof seed_plan + 32];
+    snprintf(refused, sizeof refused, "%sstart 0 real 999 1\n", seed_plan);
+    plan = ssx_plan_read(refused, strlen(refused), error, sizeof error);
+    CHECK(plan != NULL);
+    ssx_system *sys = ssx_plan_build(plan, base, NULL, 0, error, sizeof error);
+    CHECK(sys != NULL);
+    CHECK(ssx_plan_initialize(sys, plan, 0.0) == -1);
+    CHECK(ssx_last_error(sys)->kind == SSX_ERROR_FMI && ssx_last_error(sys)->component == 0);
+    /* and a plan that did not build the system is refused */
+    ssx_plan *other = ssx_plan_read(twice, sizeof twice - 1, error, sizeof error);
+    CHECK(ssx_plan_initialize(sys, other, 0.0) == -1);
+    CHECK_MESSAGE(sys, "not built from this plan");
+    ssx_plan_free(other);
+    ssx_system_free(sys);
+    ssx_plan_free(plan);
+    remove_unpacked(base);
+}
+
 int main(void)
 {
     round_trip();
     refusals();
     standalone_seed();
     given_fmu();
+    build_refusals();
     return 0;
 }
