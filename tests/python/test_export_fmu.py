@@ -184,6 +184,43 @@ def test_parameters_and_inputs_set_by_the_importer_are_the_members(tmp_path):
     np.testing.assert_array_equal(result["P.theta"], values["theta"])
 
 
+def test_a_wrong_token_and_a_step_from_elsewhere_fail_with_the_reason_logged(exported,
+                                                                          tmp_path):
+    """Every failure reaches the importer's logger with its reason (FMPy's ctypes binding, the
+    messages formatted by its logger proxy)."""
+    from ctypes import byref
+
+    from fmpy import extract, read_model_description
+    from fmpy.fmi2 import FMU2Slave, fmi2CallbackFunctions, fmi2CallbackLoggerTYPE
+    from fmpy.logging import addLoggerProxy
+
+    description = read_model_description(exported["2.0"])
+    unzipped = extract(exported["2.0"], unzipdir=tmp_path / "unzipped")
+    messages: list[str] = []
+    callbacks = fmi2CallbackFunctions()
+    callbacks.logger = fmi2CallbackLoggerTYPE(
+        lambda environment, instance, status, category, message:
+        messages.append(message.decode()))
+    addLoggerProxy(byref(callbacks))
+
+    def slave(guid: str) -> FMU2Slave:
+        return FMU2Slave(guid=guid, unzipDirectory=unzipped, instanceName="wall",
+                         modelIdentifier=description.coSimulation.modelIdentifier)
+    with pytest.raises(Exception, match="Failed to instantiate"):
+        slave("{not-this-token}").instantiate(callbacks=callbacks)
+    assert any("is not this FMU's" in m for m in messages), messages
+    wall = slave(description.guid)
+    wall.instantiate(callbacks=callbacks)
+    wall.setupExperiment(startTime=0.0)
+    wall.enterInitializationMode()
+    wall.exitInitializationMode()
+    with pytest.raises(Exception, match="fmi2DoStep failed"):
+        wall.doStep(0.3, STEP)
+    assert "steps go on from where the last one ended" in messages[-1]
+    wall.terminate()
+    wall.freeInstance()
+
+
 def test_the_command_line_exports_a_description(tmp_path, capsys):
     target = tmp_path / "wall.fmu"
     assert main(["export", str(Path(__file__).resolve().parents[2] / "examples"
