@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 from exported_fmus import STEP, STOP_TIME, export_seed, run_with_fmpy_alone, seed_system
 from fmpy.validation import validate_fmu
+from osp_files import write_osp
 from syssimx import (
     CoSimComponent,
     EventConnection,
@@ -25,6 +26,7 @@ from syssimx import (
 )
 from syssimx.cli.main import main
 from syssimx.errors import ConfigurationError
+from syssimx.osp import read as read_osp
 
 QUARTER_PERIOD = 0.46507759431173046  # the seed's first wall hit (DESIGN.md)
 TOL_TIME = 1e-9  # the description's tol_time
@@ -232,6 +234,27 @@ def test_the_command_line_exports_a_description(tmp_path, capsys):
     assert 'name="P.theta"' in description and 'name="P.torque"' in description
     assert 'name="P.omega"' not in description  # only the output asked for
     assert validate_fmu(str(target)) == []
+
+
+def test_the_command_line_exports_an_osp_system_of_three_fmus(tmp_path):
+    """libcosim's kind of system (tests/python/osp_files.py: two pendulums and a spring,
+    variable groups, a LinearTransformation, step 0.01 s) exported from its OSP file: FMPy's
+    doStep of 0.05 s is five of the system's steps, the samples those of syssimx's own run
+    (the grid times summed differently: within 1e-15)."""
+    structure = write_osp(tmp_path / "osp")
+    fmu = tmp_path / "coupled.fmu"
+    assert main(["export", str(structure), "-o", str(fmu)]) == 0
+    imported = read_osp(structure)
+    assert imported.experiment.step_size == 0.01
+    stop = imported.experiment.stop_time
+    system = imported.system
+    system.initialize(0.0)
+    system.run(0.0, stop, imported.experiment.step_size)
+    times, values = system.components["P2"].get_history_arrays(["theta"])
+    result = run_with_fmpy_alone(fmu, ["P2.theta"], stop_time=stop)
+    at = [int(np.argmin(np.abs(times - t))) for t in result["time"]]
+    np.testing.assert_allclose(times[at], result["time"], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(values["theta"][at], result["P2.theta"], rtol=0, atol=1e-15)
 
 
 class Doubler(CoSimComponent):
