@@ -197,17 +197,23 @@ static void refusals(void)
     CHECK(strstr(error, "line 3: unknown keyword") != NULL);
 }
 
-/* The bundled pendulum's binary in a folder laid out as an unpacked FMU, in a new temporary
- * folder (written into base). */
-static void unpacked_pendulum(char *base, size_t size)
+/* One of the built FMUs laid out as an unpacked archive, its binary under
+ * binaries/<platform>/<stem>.so (a link), in a new temporary folder (written into base). Its
+ * guid or instantiation token into *token when token is not NULL. */
+static const struct {
+    const char *stem, *binary, *guid;
+} built_fmus[] = {ENGINE_TEST_FMUS};
+
+static void unpacked(const char *stem, const char *platform, char *base, size_t size,
+                     const char **token)
 {
-    static const struct {
-        const char *stem, *binary, *guid;
-    } fmus[] = {ENGINE_TEST_FMUS};
     const char *binary = NULL;
-    for (size_t k = 0; k < sizeof fmus / sizeof fmus[0]; ++k) {
-        if (strcmp(fmus[k].stem, "pendulum_cvode") == 0) {
-            binary = fmus[k].binary;
+    for (size_t k = 0; k < sizeof built_fmus / sizeof built_fmus[0]; ++k) {
+        if (strcmp(built_fmus[k].stem, stem) == 0) {
+            binary = built_fmus[k].binary;
+            if (token != NULL) {
+                *token = built_fmus[k].guid;
+            }
         }
     }
     CHECK(binary != NULL);
@@ -215,26 +221,32 @@ static void unpacked_pendulum(char *base, size_t size)
     snprintf(base, size, "%s/ssx_plan_XXXXXX", tmp != NULL ? tmp : "/tmp");
     CHECK(mkdtemp(base) != NULL);
     char path[1024];
-    snprintf(path, sizeof path, "%s/pendulum_cvode", base);
+    snprintf(path, sizeof path, "%s/%s", base, stem);
     CHECK(mkdir(path, 0700) == 0);
-    snprintf(path, sizeof path, "%s/pendulum_cvode/binaries", base);
+    snprintf(path, sizeof path, "%s/%s/binaries", base, stem);
     CHECK(mkdir(path, 0700) == 0);
-    snprintf(path, sizeof path, "%s/pendulum_cvode/binaries/linux64", base);
+    snprintf(path, sizeof path, "%s/%s/binaries/%s", base, stem, platform);
     CHECK(mkdir(path, 0700) == 0);
-    snprintf(path, sizeof path, "%s/pendulum_cvode/binaries/linux64/pendulum_cvode.so", base);
+    snprintf(path, sizeof path, "%s/%s/binaries/%s/%s.so", base, stem, platform, stem);
     CHECK(symlink(binary, path) == 0);
 }
 
-static void remove_unpacked(const char *base)
+static void remove_unpacked(const char *base, const char *stem, const char *platform)
 {
-    const char *parts[] = {"/pendulum_cvode/binaries/linux64/pendulum_cvode.so",
-                           "/pendulum_cvode/binaries/linux64", "/pendulum_cvode/binaries",
-                           "/pendulum_cvode", ""};
-    for (size_t k = 0; k < sizeof parts / sizeof parts[0]; ++k) {
-        char path[1024];
-        snprintf(path, sizeof path, "%s%s", base, parts[k]);
-        CHECK(remove(path) == 0);
+    char paths[5][1024];
+    snprintf(paths[0], sizeof paths[0], "%s/%s/binaries/%s/%s.so", base, stem, platform, stem);
+    snprintf(paths[1], sizeof paths[1], "%s/%s/binaries/%s", base, stem, platform);
+    snprintf(paths[2], sizeof paths[2], "%s/%s/binaries", base, stem);
+    snprintf(paths[3], sizeof paths[3], "%s/%s", base, stem);
+    snprintf(paths[4], sizeof paths[4], "%s", base);
+    for (size_t k = 0; k < 5; ++k) {
+        CHECK(remove(paths[k]) == 0);
     }
+}
+
+static void unpacked_pendulum(char *base, size_t size)
+{
+    unpacked("pendulum_cvode", "linux64", base, size, NULL);
 }
 
 /* examples/pendulum_wall.yaml as Python builds it: theta0 0.5 (CVODE rtol 1e-10), an
@@ -290,7 +302,46 @@ static void standalone_seed(void)
     CHECK(sys == NULL && strstr(error, "line 4: record 'fmu': component 0: its folder "
                                        "'/nonexistent-folder/pendulum_cvode' is not there"));
     ssx_plan_free(plan);
-    remove_unpacked(base);
+    remove_unpacked(base, "pendulum_cvode", "linux64");
+}
+
+/* An FMI 3.0 Model Exchange FMU built from a plan: its type table comes from the plan's
+ * fmi3_* records; the bouncing ball's bounces are its own state events at the closed form. */
+static void standalone_fmi3_model_exchange(void)
+{
+    char base[512];
+    const char *token = NULL;
+    unpacked("bouncing_ball_cvode_fmi3", "x86_64-linux", base, sizeof base, &token);
+    char text[2048];
+    snprintf(text, sizeof text,
+             "syssimx-plan 1\n"
+             "system \"ball\"\n"
+             "model_exchange \"Ball\" 1 2 1 3 \"bouncing_ball_cvode_fmi3\" "
+             "\"bouncing_ball_cvode_fmi3\" \"%s\" \"Ball\" 0\n"
+             "fmu_experiment 0 1 1e-12 0 0\n"
+             "start 0 real 5 0.8\n"
+             "start 0 real 8 1e-06\n"
+             "fmi3_variables 0 0 0\n"
+             "fmi3_variable 0 0 float64 \"h\"\n"
+             "fmi3_variable 0 1 float64 \"v\"\n"
+             "fmi3_variable 0 5 float64 \"e\"\n"
+             "fmi3_variable 0 8 float64 \"gap_tol\"\n"
+             "output 0 real 0\n"
+             "output 0 real 1\n",
+             token);
+    char error[1024];
+    ssx_plan *plan = ssx_plan_read(text, strlen(text), error, sizeof error);
+    CHECK(plan != NULL);
+    ssx_system *sys = ssx_plan_build(plan, base, NULL, 0, error, sizeof error);
+    if (sys == NULL) {
+        fprintf(stderr, "build: %s\n", error);
+    }
+    CHECK(sys != NULL);
+    CHECK_OK(sys, ssx_plan_initialize(sys, plan, 0.0));
+    check_own_bounces(sys);
+    ssx_system_free(sys);
+    ssx_plan_free(plan);
+    remove_unpacked(base, "bouncing_ball_cvode_fmi3", "x86_64-linux");
 }
 
 /* A given FMU is borrowed: the build loads nothing, the caller initializes it. */
@@ -361,7 +412,7 @@ static void build_refusals(void)
     ssx_plan_free(other);
     ssx_system_free(sys);
     ssx_plan_free(plan);
-    remove_unpacked(base);
+    remove_unpacked(base, "pendulum_cvode", "linux64");
 }
 
 int main(void)
@@ -369,6 +420,7 @@ int main(void)
     round_trip();
     refusals();
     standalone_seed();
+    standalone_fmi3_model_exchange();
     given_fmu();
     build_refusals();
     return 0;
