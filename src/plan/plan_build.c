@@ -786,6 +786,25 @@ static int start_lists_make(const ssx_plan *p, int component, const char *driven
     return 0;
 }
 
+/* The first record of Python the caller attaches (a Python component, an FMU's Python hooks, an
+ * indicator function), or -1 with its component in *component. */
+static int64_t python_record(const ssx_plan *plan, int *component)
+{
+    for (int k = 0; k < plan->n_components; ++k) {
+        if (plan->kind[plan->component_record[k]] == PLAN_PYTHON) {
+            *component = k;
+            return (int64_t)plan->component_record[k];
+        }
+    }
+    for (size_t r = 0; r < plan->n_records; ++r) {
+        if (plan->kind[r] == PLAN_HOOKS || plan->kind[r] == PLAN_INDICATOR_CALLBACK) {
+            *component = (int)plan->values[plan->first_value[r]].as.integer;
+            return (int64_t)r;
+        }
+    }
+    return -1;
+}
+
 /* The plan's components are the system's, by name, and what the build loaded are FMUs. */
 static int built_from(const ssx_system *sys, const ssx_plan *plan)
 {
@@ -811,6 +830,15 @@ int ssx_plan_initialize(ssx_system *sys, const ssx_plan *plan, double t0)
     }
     if (!built_from(sys, plan)) {
         return fail_config(sys, -1, -1, t0, "system '%s': not built from this plan", sys->name);
+    }
+    int python_component = -1;
+    int64_t python = python_record(plan, &python_component);
+    if (python >= 0) {
+        return fail_config(sys, python_component, -1, t0,
+                           "system '%s': component '%s' runs Python (its '%s' record), which "
+                           "only Python can attach; a build without Python cannot run it",
+                           sys->name, ssx_plan_component_name(plan, python_component),
+                           plan_schema[plan->kind[python]].keyword);
     }
     for (int k = 0; k < sys->n_components; ++k) {
         ssx_fmu *fmu = sys->owned_fmus[k];

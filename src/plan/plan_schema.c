@@ -71,6 +71,7 @@ const plan_record_schema plan_schema[PLAN_RECORD_KIND_COUNT] = {
     [PLAN_OUTPUT_INTERVAL] = {"output_interval", "i", "GRID_STEPS"},
     [PLAN_RUN_OUTPUT_INTERVAL] = {"run_output_interval", "i", "GRID_STEPS"},
     [PLAN_HISTORY] = {"history", "f", "KEEP"},
+    [PLAN_HOOKS] = {"hooks", "c", "COMPONENT"},
 };
 
 static const char *const value_types[] = {"real", "integer", "boolean", "string", "binary", NULL};

@@ -83,6 +83,7 @@ FLOORS = (
     ("_paths", "_lazy", "_version", "errors", "atomic_file", "streaming"),
     ("engine", "units", "extras", "partial_results"),
     ("core",),
+    ("plan",),
     ("bridge", "fmus", "graph"),
     ("viz", "fmu"),
     ("components",),

@@ -23,6 +23,9 @@ from ..core.events import OWN_EVENTS
 from ..core.port import TABLED_TYPES, PortType
 from ..engine import ffi, lib, string
 from ..errors import ConfigurationError, SimulationTimeoutError
+from ..plan.fmu_records import FMULoad, write_fmu
+from ..plan.records import PlanRecords, Word, value_type_word
+from .built_system import build_system
 from .history_arrays import HistoryArrays
 
 # A component of syssimx.components (Component or a subclass); typed loosely because
@@ -91,15 +94,16 @@ class EnginePlan:
     structure changed, else started again (`restart`)."""
 
     def __init__(self, name: str, components: Mapping[str, Component]) -> None:
-        raw = lib().ssx_system_new(name.encode())
-        if raw == ffi.NULL:
-            raise MemoryError("ssx_system_new failed")
-        address = _address(raw)
+        # the plan's records; `build` makes the engine system from them
+        self.records = PlanRecords()
+        self.records.add("system", name, about=name)
+        self.sys: Any = None
         self._borrowed_fmus: list[Any] = []
-        _BORROWED_FMUS[address] = self._borrowed_fmus
+        self._given: list[Any] = [ffi.NULL] * len(components)  # the FMUs Python loaded
+        # what is attached once the system is built: hooks, indicator functions
+        self._attach: list[Callable[[], None]] = []
         # What destructors call is looked up now: a collection may run them while cffi holds
         # the lock that a first lookup of a library function would wait for.
-        self.sys = ffi.gc(raw, functools.partial(_free_system, lib().ssx_system_free, address))
         self.release_history = lib().ssx_history_release
         self._callbacks: list[Any] = []  # kept alive as long as the engine may call them
         self.name = name
@@ -107,7 +111,6 @@ class EnginePlan:
         self.timeout: float | None = None
         # the run's progress reporter (called with the time at each monitor call), if asked for
         self.progress: Callable[[float], None] | None = None
-        self._watch()
         self.components = dict(components)
         self.index = {name: i for i, name in enumerate(components)}
         self.outputs = {n: c.engine_outputs() for n, c in components.items()}
@@ -143,6 +146,25 @@ class EnginePlan:
         self._port_holders: list[_HookBuilder] = []
         for component in components.values():
             component._add_to_plan(self)
+
+    def build(self, *more: PlanRecords) -> None:
+        """The engine system of the records followed by `more` (the algorithm's), given the
+        FMUs Python loaded; then the monitor, the Python hooks and the indicator functions
+        attached to it. Refused, the components are bound to no plan."""
+        try:
+            raw = build_system(self.records.extended(*more), self._given)
+        except BaseException:
+            for component in self.components.values():
+                if component._binding is not None and component._binding.plan is self:
+                    component._binding = None
+            raise
+        address = _address(raw)
+        _BORROWED_FMUS[address] = self._borrowed_fmus
+        self.sys = ffi.gc(raw, functools.partial(_free_system, lib().ssx_system_free, address))
+        self._watch()
+        for attach in self._attach:
+            attach()
+        self._attach.clear()
 
     def initialize(self, t0: float) -> int:
         """ssx_initialize at t0 (its status); the port values may have moved into the engine's
@@ -215,13 +237,13 @@ class EnginePlan:
     def add_python_component(self, component: Component, hooks: set[str]) -> None:
         """A component stepped by Python: the engine calls its `hooks` (do_step and
         evaluate_outputs at least) and keeps its port values in step with its ports."""
-        self.check(lib().ssx_add_python_component(self.sys, component.name.encode(),
-                                                  int(component.can_rollback())), component.name)
+        self.records.add("python", component.name, component.can_rollback(),
+                         about=component.name)
         self._add_ports(component, None)
         self._bind(component, hooks, is_fmu=False)
 
-    def add_fmu_component(self, component: Component, fmu: Any, can_get_set_state: bool,
-                          provides_directional_derivative: bool,
+    def add_fmu_component(self, component: Component, fmu: Any, load: FMULoad,
+                          can_get_set_state: bool, provides_directional_derivative: bool,
                           value_reference: Callable[[str], int], hooks: set[str],
                           model_exchange: tuple[int, int] | None = None, *,
                           calling_thread_only: bool = False,
@@ -231,24 +253,20 @@ class EnginePlan:
         with (continuous states, event indicators), at the tolerance the instance is set up
         with. `calling_thread_only` keeps its steps on the thread that runs the system.
         `interpolation`: (canInterpolateInputs, maxOutputDerivativeOrder) as the engine may use
-        them. The system borrows the loaded FMU."""
+        them. `load`: how the FMU was loaded, which a plan built without Python repeats. The
+        system borrows the loaded FMU."""
         name, index = component.name, self.index[component.name]
         self._borrowed_fmus.append(fmu)
-        if model_exchange is None:
-            self.check(lib().ssx_add_fmu_component(self.sys, name.encode(), fmu,
-                                                   int(can_get_set_state)), name)
-        else:
-            states, indicators = model_exchange
-            self.check(lib().ssx_add_model_exchange_component(
-                self.sys, name.encode(), fmu, int(can_get_set_state), states, indicators), name)
-        self.check(lib().ssx_set_directional_derivatives(
-            self.sys, index, int(provides_directional_derivative)),
-            f"{name}: directional derivatives")
-        self.check(lib().ssx_set_interpolation(self.sys, index, int(interpolation[0]),
-                                               interpolation[1]), f"{name}: interpolation")
+        self._given[index] = fmu
+        write_fmu(self.records, index, name, can_get_set_state, model_exchange,
+                  load)
+        self.records.add("directional_derivatives", index, provides_directional_derivative,
+                         about=f"{name}: directional derivatives")
+        self.records.add("interpolation", index, interpolation[0], interpolation[1],
+                         about=f"{name}: interpolation")
         if calling_thread_only:
-            self.check(lib().ssx_set_calling_thread_only(self.sys, index, 1),
-                       f"{name}: calling thread only")
+            self.records.add("calling_thread_only", index, True,
+                             about=f"{name}: calling thread only")
         self._add_ports(component, value_reference)
         self._bind(component, hooks, is_fmu=True)
 
@@ -256,25 +274,31 @@ class EnginePlan:
         name, index = component.name, self.index[component.name]
         for port in self.outputs[name]:
             spec = component.output_specs[port]
-            self.check(lib().ssx_add_output(self.sys, index, engine_type(spec.type),
-                                            vr(port) if vr else 0), f"{name}.{port}")
+            self.records.add("output", index, value_type_word(spec.type), vr(port) if vr else 0,
+                             about=f"{name}.{port}")
         for port in self.inputs[name]:
             spec = component.input_specs[port]
             start = component.input_start(port)
-            if isinstance(start, str | bytes):  # a String input's text, a Binary one's bytes
-                start = self.to_engine(spec.type, start)
-            self.check(lib().ssx_add_input(self.sys, index, engine_type(spec.type),
-                                           vr(port) if vr else 0, start), f"{name}.{port}")
+            # a String input's text, a Binary one's bytes, else a number
+            self.records.add("input", index, value_type_word(spec.type), vr(port) if vr else 0,
+                             start if isinstance(start, str | bytes) else float(start),
+                             about=f"{name}.{port}")
 
     def _bind(self, component: Component, hooks: set[str], is_fmu: bool) -> None:
         index = self.index[component.name]
         bind(component, Binding(self, index))
-        builder = _HookBuilder(self, component, is_fmu)
-        struct = builder.build(hooks)
-        if "do_step" in hooks and not is_fmu:  # the one hook that keeps the addresses
-            self._port_holders.append(builder)
-        if struct is not None:  # the engine copies the struct; the callbacks are kept above
-            self.check(lib().ssx_set_hooks(self.sys, index, struct), f"{component.name}: hooks")
+        if hooks and is_fmu:  # a placeholder: the hooks are Python's to attach
+            self.records.add("hooks", index, about=f"{component.name}: hooks")
+
+        def attach_hooks() -> None:
+            builder = _HookBuilder(self, component, is_fmu)
+            struct = builder.build(hooks)
+            if "do_step" in hooks and not is_fmu:  # the one hook that keeps the addresses
+                self._port_holders.append(builder)
+            if struct is not None:  # the engine copies the struct; the callbacks are kept
+                self.check(lib().ssx_set_hooks(self.sys, index, struct),
+                           f"{component.name}: hooks")
+        self._attach.append(attach_hooks)
 
     def set_restart(self, component: Component, tolerance: float | None, starts: Any,
                     targets: list[int], sources: list[int], gains: list[float]) -> None:
@@ -295,15 +319,12 @@ class EnginePlan:
         """A table source is evaluated in C: its table is copied into the engine, no hooks.
         columns: the values of each output (in the order of engine_outputs)."""
         name, index = component.name, self.index[component.name]
-        time = np.ascontiguousarray(time, dtype=np.float64)
-        self.check(lib().ssx_add_table_component(self.sys, name.encode(),
-                                                 ffi.from_buffer("double[]", time), len(time)),
-                   name)
+        self.records.add("table", name, np.asarray(time, dtype=np.float64).tolist(), about=name)
         for port in self.outputs[name]:
-            values = np.ascontiguousarray(columns[port], dtype=np.float64)
-            self.check(lib().ssx_add_table_column(
-                self.sys, index, engine_type(component.output_specs[port].type),
-                int(port in hold), ffi.from_buffer("double[]", values)), f"{name}.{port}")
+            values = np.asarray(columns[port], dtype=np.float64).tolist()
+            self.records.add("table_column", index,
+                             value_type_word(component.output_specs[port].type), port in hold,
+                             values, about=f"{name}.{port}")
         component._binding = Binding(self, index)
         self.tables.append(name)
 
@@ -318,33 +339,35 @@ class EnginePlan:
 
     def connect(self, src: str, src_port: str, dst: str, dst_port: str, scale: float,
                 offset: float) -> None:
-        self.check(lib().ssx_connect(self.sys, self.index[src], self.outputs[src].index(src_port),
-                                     self.index[dst], self.inputs[dst].index(dst_port), scale,
-                                     offset), f"connection {src}.{src_port} -> {dst}.{dst_port}")
+        self.records.add("connect", self.index[src], self.outputs[src].index(src_port),
+                         self.index[dst], self.inputs[dst].index(dst_port), float(scale),
+                         float(offset), about=f"connection {src}.{src_port} -> {dst}.{dst_port}")
         self.driven.add((dst, dst_port))
 
     def add_indicator(self, component: Component, event: str) -> None:
         indicator = component.event_indicators[event]
         index = self.index[component.name]
+        number, about = len(self.indicators), f"{component.name}.{event}"
         if indicator.variable is not None:
             output = self.outputs[component.name].index(indicator.variable)
-            number = self.check(lib().ssx_add_indicator_output(
-                self.sys, index, output, int(indicator.direction)),
-                f"{component.name}.{event}")
+            self.records.add("indicator_output", index, output, int(indicator.direction),
+                             about=about)
             slope = getattr(component, "_indicator_slope", None)
             slope_vr = slope(indicator.variable) if slope is not None else None
             if slope_vr is not None:
-                self.check(lib().ssx_set_indicator_slope(self.sys, number, slope_vr),
-                           f"{component.name}.{event}")
+                self.records.add("indicator_slope", number, slope_vr, about=about)
         else:
-            engine_time = lib().ssx_time
-            callback = self.callback(
-                "int(void *, double, double *)", self._indicator_callback(component, event), -1,
-                lambda exc: self.fail(component, f"event indicator {event!r}",
-                                      float(engine_time(self.sys)), exc))
-            number = self.check(lib().ssx_add_indicator_callback(
-                self.sys, index, callback, ffi.NULL, int(indicator.direction)),
-                f"{component.name}.{event}")
+            self.records.add("indicator_callback", index, int(indicator.direction), about=about)
+
+            def attach_function() -> None:
+                engine_time = lib().ssx_time
+                callback = self.callback(
+                    "int(void *, double, double *)", self._indicator_callback(component, event),
+                    -1, lambda exc: self.fail(component, f"event indicator {event!r}",
+                                              float(engine_time(self.sys)), exc))
+                self.check(lib().ssx_set_indicator_callback(self.sys, number, callback,
+                                                            ffi.NULL), about)
+            self._attach.append(attach_function)
         self.indicators.append((component.name, event))
         self.indicator_index[(component.name, event)] = number
 
@@ -365,12 +388,11 @@ class EnginePlan:
     def add_event_connection(self, src: str, event: str, dst: str, own: bool = False) -> None:
         """dst listens to src's indicator `event`, or with `own` to src's own events."""
         if own:
-            status = lib().ssx_subscribe(self.sys, lib().SSX_SOURCE_OWN_EVENTS, self.index[src],
-                                         self.index[dst])
+            kind, index = Word("own_events"), self.index[src]
         else:
-            status = lib().ssx_subscribe(self.sys, lib().SSX_SOURCE_INDICATOR,
-                                         self.indicator_index[(src, event)], self.index[dst])
-        self.check(status, f"{src}.{event} -> {dst}")
+            kind, index = Word("indicator"), self.indicator_index[(src, event)]
+        self.records.add("subscribe", kind, index, self.index[dst],
+                         about=f"{src}.{event} -> {dst}")
 
     def fail(self, component: Component, where: str, t: float, exc: BaseException) -> None:
         if self.failure is None:

@@ -56,6 +56,8 @@ from ..fmu.info import (
 from ..fmu.instance import FMUInstance, start_values
 from ..fmu.loading import load
 from ..fmu.variable_table import VariableTable
+from ..plan.fmu_records import FMULoad
+from ..plan.records import PlanRecords, value_type_word
 from ..units import is_quantity, magnitude_in
 from .base import CoSimComponent, _overrides
 from .fmu_display import component_html, component_text
@@ -134,6 +136,8 @@ class FMUComponent(CoSimComponent):
                                         in made_items(self.info.parameters).values())
         # name -> (value type, value reference) of what _by_type wrote so far
         self._written_variables: dict[str, tuple[PortType, int]] = {}
+        # the FMI 3.0 type table the plan writes (and what it points at), made once
+        self._fmi3_table: tuple[Any, Any] | None = None
         fmu, self._unzip_dir, extraction_key = load(self.info, self.fmu_interface, name,
                                                     isolated, step_timeout)
         self.instance = FMUInstance(fmu, name, self.info.standard.function_prefix)
@@ -497,11 +501,21 @@ class FMUComponent(CoSimComponent):
             # depends directly on inputs misses their motion (the coupling history serves)
             output_order = 0
         plan.add_fmu_component(
-            self, self._fmu, self.can_get_set_state,
+            self, self._fmu, self._load(), self.can_get_set_state,
             interface.provides_directional_derivative,
             self.value_reference, self._python_hooks(engine_steps=True), model_exchange,
             calling_thread_only=once_per_process and not self.isolated,
             interpolation=(direct and interface.can_interpolate_inputs, output_order))
+
+    def _load(self) -> FMULoad:
+        """How the FMU's binary was loaded, for the plan (the type table stays alive as long
+        as the component)."""
+        interface = self.fmu_interface
+        if self._fmi3_table is None:
+            self._fmi3_table = self.info.standard.engine_variables(self.info, interface)
+        return FMULoad(self.info.standard.engine_version, str(self._unzip_dir),
+                       interface.model_identifier, self.info.description.guid or "", self.name,
+                       self._fmi3_table[0], self.isolated, self.step_timeout or 0.0)
 
     def _python_hooks(self, engine_steps: bool) -> set[str]:
         """A handler the engine runs (an engine restart) needs no Python hook."""
@@ -532,24 +546,66 @@ class FMUComponent(CoSimComponent):
             return None
         return terms
 
-    def _set_engine_restart(self) -> None:
-        """Hand the engine this initialize's restart: the start values the user set, the
-        constant terms among them, and the terms read from the outputs at the event."""
+    def _restart_values(self) -> tuple[dict[PortType, tuple[list[int], list[Any]]],
+                                       list[tuple[int, int, float]]] | None:
+        """The engine's restart of this initialize, or None: the start values the user set
+        and the constant terms among them, by type, and (value reference, output, gain) of
+        each term read from the outputs at the event."""
         terms = self._engine_restart()
         binding = self._binding
         if terms is None or binding is None:
-            return
-        plan = binding.plan
+            return None
         from_outputs = {p: t for p, t in terms.items() if t.output is not None}
         starts = {n: v for n, v in self._parameter_starts(step_mode=False).items()
                   if n not in from_outputs}
         starts.update({p: t.gain for p, t in terms.items() if t.output is None})
-        outputs = plan.outputs[self.name]
-        values, _arrays = start_values(self._by_type(starts))  # alive until the engine copied
-        plan.set_restart(self, self._experiment_tolerance, values,
-                         [self.value_reference(p) for p in from_outputs],
-                         [outputs.index(t.output) for t in from_outputs.values()],
-                         [t.gain for t in from_outputs.values()])
+        outputs = binding.plan.outputs[self.name]
+        return self._by_type(starts), [(self.value_reference(p), outputs.index(t.output), t.gain)
+                                       for p, t in from_outputs.items()
+                                       if t.output is not None]
+
+    def _set_engine_restart(self) -> None:
+        """Hand the engine this initialize's restart."""
+        restart = self._restart_values()
+        if restart is None or self._binding is None:
+            return
+        starts, terms = restart
+        values, _arrays = start_values(starts)  # alive until the engine copied them
+        self._binding.plan.set_restart(self, self._experiment_tolerance, values,
+                                       [vr for vr, _, _ in terms],
+                                       [output for _, output, _ in terms],
+                                       [gain for _, _, gain in terms])
+
+    def _plan_initialization(self, index: int) -> PlanRecords:
+        """The records that initialize this FMU (component `index`) as System.initialize
+        does: its experiment, the parameters the user set, its engine restart."""
+        records = PlanRecords()
+        tolerance = self._experiment_tolerance
+        records.add("fmu_experiment", index, tolerance is not None, float(tolerance or 0.0),
+                    False, 0.0, about=self.name)
+        parameters = self.user_parameters()
+        for kind, (references, values) in self._by_type(parameters).items():
+            for reference, value in zip(references, values, strict=True):
+                records.add("start", index, value_type_word(kind), reference, float(value),
+                            about=self.name)
+        for name, value in parameters.items():
+            parameter = self.info.parameters.get(name)
+            if parameter is not None and parameter.fmi_type in ("String", "Binary"):
+                records.add("start", index, value_type_word(parameter.type),
+                            parameter.value_reference, value, about=f"{self.name}.{name}")
+        restart = self._restart_values()
+        if restart is not None:
+            starts, terms = restart
+            empty: tuple[list[int], list[Any]] = ([], [])
+            records.add("restart_handler", index, tolerance is not None,
+                        float(tolerance or 0.0), False, 0.0,
+                        *([(vr, convert(v)) for vr, v in zip(*starts.get(kind, empty),
+                                                               strict=True)]
+                          for kind, convert in ((PortType.REAL, float), (PortType.INT, int),
+                                                (PortType.BOOL, bool))),
+                        [(vr, output, float(gain), 0.0) for vr, output, gain in terms],
+                        about=f"{self.name}: event handler")
+        return records
 
     # ---------------------------------------------------------------- hooks (engine built-ins)
     def _do_step_internal(self, t: float, dt: float) -> None:

@@ -8,6 +8,7 @@ import math
 import numbers
 import time
 import warnings
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -31,6 +32,8 @@ from .algorithms import Algorithm, HybridAlgorithm, JacobiAlgorithm, StepControl
 from .algorithms.coupling import default_coupling, loop_jacobians
 from .algorithms.hybrid import log_events
 from .connection import Connection, EventConnection
+from .plan_options import option_records, setting_records
+from .plan_writing import coupling_of, plan_text, write_text
 from .progress import ProgressCallback, run_progress
 from .recorded_events import RecordedEvents
 from .results import HistoryView, SimulationResult
@@ -203,7 +206,9 @@ class System:
         self.is_initialized = False
 
     # ------------------------------------------------------------------ compiling
-    def _compile(self) -> EnginePlan:
+    def _compile(self, settings: tuple[int, int | None]) -> EnginePlan:
+        """The plan of the system as it is now, with the algorithm's options and initialize's
+        `settings` (allow_non_finite, output_interval), built into an engine system."""
         algorithm = self.algorithm
         algorithm.validate()
         for connection in self.event_connections:
@@ -242,7 +247,6 @@ class System:
         for c in self.event_connections:
             plan.add_event_connection(c.src_comp, c.src_port, c.dst_comp,
                                       own=c.src_port == OWN_EVENTS)
-        self._observer_ids = {id(o): add_observer(plan, o) for o in self._observers}
         for component in self.components.values():
             for event in component.self_handled_events():
                 plan.add_event_connection(component.name, event, component.name)
@@ -250,10 +254,18 @@ class System:
         _warn_undeclared_dependencies(self.name, analysis)
         order, sizes, loops = analysis.schedule()
         if order:
-            plan.check(lib().ssx_set_schedule(
-                plan.sys, ffi.new("int[]", [plan.index[n] for n in order]),
-                ffi.new("int[]", sizes), ffi.new("int[]", [int(x) for x in loops]), len(sizes)),
-                f"{self.name}: schedule")
+            members = iter(order)
+            plan.records.add("schedule", [(size, bool(loop), *(plan.index[next(members)]
+                                                               for _ in range(size)))
+                                          for size, loop in zip(sizes, loops, strict=True)],
+                             about=f"{self.name}: schedule")
+        run_algorithm = self._run_algorithm(plan)
+        coupling = coupling_of(run_algorithm)
+        ends = _power_bond_ends(plan, coupling.step_control) \
+            if coupling.step_control is not None else []
+        plan.build(option_records(run_algorithm, ends), setting_records(settings))
+        plan.options, plan.initialize_settings = _options(run_algorithm), settings
+        self._observer_ids = {id(o): add_observer(plan, o) for o in self._observers}
         return plan
 
     def _structure(self) -> tuple[Any, ...]:
@@ -340,16 +352,17 @@ class System:
         """
         t0 = _time_value(self.name, "t0", t0)
         plan = self._reusable_plan()
+        settings = (int(bool(allow_non_finite)), output_interval)
         if plan is None:
             structure = self._structure()
-            plan = self._compile()
+            plan = self._compile(settings)
             self._plan, self._plan_structure = plan, structure
         else:
             plan.restart()
             if self._history_off:  # a run switched the history off
                 keep_history_samples(plan, True)
+        # a reused plan's options and settings may have changed since it was built
         self._push_options(plan)
-        settings = (int(bool(allow_non_finite)), output_interval)
         if settings != plan.initialize_settings:  # a reused plan holds them mostly
             plan.initialize_settings = None  # unknown until both are taken
             plan.check(lib().ssx_set_allow_non_finite(plan.sys, settings[0]),
@@ -559,6 +572,30 @@ class System:
         from ..ssp.writer import write_ssp
 
         return write_ssp(self, path, Experiment(start_time, stop_time, step_size))
+
+    def to_plan(self, folders: Mapping[str, str | Path] | None = None) -> str:
+        """The system as a plan (the text of docs/reference/plan-format.md), from which the
+        engine builds, initializes and runs it without Python: its components, connections,
+        events, schedule, algorithm and the settings of the last initialize, each FMU's
+        experiment and the parameters set on it. An FMU's folder is `folders[name]` (relative
+        to the base folder the plan is built from), else the folder syssimx unpacked it to,
+        which lives as long as the component. A Python component, Python hooks and an
+        indicator function are placeholders, which a build without Python refuses."""
+        plan = self._reusable_plan()
+        if plan is None:
+            structure = self._structure()
+            settings = self._plan.initialize_settings if self._plan is not None else None
+            plan = self._compile(settings or (0, None))
+            self._plan, self._plan_structure = plan, structure
+        algorithm = self._run_algorithm(plan)
+        control = coupling_of(algorithm).step_control
+        ends = _power_bond_ends(plan, control) if control is not None else []
+        return plan_text(plan, algorithm, ends, folders)
+
+    def write_plan(self, path: str | Path,
+                   folders: Mapping[str, str | Path] | None = None) -> Path:
+        """Write `to_plan(folders)` to the file `path` (whole or not at all); returns it."""
+        return write_text(path, self.to_plan(folders))
 
     def describe(self) -> str:
         """The system's structure as text: components and their ports with units, connections,

@@ -1,0 +1,156 @@
+"""A System written as a plan (System.to_plan, write_plan) is what the engine builds from: the
+engine alone, reading the text, builds, initializes and runs the Python-built run bit for bit,
+and refuses what only Python can attach, naming the component."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pendulum_wall
+import pytest
+from syssimx import Connection, EventConnection, FMUComponent, Reinitialize, System, fmus
+from syssimx.bridge.history_arrays import HistoryArrays
+from syssimx.engine import ffi, lib
+from syssimx.errors import ConfigurationError
+from syssimx.fmu.archive import extract
+from syssimx.plan.records import PlanRecords, Word
+
+_ERROR_SIZE = 2048
+STOP, STEP = 3.0, 0.05
+
+
+class EngineRefusal(Exception):
+    """What the engine said when it refused to build or initialize a plan."""
+
+
+def _read(text: str) -> Any:
+    data = text.encode()
+    error = ffi.new("char[]", _ERROR_SIZE)
+    plan = lib().ssx_plan_read(data, len(data), error, _ERROR_SIZE)
+    assert plan != ffi.NULL, ffi.string(error).decode()
+    return ffi.gc(plan, lib().ssx_plan_free)
+
+
+def _run_standalone(text: str, base_folder: Path | None = None
+                    ) -> tuple[np.ndarray, np.ndarray, list[float]]:
+    """(time, outputs of component 0, event times) of the engine's own build of `text`: no
+    FMU given, ssx_plan_initialize at 0, one ssx_run."""
+    engine = lib()
+    plan = _read(text)
+    error = ffi.new("char[]", _ERROR_SIZE)
+    folder = str(base_folder).encode() if base_folder is not None else b""
+    system = engine.ssx_plan_build(plan, folder, ffi.NULL, 0, error, _ERROR_SIZE)
+    if system == ffi.NULL:
+        raise EngineRefusal(ffi.string(error).decode())
+    system = ffi.gc(system, engine.ssx_system_free)
+    if engine.ssx_plan_initialize(system, plan, 0.0) < 0 or \
+            engine.ssx_run(system, 0.0, STOP, STEP) < 0:
+        raise EngineRefusal(ffi.string(engine.ssx_last_error(system).message).decode())
+    history = HistoryArrays(system, engine.ssx_history_release)
+    record = ffi.new("ssx_event_record *")
+    events = []
+    for k in range(engine.ssx_event_count(system)):
+        assert engine.ssx_event_get(system, k, record) == 0
+        events.append(float(record.t))
+    outputs = engine.ssx_plan_port_count(plan, 0, 0)
+    return history.time().copy(), history.values(0, outputs).copy(), events
+
+
+def _python_run(system: System) -> tuple[np.ndarray, np.ndarray, list[float]]:
+    result = system.run(0.0, STOP, STEP)
+    time, columns = system.get_history()["P"]
+    outputs = system.components["P"].engine_outputs()  # the engine's columns, in its order
+    return np.asarray(time), np.column_stack([columns[name] for name in outputs]), \
+        [event.t for event in result.events]
+
+
+def _wall(solver: str = "cvode") -> System:
+    system, _ = pendulum_wall.build(solver, handler=Reinitialize(theta0="theta",
+                                                                 omega0="-omega"))
+    return system
+
+
+@pytest.mark.parametrize("solver", ["cvode", "euler"])
+def test_the_engine_alone_runs_the_pendulum_against_a_wall_bit_for_bit(solver: str) -> None:
+    system = _wall(solver)
+    text = system.to_plan()
+    time, values, events = _run_standalone(text)
+    python_time, python_values, python_events = _python_run(system)
+    assert len(events) == 3
+    assert events == python_events
+    np.testing.assert_array_equal(time, python_time)
+    np.testing.assert_array_equal(values, python_values)
+    if solver == "cvode":
+        assert abs(events[0] - pendulum_wall.QUARTER_PERIOD) < 1e-9
+
+
+def test_the_engines_writer_gives_pythons_text_back() -> None:
+    text = _wall().to_plan()
+    size = ffi.new("size_t *")
+    written = lib().ssx_plan_write(_read(text), size)
+    try:
+        assert ffi.string(written, size[0]).decode() == text
+    finally:
+        lib().ssx_plan_text_free(written)
+
+
+def test_a_written_plan_finds_its_fmu_in_the_folder_given(tmp_path: Path) -> None:
+    system = _wall()
+    extract(Path(fmus.path("pendulum_cvode")), tmp_path / "members" / "P")
+    path = system.write_plan(tmp_path / "wall.plan", folders={"P": "members/P"})
+    text = path.read_text()
+    assert '"members/P"' in text
+    time, values, events = _run_standalone(text, tmp_path)
+    python_time, python_values, python_events = _python_run(system)
+    assert events == python_events
+    np.testing.assert_array_equal(values, python_values)
+    np.testing.assert_array_equal(time, python_time)
+    with pytest.raises(ConfigurationError, match="'Q' is no FMU component"):
+        system.to_plan(folders={"Q": "members/Q"})
+
+
+def test_a_python_event_handler_is_refused_by_a_build_without_python() -> None:
+    system, _ = pendulum_wall.build("euler")  # its handler: the Python function `bounce`
+    with pytest.raises(EngineRefusal, match=r"component 'P' runs Python \(its 'hooks' record\)"):
+        _run_standalone(system.to_plan())
+
+
+def test_a_python_component_is_refused_by_a_build_without_python() -> None:
+    from quickstart import Integrator
+
+    source = FMUComponent("P", fmus.path("pendulum_euler"))
+    system = System("driven")
+    system.add_component(source)
+    system.add_component(Integrator(name="Integrator", x0=0.0))
+    system.add_connection(Connection("P", "theta", "Integrator", "u"))
+    text = system.to_plan()
+    assert 'python "Integrator" ' in text
+    with pytest.raises(EngineRefusal,
+                       match=r"component 'Integrator' runs Python \(its 'python' record\)"):
+        _run_standalone(text)
+    system.initialize(0.0)  # the plan written is the one Python builds on
+    system.run(0.0, 0.2, 0.1)
+    assert system.get_history()["Integrator"][0][-1] == 0.2
+
+
+def test_a_python_indicator_function_is_a_placeholder_record() -> None:
+    pendulum = FMUComponent("P", fmus.path("pendulum_euler"))
+    pendulum.add_event_indicator("low", func=lambda c: c.outputs["theta"].get().magnitude)
+    pendulum.add_event_handler("omega_invert", Reinitialize(omega0="-omega"))
+    system = System("wall")
+    system.add_component(pendulum)
+    system.add_event_connection(EventConnection("P", "low", "P", "omega_invert"))
+    assert "\nindicator_callback 0 0\n" in system.to_plan()
+    with pytest.raises(EngineRefusal, match=r"its 'indicator_callback' record"):
+        _run_standalone(system.to_plan())
+
+
+def test_records_write_each_field_as_the_format_reads_it() -> None:
+    records = PlanRecords()
+    records.add("x", True, 3, 0.05, 1e-10, float("nan"), float("-inf"), Word("real"),
+                'a "q"\n\t\x01\u00e9', b"\x00\xff", [(1, 2.5), (3, 0.1)])
+    assert records.text().splitlines()[1] == (
+        'x 1 3 0.05 1e-10 nan -inf real "a \\"q\\"\\n\\t\\x01\u00e9" "\\x00\\xff" '
+        "2 1 2.5 3 0.1")
