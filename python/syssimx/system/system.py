@@ -8,7 +8,7 @@ import math
 import numbers
 import time
 import warnings
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -596,6 +596,17 @@ class System:
                    folders: Mapping[str, str | Path] | None = None) -> Path:
         """Write `to_plan(folders)` to the file `path` (whole or not at all); returns it."""
         return write_text(path, self.to_plan(folders))
+
+    def export_fmu(self, path: str | Path, fmi_version: str = "2.0",
+                   inputs: Sequence[str] | None = None, outputs: Sequence[str] | None = None,
+                   parameters: Sequence[str] = (), **experiment: float | None) -> Path:
+        """Write the system as one Co-Simulation FMU (FMI "2.0" or "3.0") whose binary is the
+        engine; ports and parameters are named "Component.port" (see
+        syssimx.export.export_fmu for the defaults and `experiment`: step_size, start_time,
+        stop_time). A system that runs Python anywhere is refused, naming each part."""
+        from ..export import export_fmu
+
+        return export_fmu(self, path, fmi_version, inputs, outputs, parameters, **experiment)
 
     def describe(self) -> str:
         """The system's structure as text: components and their ports with units, connections,
