@@ -21,7 +21,7 @@ _ERROR_SIZE = 2048
 STOP, STEP = 3.0, 0.05
 
 
-class EngineRefusal(Exception):
+class EngineRefusalError(Exception):
     """What the engine said when it refused to build or initialize a plan."""
 
 
@@ -43,11 +43,11 @@ def _run_standalone(text: str, base_folder: Path | None = None
     folder = str(base_folder).encode() if base_folder is not None else b""
     system = engine.ssx_plan_build(plan, folder, ffi.NULL, 0, error, _ERROR_SIZE)
     if system == ffi.NULL:
-        raise EngineRefusal(ffi.string(error).decode())
+        raise EngineRefusalError(ffi.string(error).decode())
     system = ffi.gc(system, engine.ssx_system_free)
     if engine.ssx_plan_initialize(system, plan, 0.0) < 0 or \
             engine.ssx_run(system, 0.0, STOP, STEP) < 0:
-        raise EngineRefusal(ffi.string(engine.ssx_last_error(system).message).decode())
+        raise EngineRefusalError(ffi.string(engine.ssx_last_error(system).message).decode())
     history = HistoryArrays(system, engine.ssx_history_release)
     record = ffi.new("ssx_event_record *")
     events = []
@@ -113,7 +113,8 @@ def test_a_written_plan_finds_its_fmu_in_the_folder_given(tmp_path: Path) -> Non
 
 def test_a_python_event_handler_is_refused_by_a_build_without_python() -> None:
     system, _ = pendulum_wall.build("euler")  # its handler: the Python function `bounce`
-    with pytest.raises(EngineRefusal, match=r"component 'P' runs Python \(its 'hooks' record\)"):
+    with pytest.raises(EngineRefusalError,
+                       match=r"component 'P' runs Python \(its 'hooks' record\)"):
         _run_standalone(system.to_plan())
 
 
@@ -127,7 +128,7 @@ def test_a_python_component_is_refused_by_a_build_without_python() -> None:
     system.add_connection(Connection("P", "theta", "Integrator", "u"))
     text = system.to_plan()
     assert 'python "Integrator" ' in text
-    with pytest.raises(EngineRefusal,
+    with pytest.raises(EngineRefusalError,
                        match=r"component 'Integrator' runs Python \(its 'python' record\)"):
         _run_standalone(text)
     system.initialize(0.0)  # the plan written is the one Python builds on
@@ -143,7 +144,7 @@ def test_a_python_indicator_function_is_a_placeholder_record() -> None:
     system.add_component(pendulum)
     system.add_event_connection(EventConnection("P", "low", "P", "omega_invert"))
     assert "\nindicator_callback 0 0\n" in system.to_plan()
-    with pytest.raises(EngineRefusal, match=r"its 'indicator_callback' record"):
+    with pytest.raises(EngineRefusalError, match=r"its 'indicator_callback' record"):
         _run_standalone(system.to_plan())
 
 
