@@ -155,3 +155,22 @@ def test_records_write_each_field_as_the_format_reads_it() -> None:
     assert records.text().splitlines()[1] == (
         'x 1 3 0.05 1e-10 nan -inf real "a \\"q\\"\\n\\t\\x01\u00e9" "\\x00\\xff" '
         "2 1 2.5 3 0.1")
+
+
+def test_an_fmi3_fmu_is_built_from_the_type_table_python_loaded_it_with() -> None:
+    ball = FMUComponent("P", fmus.path("bouncing_ball_cvode_fmi3"))
+    ball.set_parameters(h0=1.0, v0=0.0)
+    ball.add_event_indicator("floor", variable="h", direction=-1)
+    ball.add_event_handler("bounce", Reinitialize(h0="h", v0="-0.8*v"))
+    system = System("ball")
+    system.add_component(ball)
+    system.add_event_connection(EventConnection("P", "floor", "P", "bounce"))
+    system.initialize(0.0)
+    text = system.to_plan()
+    assert "\nfmi3_variables 0 " in text and '\nfmi3_variable 0 ' in text
+    time, values, events = _run_standalone(text)
+    python_time, python_values, python_events = _python_run(system)
+    assert len(events) >= 3
+    assert events == python_events
+    np.testing.assert_array_equal(time, python_time)
+    np.testing.assert_array_equal(values, python_values)
