@@ -94,6 +94,9 @@ def test_the_archive_holds_binary_plan_map_and_members(exported, fmi_version):
     state = "FMUState" if fmi_version == "3.0" else "FMUstate"
     assert f'canGetAndSet{state}="true"' in description
     assert f'canSerialize{state}="true"' in description
+    if fmi_version == "3.0":  # it returns early at its own events, and has event mode
+        assert 'mightReturnEarlyFromDoStep="true"' in description
+        assert 'hasEventMode="true"' in description
     assert 'unit="rad"' in description
 
 

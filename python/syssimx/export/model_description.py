@@ -50,7 +50,7 @@ def model_description(description: Description, variables: Sequence[ExportedVari
     co_simulation = {"modelIdentifier": description.model_identifier,
                      "canHandleVariableCommunicationStepSize": "true", **state}
     if fmi3:
-        co_simulation.update(hasEventMode="true", canReturnEarlyAfterIntermediateUpdate="true")
+        co_simulation.update(hasEventMode="true", mightReturnEarlyFromDoStep="true")
     else:
         co_simulation["canNotUseMemoryManagementFunctions"] = "true"
     ET.SubElement(root, "CoSimulation", co_simulation)
