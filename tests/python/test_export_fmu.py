@@ -342,6 +342,13 @@ def test_a_parameter_of_a_restarted_member_is_refused(tmp_path):
         seed_system().export_fmu(tmp_path / "never.fmu", parameters=["P.L"])
 
 
+def test_an_isolated_member_is_refused(tmp_path):
+    system = System("isolated")
+    system.add_component(FMUComponent("P", fmus.path("pendulum_cvode"), isolated=True))
+    with pytest.raises(ConfigurationError, match=r"isolated components \['P'\]"):
+        system.export_fmu(tmp_path / "never.fmu")
+
+
 def test_unknown_and_driven_ports_are_refused(tmp_path):
     system = seed_system()
     with pytest.raises(ConfigurationError, match="has no output 'nothing'"):

@@ -44,6 +44,11 @@ def export_fmu(system: Any, path: str | Path, fmi_version: str = "2.0",
     # compiled as the system's own run compiles it (what that refuses is refused first)
     plan = system.to_plan(folders={c.name: folders[c.fmu_path] for c in members})
     refuse_python(system)
+    isolated = [c.name for c in members if c.isolated]
+    if isolated:
+        raise ConfigurationError(
+            f"{system.name}: cannot export the isolated components {isolated}: the FMU "
+            "carries no host process to run their binaries in (leave isolated off)")
     variables = select(system, inputs, outputs, list(parameters))
     _refuse_restarted_parameters(system, variables)
     path = Path(path)
