@@ -79,12 +79,16 @@ static void write_extra_variables(FILE *out, size_t n_variables)
         const model_clock *clock = &fmu_model.clocks[i];
         fputs("    <Clock name=\"", out);
         write_escaped(out, clock->name);
-        fprintf(out,
-                "\" valueReference=\"%u\" causality=\"input\" variability=\"discrete\" "
-                "intervalVariability=\"constant\" intervalDecimal=\"",
-                clock_vr(n_variables, i));
-        write_real(out, clock->interval);
-        fputs("\" description=\"", out);
+        fprintf(out, "\" valueReference=\"%u\" causality=\"%s\" variability=\"discrete\" ",
+                clock_vr(n_variables, i), clock->kind == CLOCK_OUTPUT ? "output" : "input");
+        if (clock->kind == CLOCK_PERIODIC) {
+            fputs("intervalVariability=\"constant\" intervalDecimal=\"", out);
+            write_real(out, clock->interval);
+            fputc('"', out);
+        } else {
+            fputs("intervalVariability=\"triggered\"", out);
+        }
+        fputs(" description=\"", out);
         write_escaped(out, clock->description);
         fputs("\"/>\n", out);
     }
@@ -108,6 +112,10 @@ static void write_structure(FILE *out, const variable_list *list)
     for (size_t vr = 0; vr < list->count; ++vr)
         if (list->rows[vr]->causality == CAUSALITY_OUTPUT)
             write_unknown(out, "Output", vr, list->rows[vr]->depends);
+    /* an output clock is an output too; it depends on the states through its event */
+    for (size_t i = 0; i < fmu_model.n_clocks; ++i)
+        if (fmu_model.clocks[i].kind == CLOCK_OUTPUT)
+            write_unknown(out, "Output", clock_vr(list->count, i), NULL);
     /* in state order: the order of the derivatives defines the state vector */
     for (size_t i = 0; i < fmu_model.n_states; ++i)
         for (size_t vr = 0; vr < list->count; ++vr)
@@ -120,6 +128,9 @@ static void write_structure(FILE *out, const variable_list *list)
             v->initial == INITIAL_CALCULATED)
             write_unknown(out, "InitialUnknown", vr, v->initial_depends);
     }
+    for (size_t i = 0; i < fmu_model.n_clocks; ++i)
+        if (fmu_model.clocks[i].kind == CLOCK_OUTPUT)
+            write_unknown(out, "InitialUnknown", clock_vr(list->count, i), NULL);
     for (size_t i = 0; i < fmu_model.n_event_indicators; ++i)
         write_unknown(out, "EventIndicator", fmi3_indicator_vr(list->count, i), NULL);
     fputs("  </ModelStructure>\n", out);

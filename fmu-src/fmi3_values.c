@@ -249,22 +249,32 @@ static int clock_index(const fmu_instance *inst, fmi3ValueReference vr)
     return -1;
 }
 
-/* The model's clocks are input clocks: the importer ticks them, nothing reads them back. */
+/* Output clocks: active in Event Mode while the internal event that ticks them is pending
+ * (until fmi3UpdateDiscreteStates applies it); input clocks are ticked, never read back. */
 fmi3Status fmi3GetClock(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                         size_t nValueReferences, fmi3Clock values[])
 {
-    (void)values;
     fmi3_instance *self = fmi3_checked(instance, FMI3_CALL(fmi3GetClock));
     if (self == NULL)
         return fmi3Error;
-    for (size_t i = 0; i < nValueReferences && valueReferences != NULL; ++i)
-        if (clock_index(&self->core, valueReferences[i]) >= 0)
-            return fmi3_status(fmu_error(&self->core,
+    fmu_instance *inst = &self->core;
+    if (nValueReferences > 0 && (valueReferences == NULL || values == NULL))
+        return fmi3_status(fmu_error(inst, "fmi3GetClock: an array argument is NULL"));
+    for (size_t i = 0; i < nValueReferences; ++i) {
+        int clock = clock_index(inst, valueReferences[i]);
+        if (clock < 0)
+            return no_variables_of_type(instance, FMI3_CALL(fmi3GetClock), &valueReferences[i],
+                                        1);
+        const model_clock *declared = &inst->model->clocks[clock];
+        if (declared->kind != CLOCK_OUTPUT)
+            return fmi3_status(fmu_error(inst,
                                          "fmi3GetClock: value reference %u is an input clock "
                                          "(only output clocks are read)",
                                          valueReferences[i]));
-    return no_variables_of_type(instance, FMI3_CALL(fmi3GetClock), valueReferences,
-                                nValueReferences);
+        values[i] = inst->in_event_mode && inst->event_pending &&
+                    inst->fired[declared->indicator];
+    }
+    return fmi3OK;
 }
 
 /* Ticks input clocks, in Event Mode only; the tick applies at fmi3UpdateDiscreteStates. */
@@ -281,10 +291,16 @@ fmi3Status fmi3SetClock(fmi3Instance instance, const fmi3ValueReference valueRef
         return fmi3_status(fmu_error(inst, "fmi3SetClock: clocks tick in Event Mode only "
                                            "(the instance is in %s)",
                                      fmi3_mode_name(fmi3_mode_of(inst))));
-    for (size_t i = 0; i < nValueReferences; ++i)
-        if (clock_index(inst, valueReferences[i]) < 0)
+    for (size_t i = 0; i < nValueReferences; ++i) {
+        int clock = clock_index(inst, valueReferences[i]);
+        if (clock < 0)
             return no_variables_of_type(instance, FMI3_CALL(fmi3SetClock), &valueReferences[i],
                                         1);
+        if (inst->model->clocks[clock].kind == CLOCK_OUTPUT)
+            return fmi3_status(fmu_error(inst, "fmi3SetClock: value reference %u is an output "
+                                               "clock (the FMU ticks it)",
+                                         valueReferences[i]));
+    }
     for (size_t i = 0; i < nValueReferences; ++i)
         self->clock_active[clock_index(inst, valueReferences[i])] = values[i] ? 1 : 0;
     return fmi3OK;
@@ -307,6 +323,10 @@ fmi3Status fmi3GetIntervalDecimal(fmi3Instance instance, const fmi3ValueReferenc
         if (clock < 0)
             return fmi3_status(fmu_error(inst, "fmi3GetIntervalDecimal: value reference %u is no "
                                                "clock",
+                                         valueReferences[i]));
+        if (inst->model->clocks[clock].kind != CLOCK_PERIODIC)
+            return fmi3_status(fmu_error(inst, "fmi3GetIntervalDecimal: clock %u is triggered: "
+                                               "it has no interval",
                                          valueReferences[i]));
         intervals[i] = inst->model->clocks[clock].interval;
         qualifiers[i] = fmi3IntervalChanged;

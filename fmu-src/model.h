@@ -137,12 +137,20 @@ typedef struct {
               .unit = (unit_), .start = (start_), .description = (description_),                  \
               .clock = (clock_index) + 1)
 
-/* A periodic input clock (FMI 3.0, intervalVariability="constant"): the importer ticks it every
- * `interval` seconds from the start time and calls fmi3UpdateDiscreteStates in Event Mode. */
+/* What ticks a clock (FMI 3.0). CLOCK_PERIODIC: an input clock (intervalVariability
+ * "constant") the importer ticks every `interval` seconds from the start time. CLOCK_TRIGGERED:
+ * an input clock (intervalVariability "triggered") the importer ticks when it likes. Both apply
+ * at fmi3UpdateDiscreteStates in Event Mode. CLOCK_OUTPUT: an output clock that ticks when the
+ * model's internal event `indicator` fires (the step returns early there; the importer reads
+ * it with fmi3GetClock in Event Mode). */
+typedef enum { CLOCK_PERIODIC = 0, CLOCK_TRIGGERED, CLOCK_OUTPUT } model_clock_kind;
+
 typedef struct {
     const char *name;
     const char *description;
-    double interval;
+    double interval; /* CLOCK_PERIODIC only */
+    model_clock_kind kind;
+    int indicator; /* CLOCK_OUTPUT only */
 } model_clock;
 
 /* How a refused step fails: the step fails and may be retried (FMU_ERROR), or the step could
@@ -193,8 +201,9 @@ typedef struct {
      * point), for any output and input value reference. Serves fmi2GetDirectionalDerivative. */
     double (*partial_derivative)(const double *v, const double *x, unsigned output,
                                  unsigned input);
-    /* FMI 3.0 only: the model's input clocks, and the update of its clocked variables when the
-     * clocks marked in active[] tick at time t (the inputs are those set at the tick) */
+    /* FMI 3.0 only: the model's clocks, and the update of its clocked variables when the
+     * input clocks marked in active[] tick at time t (the inputs are those set at the tick);
+     * variables clocked by an output clock change in handle_events */
     const model_clock *clocks;
     size_t n_clocks;
     void (*clock_tick)(double *v, double t, const int *active);

@@ -17,6 +17,7 @@ typedef struct ssx_component ssx_component;
 typedef struct {
     double t;
     ssx_own_event_kind kind;
+    int clock; /* ssx_event_record's clock: 1 + index, 0 none */
 } ssx_own_event;
 
 typedef struct {

@@ -338,45 +338,108 @@ static int step_call(ssx_system *sys, ssx_component *c, double t, double t_end,
     return 1;
 }
 
-/* An event the FMU found at t_e, or a tick of its periodic input clocks there (`tick`),
- * handled in event mode: the clocks tick with the inputs of the step, its discrete states are
- * updated until they settle (more rounds than max_microsteps is chattering), then it steps
- * again. *terminate is set when the FMU asks to end the simulation there. */
+/* In Event Mode at t_e: which output clocks tick (NULL in *active without output clocks;
+ * else an array the caller frees). */
+static int read_output_clocks(ssx_system *sys, ssx_component *c, double t_e, int **active)
+{
+    fmu_component_data *d = fmu_data(c);
+    size_t n_output = 0, n_triggered = 0;
+    ssx_fmu_clock_counts(d->fmu, &n_output, &n_triggered);
+    *active = NULL;
+    if (n_output == 0) {
+        return 0;
+    }
+    *active = calloc(n_output, sizeof **active);
+    if (*active == NULL) {
+        return fail(sys, c->index, -1, t_e,
+                    "component '%s': out of memory reading its output clocks at t=%.17g",
+                    c->name, t_e);
+    }
+    int status = ssx_fmu_read_output_clocks(d->fmu, *active);
+    return fmi_ok(status) ? 0 : fmi_failed(sys, c, t_e, status, SLOT_GET_CLOCK);
+}
+
+/* The event's own record, then one per output clock that ticked (in their order). */
+static int report_event(ssx_system *sys, ssx_component *c, double t_e, int tick, int triggered,
+                        const int *output_active)
+{
+    ssx_own_event_kind kind = tick || triggered >= 0 ? SSX_OWN_CLOCK_TICK : SSX_OWN_FMU_EVENT;
+    if (own_event_report_clock(sys, c, kind, triggered + 1, t_e) != 0) {
+        return -1;
+    }
+    size_t n_output = 0, n_triggered = 0;
+    ssx_fmu_clock_counts(fmu_data(c)->fmu, &n_output, &n_triggered);
+    for (size_t k = 0; output_active != NULL && k < n_output; ++k) {
+        if (output_active[k] &&
+            own_event_report_clock(sys, c, SSX_OWN_OUTPUT_CLOCK, (int)k + 1, t_e) != 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* An event the FMU found at t_e, a tick of its periodic input clocks there (`tick`), or a tick
+ * of its triggered input clock `triggered` (-1: none), handled in event mode: the clocks tick
+ * with the inputs of the step, the output clocks are read, its discrete states are updated
+ * until they settle (more rounds than max_microsteps is chattering), then it steps again.
+ * *terminate is set when the FMU asks to end the simulation there. */
 static int handle_own_event(ssx_system *sys, ssx_component *c, double t_e, int tick,
-                            int *terminate)
+                            int triggered, int *terminate)
 {
     fmu_component_data *d = fmu_data(c);
     int status = ssx_fmu_enter_event_mode(d->fmu);
     if (!fmi_ok(status)) {
         return fmi_failed(sys, c, t_e, status, SLOT_ENTER_EVENT_MODE);
     }
-    status = tick ? ssx_fmu_tick_clocks(d->fmu, t_e) : 0;
+    status = tick ? ssx_fmu_tick_clocks(d->fmu, t_e)
+                  : triggered >= 0 ? ssx_fmu_tick_triggered_clock(d->fmu, (size_t)triggered) : 0;
     if (!fmi_ok(status)) {
         return fmi_failed(sys, c, t_e, status, SLOT_SET_CLOCK);
     }
+    int *output_active = NULL;
+    int result = read_output_clocks(sys, c, t_e, &output_active);
     ssx_fmu_event_info update = {.new_discrete_states_needed = 1};
-    for (int round = 0; update.new_discrete_states_needed && !update.terminate_simulation;
+    for (int round = 0; result == 0 && update.new_discrete_states_needed &&
+                        !update.terminate_simulation;
          ++round) {
         if (round == sys->hybrid.max_microsteps) {
-            return fail_zeno(sys, c->index, -1, t_e,
-                             "component '%s': %s still asked for another round after %d rounds "
-                             "at t=%.17g (chattering; max_microsteps=%d)",
-                             c->name, call_name(c, SLOT_NEW_DISCRETE_STATES), round, t_e,
-                             sys->hybrid.max_microsteps);
+            result = fail_zeno(sys, c->index, -1, t_e,
+                               "component '%s': %s still asked for another round after %d "
+                               "rounds at t=%.17g (chattering; max_microsteps=%d)",
+                               c->name, call_name(c, SLOT_NEW_DISCRETE_STATES), round, t_e,
+                               sys->hybrid.max_microsteps);
+            break;
         }
         status = ssx_fmu_new_discrete_states(d->fmu, &update);
         if (!fmi_ok(status)) {
-            return fmi_failed(sys, c, t_e, status, SLOT_NEW_DISCRETE_STATES);
+            result = fmi_failed(sys, c, t_e, status, SLOT_NEW_DISCRETE_STATES);
         }
     }
     *terminate = update.terminate_simulation;
-    if (!*terminate) {
+    if (result == 0 && !*terminate) {
         status = ssx_fmu_enter_step_mode(d->fmu);
         if (!fmi_ok(status)) {
-            return fmi_failed(sys, c, t_e, status, SLOT_ENTER_STEP_MODE);
+            result = fmi_failed(sys, c, t_e, status, SLOT_ENTER_STEP_MODE);
         }
     }
-    return own_event_report(sys, c, tick ? SSX_OWN_CLOCK_TICK : SSX_OWN_FMU_EVENT, t_e);
+    if (result == 0) {
+        result = report_event(sys, c, t_e, tick, triggered, output_active);
+    }
+    free(output_active);
+    return result;
+}
+
+int fmu_component_tick_triggered_clock(ssx_system *sys, ssx_component *c, int clock, double t)
+{
+    /* the tick samples the inputs the engine holds for the component now */
+    int terminate = 0;
+    if (fmu_write_inputs(sys, c) != 0 || handle_own_event(sys, c, t, 0, clock, &terminate) != 0) {
+        return -1;
+    }
+    if (terminate) {
+        return stop_requested(sys, c, t, t, t, ssx_fmu_last_message(fmu_data(c)->fmu));
+    }
+    return fmu_component_read_outputs_at(sys, c, t);
 }
 
 /* The rest of an FMI 3.0 step that returned early, needs its events handled or asks to stop:
@@ -402,11 +465,11 @@ static int step_on(ssx_system *sys, ssx_component *c, double t, double t_end,
         }
         int terminate = outcome.terminate_simulation;
         if (!terminate && outcome.event_handling_needed &&
-            handle_own_event(sys, c, reached, 0, &terminate) != 0) {
+            handle_own_event(sys, c, reached, 0, -1, &terminate) != 0) {
             return -1;
         }
         if (!terminate && outcome.clock_tick &&
-            handle_own_event(sys, c, reached, 1, &terminate) != 0) {
+            handle_own_event(sys, c, reached, 1, -1, &terminate) != 0) {
             return -1;
         }
         if (terminate) {

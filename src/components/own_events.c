@@ -12,6 +12,12 @@
 
 int own_event_report(ssx_system *sys, ssx_component *c, ssx_own_event_kind kind, double t)
 {
+    return own_event_report_clock(sys, c, kind, 0, t);
+}
+
+int own_event_report_clock(ssx_system *sys, ssx_component *c, ssx_own_event_kind kind, int clock,
+                           double t)
+{
     ssx_own_event_list *list = &c->own_events;
     if (array_reserve((void **)&list->pending, &list->capacity, list->n + 1,
                       sizeof *list->pending, 4) != 0) {
@@ -24,7 +30,7 @@ int own_event_report(ssx_system *sys, ssx_component *c, ssx_own_event_kind kind,
         list->pending[at] = list->pending[at - 1];
         --at;
     }
-    list->pending[at] = (ssx_own_event){.t = t, .kind = kind};
+    list->pending[at] = (ssx_own_event){.t = t, .kind = kind, .clock = clock};
     list->n++;
     atomic_store_explicit(&sys->own_events_pending, 1, memory_order_relaxed);
     return 0;
@@ -83,6 +89,7 @@ int own_events_commit(ssx_system *sys, double t, own_event_committed committed, 
             .indicator = -1,
             .component = i,
             .own = e->kind,
+            .clock = e->clock,
             .t_left = NAN,
             .t_right = NAN,
             .value_left = NAN,
@@ -91,7 +98,7 @@ int own_events_commit(ssx_system *sys, double t, own_event_committed committed, 
         sys->stats.own_events++;
         status = record_event(sys, &record);
         if (status == 0 && committed != NULL) {
-            status = committed(sys, i, record.t, user);
+            status = committed(sys, &record, user);
         }
     }
     /* what stays pending lies after t: move it to the front */

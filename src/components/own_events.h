@@ -12,10 +12,15 @@
 
 /* The component handled an event of its own at t during the step it is taking. */
 int own_event_report(ssx_system *sys, ssx_component *c, ssx_own_event_kind kind, double t);
+/* The same, of one of its clocks (ssx_event_record's clock: 1 + its index). */
+int own_event_report_clock(ssx_system *sys, ssx_component *c, ssx_own_event_kind kind, int clock,
+                           double t);
 /* The component's state is back at t: its events after t did not happen. */
 void own_events_drop_after(ssx_component *c, double t);
-/* Told of each own event as it is committed (after its record): 0, or -1 with the error set. */
-typedef int (*own_event_committed)(ssx_system *sys, int component, double t_event, void *user);
+/* Told of each own event as it is committed (after its record): 0, or -1 with the error set.
+ * A listener may report more own events of its own at the commit's time: they are committed
+ * in the same pass. */
+typedef int (*own_event_committed)(ssx_system *sys, const ssx_event_record *record, void *user);
 /* The master accepted the system's state at t: every component's pending events up to t become
  * event records, in time order (component order within one time), at micro step 0, each then
  * handed to `committed` (NULL: none). */

@@ -78,6 +78,7 @@ typedef enum {
     SLOT_SET_BINARY,
     SLOT_ENTER_STEP_MODE,
     SLOT_SET_CLOCK,
+    SLOT_GET_CLOCK,
     SLOT_COUNT
 } ssx_fmu_slot;
 
@@ -195,6 +196,13 @@ typedef struct {
     int (*enter_step_mode)(const ssx_fmu_function *fn, void *instance);
     /* in event mode at t: fmi3SetClock on every periodic input clock that ticks at t */
     int (*tick_clocks)(const ssx_fmu_function *fn, void *instance, double t);
+    /* FMI 3.0 Co-Simulation in event mode: fmi3GetClock on the output clocks, active[k] set
+     * for each (nothing is called without output clocks) */
+    int (*read_output_clocks)(const ssx_fmu_function *fn, void *instance, int *active);
+    /* in event mode: fmi3SetClock ticking the triggered input clock `clock` */
+    int (*tick_triggered_clock)(const ssx_fmu_function *fn, void *instance, size_t clock);
+    /* how many output clocks and triggered input clocks the load spec gave */
+    void (*clock_counts)(const void *context, size_t *n_output, size_t *n_triggered);
     /* what the last doStep said besides its status; NULL: only the status (FMI 2.0) */
     void (*step_outcome)(void *instance, fmu_step_outcome *outcome);
     /* the name of the variable vr, NULL when unknown; NULL: the back-end keeps no names */

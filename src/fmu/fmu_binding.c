@@ -755,6 +755,25 @@ int ssx_fmu_tick_clocks(ssx_fmu *fmu, double t)
     return CHECKED(fmu, SLOT_SET_CLOCK, tick_clocks, t);
 }
 
+int ssx_fmu_read_output_clocks(ssx_fmu *fmu, int *active)
+{
+    return CHECKED(fmu, SLOT_GET_CLOCK, read_output_clocks, active);
+}
+
+int ssx_fmu_tick_triggered_clock(ssx_fmu *fmu, size_t clock)
+{
+    return CHECKED(fmu, SLOT_SET_CLOCK, tick_triggered_clock, clock);
+}
+
+void ssx_fmu_clock_counts(const ssx_fmu *fmu, size_t *n_output, size_t *n_triggered)
+{
+    *n_output = 0;
+    *n_triggered = 0;
+    if (fmu->backend->clock_counts != NULL) {
+        fmu->backend->clock_counts(fmu->rest->context, n_output, n_triggered);
+    }
+}
+
 int ssx_fmu_enter_continuous_time_mode(ssx_fmu *fmu)
 {
     return CHECKED0(fmu, SLOT_ENTER_CONTINUOUS_TIME_MODE, enter_continuous_time_mode);

@@ -53,6 +53,12 @@ int ssx_fmu_new_discrete_states(ssx_fmu *fmu, ssx_fmu_event_info *info);
 int ssx_fmu_enter_step_mode(ssx_fmu *fmu);
 /* FMI 3.0 Co-Simulation in event mode at t: ticks the periodic input clocks due at t */
 int ssx_fmu_tick_clocks(ssx_fmu *fmu, double t);
+/* FMI 3.0 Co-Simulation in event mode: which output clocks tick (active[k], one per output
+ * clock of the load spec), and the tick of triggered input clock `clock`. */
+int ssx_fmu_read_output_clocks(ssx_fmu *fmu, int *active);
+int ssx_fmu_tick_triggered_clock(ssx_fmu *fmu, size_t clock);
+/* How many output clocks and triggered input clocks the load spec gave (0 for other back-ends). */
+void ssx_fmu_clock_counts(const ssx_fmu *fmu, size_t *n_output, size_t *n_triggered);
 int ssx_fmu_enter_continuous_time_mode(ssx_fmu *fmu);
 int ssx_fmu_completed_integrator_step(ssx_fmu *fmu, int no_set_state_prior,
                                       int *enter_event_mode, int *terminate_simulation);

@@ -68,6 +68,8 @@ static const ssx_fmu_function_row fmi3_functions[] = {
     {"fmi3DoStep", SLOT_GET_LAST_SUCCESSFUL_TIME, 1},
     {"fmi3EnterStepMode", SLOT_ENTER_STEP_MODE, 1},
     {"fmi3SetClock", SLOT_SET_CLOCK, 1},
+    /* needed only when the FMU has output clocks */
+    {"fmi3GetClock", SLOT_GET_CLOCK, 0},
     {"fmi3GetOutputDerivatives", SLOT_GET_OUTPUT_DERIVATIVES, 0},
     /* input derivatives move the intermediate inputs within fmi3DoStep */
     {"fmi3DoStep", SLOT_SET_INPUT_DERIVATIVES, 1},
@@ -449,6 +451,35 @@ static int tick_clocks(const ssx_fmu_function *fn, void *instance, double t)
                                                            ctx->n_clocks, ctx->clock_active);
 }
 
+static int read_output_clocks(const ssx_fmu_function *fn, void *instance, int *active)
+{
+    fmi3_context *ctx = instance;
+    if (ctx->n_output_clocks == 0) {
+        return fmi3OK;
+    }
+    int status = (int)FMI3(fn, SLOT_GET_CLOCK, fmi3GetClockTYPE)(
+        ctx->instance, ctx->output_clock_vr, ctx->n_output_clocks, ctx->output_clock_active);
+    for (size_t k = 0; k < ctx->n_output_clocks; ++k) {
+        active[k] = status <= fmi3Warning && ctx->output_clock_active[k] != fmi3False;
+    }
+    return status;
+}
+
+static int tick_triggered_clock(const ssx_fmu_function *fn, void *instance, size_t clock)
+{
+    fmi3_context *ctx = instance;
+    fmi3Clock active = fmi3True;
+    return (int)FMI3(fn, SLOT_SET_CLOCK, fmi3SetClockTYPE)(
+        ctx->instance, &ctx->triggered_clock_vr[clock], 1, &active);
+}
+
+static void clock_counts(const void *context, size_t *n_output, size_t *n_triggered)
+{
+    const fmi3_context *ctx = context;
+    *n_output = ctx->n_output_clocks;
+    *n_triggered = ctx->n_triggered_clocks;
+}
+
 static int do_step(const ssx_fmu_function *fn, void *instance, double t, double h,
                    int no_set_state_prior)
 {
@@ -746,5 +777,8 @@ const ssx_fmu_backend ssx_fmi3_backend = {
     .get_last_successful_time = get_last_successful_time,
     .enter_step_mode = enter_step_mode,
     .tick_clocks = tick_clocks,
+    .read_output_clocks = read_output_clocks,
+    .tick_triggered_clock = tick_triggered_clock,
+    .clock_counts = clock_counts,
     .step_outcome = step_outcome,
 };

@@ -61,6 +61,12 @@ typedef struct {
     double *clock_shift;
     fmi3Clock *clock_active; /* scratch: which clocks tick at an instant */
     size_t n_clocks;
+    /* the triggered input clocks and the output clocks (ssx_fmi3_variables) */
+    unsigned int *triggered_clock_vr;
+    size_t n_triggered_clocks;
+    unsigned int *output_clock_vr;
+    fmi3Clock *output_clock_active; /* scratch for fmi3GetClock */
+    size_t n_output_clocks;
     const ssx_fmu_function *fn; /* for the callback */
     /* one type's part of a batch: value references, positions in the engine's call, values */
     unsigned int *part_vr;

@@ -149,6 +149,40 @@ static int keep_clocks(fmi3_context *ctx, const ssx_fmi3_variables *variables, c
     return 0;
 }
 
+/* The triggered input clocks and the output clocks: their value references. */
+static int keep_triggered_and_output_clocks(fmi3_context *ctx,
+                                            const ssx_fmi3_variables *variables, char *error,
+                                            size_t error_size)
+{
+    if (variables == NULL) {
+        return 0;
+    }
+    size_t n_triggered = variables->triggered_clock_vr != NULL ? variables->n_triggered_clocks : 0;
+    size_t n_output = variables->output_clock_vr != NULL ? variables->n_output_clocks : 0;
+    if (n_triggered > 0) {
+        ctx->triggered_clock_vr = malloc(n_triggered * sizeof *ctx->triggered_clock_vr);
+        if (ctx->triggered_clock_vr == NULL) {
+            snprintf(error, error_size, "out of memory keeping %zu clocks", n_triggered);
+            return -1;
+        }
+        memcpy(ctx->triggered_clock_vr, variables->triggered_clock_vr,
+               n_triggered * sizeof *ctx->triggered_clock_vr);
+        ctx->n_triggered_clocks = n_triggered;
+    }
+    if (n_output > 0) {
+        ctx->output_clock_vr = malloc(n_output * sizeof *ctx->output_clock_vr);
+        ctx->output_clock_active = malloc(n_output * sizeof *ctx->output_clock_active);
+        if (ctx->output_clock_vr == NULL || ctx->output_clock_active == NULL) {
+            snprintf(error, error_size, "out of memory keeping %zu clocks", n_output);
+            return -1;
+        }
+        memcpy(ctx->output_clock_vr, variables->output_clock_vr,
+               n_output * sizeof *ctx->output_clock_vr);
+        ctx->n_output_clocks = n_output;
+    }
+    return 0;
+}
+
 int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *error,
                      size_t error_size)
 {
@@ -203,7 +237,10 @@ int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *e
                n_moving * sizeof *ctx->intermediate_vr);
         ctx->n_intermediate = n_moving;
     }
-    return keep_clocks(ctx, variables, error, error_size);
+    if (keep_clocks(ctx, variables, error, error_size) != 0) {
+        return -1;
+    }
+    return keep_triggered_and_output_clocks(ctx, variables, error, error_size);
 }
 
 void fmi3_say(fmi3_context *ctx, const char *format, ...)
@@ -232,6 +269,9 @@ void fmi3_values_free(fmi3_context *ctx)
     free(ctx->clock_period);
     free(ctx->clock_shift);
     free(ctx->clock_active);
+    free(ctx->triggered_clock_vr);
+    free(ctx->output_clock_vr);
+    free(ctx->output_clock_active);
 }
 
 void fmi3_values_reset(fmi3_context *ctx)

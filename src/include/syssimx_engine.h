@@ -137,6 +137,14 @@ typedef struct {
     const double *clock_period;
     const double *clock_shift;
     size_t n_clocks;
+    /* Co-Simulation with event mode: the triggered input clocks (intervalVariability
+     * triggered), which tick when a source connected to them fires (ssx_connect_clock), and
+     * the output clocks, read (fmi3GetClock) in every Event Mode of the instance: each that
+     * ticks is an own event of the component (SSX_OWN_OUTPUT_CLOCK). NULL / 0: none. */
+    const unsigned int *triggered_clock_vr;
+    size_t n_triggered_clocks;
+    const unsigned int *output_clock_vr;
+    size_t n_output_clocks;
 } ssx_fmi3_variables;
 
 /* The FMI standard and the interface a binary is loaded as. */
@@ -336,7 +344,8 @@ typedef enum {
     SSX_OWN_STATE_EVENT,   /* a Model Exchange FMU's event indicator crossed */
     SSX_OWN_TIME_EVENT,    /* a Model Exchange FMU's time event (nextEventTime) */
     SSX_OWN_STEP_EVENT,    /* a Model Exchange FMU asked for event mode after a completed step */
-    SSX_OWN_CLOCK_TICK     /* an FMI 3.0 FMU's periodic input clocks ticked */
+    SSX_OWN_CLOCK_TICK,    /* an FMI 3.0 FMU's periodic or triggered input clocks ticked */
+    SSX_OWN_OUTPUT_CLOCK   /* an FMI 3.0 FMU's output clock ticked (fmi3GetClock) */
 } ssx_own_event_kind;
 
 typedef struct {
@@ -345,6 +354,10 @@ typedef struct {
     int indicator;      /* which indicator fired; -1 for a component's own event */
     int component;      /* the component that owns the indicator or handled its own event */
     ssx_own_event_kind own; /* SSX_MASTER_EVENT, or the kind of the component's own event */
+    /* SSX_OWN_OUTPUT_CLOCK: 1 + the index of the output clock that ticked; SSX_OWN_CLOCK_TICK
+     * of a triggered clock: 1 + the triggered clock's index (ssx_fmi3_variables' lists);
+     * 0 otherwise */
+    int clock;
     int iterations;     /* localization iterations spent on the instant (0 for cascades) */
     int rollbacks;      /* restores spent on the instant */
     long do_steps;      /* doStep calls spent on the instant */
@@ -482,7 +495,8 @@ int ssx_set_indicator_slope(ssx_system *sys, int indicator, unsigned int vr);
  * FMU's events, a Model Exchange FMU's state, time and step events). */
 typedef enum {
     SSX_SOURCE_INDICATOR = 0,
-    SSX_SOURCE_OWN_EVENTS = 1
+    SSX_SOURCE_OWN_EVENTS = 1,
+    SSX_SOURCE_OUTPUT_CLOCK = 2 /* index: the number ssx_add_output_clock_source gave */
 } ssx_event_source_kind;
 /* The listener's handle_events hook (else its built-in reaction, an FMU's restart handler)
  * runs when the source fires; it receives the sources that fired, an indicator as its index,
@@ -494,6 +508,24 @@ typedef enum {
  * built-in reaction runs there, at that time); what a listener changes shows from that communication point's sample
  * on. Subscribing twice is one subscription. */
 int ssx_subscribe(ssx_system *sys, ssx_event_source_kind kind, int index, int listener_component);
+/* An output clock of an FMI 3.0 Co-Simulation component (clock: its index among
+ * ssx_fmi3_variables' output clocks) as an event source: returns its number s (the same for the
+ * same clock), or -1. Its ticks reach listeners as own events do (when the master accepts the
+ * step that holds them, the hook receiving the tick's time and the source as
+ * -1 - n_components - s, n_components counted when the system runs). */
+int ssx_add_output_clock_source(ssx_system *sys, int component, int clock);
+/* A clock connection: when the source fires (SSX_SOURCE_INDICATOR: at the located event time;
+ * SSX_SOURCE_OUTPUT_CLOCK: where the master accepts the step that holds the tick, the
+ * communication point after it or a located event's instant), the triggered input clock
+ * `clock` (its index among ssx_fmi3_variables' triggered clocks) of the FMI 3.0 Co-Simulation
+ * component `listener_component` ticks there: its inputs take their drivers' outputs, the FMU
+ * enters Event Mode, the clock is set (fmi3SetClock), its discrete states are updated, it
+ * enters Step Mode and its outputs are read; the tick is recorded as its own event
+ * (SSX_OWN_CLOCK_TICK, record.clock 1 + the clock). The clocks a firing ticks tick before its
+ * listeners' hooks run, in the order they were connected. Connecting twice is one
+ * connection. */
+int ssx_connect_clock(ssx_system *sys, ssx_event_source_kind kind, int index,
+                      int listener_component, int clock);
 /* ssx_subscribe(sys, SSX_SOURCE_INDICATOR, indicator, listener_component). */
 int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_component);
 

@@ -32,9 +32,16 @@ typedef struct {
 /* A listener subscribed to an event source (stepping/events/event_source.h). */
 typedef struct {
     ssx_event_source_kind kind;
-    int index; /* the indicator's, or the component's whose own events */
+    int index; /* the indicator's, the component's whose own events, the output clock's */
     int listener;
+    int tick; /* a clock connection: the listener's triggered clock it ticks; -1: its hook */
 } event_subscription;
+
+/* An output clock as an event source (ssx_add_output_clock_source). */
+typedef struct {
+    int component;
+    int clock;
+} output_clock_source;
 
 typedef struct {
     int first;  /* offset into the schedule order */
@@ -98,6 +105,9 @@ struct ssx_system {
     event_subscription *subscriptions;
     int n_subscriptions;
     size_t subscriptions_capacity;
+    output_clock_source *output_clock_sources;
+    int n_output_clock_sources;
+    size_t output_clock_sources_capacity;
 
     int *order;          /* schedule: component indices, group after group */
     double *port_block;  /* every component's port values, in schedule order (port_block.h) */

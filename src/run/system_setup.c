@@ -127,6 +127,7 @@ void ssx_system_free(ssx_system *sys)
     free(sys->indicator_states);
     master_algorithm_release(sys);
     free(sys->subscriptions);
+    free(sys->output_clock_sources);
     port_block_free(sys); /* after the components that point into it */
     free(sys->order);
     free(sys->groups);

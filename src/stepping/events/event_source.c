@@ -7,6 +7,8 @@
 #include "component_calls.h"
 #include "coupling.h"
 #include "error.h"
+#include "fmu_binding.h"
+#include "fmu_component.h"
 #include "own_events.h"
 
 /* How a listener's hook names a component's own events among the indicators it receives. */
@@ -15,18 +17,100 @@ static int own_events_name(int component)
     return -1 - component;
 }
 
-static int subscribed(const ssx_system *sys, ssx_event_source_kind kind, int index, int listener)
+/* How a listener's hook names an output clock source. */
+static int output_clock_name(const ssx_system *sys, int source)
+{
+    return -1 - sys->n_components - source;
+}
+
+/* Whether the listener's hook (tick < 0) or its triggered clock `tick` is subscribed. */
+static int subscribed_as(const ssx_system *sys, ssx_event_source_kind kind, int index,
+                         int listener, int tick)
 {
     for (int k = 0; k < sys->n_subscriptions; ++k) {
         const event_subscription *s = &sys->subscriptions[k];
-        if (s->kind == kind && s->index == index && s->listener == listener) {
+        if (s->kind == kind && s->index == index && s->listener == listener && s->tick == tick) {
             return 1;
         }
     }
     return 0;
 }
 
-int ssx_subscribe(ssx_system *sys, ssx_event_source_kind kind, int index, int listener_component)
+static int subscribed(const ssx_system *sys, ssx_event_source_kind kind, int index, int listener)
+{
+    return subscribed_as(sys, kind, index, listener, -1);
+}
+
+static int add_subscription(ssx_system *sys, ssx_event_source_kind kind, int index, int listener,
+                            int tick)
+{
+    if (subscribed_as(sys, kind, index, listener, tick)) {
+        return 0; /* an event reaches a listener once */
+    }
+    if (array_reserve((void **)&sys->subscriptions, &sys->subscriptions_capacity,
+                      (size_t)sys->n_subscriptions + 1, sizeof *sys->subscriptions, 8) != 0) {
+        return fail_config(sys, -1, -1, NAN, "out of memory subscribing to an event source");
+    }
+    sys->subscriptions[sys->n_subscriptions++] = (event_subscription){
+        .kind = kind, .index = index, .listener = listener, .tick = tick};
+    return 0;
+}
+
+/* The clock counts of an FMU component's binding; -1 (the error set) for another kind. */
+static int clock_counts(ssx_system *sys, int component, const char *what, size_t *n_output,
+                        size_t *n_triggered)
+{
+    ssx_component *c = system_component(sys, component);
+    if (c == NULL) {
+        return -1;
+    }
+    if (c->ops != &ssx_fmu_component_ops) {
+        return fail_config(sys, component, -1, NAN,
+                           "component '%s' is no FMI 3.0 Co-Simulation FMU: it has no %s",
+                           c->name, what);
+    }
+    ssx_fmu_clock_counts(fmu_data(c)->fmu, n_output, n_triggered);
+    return 0;
+}
+
+int ssx_add_output_clock_source(ssx_system *sys, int component, int clock)
+{
+    size_t n_output = 0, n_triggered = 0;
+    if (clock_counts(sys, component, "output clocks", &n_output, &n_triggered) != 0) {
+        return -1;
+    }
+    if (clock < 0 || (size_t)clock >= n_output) {
+        return fail_config(sys, component, -1, NAN,
+                           "component '%s': unknown output clock %d (it has %zu)",
+                           sys->components[component]->name, clock, n_output);
+    }
+    for (int s = 0; s < sys->n_output_clock_sources; ++s) {
+        const output_clock_source *source = &sys->output_clock_sources[s];
+        if (source->component == component && source->clock == clock) {
+            return s;
+        }
+    }
+    if (array_reserve((void **)&sys->output_clock_sources, &sys->output_clock_sources_capacity,
+                      (size_t)sys->n_output_clock_sources + 1,
+                      sizeof *sys->output_clock_sources, 4) != 0) {
+        return fail_config(sys, -1, -1, NAN, "out of memory adding an output clock source");
+    }
+    sys->output_clock_sources[sys->n_output_clock_sources] =
+        (output_clock_source){.component = component, .clock = clock};
+    return sys->n_output_clock_sources++;
+}
+
+/* The triggered clock `clock` of component `listener` ticks at t, sampling its drivers' outputs
+ * there. */
+static int tick_clock(ssx_system *sys, int listener, int clock, double t)
+{
+    ssx_component *c = sys->components[listener];
+    coupling_propagate_inputs(sys, c);
+    return fmu_component_tick_triggered_clock(sys, c, clock, t);
+}
+
+/* Whether a source of that kind and index exists (else -1, the error set). */
+static int check_source(ssx_system *sys, ssx_event_source_kind kind, int index)
 {
     if (kind == SSX_SOURCE_INDICATOR) {
         if (index < 0 || index >= sys->n_indicators) {
@@ -34,27 +118,52 @@ int ssx_subscribe(ssx_system *sys, ssx_event_source_kind kind, int index, int li
                                "unknown indicator index %d (system '%s' has %d)", index,
                                sys->name, sys->n_indicators);
         }
-    } else if (kind == SSX_SOURCE_OWN_EVENTS) {
-        if (system_component(sys, index) == NULL) {
-            return -1;
-        }
-    } else {
-        return fail_config(sys, -1, -1, NAN, "system '%s': unknown event source kind %d",
-                           sys->name, (int)kind);
+        return 0;
     }
-    if (system_component(sys, listener_component) == NULL) {
+    if (kind == SSX_SOURCE_OWN_EVENTS) {
+        return system_component(sys, index) == NULL ? -1 : 0;
+    }
+    if (kind == SSX_SOURCE_OUTPUT_CLOCK) {
+        if (index < 0 || index >= sys->n_output_clock_sources) {
+            return fail_config(sys, -1, -1, NAN,
+                               "unknown output clock source %d (system '%s' has %d)", index,
+                               sys->name, sys->n_output_clock_sources);
+        }
+        return 0;
+    }
+    return fail_config(sys, -1, -1, NAN, "system '%s': unknown event source kind %d", sys->name,
+                       (int)kind);
+}
+
+int ssx_connect_clock(ssx_system *sys, ssx_event_source_kind kind, int index,
+                      int listener_component, int clock)
+{
+    size_t n_output = 0, n_triggered = 0;
+    if (check_source(sys, kind, index) != 0 ||
+        clock_counts(sys, listener_component, "triggered input clocks", &n_output,
+                     &n_triggered) != 0) {
         return -1;
     }
-    if (subscribed(sys, kind, index, listener_component)) {
-        return 0; /* an event reaches a listener once */
+    if (kind == SSX_SOURCE_OWN_EVENTS) {
+        return fail_config(sys, listener_component, -1, NAN,
+                           "a clock ticks on an indicator or an output clock, not on all of a "
+                           "component's own events");
     }
-    if (array_reserve((void **)&sys->subscriptions, &sys->subscriptions_capacity,
-                      (size_t)sys->n_subscriptions + 1, sizeof *sys->subscriptions, 8) != 0) {
-        return fail_config(sys, -1, -1, NAN, "out of memory subscribing to an event source");
+    if (clock < 0 || (size_t)clock >= n_triggered) {
+        return fail_config(sys, listener_component, -1, NAN,
+                           "component '%s': unknown triggered input clock %d (it has %zu)",
+                           sys->components[listener_component]->name, clock, n_triggered);
     }
-    sys->subscriptions[sys->n_subscriptions++] =
-        (event_subscription){.kind = kind, .index = index, .listener = listener_component};
-    return 0;
+    return add_subscription(sys, kind, index, listener_component, clock);
+}
+
+int ssx_subscribe(ssx_system *sys, ssx_event_source_kind kind, int index, int listener_component)
+{
+    if (check_source(sys, kind, index) != 0 ||
+        system_component(sys, listener_component) == NULL) {
+        return -1;
+    }
+    return add_subscription(sys, kind, index, listener_component, -1);
 }
 
 int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_component)
@@ -66,6 +175,15 @@ int event_sources_notify_indicators(ssx_system *sys, const int *fired, int *scra
 {
     if (sys->n_subscriptions == 0) {
         return 0;
+    }
+    /* the clocks the indicators tick first, in the order they were connected: they sample the
+     * values at the crossing */
+    for (int k = 0; k < sys->n_subscriptions; ++k) {
+        const event_subscription *s = &sys->subscriptions[k];
+        if (s->kind == SSX_SOURCE_INDICATOR && s->tick >= 0 && fired[s->index] &&
+            tick_clock(sys, s->listener, s->tick, t) != 0) {
+            return -1;
+        }
     }
     for (int c = 0; c < sys->n_components; ++c) {
         int n = 0;
@@ -86,15 +204,61 @@ typedef struct {
     int listened; /* a listener ran */
 } commit_work;
 
-/* One own event of `component` at t_event reaches its listeners. */
-static int committed_to_listeners(ssx_system *sys, int component, double t_event, void *user)
+/* The number of the output clock source of the record's tick, -1 when none listens to it. */
+static int output_clock_source_of(const ssx_system *sys, const ssx_event_record *record)
+{
+    for (int s = 0; s < sys->n_output_clock_sources; ++s) {
+        const output_clock_source *source = &sys->output_clock_sources[s];
+        if (source->component == record->component && source->clock + 1 == record->clock) {
+            return s;
+        }
+    }
+    return -1;
+}
+
+/* An output clock's tick ticks the clocks connected to it (connection order), then reaches
+ * the hooks subscribed to it (component order), where the system stands. */
+static int tick_to_listeners(ssx_system *sys, const ssx_event_record *record, commit_work *w)
+{
+    int source = output_clock_source_of(sys, record);
+    if (source < 0) {
+        return 0;
+    }
+    for (int k = 0; k < sys->n_subscriptions; ++k) {
+        const event_subscription *s = &sys->subscriptions[k];
+        if (s->kind == SSX_SOURCE_OUTPUT_CLOCK && s->index == source && s->tick >= 0) {
+            w->listened = 1;
+            if (tick_clock(sys, s->listener, s->tick, w->t) != 0) {
+                return -1;
+            }
+        }
+    }
+    int name = output_clock_name(sys, source);
+    for (int c = 0; c < sys->n_components; ++c) {
+        if (subscribed(sys, SSX_SOURCE_OUTPUT_CLOCK, source, c)) {
+            w->listened = 1;
+            if (component_handle_events(sys, sys->components[c], &name, 1, record->t, w->t) !=
+                0) {
+                return -1;
+            }
+        }
+    }
+    return 0;
+}
+
+/* One own event reaches its listeners: an output clock's tick those of the clock, any other
+ * those of the component's own events. */
+static int committed_to_listeners(ssx_system *sys, const ssx_event_record *record, void *user)
 {
     commit_work *w = user;
-    int source = own_events_name(component);
+    if (record->own == SSX_OWN_OUTPUT_CLOCK) {
+        return tick_to_listeners(sys, record, w);
+    }
+    int source = own_events_name(record->component);
     for (int c = 0; c < sys->n_components; ++c) {
-        if (subscribed(sys, SSX_SOURCE_OWN_EVENTS, component, c)) {
+        if (subscribed(sys, SSX_SOURCE_OWN_EVENTS, record->component, c)) {
             w->listened = 1;
-            if (component_handle_events(sys, sys->components[c], &source, 1, t_event, w->t) !=
+            if (component_handle_events(sys, sys->components[c], &source, 1, record->t, w->t) !=
                 0) {
                 return -1;
             }

@@ -1,10 +1,12 @@
 /* One concept for every event: a source fires at (t, micro) and the listeners subscribed to it
  * react (ssx_subscribe). A source is a master event indicator (located by the hybrid
- * algorithm, hybrid.c) or a component's own events (handled inside its step, own_events.h);
- * FMI 3.0 clocks would be one more kind. Listeners are called in one defined order: at a
- * communication point, own events first, in time order, then the located indicators; for one
- * firing, listeners in component order, each once with every source of that firing it
- * subscribed to. */
+ * algorithm, hybrid.c), a component's own events (handled inside its step, own_events.h) or
+ * an FMI 3.0 output clock (a kind of own event). A listener is a component's hook, or a
+ * triggered input clock of an FMI 3.0 FMU that the source ticks (ssx_connect_clock).
+ * Listeners are called in one defined order: at a communication point, own events first, in
+ * time order, then the located indicators; for one firing, the clocks it ticks in the order
+ * they were connected, then the hooks in component order, each once with every source of that
+ * firing it subscribed to. */
 #ifndef SSX_EVENT_SOURCE_H
 #define SSX_EVENT_SOURCE_H
 
