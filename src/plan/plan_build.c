@@ -12,6 +12,7 @@
 
 #include "component.h"
 #include "error.h"
+#include "fmi3_type_table.h"
 #include "plan.h"
 #include "system.h"
 
@@ -105,9 +106,12 @@ static char *file_uri(const char *path)
     return out;
 }
 
-/* The type table of an FMI 3.0 FMU from its fmi3_* records. */
+/* The type table of an FMI 3.0 FMU: its fmi3_* records, or where it has no fmi3_variable and
+ * no fmi3_element record, its modelDescription.xml's scalars (its flags too, unless an
+ * fmi3_variables record gives them). */
 typedef struct {
     ssx_fmi3_variables table;
+    fmi3_type_table described;
     unsigned int *vr, *fmu_vr, *intermediate, *clock_vr;
     unsigned char *type;
     const char **name;
@@ -128,13 +132,42 @@ static void fmi3_table_free(fmi3_table *t)
     free(t->start);
     free(t->period);
     free(t->shift);
+    fmi3_type_table_free(&t->described);
 }
 
-static int fmi3_table_make(builder *b, int component, fmi3_table *t)
+/* The scalars of FOLDER/modelDescription.xml into t->described. */
+static int fmi3_table_describe(builder *b, int component, const char *folder, fmi3_table *t)
+{
+    char *path = joined(folder, "/modelDescription.xml", "");
+    FILE *file = path != NULL ? fopen(path, "rb") : NULL;
+    char *xml = NULL;
+    long size = -1;
+    if (file != NULL && fseek(file, 0, SEEK_END) == 0 && (size = ftell(file)) >= 0 &&
+        fseek(file, 0, SEEK_SET) == 0 && (xml = malloc((size_t)size + 1)) != NULL &&
+        fread(xml, 1, (size_t)size, file) != (size_t)size) {
+        size = -1;
+    }
+    if (file != NULL) {
+        fclose(file);
+    }
+    char reason[512] = "";
+    int result = xml == NULL || size < 0
+                 ? build_failed(b, "component %d: cannot read %s (an FMI 3.0 FMU without "
+                                   "fmi3_variable records needs it)",
+                                component, path != NULL ? path : folder)
+                 : fmi3_type_table_read(xml, (size_t)size, &t->described, reason, sizeof reason)
+                   != 0 ? build_failed(b, "component %d: %s", component, reason) : 0;
+    free(xml);
+    free(path);
+    return result;
+}
+
+static int fmi3_table_make(builder *b, int component, const char *folder, int model_exchange,
+                           fmi3_table *t)
 {
     const ssx_plan *p = b->plan;
     size_t n = 0, n_intermediate = 0, n_clocks = 0;
-    int arrays = 0;
+    int arrays = 0, flags_given = 0;
     for (size_t r = 0; r < p->n_records; ++r) {
         if (component_of(p, r) != component) {
             continue;
@@ -143,6 +176,10 @@ static int fmi3_table_make(builder *b, int component, fmi3_table *t)
         arrays |= p->kind[r] == PLAN_FMI3_ELEMENT;
         n_intermediate += p->kind[r] == PLAN_FMI3_INTERMEDIATE;
         n_clocks += p->kind[r] == PLAN_FMI3_CLOCK;
+        flags_given |= p->kind[r] == PLAN_FMI3_VARIABLES;
+    }
+    if (n == 0 && fmi3_table_describe(b, component, folder, t) != 0) {
+        return -1;
     }
     size_t slots = n ? n : 1;
     t->vr = calloc(slots, sizeof *t->vr);
@@ -202,6 +239,16 @@ static int fmi3_table_make(builder *b, int component, fmi3_table *t)
     t->table.type = t->type;
     t->table.name = t->name;
     t->table.n = n;
+    if (n == 0) {
+        t->table.vr = t->described.vr;
+        t->table.type = t->described.type;
+        t->table.name = (const char *const *)t->described.name;
+        t->table.n = t->described.n;
+        if (!flags_given) {
+            t->table.event_mode_used = !model_exchange && t->described.has_event_mode;
+            t->table.early_return_allowed = !model_exchange && t->described.may_return_early;
+        }
+    }
     if (arrays) {
         t->table.fmu_vr = t->fmu_vr;
         t->table.element = t->element;
@@ -269,7 +316,8 @@ static ssx_fmu *load_fmu(builder *b, int component, const char *base_folder)
     ssx_fmu *fmu = NULL;
     if (binary == NULL || location == NULL) {
         build_failed(b, "out of memory");
-    } else if (version != SSX_FMI3 || fmi3_table_make(b, component, &table) == 0) {
+    } else if (version != SSX_FMI3 ||
+               fmi3_table_make(b, component, path, model_exchange, &table) == 0) {
         ssx_fmu_load_spec spec = {
             .version = (ssx_fmi_version)version,
             .interface = model_exchange ? SSX_MODEL_EXCHANGE : SSX_CO_SIMULATION,

@@ -198,8 +198,9 @@ static void refusals(void)
 }
 
 /* One of the built FMUs laid out as an unpacked archive, its binary under
- * binaries/<platform>/<stem>.so (a link), in a new temporary folder (written into base). Its
- * guid or instantiation token into *token when token is not NULL. */
+ * binaries/<platform>/<stem>.so and its modelDescription.xml (links), in a new temporary
+ * folder (written into base). Its guid or instantiation token into *token when token is not
+ * NULL. */
 static const struct {
     const char *stem, *binary, *guid;
 } built_fmus[] = {ENGINE_TEST_FMUS};
@@ -229,17 +230,24 @@ static void unpacked(const char *stem, const char *platform, char *base, size_t 
     CHECK(mkdir(path, 0700) == 0);
     snprintf(path, sizeof path, "%s/%s/binaries/%s/%s.so", base, stem, platform, stem);
     CHECK(symlink(binary, path) == 0);
+    /* the build writes it beside the binary, as <stem>_modelDescription.xml */
+    char description[1024];
+    snprintf(description, sizeof description, "%.*s_modelDescription.xml",
+             (int)(strlen(binary) - 3), binary);
+    snprintf(path, sizeof path, "%s/%s/modelDescription.xml", base, stem);
+    CHECK(symlink(description, path) == 0);
 }
 
 static void remove_unpacked(const char *base, const char *stem, const char *platform)
 {
-    char paths[5][1024];
+    char paths[6][1024];
     snprintf(paths[0], sizeof paths[0], "%s/%s/binaries/%s/%s.so", base, stem, platform, stem);
     snprintf(paths[1], sizeof paths[1], "%s/%s/binaries/%s", base, stem, platform);
     snprintf(paths[2], sizeof paths[2], "%s/%s/binaries", base, stem);
-    snprintf(paths[3], sizeof paths[3], "%s/%s", base, stem);
-    snprintf(paths[4], sizeof paths[4], "%s", base);
-    for (size_t k = 0; k < 5; ++k) {
+    snprintf(paths[3], sizeof paths[3], "%s/%s/modelDescription.xml", base, stem);
+    snprintf(paths[4], sizeof paths[4], "%s/%s", base, stem);
+    snprintf(paths[5], sizeof paths[5], "%s", base);
+    for (size_t k = 0; k < 6; ++k) {
         CHECK(remove(paths[k]) == 0);
     }
 }
@@ -305,13 +313,10 @@ static void standalone_seed(void)
     remove_unpacked(base, "pendulum_cvode", "linux64");
 }
 
-/* An FMI 3.0 Model Exchange FMU built from a plan: its type table comes from the plan's
- * fmi3_* records; the bouncing ball's bounces are its own state events at the closed form. */
-static void standalone_fmi3_model_exchange(void)
+/* The FMI 3.0 bouncing ball's plan, its type table given by records or (types 0) read from
+ * its modelDescription.xml by the builder. */
+static ssx_plan *ball_plan(const char *token, int types)
 {
-    char base[512];
-    const char *token = NULL;
-    unpacked("bouncing_ball_cvode_fmi3", "x86_64-linux", base, sizeof base, &token);
     char text[2048];
     snprintf(text, sizeof text,
              "syssimx-plan 1\n"
@@ -321,26 +326,55 @@ static void standalone_fmi3_model_exchange(void)
              "fmu_experiment 0 1 1e-12 0 0\n"
              "start 0 real 5 0.8\n"
              "start 0 real 8 1e-06\n"
-             "fmi3_variables 0 0 0\n"
-             "fmi3_variable 0 0 float64 \"h\"\n"
-             "fmi3_variable 0 1 float64 \"v\"\n"
-             "fmi3_variable 0 5 float64 \"e\"\n"
-             "fmi3_variable 0 8 float64 \"gap_tol\"\n"
+             "%s"
              "output 0 real 0\n"
              "output 0 real 1\n",
-             token);
+             token,
+             types ? "fmi3_variables 0 0 0\n"
+                     "fmi3_variable 0 0 float64 \"h\"\n"
+                     "fmi3_variable 0 1 float64 \"v\"\n"
+                     "fmi3_variable 0 5 float64 \"e\"\n"
+                     "fmi3_variable 0 8 float64 \"gap_tol\"\n"
+                   : "");
     char error[1024];
     ssx_plan *plan = ssx_plan_read(text, strlen(text), error, sizeof error);
     CHECK(plan != NULL);
-    ssx_system *sys = ssx_plan_build(plan, base, NULL, 0, error, sizeof error);
-    if (sys == NULL) {
-        fprintf(stderr, "build: %s\n", error);
+    return plan;
+}
+
+/* An FMI 3.0 Model Exchange FMU built from a plan, its type table from the plan's fmi3_*
+ * records and then from its modelDescription.xml: the bouncing ball's bounces are its own
+ * state events at the closed form either way. Without records or a modelDescription.xml the
+ * build is refused, naming the file. */
+static void standalone_fmi3_model_exchange(void)
+{
+    char base[512];
+    const char *token = NULL;
+    unpacked("bouncing_ball_cvode_fmi3", "x86_64-linux", base, sizeof base, &token);
+    char error[1024];
+    for (int types = 1; types >= 0; --types) {
+        ssx_plan *plan = ball_plan(token, types);
+        ssx_system *sys = ssx_plan_build(plan, base, NULL, 0, error, sizeof error);
+        if (sys == NULL) {
+            fprintf(stderr, "build: %s\n", error);
+        }
+        CHECK(sys != NULL);
+        CHECK_OK(sys, ssx_plan_initialize(sys, plan, 0.0));
+        check_own_bounces(sys);
+        ssx_system_free(sys);
+        ssx_plan_free(plan);
     }
-    CHECK(sys != NULL);
-    CHECK_OK(sys, ssx_plan_initialize(sys, plan, 0.0));
-    check_own_bounces(sys);
-    ssx_system_free(sys);
+    char description[1024];
+    snprintf(description, sizeof description, "%s/bouncing_ball_cvode_fmi3/modelDescription.xml",
+             base);
+    CHECK(remove(description) == 0);
+    ssx_plan *plan = ball_plan(token, 0);
+    CHECK(ssx_plan_build(plan, base, NULL, 0, error, sizeof error) == NULL);
+    CHECK(strstr(error, "line 3: record 'model_exchange': component 0: cannot read ") == error);
+    CHECK(strstr(error, "modelDescription.xml (an FMI 3.0 FMU without fmi3_variable records "
+                        "needs it)") != NULL);
     ssx_plan_free(plan);
+    CHECK(symlink("/nonexistent", description) == 0); /* for remove_unpacked */
     remove_unpacked(base, "bouncing_ball_cvode_fmi3", "x86_64-linux");
 }
 
