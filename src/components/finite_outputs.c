@@ -5,7 +5,6 @@
 #include <stdatomic.h>
 
 #include "error.h"
-#include "indicator.h"
 #include "system.h"
 
 void finite_outputs_watch(ssx_system *sys)
@@ -20,12 +19,6 @@ void finite_outputs_watch(ssx_system *sys)
     for (int i = 0; i < sys->n_connections; ++i) {
         const ssx_connection *link = &sys->connections[i];
         sys->components[link->src_component]->output_watch[link->src_output].feeds = 1;
-    }
-    for (int i = 0; i < sys->n_indicators; ++i) {
-        const ssx_indicator *indicator = &sys->indicators[i];
-        if (indicator->output >= 0) {
-            sys->components[indicator->component]->output_watch[indicator->output].feeds = 1;
-        }
     }
 }
 

@@ -8,8 +8,9 @@
 
 #include "component.h"
 
-/* Marks the outputs that feed something and forgets every first time (at ssx_initialize, once
- * the components are prepared). */
+/* Marks the outputs that feed a connection and forgets every first time (at ssx_initialize,
+ * once the components are prepared); the indicators then mark the outputs they read
+ * (indicators_watch_outputs, stepping/events/indicator.h). */
 void finite_outputs_watch(ssx_system *sys);
 
 /* Fails on the first NaN or infinite output that feeds something, unless the system allows

@@ -13,7 +13,6 @@
 #include "finite_outputs.h"
 #include "fmu_backend.h"
 #include "fmu_binding.h"
-#include "input_order.h"
 #include "own_events.h"
 #include "system.h"
 
@@ -187,7 +186,7 @@ static int fmu_write_inputs(ssx_system *sys, ssx_component *c)
     if (!fmu_component_inputs_unchanged(c) && write_values(sys, c) != 0) {
         return -1;
     }
-    return input_order_write(sys, c);
+    return sys->write_input_derivatives != NULL ? sys->write_input_derivatives(sys, c) : 0;
 }
 
 static int write_values(ssx_system *sys, ssx_component *c)

@@ -39,7 +39,6 @@
 #include "fmu_component.h"
 #include "interrupt.h"
 #include "own_events.h"
-#include "parallel_step.h"
 #include "system.h"
 #include "zeno.h"
 

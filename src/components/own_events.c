@@ -7,7 +7,6 @@
 #include "array.h"
 #include "component.h"
 #include "error.h"
-#include "recording.h"
 #include "system.h"
 
 int own_event_report(ssx_system *sys, ssx_component *c, ssx_own_event_kind kind, double t)
@@ -96,10 +95,7 @@ int own_events_commit(ssx_system *sys, double t, own_event_committed committed, 
             .value_right = NAN,
         };
         sys->stats.own_events++;
-        status = record_event(sys, &record);
-        if (status == 0 && committed != NULL) {
-            status = committed(sys, &record, user);
-        }
+        status = committed(sys, &record, user);
     }
     /* what stays pending lies after t: move it to the front */
     int left = 0;

@@ -17,13 +17,13 @@ int own_event_report_clock(ssx_system *sys, ssx_component *c, ssx_own_event_kind
                            double t);
 /* The component's state is back at t: its events after t did not happen. */
 void own_events_drop_after(ssx_component *c, double t);
-/* Told of each own event as it is committed (after its record): 0, or -1 with the error set.
- * A listener may report more own events of its own at the commit's time: they are committed
- * in the same pass. */
+/* Told of each own event as it is committed, to record it (the recording is a room above the
+ * components) and tell its listeners: 0, or -1 with the error set. A listener may report more
+ * own events of its own at the commit's time: they are committed in the same pass. */
 typedef int (*own_event_committed)(ssx_system *sys, const ssx_event_record *record, void *user);
 /* The master accepted the system's state at t: every component's pending events up to t become
- * event records, in time order (component order within one time), at micro step 0, each then
- * handed to `committed` (NULL: none). */
+ * event records, in time order (component order within one time), at micro step 0, each
+ * handed to `committed`. */
 int own_events_commit(ssx_system *sys, double t, own_event_committed committed, void *user);
 /* ssx_initialize: nothing is pending. */
 void own_events_clear(ssx_system *sys);

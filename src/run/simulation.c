@@ -81,6 +81,7 @@ int ssx_initialize(ssx_system *sys, double t0)
         return -1;
     }
     finite_outputs_watch(sys);
+    indicators_watch_outputs(sys);
     for (int i = 0; i < sys->n_components; ++i) {
         ssx_component *c = sys->components[i];
         for (int k = 0; k < c->n_inputs; ++k) {

@@ -18,6 +18,7 @@
 #include "error.h"
 #include "indicator.h"
 #include "input_order.h"
+#include "locator.h"
 #include "parallel_step.h"
 #include "port_block.h"
 #include "record_hooks.h"

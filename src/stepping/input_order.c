@@ -178,6 +178,7 @@ static void count_unmeasured(ssx_system *sys)
 int input_order_prepare(ssx_system *sys)
 {
     input_order_free(sys);
+    sys->write_input_derivatives = input_order_write;
     if (sys->input_order == 0 && !sys->step_control.enabled) {
         return 0;
     }

@@ -26,7 +26,8 @@ void input_order_free(ssx_system *sys);
 /* The derivatives of c's driven Real inputs over the coming step, after their values are set
  * (coupling_propagate_inputs); may move those values to the polynomial's start. */
 void input_order_propagate(ssx_system *sys, ssx_component *c);
-/* Writes c's input derivatives to its FMU (fmi2SetRealInputDerivatives). */
+/* Writes c's input derivatives to its FMU (fmi2SetRealInputDerivatives); the FMU kind calls it
+ * as the system's write_input_derivatives, which input_order_prepare sets. */
 int input_order_write(ssx_system *sys, ssx_component *c);
 /* The outputs changed at an instant (an event): the coupling history starts again. */
 void input_order_forget(ssx_system *sys);

@@ -10,6 +10,7 @@
 #include "fmu_binding.h"
 #include "fmu_component.h"
 #include "own_events.h"
+#include "recording.h"
 
 /* How a listener's hook names a component's own events among the indicators it receives. */
 static int own_events_name(int component)
@@ -246,11 +247,21 @@ static int tick_to_listeners(ssx_system *sys, const ssx_event_record *record, co
     return 0;
 }
 
-/* One own event reaches its listeners: an output clock's tick those of the clock, any other
- * those of the component's own events. */
+/* One own event is recorded. */
+static int committed_to_recording(ssx_system *sys, const ssx_event_record *record, void *user)
+{
+    (void)user;
+    return record_event(sys, record);
+}
+
+/* One own event is recorded and reaches its listeners: an output clock's tick those of the
+ * clock, any other those of the component's own events. */
 static int committed_to_listeners(ssx_system *sys, const ssx_event_record *record, void *user)
 {
     commit_work *w = user;
+    if (record_event(sys, record) != 0) {
+        return -1;
+    }
     if (record->own == SSX_OWN_OUTPUT_CLOCK) {
         return tick_to_listeners(sys, record, w);
     }
@@ -270,7 +281,7 @@ static int committed_to_listeners(ssx_system *sys, const ssx_event_record *recor
 int event_sources_commit_own(ssx_system *sys, double t)
 {
     if (sys->n_subscriptions == 0) {
-        return own_events_commit(sys, t, NULL, NULL);
+        return own_events_commit(sys, t, committed_to_recording, NULL);
     }
     commit_work w = {.t = t, .listened = 0};
     /* the listeners see the system where it stands (ssx_time), whatever the caller sets after */

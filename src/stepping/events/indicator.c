@@ -9,6 +9,16 @@
 #include "fmu_binding.h"
 #include "system.h"
 
+void indicators_watch_outputs(ssx_system *sys)
+{
+    for (int i = 0; i < sys->n_indicators; ++i) {
+        const ssx_indicator *indicator = &sys->indicators[i];
+        if (indicator->output >= 0) {
+            sys->components[indicator->component]->output_watch[indicator->output].feeds = 1;
+        }
+    }
+}
+
 int indicators_evaluate(ssx_system *sys, double t)
 {
     for (int i = 0; i < sys->n_indicators; ++i) {

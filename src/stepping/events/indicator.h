@@ -33,6 +33,9 @@ typedef struct indicator_state {
     long fire_count;
 } indicator_state;
 
+/* Marks the outputs the indicators read as feeding something (finite_outputs.h), after
+ * finite_outputs_watch. */
+void indicators_watch_outputs(ssx_system *sys);
 /* Evaluates every indicator at the current state (time t) into its state's value. */
 int indicators_evaluate(ssx_system *sys, double t);
 /* Indicator i's time derivative at the current state (time t) into *slope, NAN when it has

@@ -7,7 +7,6 @@
 #include <stdatomic.h>
 
 #include "arena.h"
-#include "locator.h"
 #include "localization_log.h"
 #include "monitor.h"
 #include "syssimx_engine.h"
@@ -130,6 +129,9 @@ struct ssx_system {
     const ssx_master_algorithm *algorithm;
     void *algorithm_workspace; /* the algorithm's own state (algorithm.h) */
     int (*coupled_step)(ssx_system *sys, double t, double h); /* the coupling's step */
+    /* writes c's input derivatives over the coming step after its inputs (input_order.h, set
+     * at ssx_initialize; NULL before): the FMU kind calls it and knows no input order */
+    int (*write_input_derivatives)(ssx_system *sys, ssx_component *c);
     ssx_loop_options loop;
     ssx_hybrid_options hybrid;
 
