@@ -56,7 +56,8 @@ static int64_t component_of(const ssx_plan *p, size_t r)
     switch (p->kind[r]) {
     case PLAN_TABLE_COLUMN: case PLAN_FMU_EXPERIMENT: case PLAN_START: case PLAN_ISOLATED:
     case PLAN_FMI3_VARIABLES: case PLAN_FMI3_VARIABLE: case PLAN_FMI3_ELEMENT:
-    case PLAN_FMI3_INTERMEDIATE: case PLAN_FMI3_CLOCK: case PLAN_OUTPUT: case PLAN_INPUT:
+    case PLAN_FMI3_INTERMEDIATE: case PLAN_FMI3_CLOCK: case PLAN_FMI3_TRIGGERED_CLOCK:
+    case PLAN_FMI3_OUTPUT_CLOCK: case PLAN_OUTPUT: case PLAN_INPUT:
     case PLAN_RESTART_HANDLER:
         return p->values[p->first_value[r]].as.integer;
     default:
@@ -112,7 +113,7 @@ static char *file_uri(const char *path)
 typedef struct {
     ssx_fmi3_variables table;
     fmi3_type_table described;
-    unsigned int *vr, *fmu_vr, *intermediate, *clock_vr;
+    unsigned int *vr, *fmu_vr, *intermediate, *clock_vr, *triggered, *output_clocks;
     unsigned char *type;
     const char **name;
     size_t *element, *size;
@@ -125,6 +126,8 @@ static void fmi3_table_free(fmi3_table *t)
     free(t->fmu_vr);
     free(t->intermediate);
     free(t->clock_vr);
+    free(t->triggered);
+    free(t->output_clocks);
     free(t->type);
     free(t->name);
     free(t->element);
@@ -166,7 +169,7 @@ static int fmi3_table_make(builder *b, int component, const char *folder, int mo
                            fmi3_table *t)
 {
     const ssx_plan *p = b->plan;
-    size_t n = 0, n_intermediate = 0, n_clocks = 0;
+    size_t n = 0, n_intermediate = 0, n_clocks = 0, n_triggered = 0, n_output_clocks = 0;
     int arrays = 0, flags_given = 0;
     for (size_t r = 0; r < p->n_records; ++r) {
         if (component_of(p, r) != component) {
@@ -176,6 +179,8 @@ static int fmi3_table_make(builder *b, int component, const char *folder, int mo
         arrays |= p->kind[r] == PLAN_FMI3_ELEMENT;
         n_intermediate += p->kind[r] == PLAN_FMI3_INTERMEDIATE;
         n_clocks += p->kind[r] == PLAN_FMI3_CLOCK;
+        n_triggered += p->kind[r] == PLAN_FMI3_TRIGGERED_CLOCK;
+        n_output_clocks += p->kind[r] == PLAN_FMI3_OUTPUT_CLOCK;
         flags_given |= p->kind[r] == PLAN_FMI3_VARIABLES;
     }
     if (n == 0 && fmi3_table_describe(b, component, folder, t) != 0) {
@@ -193,11 +198,14 @@ static int fmi3_table_make(builder *b, int component, const char *folder, int mo
     t->clock_vr = calloc(n_clocks ? n_clocks : 1, sizeof *t->clock_vr);
     t->period = calloc(n_clocks ? n_clocks : 1, sizeof *t->period);
     t->shift = calloc(n_clocks ? n_clocks : 1, sizeof *t->shift);
+    t->triggered = calloc(n_triggered ? n_triggered : 1, sizeof *t->triggered);
+    t->output_clocks = calloc(n_output_clocks ? n_output_clocks : 1, sizeof *t->output_clocks);
     if (!t->vr || !t->type || !t->name || !t->fmu_vr || !t->element || !t->size || !t->start ||
-        !t->intermediate || !t->clock_vr || !t->period || !t->shift) {
+        !t->intermediate || !t->clock_vr || !t->period || !t->shift || !t->triggered ||
+        !t->output_clocks) {
         return build_failed(b, "out of memory");
     }
-    size_t v = 0, i = 0, c = 0;
+    size_t v = 0, i = 0, c = 0, triggered = 0, output_clocks = 0;
     for (size_t r = 0; r < p->n_records; ++r) {
         if (component_of(p, r) != component) {
             continue;
@@ -231,6 +239,12 @@ static int fmi3_table_make(builder *b, int component, const char *folder, int mo
             t->period[c] = plan_next_double(&cursor);
             t->shift[c++] = plan_next_double(&cursor);
             break;
+        case PLAN_FMI3_TRIGGERED_CLOCK:
+            t->triggered[triggered++] = (unsigned int)plan_next_integer(&cursor);
+            break;
+        case PLAN_FMI3_OUTPUT_CLOCK:
+            t->output_clocks[output_clocks++] = (unsigned int)plan_next_integer(&cursor);
+            break;
         default:
             break;
         }
@@ -261,6 +275,10 @@ static int fmi3_table_make(builder *b, int component, const char *folder, int mo
     t->table.clock_period = t->period;
     t->table.clock_shift = t->shift;
     t->table.n_clocks = n_clocks;
+    t->table.triggered_clock_vr = n_triggered ? t->triggered : NULL;
+    t->table.n_triggered_clocks = n_triggered;
+    t->table.output_clock_vr = n_output_clocks ? t->output_clocks : NULL;
+    t->table.n_output_clocks = n_output_clocks;
     return 0;
 }
 
@@ -616,6 +634,21 @@ static int build_record(builder *b, ssx_fmu *const *fmus)
             return build_failed(b, "no source %lld", (long long)index);
         }
         return engine_call(b, ssx_subscribe(sys, kind, (int)index, (int)plan_next_integer(v)));
+    }
+    case PLAN_OUTPUT_CLOCK_SOURCE: {
+        int c = (int)plan_next_integer(v);
+        int result = ssx_add_output_clock_source(sys, c, (int)plan_next_integer(v));
+        return result < 0 ? engine_call(b, result) : 0;
+    }
+    case PLAN_CONNECT_CLOCK: {
+        ssx_event_source_kind kind = (ssx_event_source_kind)plan_next_integer(v);
+        int64_t index = plan_next_integer(v);
+        if (index > INT_MAX) {
+            return build_failed(b, "no source %lld", (long long)index);
+        }
+        int listener = (int)plan_next_integer(v);
+        return engine_call(b, ssx_connect_clock(sys, kind, (int)index, listener,
+                                                (int)plan_next_integer(v)));
     }
     case PLAN_RESTART_HANDLER:
         return build_restart_handler(b, v);

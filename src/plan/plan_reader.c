@@ -591,6 +591,22 @@ static int check_start(reader *r, int64_t type, const plan_value *value, int nan
     return 0;
 }
 
+/* How many event sources of `kind` (ssx_event_source_kind) the records so far define. */
+static int64_t sources_defined(const ssx_plan *p, int64_t kind)
+{
+    if (kind == SSX_SOURCE_OWN_EVENTS) {
+        return p->n_components;
+    }
+    if (kind == SSX_SOURCE_INDICATOR) {
+        return p->n_indicators;
+    }
+    int64_t clocks = 0;
+    for (size_t k = 0; k < p->n_records; ++k) {
+        clocks += p->kind[k] == PLAN_OUTPUT_CLOCK_SOURCE;
+    }
+    return clocks;
+}
+
 static int define(reader *r, int kind)
 {
     ssx_plan *p = r->plan;
@@ -642,6 +658,8 @@ static int define(reader *r, int kind)
     case PLAN_FMI3_ELEMENT:
     case PLAN_FMI3_INTERMEDIATE:
     case PLAN_FMI3_CLOCK:
+    case PLAN_FMI3_TRIGGERED_CLOCK:
+    case PLAN_FMI3_OUTPUT_CLOCK:
         return needs_fmu(r, c, 3);
     case PLAN_OUTPUT:
         return count_port(r, p->n_outputs, c);
@@ -658,14 +676,14 @@ static int define(reader *r, int kind)
         }
         ++p->n_indicators;
         return 0;
-    case PLAN_SUBSCRIBE: {
+    case PLAN_SUBSCRIBE:
+    case PLAN_CONNECT_CLOCK: {
+        static const char *const what[] = {"indicator", "component", "output clock source"};
+        int64_t kind = value_of(r, 0)->as.integer;
         int64_t index = value_of(r, 1)->as.integer;
-        int own = value_of(r, 0)->as.integer == SSX_SOURCE_OWN_EVENTS;
-        int64_t defined = own ? p->n_components : p->n_indicators;
-        if (index >= defined) {
+        if (index >= sources_defined(p, kind)) {
             r->field = 1;
-            return refuse(r, "no %s %lld defined before", own ? "component" : "indicator",
-                          (long long)index);
+            return refuse(r, "no %s %lld defined before", what[kind], (long long)index);
         }
         return 0;
     }

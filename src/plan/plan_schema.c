@@ -72,13 +72,17 @@ const plan_record_schema plan_schema[PLAN_RECORD_KIND_COUNT] = {
     [PLAN_RUN_OUTPUT_INTERVAL] = {"run_output_interval", "i", "GRID_STEPS"},
     [PLAN_HISTORY] = {"history", "f", "KEEP"},
     [PLAN_HOOKS] = {"hooks", "c", "COMPONENT"},
+    [PLAN_OUTPUT_CLOCK_SOURCE] = {"output_clock_source", "ci", "COMPONENT CLOCK"},
+    [PLAN_CONNECT_CLOCK] = {"connect_clock", "Kzci", "KIND INDEX LISTENER CLOCK"},
+    [PLAN_FMI3_TRIGGERED_CLOCK] = {"fmi3_triggered_clock", "cu", "COMPONENT VR"},
+    [PLAN_FMI3_OUTPUT_CLOCK] = {"fmi3_output_clock", "cu", "COMPONENT VR"},
 };
 
 static const char *const value_types[] = {"real", "integer", "boolean", "string", "binary", NULL};
 static const char *const fmi3_types[] = {"float64", "float32", "int8", "uint8", "int16",
                                          "uint16", "int32", "uint32", "int64", "uint64",
                                          "boolean", NULL};
-static const char *const sources[] = {"indicator", "own_events", NULL};
+static const char *const sources[] = {"indicator", "own_events", "output_clock", NULL};
 static const char *const couplings[] = {"gauss_seidel", "jacobi", NULL};
 static const char *const jacobians[] = {"auto", "finite_differences", NULL};
 static const char *const locators[] = {"illinois", "bisection", "illinois_unguarded", NULL};

@@ -174,3 +174,33 @@ def test_an_fmi3_fmu_is_built_from_the_type_table_python_loaded_it_with() -> Non
     assert events == python_events
     np.testing.assert_array_equal(time, python_time)
     np.testing.assert_array_equal(values, python_values)
+
+
+CLOCKED_PLAN = """syssimx-plan 1
+system "tank and counter"
+fmu "Tank" 1 3 "tank" "level_detector" "{token}" "Tank" 0
+fmi3_variables 0 1 1
+fmi3_variable 0 1 float64 "level"
+fmi3_output_clock 0 7
+fmu "Counter" 1 3 "counter" "tick_counter" "{token}" "Counter" 0
+fmi3_variables 1 1 1
+fmi3_triggered_clock 1 3
+output_clock_source 0 0
+connect_clock output_clock 0 1 0
+subscribe output_clock 0 1
+"""
+
+
+def test_the_clock_records_of_the_format_are_read_and_written_back() -> None:
+    """The records of FMI 3.0 clocks (output clock sources, clock connections, the clocks of
+    an FMU's type table) read and write back; a source not defined before is refused."""
+    size = ffi.new("size_t *")
+    written = lib().ssx_plan_write(_read(CLOCKED_PLAN), size)
+    try:
+        assert ffi.string(written, size[0]).decode() == CLOCKED_PLAN
+    finally:
+        lib().ssx_plan_text_free(written)
+    error = ffi.new("char[]", _ERROR_SIZE)
+    text = CLOCKED_PLAN.replace("subscribe output_clock 0 1", "subscribe output_clock 1 1")
+    assert lib().ssx_plan_read(text.encode(), len(text), error, _ERROR_SIZE) == ffi.NULL
+    assert "no output clock source 1 defined before" in ffi.string(error).decode()

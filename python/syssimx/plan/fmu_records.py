@@ -69,3 +69,7 @@ def _write_fmi3_table(records: PlanRecords, index: int, name: str, table: Any) -
     for k in range(table.n_clocks):
         records.add("fmi3_clock", index, int(table.clock_vr[k]), float(table.clock_period[k]),
                     float(table.clock_shift[k]), about=name)
+    for k in range(table.n_triggered_clocks):
+        records.add("fmi3_triggered_clock", index, int(table.triggered_clock_vr[k]), about=name)
+    for k in range(table.n_output_clocks):
+        records.add("fmi3_output_clock", index, int(table.output_clock_vr[k]), about=name)
