@@ -834,7 +834,11 @@ static void start_add(start_lists *s, int64_t type, unsigned int vr, double valu
 static int start_lists_make(const ssx_plan *p, int component, const char *driven,
                             start_lists *s)
 {
-    size_t most = p->n_records ? p->n_records : 1;
+    size_t most = 1; /* the component's start and input records */
+    for (size_t r = 0; r < p->n_records; ++r) {
+        most += (p->kind[r] == PLAN_START || p->kind[r] == PLAN_INPUT) &&
+                component_of(p, r) == component;
+    }
     for (int k = 0; k < 3; ++k) {
         s->vr[k] = malloc(most * sizeof *s->vr[k]);
     }
