@@ -13,6 +13,7 @@
  *   g  a schedule group: its size, a flag (a loop), then that many components */
 #include <string.h>
 
+#include "locator.h"
 #include "plan.h"
 
 const plan_record_schema plan_schema[PLAN_RECORD_KIND_COUNT] = {
@@ -85,14 +86,13 @@ static const char *const fmi3_types[] = {"float64", "float32", "int8", "uint8", 
 static const char *const sources[] = {"indicator", "own_events", "output_clock", NULL};
 static const char *const couplings[] = {"gauss_seidel", "jacobi", NULL};
 static const char *const jacobians[] = {"auto", "finite_differences", NULL};
-static const char *const locators[] = {"illinois", "bisection", "illinois_unguarded", NULL};
 
 const char *const *plan_words(plan_word_set set)
 {
     static const char *const *const sets[PLAN_WORD_SET_COUNT] = {
         [PLAN_WORDS_VALUE_TYPE] = value_types, [PLAN_WORDS_FMI3_TYPE] = fmi3_types,
         [PLAN_WORDS_SOURCE] = sources,         [PLAN_WORDS_COUPLING] = couplings,
-        [PLAN_WORDS_JACOBIAN] = jacobians,     [PLAN_WORDS_LOCATOR] = locators,
+        [PLAN_WORDS_JACOBIAN] = jacobians,     [PLAN_WORDS_LOCATOR] = locator_names,
     };
     return sets[set];
 }

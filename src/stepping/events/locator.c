@@ -244,6 +244,16 @@ static const locator_method LOCATORS[] = {
     [SSX_ILLINOIS_UNGUARDED] = {illinois_estimate, illinois_after_trial, LOCATOR_UNBOUNDED},
 };
 
+const char *const locator_names[] = {
+    [SSX_ILLINOIS] = "illinois",
+    [SSX_BISECTION] = "bisection",
+    [SSX_ILLINOIS_UNGUARDED] = "illinois_unguarded",
+    NULL,
+};
+_Static_assert(sizeof locator_names / sizeof *locator_names ==
+                   sizeof LOCATORS / sizeof *LOCATORS + 1,
+               "every localization method has a name");
+
 int locator_known(int locator)
 {
     return locator >= 0 && locator < (int)(sizeof LOCATORS / sizeof *LOCATORS);

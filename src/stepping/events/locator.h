@@ -36,6 +36,9 @@ typedef struct {
     int slack; /* at most bisection's iterations plus slack, or LOCATOR_UNBOUNDED */
 } locator_method;
 
+/* Each method's name by its ssx_locator, as a plan writes it (the enum's name in lower case,
+ * as Python reads it from the header), then NULL. */
+extern const char *const locator_names[];
 /* locator names a localization method (an ssx_locator). */
 int locator_known(int locator);
 const locator_method *locator_method_of(ssx_locator locator);
