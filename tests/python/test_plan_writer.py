@@ -15,7 +15,7 @@ from syssimx.bridge.history_arrays import HistoryArrays
 from syssimx.engine import ffi, lib
 from syssimx.errors import ConfigurationError
 from syssimx.fmu.archive import extract
-from syssimx.plan.records import PlanRecords, Word
+from syssimx.plan.records import Doubles, PlanRecords, Word
 
 _ERROR_SIZE = 2048
 STOP, STEP = 3.0, 0.05
@@ -155,6 +155,11 @@ def test_records_write_each_field_as_the_format_reads_it() -> None:
     assert records.text().splitlines()[1] == (
         'x 1 3 0.05 1e-10 nan -inf real "a \\"q\\"\\n\\t\\x01\u00e9" "\\x00\\xff" '
         "2 1 2.5 3 0.1")
+    column = np.array([0.1, 1 / 3, 5e-324, np.nan, -np.inf, 100.0, 1e22])
+    records.add("y", Doubles(column))
+    line = records.text().splitlines()[2]
+    assert line == "y 7 0.1 0.3333333333333333 5e-324 nan -inf 100.0 1e+22"
+    np.testing.assert_array_equal(np.array(line.split()[2:], dtype=float), column)
 
 
 def test_an_fmi3_fmu_is_built_from_the_type_table_python_loaded_it_with() -> None:

@@ -24,7 +24,7 @@ from ..core.port import TABLED_TYPES, PortType
 from ..engine import ffi, lib, string
 from ..errors import ConfigurationError, SimulationTimeoutError
 from ..plan.fmu_records import FMULoad, write_fmu
-from ..plan.records import PlanRecords, Word, value_type_word
+from ..plan.records import Doubles, PlanRecords, Word, value_type_word
 from .built_system import build_system
 from .history_arrays import HistoryArrays
 
@@ -319,9 +319,9 @@ class EnginePlan:
         """A table source is evaluated in C: its table is copied into the engine, no hooks.
         columns: the values of each output (in the order of engine_outputs)."""
         name, index = component.name, self.index[component.name]
-        self.records.add("table", name, np.asarray(time, dtype=np.float64).tolist(), about=name)
+        self.records.add("table", name, Doubles(time), about=name)
         for port in self.outputs[name]:
-            values = np.asarray(columns[port], dtype=np.float64).tolist()
+            values = Doubles(columns[port])
             self.records.add("table_column", index,
                              value_type_word(component.output_specs[port].type), port in hold,
                              values, about=f"{name}.{port}")

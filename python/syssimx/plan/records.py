@@ -1,9 +1,9 @@
 """The text of a plan (format `syssimx-plan 1`): one record a line, a keyword and its fields.
 
 Fields are written by their Python type: a flag as `bool`, an integer as `int`, a double as
-`float` (`%.17g`, which the reader gets back exactly, as the engine's writer does), a fixed word
-as `Word`, a string as `str` or `bytes` (quoted, escaped), a list as a `list` of items (its count
-first; an item of several fields a tuple).
+`float` (as the engine's writer writes it), a fixed word as `Word`, a string as `str` or `bytes`
+(quoted, escaped), a list as a `list` of items (its count first; an item of several fields a
+tuple), a long list of doubles (a table's column) as `Doubles`.
 """
 
 from __future__ import annotations
@@ -11,6 +11,8 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 from typing import TypeAlias
+
+import numpy as np
 
 from ..core.port import PortType
 
@@ -21,7 +23,21 @@ class Word(str):
     """A fixed word of the format (`real`, `jacobi`, ...), written bare."""
 
 
-Field: TypeAlias = "bool | int | float | str | bytes | list[Field] | tuple[Field, ...]"
+class Doubles:
+    """A list of doubles written fast: its count, then each value in Python's shortest form
+    that reads back to it (`repr`: `0.1`, `100.0`, `1e-10`, `nan`, `-inf`), one C loop for the
+    whole list instead of a Python call per value."""
+
+    def __init__(self, values: np.ndarray) -> None:
+        self.values = np.asarray(values, dtype=np.float64)
+
+    def text(self) -> str:
+        values = self.values.tolist()
+        return " ".join((str(len(values)), *map(repr, values)))
+
+
+Field: TypeAlias = \
+    "bool | int | float | str | bytes | Doubles | list[Field] | tuple[Field, ...]"
 
 # the characters a string writes escaped; every other control character (and, in bytes, every
 # byte outside ASCII) as \xHH
@@ -69,6 +85,8 @@ def _fields(values: Iterable[Field]) -> Iterable[str]:
         elif isinstance(value, list):
             yield str(len(value))
             yield from _fields(value)
+        elif isinstance(value, Doubles):
+            yield value.text()
         else:  # an item of several fields
             yield from _fields(value)
 
