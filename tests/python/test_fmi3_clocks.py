@@ -71,17 +71,22 @@ def test_a_co_simulation_fmu_with_a_clock_is_read_and_refused_naming_the_clock(t
     assert structure.clocks == (ClockInfo("tick", 9001, "input", "fixed", interval=0.25,
                                           shift=0.5, priority=3, supports_fraction=True),)
     assert structure.clocked_variables == {"Int32_output": (9001,)}
-    # a periodic input clock is ticked by the engine; a triggered one is refused
+    # periodic and triggered input clocks are ticked by the engine; a countdown one is refused
     (tmp_path / "triggered").mkdir()
     triggered = edited(tmp_path / "triggered", FEEDTHROUGH, (_ADDED_CLOCK[0], _ADDED_CLOCK[1]
                        .replace('intervalVariability="fixed" intervalDecimal="0.25" '
                                 'shiftDecimal="0.5" ', 'intervalVariability="triggered" ')))
+    assert FMUComponent("F", triggered).triggered_clocks == ["tick"]
+    (tmp_path / "countdown").mkdir()
+    countdown = edited(tmp_path / "countdown", FEEDTHROUGH, (_ADDED_CLOCK[0], _ADDED_CLOCK[1]
+                       .replace('intervalVariability="fixed" intervalDecimal="0.25" '
+                                'shiftDecimal="0.5" ', 'intervalVariability="countdown" ')))
     with pytest.raises(FMUFileError) as info:
-        FMUComponent("F", triggered)
-    assert str(info.value) == (f"{triggered}: Clock 'tick' (input, intervalVariability "
-                               "triggered): syssimx ticks only periodic input clocks "
-                               "(intervalVariability constant or fixed) of FMI 3.0 "
-                               "Co-Simulation FMUs with event mode")
+        FMUComponent("F", countdown)
+    assert str(info.value) == (f"{countdown}: Clock 'tick' (input, intervalVariability "
+                               "countdown) is not supported: its interval is decided by the FMU "
+                               "during the run, and syssimx does not read it "
+                               "(fmi3GetIntervalDecimal) to plan the ticks")
 
 
 def test_counters_and_resolution_give_the_period_and_first_tick(tmp_path: Path):

@@ -27,7 +27,7 @@ PENDULUM_PARAMETERS = "['L', 'euler_step_size', 'g', 'inertia', 'm', 'omega0', '
 BUILD_ERRORS = {
     BASE + "conections: []\n":
         ", line 1: top level: unknown key(s) ['conections']; known: ['system', 'components', "
-        "'connections', 'event_connections', 'algorithm', 'run']",
+        "'connections', 'event_connections', 'clock_connections', 'algorithm', 'run']",
     "system: {name: s}\ncomponents: []\n":
         ", line 1: components: a system needs a non-empty list of components",
     BASE.replace("system: {name: s}", "system: {title: s}"):

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from ..engine import enum_name, ffi, lib
+from ..engine import ffi, lib
 from .deferred_interrupt import interrupts_deferred
 from .plan import CallbackFailure, EnginePlan
 
@@ -51,7 +51,7 @@ def _event_source(plan: EnginePlan, record: Any) -> tuple[str, str]:
     if record.indicator >= 0:
         return plan.indicators[record.indicator]
     return (list(plan.index)[record.component],
-            enum_name("ssx_own_event_kind", "SSX_OWN_", record.own))
+            plan.own_event_name(record.component, record.own, record.clock))
 
 
 def add_observer(plan: EnginePlan, observer: Any) -> int:

@@ -21,7 +21,7 @@ import numpy as np
 
 from ..core.events import OWN_EVENTS
 from ..core.port import TABLED_TYPES, PortType
-from ..engine import ffi, lib, string
+from ..engine import enum_name, ffi, lib, string
 from ..errors import ConfigurationError, SimulationTimeoutError
 from ..plan.fmu_records import FMULoad, write_fmu
 from ..plan.records import Doubles, PlanRecords, Word, value_type_word
@@ -89,6 +89,12 @@ def bind(component: Component, binding: Binding | None) -> None:
     component._binding = binding
 
 
+def clock_names(component: Any, kind: str) -> list[str]:
+    """A component's FMI 3.0 clocks of `kind` ("output_clocks" or "triggered_clocks"), in the
+    engine's order; none for a component without clocks."""
+    return list(getattr(component, kind, ()))
+
+
 class EnginePlan:
     """The engine system of one System; rebuilt by System.initialize when the System's
     structure changed, else started again (`restart`)."""
@@ -118,6 +124,8 @@ class EnginePlan:
         self.driven: set[tuple[str, str]] = set()  # (component, input) of the connections
         self.indicators: list[tuple[str, str]] = []  # engine index -> (component, event)
         self.indicator_index: dict[tuple[str, str], int] = {}
+        # engine number of an output clock source -> (component, clock)
+        self.clock_sources: list[tuple[str, str]] = []
         self.failure: CallbackFailure | None = None
         # (component, output) of the outputs warned of as non-finite since the last initialize
         self.non_finite_warned: set[tuple[int, int]] = set()
@@ -385,14 +393,44 @@ class EnginePlan:
                 return -1
         return evaluate
 
-    def add_event_connection(self, src: str, event: str, dst: str, own: bool = False) -> None:
-        """dst listens to src's indicator `event`, or with `own` to src's own events."""
+    def add_event_connection(self, src: str, event: str, dst: str, own: bool = False,
+                             dst_port: str | None = None) -> None:
+        """dst listens to src's indicator or output clock `event`, or with `own` to src's own
+        events; where dst_port is a triggered input clock of dst, the source ticks it."""
         if own:
             kind, index = Word("own_events"), self.index[src]
+        elif event in clock_names(self.components[src], "output_clocks"):
+            kind, index = Word("output_clock"), self._clock_source(src, event)
         else:
             kind, index = Word("indicator"), self.indicator_index[(src, event)]
-        self.records.add("subscribe", kind, index, self.index[dst],
-                         about=f"{src}.{event} -> {dst}")
+        about = f"{src}.{event} -> {dst}" + (f".{dst_port}" if dst_port else "")
+        triggered = clock_names(self.components[dst], "triggered_clocks")
+        if dst_port in triggered:
+            self.records.add("connect_clock", kind, index, self.index[dst],
+                             triggered.index(dst_port), about=about)
+        else:
+            self.records.add("subscribe", kind, index, self.index[dst], about=about)
+
+    def _clock_source(self, component: str, clock: str) -> int:
+        """The engine's number of the output clock source `clock` of `component` (one per
+        clock, numbered in the order they are first named)."""
+        if (component, clock) not in self.clock_sources:
+            outputs = clock_names(self.components[component], "output_clocks")
+            self.records.add("output_clock_source", self.index[component],
+                             outputs.index(clock), about=f"{component}.{clock}")
+            self.clock_sources.append((component, clock))
+        return self.clock_sources.index((component, clock))
+
+    def own_event_name(self, component: int, own: int, clock: int) -> str:
+        """The name of a component's own event record: the clock's for an output clock's tick
+        and a triggered clock's tick, else its kind's ("fmu_event", "clock_tick", ...)."""
+        engine = lib()
+        kinds = {engine.SSX_OWN_OUTPUT_CLOCK: "output_clocks",
+                 engine.SSX_OWN_CLOCK_TICK: "triggered_clocks"}
+        if clock > 0 and own in kinds:
+            names = clock_names(list(self.components.values())[component], kinds[own])
+            return names[clock - 1]
+        return enum_name("ssx_own_event_kind", "SSX_OWN_", own)
 
     def fail(self, component: Component, where: str, t: float, exc: BaseException) -> None:
         if self.failure is None:
@@ -697,10 +735,15 @@ class _HookBuilder:
 
     def _handle_events(self, indicators: Any, n: int, t: float) -> None:
         c = self.component
-        # an indicator by its index, a component's own events as -1 - component
-        names = list(dict.fromkeys(self.plan.indicators[indicators[i]][1] if indicators[i] >= 0
-                                   else OWN_EVENTS for i in range(n)))
-        if OWN_EVENTS in names:
+        # an indicator by its index, a component's own events as -1 - component, an output
+        # clock as -1 - n_components - its source number
+        n_components = len(self.plan.index)
+        names = list(dict.fromkeys(
+            self.plan.indicators[indicators[i]][1] if indicators[i] >= 0
+            else OWN_EVENTS if indicators[i] >= -n_components
+            else self.plan.clock_sources[-1 - n_components - indicators[i]][1]
+            for i in range(n)))
+        if any(indicators[i] < 0 for i in range(n)):
             # t is the own event's time; the component stands at the communication point after
             c.t = float(lib().ssx_time(self.plan.sys))
         self.where = f"event handler for {', '.join(names)}"

@@ -43,6 +43,7 @@ from ..core.port import TABLED_TYPES, Port, PortSpec, PortType
 from ..core.suggest import did_you_mean
 from ..engine import lib
 from ..errors import ConfigurationError, FMUError
+from ..fmu.description_fmi3 import output_clocks, triggered_input_clocks
 from ..fmu.extraction import extractions
 from ..fmu.info import (
     INTERFACES,
@@ -203,6 +204,20 @@ class FMUComponent(CoSimComponent):
     def model_exchange(self) -> bool:
         """Whether the engine integrates the FMU (its Model Exchange interface)."""
         return self.fmu_interface.name == "model-exchange"
+
+    @property
+    def output_clocks(self) -> list[str]:
+        """The FMI 3.0 output clocks the engine reads in Co-Simulation, in its order: each is
+        an event source for an EventConnection."""
+        return [] if self.model_exchange else \
+            [c.name for c in output_clocks(self.info.clocks.clocks)]
+
+    @property
+    def triggered_clocks(self) -> list[str]:
+        """The FMI 3.0 triggered input clocks the engine ticks in Co-Simulation, in its order:
+        an EventConnection from an indicator or an output clock to one ticks it."""
+        return [] if self.model_exchange else \
+            [c.name for c in triggered_input_clocks(self.info.clocks.clocks)]
 
     # ---------------------------------------------------------------- ports
     def _make_port(self, spec: PortSpec) -> Port:

@@ -7,10 +7,10 @@ attribute names), so the rest of syssimx reads an FMI 3.0 description like an FM
 
 syssimx steps FMI 3.0 Co-Simulation FMUs and integrates FMI 3.0 Model Exchange ones. It
 reads every Clock (clocks.py) and refuses, naming the file and the element: scheduled execution
-only, a Clock the engine does not tick (naming the clock: it ticks the periodic input clocks of
-Co-Simulation FMUs with event mode, none in Model Exchange), and String or Binary arrays among
-the inputs, outputs and parameters. Numeric and Boolean arrays become one port per element,
-made when asked for (fmi3_arrays.py).
+only, a Clock the engine does not tick (naming the clock and why: it ticks periodic input
+clocks, and in Co-Simulation with event mode triggered input clocks and output clocks), and
+String or Binary arrays among the inputs, outputs and parameters. Numeric and Boolean arrays
+become one port per element, made when asked for (fmi3_arrays.py).
 
 A description is data: every value reference, dimension and start value is checked here, and
 an FMUFileError names the file and the variable, before anything is sized by it. The arrays of
@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NamedTuple
 
@@ -119,19 +120,31 @@ def read_fmi3_description(path: Path) -> ModelDescription:
 
 
 def _refuse_clocks(clocks: ClockStructure, path: Path, cosimulation: Any = None) -> None:
-    """FMUFileError naming the first clock the engine cannot tick: it ticks periodic input
-    clocks (intervalVariability constant or fixed, the interval in the description) of a
-    Co-Simulation FMU with event mode, and no other clock in either interface."""
+    """FMUFileError naming the first clock the engine cannot tick: periodic input clocks
+    (intervalVariability constant or fixed, the interval in the description), triggered input
+    clocks and output clocks of a Co-Simulation FMU with event mode; no other clock in either
+    interface."""
     if cosimulation is not None and cosimulation.hasEventMode:
-        untickable = [c for c in clocks.clocks if not _periodic_input(c)]
+        untickable = [c for c in clocks.clocks if not _cosimulation_clock(c)]
     else:
         untickable = list(clocks.clocks)
     if untickable:
-        clock = untickable[0]
-        raise FMUFileError(f"{path}: Clock {clock.name!r} ({clock.causality}, "
-                           f"intervalVariability {clock.interval_variability}): syssimx ticks "
-                           "only periodic input clocks (intervalVariability constant or fixed) "
-                           "of FMI 3.0 Co-Simulation FMUs with event mode")
+        _refuse(untickable[0], path)
+
+
+def _refuse(clock: ClockInfo, path: Path) -> None:
+    if clock.interval_variability in ("tunable", "changing", "countdown"):
+        why = ("its interval is decided by the FMU during the run, and syssimx does not "
+               "read it (fmi3GetIntervalDecimal) to plan the ticks")
+    elif clock.causality not in ("input", "output"):
+        why = "a local clock is the FMU's own"
+    else:
+        why = ("syssimx ticks periodic input clocks (intervalVariability constant or fixed), "
+               "triggered input clocks and output clocks of FMI 3.0 Co-Simulation FMUs with "
+               "event mode")
+    raise FMUFileError(f"{path}: Clock {clock.name!r} ({clock.causality}, "
+                       f"intervalVariability {clock.interval_variability}) is not supported: "
+                       f"{why}")
 
 
 def _periodic_input(clock: ClockInfo) -> bool:
@@ -139,15 +152,36 @@ def _periodic_input(clock: ClockInfo) -> bool:
             and clock.period is not None)
 
 
+def _cosimulation_clock(clock: ClockInfo) -> bool:
+    """A clock the engine ticks or reads in Co-Simulation with event mode: a periodic input
+    clock, a triggered input clock (ticked by what it is connected to) or an output clock
+    (read in every Event Mode)."""
+    return _periodic_input(clock) or (clock.interval_variability == "triggered"
+                                      and clock.causality in ("input", "output"))
+
+
+
+
 def ticked_clocks(clocks: ClockStructure, interface: str, path: Path) -> tuple[ClockInfo, ...]:
-    """The periodic input clocks the engine ticks in Co-Simulation; FMUFileError naming the
-    clock when the FMU runs as Model Exchange, where syssimx ticks no clock."""
+    """The clocks the engine ticks or reads in Co-Simulation; FMUFileError naming the clock
+    when the FMU runs as Model Exchange, where syssimx ticks no clock."""
     if clocks.clocks and interface == "model-exchange":
         clock = clocks.clocks[0]
         raise FMUFileError(f"{path}: Clock {clock.name!r}: syssimx ticks clocks of FMI 3.0 "
                            "Co-Simulation FMUs only, not as Model Exchange (choose "
                            "interface='co-simulation')")
     return clocks.clocks
+
+
+def triggered_input_clocks(clocks: Sequence[ClockInfo]) -> list[ClockInfo]:
+    """The triggered input clocks, in the engine's order (its clock indices)."""
+    return [c for c in clocks
+            if c.causality == "input" and c.interval_variability == "triggered"]
+
+
+def output_clocks(clocks: Sequence[ClockInfo]) -> list[ClockInfo]:
+    """The output clocks, in the engine's order (its clock indices)."""
+    return [c for c in clocks if c.causality == "output"]
 
 
 def clock_structure(path: Path) -> ClockStructure:
@@ -301,12 +335,23 @@ def engine_variables(table: EngineTable, cosimulation: Any, model_exchange: bool
         "early_return_allowed": not model_exchange and bool(
             cosimulation.canReturnEarlyAfterIntermediateUpdate
             or cosimulation.mightReturnEarlyFromDoStep)}
-    if clocks:  # periodic input clocks the engine ticks (ticked_clocks)
+    periodic = [c for c in clocks if _periodic_input(c)]
+    if periodic:  # periodic input clocks the engine ticks (ticked_clocks)
         fields.update({
-            "clock_vr": ffi.new("unsigned int[]", [c.value_reference for c in clocks]),
-            "clock_period": ffi.new("double[]", [c.period for c in clocks]),
-            "clock_shift": ffi.new("double[]", [c.first_tick for c in clocks]),
-            "n_clocks": len(clocks)})
+            "clock_vr": ffi.new("unsigned int[]", [c.value_reference for c in periodic]),
+            "clock_period": ffi.new("double[]", [c.period for c in periodic]),
+            "clock_shift": ffi.new("double[]", [c.first_tick for c in periodic]),
+            "n_clocks": len(periodic)})
+    triggered = triggered_input_clocks(clocks)
+    if triggered and not model_exchange:  # ticked by what they are connected to
+        fields.update({"triggered_clock_vr": ffi.new(
+            "unsigned int[]", [c.value_reference for c in triggered]),
+            "n_triggered_clocks": len(triggered)})
+    outputs = output_clocks(clocks)
+    if outputs and not model_exchange:  # read in every Event Mode
+        fields.update({"output_clock_vr": ffi.new(
+            "unsigned int[]", [c.value_reference for c in outputs]),
+            "n_output_clocks": len(outputs)})
     if intermediate and not model_exchange:  # inputs the engine moves inside a step
         fields.update({"intermediate_vr": ffi.new("unsigned int[]", list(intermediate)),
                        "n_intermediate": len(intermediate)})

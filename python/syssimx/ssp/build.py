@@ -22,7 +22,7 @@ from ..units import (
 )
 from .errors import SSPError
 from .parameters import ParameterValue
-from .structure import ComponentEntry, Connector, Structure
+from .structure import ComponentEntry, ConnectionEntry, Connector, Structure
 from .units import UnitDefinition, defined_conversion
 from .unsupported import Unsupported
 
@@ -44,6 +44,9 @@ def build(structure: Structure, unsupported: Unsupported) -> System:
         _set_values(component, entry, structure.units, unsupported)
         system.add_component(component)
     for c in structure.connections:
+        if c.dst[1] in system.components[c.dst[0]].triggered_clocks:
+            _connect_clock(system, c)
+            continue
         src_spec = system.components[c.src[0]].output_specs.get(c.src[1])
         dst_spec = system.components[c.dst[0]].input_specs.get(c.dst[1])
         factor, offset, convert = c.factor, c.offset, c.convert_units
@@ -61,6 +64,14 @@ def build(structure: Structure, unsupported: Unsupported) -> System:
     return system
 
 
+def _connect_clock(system: System, c: ConnectionEntry) -> None:
+    """A connection to a triggered input clock: a clock connection (from an output clock)."""
+    try:
+        system.add_clock_connection(".".join(c.src), ".".join(c.dst))
+    except ConfigurationError as exc:
+        raise SSPError(f"{c.label}: {exc}") from exc
+
+
 def _connector_unit(structure: Structure, endpoint: tuple[str, str]) -> str | None:
     connector = structure.components[endpoint[0]].connectors.get(endpoint[1])
     return connector.unit if connector is not None else None
@@ -69,7 +80,12 @@ def _connector_unit(structure: Structure, endpoint: tuple[str, str]) -> str | No
 def _check_connector(component: FMUComponent, connector: Connector,
                      units: dict[str, UnitDefinition]) -> None:
     """The connector names a variable of the FMU of the same kind, type and unit (a unit the
-    SSD defines is compared by its definition, not its name)."""
+    SSD defines is compared by its definition, not its name). A clock (an output clock, a
+    triggered input clock: SSP 1.0 has no type for it) is a connector without a type."""
+    clocks = {"input": component.triggered_clocks, "output": component.output_clocks}.get(
+        connector.kind, [])
+    if connector.name in clocks and connector.type in (None, "Clock"):
+        return
     specs = {"input": component.input_specs, "output": component.output_specs}.get(
         connector.kind, {})
     parameter = component.info.parameters.get(connector.name)

@@ -10,6 +10,7 @@
         event_handlers: [{input: omega_invert, reinitialize: {theta0: theta, omega0: -omega}}]
     connections: [{src: Source.y, dst: Integrator.u}]      # or {component, port} mappings
     event_connections: [{src: P.wall_hit, dst: P.omega_invert}]
+    clock_connections: [{src: Tank.full, dst: Counter.tick}]  # FMI 3.0 clocks (or an indicator)
     algorithm: {type: gauss_seidel}              # jacobi | gauss_seidel | hybrid | ijcsa, options
     run: {t0: 0.0, tf: 5.0, dt: 0.1}
 
@@ -34,8 +35,8 @@ from .connection import Connection, EventConnection
 from .results import SimulationResult
 from .system import System
 
-TOP_LEVEL_KEYS = ("system", "components", "connections", "event_connections", "algorithm",
-                  "run")
+TOP_LEVEL_KEYS = ("system", "components", "connections", "event_connections",
+                  "clock_connections", "algorithm", "run")
 RUN_KEYS = ("t0", "tf", "dt")
 
 __all__ = ["ConfigError", "build_system", "load_config", "run_from_config"]
@@ -77,7 +78,8 @@ def _build(source: Source, config: dict[str, Any]) -> System:
         except ConfigurationError as exc:
             raise source.error(f"components[{index}] {quoted(component.name)}", str(exc),
                                entry) from exc
-    for key, connect in (("connections", _connect), ("event_connections", _connect_event)):
+    for key, connect in (("connections", _connect), ("event_connections", _connect_event),
+                         ("clock_connections", _connect_clock)):
         entries = config.get(key) or []
         if not isinstance(entries, list):
             raise source.error(key, f"must be a list, got {kind(entries)}", config)
@@ -188,5 +190,13 @@ def _connect_event(source: Source, label: str, system: System, entry: Any) -> No
         system.add_event_connection(EventConnection(*_checked_entry(source, label, entry)))
     except ConfigError:
         raise
+    except ConfigurationError as exc:
+        raise source.error(label, str(exc), entry) from exc
+
+
+def _connect_clock(source: Source, label: str, system: System, entry: Any) -> None:
+    src_comp, src_port, dst_comp, dst_port = _checked_entry(source, label, entry)
+    try:
+        system.add_clock_connection(f"{src_comp}.{src_port}", f"{dst_comp}.{dst_port}")
     except ConfigurationError as exc:
         raise source.error(label, str(exc), entry) from exc

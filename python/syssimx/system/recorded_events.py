@@ -3,7 +3,7 @@ when first asked for."""
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from functools import cache
 from typing import TYPE_CHECKING, Any
 
@@ -17,7 +17,7 @@ if TYPE_CHECKING:
 
 _RECORD_FIELDS = ("t", "micro", "indicator", "component", "own", "iterations", "rollbacks",
                   "do_steps", "t_left", "t_right", "value_left", "value_right", "first_trial",
-                  "n_trials")
+                  "n_trials", "clock")
 _TRIAL_FIELDS = ("t", "a", "b", "value")
 
 
@@ -46,6 +46,10 @@ def _copied(copy: Any, plan: EnginePlan, ctype: str, count: int) -> np.ndarray |
     return np.frombuffer(ffi.buffer(block), dtype=_struct_dtype(ctype), count=copied).copy()
 
 
+def _own_event_kind(component: int, own: int, clock: int) -> str:
+    return enum_name("ssx_own_event_kind", "SSX_OWN_", own)
+
+
 def _rows(array: np.ndarray | None, fields: tuple[str, ...]) -> list[tuple[Any, ...]]:
     """The structs as rows of Python numbers in the order of `fields`."""
     if array is None:
@@ -67,6 +71,7 @@ class RecordedEvents:
         self._trials: np.ndarray | None = None
         self._indicators: list[tuple[str, str]] = []
         self._index: Mapping[str, int] = {}
+        self._own_event_name: Callable[[int, int, int], str] = _own_event_kind
         if plan is None:
             return
         engine = lib()
@@ -77,6 +82,7 @@ class RecordedEvents:
                                int(engine.ssx_event_trial_count(plan.sys)))
         # the plan's tables, which a plan keeps as built (a new structure makes a new plan)
         self._indicators, self._index = plan.indicators, plan.index
+        self._own_event_name = plan.own_event_name
         self._made = None
 
     def made(self) -> list[EventRecord]:
@@ -91,14 +97,14 @@ class RecordedEvents:
         names: list[str] = []
         events = []
         for (t, micro, indicator, component, own, iterations, rollbacks, do_steps, t_left,
-             t_right, value_left, value_right, first_trial, n_trials) in _rows(self._records,
-                                                                               _RECORD_FIELDS):
+             t_right, value_left, value_right, first_trial, n_trials, clock) in _rows(
+                 self._records, _RECORD_FIELDS):
             if indicator >= 0:
                 source, event = self._indicators[indicator]
             else:
                 names = names or list(self._index)
                 source = names[component]
-                event = enum_name("ssx_own_event_kind", "SSX_OWN_", own)
+                event = self._own_event_name(component, own, clock)
             events.append(EventRecord(
                 t, micro, source, event, iterations, rollbacks, do_steps, t_left, t_right,
                 value_left, value_right, tuple(trials[first_trial:first_trial + n_trials]),

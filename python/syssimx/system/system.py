@@ -18,7 +18,7 @@ from ..bridge.failure import raise_failure
 from ..bridge.non_finite import warn_non_finite_outputs
 from ..bridge.observers import add_observer, remove_observer
 from ..bridge.observers import keep_history as keep_history_samples
-from ..bridge.plan import EnginePlan
+from ..bridge.plan import EnginePlan, clock_names
 from ..bridge.run_outcome import RunOutcome
 from ..components.base import CoSimComponent
 from ..core.events import OWN_EVENTS
@@ -182,11 +182,20 @@ class System:
         self.is_initialized = False
 
     def add_event_connection(self, connection: EventConnection) -> None:
-        """Route an event indicator of one component to an event input of another (or the
-        same): when the indicator fires, that input's handler runs."""
+        """Route an event indicator (or an FMI 3.0 output clock) of one component to an event
+        input of another (or the same): when the indicator fires (the clock ticks), that
+        input's handler runs. Where the destination port is a triggered input clock of an FMI
+        3.0 Co-Simulation FMU, the source ticks that clock instead."""
         src, dst = self._component(connection.src_comp), self._component(connection.dst_comp)
         where = "{}.{} -> {}.{}".format(*connection.key())
-        if connection.src_port == OWN_EVENTS:
+        ticks = connection.dst_port in clock_names(dst, "triggered_clocks")
+        if ticks and connection.src_port == OWN_EVENTS:
+            raise ConfigurationError(f"{where}: a triggered clock ticks on an event indicator "
+                                     "or an output clock, not on all of a component's own "
+                                     "events")
+        if connection.src_port in clock_names(src, "output_clocks"):
+            pass
+        elif connection.src_port == OWN_EVENTS:
             from ..components.fmu import FMUComponent
 
             if not isinstance(src, FMUComponent):
@@ -194,16 +203,35 @@ class System:
                                          "(FMU components do: an FMI 3.0 FMU's events, a Model "
                                          "Exchange FMU's state, time and step events)")
         elif connection.src_port not in src.event_indicators:
+            clocks = clock_names(src, "output_clocks")
             raise ConfigurationError(f"{where}: {src.name!r} has no event indicator "
                                      f"{connection.src_port!r}; indicators: "
-                                     f"{sorted(src.event_indicators) or 'none'}")
+                                     f"{sorted(src.event_indicators) or 'none'}"
+                                     + (f", output clocks: {clocks}" if clocks else ""))
         spec = dst.input_specs.get(connection.dst_port)
-        if spec is None or spec.type != PortType.EVENT:
+        if not ticks and (spec is None or spec.type != PortType.EVENT):
             events = sorted(n for n, s in dst.input_specs.items() if s.type == PortType.EVENT)
             raise ConfigurationError(f"{where}: {dst.name!r} has no EVENT input "
                                      f"{connection.dst_port!r}; EVENT inputs: {events or 'none'}")
         self.event_connections.append(connection)
         self.is_initialized = False
+
+    def add_clock_connection(self, source: str, clock: str) -> None:
+        """Tick the triggered input clock `clock` ("Component.clock", of an FMI 3.0
+        Co-Simulation FMU) at every tick of the output clock `source` ("Component.clock") or
+        at every firing of the event indicator `source` ("Component.indicator"): the
+        EventConnection between the two."""
+        ends = [name.split(".", 1) for name in (source, clock)]
+        if any(len(end) != 2 for end in ends):
+            raise ConfigurationError(f"clock connection {source!r} -> {clock!r}: each end is "
+                                     "'Component.clock'")
+        (src_comp, src_port), (dst_comp, dst_port) = ends
+        if dst_port not in clock_names(self._component(dst_comp), "triggered_clocks"):
+            raise ConfigurationError(
+                f"clock connection {source!r} -> {clock!r}: {dst_comp!r} has no triggered "
+                f"input clock {dst_port!r}; triggered input clocks: "
+                f"{clock_names(self._component(dst_comp), 'triggered_clocks') or 'none'}")
+        self.add_event_connection(EventConnection(src_comp, src_port, dst_comp, dst_port))
 
     # ------------------------------------------------------------------ compiling
     def _compile(self, settings: tuple[int, int | None]) -> EnginePlan:
@@ -213,6 +241,8 @@ class System:
         algorithm.validate()
         for connection in self.event_connections:
             listener = self.components[connection.dst_comp]
+            if _ticks_clock(listener, connection):
+                continue
             if not listener.has_event_handling():
                 raise ConfigurationError(
                     f"{listener.name!r} receives {connection.src_comp}.{connection.src_port} "
@@ -232,6 +262,8 @@ class System:
                     "snapshot_state/restore_state pair")
             component._event_routes = {}
         for connection in self.event_connections:
+            if _ticks_clock(self.components[connection.dst_comp], connection):
+                continue
             routes = self.components[connection.dst_comp]._event_routes
             routes.setdefault(connection.src_port, set()).add(connection.dst_port)
         plan = EnginePlan(self.name, self.components)
@@ -246,7 +278,7 @@ class System:
                 plan.add_indicator(component, event)
         for c in self.event_connections:
             plan.add_event_connection(c.src_comp, c.src_port, c.dst_comp,
-                                      own=c.src_port == OWN_EVENTS)
+                                      own=c.src_port == OWN_EVENTS, dst_port=c.dst_port)
         for component in self.components.values():
             for event in component.self_handled_events():
                 plan.add_event_connection(component.name, event, component.name)
@@ -646,6 +678,11 @@ class System:
         self.termination = None
         for component in self.components.values():
             component.reset()
+
+
+def _ticks_clock(listener: CoSimComponent, connection: EventConnection) -> bool:
+    """Whether the connection ticks a triggered input clock of its listener (no handler)."""
+    return connection.dst_port in clock_names(listener, "triggered_clocks")
 
 
 def _power_bond_ends(plan: EnginePlan, control: StepControl) -> list[int]:
