@@ -75,6 +75,19 @@ def test_the_output_clock_ticks_at_the_threshold_and_count_changes_there_only() 
     assert list(values["count"]) == [0, 0, 1, 2, 3]
 
 
+def test_the_tank_s_samples_equal_fmpy_s() -> None:
+    """FMPy 0.3.32 runs the FMU without event mode (its events handled inside doStep, the clock
+    unseen): simulate_fmu(level_detector_fmi3.fmu, stop_time=1, output_interval=0.25,
+    fmi_type="CoSimulation") gave these level and count samples."""
+    fmpy_level = [0.0, 0.25, 0.2, 0.15000000000000002, 0.10000000000000009]
+    fmpy_count = [0.0, 0.0, 1.0, 2.0, 3.0]
+    system = tank_and_counter(connect=False)
+    system.initialize(0.0)
+    values = system.run(0.0, 1.0, 0.25)["Tank"][1]
+    assert list(values["level"]) == pytest.approx(fmpy_level, abs=1e-12)
+    assert list(values["count"]) == fmpy_count
+
+
 @pytest.mark.parametrize("offset", [-1e-6, 0.0, 1e-6])
 def test_count_and_the_connected_tick_just_before_at_and_just_after_each_tick(
         offset: float) -> None:
