@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from exported_fmus import STEP, STOP_TIME, export_seed, run_with_fmpy_alone, seed_system
+from fixture_fmus import fmu_path
 from fmpy.validation import validate_fmu
 from osp_files import write_osp
 from syssimx import (
@@ -271,6 +272,25 @@ def test_a_serialized_state_restored_continues_from_the_importers_own_time(expor
     np.testing.assert_allclose(from_0_4[:2], restored[:2], rtol=0, atol=1e-8)
     wall.terminate()
     wall.freeInstance()
+
+
+def test_a_member_asking_to_stop_ends_the_importers_run_there(tmp_path):
+    """The terminating fixture (a ramp that asks to stop at 0.3 s) inside the export: its
+    request reaches the importer as the standard says (fmi2DoStep returns fmi2Discard,
+    fmi2GetBooleanStatus(fmi2Terminated) is true), so FMPy and syssimx both end at 0.3 s."""
+    system = System("ramp")
+    ramp = FMUComponent("R", fmu_path("terminating"))
+    ramp.set_parameters(stop_time=0.3)
+    system.add_component(ramp)
+    system.export_fmu(tmp_path / "ramp.fmu", step_size=STEP)
+    result = run_with_fmpy_alone(tmp_path / "ramp.fmu", ["R.y"])
+    assert result["time"][-1] == pytest.approx(0.3) and result["R.y"][-1] == pytest.approx(0.3)
+    outer = System("outer")
+    outer.add_component(FMUComponent("W", tmp_path / "ramp.fmu"))
+    outer.initialize(0.0)
+    run = outer.run(0.0, STOP_TIME, STEP)
+    assert run.termination is not None and run.termination.component == "W"
+    assert run.termination.time == pytest.approx(0.3)
 
 
 def test_the_command_line_exports_a_description(tmp_path, capsys):
