@@ -331,6 +331,13 @@ class Doubler(CoSimComponent):
     """A component written in Python."""
 
 
+class SlowPendulum(FMUComponent):
+    """An FMU component whose step runs Python (the seed's kind of subclass)."""
+
+    def _do_step_internal(self, t: float, dt: float) -> None:
+        super()._do_step_internal(t, dt)
+
+
 class Printer:
     """An observer written in Python."""
 
@@ -345,12 +352,14 @@ def test_every_part_that_runs_python_is_named_in_one_refusal(tmp_path):
     pendulum.add_event_handler("on_low", lambda component, events, t: None)
     system.add_event_connection(EventConnection("P", "low", "P", "on_low"))
     system.add_component(Doubler("D"))
+    system.add_component(SlowPendulum("S", fmus.path("pendulum_cvode")))
     system.add_observer(Printer())
     with pytest.raises(ConfigurationError) as refused:
         system.export_fmu(tmp_path / "never.fmu")
     message = str(refused.value)
     for part in ("Python component 'D'", "Python event indicator P.low",
-                 "Python event handler of 'P'", "Python observer Printer"):
+                 "Python event handler of 'P'", "Python observer Printer",
+                 "Python hooks of 'S' (SlowPendulum overrides do_step)"):
         assert part in message, (part, message)
     assert not (tmp_path / "never.fmu").exists()
 
