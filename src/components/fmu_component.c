@@ -428,7 +428,10 @@ static int handle_own_event(ssx_system *sys, ssx_component *c, double t_e, int t
     return result;
 }
 
-int fmu_component_tick_triggered_clock(ssx_system *sys, ssx_component *c, int clock, double t)
+/* The triggered input clock `clock` ticks at t, where the component stands: its inputs are
+ * written, it goes through Event Mode, its outputs are read, and the tick (and any output
+ * clock that ticks with it) is reported as its own event at t. */
+static int fmu_tick_triggered_clock(ssx_system *sys, ssx_component *c, int clock, double t)
 {
     /* the tick samples the inputs the engine holds for the component now */
     int terminate = 0;
@@ -1225,6 +1228,7 @@ const ssx_component_ops ssx_fmu_component_ops = {
     .output_derivatives = fmu_component_output_derivatives,
     .set_input_derivatives = fmu_component_set_input_derivatives,
     .handle_events = fmu_component_handle_events,
+    .tick_triggered_clock = fmu_tick_triggered_clock,
     .fmu = fmu_component_fmu,
     .checks_own_outputs = 1,
 };

@@ -92,10 +92,6 @@ int fmu_component_handle_events(ssx_system *sys, ssx_component *c, double t);
 int fmu_component_inputs_unchanged(const ssx_component *c);
 /* Reads every output of an FMU component; a failure is reported at t, the time the FMU is at. */
 int fmu_component_read_outputs_at(ssx_system *sys, ssx_component *c, double t);
-/* An FMI 3.0 Co-Simulation component's triggered input clock `clock` ticks at t, where it
- * stands: its inputs are written, it goes through Event Mode, its outputs are read, and the
- * tick (and any output clock that ticks with it) is reported as its own event at t. */
-int fmu_component_tick_triggered_clock(ssx_system *sys, ssx_component *c, int clock, double t);
 /* The FMU kinds' initial_outputs and leave_initialization (component.h). */
 int fmu_component_initial_outputs(ssx_system *sys, ssx_component *c, double t0);
 int fmu_component_leave_initialization(ssx_system *sys, ssx_component *c, double t0);

@@ -103,6 +103,9 @@ typedef struct ssx_component_ops {
     /* The kind's own reaction to an event at t when no Python hook handles it (an FMU's
      * declarative restart). NULL: none. */
     int (*handle_events)(ssx_system *sys, ssx_component *c, double t);
+    /* FMI 3.0: its triggered input clock `clock` (an index among its FMU's triggered clocks)
+     * ticks at t, where it stands (ssx_connect_clock). NULL: it has none. */
+    int (*tick_triggered_clock)(ssx_system *sys, ssx_component *c, int clock, double t);
     /* The FMU it runs (a run watches an isolated FMU's host). NULL: it runs none. */
     ssx_fmu *(*fmu)(const ssx_component *c);
     /* Its state saved by handle (component_state_ops). NULL: it cannot be (a Python component). */

@@ -8,7 +8,6 @@
 #include "coupling.h"
 #include "error.h"
 #include "fmu_binding.h"
-#include "fmu_component.h"
 #include "own_events.h"
 #include "recording.h"
 
@@ -65,12 +64,13 @@ static int clock_counts(ssx_system *sys, int component, const char *what, size_t
     if (c == NULL) {
         return -1;
     }
-    if (c->ops != &ssx_fmu_component_ops) {
+    ssx_fmu *fmu = c->ops->fmu != NULL ? c->ops->fmu(c) : NULL;
+    if (fmu == NULL || c->ops->tick_triggered_clock == NULL) {
         return fail_config(sys, component, -1, NAN,
                            "component '%s' is no FMI 3.0 Co-Simulation FMU: it has no %s",
                            c->name, what);
     }
-    ssx_fmu_clock_counts(fmu_data(c)->fmu, n_output, n_triggered);
+    ssx_fmu_clock_counts(fmu, n_output, n_triggered);
     return 0;
 }
 
@@ -107,7 +107,7 @@ static int tick_clock(ssx_system *sys, int listener, int clock, double t)
 {
     ssx_component *c = sys->components[listener];
     coupling_propagate_inputs(sys, c);
-    return fmu_component_tick_triggered_clock(sys, c, clock, t);
+    return c->ops->tick_triggered_clock(sys, c, clock, t);
 }
 
 /* Whether a source of that kind and index exists (else -1, the error set). */
