@@ -3,7 +3,8 @@ against a wall, the engine's restart handler), run by the tools users bring, sid
 syssimx's own run of the description:
 
 1. FMPy's simulate_fmu of the FMI 2.0 and the FMI 3.0 export (output interval 0.05 s), in the
-   Python given (default: this one) with syssimx made unimportable;
+   Python given (a virtual environment with FMPy only; default: this one, with syssimx made
+   unimportable);
 2. libcosim (libcosimpy, in a Python of its own) running the FMI 2.0 export inside an OSP
    system structure (fixed step 0.05 s, 20 steps).
 
@@ -11,8 +12,10 @@ Printed: the largest deviation from syssimx's own run at the grid points, the wa
 (the export's last_event_time output) and the values at t = 0.5 s and 1 s that
 tests/python/test_export_fmu.py asserts for libcosim.
 
-    python -m venv /tmp/cosim && /tmp/cosim/bin/pip install libcosimpy==0.0.6
-    python benchmarks/exported_fmu_peers.py --libcosimpy-python /tmp/cosim/bin/python
+    python -m venv cosim && cosim/bin/pip install libcosimpy==0.0.6
+    python -m venv fmpy-only && fmpy-only/bin/pip install fmpy
+    python benchmarks/exported_fmu_peers.py --libcosimpy-python cosim/bin/python \\
+        --fmpy-python fmpy-only/bin/python
 """
 
 from __future__ import annotations
@@ -69,6 +72,8 @@ def own_run() -> tuple[np.ndarray, dict[str, np.ndarray], float]:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--fmpy-python", default=sys.executable,
+                        help="a Python with FMPy (default: this one)")
     parser.add_argument("--libcosimpy-python", default=None,
                         help="a Python with libcosimpy installed (default: libcosim skipped)")
     args = parser.parse_args()
@@ -78,7 +83,7 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as folder:
         exported = {v: export_seed(Path(folder), v) for v in ("2.0", "3.0")}
         for version, fmu in exported.items():
-            result = run_with_fmpy_alone(fmu)
+            result = run_with_fmpy_alone(fmu, python=args.fmpy_python)
             deviation = max(float(np.max(np.abs(np.asarray(result[n]) - values[n][grid])))
                             for n in values)
             hit = int(np.searchsorted(result["time"], event_time))

@@ -53,14 +53,16 @@ def export_seed(folder: Path, fmi_version: str) -> Path:
 def run_with_fmpy_alone(fmu: Path, outputs: list[str] = OUTPUTS,
                         start_values: dict[str, float] | None = None,
                         inputs: dict[str, float] | None = None,
-                        stop_time: float = STOP_TIME) -> dict[str, list[float]]:
-    """FMPy's simulate_fmu of a copy of `fmu` in a fresh folder, in a Python whose syssimx
-    import fails, with `start_values` and constant `inputs`: the result's columns by name."""
+                        stop_time: float = STOP_TIME,
+                        python: str = sys.executable) -> dict[str, list[float]]:
+    """FMPy's simulate_fmu of a copy of `fmu` in a fresh folder, in `python` with its syssimx
+    import made to fail, with `start_values` and constant `inputs`: the result's columns by
+    name."""
     with tempfile.TemporaryDirectory() as fresh:
         copy = Path(fresh) / fmu.name
         shutil.copyfile(fmu, copy)
         target = Path(fresh) / "result.json"
-        ran = subprocess.run([sys.executable, "-c", FMPY_RUN, str(copy), str(stop_time),
+        ran = subprocess.run([python, "-c", FMPY_RUN, str(copy), str(stop_time),
                               str(STEP), json.dumps(outputs), json.dumps(start_values or {}),
                               json.dumps(inputs or {}), str(target)], cwd=fresh,
                              capture_output=True, text=True)
