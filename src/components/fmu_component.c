@@ -9,6 +9,7 @@
 
 #include "fmu_component.h"
 #include "byte_stream.h"
+#include "component_setup.h"
 #include "error.h"
 #include "finite_outputs.h"
 #include "fmu_backend.h"

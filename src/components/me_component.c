@@ -33,6 +33,7 @@
 
 #include "byte_stream.h"
 #include "component_calls.h"
+#include "component_setup.h"
 #include "error.h"
 #include "fmu_backend.h"
 #include "fmu_binding.h"

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "component.h"
+#include "component_setup.h"
 #include "error.h"
 #include "system.h"
 

@@ -13,6 +13,7 @@
  *   g  a schedule group: its size, a flag (a loop), then that many components */
 #include <string.h>
 
+#include "event_source.h"
 #include "locator.h"
 #include "plan.h"
 
@@ -83,16 +84,18 @@ static const char *const value_types[] = {"real", "integer", "boolean", "string"
 static const char *const fmi3_types[] = {"float64", "float32", "int8", "uint8", "int16",
                                          "uint16", "int32", "uint32", "int64", "uint64",
                                          "boolean", NULL};
-static const char *const sources[] = {"indicator", "own_events", "output_clock", NULL};
 static const char *const couplings[] = {"gauss_seidel", "jacobi", NULL};
 static const char *const jacobians[] = {"auto", "finite_differences", NULL};
 
 const char *const *plan_words(plan_word_set set)
 {
     static const char *const *const sets[PLAN_WORD_SET_COUNT] = {
-        [PLAN_WORDS_VALUE_TYPE] = value_types, [PLAN_WORDS_FMI3_TYPE] = fmi3_types,
-        [PLAN_WORDS_SOURCE] = sources,         [PLAN_WORDS_COUPLING] = couplings,
-        [PLAN_WORDS_JACOBIAN] = jacobians,     [PLAN_WORDS_LOCATOR] = locator_names,
+        [PLAN_WORDS_VALUE_TYPE] = value_types,
+        [PLAN_WORDS_FMI3_TYPE] = fmi3_types,
+        [PLAN_WORDS_SOURCE] = event_source_names,
+        [PLAN_WORDS_COUPLING] = couplings,
+        [PLAN_WORDS_JACOBIAN] = jacobians,
+        [PLAN_WORDS_LOCATOR] = locator_names,
     };
     return sets[set];
 }

@@ -15,6 +15,8 @@
 #include "array.h"
 #include "component_calls.h"
 #include "coupling.h"
+#include "event_source.h"
+#include "component_setup.h"
 #include "error.h"
 #include "indicator.h"
 #include "input_order.h"
@@ -23,41 +25,6 @@
 #include "port_block.h"
 #include "record_hooks.h"
 #include "recording.h"
-#include "round_up.h"
-
-/* A component block starts on a cache line: the fields a step reads lead it. */
-enum { COMPONENT_ALIGNMENT = 64 };
-
-_Static_assert(offsetof(ssx_component, has_step_hook) + sizeof(int) <= COMPONENT_ALIGNMENT,
-               "what every step reads must stay in the component's first cache line");
-
-void ssx_get_defaults(ssx_defaults *out)
-{
-    *out = (ssx_defaults){.coupling = SSX_GAUSS_SEIDEL,
-                          .loop_tolerance = 1e-10,
-                          .loop_max_iterations = 100,
-                          .loop_damping = 1.0,
-                          .loop_jacobian = SSX_JACOBIAN_AUTO,
-                          .tol_time = 1e-9,
-                          .tol_value = 1e-9,
-                          .max_iterations = 100,
-                          .max_microsteps = 10,
-                          .locator = SSX_ILLINOIS,
-                          .zeno_min_interval = 0.0,
-                          .output_interval = 1,
-                          .model_exchange_tolerance = 1e-5,
-                          .threads = 1,
-                          .input_order = 0,
-                          .extrapolate_held_inputs = 0,
-                          .step_rtol = 1e-4,
-                          .step_atol = 1e-4,
-                          .step_min = 1e-9,
-                          .step_safety = 0.9,
-                          .step_min_change = 0.2,
-                          .step_max_change = 5.0,
-                          .step_proportional_gain = 0.2,
-                          .step_integral_gain = 0.15};
-}
 
 ssx_system *ssx_system_new(const char *name)
 {
@@ -127,8 +94,7 @@ void ssx_system_free(ssx_system *sys)
     free(sys->indicators);
     free(sys->indicator_states);
     master_algorithm_release(sys);
-    free(sys->subscriptions);
-    free(sys->output_clock_sources);
+    event_sources_free(sys);
     port_block_free(sys); /* after the components that point into it */
     free(sys->order);
     free(sys->groups);
@@ -150,46 +116,6 @@ const ssx_error *ssx_last_error(const ssx_system *sys)
 }
 
 /* Any change of structure requires a new ssx_initialize. */
-static void structure_changed(ssx_system *sys)
-{
-    sys->initialized = 0;
-}
-
-int system_add_component(ssx_system *sys, const char *name, int can_snapshot,
-                         const ssx_component_ops *ops, size_t data_size)
-{
-    if (name == NULL || name[0] == '\0') {
-        return fail_config(sys, -1, -1, NAN, "system '%s': a component needs a non-empty name",
-                           sys->name);
-    }
-    for (int i = 0; i < sys->n_components; ++i) {
-        if (strcmp(sys->components[i]->name, name) == 0) {
-            return fail_config(sys, i, -1, NAN, "system '%s' already has a component named '%s'",
-                               sys->name, name);
-        }
-    }
-    if (array_reserve((void **)&sys->components, &sys->components_capacity,
-                      (size_t)sys->n_components + 1, sizeof *sys->components, 8) != 0) {
-        return fail_config(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
-    }
-    /* data read on every step sits next to the ports' pointers, not in a block of its own,
-     * starting on a cache line of its own; the blocks of a system's components lie side by
-     * side in the order they were added */
-    size_t head = round_up(sizeof(ssx_component), COMPONENT_ALIGNMENT);
-    ssx_component *c = arena_allocate(&sys->component_blocks, head + data_size,
-                                      COMPONENT_ALIGNMENT);
-    if (c == NULL || (c->name = strdup(name)) == NULL) {
-        return fail_config(sys, -1, -1, NAN, "out of memory adding component '%s'", name);
-    }
-    c->index = sys->n_components;
-    c->ops = ops;
-    c->data = data_size > 0 ? (void *)((char *)c + head) : NULL;
-    c->can_snapshot = can_snapshot != 0;
-    sys->components[sys->n_components++] = c;
-    structure_changed(sys);
-    return c->index;
-}
-
 int ssx_add_python_component(ssx_system *sys, const char *name, int can_snapshot)
 {
     return system_add_component(sys, name, can_snapshot, &ssx_python_component_ops, 0);
@@ -216,96 +142,8 @@ int ssx_set_hooks(ssx_system *sys, int component, const ssx_hooks *hooks)
         }
         sys->record_hooks_observed = 1;
     }
-    structure_changed(sys);
+    system_structure_changed(sys);
     return 0;
-}
-
-static int valid_type(ssx_value_type type)
-{
-    return type >= SSX_REAL && type <= SSX_BINARY;
-}
-
-int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned int vr)
-{
-    ssx_component *c = system_component(sys, component);
-    if (c == NULL) {
-        return -1;
-    }
-    if (!valid_type(type)) {
-        return fail_config(sys, component, -1, NAN, "component '%s': unknown value type %d",
-                           c->name, (int)type);
-    }
-    if (port_block_detach(c) != 0) {
-        return fail_config(sys, component, -1, NAN, "out of memory adding an output to '%s'",
-                           c->name);
-    }
-    size_t n = (size_t)c->n_outputs + 1;
-    ssx_port *ports = realloc(c->output_ports, n * sizeof *ports);
-    if (ports != NULL) {
-        c->output_ports = ports;
-    }
-    double *values = realloc(c->outputs, n * sizeof *values);
-    if (values != NULL) {
-        c->outputs = values;
-    }
-    if (ports == NULL || values == NULL) {
-        return fail_config(sys, component, -1, NAN, "out of memory adding an output to '%s'",
-                           c->name);
-    }
-    c->output_ports[c->n_outputs] = (ssx_port){.type = type, .vr = vr};
-    c->outputs[c->n_outputs] = 0.0;
-    structure_changed(sys);
-    return c->n_outputs++;
-}
-
-int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned int vr,
-                  double start)
-{
-    ssx_component *c = system_component(sys, component);
-    if (c == NULL) {
-        return -1;
-    }
-    if (!valid_type(type)) {
-        return fail_config(sys, component, -1, NAN, "component '%s': unknown value type %d",
-                           c->name, (int)type);
-    }
-    if (isinf(start) || (isnan(start) && c->ops->adopt_inputs == NULL)) {
-        return fail_config(sys, component, -1, NAN,
-                           "component '%s': the start value of an input must "
-                           "be finite (NaN, the FMU's own value, exists for FMU components only)",
-                           c->name);
-    }
-    if (port_block_detach(c) != 0) {
-        return fail_config(sys, component, -1, NAN, "out of memory adding an input to '%s'",
-                           c->name);
-    }
-    size_t n = (size_t)c->n_inputs + 1;
-    ssx_port *ports = realloc(c->input_ports, n * sizeof *ports);
-    if (ports != NULL) {
-        c->input_ports = ports;
-    }
-    double *values = realloc(c->inputs, n * sizeof *values);
-    if (values != NULL) {
-        c->inputs = values;
-    }
-    double *starts = realloc(c->input_starts, n * sizeof *starts);
-    if (starts != NULL) {
-        c->input_starts = starts;
-    }
-    int *drivers = realloc(c->input_driver, n * sizeof *drivers);
-    if (drivers != NULL) {
-        c->input_driver = drivers;
-    }
-    if (ports == NULL || values == NULL || starts == NULL || drivers == NULL) {
-        return fail_config(sys, component, -1, NAN, "out of memory adding an input to '%s'",
-                           c->name);
-    }
-    c->input_ports[c->n_inputs] = (ssx_port){.type = type, .vr = vr};
-    c->inputs[c->n_inputs] = start;
-    c->input_starts[c->n_inputs] = start;
-    c->input_driver[c->n_inputs] = -1;
-    structure_changed(sys);
-    return c->n_inputs++;
 }
 
 int ssx_reset_inputs(ssx_system *sys, const double *starts, size_t n)
@@ -409,7 +247,7 @@ int ssx_connect(ssx_system *sys, int src_component, int src_output, int dst_comp
         .offset = offset,
     };
     dst->input_driver[dst_input] = sys->n_connections++;
-    structure_changed(sys);
+    system_structure_changed(sys);
     return 0;
 }
 
@@ -425,7 +263,7 @@ static int add_indicator(ssx_system *sys, ssx_indicator indicator)
         return fail_config(sys, -1, -1, NAN, "out of memory adding an indicator");
     }
     sys->indicators[sys->n_indicators] = indicator;
-    structure_changed(sys);
+    system_structure_changed(sys);
     return sys->n_indicators++;
 }
 
@@ -563,7 +401,7 @@ int ssx_set_schedule(ssx_system *sys, const int *order, const int *group_sizes,
     sys->groups = groups;
     sys->n_groups = n_groups;
     sys->has_schedule = 1;
-    structure_changed(sys);
+    system_structure_changed(sys);
     return 0;
 }
 
@@ -594,7 +432,7 @@ int ssx_set_calling_thread_only(ssx_system *sys, int component, int only)
         return -1;
     }
     c->calling_thread_only = only != 0;
-    structure_changed(sys);
+    system_structure_changed(sys);
     return 0;
 }
 

@@ -11,6 +11,7 @@
 #include "interrupt.h"
 #include "event_source.h"
 #include "recording.h"
+#include "system_state.h"
 
 /* Errors below this count as this small: the growth factor stays finite. */
 #define SMALLEST_ERROR 1e-10

@@ -28,20 +28,6 @@ typedef struct {
     double offset;
 } ssx_connection;
 
-/* A listener subscribed to an event source (stepping/events/event_source.h). */
-typedef struct {
-    ssx_event_source_kind kind;
-    int index; /* the indicator's, the component's whose own events, the output clock's */
-    int listener;
-    int tick; /* a clock connection: the listener's triggered clock it ticks; -1: its hook */
-} event_subscription;
-
-/* An output clock as an event source (ssx_add_output_clock_source). */
-typedef struct {
-    int component;
-    int clock;
-} output_clock_source;
-
 typedef struct {
     int first;  /* offset into the schedule order */
     int size;
@@ -101,12 +87,9 @@ struct ssx_system {
     /* per indicator, set up by the hybrid algorithm at ssx_initialize */
     indicator_state *indicator_states;
 
-    event_subscription *subscriptions;
-    int n_subscriptions;
-    size_t subscriptions_capacity;
-    output_clock_source *output_clock_sources;
-    int n_output_clock_sources;
-    size_t output_clock_sources_capacity;
+    /* the subscriptions to event sources and the sources' own data (event_source.c); NULL
+     * until the first */
+    struct event_sources *event_sources;
 
     int *order;          /* schedule: component indices, group after group */
     double *port_block;  /* every component's port values, in schedule order (port_block.h) */
@@ -166,14 +149,11 @@ struct ssx_system {
     int n_owned_fmus;
 };
 
-/* Appends a component of the given kind, with data_size bytes of zeroed data for the kind in
- * the same block (c->data; NULL for 0: the kind sets its own); returns its index, or -1 with
- * the error set. */
-int system_add_component(ssx_system *sys, const char *name, int can_snapshot,
-                         const ssx_component_ops *ops, size_t data_size);
-/* Every component's snapshot into slot, or back from it at time t (observers are told). */
-int system_snapshot(ssx_system *sys, int slot);
-int system_restore(ssx_system *sys, int slot, double t);
+/* The system's structure changed: it is initialized again before it runs. */
+static inline void system_structure_changed(ssx_system *sys)
+{
+    sys->initialized = 0;
+}
 static inline int system_is_hybrid(const ssx_system *sys)
 {
     return sys->n_indicators > 0;

@@ -2,6 +2,7 @@
 #include "event_source.h"
 
 #include <math.h>
+#include <stdlib.h>
 
 #include "array.h"
 #include "component_calls.h"
@@ -10,6 +11,67 @@
 #include "fmu_binding.h"
 #include "own_events.h"
 #include "recording.h"
+
+/* A listener subscribed to an event source. */
+typedef struct {
+    ssx_event_source_kind kind;
+    int index; /* the indicator's, the component's whose own events, the output clock's */
+    int listener;
+    int tick; /* a clock connection: the listener's triggered clock it ticks; -1: its hook */
+} event_subscription;
+
+/* An output clock as an event source (ssx_add_output_clock_source). */
+typedef struct {
+    int component;
+    int clock;
+} output_clock_source;
+
+/* The system's subscriptions, and what a kind of source keeps of its own. */
+struct event_sources {
+    event_subscription *subscriptions;
+    int n_subscriptions;
+    size_t subscriptions_capacity;
+    output_clock_source *output_clock_sources;
+    int n_output_clock_sources;
+    size_t output_clock_sources_capacity;
+};
+
+const char *const event_source_names[] = {
+    [SSX_SOURCE_INDICATOR] = "indicator",
+    [SSX_SOURCE_OWN_EVENTS] = "own_events",
+    [SSX_SOURCE_OUTPUT_CLOCK] = "output_clock",
+    NULL,
+};
+
+/* The system's event sources to read: none subscribed or added yet reads as empty. */
+static const struct event_sources *sources(const ssx_system *sys)
+{
+    static const struct event_sources none = {0};
+    return sys->event_sources != NULL ? sys->event_sources : &none;
+}
+
+/* The system's event sources to change, made at the first change; NULL (the error set) when
+ * out of memory. */
+static struct event_sources *sources_to_change(ssx_system *sys, const char *doing)
+{
+    if (sys->event_sources == NULL) {
+        sys->event_sources = calloc(1, sizeof *sys->event_sources);
+        if (sys->event_sources == NULL) {
+            fail_config(sys, -1, -1, NAN, "out of memory %s", doing);
+        }
+    }
+    return sys->event_sources;
+}
+
+void event_sources_free(ssx_system *sys)
+{
+    if (sys->event_sources != NULL) {
+        free(sys->event_sources->subscriptions);
+        free(sys->event_sources->output_clock_sources);
+        free(sys->event_sources);
+        sys->event_sources = NULL;
+    }
+}
 
 /* How a listener's hook names a component's own events among the indicators it receives. */
 static int own_events_name(int component)
@@ -27,8 +89,9 @@ static int output_clock_name(const ssx_system *sys, int source)
 static int subscribed_as(const ssx_system *sys, ssx_event_source_kind kind, int index,
                          int listener, int tick)
 {
-    for (int k = 0; k < sys->n_subscriptions; ++k) {
-        const event_subscription *s = &sys->subscriptions[k];
+    const struct event_sources *e = sources(sys);
+    for (int k = 0; k < e->n_subscriptions; ++k) {
+        const event_subscription *s = &e->subscriptions[k];
         if (s->kind == kind && s->index == index && s->listener == listener && s->tick == tick) {
             return 1;
         }
@@ -47,11 +110,16 @@ static int add_subscription(ssx_system *sys, ssx_event_source_kind kind, int ind
     if (subscribed_as(sys, kind, index, listener, tick)) {
         return 0; /* an event reaches a listener once */
     }
-    if (array_reserve((void **)&sys->subscriptions, &sys->subscriptions_capacity,
-                      (size_t)sys->n_subscriptions + 1, sizeof *sys->subscriptions, 8) != 0) {
-        return fail_config(sys, -1, -1, NAN, "out of memory subscribing to an event source");
+    const char *doing = "subscribing to an event source";
+    struct event_sources *e = sources_to_change(sys, doing);
+    if (e == NULL) {
+        return -1;
     }
-    sys->subscriptions[sys->n_subscriptions++] = (event_subscription){
+    if (array_reserve((void **)&e->subscriptions, &e->subscriptions_capacity,
+                      (size_t)e->n_subscriptions + 1, sizeof *e->subscriptions, 8) != 0) {
+        return fail_config(sys, -1, -1, NAN, "out of memory %s", doing);
+    }
+    e->subscriptions[e->n_subscriptions++] = (event_subscription){
         .kind = kind, .index = index, .listener = listener, .tick = tick};
     return 0;
 }
@@ -85,20 +153,26 @@ int ssx_add_output_clock_source(ssx_system *sys, int component, int clock)
                            "component '%s': unknown output clock %d (it has %zu)",
                            sys->components[component]->name, clock, n_output);
     }
-    for (int s = 0; s < sys->n_output_clock_sources; ++s) {
-        const output_clock_source *source = &sys->output_clock_sources[s];
+    const struct event_sources *known = sources(sys);
+    for (int s = 0; s < known->n_output_clock_sources; ++s) {
+        const output_clock_source *source = &known->output_clock_sources[s];
         if (source->component == component && source->clock == clock) {
             return s;
         }
     }
-    if (array_reserve((void **)&sys->output_clock_sources, &sys->output_clock_sources_capacity,
-                      (size_t)sys->n_output_clock_sources + 1,
-                      sizeof *sys->output_clock_sources, 4) != 0) {
-        return fail_config(sys, -1, -1, NAN, "out of memory adding an output clock source");
+    const char *doing = "adding an output clock source";
+    struct event_sources *e = sources_to_change(sys, doing);
+    if (e == NULL) {
+        return -1;
     }
-    sys->output_clock_sources[sys->n_output_clock_sources] =
+    if (array_reserve((void **)&e->output_clock_sources, &e->output_clock_sources_capacity,
+                      (size_t)e->n_output_clock_sources + 1, sizeof *e->output_clock_sources,
+                      4) != 0) {
+        return fail_config(sys, -1, -1, NAN, "out of memory %s", doing);
+    }
+    e->output_clock_sources[e->n_output_clock_sources] =
         (output_clock_source){.component = component, .clock = clock};
-    return sys->n_output_clock_sources++;
+    return e->n_output_clock_sources++;
 }
 
 /* The triggered clock `clock` of component `listener` ticks at t, sampling its drivers' outputs
@@ -125,10 +199,11 @@ static int check_source(ssx_system *sys, ssx_event_source_kind kind, int index)
         return system_component(sys, index) == NULL ? -1 : 0;
     }
     if (kind == SSX_SOURCE_OUTPUT_CLOCK) {
-        if (index < 0 || index >= sys->n_output_clock_sources) {
+        int n = sources(sys)->n_output_clock_sources;
+        if (index < 0 || index >= n) {
             return fail_config(sys, -1, -1, NAN,
                                "unknown output clock source %d (system '%s' has %d)", index,
-                               sys->name, sys->n_output_clock_sources);
+                               sys->name, n);
         }
         return 0;
     }
@@ -174,13 +249,14 @@ int ssx_add_event_connection(ssx_system *sys, int indicator, int listener_compon
 
 int event_sources_notify_indicators(ssx_system *sys, const int *fired, int *scratch, double t)
 {
-    if (sys->n_subscriptions == 0) {
+    const struct event_sources *e = sources(sys);
+    if (e->n_subscriptions == 0) {
         return 0;
     }
     /* the clocks the indicators tick first, in the order they were connected: they sample the
      * values at the crossing */
-    for (int k = 0; k < sys->n_subscriptions; ++k) {
-        const event_subscription *s = &sys->subscriptions[k];
+    for (int k = 0; k < e->n_subscriptions; ++k) {
+        const event_subscription *s = &e->subscriptions[k];
         if (s->kind == SSX_SOURCE_INDICATOR && s->tick >= 0 && fired[s->index] &&
             tick_clock(sys, s->listener, s->tick, t) != 0) {
             return -1;
@@ -208,8 +284,9 @@ typedef struct {
 /* The number of the output clock source of the record's tick, -1 when none listens to it. */
 static int output_clock_source_of(const ssx_system *sys, const ssx_event_record *record)
 {
-    for (int s = 0; s < sys->n_output_clock_sources; ++s) {
-        const output_clock_source *source = &sys->output_clock_sources[s];
+    const struct event_sources *e = sources(sys);
+    for (int s = 0; s < e->n_output_clock_sources; ++s) {
+        const output_clock_source *source = &e->output_clock_sources[s];
         if (source->component == record->component && source->clock + 1 == record->clock) {
             return s;
         }
@@ -225,8 +302,9 @@ static int tick_to_listeners(ssx_system *sys, const ssx_event_record *record, co
     if (source < 0) {
         return 0;
     }
-    for (int k = 0; k < sys->n_subscriptions; ++k) {
-        const event_subscription *s = &sys->subscriptions[k];
+    const struct event_sources *e = sources(sys);
+    for (int k = 0; k < e->n_subscriptions; ++k) {
+        const event_subscription *s = &e->subscriptions[k];
         if (s->kind == SSX_SOURCE_OUTPUT_CLOCK && s->index == source && s->tick >= 0) {
             w->listened = 1;
             if (tick_clock(sys, s->listener, s->tick, w->t) != 0) {
@@ -280,7 +358,7 @@ static int committed_to_listeners(ssx_system *sys, const ssx_event_record *recor
 
 int event_sources_commit_own(ssx_system *sys, double t)
 {
-    if (sys->n_subscriptions == 0) {
+    if (sources(sys)->n_subscriptions == 0) {
         return own_events_commit(sys, t, committed_to_recording, NULL);
     }
     commit_work w = {.t = t, .listened = 0};

@@ -12,6 +12,11 @@
 
 #include "system.h"
 
+/* Each kind's name by its ssx_event_source_kind, as a plan writes it, then NULL. */
+extern const char *const event_source_names[];
+/* Frees the subscriptions and the sources' own data (with the system). */
+void event_sources_free(ssx_system *sys);
+
 /* The indicators marked in fired[] (per indicator, nonzero: fired) reach their listeners at the
  * event time t; scratch holds n_indicators ints. */
 int event_sources_notify_indicators(ssx_system *sys, const int *fired, int *scratch, double t);

@@ -18,6 +18,7 @@
 #include "interrupt.h"
 #include "locator.h"
 #include "recording.h"
+#include "system_state.h"
 #include "zeno.h"
 
 /* Slot 1 serves localization (the bracket's near end) and then the probe after the event. */

@@ -1,6 +1,5 @@
-/* The whole system's snapshot and restore, component by component: what the algorithms that
- * roll back (hybrid, adaptive) call. */
-#include "system.h"
+/* The whole system's snapshot and restore (system_state.h). */
+#include "system_state.h"
 
 #include "component_calls.h"
 #include "recording.h"
