@@ -9,12 +9,19 @@ is printed with the file, the header and the two folders, and the check fails; s
 outside every listed folder, a listed folder that is not there, and a header name that is not
 unique.
 
-Usage: layers.py SRC_DIR
+Given `nm` and the object folders of binaries built from src/, the calls are checked the same
+way: no object uses a function or table that an object of a higher or sideways folder defines
+(a declaration in a lower header with its definition above would pass the includes). meson
+names an object after its path with "/" as "_" (stepping/events/hybrid.c is
+stepping_events_hybrid.c.o).
+
+Usage: layers.py SRC_DIR [NM OBJECT_DIR...]
 """
 
 from __future__ import annotations
 
 import re
+import subprocess
 import sys
 from pathlib import Path
 
@@ -74,8 +81,45 @@ def violations(src: Path, level: dict[str, int]) -> list[str]:
     return found
 
 
+DEFINED = frozenset("TDRBCGSV")
+
+
+def object_folder(obj: Path, level: dict[str, int]) -> str | None:
+    """The listed folder an object was compiled from, by the name meson gives it."""
+    for folder in sorted(level, key=len, reverse=True):
+        if obj.name.startswith(folder.replace("/", "_") + "_"):
+            return folder
+    return None
+
+
+def call_violations(nm: str, objects: Path, level: dict[str, int]) -> list[str]:
+    """The calls of one binary's objects that go up or sideways."""
+    defined_in: dict[str, Path] = {}
+    used: dict[Path, set[str]] = {}
+    for obj in sorted(objects.glob("*.o")):
+        listing = subprocess.run([nm, "-g", str(obj)], capture_output=True, text=True,
+                                 check=True)
+        used[obj] = set()
+        for fields in (line.split() for line in listing.stdout.splitlines()):
+            if len(fields) == 2 and fields[0] == "U":
+                used[obj].add(fields[1])
+            elif len(fields) == 3 and fields[1] in DEFINED:
+                defined_in[fields[2]] = obj
+    found = []
+    for obj, symbols in used.items():
+        room = object_folder(obj, level)
+        for symbol in sorted(symbols):
+            target = defined_in.get(symbol)
+            other = None if target is None else object_folder(target, level)
+            if room is None or other is None or other == room or level[other] < level[room]:
+                continue
+            way = "sideways" if level[other] == level[room] else "up"
+            found.append(f"{obj.name} calls {symbol} of {target.name}: {room} -> {other} ({way})")
+    return found
+
+
 def main(argv: list[str]) -> int:
-    if len(argv) != 2:
+    if len(argv) < 2 or len(argv) == 3:
         print(__doc__, file=sys.stderr)
         return 2
     src = Path(argv[1]).resolve()
@@ -86,6 +130,8 @@ def main(argv: list[str]) -> int:
     found = [f"{folder}: listed in {LAYERS_FILE.name}, not a folder of {src}"
              for folder in sorted(level) if not (src / folder).is_dir()]
     found += violations(src, level)
+    for objects in argv[3:]:
+        found += call_violations(argv[2], Path(objects), level)
     for line in found:
         print(line)
     print(f"{len(level)} folders in {max(level.values()) + 1} layers, {len(found)} violations")
