@@ -153,6 +153,22 @@ int restart_handle(ssx_system *sys, ssx_component *c, ssx_fmu *fmu, ssx_restart 
     return 0;
 }
 
+int restart_set_start(ssx_restart *r, ssx_value_type type, unsigned int vr, double value)
+{
+    for (size_t k = 0; k < r->n[type]; ++k) {
+        if (r->vr[type][k] != vr) {
+            continue;
+        }
+        if (type == SSX_REAL) {
+            r->real_values[k] = value;
+        } else {
+            r->int_values[type - SSX_INTEGER][k] = type == SSX_BOOLEAN ? value != 0.0 : (int)value;
+        }
+        return 0;
+    }
+    return -1;
+}
+
 ssx_restart *restart_new(ssx_system *sys, const ssx_component *c,
                          const ssx_fmu_experiment *experiment, const ssx_fmu_values *starts,
                          const unsigned int *vr, const int *source, const double *scale,

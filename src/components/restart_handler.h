@@ -19,6 +19,9 @@ ssx_restart *restart_new(ssx_system *sys, const ssx_component *c,
 /* Starts c's FMU `fmu` again at the event time t; the caller reads its outputs. 0, or -1 with
  * the error set. */
 int restart_handle(ssx_system *sys, ssx_component *c, ssx_fmu *fmu, ssx_restart *r, double t);
+/* The start value of vr of `type` (a Boolean: nonzero is true) becomes `value`: 0, or -1
+ * when vr is not among the restart's start values of that type. */
+int restart_set_start(ssx_restart *r, ssx_value_type type, unsigned int vr, double value);
 void restart_free(ssx_restart *restart);
 
 #endif

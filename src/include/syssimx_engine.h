@@ -461,6 +461,33 @@ size_t ssx_text_count(ssx_system *sys);
 /* Before initializing a system again (its plan reused): every input's start value, the
  * components' inputs in order, n in all; each input holds its start again, as when added. */
 int ssx_reset_inputs(ssx_system *sys, const double *starts, size_t n);
+/* Members of an ensemble on a system initialized once, each run by one call. A member writes
+ * n_columns values: column k is the start value of value reference vr[k] of type type[k]
+ * (Real, Integer or Boolean) of FMU component component[k], and also of that component's
+ * restart handler when restart[k] is nonzero. ssx_members_new returns NULL with the error
+ * set. ssx_members_set_start gives each FMU component the experiment and start values it is
+ * started from (copied; they hold every column of the component, whose value a member
+ * replaces). ssx_run_member starts every FMU component again at t0 from its start values with
+ * the member's `values` (n_columns) written into them (as ssx_fmu_enter_initialization does),
+ * then ssx_initialize(t0) and ssx_run(t0, tf, dt): the history holds the member's samples.
+ * 0, or -1 with the error set. ssx_members_free does not touch the system. */
+typedef struct ssx_members ssx_members;
+ssx_members *ssx_members_new(ssx_system *sys, size_t n_columns, const int *component,
+                             const int *type, const unsigned int *vr, const int *restart);
+int ssx_members_set_start(ssx_members *members, int component,
+                          const ssx_fmu_experiment *experiment, const ssx_fmu_values *starts);
+int ssx_run_member(ssx_members *members, const double *values, double t0, double tf, double dt);
+/* n members one after another, member k with the n_columns values at values + k * n_columns,
+ * each run as ssx_run_member and its samples kept: ssx_members_samples gives the members run
+ * by the last call (all n, or those before the one that failed: -1 with the error set) as
+ * rows of `width` doubles, the time and then every component's outputs in component order,
+ * one row per sample, members one after another (member k's rows bounds[k] to bounds[k + 1]),
+ * and each row's micro step; valid until the next ssx_run_members or ssx_members_free. */
+int ssx_run_members(ssx_members *members, size_t n, const double *values, double t0, double tf,
+                    double dt);
+size_t ssx_members_samples(const ssx_members *members, const double **rows, const int **micro,
+                           const size_t **bounds, size_t *width);
+void ssx_members_free(ssx_members *members);
 /* A component's n_outputs (n_inputs) current values. ssx_initialize moves them, with every
  * other component's, into one block in schedule order when the structure changed (adding a
  * port moves the component's out again): take the address again after ssx_initialize. */

@@ -21,12 +21,14 @@ from syssimx import (
     MultiComponent,
     PortSpec,
     PortType,
+    Reinitialize,
     System,
     fmus,
 )
 from syssimx.ensemble import MemberResult, MemberTask, parameter_sets, run_member
 from syssimx.ensemble import member as member_module
 from syssimx.ensemble.reused_system import ReusedSystem
+from syssimx.system.member_runs import EngineMembers
 
 
 class CountedBuild:
@@ -79,6 +81,26 @@ def test_seed_sweep_on_one_system_is_bit_identical_to_fresh_systems() -> None:
     assert [len(m.events) for m in fresh] == [1, 1, 0, 1, 1]
     assert_bit_identical(reused, fresh)
     assert (fresh_build.built, reused_build.built) == (5, 1)
+
+
+def test_members_after_the_first_run_in_the_engine_bit_identical(monkeypatch) -> None:
+    """The seed scenario with its declarative handler (the engine restarts the FMU at the
+    wall): every member after the first is one engine call, with the same samples, events and
+    statistics as on fresh Systems."""
+    def build() -> System:
+        return pendulum_wall.build("cvode", handler=Reinitialize(theta0="theta",
+                                                                 omega0="-omega"))[0]
+
+    engine_members = []
+    start = EngineMembers.start
+    monkeypatch.setattr(EngineMembers, "start",
+                        lambda self, *args: engine_members.append(args[0]) or start(self, *args))
+    values = {"P.theta0": [0.2, 0.5, -0.3, 0.65], "P.L": [1.0, 0.8, 1.2, 1.5]}
+    reused = run_all(build, values, 1.0, 0.05, ensemble="declarative")
+    assert engine_members == [[0.5, 0.8], [-0.3, 1.2], [0.65, 1.5]]
+    fresh = run_all(build, values, 1.0, 0.05, ensemble=None)
+    assert [len(m.events) for m in fresh] == [1, 1, 1, 2]
+    assert_bit_identical(reused, fresh)
 
 
 def test_coupled_pendulums_varying_two_components_on_one_system() -> None:

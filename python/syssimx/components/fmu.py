@@ -484,12 +484,7 @@ class FMUComponent(CoSimComponent):
                                      in_initialization_mode=self._apply_starts,
                                      system_exits=system_exits)
             return
-        starts = self.user_parameters()  # every one: the FMU is in initialization mode
-        inputs = self._input_starts_to_write()
-        if system_exits:  # the engine gives the connected inputs their values at t0
-            driven = self._binding.plan.driven  # type: ignore[union-attr]
-            inputs = {n: v for n, v in inputs.items() if (self.name, n) not in driven}
-        starts.update(inputs)
+        starts = self._initialization_starts(system_exits)
         texts = {n: v for n, v in starts.items()
                  if n in self.info.parameters
                  and self.info.parameters[n].type == PortType.STRING} \
@@ -498,6 +493,18 @@ class FMUComponent(CoSimComponent):
             t, self._experiment_tolerance, self._by_type(starts),
             in_initialization_mode=(lambda: self._write_texts(texts)) if texts else None,
             system_exits=system_exits)
+
+    def _initialization_starts(self, system_exits: bool) -> dict[str, Any]:
+        """What initialization mode writes: every parameter the user set (the FMU is in
+        initialization mode), then the inputs the user set; with system_exits not those the
+        engine gives their connected values at t0."""
+        starts = self.user_parameters()
+        inputs = self._input_starts_to_write()
+        if system_exits:
+            driven = self._binding.plan.driven  # type: ignore[union-attr]
+            inputs = {n: v for n, v in inputs.items() if (self.name, n) not in driven}
+        starts.update(inputs)
+        return starts
 
     def _add_to_plan(self, plan: EnginePlan) -> None:
         """The engine steps the FMU itself; only what a subclass overrides runs in Python. An

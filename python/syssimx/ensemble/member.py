@@ -18,9 +18,16 @@ from typing import Any
 
 import numpy as np
 
+from ..bridge.failure import raise_failure
+from ..bridge.run_outcome import RunOutcome
 from ..errors import ConfigurationError, SysSimXWarning
+from ..system.member_runs import EngineMembers
+from ..system.recorded_events import RecordedEvents
 from ..system.results import SimulationResult
+from ..system.run_signals import sigterm_stops_the_run
 from ..system.system import System
+from ..system.system_history import SystemHistory
+from ..system.termination import read_termination
 from .loaded_fmus import loaded_fmus
 from .members import ParameterSet, split_name
 from .reused_system import reused_system, user_values
@@ -87,13 +94,20 @@ def run_member(build: SystemSource, task: MemberTask) -> MemberResult:
     try:
         system = reused_system.take(task.ensemble, build)
         loaded_fmus.keep(system)
-        _set_parameters(system, task.parameters)
-        before_run = user_values(system)
-        initialized = True
-        system.initialize(task.t0)
-        run = system.run(task.t0, task.tf, task.dt, timeout=task.timeout)
-        result.statistics = {name: int(getattr(run.statistics, name)) for name in STATISTICS}
-        result.termination = str(run.termination) if run.termination is not None else ""
+        engine = reused_system.engine_members(system, task.parameters)
+        if engine is not None:
+            before_run = user_values(system)
+            initialized = True
+            result.statistics, result.termination = _run_in_engine(system, engine, task)
+        else:
+            _set_parameters(system, task.parameters)
+            before_run = user_values(system)
+            initialized = True
+            system.initialize(task.t0)
+            run = system.run(task.t0, task.tf, task.dt, timeout=task.timeout)
+            result.statistics = {name: int(getattr(run.statistics, name))
+                                 for name in STATISTICS}
+            result.termination = str(run.termination) if run.termination is not None else ""
     except Exception as error:  # the member's failure is its result; other members go on
         result.status, result.error_type = "failed", type(error).__name__
         result.error = f"{type(error).__name__}: {error}"
@@ -103,6 +117,33 @@ def run_member(build: SystemSource, task: MemberTask) -> MemberResult:
             reused_system.give_back(task.ensemble, system, before_run)
     result.wall_time = time.perf_counter() - start
     return result
+
+
+def _run_in_engine(system: System, engine: EngineMembers, task: MemberTask
+                   ) -> tuple[dict[str, int], str]:
+    """The member as one engine call on the kept System (its components' parameters in
+    Python stay the previous member's: every member writes the same names). Its statistics
+    and termination; the System's history and time are the member's, also when it failed
+    (raised here, as System.run raises)."""
+    plan = engine.plan
+    plan.failure = None
+    plan.timeout = task.timeout
+    plan.deadline = time.monotonic() + task.timeout if task.timeout is not None else None
+    with sigterm_stops_the_run():
+        status = engine.start([float(value) for value in task.parameters.values()],
+                              task.t0, task.tf, task.dt)
+    outcome = RunOutcome(plan)
+    system.history = SystemHistory(RecordedEvents(plan, outcome.event_count), system)
+    system.t = outcome.time
+    if status < 0:
+        raise_failure(plan)
+    termination = read_termination(plan, outcome.termination)
+    system.termination = termination
+    if termination is not None:
+        plan.failure = None
+    plan.ran(system.t)
+    return ({name: int(getattr(outcome.statistics, name)) for name in STATISTICS},
+            str(termination) if termination is not None else "")
 
 
 def _announce(task: MemberTask) -> None:

@@ -18,17 +18,25 @@ a loop that initializes one System again and again; the system function runs onc
 ensemble. A worker forked from a process that kept a System does not take it: its FMU
 instances and folders are the parent's. It keeps it unused instead of dropping it (dropping it
 would free what belongs to the parent, e.g. an isolated component's host process).
+
+On a kept System whose components the engine starts by itself (system/member_runs.py), a
+member after the first is one engine call: its values written into the start values the
+previous member's initialize wrote, no set_parameters, initialize or run in Python; the
+histories, events and statistics are the same, bit for bit.
 """
 
 from __future__ import annotations
 
 import math
+import numbers
 import os
+from collections.abc import Mapping
 from typing import Any
 
 from ..components.fmu import FMUComponent
 from ..components.multi import MultiComponent
 from ..errors import ConfigurationError
+from ..system.member_runs import EngineMembers, engine_runs_members, split_member_names
 from ..system.system import System
 from .system_source import SystemSource
 
@@ -41,13 +49,16 @@ class ReusedSystem:
     def __init__(self) -> None:
         self._ensemble: str | None = None
         self._system: System | None = None
+        self._taken: System | None = None  # the kept System take gave out last
+        # the engine's members of the kept System, by the parameter names they write
+        self._members: tuple[System, tuple[str, ...], EngineMembers | None] | None = None
         self._parents: list[System] = []  # kept by the parent before a fork: never used
         os.register_at_fork(after_in_child=self._set_aside_parents)
 
     def _set_aside_parents(self) -> None:
         if self._system is not None:
             self._parents.append(self._system)
-        self._system = self._ensemble = None
+        self._system = self._ensemble = self._taken = self._members = None
 
     def take(self, ensemble: str | None, build: SystemSource) -> System:
         """The System kept for `ensemble`, else a fresh one from `build` (always fresh for no
@@ -57,7 +68,31 @@ class ReusedSystem:
             return _built(build)
         system, kept_for = self._system, self._ensemble
         self._system = self._ensemble = None
-        return system if system is not None and kept_for == ensemble else _built(build)
+        self._taken = system if system is not None and kept_for == ensemble else None
+        if self._taken is None:
+            self._members = None
+            return _built(build)
+        return self._taken
+
+    def engine_members(self, system: System, parameters: Mapping[str, Any]
+                       ) -> EngineMembers | None:
+        """The engine's members of `system`, when take gave it out as kept (the previous
+        member of its ensemble initialized it with the same names set) and the engine can
+        run them: every value a plain number, every name a parameter it writes
+        (member_runs.engine_runs_members). Made on first use, kept with the System."""
+        if system is not self._taken or system._plan is None \
+                or not all(isinstance(value, numbers.Real) for value in parameters.values()):
+            return None
+        names = tuple(parameters)
+        if any(name.partition(".")[0] not in system.components for name in names):
+            return None  # the member's own path names what is wrong
+        if self._members is not None and self._members[:2] == (system, names) and \
+                (self._members[2] is None or self._members[2].plan is system._plan):
+            return self._members[2]
+        split = split_member_names(system, names)
+        members = EngineMembers(system, split) if engine_runs_members(system, split) else None
+        self._members = (system, names, members)
+        return members
 
     def give_back(self, ensemble: str | None, system: System, before_run: UserValues) -> None:
         """After a member that succeeded: keep `system` for the next member of `ensemble` when

@@ -32,6 +32,15 @@ from .algorithms import Algorithm, HybridAlgorithm, JacobiAlgorithm, StepControl
 from .algorithms.coupling import default_coupling, loop_jacobians
 from .algorithms.hybrid import log_events
 from .connection import Connection, EventConnection
+from .member_runs import (
+    EngineMembers,
+    MemberRuns,
+    engine_runs_members,
+    member_samples,
+    member_table,
+    runs_in_one_call,
+    set_member_parameters,
+)
 from .plan_options import option_records, setting_records
 from .plan_writing import coupling_of, plan_text, write_text
 from .progress import ProgressCallback, run_progress
@@ -426,6 +435,51 @@ class System:
             raise_failure(self._plan)
         self.history = SystemHistory(system=self)
         self.t = t
+
+    def run_members(self, values: Mapping[str, Sequence[float]], t0: float, tf: float,
+                    dt: float, tolerance: float | None = None) -> MemberRuns:
+        """Members of an ensemble on this System, one after another: member k sets each
+        "Component.parameter" of `values` to its k-th value, initializes at t0 and runs to tf
+        with step dt. Their samples, stacked (runs[k] is member k's). Where the engine can
+        start every component itself (member_runs.py says when), the members run in the engine
+        after an initialize with the first member's values, else each is set_parameters,
+        initialize and run. Either way the histories are what that loop gives, and the System
+        is left as the loop leaves it: initialized, the last member run, its parameters set."""
+        names, table = member_table(self, values)
+        if len(table) == 0:
+            return MemberRuns.stacked([])
+        set_member_parameters(self, names, table[0])
+        self.initialize(t0, tolerance)
+        plan = self._plan
+        assert plan is not None
+        if not engine_runs_members(self, names):
+            samples = []
+            for k, row in enumerate(table):
+                if k > 0:
+                    set_member_parameters(self, names, row)
+                    self.initialize(t0, tolerance)
+                self.run(t0, tf, dt)
+                samples.append(member_samples(plan))
+            return MemberRuns.stacked(samples)
+        t0, tf, dt = (_time_value(self.name, "t0", t0), _time_value(self.name, "tf", tf),
+                      _time_value(self.name, "dt", dt))
+        _check_step(self.name, t0, tf, dt)
+        grid_steps = _grid_steps(self.name, None, dt)
+        if grid_steps != plan.run_output_interval:
+            plan.check(lib().ssx_set_run_output_interval(plan.sys, grid_steps), "output_interval")
+            plan.run_output_interval = grid_steps
+        plan.timeout = plan.deadline = plan.progress = None
+        members = EngineMembers(self, names)
+        set_member_parameters(self, names, table[-1])  # the System as the loop leaves it
+        plan.waiting_parameters.clear()
+        with sigterm_stops_the_run():
+            runs = members.run_all(table, t0, tf, dt) if runs_in_one_call(plan) else \
+                MemberRuns.stacked([members.run(row, t0, tf, dt) for row in table])
+        self.history = SystemHistory(
+            RecordedEvents(plan, int(lib().ssx_event_count(plan.sys))), self)
+        self.t = float(lib().ssx_time(plan.sys))
+        plan.ran(self.t)
+        return runs
 
     # ------------------------------------------------------------------ observers
     def add_observer(self, observer: Any) -> Any:

@@ -1,0 +1,92 @@
+"""Members run by the engine (System.run_members): one engine call per member on a System
+initialized once gives the histories of the loop set_parameters, initialize, run, bit for bit."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from syssimx import EventConnection, FMUComponent, HybridAlgorithm, Reinitialize, System, fmus
+from syssimx.system.member_runs import MemberSamples, engine_runs_members, split_member_names
+
+T0, TF, DT = 0.0, 1.0, 0.05
+
+
+def _pendulum_system(fmu: str) -> System:
+    system = System("members")
+    system.add_component(FMUComponent("P", fmus.path(fmu)))
+    return system
+
+
+def _wall_system(solver: str) -> System:
+    """The seed scenario: the pendulum against a wall, its restart run by the engine."""
+    pendulum = FMUComponent("P", fmus.path(f"pendulum_{solver}"))
+    pendulum.set_parameters(theta0=0.5, omega0=0.0)
+    pendulum.add_event_indicator("wall_hit", variable="theta", direction=-1)
+    pendulum.add_event_handler("omega_invert", Reinitialize(theta0="theta", omega0="-omega"))
+    system = System("wall")
+    system.add_component(pendulum)
+    system.add_event_connection(EventConnection("P", "wall_hit", "P", "omega_invert"))
+    system.set_algorithm(HybridAlgorithm(tol_time=1e-9, tol_value=1e-9))
+    return system
+
+
+def _loop(system: System, values: dict[str, list[float]]) -> list[MemberSamples]:
+    """The members as a user's loop runs them on one System."""
+    samples = []
+    for k in range(len(next(iter(values.values())))):
+        for name, column in values.items():
+            component, parameter = name.split(".")
+            system.components[component].set_parameters(**{parameter: column[k]})
+        system.initialize(T0)
+        result = system.run(T0, TF, DT)
+        t, outputs = result["P"]
+        events = tuple((e.t, e.micro, f"{e.component}.{e.event}") for e in result.events)
+        samples.append(MemberSamples(np.array(t), np.array(result.micro, dtype=np.int64),
+                                     {f"P.{port}": np.array(series)
+                                      for port, series in outputs.items()}, events))
+    return samples
+
+
+def _assert_identical(engine: list[MemberSamples], loop: list[MemberSamples]) -> None:
+    assert len(engine) == len(loop)
+    for ours, theirs in zip(engine, loop, strict=True):
+        assert np.array_equal(ours.time, theirs.time)
+        assert np.array_equal(ours.micro, theirs.micro)
+        assert ours.outputs.keys() == theirs.outputs.keys()
+        for name, series in theirs.outputs.items():
+            assert np.array_equal(ours.outputs[name], series), name
+        assert ours.events == theirs.events
+
+
+@pytest.mark.parametrize("fmu", ["pendulum_euler", "pendulum_cvode", "pendulum_euler_fmi3"])
+def test_engine_members_match_the_loop_bit_for_bit(fmu: str) -> None:
+    values = {"P.theta0": [0.2, 0.35, 0.5, 0.6], "P.L": [1.0, 0.8, 1.2, 1.1]}
+    system = _pendulum_system(fmu)
+    assert engine_runs_members(system, split_member_names(system, list(values)))
+    engine = system.run_members(values, T0, TF, DT)
+    assert len({float(member.outputs["P.theta"][-1]) for member in engine}) == 4
+    _assert_identical(engine, _loop(_pendulum_system(fmu), values))
+
+
+def test_engine_members_restart_with_the_member_values() -> None:
+    """The wall's restart writes the member's L again at each hit (a start value of the
+    restart), the member's theta0 only at the start (the restart takes theta from the
+    outputs)."""
+    values = {"P.theta0": [0.5, 0.3, 0.7], "P.L": [1.0, 0.5, 2.0]}
+    system = _wall_system("euler")
+    assert engine_runs_members(system, split_member_names(system, list(values)))
+    engine = system.run_members(values, T0, TF, DT)
+    assert all(member.events for member in engine)
+    assert len({member.events[0][0] for member in engine}) == 3
+    _assert_identical(engine, _loop(_wall_system("euler"), values))
+
+
+def test_system_is_left_as_the_loop_leaves_it() -> None:
+    system = _pendulum_system("pendulum_euler")
+    engine = system.run_members({"P.theta0": [0.2, 0.4]}, T0, TF, DT)
+    assert system.components["P"].parameters["theta0"] == 0.4
+    assert system.t == pytest.approx(TF)
+    _t, outputs = system.get_history()["P"]
+    assert np.array_equal(outputs["theta"], engine[-1].outputs["P.theta"])
+    later = system.run(TF, TF + 2 * DT, DT)["P"][0]  # it goes on from the last member
+    assert np.array_equal(later[-3:], [TF, TF + DT, TF + 2 * DT])
