@@ -33,9 +33,9 @@ def _read(text: str) -> Any:
     return ffi.gc(plan, lib().ssx_plan_free)
 
 
-def _run_standalone(text: str, base_folder: Path | None = None
+def _run_standalone(text: str, base_folder: Path | None = None, component: int = 0
                     ) -> tuple[np.ndarray, np.ndarray, list[float]]:
-    """(time, outputs of component 0, event times) of the engine's own build of `text`: no
+    """(time, outputs of `component`, event times) of the engine's own build of `text`: no
     FMU given, ssx_plan_initialize at 0, one ssx_run."""
     engine = lib()
     plan = _read(text)
@@ -54,14 +54,14 @@ def _run_standalone(text: str, base_folder: Path | None = None
     for k in range(engine.ssx_event_count(system)):
         assert engine.ssx_event_get(system, k, record) == 0
         events.append(float(record.t))
-    outputs = engine.ssx_plan_port_count(plan, 0, 0)
-    return history.time().copy(), history.values(0, outputs).copy(), events
+    outputs = engine.ssx_plan_port_count(plan, component, 0)
+    return history.time().copy(), history.values(component, outputs).copy(), events
 
 
-def _python_run(system: System) -> tuple[np.ndarray, np.ndarray, list[float]]:
+def _python_run(system: System, name: str = "P") -> tuple[np.ndarray, np.ndarray, list[float]]:
     result = system.run(0.0, STOP, STEP)
-    time, columns = system.get_history()["P"]
-    outputs = system.components["P"].engine_outputs()  # the engine's columns, in its order
+    time, columns = system.get_history()[name]
+    outputs = system.components[name].engine_outputs()  # the engine's columns, in its order
     return np.asarray(time), np.column_stack([columns[name] for name in outputs]), \
         [event.t for event in result.events]
 
@@ -209,3 +209,22 @@ def test_the_clock_records_of_the_format_are_read_and_written_back() -> None:
     text = CLOCKED_PLAN.replace("subscribe output_clock 0 1", "subscribe output_clock 1 1")
     assert lib().ssx_plan_read(text.encode(), len(text), error, _ERROR_SIZE) == ffi.NULL
     assert "no output clock source 1 defined before" in ffi.string(error).decode()
+
+
+def test_a_clock_connection_runs_from_the_plan_as_in_python() -> None:
+    """The tank's output clock `full` ticks the counter's triggered clock `tick` (the clocked
+    FMUs of test_clock_connections.py): the engine alone counts the same ticks at the same
+    times."""
+    system = System("tank and counter")
+    system.add_component(FMUComponent("Tank", fmus.path("level_detector_fmi3")))
+    system.add_component(FMUComponent("Counter", fmus.path("tick_counter_fmi3")))
+    system.add_connection(Connection("Tank", "level", "Counter", "signal"))
+    system.add_clock_connection("Tank.full", "Counter.tick")
+    system.initialize(0.0)
+    text = system.to_plan()
+    assert "\noutput_clock_source 0 0\nconnect_clock output_clock 0 1 0\n" in text
+    time, values, events = _run_standalone(text, component=1)
+    python_time, python_values, python_events = _python_run(system, "Counter")
+    assert len(events) > 3 and events == python_events
+    np.testing.assert_array_equal(time, python_time)
+    np.testing.assert_array_equal(values, python_values)
