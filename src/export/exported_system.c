@@ -26,7 +26,9 @@ struct exported_system {
     double *values; /* by variable: what the importer set (NaN: nothing) */
     ssx_plan *plan;
     ssx_system *sys;
-    long events; /* events located and handled inside since the start */
+    double start_time; /* of initialization mode */
+    int initializing;  /* in initialization mode: a parameter set builds the system again */
+    long events;       /* events located and handled inside since the start */
     double last_event_time;
     exported_log log;
     void *user;
@@ -141,6 +143,7 @@ static void drop_system(exported_system *es)
         ssx_plan_free(es->plan);
         es->plan = NULL;
     }
+    es->initializing = 0;
 }
 
 void exported_system_reset(exported_system *es)
@@ -240,12 +243,14 @@ int exported_system_start(exported_system *es, double t0)
     write_inputs(es); /* ssx_initialize gives the ports their start values again */
     es->events = 0;
     es->last_event_time = t0;
+    es->start_time = t0;
+    es->initializing = 1;
     return 0;
 }
 
-int exported_system_started(const exported_system *es)
+void exported_system_steps(exported_system *es)
 {
-    return es->sys != NULL;
+    es->initializing = 0;
 }
 
 static long variable_of(const exported_system *es, unsigned int vr)
@@ -262,6 +267,7 @@ static long variable_of(const exported_system *es, unsigned int vr)
 int exported_system_set_real(exported_system *es, const unsigned int *vr, size_t n,
                              const double *values)
 {
+    int rebuild = 0;
     for (size_t i = 0; i < n; i++) {
         long k = variable_of(es, vr[i]);
         if (k < 0) {
@@ -272,18 +278,21 @@ int exported_system_set_real(exported_system *es, const unsigned int *vr, size_t
             report(es, "%s", "only inputs and parameters can be set");
             return -1;
         }
-        if (v->role == EXPORT_PARAMETER && es->sys != NULL) {
+        if (v->role == EXPORT_PARAMETER && es->sys != NULL && !es->initializing) {
             report(es, "%s",
-                   "a parameter is set before initialization mode (the members "
-                   "are initialized with it there)");
+                   "a parameter is set before or in initialization mode (the members "
+                   "are initialized with it)");
             return -1;
         }
         es->values[k] = values[i];
         if (v->role == EXPORT_INPUT && es->sys != NULL) {
             ssx_inputs(es->sys, v->component)[v->index] = values[i];
+        } else if (v->role == EXPORT_PARAMETER && es->sys != NULL) {
+            rebuild = 1;
         }
     }
-    return 0;
+    /* in initialization mode: the members are initialized again with the parameters */
+    return rebuild ? exported_system_start(es, es->start_time) : 0;
 }
 
 int exported_system_get_real(exported_system *es, const unsigned int *vr, size_t n, double *values)

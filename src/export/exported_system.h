@@ -22,12 +22,14 @@ void exported_system_free(exported_system *es);
 void exported_system_reset(exported_system *es);
 
 /* Build the members from the plan with the parameters set so far, initialize them at t0 with
- * the inputs set so far, and initialize the system: the start of initialization mode. */
+ * the inputs set so far, and initialize the system: the start of initialization mode. A
+ * parameter set in initialization mode builds it again; at its end (exported_system_steps)
+ * parameters are fixed. */
 int exported_system_start(exported_system *es, double t0);
-int exported_system_started(const exported_system *es);
+void exported_system_steps(exported_system *es);
 
 /* Values by exported value reference: 0, or -1 (logged) for an unknown reference, a value of
- * the other type, or a parameter set once the system started. */
+ * the other type, or a parameter set after initialization mode. */
 int exported_system_set_real(exported_system *es, const unsigned int *vr, size_t n,
                              const double *values);
 int exported_system_get_real(exported_system *es, const unsigned int *vr, size_t n, double *values);

@@ -192,6 +192,7 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component c)
     if (instance->mode != MODE_INITIALIZATION) {
         return refuse(instance, "fmi2ExitInitializationMode: not in initialization mode");
     }
+    exported_system_steps(instance->system);
     instance->mode = MODE_STEPPING;
     return fmi2OK;
 }

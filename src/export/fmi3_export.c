@@ -128,6 +128,7 @@ fmi3Status fmi3ExitInitializationMode(fmi3Instance instance)
     if (inst->mode != MODE3_INITIALIZATION) {
         return fmi3_refuse(inst, "fmi3ExitInitializationMode: not in initialization mode");
     }
+    exported_system_steps(inst->system);
     inst->mode = inst->event_mode_used ? MODE3_EVENT : MODE3_STEP;
     return fmi3OK;
 }
