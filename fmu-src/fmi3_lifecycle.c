@@ -4,6 +4,7 @@
 
 #include "fmi3_allowed.h"
 #include "fmi3_instance.h"
+#include "fmu_evaluation.h"
 #include "fmu_guid.h"
 #include "fmu_log.h"
 #include "fmu_model_exchange.h"
@@ -209,6 +210,9 @@ static void apply_clock_ticks(fmi3_instance *inst)
         any |= inst->clock_active[i];
     if (!any)
         return;
+    /* the partition reads the outputs and locals at the tick's time and states */
+    if (inst->core.outputs_stale)
+        fmu_refresh_outputs(&inst->core);
     model->clock_tick(inst->core.values, inst->core.time, inst->clock_active);
     for (size_t i = 0; i < model->n_clocks; ++i)
         inst->clock_active[i] = 0;

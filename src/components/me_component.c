@@ -3,7 +3,10 @@
  * over the step, and runs the Model Exchange state machine (FMI 2.0's and FMI 3.0's are the
  * same; the binding's back-end makes each call in its standard) around the integrator: event
  * indicators are CVODE's root functions, nextEventTime is a stop time, and after every
- * integrator step CompletedIntegratorStep may ask for event mode. Each event is handled at its
+ * integrator step CompletedIntegratorStep may ask for event mode. The ticks of an FMI 3.0 FMU's
+ * periodic input clocks are stop times too: event mode there, fmi3SetClock, then the discrete
+ * states (a tick at the start time joins the event iteration after initialization). Each event
+ * is handled at its
  * own time inside the step (NewDiscreteStates or UpdateDiscreteStates until nothing more is
  * needed) and reported as the component's own event, so no rollback is needed to find it.
  * Messages name each call as the FMU's standard does (ssx_fmu_function_name).
@@ -358,6 +361,13 @@ static int start_instance(ssx_system *sys, ssx_component *c, me_data *me, double
         ssx_get_defaults(&defaults);
         me->relative_tolerance = defaults.model_exchange_tolerance;
     }
+    /* only an FMU with periodic clocks has ticks to make (and fmi3SetClock to make them) */
+    int status = isfinite(ssx_fmu_next_clock_tick(fmu_of(c), -INFINITY))
+                     ? ssx_fmu_tick_clocks(fmu_of(c), t)
+                     : 0;
+    if (!fmi_ok(status)) {
+        return fmi_failed(sys, c, t, status, SLOT_SET_CLOCK);
+    }
     if (iterate_discrete_states(sys, c, me, t) != 0) {
         return -1;
     }
@@ -377,15 +387,19 @@ static int start_instance(ssx_system *sys, ssx_component *c, me_data *me, double
     return 0;
 }
 
-/* An event at t: event mode, the discrete states, continuous-time mode, reported unless it is
- * an event's residue (the FMU still needs its event mode then: its discrete states may follow
- * the indicator's sign). */
+/* An event at t: event mode, the clocks that tick at t (`tick`), the discrete states,
+ * continuous-time mode. The event is reported unless it is an event's residue (the FMU still
+ * needs its event mode then: its discrete states may follow the indicator's sign); a tick is
+ * reported as a tick of its own, after the event it coincides with. */
 static int handle_event(ssx_system *sys, ssx_component *c, me_data *me, double t,
-                        ssx_own_event_kind kind, int report)
+                        ssx_own_event_kind kind, int report, int tick)
 {
     int status = ssx_fmu_enter_event_mode(fmu_of(c));
     if (!fmi_ok(status)) {
         return fmi_failed(sys, c, t, status, SLOT_ENTER_EVENT_MODE);
+    }
+    if (tick && !fmi_ok(status = ssx_fmu_tick_clocks(fmu_of(c), t))) {
+        return fmi_failed(sys, c, t, status, SLOT_SET_CLOCK);
     }
     if (iterate_discrete_states(sys, c, me, t) != 0) {
         return -1;
@@ -394,7 +408,10 @@ static int handle_event(ssx_system *sys, ssx_component *c, me_data *me, double t
     if (!me->now.event.terminate_simulation && leave_event_mode(sys, c, me, t, 0) != 0) {
         return -1;
     }
-    return report ? own_event_report(sys, c, kind, t) : 0;
+    if (report && own_event_report(sys, c, kind, t) != 0) {
+        return -1;
+    }
+    return tick ? own_event_report(sys, c, SSX_OWN_CLOCK_TICK, t) : 0;
 }
 
 /* ------------------------------------------------------------------ the step */
@@ -544,8 +561,13 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
     int event_at_end = 0;
     while (now < t_end) {
         const ssx_fmu_event_info *event = &me->now.event;
-        int time_event = event->next_event_time_defined && event->next_event_time <= reach;
-        double stop = time_event ? fmin(fmax(event->next_event_time, now), t_end) : t_end;
+        double tick = ssx_fmu_next_clock_tick(fmu_of(c), now);
+        /* the instants of the due time event and clock tick inside the step, else INFINITY */
+        double event_at = event->next_event_time_defined && event->next_event_time <= reach
+                              ? fmin(fmax(event->next_event_time, now), t_end)
+                              : INFINITY;
+        double tick_at = tick <= reach ? fmin(fmax(tick, now), t_end) : INFINITY;
+        double stop = fmin(t_end, fmin(event_at, tick_at));
         int root;
         if (run_interrupted(sys, now) != 0 || integrate(sys, c, me, stop, &now, &root) != 0) {
             return -1;
@@ -559,8 +581,8 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
         if (terminate) {
             return terminated(sys, c, now, t_end, dt);
         }
-        time_event = time_event && now >= stop;
-        if (!(root || time_event || enter_event_mode)) {
+        int time_event = now >= event_at, clock_tick = now >= tick_at;
+        if (!(root || time_event || clock_tick || enter_event_mode)) {
             continue;
         }
         ssx_own_event_kind kind = root         ? SSX_OWN_STATE_EVENT
@@ -568,9 +590,13 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
                                                : SSX_OWN_STEP_EVENT;
         int residue = 0;
         if ((root ? state_event_chatters(sys, c, me, now, &residue)
-                  : events_stall(sys, c, now, &last_event, &repeated_events)) != 0 ||
-            handle_event(sys, c, me, now, kind, !(residue && !time_event && !enter_event_mode)) !=
-                0) {
+                  : events_stall(sys, c, now, &last_event, &repeated_events)) != 0) {
+            return -1;
+        }
+        /* a tick alone is reported as the tick only */
+        int report = root ? !(residue && !time_event && !enter_event_mode)
+                          : time_event || enter_event_mode;
+        if (handle_event(sys, c, me, now, kind, report, clock_tick) != 0) {
             return -1;
         }
         if (me->now.event.terminate_simulation) {

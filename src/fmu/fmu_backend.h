@@ -196,6 +196,8 @@ typedef struct {
     int (*enter_step_mode)(const ssx_fmu_function *fn, void *instance);
     /* in event mode at t: fmi3SetClock on every periodic input clock that ticks at t */
     int (*tick_clocks)(const ssx_fmu_function *fn, void *instance, double t);
+    /* the first tick of a periodic input clock after t (not at t), INFINITY without one */
+    double (*next_clock_tick)(const void *instance, double t);
     /* FMI 3.0 Co-Simulation in event mode: fmi3GetClock on the output clocks, active[k] set
      * for each (nothing is called without output clocks) */
     int (*read_output_clocks)(const ssx_fmu_function *fn, void *instance, int *active);

@@ -6,6 +6,7 @@
 
 #include "fmu_binding.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -753,6 +754,14 @@ int ssx_fmu_enter_step_mode(ssx_fmu *fmu)
 int ssx_fmu_tick_clocks(ssx_fmu *fmu, double t)
 {
     return CHECKED(fmu, SLOT_SET_CLOCK, tick_clocks, t);
+}
+
+double ssx_fmu_next_clock_tick(const ssx_fmu *fmu, double t)
+{
+    if (fmu == NULL || fmu->instance == NULL || fmu->backend->next_clock_tick == NULL) {
+        return INFINITY;
+    }
+    return fmu->backend->next_clock_tick(fmu->instance, t);
 }
 
 int ssx_fmu_read_output_clocks(ssx_fmu *fmu, int *active)

@@ -51,8 +51,11 @@ int ssx_fmu_get_nominals_of_continuous_states(ssx_fmu *fmu, double *nominals, si
 int ssx_fmu_enter_event_mode(ssx_fmu *fmu);
 int ssx_fmu_new_discrete_states(ssx_fmu *fmu, ssx_fmu_event_info *info);
 int ssx_fmu_enter_step_mode(ssx_fmu *fmu);
-/* FMI 3.0 Co-Simulation in event mode at t: ticks the periodic input clocks due at t */
+/* FMI 3.0 in event mode at t: ticks the periodic input clocks due at t */
 int ssx_fmu_tick_clocks(ssx_fmu *fmu, double t);
+/* The first tick of the FMU's periodic input clocks after t (not at t): a time event of a
+ * Model Exchange FMU. INFINITY without clocks or without an instance. */
+double ssx_fmu_next_clock_tick(const ssx_fmu *fmu, double t);
 /* FMI 3.0 Co-Simulation in event mode: which output clocks tick (active[k], one per output
  * clock of the load spec), and the tick of triggered input clock `clock`. */
 int ssx_fmu_read_output_clocks(ssx_fmu *fmu, int *active);

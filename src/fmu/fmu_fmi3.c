@@ -90,6 +90,8 @@ static const ssx_fmu_function_row fmi3_model_exchange_functions[] = {
     {"fmi3CompletedIntegratorStep", SLOT_COMPLETED_INTEGRATOR_STEP, 1},
     {"fmi3GetNumberOfContinuousStates", SLOT_GET_NUMBER_OF_CONTINUOUS_STATES, 1},
     {"fmi3GetNumberOfEventIndicators", SLOT_GET_NUMBER_OF_EVENT_INDICATORS, 1},
+    /* needed only when the FMU has clocks the engine ticks */
+    {"fmi3SetClock", SLOT_SET_CLOCK, 0},
     FMI3_OPTIONAL_ROWS
 };
 
@@ -435,6 +437,11 @@ static double next_tick_after(const fmi3_context *ctx, double t)
     return next;
 }
 
+static double next_clock_tick(const void *instance, double t)
+{
+    return next_tick_after(instance, t);
+}
+
 /* In event mode at t: fmi3SetClock on the clocks that tick at t (none: nothing to call). */
 static int tick_clocks(const ssx_fmu_function *fn, void *instance, double t)
 {
@@ -762,6 +769,8 @@ const ssx_fmu_backend ssx_fmi3_model_exchange_backend = {
     .completed_integrator_step = completed_integrator_step,
     .get_number_of_continuous_states = get_number_of_continuous_states,
     .get_number_of_event_indicators = get_number_of_event_indicators,
+    .tick_clocks = tick_clocks,
+    .next_clock_tick = next_clock_tick,
 };
 
 const ssx_fmu_backend ssx_fmi3_backend = {

@@ -28,7 +28,6 @@ from syssimx import (
     System,
     fmus,
 )
-from syssimx.errors import FMUFileError
 from syssimx.system import SimulationResult
 from syssimx.system.algorithms import Algorithm
 
@@ -265,10 +264,25 @@ def test_ticks_inside_a_step_cut_only_the_clocked_fmu_s_step() -> None:
     assert ticks == [round(k * PERIOD, 9) for k in range(1, 11)]
 
 
-def test_as_model_exchange_the_clocked_fmu_is_refused_naming_the_clock() -> None:
-    with pytest.raises(FMUFileError, match=r"Clock 'sample': syssimx ticks clocks of FMI 3\.0 "
-                                           r"Co-Simulation FMUs only"):
-        FMUComponent("PI", fmus.path(CONTROLLER), interface="model-exchange")
+def test_as_model_exchange_the_clocked_fmu_ticks_as_in_co_simulation() -> None:
+    """The controller alone, its inputs held, dt = 0.25: as Model Exchange the engine stops
+    at each tick like a time event; the ticks and the staircase of u are Co-Simulation's."""
+    def alone(interface: str) -> tuple[list[float], list[float]]:
+        controller = FMUComponent("PI", fmus.path(CONTROLLER), interface=interface)
+        controller.set_inputs({"setpoint": 0.5, "measurement": 0.25})
+        system = System(interface)
+        system.add_component(controller)
+        system.initialize(0.0)
+        result = system.run(0.0, 1.0, 0.25)
+        return ([e.t for e in result.events if e.event == "clock_tick"],
+                result["PI"][1]["u"].tolist())
+
+    ticks, u = alone("model-exchange")
+    assert [round(t, 9) for t in ticks] == [round(k * PERIOD, 9) for k in range(1, 11)]
+    assert (ticks, u) == alone("co-simulation")
+    # kp = ki = 1, e = 0.25 at every tick: u_k = e + T k e at tick k
+    assert u == pytest.approx([0.25 * (1 + PERIOD * math.floor(t / PERIOD + 1e-9))
+                               for t in (0.0, 0.25, 0.5, 0.75, 1.0)], rel=1e-12)
 
 
 # ------------------------------------------------------------------ ticks as hybrid events

@@ -97,7 +97,7 @@ def read_fmi3_description(path: Path) -> ModelDescription:
                                "3.0 Co-Simulation and Model Exchange FMUs without clocks)")
         raise FMUFileError(f"{path}: the FMI 3.0 description declares neither CoSimulation nor "
                            "ModelExchange")
-    _refuse_clocks(clocks, path, description.coSimulation)
+    _refuse_clocks(clocks, path, description.coSimulation, description.modelExchange)
     if description.instantiationToken is None:
         raise FMUFileError(f"{path}: the FMI 3.0 description has no instantiationToken")
     if not description.instantiationToken:
@@ -119,15 +119,18 @@ def read_fmi3_description(path: Path) -> ModelDescription:
     return description
 
 
-def _refuse_clocks(clocks: ClockStructure, path: Path, cosimulation: Any = None) -> None:
-    """FMUFileError naming the first clock the engine cannot tick: periodic input clocks
-    (intervalVariability constant or fixed, the interval in the description), triggered input
-    clocks and output clocks of a Co-Simulation FMU with event mode; no other clock in either
-    interface."""
+def _refuse_clocks(clocks: ClockStructure, path: Path, cosimulation: Any = None,
+                   model_exchange: Any = None) -> None:
+    """FMUFileError naming the first clock no interface of the FMU can tick: periodic input
+    clocks (intervalVariability constant or fixed, the interval in the description) of a
+    Co-Simulation FMU with event mode and of a Model Exchange FMU; triggered input clocks and
+    output clocks of a Co-Simulation FMU with event mode; no other clock."""
+    rules = []
     if cosimulation is not None and cosimulation.hasEventMode:
-        untickable = [c for c in clocks.clocks if not _cosimulation_clock(c)]
-    else:
-        untickable = list(clocks.clocks)
+        rules.append(_cosimulation_clock)
+    if model_exchange is not None:
+        rules.append(_periodic_input)
+    untickable = [c for c in clocks.clocks if not any(rule(c) for rule in rules)]
     if untickable:
         _refuse(untickable[0], path)
 
@@ -139,9 +142,10 @@ def _refuse(clock: ClockInfo, path: Path) -> None:
     elif clock.causality not in ("input", "output"):
         why = "a local clock is the FMU's own"
     else:
-        why = ("syssimx ticks periodic input clocks (intervalVariability constant or fixed), "
-               "triggered input clocks and output clocks of FMI 3.0 Co-Simulation FMUs with "
-               "event mode")
+        why = ("syssimx ticks periodic input clocks (intervalVariability constant or fixed) "
+               "of FMI 3.0 Co-Simulation FMUs with event mode and of Model Exchange FMUs, and "
+               "triggered input clocks and output clocks of Co-Simulation FMUs with event mode "
+               "only")
     raise FMUFileError(f"{path}: Clock {clock.name!r} ({clock.causality}, "
                        f"intervalVariability {clock.interval_variability}) is not supported: "
                        f"{why}")
@@ -160,16 +164,19 @@ def _cosimulation_clock(clock: ClockInfo) -> bool:
                                       and clock.causality in ("input", "output"))
 
 
-
-
-def ticked_clocks(clocks: ClockStructure, interface: str, path: Path) -> tuple[ClockInfo, ...]:
-    """The clocks the engine ticks or reads in Co-Simulation; FMUFileError naming the clock
-    when the FMU runs as Model Exchange, where syssimx ticks no clock."""
-    if clocks.clocks and interface == "model-exchange":
-        clock = clocks.clocks[0]
-        raise FMUFileError(f"{path}: Clock {clock.name!r}: syssimx ticks clocks of FMI 3.0 "
-                           "Co-Simulation FMUs only, not as Model Exchange (choose "
-                           "interface='co-simulation')")
+def ticked_clocks(clocks: ClockStructure, interface: str, path: Path,
+                  cosimulation: Any = None) -> tuple[ClockInfo, ...]:
+    """The clocks the engine ticks or reads in `interface`; FMUFileError naming the first
+    clock it cannot tick there (any clock of a Co-Simulation FMU without event mode, which has
+    no instant to tick it at; any but a periodic input clock in Model Exchange)."""
+    if interface == "model-exchange":
+        untickable = [c for c in clocks.clocks if not _periodic_input(c)]
+    elif cosimulation is None or not cosimulation.hasEventMode:
+        untickable = list(clocks.clocks)
+    else:
+        untickable = [c for c in clocks.clocks if not _cosimulation_clock(c)]
+    if untickable:
+        _refuse(untickable[0], path)
     return clocks.clocks
 
 

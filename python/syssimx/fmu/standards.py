@@ -183,7 +183,8 @@ class FMI3(Standard):
             info.fmi3_variables, info.description.coSimulation,
             model_exchange=interface.name == "model-exchange",
             intermediate=interface.intermediate_inputs,
-            clocks=description_fmi3.ticked_clocks(info.clocks, interface.name, info.path))
+            clocks=description_fmi3.ticked_clocks(info.clocks, interface.name, info.path,
+                                                  info.description.coSimulation))
 
 
 STANDARDS: tuple[Standard, ...] = (FMI1(), Standard(), FMI3())
