@@ -28,6 +28,7 @@ from syssimx import (
 from syssimx.cli.main import main
 from syssimx.errors import ConfigurationError
 from syssimx.osp import read as read_osp
+from syssimx.system_files import read_system_file
 
 QUARTER_PERIOD = 0.46507759431173046  # the seed's first wall hit (DESIGN.md)
 TOL_TIME = 1e-9  # the description's tol_time
@@ -334,15 +335,19 @@ def test_the_command_line_exports_a_description(tmp_path, capsys):
     assert validate_fmu(str(target)) == []
 
 
-def test_the_command_line_exports_an_osp_system_of_three_fmus(tmp_path):
+@pytest.mark.parametrize("kind", ["osp", "ssp"])
+def test_the_command_line_exports_a_system_file_of_three_fmus(tmp_path, kind):
     """libcosim's kind of system (tests/python/osp_files.py: two pendulums and a spring,
-    variable groups, a LinearTransformation, step 0.01 s) exported from its OSP file: FMPy's
-    doStep of 0.05 s is five of the system's steps, the samples those of syssimx's own run
-    (the grid times summed differently: within 1e-15)."""
+    variable groups, a LinearTransformation, step 0.01 s) exported from its OSP file, and from
+    the SSP syssimx writes of it: FMPy's doStep of 0.05 s is five of the system's steps, the
+    samples those of syssimx's own run of the file (its grid points and FMPy's communication
+    points are other doubles: within 1e-14)."""
     structure = write_osp(tmp_path / "osp")
+    system_file = structure if kind == "osp" else read_osp(structure).system.to_ssp(
+        tmp_path / "coupled.ssp", start_time=0.0, stop_time=0.5, step_size=0.01)
     fmu = tmp_path / "coupled.fmu"
-    assert main(["export", str(structure), "-o", str(fmu)]) == 0
-    imported = read_osp(structure)
+    assert main(["export", str(system_file), "-o", str(fmu)]) == 0
+    imported = read_system_file(system_file)
     assert imported.experiment.step_size == 0.01
     stop = imported.experiment.stop_time
     system = imported.system
@@ -352,7 +357,7 @@ def test_the_command_line_exports_an_osp_system_of_three_fmus(tmp_path):
     result = run_with_fmpy_alone(fmu, ["P2.theta"], stop_time=stop)
     at = [int(np.argmin(np.abs(times - t))) for t in result["time"]]
     np.testing.assert_allclose(times[at], result["time"], rtol=0, atol=1e-15)
-    np.testing.assert_allclose(values["theta"][at], result["P2.theta"], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(values["theta"][at], result["P2.theta"], rtol=0, atol=1e-14)
 
 
 class Doubler(CoSimComponent):
