@@ -86,7 +86,8 @@ static void write_extra_variables(FILE *out, size_t n_variables)
             write_real(out, clock->interval);
             fputc('"', out);
         } else {
-            fputs("intervalVariability=\"triggered\"", out);
+            fprintf(out, "intervalVariability=\"%s\"",
+                    clock->kind == CLOCK_COUNTDOWN ? "countdown" : "triggered");
         }
         fputs(" description=\"", out);
         write_escaped(out, clock->description);

@@ -324,7 +324,14 @@ fmi3Status fmi3GetIntervalDecimal(fmi3Instance instance, const fmi3ValueReferenc
             return fmi3_status(fmu_error(inst, "fmi3GetIntervalDecimal: value reference %u is no "
                                                "clock",
                                          valueReferences[i]));
-        if (inst->model->clocks[clock].kind != CLOCK_PERIODIC)
+        model_clock_kind kind = inst->model->clocks[clock].kind;
+        if (kind == CLOCK_COUNTDOWN) {
+            int changed = 0;
+            intervals[i] = inst->model->clock_interval(inst->values, (size_t)clock, &changed);
+            qualifiers[i] = changed ? fmi3IntervalChanged : fmi3IntervalUnchanged;
+            continue;
+        }
+        if (kind != CLOCK_PERIODIC)
             return fmi3_status(fmu_error(inst, "fmi3GetIntervalDecimal: clock %u is triggered: "
                                                "it has no interval",
                                          valueReferences[i]));

@@ -142,8 +142,10 @@ typedef struct {
  * an input clock (intervalVariability "triggered") the importer ticks when it likes. Both apply
  * at fmi3UpdateDiscreteStates in Event Mode. CLOCK_OUTPUT: an output clock that ticks when the
  * model's internal event `indicator` fires (the step returns early there; the importer reads
- * it with fmi3GetClock in Event Mode). */
-typedef enum { CLOCK_PERIODIC = 0, CLOCK_TRIGGERED, CLOCK_OUTPUT } model_clock_kind;
+ * it with fmi3GetClock in Event Mode). CLOCK_COUNTDOWN: an input clock (intervalVariability
+ * "countdown") whose next tick the model announces: the importer asks for its interval
+ * (fmi3GetIntervalDecimal) in Initialization and Event Mode, and ticks it that long after. */
+typedef enum { CLOCK_PERIODIC = 0, CLOCK_TRIGGERED, CLOCK_OUTPUT, CLOCK_COUNTDOWN } model_clock_kind;
 
 typedef struct {
     const char *name;
@@ -207,6 +209,9 @@ typedef struct {
     const model_clock *clocks;
     size_t n_clocks;
     void (*clock_tick)(double *v, double t, const int *active);
+    /* CLOCK_COUNTDOWN clocks: the interval from now to the next tick of clock `clock`, and in
+     * *changed whether it is newly announced (the model forgets that it announced it) */
+    double (*clock_interval)(double *v, size_t clock, int *changed);
 } model_definition;
 
 extern const model_definition fmu_model;

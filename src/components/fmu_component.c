@@ -417,6 +417,13 @@ static int handle_own_event(ssx_system *sys, ssx_component *c, double t_e, int t
     }
     *terminate = update.terminate_simulation;
     if (result == 0 && !*terminate) {
+        /* the countdown clocks announced in this Event Mode tick that long after it */
+        status = ssx_fmu_plan_clocks(d->fmu, t_e);
+        if (!fmi_ok(status)) {
+            result = fmi_failed(sys, c, t_e, status, SLOT_GET_INTERVAL);
+        }
+    }
+    if (result == 0 && !*terminate) {
         status = ssx_fmu_enter_step_mode(d->fmu);
         if (!fmi_ok(status)) {
             result = fmi_failed(sys, c, t_e, status, SLOT_ENTER_STEP_MODE);

@@ -79,6 +79,7 @@ typedef enum {
     SLOT_ENTER_STEP_MODE,
     SLOT_SET_CLOCK,
     SLOT_GET_CLOCK,
+    SLOT_GET_INTERVAL,
     SLOT_COUNT
 } ssx_fmu_slot;
 
@@ -203,6 +204,12 @@ typedef struct {
     int (*read_output_clocks)(const ssx_fmu_function *fn, void *instance, int *active);
     /* in event mode: fmi3SetClock ticking the triggered input clock `clock` */
     int (*tick_triggered_clock)(const ssx_fmu_function *fn, void *instance, size_t clock);
+    /* in Initialization or Event Mode at t: fmi3GetIntervalDecimal on the countdown clocks, and
+     * each newly announced interval plans that clock's next tick (nothing is called without
+     * countdown clocks) */
+    int (*plan_clocks)(const ssx_fmu_function *fn, void *instance, double t);
+    /* how many countdown clocks the load spec gave */
+    size_t (*countdown_clocks)(const void *context);
     /* how many output clocks and triggered input clocks the load spec gave */
     void (*clock_counts)(const void *context, size_t *n_output, size_t *n_triggered);
     /* what the last doStep said besides its status; NULL: only the status (FMI 2.0) */

@@ -774,6 +774,15 @@ int ssx_fmu_tick_triggered_clock(ssx_fmu *fmu, size_t clock)
     return CHECKED(fmu, SLOT_SET_CLOCK, tick_triggered_clock, clock);
 }
 
+int ssx_fmu_plan_clocks(ssx_fmu *fmu, double t)
+{
+    if (fmu != NULL && (fmu->backend->countdown_clocks == NULL ||
+                        fmu->backend->countdown_clocks(fmu->rest->context) == 0)) {
+        return 0; /* nothing to ask: fmi3GetIntervalDecimal is not needed */
+    }
+    return CHECKED(fmu, SLOT_GET_INTERVAL, plan_clocks, t);
+}
+
 void ssx_fmu_clock_counts(const ssx_fmu *fmu, size_t *n_output, size_t *n_triggered)
 {
     *n_output = 0;

@@ -60,6 +60,9 @@ double ssx_fmu_next_clock_tick(const ssx_fmu *fmu, double t);
  * clock of the load spec), and the tick of triggered input clock `clock`. */
 int ssx_fmu_read_output_clocks(ssx_fmu *fmu, int *active);
 int ssx_fmu_tick_triggered_clock(ssx_fmu *fmu, size_t clock);
+/* FMI 3.0 Co-Simulation in Event Mode at t: asks for the countdown clocks' intervals and plans
+ * the next tick of each newly announced one. */
+int ssx_fmu_plan_clocks(ssx_fmu *fmu, double t);
 /* How many output clocks and triggered input clocks the load spec gave (0 for other back-ends). */
 void ssx_fmu_clock_counts(const ssx_fmu *fmu, size_t *n_output, size_t *n_triggered);
 int ssx_fmu_enter_continuous_time_mode(ssx_fmu *fmu);

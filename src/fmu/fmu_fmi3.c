@@ -11,6 +11,8 @@
 #include "fmu_fmi3_context.h"
 
 #include <math.h>
+#include <stdlib.h>
+#include <string.h>
 
 /* The rows both interfaces share: required, then optional. */
 #define FMI3_COMMON_ROWS                                                                      \
@@ -70,6 +72,8 @@ static const ssx_fmu_function_row fmi3_functions[] = {
     {"fmi3SetClock", SLOT_SET_CLOCK, 1},
     /* needed only when the FMU has output clocks */
     {"fmi3GetClock", SLOT_GET_CLOCK, 0},
+    /* needed only when the FMU has countdown clocks */
+    {"fmi3GetIntervalDecimal", SLOT_GET_INTERVAL, 0},
     {"fmi3GetOutputDerivatives", SLOT_GET_OUTPUT_DERIVATIVES, 0},
     /* input derivatives move the intermediate inputs within fmi3DoStep */
     {"fmi3DoStep", SLOT_SET_INPUT_DERIVATIVES, 1},
@@ -155,6 +159,14 @@ static void answer_intermediate_update(fmi3InstanceEnvironment environment, fmi3
                                                            n, values, n);
 }
 
+/* No countdown clock has a tick planned: the instance announced none yet. */
+static void forget_countdown_plan(fmi3_context *ctx)
+{
+    for (size_t i = 0; i < ctx->n_countdown_clocks; ++i) {
+        ctx->countdown_next[i] = INFINITY;
+    }
+}
+
 static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu_environment *environment,
                          const char *instance_name, const char *token, const char *resource_path,
                          int logging_on)
@@ -164,6 +176,7 @@ static void *instantiate(const ssx_fmu_function *fn, void *context, ssx_fmu_envi
     environment->handed = ctx;
     ctx->fn = fn;
     ctx->outcome = (fmu_step_outcome){0};
+    forget_countdown_plan(ctx);
     size_t n_moving = ctx->n_intermediate;
     fmi3IntermediateUpdateCallback update = n_moving > 0 ? answer_intermediate_update : NULL;
     /* the logger's environment is the context, whose first use is to reach the FMU's
@@ -216,6 +229,7 @@ static int enter_initialization_mode(const ssx_fmu_function *fn, void *instance)
 }
 
 static int tick_clocks(const ssx_fmu_function *fn, void *instance, double t);
+static int plan_clocks(const ssx_fmu_function *fn, void *instance, double t);
 
 /* With eventModeUsed the instance leaves initialization in event mode: its discrete states are
  * settled at the start time before stepping begins, as part of initializing it. */
@@ -259,6 +273,10 @@ static int exit_initialization_mode(const ssx_fmu_function *fn, void *instance)
             return fmi3Error;
         }
     }
+    status = worse_status(status, plan_clocks(fn, ctx, ctx->start_time));
+    if (status > fmi3Warning) {
+        return status;
+    }
     return worse_status(status, (int)FMI3(fn, SLOT_ENTER_STEP_MODE, fmi3EnterStepModeTYPE)(ctx->instance));
 }
 
@@ -270,8 +288,9 @@ static int terminate(const ssx_fmu_function *fn, void *instance)
 static int reset(const ssx_fmu_function *fn, void *instance)
 {
     fmi3_context *ctx = instance;
-    /* the reset FMU holds its start values again */
+    /* the reset FMU holds its start values again, and has announced no countdown */
     fmi3_values_reset(ctx);
+    forget_countdown_plan(ctx);
     return (int)FMI3(fn, SLOT_RESET, fmi3ResetTYPE)(ctx->instance);
 }
 
@@ -410,11 +429,22 @@ static int ticks_at(const fmi3_context *ctx, size_t i, double t)
     return k >= 0.0 && fabs(base + k * period - t) <= CLOCK_INSTANT_CLOSENESS * period;
 }
 
+/* Two instants closer than this are one tick of countdown clock i (relative to its interval). */
+static double countdown_closeness(const fmi3_context *ctx, size_t i)
+{
+    return CLOCK_INSTANT_CLOSENESS * ctx->countdown_interval[i];
+}
+
 /* Whether the tick at `tick` is the instant t (the grid's t + h rounds). */
 static int ticks_near(const fmi3_context *ctx, double tick, double t)
 {
     for (size_t i = 0; i < ctx->n_clocks; ++i) {
         if (fabs(tick - t) <= CLOCK_INSTANT_CLOSENESS * ctx->clock_period[i]) {
+            return 1;
+        }
+    }
+    for (size_t i = 0; i < ctx->n_countdown_clocks; ++i) {
+        if (fabs(tick - t) <= countdown_closeness(ctx, i)) {
             return 1;
         }
     }
@@ -434,7 +464,32 @@ static double next_tick_after(const fmi3_context *ctx, double t)
         }
         next = fmin(next, tick);
     }
+    for (size_t i = 0; i < ctx->n_countdown_clocks; ++i) {
+        if (ctx->countdown_next[i] > t + countdown_closeness(ctx, i)) {
+            next = fmin(next, ctx->countdown_next[i]);
+        }
+    }
     return next;
+}
+
+/* In event mode at t: the countdown clocks planned for t tick (fmi3SetClock; none: nothing to
+ * call), and each waits for its next interval. */
+static int tick_countdown_clocks(const ssx_fmu_function *fn, fmi3_context *ctx, double t)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < ctx->n_countdown_clocks; ++i) {
+        int due = fabs(ctx->countdown_next[i] - t) <= countdown_closeness(ctx, i);
+        ctx->countdown_active[i] = due ? fmi3True : fmi3False;
+        if (due) {
+            ctx->countdown_next[i] = INFINITY;
+            ++n;
+        }
+    }
+    if (n == 0) {
+        return fmi3OK;
+    }
+    return (int)FMI3(fn, SLOT_SET_CLOCK, fmi3SetClockTYPE)(
+        ctx->instance, ctx->countdown_clock_vr, ctx->n_countdown_clocks, ctx->countdown_active);
 }
 
 static double next_clock_tick(const void *instance, double t)
@@ -451,11 +506,50 @@ static int tick_clocks(const ssx_fmu_function *fn, void *instance, double t)
         ctx->clock_active[i] = ticks_at(ctx, i, t) ? fmi3True : fmi3False;
         n += ctx->clock_active[i] != fmi3False;
     }
+    int status = n == 0 ? fmi3OK
+                        : (int)FMI3(fn, SLOT_SET_CLOCK, fmi3SetClockTYPE)(
+                              ctx->instance, ctx->clock_vr, ctx->n_clocks, ctx->clock_active);
+    if (status > fmi3Warning) {
+        return status;
+    }
+    return worse_status(status, tick_countdown_clocks(fn, ctx, t));
+}
+
+/* In Initialization or Event Mode at t: the countdown clocks' intervals; each newly announced
+ * one plans its clock's next tick that long after t. */
+static int plan_clocks(const ssx_fmu_function *fn, void *instance, double t)
+{
+    fmi3_context *ctx = instance;
+    size_t n = ctx->n_countdown_clocks;
     if (n == 0) {
         return fmi3OK;
     }
-    return (int)FMI3(fn, SLOT_SET_CLOCK, fmi3SetClockTYPE)(ctx->instance, ctx->clock_vr,
-                                                           ctx->n_clocks, ctx->clock_active);
+    if (fn[SLOT_GET_INTERVAL] == NULL) {
+        fmi3_say(ctx, "the FMU has countdown clocks but does not provide fmi3GetIntervalDecimal");
+        return fmi3Error;
+    }
+    int status = (int)FMI3(fn, SLOT_GET_INTERVAL, fmi3GetIntervalDecimalTYPE)(
+        ctx->instance, ctx->countdown_clock_vr, n, ctx->countdown_answer,
+        ctx->countdown_qualifier);
+    if (status > fmi3Warning) {
+        return status;
+    }
+    for (size_t i = 0; i < n; ++i) {
+        if (ctx->countdown_qualifier[i] != fmi3IntervalChanged) {
+            continue;
+        }
+        double interval = ctx->countdown_answer[i];
+        if (!(interval > 0.0 && isfinite(interval))) {
+            fmi3_say(ctx,
+                "fmi3GetIntervalDecimal at t=%.17g announced the interval %.17g for the "
+                "countdown clock %u: an interval is a positive number of seconds",
+                t, interval, ctx->countdown_clock_vr[i]);
+            return fmi3Error;
+        }
+        ctx->countdown_interval[i] = interval;
+        ctx->countdown_next[i] = t + interval;
+    }
+    return status;
 }
 
 static int read_output_clocks(const ssx_fmu_function *fn, void *instance, int *active)
@@ -478,6 +572,11 @@ static int tick_triggered_clock(const ssx_fmu_function *fn, void *instance, size
     fmi3Clock active = fmi3True;
     return (int)FMI3(fn, SLOT_SET_CLOCK, fmi3SetClockTYPE)(
         ctx->instance, &ctx->triggered_clock_vr[clock], 1, &active);
+}
+
+static size_t countdown_clocks(const void *context)
+{
+    return ((const fmi3_context *)context)->n_countdown_clocks;
 }
 
 static void clock_counts(const void *context, size_t *n_output, size_t *n_triggered)
@@ -577,10 +676,48 @@ static int enter_step_mode(const ssx_fmu_function *fn, void *instance)
 
 /* ------------------------------------------------------------------ states and derivatives */
 
+/* Where the countdown plan saved with `state` lies among the saved ones; n_countdown_states
+ * when none is. */
+static size_t saved_plan(const fmi3_context *ctx, const void *state)
+{
+    size_t k = 0;
+    while (k < ctx->n_countdown_states && ctx->countdown_states[k] != state) {
+        ++k;
+    }
+    return k;
+}
+
+/* The countdown plan goes with the FMU state just taken: setting that state brings it back. */
+static int save_plan(fmi3_context *ctx, void *state)
+{
+    size_t n = ctx->n_countdown_clocks, k = saved_plan(ctx, state);
+    if (k == ctx->n_countdown_states) {
+        void **states = realloc(ctx->countdown_states, (k + 1) * sizeof *states);
+        if (states != NULL) {
+            ctx->countdown_states = states;
+        }
+        double *plans = states != NULL
+                        ? realloc(ctx->countdown_plans, (k + 1) * n * sizeof *plans) : NULL;
+        if (plans == NULL) {
+            fmi3_say(ctx, "out of memory keeping the countdown clocks' plan with an FMU state");
+            return fmi3Error;
+        }
+        ctx->countdown_plans = plans;
+        ctx->countdown_states[k] = state;
+        ctx->n_countdown_states = k + 1;
+    }
+    memcpy(ctx->countdown_plans + k * n, ctx->countdown_next, n * sizeof *ctx->countdown_next);
+    return fmi3OK;
+}
+
 static int get_state(const ssx_fmu_function *fn, void *instance, void **state)
 {
-    return (int)FMI3(fn, SLOT_GET_STATE, fmi3GetFMUStateTYPE)(((fmi3_context *)instance)->instance,
-                                                              state);
+    fmi3_context *ctx = instance;
+    int status = (int)FMI3(fn, SLOT_GET_STATE, fmi3GetFMUStateTYPE)(ctx->instance, state);
+    if (status > fmi3Warning || ctx->n_countdown_clocks == 0) {
+        return status;
+    }
+    return worse_status(status, save_plan(ctx, *state));
 }
 
 static int set_state(const ssx_fmu_function *fn, void *instance, void *state)
@@ -588,13 +725,27 @@ static int set_state(const ssx_fmu_function *fn, void *instance, void *state)
     fmi3_context *ctx = instance;
     /* the restored instance has not stepped yet: no step's news apply to it */
     ctx->outcome = (fmu_step_outcome){0};
-    return (int)FMI3(fn, SLOT_SET_STATE, fmi3SetFMUStateTYPE)(ctx->instance, state);
+    int status = (int)FMI3(fn, SLOT_SET_STATE, fmi3SetFMUStateTYPE)(ctx->instance, state);
+    size_t k = saved_plan(ctx, state), n = ctx->n_countdown_clocks;
+    if (status <= fmi3Warning && k < ctx->n_countdown_states) {
+        memcpy(ctx->countdown_next, ctx->countdown_plans + k * n,
+               n * sizeof *ctx->countdown_next);
+    }
+    return status;
 }
 
 static int free_state(const ssx_fmu_function *fn, void *instance, void **state)
 {
-    return (int)FMI3(fn, SLOT_FREE_STATE,
-                     fmi3FreeFMUStateTYPE)(((fmi3_context *)instance)->instance, state);
+    fmi3_context *ctx = instance;
+    size_t k = saved_plan(ctx, *state), n = ctx->n_countdown_clocks;
+    if (k < ctx->n_countdown_states) {
+        /* the last saved plan takes its place */
+        size_t last = --ctx->n_countdown_states;
+        ctx->countdown_states[k] = ctx->countdown_states[last];
+        memmove(ctx->countdown_plans + k * n, ctx->countdown_plans + last * n,
+                n * sizeof *ctx->countdown_plans);
+    }
+    return (int)FMI3(fn, SLOT_FREE_STATE, fmi3FreeFMUStateTYPE)(ctx->instance, state);
 }
 
 static int serialized_state_size(const ssx_fmu_function *fn, void *instance, void *state,
@@ -787,6 +938,8 @@ const ssx_fmu_backend ssx_fmi3_backend = {
     .enter_step_mode = enter_step_mode,
     .tick_clocks = tick_clocks,
     .read_output_clocks = read_output_clocks,
+    .plan_clocks = plan_clocks,
+    .countdown_clocks = countdown_clocks,
     .tick_triggered_clock = tick_triggered_clock,
     .clock_counts = clock_counts,
     .step_outcome = step_outcome,

@@ -67,6 +67,20 @@ typedef struct {
     unsigned int *output_clock_vr;
     fmi3Clock *output_clock_active; /* scratch for fmi3GetClock */
     size_t n_output_clocks;
+    /* the countdown clocks (ssx_fmi3_variables): the next tick each is planned for (INFINITY:
+     * none), the interval last announced, and scratch for the calls */
+    unsigned int *countdown_clock_vr;
+    double *countdown_next;
+    double *countdown_interval;
+    fmi3Float64 *countdown_answer;
+    fmi3IntervalQualifier *countdown_qualifier;
+    fmi3Clock *countdown_active;
+    size_t n_countdown_clocks;
+    /* the planned ticks saved with each FMU state the engine holds (a state set again brings
+     * its plan back): states[k], and n_countdown_clocks values each in plans */
+    void **countdown_states;
+    double *countdown_plans;
+    size_t n_countdown_states;
     const ssx_fmu_function *fn; /* for the callback */
     /* one type's part of a batch: value references, positions in the engine's call, values */
     unsigned int *part_vr;

@@ -183,6 +183,37 @@ static int keep_triggered_and_output_clocks(fmi3_context *ctx,
     return 0;
 }
 
+/* The countdown clocks: their value references, no tick planned yet. */
+static int keep_countdown_clocks(fmi3_context *ctx, const ssx_fmi3_variables *variables,
+                                 char *error, size_t error_size)
+{
+    size_t n = variables != NULL && variables->countdown_clock_vr != NULL
+               ? variables->n_countdown_clocks : 0;
+    if (n == 0) {
+        return 0;
+    }
+    ctx->countdown_clock_vr = malloc(n * sizeof *ctx->countdown_clock_vr);
+    ctx->countdown_next = malloc(n * sizeof *ctx->countdown_next);
+    ctx->countdown_interval = malloc(n * sizeof *ctx->countdown_interval);
+    ctx->countdown_answer = malloc(n * sizeof *ctx->countdown_answer);
+    ctx->countdown_qualifier = malloc(n * sizeof *ctx->countdown_qualifier);
+    ctx->countdown_active = malloc(n * sizeof *ctx->countdown_active);
+    if (ctx->countdown_clock_vr == NULL || ctx->countdown_next == NULL ||
+        ctx->countdown_interval == NULL || ctx->countdown_answer == NULL ||
+        ctx->countdown_qualifier == NULL || ctx->countdown_active == NULL) {
+        snprintf(error, error_size, "out of memory keeping %zu clocks", n);
+        return -1;
+    }
+    memcpy(ctx->countdown_clock_vr, variables->countdown_clock_vr,
+           n * sizeof *ctx->countdown_clock_vr);
+    for (size_t i = 0; i < n; ++i) {
+        ctx->countdown_next[i] = INFINITY;
+        ctx->countdown_interval[i] = 0.0;
+    }
+    ctx->n_countdown_clocks = n;
+    return 0;
+}
+
 int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *error,
                      size_t error_size)
 {
@@ -240,7 +271,10 @@ int ssx_fmi3_prepare(void *context, const ssx_fmi3_variables *variables, char *e
     if (keep_clocks(ctx, variables, error, error_size) != 0) {
         return -1;
     }
-    return keep_triggered_and_output_clocks(ctx, variables, error, error_size);
+    if (keep_triggered_and_output_clocks(ctx, variables, error, error_size) != 0) {
+        return -1;
+    }
+    return keep_countdown_clocks(ctx, variables, error, error_size);
 }
 
 void fmi3_say(fmi3_context *ctx, const char *format, ...)
@@ -272,6 +306,14 @@ void fmi3_values_free(fmi3_context *ctx)
     free(ctx->triggered_clock_vr);
     free(ctx->output_clock_vr);
     free(ctx->output_clock_active);
+    free(ctx->countdown_clock_vr);
+    free(ctx->countdown_next);
+    free(ctx->countdown_interval);
+    free(ctx->countdown_answer);
+    free(ctx->countdown_qualifier);
+    free(ctx->countdown_active);
+    free(ctx->countdown_states);
+    free(ctx->countdown_plans);
 }
 
 void fmi3_values_reset(fmi3_context *ctx)

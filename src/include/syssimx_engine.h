@@ -145,6 +145,12 @@ typedef struct {
     size_t n_triggered_clocks;
     const unsigned int *output_clock_vr;
     size_t n_output_clocks;
+    /* Co-Simulation with event mode: the countdown input clocks (intervalVariability
+     * countdown). After Initialization Mode and after every Event Mode the engine asks for their
+     * interval (fmi3GetIntervalDecimal); each the FMU newly announces ticks that long after, the
+     * FMU's step ending there as at a periodic tick. NULL / 0: none. */
+    const unsigned int *countdown_clock_vr;
+    size_t n_countdown_clocks;
 } ssx_fmi3_variables;
 
 /* The FMI standard and the interface a binary is loaded as. */

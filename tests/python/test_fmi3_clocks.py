@@ -71,22 +71,22 @@ def test_a_co_simulation_fmu_with_a_clock_is_read_and_refused_naming_the_clock(t
     assert structure.clocks == (ClockInfo("tick", 9001, "input", "fixed", interval=0.25,
                                           shift=0.5, priority=3, supports_fraction=True),)
     assert structure.clocked_variables == {"Int32_output": (9001,)}
-    # periodic and triggered input clocks are ticked by the engine; a countdown one is refused
+    # periodic, triggered and countdown input clocks are ticked by the engine; a tunable one
+    # is refused
     (tmp_path / "triggered").mkdir()
     triggered = edited(tmp_path / "triggered", FEEDTHROUGH, (_ADDED_CLOCK[0], _ADDED_CLOCK[1]
                        .replace('intervalVariability="fixed" intervalDecimal="0.25" '
                                 'shiftDecimal="0.5" ', 'intervalVariability="triggered" ')))
     assert FMUComponent("F", triggered).triggered_clocks == ["tick"]
-    (tmp_path / "countdown").mkdir()
-    countdown = edited(tmp_path / "countdown", FEEDTHROUGH, (_ADDED_CLOCK[0], _ADDED_CLOCK[1]
-                       .replace('intervalVariability="fixed" intervalDecimal="0.25" '
-                                'shiftDecimal="0.5" ', 'intervalVariability="countdown" ')))
+    (tmp_path / "tunable").mkdir()
+    tunable = edited(tmp_path / "tunable", FEEDTHROUGH, (_ADDED_CLOCK[0], _ADDED_CLOCK[1]
+                     .replace('intervalVariability="fixed"', 'intervalVariability="tunable"')))
     with pytest.raises(FMUFileError) as info:
-        FMUComponent("F", countdown)
-    assert str(info.value) == (f"{countdown}: Clock 'tick' (input, intervalVariability "
-                               "countdown) is not supported: its interval is decided by the FMU "
-                               "during the run, and syssimx does not read it "
-                               "(fmi3GetIntervalDecimal) to plan the ticks")
+        FMUComponent("F", tunable)
+    assert str(info.value) == (f"{tunable}: Clock 'tick' (input, intervalVariability "
+                               "tunable) is not supported: the FMU may change its interval "
+                               "during the run, and syssimx plans ticks from a fixed interval "
+                               "or an announced countdown only")
 
 
 def test_counters_and_resolution_give_the_period_and_first_tick(tmp_path: Path):

@@ -3,7 +3,8 @@
  * and its output clock `full` ticks there, an own event of the tank (SSX_OWN_OUTPUT_CLOCK,
  * clock 1); connected to the triggered clock `tick` of models/TickCounter, each tick ticks the
  * counter where the master accepts the step that holds it. Connections that cannot tick are
- * refused naming why. */
+ * refused naming why. The countdown clock of models/Timer rings at the intervals the FMU
+ * announces (0.1, 0.3, 0.7 s), and a restored state brings back the alarms it had planned. */
 #include <math.h>
 
 #include "test_support.h"
@@ -116,9 +117,47 @@ static void connections_that_cannot_tick_are_refused(void)
     release(s);
 }
 
+/* models/Timer/timer.c: count, last_alarm; its clock follows the time */
+enum { TIMER_COUNT = 0, TIMER_LAST_ALARM = 1, TIMER_ALARM = 7 };
+
+static const unsigned int timer_vr[] = {TIMER_COUNT, TIMER_LAST_ALARM};
+static const unsigned char timer_types[] = {SSX_FMI3_FLOAT64, SSX_FMI3_FLOAT64};
+static const char *const timer_names[] = {"count", "last_alarm"};
+static const unsigned int timer_clocks[] = {TIMER_ALARM};
+static const ssx_fmi3_variables timer_variables = {
+    .vr = timer_vr, .type = timer_types, .name = timer_names, .n = 2, .event_mode_used = 1,
+    .countdown_clock_vr = timer_clocks, .n_countdown_clocks = 1};
+
+static void a_restored_state_brings_back_the_planned_alarms(void)
+{
+    ssx_fmu *timer = load_fmi3_fmu("timer_fmi3", &timer_variables, 0);
+    CHECK(start_fmu(timer, 0.0, 0.0, NULL, NULL, 0) == 0);
+    ssx_system *sys = ssx_system_new("timer");
+    CHECK(ssx_add_fmu_component(sys, "Timer", timer, 1) == 0);
+    CHECK(ssx_add_output(sys, 0, SSX_REAL, TIMER_COUNT) == 0);
+    CHECK(ssx_add_output(sys, 0, SSX_REAL, TIMER_LAST_ALARM) == 1);
+    CHECK_OK(sys, ssx_initialize(sys, 0.0));
+    CHECK_OK(sys, ssx_run(sys, 0.0, 0.2, 0.2)); /* the alarm at 0.1 plans the next at 0.3 */
+    CHECK(ssx_outputs(sys, 0)[0] == 1.0);
+    ssx_system_state *at_02 = ssx_state_save(sys);
+    CHECK(at_02 != NULL);
+    for (int pass = 0; pass < 2; ++pass) { /* the second pass from the restored state */
+        CHECK_OK(sys, ssx_run(sys, 0.2, 0.5, 0.3));
+        const double *timer_outputs = ssx_outputs(sys, 0);
+        CHECK(timer_outputs[0] == 2.0 && fabs(timer_outputs[1] - 0.3) < 1e-12);
+        CHECK_OK(sys, ssx_state_restore(sys, at_02));
+    }
+    CHECK_OK(sys, ssx_run(sys, 0.2, 1.0, 0.8));
+    CHECK(ssx_outputs(sys, 0)[0] == 3.0 && fabs(ssx_outputs(sys, 0)[1] - 0.7) < 1e-12);
+    ssx_state_free(at_02);
+    ssx_system_free(sys);
+    ssx_fmu_free(timer);
+}
+
 int main(void)
 {
     the_output_clock_ticks_the_connected_clock();
     connections_that_cannot_tick_are_refused();
+    a_restored_state_brings_back_the_planned_alarms();
     return 0;
 }
