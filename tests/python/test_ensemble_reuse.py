@@ -103,6 +103,25 @@ def test_members_after_the_first_run_in_the_engine_bit_identical(monkeypatch) ->
     assert_bit_identical(reused, fresh)
 
 
+def test_a_value_set_parameters_refuses_fails_its_member_on_a_kept_system_too(monkeypatch
+                                                                           ) -> None:
+    """A bool for a Real parameter: set_parameters refuses it, so the engine does not write it
+    either; the members around it run in the engine."""
+    def build() -> System:
+        return pendulum_wall.build("cvode", handler=Reinitialize(theta0="theta",
+                                                                 omega0="-omega"))[0]
+
+    engine_members = []
+    start = EngineMembers.start
+    monkeypatch.setattr(EngineMembers, "start",
+                        lambda self, *args: engine_members.append(args[0]) or start(self, *args))
+    values = {"P.theta0": [0.3, 0.35, True, 0.4, 0.45]}
+    reused = run_all(build, values, 1.0, 0.05, ensemble="refused")
+    assert engine_members == [[0.35], [0.45]]
+    assert [m.status for m in reused] == ["ok", "ok", "failed", "ok", "ok"]
+    assert_bit_identical(reused, run_all(build, values, 1.0, 0.05, ensemble=None))
+
+
 def test_coupled_pendulums_varying_two_components_on_one_system() -> None:
     def build() -> System:
         return coupled_pendulums.build(JacobiAlgorithm(), rtol=1e-8)

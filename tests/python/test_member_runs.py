@@ -5,7 +5,17 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from syssimx import EventConnection, FMUComponent, HybridAlgorithm, Reinitialize, System, fmus
+from fixture_fmus import fmu_path
+from syssimx import (
+    Connection,
+    EventConnection,
+    FMUComponent,
+    HybridAlgorithm,
+    Reinitialize,
+    System,
+    fmus,
+)
+from syssimx.errors import ConfigurationError
 from syssimx.system.member_runs import MemberSamples, engine_runs_members, split_member_names
 
 T0, TF, DT = 0.0, 1.0, 0.05
@@ -90,3 +100,34 @@ def test_system_is_left_as_the_loop_leaves_it() -> None:
     assert np.array_equal(outputs["theta"], engine[-1].outputs["P.theta"])
     later = system.run(TF, TF + 2 * DT, DT)["P"][0]  # it goes on from the last member
     assert np.array_equal(later[-3:], [TF, TF + DT, TF + 2 * DT])
+
+
+def _failing_and_gain() -> System:
+    """An FMU with an Integer parameter (failure: 0 never fails) feeding a gain."""
+    failing = FMUComponent("F", fmu_path("failing"))
+    failing.set_inputs({"u": 2.0})
+    system = System("integer parameter")
+    system.add_component(failing)
+    system.add_component(FMUComponent("G", fmus.path("gain")))
+    system.add_connection(Connection("F", "y", "G", "u", convert_units=False))
+    return system
+
+
+def test_an_integer_parameter_is_written_as_set_parameters_writes_it() -> None:
+    values = {"F.failure": [0, 0], "F.fail_time": [2.0, 3.0]}
+    system = _failing_and_gain()
+    assert engine_runs_members(system, split_member_names(system, list(values)))
+    engine = system.run_members(values, T0, TF, 0.1)
+    loop = []
+    reference = _failing_and_gain()
+    for failure, fail_time in zip(*values.values(), strict=True):
+        reference.components["F"].set_parameters(failure=failure, fail_time=fail_time)
+        reference.initialize(T0)
+        t, outputs = reference.run(T0, TF, 0.1)["G"]
+        loop.append((np.array(t), np.array(outputs["y"])))
+    for member, (t, y) in zip(engine, loop, strict=True):
+        assert np.array_equal(member.time, t)
+        assert np.array_equal(member.outputs["G.y"], y)
+    # 0.5 is no Integer: set_parameters refuses it, and so does run_members (no truncation)
+    with pytest.raises(ConfigurationError, match="INT"):
+        _failing_and_gain().run_members({"F.failure": [0, 0.5, 0]}, T0, TF, 0.1)

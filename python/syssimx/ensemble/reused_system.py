@@ -28,7 +28,6 @@ histories, events and statistics are the same, bit for bit.
 from __future__ import annotations
 
 import math
-import numbers
 import os
 from collections.abc import Mapping
 from typing import Any
@@ -36,7 +35,12 @@ from typing import Any
 from ..components.fmu import FMUComponent
 from ..components.multi import MultiComponent
 from ..errors import ConfigurationError
-from ..system.member_runs import EngineMembers, engine_runs_members, split_member_names
+from ..system.member_runs import (
+    EngineMembers,
+    engine_runs_members,
+    engine_writes_exactly,
+    split_member_names,
+)
 from ..system.system import System
 from .system_source import SystemSource
 
@@ -78,20 +82,25 @@ class ReusedSystem:
                        ) -> EngineMembers | None:
         """The engine's members of `system`, when take gave it out as kept (the previous
         member of its ensemble initialized it with the same names set) and the engine can
-        run them: every value a plain number, every name a parameter it writes
-        (member_runs.engine_runs_members). Made on first use, kept with the System."""
-        if system is not self._taken or system._plan is None \
-                or not all(isinstance(value, numbers.Real) for value in parameters.values()):
+        run them: every name a parameter it writes (member_runs.engine_runs_members), every
+        value one set_parameters takes as it is (engine_writes_exactly). Made on first use,
+        kept with the System."""
+        if system is not self._taken or system._plan is None:
             return None
         names = tuple(parameters)
-        if any(name.partition(".")[0] not in system.components for name in names):
+        if any(name.partition(".")[0] not in system.components or not name.partition(".")[2]
+               for name in names):
             return None  # the member's own path names what is wrong
-        if self._members is not None and self._members[:2] == (system, names) and \
-                (self._members[2] is None or self._members[2].plan is system._plan):
-            return self._members[2]
         split = split_member_names(system, names)
-        members = EngineMembers(system, split) if engine_runs_members(system, split) else None
-        self._members = (system, names, members)
+        if self._members is None or self._members[:2] != (system, names) or \
+                (self._members[2] is not None and self._members[2].plan is not system._plan):
+            members = EngineMembers(system, split) if engine_runs_members(system, split) \
+                else None
+            self._members = (system, names, members)
+        members = self._members[2]
+        if members is None or not engine_writes_exactly(system, split, list(
+                parameters.values())):
+            return None
         return members
 
     def give_back(self, ensemble: str | None, system: System, before_run: UserValues) -> None:

@@ -4,16 +4,16 @@ A member on a reused System costs its initialize and run in Python (set_paramete
 component's start, the run's checks and result): most of a 20-step member's CPU. When every
 component is an FMUComponent the engine starts by itself (no Python hooks, indicators on
 outputs, a declarative Reinitialize as its only handler, Real, Integer and Boolean start
-values), the System is initialized once with the first member's values, and each member is one
-engine call (ssx_run_member): its values written into the start values that initialize wrote,
-the FMUs started again from them, the system initialized and run. The FMUs see the calls a
-Python initialize and run make, in the same order: the histories are the same, bit for bit.
+values), the System is initialized once with the first member's values, and the engine runs
+the members (ssx_run_member, one call each; ssx_run_members, one call for all, its samples
+kept by the engine): each member's values written into the start values that initialize
+wrote, the FMUs started again from them, the system initialized and run. The FMUs see the calls
+a Python initialize and run make, in the same order: the histories are the same, bit for bit.
 Other systems run the members through set_parameters, initialize and run.
 """
 
 from __future__ import annotations
 
-import math
 import warnings
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -44,6 +44,7 @@ class System(Protocol):
     components: dict[str, Any]
     _plan: EnginePlan | None
     is_initialized: bool
+
 
 _NUMBER_TYPES = (PortType.REAL, PortType.INT, PortType.BOOL)
 
@@ -264,7 +265,8 @@ def set_member_parameters(system: System, names: Sequence[tuple[str, str]],
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SysSimXWarning)
         for (component, variable), value in zip(names, values, strict=True):
-            system.components[component].set_parameters(**{variable: value})
+            system.components[component].set_parameters(
+                **{variable: _typed(system, component, variable, float(value))})
 
 
 def member_table(system: System, values: Mapping[str, Sequence[float]]
@@ -277,6 +279,48 @@ def member_table(system: System, values: Mapping[str, Sequence[float]]
         raise ConfigurationError(f"{system.name}: run_members needs as many values of each "
                                  f"parameter, got {sorted(lengths)}")
     table = np.column_stack(columns) if columns else np.empty((0, 0))
-    if not np.all(np.isfinite(table)) or any(not math.isfinite(v) for v in table.flat):
+    if not np.all(np.isfinite(table)):
         raise ConfigurationError(f"{system.name}: run_members needs finite values")
     return names, table
+
+
+def engine_writes_exactly(system: System, names: Sequence[tuple[str, str]],
+                          values: Sequence[Any]) -> bool:
+    """Whether the engine writes each value as set_parameters would write it: a Real
+    parameter's an int or float, an Integer's an int of its range, a Boolean's a bool, 0 or 1
+    (set_parameters refuses the others, the engine would not)."""
+    for (component, variable), value in zip(names, values, strict=True):
+        kind = system.components[component].info.parameters[variable].type
+        number = isinstance(value, int | float) and not isinstance(value, bool)
+        if kind == PortType.REAL and not number:
+            return False
+        if kind == PortType.INT and not (number and isinstance(value, int)
+                                         and -2**31 <= value < 2**31):
+            return False
+        if kind == PortType.BOOL and not (isinstance(value, bool) or (value in (0, 1)
+                                          and isinstance(value, int))):
+            return False
+    return True
+
+
+def exact_table(system: System, names: Sequence[tuple[str, str]], table: np.ndarray) -> bool:
+    """engine_writes_exactly for every row of `table`, its Integer and Boolean columns given as
+    set_member_parameters gives them (ints and bools where the floats are whole, 0 or 1)."""
+    for j, (component, variable) in enumerate(names):
+        kind = system.components[component].info.parameters[variable].type
+        column = table[:, j]
+        if kind == PortType.INT and not np.all((column == np.round(column))
+                                               & (column >= -2**31) & (column < 2**31)):
+            return False
+        if kind == PortType.BOOL and not np.all((column == 0) | (column == 1)):
+            return False
+    return True
+
+
+def _typed(system: System, component: str, variable: str, value: float) -> Any:
+    """`value` as a number of the parameter's type (a table holds floats)."""
+    parameter = getattr(system.components[component], "info", None)
+    kind = parameter.parameters[variable].type \
+        if parameter is not None and variable in parameter.parameters else PortType.REAL
+    return int(value) if kind == PortType.INT and float(value).is_integer() \
+        else bool(value) if kind == PortType.BOOL and value in (0, 1) else value

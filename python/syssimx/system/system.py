@@ -36,6 +36,7 @@ from .member_runs import (
     EngineMembers,
     MemberRuns,
     engine_runs_members,
+    exact_table,
     member_samples,
     member_table,
     runs_in_one_call,
@@ -452,7 +453,7 @@ class System:
         self.initialize(t0, tolerance)
         plan = self._plan
         assert plan is not None
-        if not engine_runs_members(self, names):
+        if not engine_runs_members(self, names) or not exact_table(self, names, table):
             samples = []
             for k, row in enumerate(table):
                 if k > 0:
