@@ -57,6 +57,9 @@ typedef struct {
     /* per event indicator: +1 rising, -1 falling at its last crossing; 0 before any and once
      * that crossing's residue was taken (is_residue) */
     int *last_direction;
+    /* the instant of the last tick of the FMU's periodic clocks made (the start time at first):
+     * the next tick is the first after it, so no tick is skipped however short the steps */
+    double last_tick;
 } me_state;
 
 typedef struct {
@@ -368,6 +371,7 @@ static int start_instance(ssx_system *sys, ssx_component *c, me_data *me, double
     if (!fmi_ok(status)) {
         return fmi_failed(sys, c, t, status, SLOT_SET_CLOCK);
     }
+    me->now.last_tick = t;
     if (iterate_discrete_states(sys, c, me, t) != 0) {
         return -1;
     }
@@ -387,19 +391,24 @@ static int start_instance(ssx_system *sys, ssx_component *c, me_data *me, double
     return 0;
 }
 
-/* An event at t: event mode, the clocks that tick at t (`tick`), the discrete states,
- * continuous-time mode. The event is reported unless it is an event's residue (the FMU still
- * needs its event mode then: its discrete states may follow the indicator's sign); a tick is
- * reported as a tick of its own, after the event it coincides with. */
+/* An event at t: event mode, the clocks that tick at `tick` (NAN: none; t within the grid's
+ * rounding), the discrete states, continuous-time mode. The event is reported unless it is an
+ * event's residue (the FMU still needs its event mode then: its discrete states may follow the
+ * indicator's sign); a tick is reported as a tick of its own, after the event it coincides
+ * with. */
 static int handle_event(ssx_system *sys, ssx_component *c, me_data *me, double t,
-                        ssx_own_event_kind kind, int report, int tick)
+                        ssx_own_event_kind kind, int report, double tick)
 {
     int status = ssx_fmu_enter_event_mode(fmu_of(c));
     if (!fmi_ok(status)) {
         return fmi_failed(sys, c, t, status, SLOT_ENTER_EVENT_MODE);
     }
-    if (tick && !fmi_ok(status = ssx_fmu_tick_clocks(fmu_of(c), t))) {
-        return fmi_failed(sys, c, t, status, SLOT_SET_CLOCK);
+    if (!isnan(tick)) {
+        status = ssx_fmu_tick_clocks(fmu_of(c), tick);
+        if (!fmi_ok(status)) {
+            return fmi_failed(sys, c, t, status, SLOT_SET_CLOCK);
+        }
+        me->now.last_tick = tick;
     }
     if (iterate_discrete_states(sys, c, me, t) != 0) {
         return -1;
@@ -411,7 +420,7 @@ static int handle_event(ssx_system *sys, ssx_component *c, me_data *me, double t
     if (report && own_event_report(sys, c, kind, t) != 0) {
         return -1;
     }
-    return tick ? own_event_report(sys, c, SSX_OWN_CLOCK_TICK, t) : 0;
+    return isnan(tick) ? 0 : own_event_report(sys, c, SSX_OWN_CLOCK_TICK, t);
 }
 
 /* ------------------------------------------------------------------ the step */
@@ -561,7 +570,7 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
     int event_at_end = 0;
     while (now < t_end) {
         const ssx_fmu_event_info *event = &me->now.event;
-        double tick = ssx_fmu_next_clock_tick(fmu_of(c), now);
+        double tick = ssx_fmu_next_clock_tick(fmu_of(c), me->now.last_tick);
         /* the instants of the due time event and clock tick inside the step, else INFINITY */
         double event_at = event->next_event_time_defined && event->next_event_time <= reach
                               ? fmin(fmax(event->next_event_time, now), t_end)
@@ -596,7 +605,7 @@ static int me_do_step(ssx_system *sys, ssx_component *c, double t, double dt)
         /* a tick alone is reported as the tick only */
         int report = root ? !(residue && !time_event && !enter_event_mode)
                           : time_event || enter_event_mode;
-        if (handle_event(sys, c, me, now, kind, report, clock_tick) != 0) {
+        if (handle_event(sys, c, me, now, kind, report, clock_tick ? tick : NAN) != 0) {
             return -1;
         }
         if (me->now.event.terminate_simulation) {
@@ -665,6 +674,7 @@ static int me_evaluate_outputs(ssx_system *sys, ssx_component *c, double t)
 static void copy_state(const me_data *me, me_state *to, const me_state *from)
 {
     to->event = from->event;
+    to->last_tick = from->last_tick;
     memcpy(to->x, from->x, me->n * sizeof(double));
     if (me->nz > 0) {
         memcpy(to->last_crossing, from->last_crossing, me->nz * sizeof(double));
@@ -817,6 +827,7 @@ static int me_serialize_state(ssx_system *sys, ssx_component *c, const void *sta
     }
     write_doubles(out, s->engine.x, me->n);
     write_bytes(out, &s->engine.event, sizeof s->engine.event);
+    write_doubles(out, &s->engine.last_tick, 1);
     write_doubles(out, s->engine.last_crossing, me->nz);
     write_bytes(out, s->engine.last_direction, me->nz * sizeof(int));
     return out->failed ? fail(sys, c->index, -1, sys->time,
@@ -834,6 +845,7 @@ static void *me_deserialize_state(ssx_system *sys, ssx_component *c, byte_reader
     }
     read_doubles(in, s->engine.x, me->n);
     read_bytes(in, &s->engine.event, sizeof s->engine.event);
+    read_doubles(in, &s->engine.last_tick, 1);
     read_doubles(in, s->engine.last_crossing, me->nz);
     read_bytes(in, s->engine.last_direction, me->nz * sizeof(int));
     if (in->failed) {
@@ -888,6 +900,7 @@ static int state_new(me_state *state, size_t n, size_t nz)
     for (size_t i = 0; i < nz; ++i) {
         state->last_crossing[i] = -INFINITY;
     }
+    state->last_tick = -INFINITY;
     return 0;
 }
 

@@ -15,7 +15,14 @@ import numpy as np
 import pytest
 from fmpy.validation import validate_fmu
 from reference_root import reference_root
-from syssimx import FMUComponent, JacobiAlgorithm, System, fmus
+from syssimx import (
+    EventConnection,
+    FMUComponent,
+    HybridAlgorithm,
+    JacobiAlgorithm,
+    System,
+    fmus,
+)
 from syssimx.errors import FMUFileError
 from syssimx.system import SimulationResult
 from test_fmi3_import import edited
@@ -128,3 +135,43 @@ def test_model_exchange_refuses_a_clock_it_cannot_tick_naming_it(tmp_path: Path)
                                            r"triggered\)"):
         FMUComponent("F", triggered, interface="model-exchange")
 
+
+
+def ticks_and_crossings(threads: int = 1) -> list[tuple[float, int, str, str]]:
+    """Two clocked FMUs as Model Exchange under the hybrid algorithm, dt = 0.25, with master
+    indicators on A: x falls through 0.5 at tau ln 2 = 0.3466 s (between the ticks of 0.3 and
+    0.4, located by rollback inside a step holding ticks), and y falls through 0.5 at the tick
+    of 0.4 (y jumps from exp(-0.6) to exp(-0.8) there: a crossing at a tick's instant, which
+    localization approaches in pieces far shorter than the grid's rounding of a tick)."""
+    first = signal("A")
+    first.add_event_indicator("x_half", func=lambda c: c.get_outputs()["x"] - 0.5,
+                              direction=-1)
+    first.add_event_indicator("y_half", func=lambda c: c.get_outputs()["y"] - 0.5,
+                              direction=-1)
+    first.add_event_handler("noted", lambda *_: None)
+    system = System("ticks and crossings")
+    system.add_component(first)
+    system.add_component(signal("B", tau=0.25))
+    system.add_event_connection(EventConnection("A", "x_half", "A", "noted"))
+    system.add_event_connection(EventConnection("A", "y_half", "A", "noted"))
+    system.set_algorithm(HybridAlgorithm(tol_time=1e-10,
+                                         coupling=JacobiAlgorithm(threads=threads)))
+    system.initialize(0.0)
+    events = system.run(0.0, 1.0, 0.25).events
+    return [(e.t, e.micro, e.component, e.event) for e in events]
+
+
+def test_ticks_and_crossings_in_one_step_are_recorded_in_superdense_order() -> None:
+    records = ticks_and_crossings()
+    by_name = {name: [r for r in records if r[3] == name]
+               for name in ("clock_tick", "x_half", "y_half")}
+    assert len(by_name["clock_tick"]) == 20  # A's and B's ticks at 0.1, ..., 1.0
+    (x_half,), (y_half,) = by_name["x_half"], by_name["y_half"]
+    assert x_half[0] == pytest.approx(TAU * math.log(2.0), abs=1e-9)
+    # the crossing at the tick's instant is located within tol_time of it, after A's tick
+    assert 0.4 <= y_half[0] <= 0.4 + 1e-10
+    tick = next(r for r in records if r[2:] == ("A", "clock_tick") and abs(r[0] - 0.4) < 1e-12)
+    assert records.index(tick) < records.index(y_half)
+    assert records == sorted(records, key=lambda r: (r[0], r[1]))
+    assert ticks_and_crossings() == records
+    assert ticks_and_crossings(threads=2) == records
