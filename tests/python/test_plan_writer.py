@@ -228,3 +228,19 @@ def test_a_clock_connection_runs_from_the_plan_as_in_python() -> None:
     assert len(events) > 3 and events == python_events
     np.testing.assert_array_equal(time, python_time)
     np.testing.assert_array_equal(values, python_values)
+
+
+def test_a_clocked_model_exchange_fmu_runs_from_the_plan_as_in_python() -> None:
+    """sampled_signal_fmi3 as Model Exchange: its periodic clock is an fmi3_clock record, and
+    the engine alone stops at the same ticks, to the bit."""
+    system = System("sampled signal")
+    system.add_component(FMUComponent("S", fmus.path("sampled_signal_fmi3"),
+                                      interface="model-exchange", tolerance=1e-10))
+    system.initialize(0.0)
+    text = system.to_plan()
+    assert "\nfmi3_clock 0 8 0.1 0\n" in text
+    time, values, events = _run_standalone(text)
+    python_time, python_values, python_events = _python_run(system, "S")
+    assert len(events) == round(STOP / 0.1) and events == python_events
+    np.testing.assert_array_equal(time, python_time)
+    np.testing.assert_array_equal(values, python_values)
