@@ -90,7 +90,7 @@ nitpick_ignore = [
     ("py:class", "ClockStructure"),
     # what a reader or writer reads of the objects it is given (Protocols of syssimx's rooms)
     ("py:class", "syssimx.system.results.RecordedSystem"),
-    ("py:class", "syssimx.ssp.writer.WrittenSystem"),
+    ("py:class", "syssimx.ssp_format.writer.WrittenSystem"),
     ("py:class", "syssimx.system.system_history.HistorySource"),
     # OSPImported.power_bonds: the bonds an OSP structure names
     ("py:class", "syssimx.osp.build.PowerBond"),

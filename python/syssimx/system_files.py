@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Protocol
 
 if TYPE_CHECKING:
-    from .ssp.experiment import Experiment
+    from .ssp_format.experiment import Experiment
     from .system.system import System
 
 SSP_SUFFIXES = (".ssp", ".ssd")

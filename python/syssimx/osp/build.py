@@ -12,7 +12,7 @@ from urllib.parse import parse_qs, unquote, urlparse
 
 from ..components.fmu import FMUComponent, read_fmu
 from ..errors import ConfigurationError
-from ..ssp.unsupported import Unsupported
+from ..ssp_format.unsupported import Unsupported
 from ..system.algorithms import JacobiAlgorithm
 from ..system.connection import Connection
 from ..system.system import System

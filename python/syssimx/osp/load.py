@@ -5,8 +5,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..ssp.experiment import Experiment
-from ..ssp.unsupported import Unsupported
+from ..ssp_format.experiment import Experiment
+from ..ssp_format.unsupported import Unsupported
 from ..system.system import System
 from .build import PowerBond, build
 from .document import read_document, structure_file

@@ -10,6 +10,8 @@ from ..components.fmu import FMUComponent
 from ..core.port import PortType
 from ..errors import ConfigurationError
 from ..fmu.info import variable_unit
+from ..ssp_format.errors import SSPError
+from ..ssp_format.unsupported import Unsupported
 from ..system.connection import Connection
 from ..system.system import System
 from ..units import (
@@ -20,11 +22,9 @@ from ..units import (
     quantity,
     si_expression,
 )
-from .errors import SSPError
 from .parameters import ParameterValue
 from .structure import ComponentEntry, ConnectionEntry, Connector, Structure
 from .units import UnitDefinition, defined_conversion
-from .unsupported import Unsupported
 
 # the SSP connector types each FMU variable type may be declared as
 _SSP_TYPES = {PortType.REAL: {"Real"}, PortType.INT: {"Integer", "Enumeration"},

@@ -7,12 +7,12 @@ import weakref
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..ssp_format.archive import open_package
+from ..ssp_format.experiment import Experiment
+from ..ssp_format.unsupported import Unsupported
 from ..system.system import System
-from .archive import open_package
 from .build import build
-from .experiment import Experiment
 from .structure import read_structure
-from .unsupported import Unsupported
 
 
 @dataclass(frozen=True)

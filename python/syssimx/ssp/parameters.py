@@ -10,11 +10,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from .archive import Package, resolve
-from .documents import NS, element_label, local_name, parse
-from .errors import SSPError
+from ..ssp_format.archive import Package, resolve
+from ..ssp_format.documents import NS, element_label, local_name, parse
+from ..ssp_format.errors import SSPError
+from ..ssp_format.unsupported import Unsupported
 from .units import UnitDefinition, read_units
-from .unsupported import Unsupported
 
 _TYPES = ("Real", "Integer", "Boolean", "String", "Enumeration")
 _MAP_TRANSFORMATIONS = ("BooleanMappingTransformation", "IntegerMappingTransformation",

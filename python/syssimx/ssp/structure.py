@@ -13,12 +13,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .archive import Package, resolve
-from .documents import NS, element_label, local_name, parse
-from .errors import SSPError
-from .experiment import Experiment
+from ..ssp_format.archive import Package, resolve
+from ..ssp_format.documents import NS, element_label, local_name, parse
+from ..ssp_format.errors import SSPError
+from ..ssp_format.experiment import Experiment
+from ..ssp_format.unsupported import Unsupported
 from .parameters import ParameterValue, read_bindings
-from .unsupported import Unsupported
 
 FMU_TYPE = "application/x-fmu-sharedlibrary"
 OSP_STEP = "FixedStepAlgorithm"  # the Open Simulation Platform's annotation for a fixed step

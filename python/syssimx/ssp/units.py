@@ -9,8 +9,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+from ..ssp_format.documents import NS
 from ..units import BASE_UNITS, defined_unit
-from .documents import NS
 
 
 @dataclass(frozen=True)

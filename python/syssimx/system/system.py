@@ -655,8 +655,8 @@ class System:
                stop_time: float | None = None, step_size: float | None = None) -> Path:
         """Write the system (FMU components only) as an SSP 1.0 archive; the times become its
         default experiment, the step the Open Simulation Platform's fixed step annotation."""
-        from ..ssp.experiment import Experiment
-        from ..ssp.writer import write_ssp
+        from ..ssp_format.experiment import Experiment
+        from ..ssp_format.writer import write_ssp
 
         return write_ssp(self, path, Experiment(start_time, stop_time, step_size))
 
