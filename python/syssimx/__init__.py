@@ -46,10 +46,12 @@ _MODULES = {
     "SimulationError": ".errors",
     "SimulationResult": ".system",
     "SimulationTimeoutError": ".errors",
+    "StateError": ".errors",
     "StepControl": ".system",
     "SwitchRegions": ".components",
     "SysSimXError": ".errors",
     "System": ".system",
+    "SystemState": ".system",
     "SystemGraphVisualizer": ".viz.system_graph_visualizer",  # needs the optional graphviz
     "TableSource": ".components",
     "Termination": ".system",

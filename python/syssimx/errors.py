@@ -54,6 +54,15 @@ class FMUError(SysSimXError):
         self.fmu_message = fmu_message
 
 
+class StateError(SysSimXError):
+    """A system's state cannot be saved, restored or turned into bytes: names the component
+    that cannot (its `component`, None when the system as a whole is the cause)."""
+
+    def __init__(self, message: str, *, component: str | None = None) -> None:
+        super().__init__(message)
+        self.component = component
+
+
 class SimulationError(SysSimXError):
     """A run failed. Names the component, the simulation time, the fmi2 status and the FMU's
     last log message when they are known; samples recorded before the failure stay readable."""

@@ -731,7 +731,7 @@ int ssx_step_until(ssx_system *sys, double t_stop, double dt, ssx_step_outcome *
  * from a set state differs within its tolerance). The recorded history and event records are
  * not rewound: what was recorded stays, samples after a restore are appended. A state belongs to
  * the system and to the FMU instances it was saved from: free it before them. Serialized, a
- * state is bytes (malloc'd, the caller frees them) that begin with a magic, a format version
+ * state is bytes (freed with ssx_state_bytes_free) that begin with a magic, a format version
  * and a digest of the system's layout (components, ports, indicators); ssx_state_deserialize
  * refuses bytes of another layout naming what differs, and makes a state of this system that
  * ssx_state_restore puts back (FMU states through fmi2DeSerializeFMUstate). String and Binary
@@ -745,6 +745,9 @@ int ssx_state_serialize(ssx_system *sys, const ssx_system_state *state, unsigned
                         size_t *size);
 ssx_system_state *ssx_state_deserialize(ssx_system *sys, const unsigned char *bytes,
                                         size_t size);
+/* Frees the bytes ssx_state_serialize handed back (a caller that shares no C library with
+ * the engine, such as Python, cannot call the engine's free itself); NULL does nothing. */
+void ssx_state_bytes_free(unsigned char *bytes);
 
 /* A watch over ssx_run: between macro steps, about every SSX_MONITOR_INTERVAL_MS of wall
  * time, monitor(user, t) is called with the time reached; nonzero stops the run, which then

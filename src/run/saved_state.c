@@ -347,6 +347,11 @@ int ssx_state_serialize(ssx_system *sys, const ssx_system_state *state, unsigned
     return 0;
 }
 
+void ssx_state_bytes_free(unsigned char *bytes)
+{
+    free(bytes);
+}
+
 /* The bytes' layout against this system's: names the first difference. */
 static int refuse_layout(ssx_system *sys, byte_reader *theirs)
 {

@@ -17,6 +17,7 @@ _MODULES = {
     "StepControl": ".algorithms",
     "System": ".system",
     "SystemHistory": ".system_history",
+    "SystemState": ".saved_state",
     "Termination": ".termination",
     "build_system": ".loader",
     "load_config": ".loader",

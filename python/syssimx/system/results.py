@@ -147,11 +147,17 @@ class HistoryView:
     def _event_column(self, t: np.ndarray, component: str, event: str) -> np.ndarray:
         """EVENT output: True on the sample taken right after the event was handled."""
         column = np.zeros(len(t), dtype=bool)
+        # samples are in time order but for the restarts a restored state makes
+        # (System.restore_state): look in each ordered stretch only at those taken at the
+        # event's instant
+        starts = [0, *(np.flatnonzero(t[1:] < t[:-1]) + 1).tolist()]
+        stretches = list(zip(starts, [*starts[1:], len(t)], strict=True))
         for e in self._events.made():
             if (e.component, e.event) == (component, event):
-                # samples are in time order: look only at those taken at the event's instant
-                first, end = np.searchsorted(t, e.t, "left"), np.searchsorted(t, e.t, "right")
-                column[first:end] |= self.micro[first:end] == e.micro + 1
+                for start, stop in stretches:
+                    first = start + int(np.searchsorted(t[start:stop], e.t, "left"))
+                    end = start + int(np.searchsorted(t[start:stop], e.t, "right"))
+                    column[first:end] |= self.micro[first:end] == e.micro + 1
         return column
 
     @property

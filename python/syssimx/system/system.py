@@ -25,7 +25,13 @@ from ..core.events import OWN_EVENTS
 from ..core.port import PortType
 from ..core.suggest import did_you_mean
 from ..engine import defaults, ffi, lib
-from ..errors import ConfigurationError, RunInterrupted, RunTerminated, SysSimXWarning
+from ..errors import (
+    ConfigurationError,
+    RunInterrupted,
+    RunTerminated,
+    StateError,
+    SysSimXWarning,
+)
 from ..graph.analysis import SystemAnalysis, analyze_system, check_undeclared_dependencies
 from ..units import conversion
 from .algorithms import Algorithm, HybridAlgorithm, JacobiAlgorithm, StepControl
@@ -49,6 +55,7 @@ from .recorded_events import RecordedEvents
 from .results import HistoryView, SimulationResult
 from .run_signals import sigterm_stops_the_run
 from .run_stream import RunStream
+from .saved_state import SystemState, restore_state, save_state, state_from_bytes
 from .system_history import SystemHistory
 from .table_starts import start_tables
 from .termination import Termination, read_termination
@@ -650,6 +657,31 @@ class System:
     def history_bytes(self) -> int:
         """Memory the engine holds for the recorded history."""
         return int(lib().ssx_history_bytes(self._plan.sys)) if self._plan is not None else 0
+
+    # ------------------------------------------------------------------ state
+    def _initialized_plan(self, what: str) -> EnginePlan:
+        if self._plan is None or not self.is_initialized:
+            raise StateError(f"{self.name}: call initialize(t0) before {what}")
+        return self._plan
+
+    def save_state(self) -> SystemState:
+        """The whole system's state now (every component's, and the engine's between steps);
+        raises StateError naming a component that cannot save its state (a Python component,
+        an FMU without canGetAndSetFMUstate)."""
+        return save_state(self._initialized_plan("save_state"))
+
+    def restore_state(self, state: SystemState) -> None:
+        """Put the system back into `state` (saved from it since it was last built): its time
+        and termination become the state's; running on repeats what followed the save. The
+        history is not rewound: samples recorded since the save stay, later ones follow."""
+        plan = self._initialized_plan("restore_state")
+        self.t, self.termination = restore_state(plan, state)
+        plan.ran(self.t)
+
+    def state_from_bytes(self, data: bytes) -> SystemState:
+        """The state that SystemState.to_bytes turned into `data`, for this system (built as
+        the one it was saved from); restore it with restore_state."""
+        return state_from_bytes(self._initialized_plan("state_from_bytes"), data)
 
     def to_ssp(self, path: str | Path, start_time: float | None = None,
                stop_time: float | None = None, step_size: float | None = None) -> Path:
