@@ -80,6 +80,7 @@ typedef enum {
     SLOT_SET_CLOCK,
     SLOT_GET_CLOCK,
     SLOT_GET_INTERVAL,
+    SLOT_ACTIVATE_MODEL_PARTITION,
     SLOT_COUNT
 } ssx_fmu_slot;
 
@@ -212,6 +213,14 @@ typedef struct {
     size_t (*countdown_clocks)(const void *context);
     /* how many output clocks and triggered input clocks the load spec gave */
     void (*clock_counts)(const void *context, size_t *n_output, size_t *n_triggered);
+    /* Scheduled Execution: fmi3ActivateModelPartition of input clock `clock` at t; its
+     * clockUpdate callbacks read the output clocks and the countdown intervals (those read
+     * with take_clock_updates) */
+    int (*activate_model_partition)(const ssx_fmu_function *fn, void *instance,
+                                    unsigned int clock, double t);
+    /* what the partitions announced since the last take: ticked[k] for each output clock,
+     * next[k] the tick of each countdown clock (INFINITY: none); then forgotten */
+    void (*take_clock_updates)(void *context, int *ticked, double *next);
     /* what the last doStep said besides its status; NULL: only the status (FMI 2.0) */
     void (*step_outcome)(void *instance, fmu_step_outcome *outcome);
     /* the name of the variable vr, NULL when unknown; NULL: the back-end keeps no names */
@@ -232,6 +241,9 @@ extern const ssx_fmu_backend ssx_fmi3_backend;
 /* FMI 3.0 Model Exchange: fmi3InstantiateModelExchange, the Model Exchange functions instead
  * of fmi3DoStep and step mode; the same context and value adapters as Co-Simulation. */
 extern const ssx_fmu_backend ssx_fmi3_model_exchange_backend;
+/* FMI 3.0 Scheduled Execution: fmi3InstantiateScheduledExecution, then partitions activated
+ * one at a time on the calling thread (fmi3ActivateModelPartition) in Clock Activation Mode. */
+extern const ssx_fmu_backend ssx_fmi3_scheduled_backend;
 /* FMI 1.0 Co-Simulation (fmiInstantiateSlave ... fmiDoStep) and Model Exchange
  * (fmiInstantiateModel ... fmiEventUpdate): no FMU state, no directional derivatives. */
 extern const ssx_fmu_backend ssx_fmi1_backend;

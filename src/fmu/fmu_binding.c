@@ -152,14 +152,17 @@ static void unload(void *library, ssx_remote *remote)
 /* The back-end of each standard's interfaces (NULL: not one syssimx runs). */
 static const ssx_fmu_backend *backend_of(const ssx_fmu_load_spec *spec)
 {
-    static const ssx_fmu_backend *const backends[][2] = {
-        [SSX_FMI1] = {&ssx_fmi1_backend, &ssx_fmi1_model_exchange_backend},
-        [SSX_FMI2] = {&ssx_fmi2_backend, &ssx_fmi2_model_exchange_backend},
-        [SSX_FMI3] = {&ssx_fmi3_backend, &ssx_fmi3_model_exchange_backend},
+    static const ssx_fmu_backend *const backends[][3] = {
+        [SSX_FMI1] = {&ssx_fmi1_backend, &ssx_fmi1_model_exchange_backend, NULL},
+        [SSX_FMI2] = {&ssx_fmi2_backend, &ssx_fmi2_model_exchange_backend, NULL},
+        [SSX_FMI3] = {&ssx_fmi3_backend, &ssx_fmi3_model_exchange_backend,
+                      &ssx_fmi3_scheduled_backend},
     };
     size_t n_versions = sizeof backends / sizeof backends[0];
     if ((size_t)spec->version >= n_versions ||
-        (spec->interface != SSX_CO_SIMULATION && spec->interface != SSX_MODEL_EXCHANGE)) {
+        (spec->interface != SSX_CO_SIMULATION && spec->interface != SSX_MODEL_EXCHANGE &&
+         spec->interface != SSX_SCHEDULED_EXECUTION)) {
+
         return NULL;
     }
     return backends[spec->version][spec->interface];
@@ -781,6 +784,18 @@ int ssx_fmu_plan_clocks(ssx_fmu *fmu, double t)
         return 0; /* nothing to ask: fmi3GetIntervalDecimal is not needed */
     }
     return CHECKED(fmu, SLOT_GET_INTERVAL, plan_clocks, t);
+}
+
+int ssx_fmu_activate_model_partition(ssx_fmu *fmu, unsigned int clock, double t)
+{
+    return CHECKED(fmu, SLOT_ACTIVATE_MODEL_PARTITION, activate_model_partition, clock, t);
+}
+
+void ssx_fmu_take_clock_updates(ssx_fmu *fmu, int *ticked, double *next)
+{
+    if (fmu->backend->take_clock_updates != NULL) {
+        fmu->backend->take_clock_updates(fmu->rest->context, ticked, next);
+    }
 }
 
 void ssx_fmu_clock_counts(const ssx_fmu *fmu, size_t *n_output, size_t *n_triggered)

@@ -1,6 +1,6 @@
-/* The FMI 3.0 back-ends of the FMU binding, Co-Simulation and Model Exchange: the fmi3
- * functions, which of them a binary must export for each interface, and adapters that call
- * each with its fmi3 type.
+/* The FMI 3.0 back-ends of the FMU binding, Co-Simulation, Model Exchange and Scheduled
+ * Execution: the fmi3 functions, which of them a binary must export for each interface, and
+ * adapters that call each with its fmi3 type.
  *
  * The engine speaks in three port types; FMI 3.0 has eleven numeric ones: the value table
  * (fmu_fmi3_values.c) turns one engine call into one fmi3 call per FMI 3.0 type met.
@@ -884,6 +884,171 @@ static int get_number_of_event_indicators(const ssx_fmu_function *fn, void *inst
                      fmi3GetNumberOfEventIndicatorsTYPE)(((fmi3_context *)instance)->instance, n);
 }
 
+/* ------------------------------------------------------------------ Scheduled Execution */
+
+/* Only the calls of its life cycle and partitions are required: the value calls are needed for
+ * the types its ports have, and a hand-written binary may export no others. */
+static const ssx_fmu_function_row fmi3_scheduled_functions[] = {
+    {"fmi3InstantiateScheduledExecution", SLOT_INSTANTIATE, 1},
+    {"fmi3FreeInstance", SLOT_FREE_INSTANCE, 1},
+    {"fmi3EnterInitializationMode", SLOT_SETUP_EXPERIMENT, 1},
+    {"fmi3EnterInitializationMode", SLOT_ENTER_INITIALIZATION_MODE, 1},
+    {"fmi3ExitInitializationMode", SLOT_EXIT_INITIALIZATION_MODE, 1},
+    {"fmi3Terminate", SLOT_TERMINATE, 1},
+    {"fmi3ActivateModelPartition", SLOT_ACTIVATE_MODEL_PARTITION, 1},
+    {"fmi3Reset", SLOT_RESET, 0},
+    {"fmi3GetFloat64", SLOT_GET_REAL, 0},
+    {"fmi3GetInt32", SLOT_GET_INTEGER, 0},
+    {"fmi3GetBoolean", SLOT_GET_BOOLEAN, 0},
+    {"fmi3SetFloat64", SLOT_SET_REAL, 0},
+    {"fmi3SetInt32", SLOT_SET_INTEGER, 0},
+    {"fmi3SetBoolean", SLOT_SET_BOOLEAN, 0},
+    {"fmi3GetFloat32", SLOT_GET_FLOAT32, 0},
+    {"fmi3GetInt8", SLOT_GET_INT8, 0},
+    {"fmi3GetUInt8", SLOT_GET_UINT8, 0},
+    {"fmi3GetInt16", SLOT_GET_INT16, 0},
+    {"fmi3GetUInt16", SLOT_GET_UINT16, 0},
+    {"fmi3GetUInt32", SLOT_GET_UINT32, 0},
+    {"fmi3GetInt64", SLOT_GET_INT64, 0},
+    {"fmi3GetUInt64", SLOT_GET_UINT64, 0},
+    {"fmi3SetFloat32", SLOT_SET_FLOAT32, 0},
+    {"fmi3SetInt8", SLOT_SET_INT8, 0},
+    {"fmi3SetUInt8", SLOT_SET_UINT8, 0},
+    {"fmi3SetInt16", SLOT_SET_INT16, 0},
+    {"fmi3SetUInt16", SLOT_SET_UINT16, 0},
+    {"fmi3SetUInt32", SLOT_SET_UINT32, 0},
+    {"fmi3SetInt64", SLOT_SET_INT64, 0},
+    {"fmi3SetUInt64", SLOT_SET_UINT64, 0},
+    /* needed only when the FMU has output clocks, countdown or tunable clocks */
+    {"fmi3GetClock", SLOT_GET_CLOCK, 0},
+    {"fmi3GetIntervalDecimal", SLOT_GET_INTERVAL, 0},
+};
+
+/* The context of the partition running on this thread, NULL when `environment` is not the
+ * one handed to the FMU being called or no partition runs. */
+static fmi3_context *running_partition(const void *environment)
+{
+    fmi3_context *ctx = ssx_fmu_environment_claimed(environment) != NULL
+                        ? (fmi3_context *)environment : NULL;
+    return ctx != NULL && ctx->in_partition ? ctx : NULL;
+}
+
+/* The FMU's intermediate update inside a partition: an output clock ticked or a countdown
+ * clock's interval became known. Both are read now, as the FMU may clear them when the
+ * partition ends; a countdown clock ticks its interval after the partition's time. */
+static void answer_clock_update(fmi3InstanceEnvironment environment)
+{
+    fmi3_context *ctx = running_partition(environment);
+    if (ctx == NULL) {
+        return;
+    }
+    const ssx_fmu_function *fn = ctx->fn;
+    if (ctx->n_countdown_clocks > 0) {
+        int status = fn[SLOT_GET_INTERVAL] == NULL ? fmi3Error
+            : (int)FMI3(fn, SLOT_GET_INTERVAL, fmi3GetIntervalDecimalTYPE)(
+                  ctx->instance, ctx->countdown_clock_vr, ctx->n_countdown_clocks,
+                  ctx->countdown_answer, ctx->countdown_qualifier);
+        ctx->update_status = worse_status(ctx->update_status, status);
+        for (size_t i = 0; status <= fmi3Warning && i < ctx->n_countdown_clocks; ++i) {
+            if (ctx->countdown_qualifier[i] == fmi3IntervalChanged) {
+                ctx->countdown_next[i] = ctx->partition_time + ctx->countdown_answer[i];
+            }
+        }
+    }
+    if (ctx->n_output_clocks > 0) {
+        int status = fn[SLOT_GET_CLOCK] == NULL ? fmi3Error
+            : (int)FMI3(fn, SLOT_GET_CLOCK, fmi3GetClockTYPE)(
+                  ctx->instance, ctx->output_clock_vr, ctx->n_output_clocks,
+                  ctx->output_clock_active);
+        ctx->update_status = worse_status(ctx->update_status, status);
+        for (size_t k = 0; status <= fmi3Warning && k < ctx->n_output_clocks; ++k) {
+            ctx->output_clock_ticked[k] = ctx->output_clock_ticked[k] || ctx->output_clock_active[k];
+        }
+    }
+}
+
+/* The preemption lock takes no environment: the partition running on this thread is the one
+ * whose FMU locks. The engine runs one partition at a time, so there is nothing to hold off;
+ * the lock only has to be balanced. */
+static fmi3_context *locking_partition(void)
+{
+    ssx_fmu_environment *calling = ssx_fmu_environment_calling();
+    return calling != NULL ? running_partition(calling->handed) : NULL;
+}
+
+static void lock_preemption(void)
+{
+    fmi3_context *ctx = locking_partition();
+    if (ctx != NULL) {
+        ++ctx->preemption_depth;
+    }
+}
+
+static void unlock_preemption(void)
+{
+    fmi3_context *ctx = locking_partition();
+    if (ctx != NULL) {
+        --ctx->preemption_depth;
+    }
+}
+
+static void *instantiate_scheduled(const ssx_fmu_function *fn, void *context,
+                                   ssx_fmu_environment *environment, const char *instance_name,
+                                   const char *token, const char *resource_path, int logging_on)
+{
+    fmi3_context *ctx = context;
+    ctx->environment = environment;
+    environment->handed = ctx;
+    ctx->fn = fn;
+    ctx->in_partition = 0;
+    ctx->preemption_depth = 0;
+    forget_countdown_plan(ctx);
+    ctx->instance = FMI3(fn, SLOT_INSTANTIATE, fmi3InstantiateScheduledExecutionTYPE)(
+        instance_name, token, resource_path, fmi3False, logging_on ? fmi3True : fmi3False, ctx,
+        (fmi3LogMessageCallback)logger, answer_clock_update, lock_preemption, unlock_preemption);
+    return ctx->instance != NULL ? ctx : NULL;
+}
+
+static int activate_model_partition(const ssx_fmu_function *fn, void *instance,
+                                    unsigned int clock, double t)
+{
+    fmi3_context *ctx = instance;
+    ctx->in_partition = 1;
+    ctx->partition_time = t;
+    ctx->update_status = fmi3OK;
+    int status = (int)FMI3(fn, SLOT_ACTIVATE_MODEL_PARTITION, fmi3ActivateModelPartitionTYPE)(
+        ctx->instance, clock, t);
+    ctx->in_partition = 0;
+    if (ctx->update_status > fmi3Warning) {
+        fmi3_say(ctx, "the clockUpdate callback's fmi3GetClock or fmi3GetIntervalDecimal "
+                      "failed in the partition of clock %u at t=%.17g", clock, t);
+    }
+    status = worse_status(status, ctx->update_status);
+    if (ctx->preemption_depth != 0 && status <= fmi3Warning) {
+        fmi3_say(ctx, ctx->preemption_depth < 0
+                 ? "the FMU unlocked preemption it had not locked (partition of clock %u at "
+                   "t=%.17g)"
+                 : "the partition of clock %u returned with preemption locked (t=%.17g)",
+                 clock, t);
+        ctx->preemption_depth = 0;
+        status = fmi3Error;
+    }
+    return status;
+}
+
+static void take_clock_updates(void *context, int *ticked, double *next)
+{
+    fmi3_context *ctx = context;
+    for (size_t k = 0; k < ctx->n_output_clocks; ++k) {
+        ticked[k] = ctx->output_clock_ticked[k] != fmi3False;
+        ctx->output_clock_ticked[k] = fmi3False;
+    }
+    for (size_t i = 0; i < ctx->n_countdown_clocks; ++i) {
+        next[i] = ctx->countdown_next[i];
+        ctx->countdown_next[i] = INFINITY;
+    }
+}
+
 /* The adapters both interfaces share. */
 #define FMI3_ADAPTERS                                                                         \
     .version = "FMI 3.0", .status_names = fmi3_status_names,                                  \
@@ -943,4 +1108,18 @@ const ssx_fmu_backend ssx_fmi3_backend = {
     .tick_triggered_clock = tick_triggered_clock,
     .clock_counts = clock_counts,
     .step_outcome = step_outcome,
+};
+
+const ssx_fmu_backend ssx_fmi3_scheduled_backend = {
+    FMI3_ADAPTERS,
+    .standard = "FMI 3.0 Scheduled Execution",
+    .interface = SSX_SCHEDULED_EXECUTION,
+    .functions = fmi3_scheduled_functions,
+    .n_functions = sizeof fmi3_scheduled_functions / sizeof fmi3_scheduled_functions[0],
+    .instantiate = instantiate_scheduled,
+    .exit_initialization_mode = exit_initialization_mode_model_exchange,
+    .activate_model_partition = activate_model_partition,
+    .take_clock_updates = take_clock_updates,
+    .clock_counts = clock_counts,
+    .countdown_clocks = countdown_clocks,
 };

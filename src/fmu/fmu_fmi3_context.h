@@ -66,6 +66,7 @@ typedef struct {
     size_t n_triggered_clocks;
     unsigned int *output_clock_vr;
     fmi3Clock *output_clock_active; /* scratch for fmi3GetClock */
+    fmi3Clock *output_clock_ticked; /* Scheduled Execution: ticked in the running partition */
     size_t n_output_clocks;
     /* the countdown clocks (ssx_fmi3_variables): the next tick each is planned for (INFINITY:
      * none), the interval last announced, and scratch for the calls */
@@ -81,6 +82,13 @@ typedef struct {
     void **countdown_states;
     double *countdown_plans;
     size_t n_countdown_states;
+    /* Scheduled Execution: the partition running and its activation time, the worst status
+     * of the calls its clockUpdate callbacks made, and the preemption lock's depth (below 0
+     * once the FMU unlocked what it had not locked) */
+    int in_partition;
+    double partition_time;
+    int update_status;
+    int preemption_depth;
     const ssx_fmu_function *fn; /* for the callback */
     /* one type's part of a batch: value references, positions in the engine's call, values */
     unsigned int *part_vr;

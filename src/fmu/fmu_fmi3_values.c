@@ -172,7 +172,9 @@ static int keep_triggered_and_output_clocks(fmi3_context *ctx,
     if (n_output > 0) {
         ctx->output_clock_vr = malloc(n_output * sizeof *ctx->output_clock_vr);
         ctx->output_clock_active = malloc(n_output * sizeof *ctx->output_clock_active);
-        if (ctx->output_clock_vr == NULL || ctx->output_clock_active == NULL) {
+        ctx->output_clock_ticked = calloc(n_output, sizeof *ctx->output_clock_ticked);
+        if (ctx->output_clock_vr == NULL || ctx->output_clock_active == NULL ||
+            ctx->output_clock_ticked == NULL) {
             snprintf(error, error_size, "out of memory keeping %zu clocks", n_output);
             return -1;
         }
@@ -306,6 +308,7 @@ void fmi3_values_free(fmi3_context *ctx)
     free(ctx->triggered_clock_vr);
     free(ctx->output_clock_vr);
     free(ctx->output_clock_active);
+    free(ctx->output_clock_ticked);
     free(ctx->countdown_clock_vr);
     free(ctx->countdown_next);
     free(ctx->countdown_interval);
@@ -423,6 +426,9 @@ static int get_typed(const ssx_fmu_function *fn, fmi3Instance instance, ssx_fmi3
                      const unsigned int *vr, size_t n, void *values, size_t n_values)
 {
     ssx_fmu_function f = fn[getter[type]];
+    if (f == NULL) {
+        return fmi3Error; /* a Scheduled Execution binary need not export every type's call */
+    }
     switch (type) {
     case SSX_FMI3_FLOAT64:
         return (int)((fmi3GetFloat64TYPE *)f)(instance, vr, n, values, n_values);
@@ -455,6 +461,9 @@ static int set_typed(const ssx_fmu_function *fn, fmi3Instance instance, ssx_fmi3
                      const unsigned int *vr, size_t n, const void *values, size_t n_values)
 {
     ssx_fmu_function f = fn[setter[type]];
+    if (f == NULL) {
+        return fmi3Error; /* a Scheduled Execution binary need not export every type's call */
+    }
     switch (type) {
     case SSX_FMI3_FLOAT64:
         return (int)((fmi3SetFloat64TYPE *)f)(instance, vr, n, values, n_values);

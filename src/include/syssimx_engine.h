@@ -155,7 +155,11 @@ typedef struct {
 
 /* The FMI standard and the interface a binary is loaded as. */
 typedef enum { SSX_FMI1 = 1, SSX_FMI2 = 2, SSX_FMI3 = 3 } ssx_fmi_version;
-typedef enum { SSX_CO_SIMULATION = 0, SSX_MODEL_EXCHANGE = 1 } ssx_fmu_interface;
+typedef enum {
+    SSX_CO_SIMULATION = 0,
+    SSX_MODEL_EXCHANGE = 1,
+    SSX_SCHEDULED_EXECUTION = 2 /* FMI 3.0 only: ssx_fmu_activate_model_partition */
+} ssx_fmu_interface;
 
 /* Where bindings are made: those loaded with one pool lie next to each other in the order they
  * were loaded, a few to a page, instead of between the other allocations of each load. A system
@@ -199,6 +203,16 @@ int ssx_fmu_get_binary(ssx_fmu *fmu, const unsigned int *vr, size_t n, size_t *s
                        const unsigned char **values);
 int ssx_fmu_set_binary(ssx_fmu *fmu, const unsigned int *vr, size_t n, const size_t *sizes,
                        const unsigned char *const *values);
+/* FMI 3.0 Scheduled Execution (loaded with SSX_SCHEDULED_EXECUTION, initialized into Clock
+ * Activation Mode): runs the model partition of input clock `clock` at t. While it runs, each
+ * clockUpdate callback of the FMU reads the output clocks (fmi3GetClock) and the countdown
+ * clocks' intervals (fmi3GetIntervalDecimal) of the load spec; the preemption lock must be
+ * balanced when it returns, else the call fails. */
+int ssx_fmu_activate_model_partition(ssx_fmu *fmu, unsigned int clock, double t);
+/* What the partitions run since the last take announced, then forgotten: ticked[k] (one per
+ * output clock of the load spec) whether output clock k ticked, next[i] (one per countdown
+ * clock) the time countdown clock i is to tick, INFINITY when none was announced. */
+void ssx_fmu_take_clock_updates(ssx_fmu *fmu, int *ticked, double *next);
 
 /* The name of a status an ssx_fmu_* call returned, without its standard's prefix: "OK",
  * "Warning", "Discard", "Error", "Fatal", "Pending", and "failed" for -1; NULL for any other. */
