@@ -53,9 +53,28 @@ grep -E "^(Done|stat::number_of_executed_units|stat::peak_rss_mb)" "$out/fuzz.lo
 # the plan reader: its seeds, then the same bounded run
 plan_seconds=${PLAN_FUZZ_SECONDS:-60}
 rm -rf "$out/plan_corpus" && mkdir -p "$out/plan_corpus"
-clang -g -O1 -std=c11 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all \
-  -Isrc/include -Isrc/plan tests/fuzz/plan_fuzz.c src/plan/plan_reader.c src/plan/plan_writer.c \
-  src/plan/plan_schema.c -lm -o "$out/plan_fuzz"
+# the plan's words (event sources, localization methods) are the engine's own tables, so the
+# fuzzer is linked with the engine's sources and include folders as src/meson.build lists them
+mapfile -t engine_flags < <(python3 - <<'PY'
+import os
+import re
+from pathlib import Path
+import fmpy
+print("-isystem")
+print(os.path.join(os.path.dirname(fmpy.__file__), "c-code"))  # the FMI headers, as meson.build
+text = Path("src/meson.build").read_text()
+sources = re.search(r"engine_sources = files\((.*?)\)", text, re.S).group(1)
+folders = re.search(r"engine_private_inc = include_directories\((.*?)\)", text, re.S).group(1)
+for folder in re.findall(r"'([^']+)'", folders):
+    print(f"-Isrc/{folder}")
+for source in re.findall(r"'([^']+\.c)'", sources):
+    print(f"src/{source}")
+PY
+)
+clang -g -O1 -std=c11 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -pthread \
+  tests/fuzz/plan_fuzz.c "${engine_flags[@]}" -l:libsundials_cvode.a -l:libsundials_nvecserial.a \
+  -l:libsundials_sunmatrixdense.a -l:libsundials_sunlinsoldense.a \
+  -l:libsundials_sunnonlinsolnewton.a -l:libsundials_generic.a -ldl -lm -o "$out/plan_fuzz"
 cp tests/fuzz/plan_seeds/* "$out/plan_corpus/"
 if ! "$out/plan_fuzz" -max_total_time="$plan_seconds" -max_len=65536 -timeout=10 \
   -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$out/artifacts/plan-" \

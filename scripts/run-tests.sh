@@ -21,7 +21,7 @@ fi
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
   meson test -C build/asan --print-errorlogs
 
-echo "== fuzz the modelDescription reader (libFuzzer, ASan, UBSan; ${FUZZ_SECONDS:-90} s)"
+echo "== fuzz the modelDescription reader (${FUZZ_SECONDS:-90} s) and the plan reader (${PLAN_FUZZ_SECONDS:-60} s) (libFuzzer, ASan, UBSan)"
 bash "$root/scripts/fuzz.sh"
 
 echo "== pytest memory tests (AddressSanitizer engine and FMUs)"
