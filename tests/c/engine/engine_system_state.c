@@ -175,7 +175,7 @@ static void serialized_state_goes_on_in_a_new_system(void)
     CHECK_OK(other, ssx_initialize(other, 0.0));
     CHECK(ssx_state_deserialize(other, bytes, size) == NULL);
     CHECK_MESSAGE(other, "has 2 components");
-    free(bytes);
+    ssx_state_bytes_free(bytes);
     ssx_system_free(other);
     ssx_fmu_free(second);
     ssx_fmu_free(other_fmu);
