@@ -110,6 +110,12 @@ def test_a_state_of_another_system_is_refused():
         other.restore_state(system.save_state())
 
 
+def test_bytes_are_no_state_to_restore():
+    system, _, _ = _run_to_save_point()
+    with pytest.raises(StateError, match="state_from_bytes"):
+        system.restore_state(system.save_state().to_bytes())
+
+
 def test_a_closed_state_is_refused():
     system, _, _ = _run_to_save_point()
     state = system.save_state()

@@ -40,13 +40,14 @@ class SystemState:
 
     @property
     def closed(self) -> bool:
+        """Whether the state was freed (close())."""
         return not self._finalizer.alive
 
     def close(self) -> None:
         """Free the state now; using it afterwards raises StateError."""
         self._finalizer()
 
-    def handle_for(self, plan: EnginePlan) -> Any:
+    def _handle_for(self, plan: EnginePlan) -> Any:
         """The engine's state, checked to belong to `plan` (the System's current engine
         system)."""
         if self.closed:
@@ -62,7 +63,7 @@ class SystemState:
         """The state as bytes (the FMUs' serialized states within), which state_from_bytes of
         this System or of an identically built one reads back."""
         plan = self._plan
-        handle = self.handle_for(plan)
+        handle = self._handle_for(plan)
         out = ffi.new("unsigned char **")
         size = ffi.new("size_t *")
         if lib().ssx_state_serialize(plan.sys, handle, out, size) != 0:
@@ -83,7 +84,10 @@ def save_state(plan: EnginePlan) -> SystemState:
 
 def restore_state(plan: EnginePlan, state: SystemState) -> tuple[float, Termination | None]:
     """Put `state` back into the plan's engine system; the time and termination it holds."""
-    if lib().ssx_state_restore(plan.sys, state.handle_for(plan)) != 0:
+    if not isinstance(state, SystemState):
+        raise StateError(f"system {plan.name!r}: restore_state takes a SystemState, not "
+                         f"{type(state).__name__} (bytes become one through state_from_bytes)")
+    if lib().ssx_state_restore(plan.sys, state._handle_for(plan)) != 0:
         raise state_error(plan)
     return float(lib().ssx_time(plan.sys)), read_termination(plan)
 
