@@ -87,7 +87,9 @@ static void write_extra_variables(FILE *out, size_t n_variables)
             fputc('"', out);
         } else {
             fprintf(out, "intervalVariability=\"%s\"",
-                    clock->kind == CLOCK_COUNTDOWN ? "countdown" : "triggered");
+                    clock->kind == CLOCK_COUNTDOWN  ? "countdown"
+                    : clock->kind == CLOCK_CHANGING ? "changing"
+                                                    : "triggered");
         }
         fputs(" description=\"", out);
         write_escaped(out, clock->description);

@@ -325,7 +325,7 @@ fmi3Status fmi3GetIntervalDecimal(fmi3Instance instance, const fmi3ValueReferenc
                                                "clock",
                                          valueReferences[i]));
         model_clock_kind kind = inst->model->clocks[clock].kind;
-        if (kind == CLOCK_COUNTDOWN) {
+        if (kind == CLOCK_COUNTDOWN || kind == CLOCK_CHANGING) {
             int changed = 0;
             intervals[i] = inst->model->clock_interval(inst->values, (size_t)clock, &changed);
             qualifiers[i] = changed ? fmi3IntervalChanged : fmi3IntervalUnchanged;

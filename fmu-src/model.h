@@ -144,8 +144,12 @@ typedef struct {
  * model's internal event `indicator` fires (the step returns early there; the importer reads
  * it with fmi3GetClock in Event Mode). CLOCK_COUNTDOWN: an input clock (intervalVariability
  * "countdown") whose next tick the model announces: the importer asks for its interval
- * (fmi3GetIntervalDecimal) in Initialization and Event Mode, and ticks it that long after. */
-typedef enum { CLOCK_PERIODIC = 0, CLOCK_TRIGGERED, CLOCK_OUTPUT, CLOCK_COUNTDOWN } model_clock_kind;
+ * (fmi3GetIntervalDecimal) in Initialization and Event Mode, and ticks it that long after.
+ * CLOCK_CHANGING: the same, intervalVariability "changing": the clock ticks every announced
+ * interval until the model announces another. */
+typedef enum {
+    CLOCK_PERIODIC = 0, CLOCK_TRIGGERED, CLOCK_OUTPUT, CLOCK_COUNTDOWN, CLOCK_CHANGING
+} model_clock_kind;
 
 typedef struct {
     const char *name;
@@ -209,8 +213,9 @@ typedef struct {
     const model_clock *clocks;
     size_t n_clocks;
     void (*clock_tick)(double *v, double t, const int *active);
-    /* CLOCK_COUNTDOWN clocks: the interval from now to the next tick of clock `clock`, and in
-     * *changed whether it is newly announced (the model forgets that it announced it) */
+    /* CLOCK_COUNTDOWN and CLOCK_CHANGING clocks: the interval to the next tick of clock
+     * `clock`, and in *changed whether it is newly announced (the model forgets that it
+     * announced it) */
     double (*clock_interval)(double *v, size_t clock, int *changed);
 } model_definition;
 

@@ -473,7 +473,7 @@ static double next_tick_after(const fmi3_context *ctx, double t)
 }
 
 /* In event mode at t: the countdown clocks planned for t tick (fmi3SetClock; none: nothing to
- * call), and each waits for its next interval. */
+ * call); each waits for its next interval, or when it repeats, ticks again one interval on. */
 static int tick_countdown_clocks(const ssx_fmu_function *fn, fmi3_context *ctx, double t)
 {
     size_t n = 0;
@@ -481,7 +481,8 @@ static int tick_countdown_clocks(const ssx_fmu_function *fn, fmi3_context *ctx, 
         int due = fabs(ctx->countdown_next[i] - t) <= countdown_closeness(ctx, i);
         ctx->countdown_active[i] = due ? fmi3True : fmi3False;
         if (due) {
-            ctx->countdown_next[i] = INFINITY;
+            ctx->countdown_next[i] =
+                ctx->countdown_repeats[i] ? t + ctx->countdown_interval[i] : INFINITY;
             ++n;
         }
     }

@@ -71,6 +71,7 @@ typedef struct {
     /* the countdown clocks (ssx_fmi3_variables): the next tick each is planned for (INFINITY:
      * none), the interval last announced, and scratch for the calls */
     unsigned int *countdown_clock_vr;
+    unsigned char *countdown_repeats; /* tunable or changing: ticks every interval */
     double *countdown_next;
     double *countdown_interval;
     fmi3Float64 *countdown_answer;

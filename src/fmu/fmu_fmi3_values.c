@@ -200,7 +200,9 @@ static int keep_countdown_clocks(fmi3_context *ctx, const ssx_fmi3_variables *va
     ctx->countdown_answer = malloc(n * sizeof *ctx->countdown_answer);
     ctx->countdown_qualifier = malloc(n * sizeof *ctx->countdown_qualifier);
     ctx->countdown_active = malloc(n * sizeof *ctx->countdown_active);
+    ctx->countdown_repeats = calloc(n, sizeof *ctx->countdown_repeats);
     if (ctx->countdown_clock_vr == NULL || ctx->countdown_next == NULL ||
+        ctx->countdown_repeats == NULL ||
         ctx->countdown_interval == NULL || ctx->countdown_answer == NULL ||
         ctx->countdown_qualifier == NULL || ctx->countdown_active == NULL) {
         snprintf(error, error_size, "out of memory keeping %zu clocks", n);
@@ -208,6 +210,10 @@ static int keep_countdown_clocks(fmi3_context *ctx, const ssx_fmi3_variables *va
     }
     memcpy(ctx->countdown_clock_vr, variables->countdown_clock_vr,
            n * sizeof *ctx->countdown_clock_vr);
+    if (variables->countdown_clock_repeats != NULL) {
+        memcpy(ctx->countdown_repeats, variables->countdown_clock_repeats,
+               n * sizeof *ctx->countdown_repeats);
+    }
     for (size_t i = 0; i < n; ++i) {
         ctx->countdown_next[i] = INFINITY;
         ctx->countdown_interval[i] = 0.0;
@@ -310,6 +316,7 @@ void fmi3_values_free(fmi3_context *ctx)
     free(ctx->output_clock_active);
     free(ctx->output_clock_ticked);
     free(ctx->countdown_clock_vr);
+    free(ctx->countdown_repeats);
     free(ctx->countdown_next);
     free(ctx->countdown_interval);
     free(ctx->countdown_answer);

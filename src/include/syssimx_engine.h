@@ -151,6 +151,9 @@ typedef struct {
      * FMU's step ending there as at a periodic tick. NULL / 0: none. */
     const unsigned int *countdown_clock_vr;
     size_t n_countdown_clocks;
+    /* 1 for a countdown clock that repeats (intervalVariability tunable or changing): after a
+     * tick it ticks again one interval later, until the FMU announces another. NULL: none. */
+    const unsigned char *countdown_clock_repeats;
 } ssx_fmi3_variables;
 
 /* The FMI standard and the interface a binary is loaded as. */

@@ -57,7 +57,8 @@ static int64_t component_of(const ssx_plan *p, size_t r)
     case PLAN_TABLE_COLUMN: case PLAN_FMU_EXPERIMENT: case PLAN_START: case PLAN_ISOLATED:
     case PLAN_FMI3_VARIABLES: case PLAN_FMI3_VARIABLE: case PLAN_FMI3_ELEMENT:
     case PLAN_FMI3_INTERMEDIATE: case PLAN_FMI3_CLOCK: case PLAN_FMI3_TRIGGERED_CLOCK:
-    case PLAN_FMI3_OUTPUT_CLOCK: case PLAN_FMI3_COUNTDOWN_CLOCK: case PLAN_OUTPUT:
+    case PLAN_FMI3_OUTPUT_CLOCK: case PLAN_FMI3_COUNTDOWN_CLOCK: case PLAN_FMI3_CHANGING_CLOCK:
+    case PLAN_OUTPUT:
     case PLAN_INPUT:
     case PLAN_RESTART_HANDLER:
         return p->values[p->first_value[r]].as.integer;
@@ -115,7 +116,7 @@ typedef struct {
     ssx_fmi3_variables table;
     fmi3_type_table described;
     unsigned int *vr, *fmu_vr, *intermediate, *clock_vr, *triggered, *output_clocks, *countdown;
-    unsigned char *type;
+    unsigned char *type, *repeats; /* repeats: of each countdown clock, 1 for a changing one */
     const char **name;
     size_t *element, *size;
     double *start, *period, *shift;
@@ -130,6 +131,7 @@ static void fmi3_table_free(fmi3_table *t)
     free(t->triggered);
     free(t->output_clocks);
     free(t->countdown);
+    free(t->repeats);
     free(t->type);
     free(t->name);
     free(t->element);
@@ -184,7 +186,8 @@ static int fmi3_table_make(builder *b, int component, const char *folder, int mo
         n_clocks += p->kind[r] == PLAN_FMI3_CLOCK;
         n_triggered += p->kind[r] == PLAN_FMI3_TRIGGERED_CLOCK;
         n_output_clocks += p->kind[r] == PLAN_FMI3_OUTPUT_CLOCK;
-        n_countdown += p->kind[r] == PLAN_FMI3_COUNTDOWN_CLOCK;
+        n_countdown += p->kind[r] == PLAN_FMI3_COUNTDOWN_CLOCK ||
+                       p->kind[r] == PLAN_FMI3_CHANGING_CLOCK;
         flags_given |= p->kind[r] == PLAN_FMI3_VARIABLES;
     }
     if (n == 0 && fmi3_table_describe(b, component, folder, t) != 0) {
@@ -205,9 +208,10 @@ static int fmi3_table_make(builder *b, int component, const char *folder, int mo
     t->triggered = calloc(n_triggered ? n_triggered : 1, sizeof *t->triggered);
     t->output_clocks = calloc(n_output_clocks ? n_output_clocks : 1, sizeof *t->output_clocks);
     t->countdown = calloc(n_countdown ? n_countdown : 1, sizeof *t->countdown);
+    t->repeats = calloc(n_countdown ? n_countdown : 1, sizeof *t->repeats);
     if (!t->vr || !t->type || !t->name || !t->fmu_vr || !t->element || !t->size || !t->start ||
         !t->intermediate || !t->clock_vr || !t->period || !t->shift || !t->triggered ||
-        !t->output_clocks || !t->countdown) {
+        !t->output_clocks || !t->countdown || !t->repeats) {
         return build_failed(b, "out of memory");
     }
     size_t v = 0, i = 0, c = 0, triggered = 0, output_clocks = 0, countdown = 0;
@@ -251,6 +255,8 @@ static int fmi3_table_make(builder *b, int component, const char *folder, int mo
             t->output_clocks[output_clocks++] = (unsigned int)plan_next_integer(&cursor);
             break;
         case PLAN_FMI3_COUNTDOWN_CLOCK:
+        case PLAN_FMI3_CHANGING_CLOCK:
+            t->repeats[countdown] = p->kind[r] == PLAN_FMI3_CHANGING_CLOCK;
             t->countdown[countdown++] = (unsigned int)plan_next_integer(&cursor);
             break;
         default:
@@ -289,6 +295,7 @@ static int fmi3_table_make(builder *b, int component, const char *folder, int mo
     t->table.n_output_clocks = n_output_clocks;
     t->table.countdown_clock_vr = n_countdown ? t->countdown : NULL;
     t->table.n_countdown_clocks = n_countdown;
+    t->table.countdown_clock_repeats = n_countdown ? t->repeats : NULL;
     return 0;
 }
 

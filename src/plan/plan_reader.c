@@ -661,6 +661,7 @@ static int define(reader *r, int kind)
     case PLAN_FMI3_TRIGGERED_CLOCK:
     case PLAN_FMI3_OUTPUT_CLOCK:
     case PLAN_FMI3_COUNTDOWN_CLOCK:
+    case PLAN_FMI3_CHANGING_CLOCK:
         return needs_fmu(r, c, 3);
     case PLAN_OUTPUT:
         return count_port(r, p->n_outputs, c);

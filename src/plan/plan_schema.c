@@ -79,6 +79,7 @@ const plan_record_schema plan_schema[PLAN_RECORD_KIND_COUNT] = {
     [PLAN_FMI3_TRIGGERED_CLOCK] = {"fmi3_triggered_clock", "cu", "COMPONENT VR"},
     [PLAN_FMI3_OUTPUT_CLOCK] = {"fmi3_output_clock", "cu", "COMPONENT VR"},
     [PLAN_FMI3_COUNTDOWN_CLOCK] = {"fmi3_countdown_clock", "cu", "COMPONENT VR"},
+    [PLAN_FMI3_CHANGING_CLOCK] = {"fmi3_changing_clock", "cu", "COMPONENT VR"},
 };
 
 static const char *const value_types[] = {"real", "integer", "boolean", "string", "binary", NULL};

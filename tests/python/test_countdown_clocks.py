@@ -1,8 +1,10 @@
-"""FMI 3.0 countdown clocks in Co-Simulation, with the toolchain's timer_fmi3: it announces its
-first alarm `delay` seconds ahead (fmi3GetIntervalDecimal, qualifier changed) and, at each
-alarm, the next one `growth` times further ahead than the last. With delay 0.1 and growth 2 the
-alarms ring at 0.1, 0.3, 0.7 and 1.5 s: the engine asks for the interval after
-initialization and after every Event Mode, and ends the FMU's step at each planned alarm."""
+"""FMI 3.0 countdown and changing clocks in Co-Simulation, with the toolchain's timer_fmi3: it
+announces its first alarm `delay` seconds ahead (fmi3GetIntervalDecimal, qualifier changed)
+and, at each alarm, the next one `growth` times further ahead than the last. With delay 0.1 and
+growth 2 the alarms ring at 0.1, 0.3, 0.7 and 1.5 s: the engine asks for the interval after
+initialization and after every Event Mode, and ends the FMU's step at each planned alarm.
+metronome_fmi3's changing clock beats every announced interval: 0.2 s, halved after 3 beats,
+so at 0.2, 0.4, 0.6, 0.7, 0.8, ..."""
 
 from __future__ import annotations
 
@@ -97,3 +99,19 @@ def test_the_plan_carries_the_countdown_clock() -> None:
     plan = lib().ssx_plan_read(text.encode(), len(text.encode()), error, 2048)
     assert plan != ffi.NULL, ffi.string(error).decode()
     lib().ssx_plan_free(plan)
+
+
+BEATS = (0.2, 0.4, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2)
+
+
+@pytest.mark.parametrize("dt", [0.1, 0.3, 1.2])
+def test_a_changing_clock_beats_every_announced_interval(dt: float) -> None:
+    system = System("metronome")
+    system.add_component(FMUComponent("M", fmus.path("metronome_fmi3")))
+    system.initialize(0.0)
+    result = system.run(0.0, 1.2, dt)
+    assert [e.t for e in result.events] == pytest.approx(BEATS, abs=1e-9)
+    assert system.components["M"].outputs["count"].raw() == len(BEATS)
+    text = system.to_plan()
+    vr = FMUComponent("M", fmus.path("metronome_fmi3")).info.clocks.by_name("beat").value_reference
+    assert f"fmi3_changing_clock 0 {vr}\n" in text

@@ -71,8 +71,8 @@ def test_a_co_simulation_fmu_with_a_clock_is_read_and_refused_naming_the_clock(t
     assert structure.clocks == (ClockInfo("tick", 9001, "input", "fixed", interval=0.25,
                                           shift=0.5, priority=3, supports_fraction=True),)
     assert structure.clocked_variables == {"Int32_output": (9001,)}
-    # periodic, triggered and countdown input clocks are ticked by the engine; a tunable one
-    # is refused
+    # periodic, triggered, countdown and tunable input clocks are ticked by the engine; a
+    # local one is refused
     (tmp_path / "triggered").mkdir()
     triggered = edited(tmp_path / "triggered", FEEDTHROUGH, (_ADDED_CLOCK[0], _ADDED_CLOCK[1]
                        .replace('intervalVariability="fixed" intervalDecimal="0.25" '
@@ -81,12 +81,15 @@ def test_a_co_simulation_fmu_with_a_clock_is_read_and_refused_naming_the_clock(t
     (tmp_path / "tunable").mkdir()
     tunable = edited(tmp_path / "tunable", FEEDTHROUGH, (_ADDED_CLOCK[0], _ADDED_CLOCK[1]
                      .replace('intervalVariability="fixed"', 'intervalVariability="tunable"')))
+    assert FMUComponent("F", tunable).info.clocks.by_name("tick").interval_variability == \
+        "tunable"
+    (tmp_path / "local").mkdir()
+    local = edited(tmp_path / "local", FEEDTHROUGH, (_ADDED_CLOCK[0], _ADDED_CLOCK[1]
+                   .replace('causality="input"', 'causality="local"')))
     with pytest.raises(FMUFileError) as info:
-        FMUComponent("F", tunable)
-    assert str(info.value) == (f"{tunable}: Clock 'tick' (input, intervalVariability "
-                               "tunable) is not supported: the FMU may change its interval "
-                               "during the run, and syssimx plans ticks from a fixed interval "
-                               "or an announced countdown only")
+        FMUComponent("F", local)
+    assert str(info.value) == (f"{local}: Clock 'tick' (local, intervalVariability fixed) is "
+                               "not supported: a local clock is the FMU's own")
 
 
 def test_counters_and_resolution_give_the_period_and_first_tick(tmp_path: Path):

@@ -123,8 +123,9 @@ def _refuse_clocks(clocks: ClockStructure, path: Path, cosimulation: Any = None,
                    model_exchange: Any = None) -> None:
     """FMUFileError naming the first clock no interface of the FMU can tick: periodic input
     clocks (intervalVariability constant or fixed, the interval in the description) of a
-    Co-Simulation FMU with event mode and of a Model Exchange FMU; triggered and countdown input
-    clocks and output clocks of a Co-Simulation FMU with event mode; no other clock."""
+    Co-Simulation FMU with event mode and of a Model Exchange FMU; triggered, countdown, tunable
+    and changing input clocks and output clocks of a Co-Simulation FMU with event mode; no
+    other clock."""
     rules = []
     if cosimulation is not None and cosimulation.hasEventMode:
         rules.append(_cosimulation_clock)
@@ -136,19 +137,20 @@ def _refuse_clocks(clocks: ClockStructure, path: Path, cosimulation: Any = None,
 
 
 def _refuse(clock: ClockInfo, path: Path) -> None:
-    if clock.interval_variability in ("tunable", "changing"):
-        why = ("the FMU may change its interval during the run, and syssimx plans ticks from "
-               "a fixed interval or an announced countdown only")
-    elif clock.causality not in ("input", "output"):
+    if clock.causality not in ("input", "output"):
         why = "a local clock is the FMU's own"
     else:
         why = ("syssimx ticks periodic input clocks (intervalVariability constant or fixed) "
                "of FMI 3.0 Co-Simulation FMUs with event mode and of Model Exchange FMUs, and "
-               "triggered and countdown input clocks and output clocks of Co-Simulation FMUs "
-               "with event mode only")
+               "triggered, countdown, tunable and changing input clocks and output clocks "
+               "(triggered) of Co-Simulation FMUs with event mode only")
     raise FMUFileError(f"{path}: Clock {clock.name!r} ({clock.causality}, "
                        f"intervalVariability {clock.interval_variability}) is not supported: "
                        f"{why}")
+
+
+# the clocks whose interval the FMU announces (fmi3GetIntervalDecimal); all but countdown repeat
+_ANNOUNCED = ("countdown", "tunable", "changing")
 
 
 def _periodic_input(clock: ClockInfo) -> bool:
@@ -158,12 +160,12 @@ def _periodic_input(clock: ClockInfo) -> bool:
 
 def _cosimulation_clock(clock: ClockInfo) -> bool:
     """A clock the engine ticks or reads in Co-Simulation with event mode: a periodic input
-    clock, a triggered input clock (ticked by what it is connected to), a countdown input clock
-    (ticked when the interval the FMU announces has passed) or an output clock (read in every
-    Event Mode)."""
+    clock, a triggered input clock (ticked by what it is connected to), a countdown, tunable or
+    changing input clock (ticked when the interval the FMU announces has passed) or an output
+    clock (read in every Event Mode)."""
     return _periodic_input(clock) or (clock.interval_variability == "triggered"
                                       and clock.causality in ("input", "output")) or (
-        clock.interval_variability == "countdown" and clock.causality == "input")
+        clock.interval_variability in _ANNOUNCED and clock.causality == "input")
 
 
 def ticked_clocks(clocks: ClockStructure, interface: str, path: Path,
@@ -357,10 +359,13 @@ def engine_variables(table: EngineTable, cosimulation: Any, model_exchange: bool
             "unsigned int[]", [c.value_reference for c in triggered]),
             "n_triggered_clocks": len(triggered)})
     countdown = [c for c in clocks
-                 if c.causality == "input" and c.interval_variability == "countdown"]
+                 if c.causality == "input" and c.interval_variability in _ANNOUNCED]
     if countdown and not model_exchange:  # ticked when their announced interval has passed
-        fields.update({"countdown_clock_vr": ffi.new(
-            "unsigned int[]", [c.value_reference for c in countdown]),
+        fields.update({
+            "countdown_clock_vr": ffi.new("unsigned int[]",
+                                          [c.value_reference for c in countdown]),
+            "countdown_clock_repeats": ffi.new(
+                "unsigned char[]", [c.interval_variability != "countdown" for c in countdown]),
             "n_countdown_clocks": len(countdown)})
     outputs = output_clocks(clocks)
     if outputs and not model_exchange:  # read in every Event Mode

@@ -73,5 +73,8 @@ def _write_fmi3_table(records: PlanRecords, index: int, name: str, table: Any) -
         records.add("fmi3_triggered_clock", index, int(table.triggered_clock_vr[k]), about=name)
     for k in range(table.n_output_clocks):
         records.add("fmi3_output_clock", index, int(table.output_clock_vr[k]), about=name)
+    repeats = table.countdown_clock_repeats
     for k in range(table.n_countdown_clocks):
-        records.add("fmi3_countdown_clock", index, int(table.countdown_clock_vr[k]), about=name)
+        kind = "fmi3_changing_clock" if repeats != ffi.NULL and repeats[k] else \
+            "fmi3_countdown_clock"
+        records.add(kind, index, int(table.countdown_clock_vr[k]), about=name)
