@@ -221,6 +221,9 @@ typedef struct {
     /* what the partitions announced since the last take: ticked[k] for each output clock,
      * next[k] the tick of each countdown clock (INFINITY: none); then forgotten */
     void (*take_clock_updates)(void *context, int *ticked, double *next);
+    /* fmi3GetIntervalDecimal of one clock */
+    int (*get_interval)(const ssx_fmu_function *fn, void *instance, unsigned int clock,
+                        double *interval, int *qualifier);
     /* what the last doStep said besides its status; NULL: only the status (FMI 2.0) */
     void (*step_outcome)(void *instance, fmu_step_outcome *outcome);
     /* the name of the variable vr, NULL when unknown; NULL: the back-end keeps no names */

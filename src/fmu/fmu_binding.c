@@ -798,6 +798,17 @@ void ssx_fmu_take_clock_updates(ssx_fmu *fmu, int *ticked, double *next)
     }
 }
 
+int ssx_fmu_get_interval(ssx_fmu *fmu, unsigned int clock, double *interval, int *qualifier)
+{
+    return CHECKED(fmu, SLOT_GET_INTERVAL, get_interval, clock, interval, qualifier);
+}
+
+size_t ssx_fmu_countdown_clock_count(const ssx_fmu *fmu)
+{
+    return fmu->backend->countdown_clocks != NULL ? fmu->backend->countdown_clocks(fmu->rest->context)
+                                                  : 0;
+}
+
 void ssx_fmu_clock_counts(const ssx_fmu *fmu, size_t *n_output, size_t *n_triggered)
 {
     *n_output = 0;

@@ -1037,6 +1037,19 @@ static int activate_model_partition(const ssx_fmu_function *fn, void *instance,
     return status;
 }
 
+static int get_interval(const ssx_fmu_function *fn, void *instance, unsigned int clock,
+                        double *interval, int *qualifier)
+{
+    fmi3_context *ctx = instance;
+    fmi3Float64 value = 0.0;
+    fmi3IntervalQualifier answer = fmi3IntervalNotYetKnown;
+    int status = (int)FMI3(fn, SLOT_GET_INTERVAL, fmi3GetIntervalDecimalTYPE)(
+        ctx->instance, &clock, 1, &value, &answer);
+    *interval = value;
+    *qualifier = (int)answer;
+    return status;
+}
+
 static void take_clock_updates(void *context, int *ticked, double *next)
 {
     fmi3_context *ctx = context;
@@ -1121,6 +1134,7 @@ const ssx_fmu_backend ssx_fmi3_scheduled_backend = {
     .exit_initialization_mode = exit_initialization_mode_model_exchange,
     .activate_model_partition = activate_model_partition,
     .take_clock_updates = take_clock_updates,
+    .get_interval = get_interval,
     .clock_counts = clock_counts,
     .countdown_clocks = countdown_clocks,
 };

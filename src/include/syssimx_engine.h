@@ -216,6 +216,12 @@ int ssx_fmu_activate_model_partition(ssx_fmu *fmu, unsigned int clock, double t)
  * output clock of the load spec) whether output clock k ticked, next[i] (one per countdown
  * clock) the time countdown clock i is to tick, INFINITY when none was announced. */
 void ssx_fmu_take_clock_updates(ssx_fmu *fmu, int *ticked, double *next);
+/* fmi3GetIntervalDecimal of one clock: its interval and qualifier (SSX_INTERVAL_CHANGED when
+ * the FMU gives a new one). */
+enum { SSX_INTERVAL_NOT_YET_KNOWN = 0, SSX_INTERVAL_UNCHANGED = 1, SSX_INTERVAL_CHANGED = 2 };
+int ssx_fmu_get_interval(ssx_fmu *fmu, unsigned int clock, double *interval, int *qualifier);
+/* How many countdown clocks the load spec gave (0 for other back-ends). */
+size_t ssx_fmu_countdown_clock_count(const ssx_fmu *fmu);
 
 /* The name of a status an ssx_fmu_* call returned, without its standard's prefix: "OK",
  * "Warning", "Discard", "Error", "Fatal", "Pending", and "failed" for -1; NULL for any other. */
@@ -897,6 +903,46 @@ int ssx_add_table_column(ssx_system *sys, int component, ssx_value_type type, in
 /* The table's value of every column at t into values (one per output); after_event != 0 takes
  * the value on the right of a jump at t. Changes nothing. */
 int ssx_table_values(ssx_system *sys, int component, double t, int after_event, double *values);
+
+/* ------------------------------------------------------------------------------------------
+ * FMI 3.0 Scheduled Execution: a component whose FMU (loaded with SSX_SCHEDULED_EXECUTION and
+ * started with ssx_fmu_enter_initialization) has no step: each step from t to t + h runs, in
+ * time order, the partitions of the input clocks that tick in [t, t + h) (a tick within the
+ * grid's rounding of t + h is the next step's), ticks at one instant by priority (lowest first),
+ * then value reference, then the order they were planned in. The inputs are written before
+ * each partition, the outputs its clock moves read after it; each output clock that ticked is
+ * an own event (SSX_OWN_OUTPUT_CLOCK, record.clock 1 + its index among the FMU's output clocks,
+ * a source for ssx_add_output_clock_source). Every tick is logged. It cannot roll back.
+ *
+ * Its clocks, after its ports: each input clock of the FMU and each output clock in the order
+ * of the load spec's output clocks (and the countdown clocks in the order of its countdown
+ * clocks). A periodic clock ticks at t0 + shift and every interval after it (interval NaN: the
+ * FMU's, asked after initialization, and after each tick when interval_tunable); a triggered
+ * one at the times set; a countdown one when the FMU announces it. priority < 0: none (after
+ * every clock with one). Returns the clock's index. */
+typedef enum {
+    SSX_SCHEDULED_PERIODIC = 0,
+    SSX_SCHEDULED_TRIGGERED = 1,
+    SSX_SCHEDULED_COUNTDOWN = 2,
+    SSX_SCHEDULED_OUTPUT = 3
+} ssx_scheduled_clock_kind;
+int ssx_add_scheduled_component(ssx_system *sys, const char *name, ssx_fmu *fmu);
+int ssx_add_scheduled_clock(ssx_system *sys, int component, ssx_scheduled_clock_kind kind,
+                            unsigned int vr, long long priority, double interval, double shift,
+                            int interval_tunable);
+/* The times (finite, not decreasing) a triggered clock ticks at, replacing earlier ones. */
+int ssx_set_scheduled_clock_times(ssx_system *sys, int component, int clock, const double *times,
+                                  size_t n);
+/* Output `output` of the component is moved by the ticks of input clock `clock`: read after
+ * each and logged with it. */
+int ssx_add_scheduled_clock_output(ssx_system *sys, int component, int clock, int output);
+/* The log since ssx_initialize: how many ticks (and in *n_values how many values they moved),
+ * then the ticks: tick k at time[k] of clock clock[k], having moved outputs output[i] to
+ * value[i] for i in first_value[k] .. first_value[k + 1] (n ticks + 1 entries). An output
+ * clock's tick follows the partition's that ticked it and moves nothing. */
+size_t ssx_scheduled_tick_count(ssx_system *sys, int component, size_t *n_values);
+int ssx_scheduled_ticks(ssx_system *sys, int component, double *time, int *clock,
+                        size_t *first_value, int *output, double *value);
 
 /* ------------------------------------------------------------------------------------------
  * Plans: a system as plain data, in the text format of docs/reference/plan-format.md, built

@@ -316,13 +316,16 @@ static ssx_fmu *load_fmu(builder *b, int component, const char *base_folder)
     }
     plan_cursor cursor = plan_record_values(p, record);
     plan_next_text(&cursor, NULL);     /* the name */
-    plan_next_integer(&cursor);        /* can_get_set_state */
+    int scheduled = p->kind[record] == PLAN_SCHEDULED_EXECUTION; /* FMI 3.0, no state */
+    if (!scheduled) {
+        plan_next_integer(&cursor);    /* can_get_set_state */
+    }
     int model_exchange = p->kind[record] == PLAN_MODEL_EXCHANGE;
     if (model_exchange) {
         plan_next_integer(&cursor);    /* states */
         plan_next_integer(&cursor);    /* event indicators */
     }
-    int version = (int)plan_next_integer(&cursor);
+    int version = scheduled ? SSX_FMI3 : (int)plan_next_integer(&cursor);
     const char *folder = plan_next_text(&cursor, NULL);
     const char *model_identifier = plan_next_text(&cursor, NULL);
     const char *token = plan_next_text(&cursor, NULL);
@@ -355,7 +358,9 @@ static ssx_fmu *load_fmu(builder *b, int component, const char *base_folder)
                fmi3_table_make(b, component, path, model_exchange, &table) == 0) {
         ssx_fmu_load_spec spec = {
             .version = (ssx_fmi_version)version,
-            .interface = model_exchange ? SSX_MODEL_EXCHANGE : SSX_CO_SIMULATION,
+            .interface = scheduled        ? SSX_SCHEDULED_EXECUTION
+                         : model_exchange ? SSX_MODEL_EXCHANGE
+                                          : SSX_CO_SIMULATION,
             .binary_path = binary, .model_identifier = model_identifier, .guid = token,
             .resource_location = location,
             .instance_name = instance_name[0] != '\0' ? instance_name : NULL,
@@ -396,6 +401,29 @@ static int build_table(builder *b, plan_cursor *cursor)
     }
     int result = engine_call(b, ssx_add_table_component(b->sys, name, time, n));
     free(time);
+    return result;
+}
+
+/* A Scheduled Execution component's clock, and the times of a triggered one. */
+static int build_scheduled_clock(builder *b, plan_cursor *cursor)
+{
+    int c = (int)plan_next_integer(cursor);
+    ssx_scheduled_clock_kind kind = (ssx_scheduled_clock_kind)plan_next_integer(cursor);
+    unsigned int vr = (unsigned int)plan_next_integer(cursor);
+    long long priority = (long long)plan_next_integer(cursor);
+    double interval = plan_next_double(cursor);
+    double shift = plan_next_double(cursor);
+    int tunable = (int)plan_next_integer(cursor);
+    size_t n = (size_t)plan_next_integer(cursor);
+    double *times = next_doubles(b, cursor, n);
+    if (times == NULL) {
+        return -1;
+    }
+    int clock = ssx_add_scheduled_clock(b->sys, c, kind, vr, priority, interval, shift, tunable);
+    int result = clock < 0 || (n == 0 && kind != SSX_SCHEDULED_TRIGGERED)
+                 ? engine_call(b, clock)
+                 : engine_call(b, ssx_set_scheduled_clock_times(b->sys, c, clock, times, n));
+    free(times);
     return result;
 }
 
@@ -607,6 +635,17 @@ static int build_record(builder *b, ssx_fmu *const *fmus)
                                   sys, name, fmus[sys->n_components], can_state, (int)states,
                                   (int)indicators));
     }
+    case PLAN_SCHEDULED_EXECUTION:
+        return engine_call(b, ssx_add_scheduled_component(sys, plan_next_text(v, NULL),
+                                                          fmus[sys->n_components]));
+    case PLAN_SCHEDULED_CLOCK:
+        return build_scheduled_clock(b, v);
+    case PLAN_SCHEDULED_CLOCK_OUTPUT: {
+        int c = (int)plan_next_integer(v);
+        int clock = (int)plan_next_integer(v);
+        return engine_call(b, ssx_add_scheduled_clock_output(sys, c, clock,
+                                                             (int)plan_next_integer(v)));
+    }
     case PLAN_TABLE:
         return build_table(b, v);
     case PLAN_TABLE_COLUMN:
@@ -720,7 +759,7 @@ static int build_record(builder *b, ssx_fmu *const *fmus)
 
 static int is_fmu_record(int kind)
 {
-    return kind == PLAN_FMU || kind == PLAN_MODEL_EXCHANGE;
+    return kind == PLAN_FMU || kind == PLAN_MODEL_EXCHANGE || kind == PLAN_SCHEDULED_EXECUTION;
 }
 
 ssx_system *ssx_plan_build(const ssx_plan *plan, const char *base_folder, ssx_fmu *const *given,

@@ -632,6 +632,11 @@ static int define(reader *r, int kind)
         return add_component(r, value_of(r, 1)->as.integer, 0);
     case PLAN_PYTHON:
         return add_component(r, -1, 0);
+    case PLAN_SCHEDULED_EXECUTION:
+        return add_component(r, -1, 3);
+    case PLAN_SCHEDULED_CLOCK:
+    case PLAN_SCHEDULED_CLOCK_OUTPUT:
+        return needs_fmu(r, c, 3);
     case PLAN_TABLE_COLUMN:
         if (r->table_rows[c] < 0) {
             r->field = 0;

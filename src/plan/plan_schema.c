@@ -78,6 +78,11 @@ const plan_record_schema plan_schema[PLAN_RECORD_KIND_COUNT] = {
     [PLAN_CONNECT_CLOCK] = {"connect_clock", "Kzci", "KIND INDEX LISTENER CLOCK"},
     [PLAN_FMI3_TRIGGERED_CLOCK] = {"fmi3_triggered_clock", "cu", "COMPONENT VR"},
     [PLAN_FMI3_OUTPUT_CLOCK] = {"fmi3_output_clock", "cu", "COMPONENT VR"},
+    [PLAN_SCHEDULED_EXECUTION] = {"scheduled_execution", "sssssf",
+                                  "NAME FOLDER MODEL_IDENTIFIER TOKEN INSTANCE_NAME LOGGING_ON"},
+    [PLAN_SCHEDULED_CLOCK] = {"scheduled_clock", "ciuiddf[d]",
+                              "COMPONENT KIND VR PRIORITY INTERVAL SHIFT INTERVAL_TUNABLE TIMES"},
+    [PLAN_SCHEDULED_CLOCK_OUTPUT] = {"scheduled_clock_output", "cio", "COMPONENT CLOCK OUTPUT"},
     [PLAN_FMI3_COUNTDOWN_CLOCK] = {"fmi3_countdown_clock", "cu", "COMPONENT VR"},
     [PLAN_FMI3_CHANGING_CLOCK] = {"fmi3_changing_clock", "cu", "COMPONENT VR"},
 };

@@ -12,13 +12,18 @@ partition that makes the total of input clock ticks a multiple of 5.
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
+from typing import Any
 
+import numpy as np
 import pytest
 from reference_root import reference_root
-from syssimx import ScheduledExecutionComponent, System
+from syssimx import GaussSeidelAlgorithm, HybridAlgorithm, ScheduledExecutionComponent, System
 from syssimx._paths import build_dir
+from syssimx.bridge.history_arrays import HistoryArrays
 from syssimx.components.scheduled_execution import Tick
+from syssimx.engine import ffi, lib
 from syssimx.errors import ConfigurationError, FMUFileError, SimulationError
 from test_fmi3_import import edited
 
@@ -233,3 +238,91 @@ def test_a_yaml_system_gives_the_triggered_clock_times(tmp_path: Path):
     system.run(0.0, 10.0, 1.0)
     component = system.components["C"]
     assert [(tick.time, tick.clock) for tick in component.ticks] == _expected_ticks()
+
+
+def _plan_run(text: str, stop: float, dt: float) -> tuple[list[tuple[float, int]], Any]:
+    """The ticks (time, clock index) and the history of component 0 of the engine's own build
+    of `text`: no FMU given, no Python anywhere, ssx_plan_initialize at 0, one ssx_run."""
+    engine = lib()
+    data = text.encode()
+    error = ffi.new("char[2048]")
+    plan = ffi.gc(engine.ssx_plan_read(data, len(data), error, 2048), engine.ssx_plan_free)
+    assert plan != ffi.NULL, ffi.string(error).decode()
+    system = engine.ssx_plan_build(plan, b"", ffi.NULL, 0, error, 2048)
+    assert system != ffi.NULL, ffi.string(error).decode()
+    system = ffi.gc(system, engine.ssx_system_free)
+    assert engine.ssx_plan_initialize(system, plan, 0.0) == 0
+    assert engine.ssx_run(system, 0.0, stop, dt) == 0
+    count = ffi.new("size_t *")
+    n = engine.ssx_scheduled_tick_count(system, 0, count)
+    times, clocks = ffi.new("double[]", n), ffi.new("int[]", n)
+    first = ffi.new("size_t[]", n + 1)
+    outputs, values = ffi.new("int[]", count[0]), ffi.new("double[]", count[0])
+    assert engine.ssx_scheduled_ticks(system, 0, times, clocks, first, outputs, values) == 0
+    history = HistoryArrays(system, engine.ssx_history_release)
+    outputs = engine.ssx_plan_port_count(plan, 0, 0)
+    return [(times[k], clocks[k]) for k in range(n)], history.values(0, outputs).copy()
+
+
+@reference
+def test_the_engine_alone_runs_the_components_plan_with_the_same_ticks():
+    component = _component()
+    system = System("clocks")
+    system.add_component(component)
+    system.initialize(0.0)
+    text = system.to_plan()
+    assert "\nscheduled_clock 0 1 1002 1 nan 0 0 4 0.0 1.0 8.0 9.0\n" in text  # inClock2
+    ticks, history = _plan_run(text, 10.0, 1.0)
+    names = ["inClock1", "inClock2", "inClock3", "outClock"]  # inputs, then outputs
+    assert [(t, names[clock]) for t, clock in ticks] == _expected_ticks()
+    system.run(0.0, 10.0, 1.0)
+    _, values = system.get_history()["C"]
+    for k, port in enumerate(component.engine_outputs()):
+        np.testing.assert_array_equal(history[:, k], values[port])
+
+
+@reference
+def test_no_python_runs_per_tick():
+    """A profile hook counts the Python calls of a one-step run: ten times the ticks, the same
+    calls."""
+    def python_calls(stop: float) -> tuple[int, int]:
+        component = _component()
+        system = System("clocks")
+        system.add_component(component)
+        system.initialize(0.0)
+        system.run(0.0, stop, stop)  # the first run imports and caches what runs need
+        system.initialize(0.0)
+        calls = 0
+
+        def count(_frame: Any, event: str, _arg: Any) -> None:
+            nonlocal calls
+            calls += event == "call"
+
+        sys.setprofile(count)
+        try:
+            system.run(0.0, stop, stop)
+        finally:
+            sys.setprofile(None)
+        return calls, len(component.ticks)
+
+    few, many = python_calls(10.0), python_calls(100.0)
+    assert many[1] > 10 * few[1] / 2 and few[1] == len(_expected_ticks())
+    assert many[0] == few[0]
+
+
+@reference
+@pytest.mark.parametrize("threads", [1, 2])
+def test_two_components_on_threads_tick_as_on_one(threads: int):
+    system = System("clocks")
+    components = [_component(), _component()]
+    for name, component in zip("AB", components, strict=True):
+        component.name = name
+        system.add_component(component)
+    system.set_algorithm(HybridAlgorithm(coupling=GaussSeidelAlgorithm(threads=threads)))
+    system.initialize(0.0)
+    events = system.run(0.0, 10.0, 1.0).events
+    for component in components:
+        assert [(tick.time, tick.clock) for tick in component.ticks] == _expected_ticks()
+    # outClock is an own event of each component, A's before B's at one instant
+    assert [(e.t, e.component, e.event) for e in events] == [
+        (t, name, "outClock") for t in (2.0, 6.0, 9.0) for name in "AB"]

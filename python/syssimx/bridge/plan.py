@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import functools
 import time
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -23,7 +23,7 @@ from ..core.events import OWN_EVENTS
 from ..core.port import TABLED_TYPES, PortType
 from ..engine import enum_name, ffi, lib, string
 from ..errors import ConfigurationError, SimulationTimeoutError
-from ..plan.fmu_records import FMULoad, write_fmu
+from ..plan.fmu_records import FMULoad, ScheduledClock, write_fmu, write_scheduled
 from ..plan.records import Doubles, PlanRecords, Word, value_type_word
 from .built_system import build_system
 from .history_arrays import HistoryArrays
@@ -277,6 +277,29 @@ class EnginePlan:
                              about=f"{name}: calling thread only")
         self._add_ports(component, value_reference)
         self._bind(component, hooks, is_fmu=True)
+
+    def add_scheduled_component(self, component: Component, fmu: Any, load: FMULoad,
+                                value_reference: Callable[[str], int],
+                                clocks: Sequence[ScheduledClock]) -> None:
+        """An FMI 3.0 Scheduled Execution FMU the engine runs by activating its partitions:
+        its clocks in the engine's order (the FMU's input clocks, then its output clocks). The
+        system borrows the loaded FMU."""
+        name, index = component.name, self.index[component.name]
+        self._borrowed_fmus.append(fmu)
+        self._given[index] = fmu
+        write_scheduled(self.records, index, name, load)
+        self._add_ports(component, value_reference)
+        for clock in clocks:
+            self.records.add("scheduled_clock", index, clock.kind, clock.value_reference,
+                             clock.priority, clock.interval, clock.shift, clock.interval_tunable,
+                             Doubles(np.asarray(clock.times, dtype=np.float64)),
+                             about=f"{name}: clock {clock.value_reference}")
+        outputs = self.outputs[name]
+        for k, clock in enumerate(clocks):
+            for port in clock.moves:
+                self.records.add("scheduled_clock_output", index, k, outputs.index(port),
+                                 about=f"{name}.{port}")
+        self._bind(component, set(), is_fmu=True)
 
     def _add_ports(self, component: Component, vr: Callable[[str], int] | None) -> None:
         name, index = component.name, self.index[component.name]

@@ -31,6 +31,23 @@ class FMULoad:
     step_timeout: float = 0.0
 
 
+@dataclass(frozen=True)
+class ScheduledClock:
+    """A clock of a Scheduled Execution component as the engine takes it (its
+    scheduled_clock record): `kind` an ssx_scheduled_clock_kind (0 periodic, 1 triggered,
+    2 countdown, 3 output), `priority` -1 for none, `interval` NaN for the FMU's, `times` a
+    triggered clock's, `moves` the outputs each tick reads."""
+
+    kind: int
+    value_reference: int
+    priority: int
+    interval: float
+    shift: float
+    interval_tunable: bool
+    times: tuple[float, ...] = ()
+    moves: tuple[str, ...] = ()
+
+
 def write_fmu(records: PlanRecords, index: int, name: str, can_get_set_state: bool,
               model_exchange: tuple[int, int] | None, load: FMULoad) -> None:
     """The records that load and add FMU component `index`; model_exchange: (continuous
@@ -47,6 +64,14 @@ def write_fmu(records: PlanRecords, index: int, name: str, can_get_set_state: bo
     table = load.fmi3_variables
     if table is not None and table != ffi.NULL:
         _write_fmi3_table(records, index, name, table)
+
+
+def write_scheduled(records: PlanRecords, index: int, name: str, load: FMULoad) -> None:
+    """The records that load and add Scheduled Execution component `index` (an FMI 3.0 FMU
+    whose type table lists its ports, output clocks and countdown clocks)."""
+    records.add("scheduled_execution", name, load.folder, load.model_identifier, load.token,
+                load.instance_name, False, about=name)
+    _write_fmi3_table(records, index, name, load.fmi3_variables)
 
 
 def _write_fmi3_table(records: PlanRecords, index: int, name: str, table: Any) -> None:
