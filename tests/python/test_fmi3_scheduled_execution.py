@@ -19,9 +19,16 @@ from typing import Any
 import numpy as np
 import pytest
 from reference_root import reference_root
-from syssimx import GaussSeidelAlgorithm, HybridAlgorithm, ScheduledExecutionComponent, System
+from syssimx import (
+    EventConnection,
+    GaussSeidelAlgorithm,
+    HybridAlgorithm,
+    ScheduledExecutionComponent,
+    System,
+)
 from syssimx._paths import build_dir
 from syssimx.bridge.history_arrays import HistoryArrays
+from syssimx.components.base import CoSimComponent
 from syssimx.components.scheduled_execution import Tick
 from syssimx.engine import ffi, lib
 from syssimx.errors import ConfigurationError, FMUFileError, SimulationError
@@ -326,3 +333,31 @@ def test_two_components_on_threads_tick_as_on_one(threads: int):
     # outClock is an own event of each component, A's before B's at one instant
     assert [(e.t, e.component, e.event) for e in events] == [
         (t, name, "outClock") for t in (2.0, 6.0, 9.0) for name in "AB"]
+
+
+class _Listener(CoSimComponent):
+    """Writes down when it hears outClock."""
+
+    def __init__(self) -> None:
+        super().__init__("L")
+        self.heard: list[float] = []
+        self.add_event_handler("on_out", lambda _c, _names, t: self.heard.append(t))
+
+    def _do_step_internal(self, t: float, dt: float) -> None:
+        pass
+
+    def _update_output_states(self, t: float | None = None,
+                              event_names: list[str] | None = None) -> None:
+        pass
+
+
+@reference
+def test_an_output_clock_reaches_an_event_connection():
+    system = System("clocks")
+    system.add_component(_component())
+    listener = _Listener()
+    system.add_component(listener)
+    system.add_event_connection(EventConnection("C", "outClock", "L", "on_out"))
+    system.initialize(0.0)
+    system.run(0.0, 10.0, 1.0)
+    assert listener.heard == [2.0, 6.0, 9.0]

@@ -124,16 +124,18 @@ static int add_subscription(ssx_system *sys, ssx_event_source_kind kind, int ind
     return 0;
 }
 
-/* The clock counts of an FMU component's binding; -1 (the error set) for another kind. */
-static int clock_counts(ssx_system *sys, int component, const char *what, size_t *n_output,
-                        size_t *n_triggered)
+/* The clock counts of an FMU component's binding; -1 (the error set) for another kind, and
+ * where `ticked` for a kind that ticks no triggered clock (a Scheduled Execution component's
+ * output clocks are sources all the same). */
+static int clock_counts(ssx_system *sys, int component, const char *what, int ticked,
+                        size_t *n_output, size_t *n_triggered)
 {
     ssx_component *c = system_component(sys, component);
     if (c == NULL) {
         return -1;
     }
     ssx_fmu *fmu = c->ops->fmu != NULL ? c->ops->fmu(c) : NULL;
-    if (fmu == NULL || c->ops->tick_triggered_clock == NULL) {
+    if (fmu == NULL || (ticked && c->ops->tick_triggered_clock == NULL)) {
         return fail_config(sys, component, -1, NAN,
                            "component '%s' is no FMI 3.0 Co-Simulation FMU: it has no %s",
                            c->name, what);
@@ -145,7 +147,7 @@ static int clock_counts(ssx_system *sys, int component, const char *what, size_t
 int ssx_add_output_clock_source(ssx_system *sys, int component, int clock)
 {
     size_t n_output = 0, n_triggered = 0;
-    if (clock_counts(sys, component, "output clocks", &n_output, &n_triggered) != 0) {
+    if (clock_counts(sys, component, "output clocks", 0, &n_output, &n_triggered) != 0) {
         return -1;
     }
     if (clock < 0 || (size_t)clock >= n_output) {
@@ -216,7 +218,7 @@ int ssx_connect_clock(ssx_system *sys, ssx_event_source_kind kind, int index,
 {
     size_t n_output = 0, n_triggered = 0;
     if (check_source(sys, kind, index) != 0 ||
-        clock_counts(sys, listener_component, "triggered input clocks", &n_output,
+        clock_counts(sys, listener_component, "triggered input clocks", 1, &n_output,
                      &n_triggered) != 0) {
         return -1;
     }
