@@ -95,6 +95,20 @@ def clock_names(component: Any, kind: str) -> list[str]:
     return list(getattr(component, kind, ()))
 
 
+# the own events that name a clock: the ssx_own_event_kind word, the component's clock list
+_CLOCKED_OWN_EVENTS = {"output_clock": "output_clocks", "clock_tick": "triggered_clocks"}
+
+
+def _own_event_name(clocks: list[dict[str, list[str]]], component: int, own: int,
+                    clock: int) -> str:
+    """The name of a component's own event record: the clock's for an output clock's tick
+    and a triggered clock's tick, else its kind's ("fmu_event", "clock_tick", ...); clocks:
+    each component's clock names by kind word."""
+    kind = enum_name("ssx_own_event_kind", "SSX_OWN_", own)
+    names = clocks[component].get(kind)
+    return names[clock - 1] if clock > 0 and names else kind
+
+
 class EnginePlan:
     """The engine system of one System; rebuilt by System.initialize when the System's
     structure changed, else started again (`restart`)."""
@@ -126,6 +140,11 @@ class EnginePlan:
         self.indicator_index: dict[tuple[str, str], int] = {}
         # engine number of an output clock source -> (component, clock)
         self.clock_sources: list[tuple[str, str]] = []
+        # the name of a component's own event record (see _own_event_name); it holds the
+        # components' clock names, not the plan, so event records keep no plan alive
+        self.own_event_name = functools.partial(_own_event_name, [
+            {kind: clock_names(c, clocks) for kind, clocks in _CLOCKED_OWN_EVENTS.items()}
+            for c in components.values()])
         self.failure: CallbackFailure | None = None
         # (component, output) of the outputs warned of as non-finite since the last initialize
         self.non_finite_warned: set[tuple[int, int]] = set()
@@ -443,17 +462,6 @@ class EnginePlan:
                              outputs.index(clock), about=f"{component}.{clock}")
             self.clock_sources.append((component, clock))
         return self.clock_sources.index((component, clock))
-
-    def own_event_name(self, component: int, own: int, clock: int) -> str:
-        """The name of a component's own event record: the clock's for an output clock's tick
-        and a triggered clock's tick, else its kind's ("fmu_event", "clock_tick", ...)."""
-        engine = lib()
-        kinds = {engine.SSX_OWN_OUTPUT_CLOCK: "output_clocks",
-                 engine.SSX_OWN_CLOCK_TICK: "triggered_clocks"}
-        if clock > 0 and own in kinds:
-            names = clock_names(list(self.components.values())[component], kinds[own])
-            return names[clock - 1]
-        return enum_name("ssx_own_event_kind", "SSX_OWN_", own)
 
     def fail(self, component: Component, where: str, t: float, exc: BaseException) -> None:
         if self.failure is None:
