@@ -8,6 +8,7 @@
 #include "component_calls.h"
 #include "coupling.h"
 #include "error.h"
+#include "event_source.h"
 #include "finite_outputs.h"
 #include "fmu_binding.h"
 #include "fmu_component.h"
@@ -74,7 +75,8 @@ int ssx_initialize(ssx_system *sys, double t0)
     memset(&sys->stats, 0, sizeof sys->stats);
     localization_log_clear(&sys->localization);
     own_events_clear(sys);
-    sys->stepping_hybrid = system_is_hybrid(sys);
+    /* a system that locates its output clocks' ticks rolls back as one with indicators does */
+    sys->stepping_hybrid = system_is_hybrid(sys) || event_sources_locate_ticks(sys);
     grid_start(&sys->grid, t0, 0.0);
     if (check_components(sys) != 0 || coupling_prepare(sys) != 0 ||
         input_order_prepare(sys) != 0 || master_algorithm_choose(sys) != 0) {

@@ -34,7 +34,7 @@ int adaptive_prepare(ssx_system *sys, void **workspace)
     if (sys->adaptive == NULL) {
         return fail(sys, -1, -1, sys->time, "out of memory preparing the step control");
     }
-    if (system_is_hybrid(sys)) {
+    if (sys->stepping_hybrid) {
         return hybrid_prepare(sys, workspace);
     }
     return 0;
@@ -141,7 +141,7 @@ static int accepted_step(ssx_system *sys, double a, double t_next, double *reach
 {
     const ssx_step_control *sc = &sys->step_control;
     struct adaptive_workspace *w = sys->adaptive;
-    int hybrid = system_is_hybrid(sys);
+    int hybrid = sys->stepping_hybrid;
     int restorable = sc->rollback || hybrid;
     hybrid_piece piece;
     if (hybrid && hybrid_begin_piece(sys, a, t_next, &piece) != 0) {

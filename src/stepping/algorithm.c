@@ -44,7 +44,7 @@ void master_algorithm_release(ssx_system *sys)
 int master_algorithm_choose(ssx_system *sys)
 {
     master_algorithm_release(sys);
-    int chosen = sys->step_control.enabled ? ADAPTIVE : system_is_hybrid(sys) ? HYBRID : PLAIN;
+    int chosen = sys->step_control.enabled ? ADAPTIVE : sys->stepping_hybrid ? HYBRID : PLAIN;
     const ssx_master_algorithm *algorithm = &ALGORITHMS[chosen];
     sys->algorithm = algorithm;
     return algorithm->prepare != NULL ? algorithm->prepare(sys, &sys->algorithm_workspace) : 0;

@@ -26,7 +26,8 @@ typedef struct ssx_master_algorithm {
 enum { ALGORITHM_CARRIED = 3 };
 
 /* Chooses the system's algorithm and prepares it, releasing the one before: hybrid when the
- * system has event indicators. */
+ * system steps so that it can roll back (sys->stepping_hybrid: it has event indicators, or it
+ * locates its output clocks' ticks). */
 int master_algorithm_choose(ssx_system *sys);
 /* Releases the system's algorithm and its state (ssx_system_free). */
 void master_algorithm_release(ssx_system *sys);

@@ -104,26 +104,57 @@ def test_count_and_the_connected_tick_just_before_at_and_just_after_each_tick(
         assert tank.outputs["count"].value == expected
         assert counter.outputs["count"].value == expected
         if offset >= 0:
-            # the connected tick came where the master accepted the step holding the tank's:
-            # at the tick itself when a communication point falls there
-            assert counter.outputs["last_tick"].raw() == pytest.approx(tick + offset, abs=1e-12)
-            # it sampled the level after the tank was emptied (0 at the tick itself)
-            assert counter.outputs["sampled"].value == pytest.approx(offset, abs=1e-12)
+            # the connected tick came at the tank's, inside the step or on its end
+            assert counter.outputs["last_tick"].raw() == pytest.approx(tick, abs=1e-9)
+            # it sampled the level after the tank was emptied there
+            assert counter.outputs["sampled"].value == pytest.approx(0.0, abs=1e-12)
 
 
-def test_an_output_clock_ticks_the_connected_clock_at_the_next_communication_point() -> None:
+TOL_TIME = 1e-9  # the engine's default tol_time
+
+
+def counter_ticks(dt: float, threads: int = 1,
+                  extra: CoSimComponent | None = None) -> tuple[list[float], System]:
     system = tank_and_counter()
+    if extra is not None:
+        system.add_component(extra)
+    system.set_algorithm(GaussSeidelAlgorithm(threads=threads))
     system.initialize(0.0)
-    result = system.run(0.0, 1.0, 0.25)
-    ticks = [(e.t, e.component) for e in result.events if e.event in ("full", "tick")]
-    assert ticks == [(pytest.approx(0.3), "Tank"), (0.5, "Counter"),
-                     (pytest.approx(0.6), "Tank"), (0.75, "Counter"),
-                     (pytest.approx(0.9), "Tank"), (1.0, "Counter")]
-    values = result["Counter"][1]
-    assert list(values["count"]) == [0, 0, 1, 2, 3]
-    assert list(values["last_tick"]) == [-1, -1, 0.5, 0.75, 1.0]
-    # the tick samples the tank's level at the communication point
-    assert list(values["sampled"]) == pytest.approx([0, 0, 0.2, 0.15, 0.1])
+    result = system.run(0.0, 1.0, dt)
+    return [e.t for e in result.events if e.event == "tick"], system
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+@pytest.mark.parametrize("dt", [0.1, 0.25])
+def test_an_output_clock_ticks_the_connected_clock_at_its_own_time(dt: float,
+                                                                   threads: int) -> None:
+    """The tank returns early from its step at each threshold time: the system steps back and
+    on to that time, and the counter ticks there, whatever the communication step."""
+    ticks, system = counter_ticks(dt, threads)
+    assert ticks == pytest.approx(FULL_TIMES, abs=TOL_TIME)
+    counter = system.components["Counter"]
+    assert counter.outputs["count"].value == 3
+    assert counter.outputs["last_tick"].raw() == pytest.approx(FULL_TIMES[-1], abs=TOL_TIME)
+    # the last tick sampled the level of the tank it emptied: 0, not the level at a
+    # communication point after it
+    assert counter.outputs["sampled"].value == pytest.approx(0.0, abs=1e-12)
+    assert counter_ticks(dt, threads)[0] == ticks
+
+
+class Passive(CoSimComponent):
+    """A Python component without snapshot_state: the system cannot roll back."""
+
+    def _do_step_internal(self, t: float, dt: float) -> None:
+        pass
+
+    def _update_output_states(self, t: float | None = None,
+                              event_names: list[str] | None = None) -> None:
+        pass
+
+
+def test_without_rollback_a_connected_tick_comes_at_the_next_communication_point() -> None:
+    ticks, _ = counter_ticks(0.25, extra=Passive("Passive"))
+    assert ticks == [0.5, 0.75, 1.0]
 
 
 def test_an_indicator_crossing_ticks_a_triggered_clock_at_the_located_time() -> None:
@@ -188,10 +219,10 @@ def test_an_output_clock_reaches_a_python_handler_and_a_declarative_one() -> Non
     assert list(values["level"]) == pytest.approx([0, 0.25, 0.05, 0.05, 0.05])
 
 
-def ticks_and_a_wall_hit(threads: int = 1) -> list[tuple[float, int, str, str]]:
+def ticks_and_a_wall_hit(threads: int = 1,
+                         dt: float = 0.25) -> list[tuple[float, int, str, str]]:
     """A tank full at 0.4 (threshold 0.4) and a wall hit at 0.465, both in the step from 0.25
-    to 0.5; the hit ticks a counter, the tank's clock another (where the master accepts the
-    system's state after the tank's tick: at the located hit)."""
+    to 0.5; the hit ticks a counter, the tank's clock another (at the tank's tick)."""
     system = System("ticks and a hit")
     pendulum = FMUComponent("P", fmus.path("pendulum_cvode_fmi3"), tolerance=1e-10)
     pendulum.set_parameters(theta0=0.5)
@@ -210,8 +241,18 @@ def ticks_and_a_wall_hit(threads: int = 1) -> list[tuple[float, int, str, str]]:
     system.set_algorithm(HybridAlgorithm(tol_time=1e-10,
                                          coupling=GaussSeidelAlgorithm(threads=threads)))
     system.initialize(0.0)
-    events = system.run(0.0, 1.0, 0.25).events
+    events = system.run(0.0, 1.0, dt).events
     return [(e.t, e.micro, e.component, e.event) for e in events]
+
+
+@pytest.mark.parametrize("dt", [0.1, 0.25])
+def test_located_ticks_leave_the_seed_pendulum_s_wall_hit_where_it_was(dt: float) -> None:
+    records = ticks_and_a_wall_hit(dt=dt)
+    hits = [r[0] for r in records if r[3] == "wall_hit"]
+    fills = [r[0] for r in records if r[2] == "Fills"]
+    assert hits[0] == pytest.approx(WALL_HIT, abs=1e-9)
+    # the tank is full at 0.4 and 0.8; the algorithm's tol_time is 1e-10
+    assert fills == pytest.approx([0.4, 0.8], abs=1e-10)
 
 
 def test_a_tick_and_an_indicator_in_one_step_are_recorded_in_superdense_order() -> None:
@@ -221,9 +262,10 @@ def test_a_tick_and_an_indicator_in_one_step_are_recorded_in_superdense_order() 
                      ("P", "wall_hit"), ("Hits", "tick")]
     assert records[1][0] == pytest.approx(0.4, abs=1e-12)
     assert records[3][0] == pytest.approx(WALL_HIT, abs=1e-9)
-    # the tank's tick reaches its counter where the master accepts the state after it, the
-    # located hit's instant; the hit's tick comes after the hit, at the same instant
-    assert records[2][:2] == records[3][:2] == records[4][:2] == (records[3][0], 0)
+    # the tank's tick reaches its counter at its own instant, before the hit; the hit's tick
+    # comes after the hit, at the same instant
+    assert records[0][:2] == records[1][:2] == records[2][:2] == (records[1][0], 0)
+    assert records[3][:2] == records[4][:2] == (records[3][0], 0)
     assert records == sorted(records, key=lambda r: (r[0], r[1]))
     # the same records in every run and on two threads
     assert ticks_and_a_wall_hit() == records

@@ -283,24 +283,80 @@ typedef struct {
     int listened; /* a listener ran */
 } commit_work;
 
-/* The number of the output clock source of the record's tick, -1 when none listens to it. */
-static int output_clock_source_of(const ssx_system *sys, const ssx_event_record *record)
+/* The number of the output clock source of a component's output clock tick (`clock`: 1 + the
+ * clock's index, as own events number it), -1 when it is no source. */
+static int output_clock_source_of(const ssx_system *sys, int component, int clock)
 {
     const struct event_sources *e = sources(sys);
     for (int s = 0; s < e->n_output_clock_sources; ++s) {
         const output_clock_source *source = &e->output_clock_sources[s];
-        if (source->component == record->component && source->clock + 1 == record->clock) {
+        if (source->component == component && source->clock + 1 == clock) {
             return s;
         }
     }
     return -1;
 }
 
+/* Whether a clock is connected to the output clock source or a hook subscribed to it. */
+static int source_listened(const struct event_sources *e, int source)
+{
+    for (int k = 0; k < e->n_subscriptions; ++k) {
+        if (e->subscriptions[k].kind == SSX_SOURCE_OUTPUT_CLOCK &&
+            e->subscriptions[k].index == source) {
+            return 1;
+        }
+    }
+    return 0;
+}
+
+int event_sources_locate_ticks(const ssx_system *sys)
+{
+    const struct event_sources *e = sources(sys);
+    int listened = 0;
+    for (int s = 0; s < e->n_output_clock_sources && !listened; ++s) {
+        listened = source_listened(e, s);
+    }
+    for (int i = 0; listened && i < sys->n_components; ++i) {
+        listened = component_can_roll_back(sys->components[i]);
+    }
+    return listened;
+}
+
+int event_sources_earliest_tick(const ssx_system *sys, double *t)
+{
+    const struct event_sources *e = sources(sys);
+    /* asked after every piece: most systems have no output clock source at all */
+    if (e->n_output_clock_sources == 0 ||
+        !atomic_load_explicit(&sys->own_events_pending, memory_order_relaxed)) {
+        return 0;
+    }
+    int found = 0;
+    for (int c = 0; c < sys->n_components; ++c) {
+        const ssx_own_event_list *list = &sys->components[c]->own_events;
+        /* pending in time order: the component's first listened tick is its earliest */
+        for (size_t k = 0; k < list->n; ++k) {
+            const ssx_own_event *tick = &list->pending[k];
+            if (tick->kind != SSX_OWN_OUTPUT_CLOCK) {
+                continue;
+            }
+            int source = output_clock_source_of(sys, c, tick->clock);
+            if (source >= 0 && source_listened(e, source)) {
+                if (!found || tick->t < *t) {
+                    *t = tick->t;
+                }
+                found = 1;
+                break;
+            }
+        }
+    }
+    return found;
+}
+
 /* An output clock's tick ticks the clocks connected to it (connection order), then reaches
  * the hooks subscribed to it (component order), where the system stands. */
 static int tick_to_listeners(ssx_system *sys, const ssx_event_record *record, commit_work *w)
 {
-    int source = output_clock_source_of(sys, record);
+    int source = output_clock_source_of(sys, record->component, record->clock);
     if (source < 0) {
         return 0;
     }

@@ -24,5 +24,10 @@ int event_sources_notify_indicators(ssx_system *sys, const int *fired, int *scra
  * recorded and reach their listeners (own_events_commit), and the coupling settles after
  * a listener ran. */
 int event_sources_commit_own(ssx_system *sys, double t);
+/* Whether the system locates its output clocks' ticks (hybrid.c): a listener waits for one and
+ * every component can roll back. */
+int event_sources_locate_ticks(const ssx_system *sys);
+/* The earliest pending tick of an output clock with a listener into *t; 0 when none. */
+int event_sources_earliest_tick(const ssx_system *sys, double *t);
 
 #endif

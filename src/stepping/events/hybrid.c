@@ -17,6 +17,7 @@
 #include "indicator.h"
 #include "interrupt.h"
 #include "locator.h"
+#include "own_events.h"
 #include "recording.h"
 #include "system_state.h"
 #include "zeno.h"
@@ -613,11 +614,57 @@ int hybrid_begin_piece(ssx_system *sys, double a0, double t_end, hybrid_piece *p
     return 0;
 }
 
+/* An output clock's tick that a listener waits for, reported inside the piece at a known time
+ * (its FMU returned early there): the whole system goes back to the piece's start a0 and steps
+ * to that time, which ends the piece (*t_end), so the tick reaches its listeners there. No
+ * localization: the time is known. An FMU that finds its event by the sign of a value may end
+ * the step to the tick a rounding short of it: then once more, a rounding past it (a thousandth
+ * of half tol_time). One that still ticks only at the next piece's start gets a step of half
+ * tol_time there: every step back advances, and a tick is handled at most that late. */
+static int step_to_clock_tick(ssx_system *sys, double a0, double *t_end)
+{
+    double lead = 0.5 * sys->hybrid.tol_time;
+    int went_past = 0;
+    for (int tries = 0;; ++tries) {
+        double tick, target;
+        if (event_sources_earliest_tick(sys, &tick)) {
+            target = fmax(tick, a0 + lead);
+            if (target > *t_end - lead) {
+                /* at the piece's end, within the tolerance */
+                return 0;
+            }
+        } else if (tries > 0 && !went_past) {
+            went_past = 1;
+            tick = *t_end;
+            target = tick + fmax(1e-3 * lead, 4.0 * DBL_EPSILON * fabs(tick));
+        } else {
+            return 0;
+        }
+        if (tries == sys->hybrid.max_iterations) {
+            return fail(sys, -1, -1, a0,
+                        "an output clock's tick moved at each of %d steps back from t=%.17g "
+                        "(now at t=%.17g): its FMU reports another time each time",
+                        tries, a0, tick);
+        }
+        if (run_interrupted(sys, a0) != 0 || system_restore(sys, MACRO_SLOT, a0) != 0) {
+            return -1;
+        }
+        /* what is pending came from the step just undone, a tick at a0 too (the restore keeps
+         * the events up to its time): every own event up to a0 was committed there */
+        own_events_clear(sys);
+        if (coupling_step(sys, a0, target - a0) != 0) {
+            return -1;
+        }
+        *t_end = target;
+    }
+}
+
 int hybrid_end_piece(ssx_system *sys, const hybrid_piece *piece, double t_end, double grid_step,
                      double *reached, int *event)
 {
     *event = 0;
-    if (indicators_evaluate(sys, t_end) != 0) {
+    if (step_to_clock_tick(sys, piece->a0, &t_end) != 0 ||
+        indicators_evaluate(sys, t_end) != 0) {
         return -1;
     }
     if (!any_fires(sys)) {

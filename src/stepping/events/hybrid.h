@@ -24,7 +24,8 @@ enum { MACRO_SLOT = 0 };
  * indicator starting on zero is resolved there), then take the MACRO_SLOT snapshot and the
  * coupled step to t_end, then end the piece: the earliest crossing in it is located to
  * tol_time and handled. *reached is where the system is then: t_end, or the event's instant
- * (*event set), or, rarely, a point before t_end where the trajectory the localization followed
+ * (*event set), or a listened output clock's tick inside the piece (the next piece starts
+ * there), or, rarely, a point before t_end where the trajectory the localization followed
  * has not crossed yet (the next piece starts there); the grid point is not recorded. */
 typedef struct {
     double a0;

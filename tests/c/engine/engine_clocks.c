@@ -74,8 +74,9 @@ static void the_output_clock_ticks_the_connected_clock(void)
     CHECK_OK(s.sys, ssx_connect_clock(s.sys, SSX_SOURCE_OUTPUT_CLOCK, source, 1, 0));
     CHECK_OK(s.sys, ssx_initialize(s.sys, 0.0));
     CHECK_OK(s.sys, ssx_run(s.sys, 0.0, 1.0, 0.25));
-    /* each tank tick at 0.3 k, then the counter's at the communication point after it */
-    const double full[] = {0.3, 0.6, 0.9}, ticked[] = {0.5, 0.75, 1.0};
+    /* each tank tick at 0.3 k, and the counter's at it: the system steps back and on to the
+     * tick the tank returned early at (within the default tol_time, 1e-9) */
+    const double full[] = {0.3, 0.6, 0.9};
     CHECK(ssx_event_count(s.sys) == 9);
     for (size_t k = 0; k < 3; ++k) {
         ssx_event_record event, clock, tick;
@@ -86,11 +87,11 @@ static void the_output_clock_ticks_the_connected_clock(void)
         CHECK(clock.own == SSX_OWN_OUTPUT_CLOCK && clock.component == 0 && clock.clock == 1);
         CHECK(fabs(clock.t - full[k]) < 1e-12 && clock.t == event.t);
         CHECK(tick.own == SSX_OWN_CLOCK_TICK && tick.component == 1 && tick.clock == 1);
-        CHECK(fabs(tick.t - ticked[k]) < 1e-12);
+        CHECK(tick.t >= clock.t && tick.t - clock.t < 1e-9);
     }
     const double *counter = ssx_outputs(s.sys, 1);
-    CHECK(counter[0] == 3.0 && fabs(counter[1] - 1.0) < 1e-12);
-    CHECK(fabs(counter[2] - 0.1) < 1e-12); /* the level the tick sampled at t = 1 */
+    CHECK(counter[0] == 3.0 && fabs(counter[1] - 0.9) < 1e-9);
+    CHECK(fabs(counter[2]) < 1e-9); /* the level the tick sampled: the emptied tank's */
     CHECK(ssx_outputs(s.sys, 0)[1] == 3.0);
     release(s);
 }
