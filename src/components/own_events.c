@@ -43,6 +43,18 @@ void own_events_drop_after(ssx_component *c, double t)
     }
 }
 
+size_t own_events_pending_count(const ssx_component *c)
+{
+    return c->own_events.n;
+}
+
+void own_events_keep_first(ssx_component *c, size_t n)
+{
+    if (c->own_events.n > n) {
+        c->own_events.n = n;
+    }
+}
+
 /* The component whose first pending event (at or before t) is earliest, or -1. */
 static int earliest(const ssx_system *sys, const size_t *next, double t)
 {

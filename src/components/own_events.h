@@ -17,6 +17,12 @@ int own_event_report_clock(ssx_system *sys, ssx_component *c, ssx_own_event_kind
                            double t);
 /* The component's state is back at t: its events after t did not happen. */
 void own_events_drop_after(ssx_component *c, double t);
+/* How many events the component holds pending. A step reports its events at or after its
+ * start, each after those pending at the same time, so the ones pending before it stay first:
+ * own_events_keep_first(c, n) with the count from before the step drops every event the step
+ * reported, one at its start too. */
+size_t own_events_pending_count(const ssx_component *c);
+void own_events_keep_first(ssx_component *c, size_t n);
 /* Told of each own event as it is committed, to record it (the recording is a room above the
  * components) and tell its listeners: 0, or -1 with the error set. A listener may report more
  * own events of its own at the commit's time: they are committed in the same pass. */

@@ -30,6 +30,7 @@ enum { NEAR_SLOT = 1, PROBE_SLOT = 1 };
 typedef struct {
     indicator_bracket *brackets; /* the localization workspace, one per indicator */
     int zero_start_pending;      /* indicators starting on zero still need their side probed */
+    size_t *own_pending; /* per component, its own events pending at the piece's start */
 } hybrid_workspace;
 
 static hybrid_workspace *workspace(const ssx_system *sys)
@@ -578,12 +579,17 @@ int hybrid_prepare(ssx_system *sys, void **out)
     }
     hybrid_workspace *hw = calloc(1, sizeof *hw);
     indicator_bracket *brackets = hw != NULL ? calloc(n > 0 ? n : 1, sizeof *brackets) : NULL;
-    if (states == NULL || brackets == NULL) {
+    size_t n_components = (size_t)sys->n_components;
+    size_t *own_pending =
+        brackets != NULL ? calloc(n_components > 0 ? n_components : 1, sizeof *own_pending) : NULL;
+    if (states == NULL || own_pending == NULL) {
+        free(brackets);
         free(hw);
         return fail(sys, -1, -1, sys->time, "out of memory preparing %zu event indicators", n);
     }
     memset(states, 0, n * sizeof *states);
-    *hw = (hybrid_workspace){.brackets = brackets, .zero_start_pending = 1};
+    *hw = (hybrid_workspace){
+        .brackets = brackets, .zero_start_pending = 1, .own_pending = own_pending};
     *out = hw;
     return 0;
 }
@@ -610,6 +616,9 @@ int hybrid_begin_piece(ssx_system *sys, double a0, double t_end, hybrid_piece *p
                             .restores_before = sys->stats.state_restores};
     for (int i = 0; i < sys->n_indicators; ++i) {
         workspace(sys)->brackets[i].z_left = sys->indicator_states[i].value;
+    }
+    for (int i = 0; i < sys->n_components; ++i) {
+        workspace(sys)->own_pending[i] = own_events_pending_count(sys->components[i]);
     }
     return 0;
 }
@@ -649,9 +658,10 @@ static int step_to_clock_tick(ssx_system *sys, double a0, double *t_end)
         if (run_interrupted(sys, a0) != 0 || system_restore(sys, MACRO_SLOT, a0) != 0) {
             return -1;
         }
-        /* what is pending came from the step just undone, a tick at a0 too (the restore keeps
-         * the events up to its time): every own event up to a0 was committed there */
-        own_events_clear(sys);
+        /* the restore keeps the events at a0: those the step just undone reported there go */
+        for (int i = 0; i < sys->n_components; ++i) {
+            own_events_keep_first(sys->components[i], workspace(sys)->own_pending[i]);
+        }
         if (coupling_step(sys, a0, target - a0) != 0) {
             return -1;
         }
@@ -718,6 +728,7 @@ void hybrid_release(ssx_system *sys, void *workspace)
     hybrid_workspace *hw = workspace;
     if (hw != NULL) {
         free(hw->brackets);
+        free(hw->own_pending);
         free(hw);
     }
 }
