@@ -94,6 +94,11 @@ nitpick_ignore = [
     ("py:class", "syssimx.system.system_history.HistorySource"),
     # OSPImported.power_bonds: the bonds an OSP structure names
     ("py:class", "syssimx.osp.build.PowerBond"),
+    # MemberRuns[k]: one member's samples; ScheduledExecutionComponent.ticks: its log
+    ("py:class", "syssimx.system.member_runs.MemberSamples"),
+    ("py:class", "syssimx.components.scheduled_execution.Tick"),
+    # a SystemState is made by System.save_state from the System's engine plan
+    ("py:class", "EnginePlan"),
 ]
 
 html_theme = "sphinx_book_theme"

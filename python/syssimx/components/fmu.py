@@ -207,14 +207,14 @@ class FMUComponent(CoSimComponent):
 
     @property
     def output_clocks(self) -> list[str]:
-        """The FMI 3.0 output clocks the engine reads in Co-Simulation, in its order: each is
+        """The FMI 3.0 output clocks the engine reads in Co-Simulation, in its order; each is
         an event source for an EventConnection."""
         return [] if self.model_exchange else \
             [c.name for c in output_clocks(self.info.clocks.clocks)]
 
     @property
     def triggered_clocks(self) -> list[str]:
-        """The FMI 3.0 triggered input clocks the engine ticks in Co-Simulation, in its order:
+        """The FMI 3.0 triggered input clocks the engine ticks in Co-Simulation, in its order;
         an EventConnection from an indicator or an output clock to one ticks it."""
         return [] if self.model_exchange else \
             [c.name for c in triggered_input_clocks(self.info.clocks.clocks)]

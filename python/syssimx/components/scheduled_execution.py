@@ -149,7 +149,7 @@ class ScheduledExecutionComponent(CoSimComponent):
 
     @property
     def output_clocks(self) -> list[str]:
-        """The output clocks in the FMU's order: each tick is an own event, a source for an
+        """The output clocks in the FMU's order; each tick is an own event, a source for an
         EventConnection."""
         return [c.name for c in self.clocks.clocks if c.causality == "output"]
 

@@ -12,6 +12,7 @@ _MODULES = {
     "IJCSAAlgorithm": ".algorithms",
     "JacobiAlgorithm": ".algorithms",
     "LocalizationTrial": ".event_record",
+    "MemberRuns": ".member_runs",
     "SimulationResult": ".results",
     "Statistics": ".results",
     "StepControl": ".algorithms",
