@@ -53,17 +53,17 @@ def export_seed(folder: Path, fmi_version: str) -> Path:
 def run_with_fmpy_alone(fmu: Path, outputs: list[str] = OUTPUTS,
                         start_values: dict[str, float] | None = None,
                         inputs: dict[str, float] | None = None,
-                        stop_time: float = STOP_TIME,
+                        stop_time: float = STOP_TIME, interval: float = STEP,
                         python: str = sys.executable) -> dict[str, list[float]]:
     """FMPy's simulate_fmu of a copy of `fmu` in a fresh folder, in `python` with its syssimx
-    import made to fail, with `start_values` and constant `inputs`: the result's columns by
-    name."""
+    import made to fail, with `start_values` and constant `inputs`, its output interval
+    `interval`: the result's columns by name."""
     with tempfile.TemporaryDirectory() as fresh:
         copy = Path(fresh) / fmu.name
         shutil.copyfile(fmu, copy)
         target = Path(fresh) / "result.json"
         ran = subprocess.run([python, "-c", FMPY_RUN, str(copy), str(stop_time),
-                              str(STEP), json.dumps(outputs), json.dumps(start_values or {}),
+                              repr(interval), json.dumps(outputs), json.dumps(start_values or {}),
                               json.dumps(inputs or {}), str(target)], cwd=fresh,
                              capture_output=True, text=True)
         assert ran.returncode == 0, ran.stderr
