@@ -32,12 +32,14 @@ class SystemFile(Protocol):
     def experiment(self) -> Experiment: ...
 
 
-def read_system_file(path: str | Path, strict: bool = False) -> SystemFile:
-    """The imported system and experiment of an SSP or OSP file."""
+def read_system_file(path: str | Path, strict: bool = False,
+                     proxies_in_process: bool = False) -> SystemFile:
+    """The imported system and experiment of an SSP or OSP file. proxies_in_process: an OSP
+    file's proxy FMUs run in this process, not isolated (what an exported FMU can carry)."""
     if Path(path).suffix.lower() in SSP_SUFFIXES:
         from .ssp import read
 
         return read(path, strict)
     from .osp import read as read_osp
 
-    return read_osp(path, strict)
+    return read_osp(path, strict, proxies_in_process)

@@ -60,7 +60,8 @@ def _system_file(args: argparse.Namespace) -> tuple[Any, Times]:
     from ..system_files import read_system_file
 
     with warnings_as_lines():
-        imported = read_system_file(args.config, strict=args.strict)
+        # the FMU carries no host process: an OSP file's proxy FMUs run in its process
+        imported = read_system_file(args.config, strict=args.strict, proxies_in_process=True)
     experiment = imported.experiment
     return imported.system, (experiment.start_time, experiment.stop_time, experiment.step_size)
 

@@ -32,12 +32,15 @@ class PowerBond:
     connections: tuple[tuple[tuple[str, str], tuple[str, str]], ...]
 
 
-def build(document: Document, unsupported: Unsupported) -> tuple[System, list[PowerBond]]:
+def build(document: Document, unsupported: Unsupported,
+          proxies_in_process: bool = False) -> tuple[System, list[PowerBond]]:
+    """proxies_in_process: a proxy FMU runs in syssimx's process (as it must inside an
+    exported FMU, which carries no host process)."""
     name = document.path.parent.name if document.path.name == "OspSystemStructure.xml" \
         else document.path.stem
     system = System(name or document.path.stem)
     system.set_algorithm(JacobiAlgorithm())
-    builder = _Builder(document, system, unsupported)
+    builder = _Builder(document, system, unsupported, proxies_in_process)
     for simulator in document.simulators:
         builder.add(simulator)
     for link in document.links:
@@ -48,10 +51,12 @@ def build(document: Document, unsupported: Unsupported) -> tuple[System, list[Po
 
 
 class _Builder:
-    def __init__(self, document: Document, system: System, unsupported: Unsupported) -> None:
+    def __init__(self, document: Document, system: System, unsupported: Unsupported,
+                 proxies_in_process: bool) -> None:
         self.document = document
         self.system = system
         self.unsupported = unsupported
+        self.proxies_in_process = proxies_in_process
         self.groups: dict[str, dict[str, Group]] = {}
         self.signals: dict[tuple[str, str], tuple[Endpoint, str]] = {}
         self.bonds: dict[str, list[tuple[tuple[str, str], tuple[str, str]]]] = {}
@@ -78,7 +83,13 @@ class _Builder:
 
     def can_isolate(self, path: Path, simulator: Simulator) -> bool:
         """Whether a proxy FMU runs in a host process of syssimx's own (isolated=True runs FMI
-        2.0 FMUs); another FMI version runs in process. One warning each way."""
+        2.0 FMUs); another FMI version, or any when proxies run in process, runs in process.
+        One warning each way."""
+        if self.proxies_in_process:
+            self.unsupported.warn("a proxy FMU server (proxyfmu://) in an exported FMU",
+                                  f"{simulator.where}: the FMU runs in the exported FMU's "
+                                  "process")
+            return False
         try:
             version = str(read_fmu(path).description.fmiVersion)
         except ConfigurationError as exc:

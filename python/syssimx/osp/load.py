@@ -34,13 +34,15 @@ def load(path: str | Path, strict: bool = False) -> System:
     return read(path, strict).system
 
 
-def read(path: str | Path, strict: bool = False) -> OSPImported:
-    """The system, experiment, algorithm and power bonds of an OSP system structure."""
+def read(path: str | Path, strict: bool = False,
+         proxies_in_process: bool = False) -> OSPImported:
+    """The system, experiment, algorithm and power bonds of an OSP system structure.
+    proxies_in_process: a proxy FMU (proxyfmu://) runs in this process, not isolated."""
     document = read_document(structure_file(path))
     unsupported = Unsupported(strict, OSPError, OSPWarning)
     for element in document.ignored:
         unsupported.warn(f"the element {element.split(' ')[0]}", f"{document.path}: {element}")
-    system, bonds = build(document, unsupported)
+    system, bonds = build(document, unsupported, proxies_in_process)
     if document.algorithm == "ecco":
         if not bonds:
             unsupported.warn("<Algorithm> ecco without power bonds",
