@@ -28,7 +28,7 @@ struct exported_system {
     ssx_system *sys;
     double start_time; /* of initialization mode */
     int initializing;  /* in initialization mode: a parameter set builds the system again */
-    long events;       /* events located and handled inside since the start */
+    long events;       /* events inside since the start: located ones and members' own */
     double last_event_time;
     exported_log log;
     void *user;
@@ -341,11 +341,22 @@ int exported_system_get_integer(exported_system *es, const unsigned int *vr, siz
     return 0;
 }
 
+/* The event instants the indicators made and the events members handled in their own steps
+ * (an FMI 3.0 member's early return, a Model Exchange member's state or time event): an own
+ * event's handlers run inside the FMU as a located event's do. */
 static long events_handled(const ssx_system *sys)
 {
     ssx_statistics statistics;
     ssx_get_statistics(sys, &statistics);
-    return statistics.events;
+    return statistics.events + statistics.own_events;
+}
+
+/* The time of the latest event record, `otherwise` when there is none. */
+static double latest_event_time(const ssx_system *sys, double otherwise)
+{
+    size_t count = ssx_event_count(sys);
+    ssx_event_record record;
+    return count > 0 && ssx_event_get(sys, count - 1, &record) == 0 ? record.t : otherwise;
 }
 
 int exported_system_step(exported_system *es, double t, double h, int may_return_early,
@@ -379,7 +390,7 @@ int exported_system_step(exported_system *es, double t, double h, int may_return
         long handled = events_handled(es->sys) - before;
         if (handled > 0) {
             es->events += handled;
-            es->last_event_time = outcome.time;
+            es->last_event_time = latest_event_time(es->sys, outcome.time);
         }
         if (outcome.terminated) {
             return 1;

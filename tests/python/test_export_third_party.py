@@ -179,7 +179,8 @@ algorithm: {{type: hybrid, tol_time: 1.0e-9, tol_value: 1.0e-9}}
 def test_a_reference_ball_s_own_events_restart_another_member_inside_the_export(tmp_path,
                                                                                   fmi_version):
     """The FMI 3.0 BouncingBall's own events (its bounces, handled in its own steps) restart
-    the FMI 3.0 Dahlquist (Reinitialize k = 2, x from its start 1) inside the export."""
+    the FMI 3.0 Dahlquist (Reinitialize k = 2, x from its start 1) inside the export; the
+    export's events and last_event_time count them."""
     ball = reference_fmu("fmi3/BouncingBall.fmu")
     decay = reference_fmu("fmi3/Dahlquist.fmu")
     path = write_description(tmp_path, "ball", f"""
@@ -199,6 +200,9 @@ algorithm: {{type: hybrid, tol_time: 1.0e-9, tol_value: 1.0e-9}}
     fmu = build_system(path).export_fmu(tmp_path / f"ball_{fmi_version[0]}.fmu",
                                         fmi_version=fmi_version, step_size=0.01)
     result, run = assert_fmpy_gives_syssimx_s_run(fmu, build_system(path), 3.0, 0.01)
+    # the FMU's own count and time of events take in the members' own events
     assert run.statistics.own_events > 0
+    assert result["events"][-1] == run.statistics.own_events
+    assert result["last_event_time"][-1] == run.events[-1].t
     decayed = np.array(result["D.x"])
     assert np.any(np.diff(decayed) > 0.5)  # restarted from 1 at a bounce

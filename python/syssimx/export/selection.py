@@ -63,7 +63,8 @@ def select(system: Any, inputs: Sequence[str] | None, outputs: Sequence[str] | N
                 for vr, (role, name) in enumerate(chosen, start=1)]
     own = len(exported) + 1
     exported.append(ExportedVariable(EVENT_COUNT, own, "events", -1, -1,
-                                     description="events located and handled inside so far"))
+                                     description="events inside so far: those "
+                                     "the indicators made and the members' own"))
     exported.append(ExportedVariable(LAST_EVENT_TIME, own + 1, "last_event_time", -1, -1,
                                      unit="s", description="time of the last event handled "
                                      "inside (the start time before the first)"))
