@@ -1,18 +1,20 @@
 """Systems other tools wrote, exported by `syssimx export` as FMI 2.0 and 3.0 FMUs and run by
 FMPy alone (no syssimx importable, a copy in a fresh folder) at the system's own step: libcosim's
 quarter truck (third-party FMUs with String parameters, the ecco step control), the SSP and OSP
-files of OMSimulator and libcosim that syssimx runs, and YAML systems of the Reference FMUs
-with declarative handlers. Every output equals syssimx's own run of the same file at every grid
+files of OMSimulator and libcosim that syssimx runs, YAML systems of the Reference FMUs
+with declarative handlers, and members with odd and long names. Every output equals syssimx's own run of the same file at every grid
 point, to the bit, and `fmpy.validation` finds no problem."""
 
 from __future__ import annotations
 
 import re
+import shutil
 import warnings
 import zipfile
 from html import unescape
 from pathlib import Path
 from typing import Any
+from xml.sax.saxutils import escape
 
 import numpy as np
 import pytest
@@ -206,3 +208,34 @@ algorithm: {{type: hybrid, tol_time: 1.0e-9, tol_value: 1.0e-9}}
     assert result["last_event_time"][-1] == run.events[-1].t
     decayed = np.array(result["D.x"])
     assert np.any(np.diff(decayed) > 0.5)  # restarted from 1 at a bounce
+
+
+@pytest.mark.parametrize("fmi_version", VERSIONS)
+def test_members_with_odd_and_long_names_export(tmp_path, fmi_version):
+    """An OSP file (in a folder whose name has a space, a percent sign and non-ASCII letters)
+    whose simulators, two instances of libcosim's Dahlquist FMU, are named with quotes, an
+    ampersand, spaces and Greek letters, and with 230 characters."""
+    folder = tmp_path / "odd folder %41 ü"
+    folder.mkdir()
+    shutil.copy(available_samples() / "libcosim" / "fmi2" / "Dahlquist.fmu", folder)
+    odd = 'dq "quoted" & spaced ü λ'
+    long = "a_member_whose_name_is_long_" * 8 + "end"
+    path = folder / "OspSystemStructure.xml"
+    path.write_text(f"""<?xml version="1.0" encoding="UTF-8"?>
+<OspSystemStructure xmlns="http://opensimulationplatform.com/MSMI/OSPSystemStructure"
+                    version="0.1">
+  <StartTime>0.0</StartTime>
+  <BaseStepSize>0.1</BaseStepSize>
+  <Algorithm>fixedStep</Algorithm>
+  <Simulators>
+    <Simulator name="{escape(odd, {'"': '&quot;'})}" source="Dahlquist.fmu">
+      <InitialValues><InitialValue variable="k"><Real value="2"/></InitialValue></InitialValues>
+    </Simulator>
+    <Simulator name="{long}" source="Dahlquist.fmu"/>
+  </Simulators>
+</OspSystemStructure>
+""", encoding="utf-8")
+    fmu = tmp_path / "odd.fmu"
+    export_with_cli(path, fmu, fmi_version)
+    result, _ = assert_fmpy_gives_syssimx_s_run(fmu, read_quietly(path).system, 1.0, 0.1)
+    assert result[f"{odd}.x"][-1] < result[f"{long}.x"][-1]  # k = 2 decays faster than k = 1
