@@ -2,8 +2,9 @@
 FMPy alone (no syssimx importable, a copy in a fresh folder) at the system's own step: libcosim's
 quarter truck (third-party FMUs with String parameters, the ecco step control), the SSP and OSP
 files of OMSimulator and libcosim that syssimx runs, YAML systems of the Reference FMUs
-with declarative handlers, and members with odd and long names. Every output equals syssimx's own run of the same file at every grid
-point, to the bit, and `fmpy.validation` finds no problem."""
+with declarative handlers, and members with odd and long names. Every output equals syssimx's
+own run of the same file at every grid point, to the bit, and `fmpy.validation` finds no
+problem."""
 
 from __future__ import annotations
 
