@@ -29,6 +29,11 @@ typedef enum {
 
 typedef enum { PLAN_INTEGER, PLAN_DOUBLE, PLAN_STRING, PLAN_WORD } plan_value_kind;
 
+/* A list of doubles longer than this is written in its hex form (`xN:` then 16 hex digits a
+ * value), exact and fast both ways; a shorter one in decimal, readable. Python's writer keeps
+ * the same bound, so that both write the same text. */
+#define PLAN_DECIMAL_DOUBLES_MAX 64
+
 /* The fixed word sets of the format. */
 typedef enum {
     PLAN_WORDS_VALUE_TYPE, PLAN_WORDS_FMI3_TYPE, PLAN_WORDS_SOURCE, PLAN_WORDS_COUPLING,

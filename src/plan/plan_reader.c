@@ -376,6 +376,81 @@ static int read_double(reader *r)
     return parse_double(r, start, size, &v->as.real);
 }
 
+/* A lowercase hex digit's value plus one, 0 for any other byte: one look-up a digit. */
+static const unsigned char lowercase_hex_plus_one[256] = {
+    ['0'] = 1, ['1'] = 2, ['2'] = 3, ['3'] = 4, ['4'] = 5, ['5'] = 6, ['6'] = 7, ['7'] = 8,
+    ['8'] = 9, ['9'] = 10, ['a'] = 11, ['b'] = 12, ['c'] = 13, ['d'] = 14, ['e'] = 15,
+    ['f'] = 16,
+};
+
+/* A list of doubles in its hex form, the token [start, start + size): `x`, the count, `:`,
+ * then each value's IEEE-754 binary64 bytes, least significant first, as 16 lowercase hex
+ * digits. Pushed as the decimal form is: the count, then the values. The digits are checked
+ * against the count before anything is stored. */
+static int read_hex_doubles(reader *r, const char *start, size_t size)
+{
+    const char *colon = memchr(start, ':', size);
+    if (colon == NULL) {
+        return refuse(r, "a hex list is x, its count, ':' and its digits; '%.*s' has no ':'",
+                      (int)(size < 20 ? size : 20), start);
+    }
+    int64_t count = 0;
+    if (parse_integer(r, start + 1, (size_t)(colon - start) - 1, 0, PLAN_MAX_LIST, &count) !=
+        0) {
+        return -1;
+    }
+    const char *digits = colon + 1;
+    size_t n_digits = size - (size_t)(digits - start);
+    if (n_digits % 2 != 0) {
+        return refuse(r, "the hex list has an odd number of digits (%zu)", n_digits);
+    }
+    if (n_digits % 16 != 0 || n_digits / 16 != (uint64_t)count) {
+        return refuse(r, "the hex list holds %zu digits for %lld values (16 a value)",
+                      n_digits, (long long)count);
+    }
+    ssx_plan *p = r->plan;
+    if (reserve(r, (void **)&p->values, &r->values_capacity,
+                p->n_values_total + 1 + (size_t)count, sizeof *p->values) != 0) {
+        return -1;
+    }
+    plan_value *v = push_value(r);
+    if (v == NULL) {
+        return -1;
+    }
+    v->kind = PLAN_INTEGER;
+    v->as.integer = count;
+    long outer = r->item;
+    for (int64_t k = 0; k < count; ++k) {
+        const unsigned char *value = (const unsigned char *)digits + 16 * k;
+        uint64_t bits = 0;
+        unsigned int valid = 1;
+        for (int byte = 0; byte < 8; ++byte) {
+            unsigned int high = lowercase_hex_plus_one[value[2 * byte]];
+            unsigned int low = lowercase_hex_plus_one[value[2 * byte + 1]];
+            valid &= high != 0 && low != 0;
+            bits |= (uint64_t)(((high - 1) << 4 | (low - 1)) & 0xffu) << (8 * byte);
+        }
+        if (!valid) {
+            size_t at = 0;
+            while (lowercase_hex_plus_one[value[at]] != 0) {
+                ++at;
+            }
+            r->item = (long)k;
+            return value[at] > 0x20 && value[at] < 0x7f
+                   ? refuse(r, "'%c' is not a lowercase hex digit", value[at])
+                   : refuse(r, "byte 0x%02x is not a lowercase hex digit", value[at]);
+        }
+        v = push_value(r);
+        if (v == NULL) {
+            return -1;
+        }
+        v->kind = PLAN_DOUBLE;
+        memcpy(&v->as.real, &bits, sizeof bits);
+    }
+    r->item = outer;
+    return 0;
+}
+
 /* The index of the last component read must have more than `index` ports of `counts`. */
 static int check_port(reader *r, const int *counts, int64_t index, const char *what)
 {
@@ -466,6 +541,13 @@ static int read_element(reader *r, const char *e, size_t *used)
     case '[': {
         const char *close = strchr(e, ']');
         *used = (size_t)(close - e) + 1;
+        const char *start = NULL;
+        size_t size = 0;
+        const char *before = r->at;
+        if (close == e + 2 && e[1] == 'd' && next_token(r, &start, &size) && *start == 'x') {
+            return read_hex_doubles(r, start, size);
+        }
+        r->at = before; /* the count of a list in its decimal form */
         if (read_integer(r, 0, PLAN_MAX_LIST, &value) != 0) {
             return -1;
         }

@@ -1,6 +1,8 @@
-/* Writing a plan: the header, then each record as its keyword and values. A double is written
- * in the fewest digits (15, 16 or 17) that read back to the same double, so that reading what
- * was written and writing it again gives the same text; a string stays UTF-8 text. */
+/* Writing a plan: the header, then each record as its keyword and values, following its
+ * signature (plan_schema.c). A double is written in the fewest digits (15, 16 or 17) that read
+ * back to the same double, a list of more than PLAN_DECIMAL_DOUBLES_MAX doubles in its hex
+ * form, so that reading what was written and writing it again gives the same text; a string
+ * stays UTF-8 text. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -117,6 +119,80 @@ static void append_string(text_buffer *b, const char *bytes, size_t n)
     append(b, "\"", 1);
 }
 
+static void append_value(text_buffer *b, const ssx_plan *plan, const plan_value *v)
+{
+    char number[32];
+    append(b, " ", 1);
+    switch (v->kind) {
+    case PLAN_INTEGER:
+        snprintf(number, sizeof number, "%lld", (long long)v->as.integer);
+        append_text(b, number);
+        break;
+    case PLAN_DOUBLE:
+        append_double(b, v->as.real);
+        break;
+    case PLAN_STRING:
+        append_string(b, plan->pool + v->as.text.offset, v->as.text.size);
+        break;
+    default:
+        append_text(b, plan_words(v->word_set)[v->as.integer]);
+        break;
+    }
+}
+
+/* A list of doubles in its hex form: `xN:`, then each value's IEEE-754 binary64 bytes, least
+ * significant first, as 16 lowercase hex digits: exact (NaN payloads too) and no formatting. */
+static void append_hex_doubles(text_buffer *b, const plan_value *values, size_t count)
+{
+    static const char digits[] = "0123456789abcdef";
+    char head[32];
+    snprintf(head, sizeof head, " x%zu:", count);
+    append_text(b, head);
+    for (size_t k = 0; k < count; ++k) {
+        uint64_t bits;
+        memcpy(&bits, &values[k].as.real, sizeof bits);
+        char hex[16];
+        for (int byte = 0; byte < 8; ++byte) {
+            unsigned int octet = (unsigned int)(bits >> (8 * byte)) & 0xffu;
+            hex[2 * byte] = digits[octet >> 4];
+            hex[2 * byte + 1] = digits[octet & 0xfu];
+        }
+        append(b, hex, sizeof hex);
+    }
+}
+
+/* The values of `signature` (plan_schema.c) from values[0]; the number of values written. */
+static size_t append_signature(text_buffer *b, const ssx_plan *plan, const plan_value *values,
+                               const char *signature, size_t length)
+{
+    size_t used = 0;
+    for (size_t k = 0; k < length; ++k) {
+        if (signature[k] == 'g') { /* a schedule group: its size, its flag, its members */
+            size_t members = (size_t)values[used].as.integer;
+            for (size_t m = 0; m < members + 2; ++m) {
+                append_value(b, plan, &values[used++]);
+            }
+        } else if (signature[k] == '[') {
+            const char *close = strchr(signature + k, ']');
+            size_t inner = (size_t)(close - signature) - k - 1;
+            size_t count = (size_t)values[used].as.integer;
+            if (inner == 1 && signature[k + 1] == 'd' && count > PLAN_DECIMAL_DOUBLES_MAX) {
+                append_hex_doubles(b, &values[used + 1], count);
+                used += 1 + count;
+            } else {
+                append_value(b, plan, &values[used++]);
+                for (size_t item = 0; item < count; ++item) {
+                    used += append_signature(b, plan, &values[used], signature + k + 1, inner);
+                }
+            }
+            k += inner + 1;
+        } else {
+            append_value(b, plan, &values[used++]);
+        }
+    }
+    return used;
+}
+
 char *ssx_plan_write(const ssx_plan *plan, size_t *size)
 {
     if (plan == NULL) {
@@ -125,27 +201,10 @@ char *ssx_plan_write(const ssx_plan *plan, size_t *size)
     text_buffer b = {0};
     append_text(&b, "syssimx-plan 1\n");
     for (size_t r = 0; r < plan->n_records; ++r) {
+        const char *signature = plan_schema[plan->kind[r]].signature;
         append_text(&b, plan_schema[plan->kind[r]].keyword);
-        for (size_t k = 0; k < plan->n_values[r]; ++k) {
-            const plan_value *v = &plan->values[plan->first_value[r] + k];
-            char number[32];
-            append(&b, " ", 1);
-            switch (v->kind) {
-            case PLAN_INTEGER:
-                snprintf(number, sizeof number, "%lld", (long long)v->as.integer);
-                append_text(&b, number);
-                break;
-            case PLAN_DOUBLE:
-                append_double(&b, v->as.real);
-                break;
-            case PLAN_STRING:
-                append_string(&b, plan->pool + v->as.text.offset, v->as.text.size);
-                break;
-            default:
-                append_text(&b, plan_words(v->word_set)[v->as.integer]);
-                break;
-            }
-        }
+        append_signature(&b, plan, &plan->values[plan->first_value[r]], signature,
+                         strlen(signature));
         append(&b, "\n", 1);
     }
     if (b.failed) {

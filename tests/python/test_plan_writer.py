@@ -158,8 +158,75 @@ def test_records_write_each_field_as_the_format_reads_it() -> None:
     column = np.array([0.1, 1 / 3, 5e-324, np.nan, -np.inf, 100.0, 1e22])
     records.add("y", Doubles(column))
     line = records.text().splitlines()[2]
-    assert line == "y 7 0.1 0.3333333333333333 5e-324 nan -inf 100.0 1e+22"
+    assert line == "y 7 0.1 0.3333333333333333 4.94065645841247e-324 nan -inf 100 1e+22"
     np.testing.assert_array_equal(np.array(line.split()[2:], dtype=float), column)
+
+
+def test_a_long_list_of_doubles_is_written_in_hex_exactly() -> None:
+    """More than 64 doubles: `xN:` and each value's little-endian binary64 bytes in one
+    token, to the bit (a NaN's payload, -0); 64 stay decimal."""
+    column = np.arange(65, dtype=np.float64) / 3
+    column[1:3] = np.array([0x7FF8000000000ABC], dtype=np.uint64).view(np.float64)[0], -0.0
+    records = PlanRecords()
+    records.add("y", Doubles(column))
+    records.add("y", Doubles(column[:64]))
+    long_line, short_line = records.text().splitlines()[1:]
+    count, digits = long_line.removeprefix("y x").split(":")
+    assert count == "65" and digits == digits.lower() and len(digits) == 65 * 16
+    decoded = np.frombuffer(bytes.fromhex(digits), dtype="<f8")
+    assert decoded.tobytes() == column.tobytes()
+    assert short_line.startswith("y 64 0 nan -0 1 1.3333333333333333 ")
+
+
+def _large_table_system(rows: int = 200_000) -> System:
+    """A table of `rows` rows and 3 columns (a DataFrame) into a gain, initialized."""
+    import pandas as pd
+    from syssimx.components.table_source import TableSource
+
+    rng = np.random.default_rng(7)
+    time = np.linspace(0.0, 10.0, rows)
+    frame = pd.DataFrame({"time": time, "u": rng.standard_normal(rows), "b": np.sin(time) / 3,
+                          "c": rng.uniform(0.0, 1e6, rows)})
+    system = System("large table")
+    system.add_component(TableSource("T", frame))
+    system.add_component(FMUComponent("G", fmus.path("gain")))
+    system.add_connection(Connection("T", "u", "G", "u", convert_units=False))
+    system.initialize(0.0)
+    return system
+
+
+def test_a_large_table_runs_bit_identically_in_its_hex_form(monkeypatch: Any) -> None:
+    """The plan of a 200,000-row table holds its lists in hex; the engine's writer gives the
+    text back byte for byte (as it does for a 64-row table's decimal lists), the engine alone
+    runs it as Python does, and the run is the run of the same plan in decimal, to the bit."""
+    from syssimx.plan import records
+
+    system = _large_table_system()
+    text = system.to_plan()
+    assert '\ntable "T" x200000:' in text and "\ntable_column 0 real 0 x200000:" in text
+    short = _large_table_system(rows=64).to_plan()
+    assert '\ntable "T" 64 0 0.15873015873015872 ' in short
+    for plan in (text, short):
+        size = ffi.new("size_t *")
+        written = lib().ssx_plan_write(_read(plan), size)
+        try:
+            assert ffi.string(written, size[0]).decode() == plan
+        finally:
+            lib().ssx_plan_text_free(written)
+    time, values, _ = _run_standalone(text)
+    python_time, python_values, _ = _python_run(system, "T")
+    np.testing.assert_array_equal(time, python_time)
+    np.testing.assert_array_equal(values, python_values)
+    gain = system.get_history()["G"][1]
+
+    monkeypatch.setattr(records, "DECIMAL_DOUBLES_MAX", 10**9)
+    decimal = _large_table_system()
+    assert '\ntable "T" 200000 0 ' in decimal.to_plan()
+    decimal_time, decimal_values, _ = _python_run(decimal, "T")
+    np.testing.assert_array_equal(decimal_time, python_time)
+    np.testing.assert_array_equal(decimal_values, python_values)
+    for name, column in decimal.get_history()["G"][1].items():
+        np.testing.assert_array_equal(column, gain[name])
 
 
 def test_an_fmi3_fmu_is_built_from_the_type_table_python_loaded_it_with() -> None:

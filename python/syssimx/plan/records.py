@@ -23,17 +23,26 @@ class Word(str):
     """A fixed word of the format (`real`, `jacobi`, ...), written bare."""
 
 
+# a list of more doubles than this is written in its hex form, as the engine's writer does
+# (PLAN_DECIMAL_DOUBLES_MAX): a short list stays readable
+DECIMAL_DOUBLES_MAX = 64
+
+
 class Doubles:
-    """A list of doubles written fast: its count, then each value in Python's shortest form
-    that reads back to it (`repr`: `0.1`, `100.0`, `1e-10`, `nan`, `-inf`), one C loop for the
-    whole list instead of a Python call per value."""
+    """A list of doubles (a table's times or column). Up to DECIMAL_DOUBLES_MAX values: its
+    count, then each value as a double field is written (`0.1`, `100`, `1e-10`, `nan`,
+    `-inf`). A longer list in its hex form, exact and with no formatting per value: `x`, the
+    count, `:`, then the values' IEEE-754 binary64 bytes, little-endian, as lowercase hex in
+    one token."""
 
     def __init__(self, values: np.ndarray) -> None:
         self.values = np.asarray(values, dtype=np.float64)
 
     def text(self) -> str:
+        if len(self.values) > DECIMAL_DOUBLES_MAX:
+            return f"x{len(self.values)}:" + self.values.astype("<f8").tobytes().hex()
         values = self.values.tolist()
-        return " ".join((str(len(values)), *map(repr, values)))
+        return " ".join((str(len(values)), *map(_double, values)))
 
 
 Field: TypeAlias = \

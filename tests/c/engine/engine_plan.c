@@ -4,6 +4,7 @@
  * quarter period, as the Python-built system does. */
 #define _XOPEN_SOURCE 700 /* mkdtemp, symlink */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -105,6 +106,74 @@ static void round_trip(void)
     ssx_plan_free(plan);
 }
 
+/* The hex form of `count` doubles, as the format writes a long list ("xN:" and 16 lowercase
+ * digits a value, least significant byte first), into text. */
+static void hex_list(char *text, const double *values, size_t count)
+{
+    text += sprintf(text, "x%zu:", count);
+    for (size_t k = 0; k < count; ++k) {
+        uint64_t bits;
+        memcpy(&bits, &values[k], sizeof bits);
+        for (int byte = 0; byte < 8; ++byte) {
+            text += sprintf(text, "%02x", (unsigned int)(bits >> (8 * byte)) & 0xffu);
+        }
+    }
+}
+
+/* A list of more than 64 doubles is written in its hex form, exact to the bit (a NaN's payload,
+ * -0, the smallest subnormal), and read back to the same text; 64 stay decimal. */
+static void hex_round_trip(void)
+{
+    enum { ROWS = 65 };
+    double times[ROWS], column[ROWS];
+    char decimal[4096] = "syssimx-plan 1\nsystem \"s\"\ntable \"t\" 65";
+    for (int k = 0; k < ROWS; ++k) {
+        times[k] = k * 0.1;
+        column[k] = k;
+        sprintf(decimal + strlen(decimal), " %.17g", times[k]);
+    }
+    uint64_t payload = 0x7ff8000000000abcu;
+    memcpy(&column[1], &payload, sizeof payload);
+    column[2] = -0.0;
+    column[3] = 4.9406564584124654e-324;
+    column[4] = -INFINITY;
+    column[5] = 1.0 / 3.0;
+    strcat(decimal, "\n");
+    char expected[8192] = "syssimx-plan 1\nsystem \"s\"\ntable \"t\" ";
+    hex_list(expected + strlen(expected), times, ROWS);
+    strcat(expected, "\n");
+    char error[512];
+    size_t size = 0;
+    ssx_plan *plan = ssx_plan_read(decimal, strlen(decimal), error, sizeof error);
+    CHECK(plan != NULL);
+    char *text = ssx_plan_write(plan, &size);
+    CHECK(text != NULL && strcmp(text, expected) == 0); /* the decimal times, exactly */
+    ssx_plan_text_free(text);
+    ssx_plan_free(plan);
+
+    strcat(expected, "table_column 0 real 1 ");
+    hex_list(expected + strlen(expected), column, ROWS);
+    strcat(expected, "\n");
+    plan = ssx_plan_read(expected, strlen(expected), error, sizeof error);
+    if (plan == NULL) {
+        fprintf(stderr, "refused: %s\n", error);
+    }
+    CHECK(plan != NULL);
+    text = ssx_plan_write(plan, &size);
+    CHECK(text != NULL && size == strlen(expected) && strcmp(text, expected) == 0);
+    ssx_plan_text_free(text);
+    ssx_plan_free(plan);
+
+    const char short_list[] = "syssimx-plan 1\nsystem \"s\"\ntable \"t\" x2:"
+                              "0000000000000000000000000000f03f\n";
+    plan = ssx_plan_read(short_list, sizeof short_list - 1, error, sizeof error);
+    CHECK(plan != NULL);
+    text = ssx_plan_write(plan, &size);
+    CHECK(strcmp(text, "syssimx-plan 1\nsystem \"s\"\ntable \"t\" 2 0 1\n") == 0);
+    ssx_plan_text_free(text);
+    ssx_plan_free(plan);
+}
+
 /* Each text is refused with a message that holds `expected`. */
 static void refusals(void)
 {
@@ -180,6 +249,26 @@ static void refusals(void)
          "line 4: record 'schedule', field GROUPS (item 1): missing"},
         {"syssimx-plan 1\nsystem \"s\"\npower_bonds 99999999 0\n", "field BONDS: 99999999 is "
                                                                   "outside 0..67108864"},
+        {"syssimx-plan 1\nsystem \"s\"\ntable \"t\" x1:000000000000f03\n",
+         "line 3: record 'table', field TIMES: the hex list has an odd number of digits (15)"},
+        {"syssimx-plan 1\nsystem \"s\"\ntable \"t\" x2:000000000000f03f\n",
+         "line 3: record 'table', field TIMES: the hex list holds 16 digits for 2 values (16 a "
+         "value)"},
+        {"syssimx-plan 1\nsystem \"s\"\ntable \"t\" x1:0000000000000000ff\n",
+         "field TIMES: the hex list holds 18 digits"},
+        {"syssimx-plan 1\nsystem \"s\"\ntable \"t\" x2:000000000000f03f000000000000F03F\n",
+         "line 3: record 'table', field TIMES (item 2): 'F' is not a lowercase hex digit"},
+        {"syssimx-plan 1\nsystem \"s\"\ntable \"t\" x1:00000000000g003f\n",
+         "field TIMES (item 1): 'g' is not a lowercase hex digit"},
+        {"syssimx-plan 1\nsystem \"s\"\ntable \"t\" x1\n",
+         "field TIMES: a hex list is x, its count, ':' and its digits; 'x1' has no ':'"},
+        {"syssimx-plan 1\nsystem \"s\"\ntable \"t\" x99999999:\n",
+         "field TIMES: 99999999 is outside 0..67108864"},
+        {"syssimx-plan 1\nsystem \"s\"\ntable \"t\" 1 0\ntable_column 0 real 0 x2:"
+         "00000000000000000000000000000000\n",
+         "line 4: record 'table_column', field VALUES: 2 values for a table of 1 rows"},
+        {"syssimx-plan 1\nsystem \"s\"\npower_bonds x0:\n",
+         "field BONDS: 'x0:' is not an integer"},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
         char error[512] = "untouched";
@@ -452,6 +541,7 @@ static void build_refusals(void)
 int main(void)
 {
     round_trip();
+    hex_round_trip();
     refusals();
     standalone_seed();
     standalone_fmi3_model_exchange();
