@@ -5,17 +5,19 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { MAX_VARIABLES = 1 << 20, MAX_LINE = 512 };
+enum { MAX_VARIABLES = 1 << 20, MAX_LINE = 4096 };
 
 static const char *const role_names[] = {"input", "output", "parameter", "events",
                                          "last_event_time"};
 
-static int role_of(const char *word, export_role *role)
+static const char *const type_names[] = {"real", "integer", "boolean"};
+
+/* The index of `word` in `names`, or -1. */
+static int word_index(const char *word, const char *const *names, size_t n)
 {
-    for (size_t k = 0; k < sizeof role_names / sizeof role_names[0]; k++) {
-        if (strcmp(word, role_names[k]) == 0) {
-            *role = (export_role)k;
-            return 0;
+    for (size_t k = 0; k < n; k++) {
+        if (strcmp(word, names[k]) == 0) {
+            return (int)k;
         }
     }
     return -1;
@@ -45,12 +47,21 @@ static int read_line(export_map *map, const char *line, size_t *capacity)
     }
     export_variable variable;
     char role[32];
-    if (sscanf(line, "variable %u %31s %d %d", &variable.vr, role, &variable.component,
-               &variable.index) != 4 ||
-        role_of(role, &variable.role) != 0 || map->n >= MAX_VARIABLES ||
+    char type[32];
+    int name_at = 0;
+    if (sscanf(line, "variable %u %31s %d %d %31s %lf %n", &variable.vr, role,
+               &variable.component, &variable.index, type, &variable.start, &name_at) != 6 ||
+        name_at == 0 || line[name_at] == '\0' || map->n >= MAX_VARIABLES ||
         export_map_find(map, variable.vr) >= 0) {
         return -1;
     }
+    int role_index = word_index(role, role_names, sizeof role_names / sizeof role_names[0]);
+    int type_index = word_index(type, type_names, sizeof type_names / sizeof type_names[0]);
+    if (role_index < 0 || type_index < 0) {
+        return -1;
+    }
+    variable.role = (export_role)role_index;
+    variable.type = (export_type)type_index;
     if (map->n == *capacity) {
         size_t grown = *capacity ? 2 * *capacity : 16;
         export_variable *more = realloc(map->variables, grown * sizeof *more);
@@ -60,6 +71,12 @@ static int read_line(export_map *map, const char *line, size_t *capacity)
         map->variables = more;
         *capacity = grown;
     }
+    size_t name_size = strlen(line + name_at) + 1;
+    variable.name = malloc(name_size);
+    if (variable.name == NULL) {
+        return -1;
+    }
+    memcpy(variable.name, line + name_at, name_size);
     map->variables[map->n++] = variable;
     return 0;
 }
@@ -98,6 +115,9 @@ int export_map_read(const char *text, size_t size, export_map *map, char *error,
 
 void export_map_free(export_map *map)
 {
+    for (size_t k = 0; k < map->n; k++) {
+        free(map->variables[k].name);
+    }
     free(map->variables);
     map->variables = NULL;
     map->n = 0;

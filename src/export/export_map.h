@@ -4,10 +4,12 @@
  *   syssimx-export 1
  *   token "TOKEN"
  *   step DT                      (0: each doStep is one communication step of the system)
- *   variable VR ROLE COMPONENT INDEX
+ *   variable VR ROLE COMPONENT INDEX TYPE START NAME
  * ROLE is input, output (INDEX: the engine's port index of the member COMPONENT), parameter
  * (INDEX: the member FMU's value reference), events or last_event_time (the system's own;
- * COMPONENT and INDEX -1). */
+ * COMPONENT and INDEX -1). TYPE is real, integer or boolean; START the exported start (nan:
+ * none); NAME, the rest of the line, is
+ * the variable's name in the modelDescription (for messages). */
 #ifndef SSX_EXPORT_MAP_H
 #define SSX_EXPORT_MAP_H
 
@@ -21,11 +23,16 @@ typedef enum {
     EXPORT_LAST_EVENT_TIME
 } export_role;
 
+typedef enum { EXPORT_REAL, EXPORT_INTEGER, EXPORT_BOOLEAN } export_type;
+
 typedef struct {
     unsigned int vr;
     export_role role;
     int component;
     int index;
+    export_type type;
+    double start;
+    char *name;
 } export_variable;
 
 typedef struct {

@@ -16,6 +16,9 @@ enum { MESSAGE_SIZE = 2048 };
 static const size_t max_plan_size = (size_t)256 << 20;
 static const size_t max_map_size = (size_t)64 << 20;
 
+/* the plan's words for an export_type */
+static const char *const plan_type_words[] = {"real", "integer", "boolean"};
+
 static const char state_magic[8] = {'S', 'S', 'X', 'E', 'X', 'P', '0', '1'};
 
 struct exported_system {
@@ -187,8 +190,8 @@ static char *plan_with_parameters(const exported_system *es, size_t *size)
     for (size_t k = 0; k < es->map.n; k++) {
         const export_variable *v = &es->map.variables[k];
         if (v->role == EXPORT_PARAMETER && !isnan(es->values[k])) {
-            at += (size_t)snprintf(text + at, capacity - at, "start %d real %d %.17g\n",
-                                   v->component, v->index, es->values[k]);
+            at += (size_t)snprintf(text + at, capacity - at, "start %d %s %d %.17g\n",
+                                   v->component, plan_type_words[v->type], v->index, es->values[k]);
         }
     }
     *size = at;
@@ -264,79 +267,121 @@ static long variable_of(const exported_system *es, unsigned int vr)
     return k;
 }
 
+static const char *const type_words[] = {"a Real", "an Integer", "a Boolean"};
+
+/* The variable of value reference vr when it is of `type`, else -1 (logged, naming it). */
+static long typed_variable(const exported_system *es, unsigned int vr, export_type type)
+{
+    long k = variable_of(es, vr);
+    if (k >= 0 && es->map.variables[k].type != type) {
+        const export_variable *v = &es->map.variables[k];
+        char message[MESSAGE_SIZE];
+        snprintf(message, sizeof message,
+                 "the variable '%.1024s' (value reference %u) is %s, not %s", v->name, vr,
+                 type_words[v->type], type_words[type]);
+        report(es, "%s", message);
+        return -1;
+    }
+    return k;
+}
+
+/* Set variable k to value; *rebuild set when a parameter set in initialization mode needs
+ * the members initialized again. */
+static int set_value(exported_system *es, long k, double value, int *rebuild)
+{
+    const export_variable *v = &es->map.variables[k];
+    if (v->role != EXPORT_INPUT && v->role != EXPORT_PARAMETER) {
+        report(es, "'%.1024s' is an output: only inputs and parameters can be set", v->name);
+        return -1;
+    }
+    if (v->role == EXPORT_PARAMETER && es->sys != NULL && !es->initializing) {
+        report(es,
+               "the parameter '%.1024s' is set before or in initialization mode (the members "
+               "are initialized with it)",
+               v->name);
+        return -1;
+    }
+    es->values[k] = value;
+    if (v->role == EXPORT_INPUT && es->sys != NULL) {
+        ssx_inputs(es->sys, v->component)[v->index] = value;
+    } else if (v->role == EXPORT_PARAMETER && es->sys != NULL) {
+        *rebuild = 1;
+    }
+    return 0;
+}
+
+static double value_of(const exported_system *es, long k)
+{
+    const export_variable *v = &es->map.variables[k];
+    switch (v->role) {
+    case EXPORT_OUTPUT:
+        return es->sys != NULL ? ssx_outputs(es->sys, v->component)[v->index] : 0.0;
+    case EXPORT_INPUT:
+        if (es->sys != NULL) {
+            return ssx_inputs(es->sys, v->component)[v->index];
+        }
+        return isnan(es->values[k]) ? v->start : es->values[k];
+    case EXPORT_PARAMETER:
+        return isnan(es->values[k]) ? v->start : es->values[k];
+    case EXPORT_LAST_EVENT_TIME:
+        return es->last_event_time;
+    case EXPORT_EVENTS:
+        break;
+    }
+    return es->events < INT32_MAX ? (double)es->events : (double)INT32_MAX;
+}
+
 int exported_system_set_real(exported_system *es, const unsigned int *vr, size_t n,
                              const double *values)
 {
     int rebuild = 0;
     for (size_t i = 0; i < n; i++) {
-        long k = variable_of(es, vr[i]);
-        if (k < 0) {
+        long k = typed_variable(es, vr[i], EXPORT_REAL);
+        if (k < 0 || set_value(es, k, values[i], &rebuild) != 0) {
             return -1;
-        }
-        const export_variable *v = &es->map.variables[k];
-        if (v->role != EXPORT_INPUT && v->role != EXPORT_PARAMETER) {
-            report(es, "%s", "only inputs and parameters can be set");
-            return -1;
-        }
-        if (v->role == EXPORT_PARAMETER && es->sys != NULL && !es->initializing) {
-            report(es, "%s",
-                   "a parameter is set before or in initialization mode (the members "
-                   "are initialized with it)");
-            return -1;
-        }
-        es->values[k] = values[i];
-        if (v->role == EXPORT_INPUT && es->sys != NULL) {
-            ssx_inputs(es->sys, v->component)[v->index] = values[i];
-        } else if (v->role == EXPORT_PARAMETER && es->sys != NULL) {
-            rebuild = 1;
         }
     }
     /* in initialization mode: the members are initialized again with the parameters */
     return rebuild ? exported_system_start(es, es->start_time) : 0;
 }
 
+int exported_system_set_integer(exported_system *es, const unsigned int *vr, size_t n,
+                                const int *values, int boolean)
+{
+    int rebuild = 0;
+    for (size_t i = 0; i < n; i++) {
+        long k = typed_variable(es, vr[i], boolean ? EXPORT_BOOLEAN : EXPORT_INTEGER);
+        double value = boolean ? (values[i] != 0) : (double)values[i];
+        if (k < 0 || set_value(es, k, value, &rebuild) != 0) {
+            return -1;
+        }
+    }
+    return rebuild ? exported_system_start(es, es->start_time) : 0;
+}
+
 int exported_system_get_real(exported_system *es, const unsigned int *vr, size_t n, double *values)
 {
     for (size_t i = 0; i < n; i++) {
-        long k = variable_of(es, vr[i]);
+        long k = typed_variable(es, vr[i], EXPORT_REAL);
         if (k < 0) {
             return -1;
         }
-        const export_variable *v = &es->map.variables[k];
-        switch (v->role) {
-        case EXPORT_OUTPUT:
-            values[i] = es->sys != NULL ? ssx_outputs(es->sys, v->component)[v->index] : 0.0;
-            break;
-        case EXPORT_INPUT:
-            values[i] =
-                es->sys != NULL ? ssx_inputs(es->sys, v->component)[v->index] : es->values[k];
-            break;
-        case EXPORT_PARAMETER:
-            values[i] = es->values[k];
-            break;
-        case EXPORT_LAST_EVENT_TIME:
-            values[i] = es->last_event_time;
-            break;
-        case EXPORT_EVENTS:
-            report(es, "%s", "the event count is an Integer");
-            return -1;
-        }
+        values[i] = value_of(es, k);
     }
     return 0;
 }
 
-int exported_system_get_integer(exported_system *es, const unsigned int *vr, size_t n, int *values)
+int exported_system_get_integer(exported_system *es, const unsigned int *vr, size_t n, int *values,
+                                int boolean)
 {
     for (size_t i = 0; i < n; i++) {
-        long k = variable_of(es, vr[i]);
+        long k = typed_variable(es, vr[i], boolean ? EXPORT_BOOLEAN : EXPORT_INTEGER);
         if (k < 0) {
             return -1;
         }
-        if (es->map.variables[k].role != EXPORT_EVENTS) {
-            report(es, "%s", "only the event count is an Integer");
-            return -1;
-        }
-        values[i] = (int)(es->events < INT32_MAX ? es->events : INT32_MAX);
+        double value = value_of(es, k);
+        /* the engine holds an Integer or Boolean port as a double of that value */
+        values[i] = boolean ? value != 0.0 : isnan(value) ? 0 : (int)value;
     }
     return 0;
 }

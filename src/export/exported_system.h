@@ -28,12 +28,17 @@ void exported_system_reset(exported_system *es);
 int exported_system_start(exported_system *es, double t0);
 void exported_system_steps(exported_system *es);
 
-/* Values by exported value reference: 0, or -1 (logged) for an unknown reference, a value of
- * the other type, or a parameter set after initialization mode. */
+/* Values by exported value reference: 0, or -1 (logged, naming the variable) for an unknown
+ * reference, a variable of another type, an output set, or a parameter set after
+ * initialization mode. The integer ones are Integer variables, or with `boolean` Boolean ones
+ * (0 or 1). */
 int exported_system_set_real(exported_system *es, const unsigned int *vr, size_t n,
                              const double *values);
 int exported_system_get_real(exported_system *es, const unsigned int *vr, size_t n, double *values);
-int exported_system_get_integer(exported_system *es, const unsigned int *vr, size_t n, int *values);
+int exported_system_set_integer(exported_system *es, const unsigned int *vr, size_t n,
+                                const int *values, int boolean);
+int exported_system_get_integer(exported_system *es, const unsigned int *vr, size_t n, int *values,
+                                int boolean);
 
 /* Advance from t (the system's time) by h, locating and handling the events inside. With
  * may_return_early, returns right after the first event instant (*reached: its time,

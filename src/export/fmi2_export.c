@@ -241,7 +241,7 @@ fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
     if (instance == NULL || (nvr > 0 && (vr == NULL || value == NULL))) {
         return fmi2Error;
     }
-    return from(exported_system_get_integer(instance->system, vr, nvr, value));
+    return from(exported_system_get_integer(instance->system, vr, nvr, value, 0));
 }
 
 fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
@@ -271,22 +271,31 @@ static fmi2Status no_variables(fmi2Component c, size_t nvr, const char *function
 fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           const fmi2Integer value[])
 {
-    (void)vr, (void)value;
-    return no_variables(c, nvr, "fmi2SetInteger");
+    fmi2_instance *instance = c;
+    if (instance == NULL || (nvr > 0 && (vr == NULL || value == NULL))) {
+        return fmi2Error;
+    }
+    return from(exported_system_set_integer(instance->system, vr, nvr, value, 0));
 }
 
 fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           fmi2Boolean value[])
 {
-    (void)vr, (void)value;
-    return no_variables(c, nvr, "fmi2GetBoolean");
+    fmi2_instance *instance = c;
+    if (instance == NULL || (nvr > 0 && (vr == NULL || value == NULL))) {
+        return fmi2Error;
+    }
+    return from(exported_system_get_integer(instance->system, vr, nvr, value, 1));
 }
 
 fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
                           const fmi2Boolean value[])
 {
-    (void)vr, (void)value;
-    return no_variables(c, nvr, "fmi2SetBoolean");
+    fmi2_instance *instance = c;
+    if (instance == NULL || (nvr > 0 && (vr == NULL || value == NULL))) {
+        return fmi2Error;
+    }
+    return from(exported_system_set_integer(instance->system, vr, nvr, value, 1));
 }
 
 fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,

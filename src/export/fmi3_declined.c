@@ -95,13 +95,6 @@ fmi3Status fmi3GetUInt64(fmi3Instance instance, const fmi3ValueReference valueRe
     return fmi3_refuse(instance, "fmi3GetUInt64: no variable is a UInt64");
 }
 
-fmi3Status fmi3GetBoolean(fmi3Instance instance, const fmi3ValueReference valueReferences[],
-                          size_t nValueReferences, fmi3Boolean values[], size_t nValues)
-{
-    (void)valueReferences, (void)nValueReferences, (void)values, (void)nValues;
-    return fmi3_refuse(instance, "fmi3GetBoolean: no variable is a Boolean");
-}
-
 fmi3Status fmi3GetString(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                          size_t nValueReferences, fmi3String values[], size_t nValues)
 {
@@ -159,13 +152,6 @@ fmi3Status fmi3SetUInt16(fmi3Instance instance, const fmi3ValueReference valueRe
     return fmi3_refuse(instance, "fmi3SetUInt16: no variable is a UInt16");
 }
 
-fmi3Status fmi3SetInt32(fmi3Instance instance, const fmi3ValueReference valueReferences[],
-                        size_t nValueReferences, const fmi3Int32 values[], size_t nValues)
-{
-    (void)valueReferences, (void)nValueReferences, (void)values, (void)nValues;
-    return fmi3_refuse(instance, "fmi3SetInt32: the event count is an output: it cannot be set");
-}
-
 fmi3Status fmi3SetUInt32(fmi3Instance instance, const fmi3ValueReference valueReferences[],
                          size_t nValueReferences, const fmi3UInt32 values[], size_t nValues)
 {
@@ -185,13 +171,6 @@ fmi3Status fmi3SetUInt64(fmi3Instance instance, const fmi3ValueReference valueRe
 {
     (void)valueReferences, (void)nValueReferences, (void)values, (void)nValues;
     return fmi3_refuse(instance, "fmi3SetUInt64: no variable is a UInt64");
-}
-
-fmi3Status fmi3SetBoolean(fmi3Instance instance, const fmi3ValueReference valueReferences[],
-                          size_t nValueReferences, const fmi3Boolean values[], size_t nValues)
-{
-    (void)valueReferences, (void)nValueReferences, (void)values, (void)nValues;
-    return fmi3_refuse(instance, "fmi3SetBoolean: no variable is a Boolean");
 }
 
 fmi3Status fmi3SetString(fmi3Instance instance, const fmi3ValueReference valueReferences[],

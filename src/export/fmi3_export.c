@@ -264,11 +264,60 @@ fmi3Status fmi3GetInt32(fmi3Instance instance, const fmi3ValueReference valueRef
         return fmi3Error;
     }
     for (size_t k = 0; k < nValueReferences; k++) {
-        int count;
-        if (exported_system_get_integer(inst->system, &valueReferences[k], 1, &count) != 0) {
+        int value;
+        if (exported_system_get_integer(inst->system, &valueReferences[k], 1, &value, 0) != 0) {
             return fmi3Error;
         }
-        values[k] = count;
+        values[k] = value;
+    }
+    return fmi3OK;
+}
+
+fmi3Status fmi3SetInt32(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                        size_t nValueReferences, const fmi3Int32 values[], size_t nValues)
+{
+    fmi3_instance *inst = instance;
+    if (inst == NULL || !scalars(inst, nValueReferences, nValues, valueReferences, values)) {
+        return fmi3Error;
+    }
+    for (size_t k = 0; k < nValueReferences; k++) {
+        int value = values[k];
+        if (exported_system_set_integer(inst->system, &valueReferences[k], 1, &value, 0) != 0) {
+            return fmi3Error;
+        }
+    }
+    return fmi3OK;
+}
+
+fmi3Status fmi3GetBoolean(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                          size_t nValueReferences, fmi3Boolean values[], size_t nValues)
+{
+    fmi3_instance *inst = instance;
+    if (inst == NULL || !scalars(inst, nValueReferences, nValues, valueReferences, values)) {
+        return fmi3Error;
+    }
+    for (size_t k = 0; k < nValueReferences; k++) {
+        int value;
+        if (exported_system_get_integer(inst->system, &valueReferences[k], 1, &value, 1) != 0) {
+            return fmi3Error;
+        }
+        values[k] = value != 0;
+    }
+    return fmi3OK;
+}
+
+fmi3Status fmi3SetBoolean(fmi3Instance instance, const fmi3ValueReference valueReferences[],
+                          size_t nValueReferences, const fmi3Boolean values[], size_t nValues)
+{
+    fmi3_instance *inst = instance;
+    if (inst == NULL || !scalars(inst, nValueReferences, nValues, valueReferences, values)) {
+        return fmi3Error;
+    }
+    for (size_t k = 0; k < nValueReferences; k++) {
+        int value = values[k];
+        if (exported_system_set_integer(inst->system, &valueReferences[k], 1, &value, 1) != 0) {
+            return fmi3Error;
+        }
     }
     return fmi3OK;
 }

@@ -12,6 +12,8 @@ def export_map(token: str, step_size: float | None,
                variables: Sequence[ExportedVariable]) -> str:
     """The map's text; step_size None: each doStep is one communication step of the system."""
     lines = ["syssimx-export 1", f'token "{token}"', f"step {float(step_size or 0.0)!r}"]
-    lines += [f"variable {v.value_reference} {v.role} {v.component} {v.index}"
-              for v in variables]
+    # the name, the rest of its line, is for the binary's messages only
+    lines += [f"variable {v.value_reference} {v.role} {v.component} {v.index} {v.value_type} "
+              f"{float('nan') if v.start is None else float(v.start)!r} "
+              + " ".join(v.name.splitlines()) for v in variables]
     return "\n".join(lines) + "\n"

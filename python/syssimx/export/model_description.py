@@ -54,7 +54,7 @@ def model_description(description: Description, variables: Sequence[ExportedVari
     else:
         co_simulation["canNotUseMemoryManagementFunctions"] = "true"
     ET.SubElement(root, "CoSimulation", co_simulation)
-    used = sorted({v.unit for v in variables if v.unit})
+    used = sorted({v.unit for v in variables if v.unit and v.value_type == "real"})
     if used:
         definitions = ET.SubElement(root, "UnitDefinitions")
         for name in used:
@@ -87,9 +87,12 @@ def _causality(variable: ExportedVariable) -> dict[str, str]:
     if variable.role == "parameter":
         # set before initialization only: the members are initialized with it
         return {"causality": "parameter", "variability": "fixed", "initial": "exact"}
+    # only a Real (Float64) varies continuously in either standard
+    continuous = variable.value_type == "real"
     if variable.role == "input":
-        return {"causality": "input", "variability": "continuous"}
-    variability = "continuous" if variable.role == "output" else "discrete"
+        return {"causality": "input",
+                "variability": "continuous" if continuous else "discrete"}
+    variability = "continuous" if variable.role == "output" and continuous else "discrete"
     return {"causality": "output", "variability": variability, "initial": "calculated"}
 
 
@@ -101,23 +104,30 @@ def _common(variable: ExportedVariable) -> dict[str, str]:
     return attributes
 
 
-def _fmi2_variable(parent: ET.Element, variable: ExportedVariable) -> None:
-    element = ET.SubElement(parent, "ScalarVariable", _common(variable))
+FMI2_ELEMENTS = {"real": "Real", "integer": "Integer", "boolean": "Boolean"}
+FMI3_ELEMENTS = {"real": "Float64", "integer": "Int32", "boolean": "Boolean"}
+
+
+def _typed(variable: ExportedVariable) -> dict[str, str]:
+    """unit (a Real's only) and start, written as the variable's type writes it."""
     typed: dict[str, str] = {}
-    if variable.unit:
+    if variable.unit and variable.value_type == "real":
         typed["unit"] = variable.unit
     if variable.start is not None:
-        typed["start"] = repr(float(variable.start))
-    ET.SubElement(element, "Integer" if variable.is_integer else "Real", typed)
+        start = float(variable.start)
+        typed["start"] = {"real": repr(start), "integer": str(int(start)),
+                          "boolean": _flag(start != 0.0)}[variable.value_type]
+    return typed
+
+
+def _fmi2_variable(parent: ET.Element, variable: ExportedVariable) -> None:
+    element = ET.SubElement(parent, "ScalarVariable", _common(variable))
+    ET.SubElement(element, FMI2_ELEMENTS[variable.value_type], _typed(variable))
 
 
 def _fmi3_variable(parent: ET.Element, variable: ExportedVariable) -> None:
-    attributes = _common(variable)
-    if variable.unit:
-        attributes["unit"] = variable.unit
-    if variable.start is not None:
-        attributes["start"] = repr(float(variable.start))
-    ET.SubElement(parent, "Int32" if variable.is_integer else "Float64", attributes)
+    ET.SubElement(parent, FMI3_ELEMENTS[variable.value_type],
+                  {**_common(variable), **_typed(variable)})
 
 
 def _model_structure(root: ET.Element, variables: Sequence[ExportedVariable],
