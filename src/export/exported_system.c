@@ -172,21 +172,70 @@ void exported_system_free(exported_system *es)
     free(es);
 }
 
-/* The plan with a start record for each parameter the importer set: written after the
- * exporter's own, so it is the one written last in initialization mode. */
-static char *plan_with_parameters(const exported_system *es, size_t *size)
+/* The variable of the input `port` of `component` the importer set, or -1. */
+static long input_set(const exported_system *es, int component, int port)
+{
+    for (size_t k = 0; k < es->map.n; k++) {
+        const export_variable *v = &es->map.variables[k];
+        if (v->role == EXPORT_INPUT && v->component == component && v->index == port &&
+            !isnan(es->values[k])) {
+            return (long)k;
+        }
+    }
+    return -1;
+}
+
+/* The plan with what the importer set before the start: an input's value as the start of its
+ * input record (the members are initialized with it, as with a value the system's own inputs
+ * were given), and a start record for each parameter, written after the exporter's own, so it
+ * is the one written last in initialization mode. */
+static char *plan_with_importer_values(const exported_system *es, size_t *size)
 {
     enum { RECORD_SIZE = 96 };
     size_t capacity = es->plan_size + 1 + es->map.n * RECORD_SIZE + 1;
+    int last_component = -1; /* the last with an exported input */
+    for (size_t k = 0; k < es->map.n; k++) {
+        const export_variable *v = &es->map.variables[k];
+        if (v->role == EXPORT_INPUT && v->component > last_component) {
+            last_component = v->component;
+        }
+    }
     char *text = malloc(capacity);
-    if (text == NULL) {
+    /* input records by component so far: a component's k-th one is its input port k */
+    int *inputs_seen = calloc((size_t)last_component + 2, sizeof *inputs_seen);
+    if (text == NULL || inputs_seen == NULL) {
+        free(text);
+        free(inputs_seen);
         return NULL;
     }
-    memcpy(text, es->plan_text, es->plan_size);
-    size_t at = es->plan_size;
-    if (at > 0 && text[at - 1] != '\n') {
-        text[at++] = '\n';
+    size_t at = 0;
+    for (size_t line = 0; line < es->plan_size;) {
+        const char *end = memchr(es->plan_text + line, '\n', es->plan_size - line);
+        const char *record = es->plan_text + line;
+        size_t length = end != NULL ? (size_t)(end - record) : es->plan_size - line;
+        int component = -1;
+        long k = -1;
+        if (length > 6 && strncmp(record, "input ", 6) == 0 &&
+            sscanf(record, "input %d", &component) == 1 && component >= 0 &&
+            component <= last_component) {
+            k = input_set(es, component, inputs_seen[component]++);
+        }
+        size_t kept = length; /* with k: up to the record's last field, the input's start */
+        while (k >= 0 && kept > 0 && record[kept - 1] != ' ') {
+            kept--;
+        }
+        if (k >= 0 && kept > 0) {
+            memcpy(text + at, record, kept);
+            at += kept;
+            at += (size_t)snprintf(text + at, capacity - at, "%.17g\n", es->values[k]);
+        } else {
+            memcpy(text + at, record, length);
+            at += length;
+            text[at++] = '\n';
+        }
+        line += length + 1;
     }
+    free(inputs_seen);
     for (size_t k = 0; k < es->map.n; k++) {
         const export_variable *v = &es->map.variables[k];
         if (v->role == EXPORT_PARAMETER && !isnan(es->values[k])) {
@@ -214,7 +263,7 @@ int exported_system_start(exported_system *es, double t0)
     drop_system(es);
     char error[MESSAGE_SIZE] = "";
     size_t size = 0;
-    char *text = plan_with_parameters(es, &size);
+    char *text = plan_with_importer_values(es, &size);
     if (text == NULL) {
         report(es, "%s", "out of memory");
         return -1;

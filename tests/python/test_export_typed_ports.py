@@ -98,23 +98,27 @@ def test_an_integer_parameter_set_by_fmpy_reaches_the_member(tmp_path, fmi_versi
 
 
 @pytest.mark.parametrize("fmi_version", ["2.0", "3.0"])
-def test_boolean_and_integer_inputs_set_by_fmpy_pass_through(tmp_path, fmi_version):
-    """The Reference Feedthrough's Boolean and Int32 inputs exported (starts false and 0), set
-    by FMPy to true and -7 before initialization: its outputs give them back from the first
-    step on (at the start time they hold the inputs' starts: the members are initialized with
-    the starts of the export, Real inputs alike)."""
+def test_inputs_set_by_fmpy_before_initialization_pass_through_from_the_start(tmp_path,
+                                                                            fmi_version):
+    """The Reference Feedthrough's Boolean, Int32 and Float64 inputs exported (starts false, 0
+    and 0), set by FMPy to true, -7 and 2.5 before initialization: its outputs give them back
+    at every point, the start time too (the member is initialized with them)."""
     fmu = tmp_path / f"feedthrough_{fmi_version[0]}.fmu"
     alone("F", reference_fmu(fmi_version, "Feedthrough")).export_fmu(
-        fmu, fmi_version=fmi_version, inputs=["F.Boolean_input", "F.Int32_input"],
-        outputs=["F.Boolean_output", "F.Int32_output"], step_size=0.1)
+        fmu, fmi_version=fmi_version,
+        inputs=["F.Boolean_input", "F.Int32_input", "F.Float64_continuous_input"],
+        outputs=["F.Boolean_output", "F.Int32_output", "F.Float64_continuous_output"],
+        step_size=0.1)
     assert validate_fmu(str(fmu)) == []
     assert declared(fmu, "F.Boolean_input") == "Boolean"
-    result = run_with_fmpy_alone(fmu, ["F.Boolean_output", "F.Int32_output"],
-                                 {"F.Boolean_input": True, "F.Int32_input": -7},
-                                 stop_time=0.5, interval=0.1)
+    result = run_with_fmpy_alone(
+        fmu, ["F.Boolean_output", "F.Int32_output", "F.Float64_continuous_output"],
+        {"F.Boolean_input": True, "F.Int32_input": -7, "F.Float64_continuous_input": 2.5},
+        stop_time=0.5, interval=0.1)
     assert len(result["time"]) == 6
-    assert all(value is True for value in result["F.Boolean_output"][1:])
-    assert result["F.Int32_output"][1:] == [-7] * 5
+    assert all(value is True for value in result["F.Boolean_output"])
+    assert result["F.Int32_output"] == [-7] * 6
+    assert result["F.Float64_continuous_output"] == [2.5] * 6
 
 
 def test_a_string_port_is_refused_naming_it(tmp_path):
