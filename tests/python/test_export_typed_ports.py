@@ -162,3 +162,13 @@ def test_a_call_of_the_wrong_type_is_an_error_naming_the_variable(tmp_path, caps
     assert "'S.counter' is an output" in capsys.readouterr().out
     stair.terminate()
     stair.freeInstance()
+
+
+def test_a_member_with_a_name_of_5000_letters_exports_and_runs(tmp_path):
+    """Names travel in the export map for the binary's messages, cut to fit its line bound:
+    a member named by 5000 Greek letters (10000 bytes) still runs under FMPy."""
+    name = "λ" * 5000
+    fmu = tmp_path / "long.fmu"
+    alone(name, reference_fmu("2.0", "Stair")).export_fmu(fmu, step_size=STAIR_STEP)
+    result = run_with_fmpy_alone(fmu, [f"{name}.counter"], stop_time=2.0, interval=STAIR_STEP)
+    assert result[f"{name}.counter"] == [1, 1, 2, 2, 3]
