@@ -55,6 +55,23 @@ void own_events_keep_first(ssx_component *c, size_t n)
     }
 }
 
+int own_events_earliest(const ssx_system *sys, double *t)
+{
+    if (!atomic_load_explicit(&sys->own_events_pending, memory_order_relaxed)) {
+        return 0;
+    }
+    int found = 0;
+    for (int i = 0; i < sys->n_components; ++i) {
+        /* pending in time order: a component's first is its earliest */
+        const ssx_own_event_list *list = &sys->components[i]->own_events;
+        if (list->n > 0 && (!found || list->pending[0].t < *t)) {
+            *t = list->pending[0].t;
+            found = 1;
+        }
+    }
+    return found;
+}
+
 /* The component whose first pending event (at or before t) is earliest, or -1. */
 static int earliest(const ssx_system *sys, const size_t *next, double t)
 {

@@ -23,6 +23,8 @@ void own_events_drop_after(ssx_component *c, double t);
  * reported, one at its start too. */
 size_t own_events_pending_count(const ssx_component *c);
 void own_events_keep_first(ssx_component *c, size_t n);
+/* The time of the earliest event any component holds pending (1), or 0 when none does. */
+int own_events_earliest(const ssx_system *sys, double *t);
 /* Told of each own event as it is committed, to record it (the recording is a room above the
  * components) and tell its listeners: 0, or -1 with the error set. A listener may report more
  * own events of its own at the commit's time: they are committed in the same pass. */

@@ -33,6 +33,7 @@ struct exported_system {
     int initializing;  /* in initialization mode: a parameter set builds the system again */
     long events;       /* events inside since the start: located ones and members' own */
     double last_event_time;
+    int stop_at_own_events; /* steps return early at members' own events too */
     exported_log log;
     void *user;
 };
@@ -286,6 +287,7 @@ int exported_system_start(exported_system *es, double t0)
         drop_system(es);
         return -1;
     }
+    ssx_set_stop_at_own_events(es->sys, es->stop_at_own_events);
     write_inputs(es);
     if (ssx_plan_initialize(es->sys, es->plan, t0) != 0) {
         report_engine(es, "initializing the system");
@@ -298,6 +300,11 @@ int exported_system_start(exported_system *es, double t0)
     es->start_time = t0;
     es->initializing = 1;
     return 0;
+}
+
+void exported_system_stop_at_own_events(exported_system *es, int stop)
+{
+    es->stop_at_own_events = stop;
 }
 
 void exported_system_steps(exported_system *es)

@@ -27,6 +27,9 @@ void exported_system_reset(exported_system *es);
  * parameters are fixed. */
 int exported_system_start(exported_system *es, double t0);
 void exported_system_steps(exported_system *es);
+/* Before exported_system_start: steps return early at members' own events too, not only at the
+ * indicators' (ssx_set_stop_at_own_events; the FMI 3.0 export when early return is allowed). */
+void exported_system_stop_at_own_events(exported_system *es, int stop);
 
 /* Values by exported value reference: 0, or -1 (logged, naming the variable) for an unknown
  * reference, a variable of another type, an output set, or a parameter set after
@@ -42,8 +45,8 @@ int exported_system_get_integer(exported_system *es, const unsigned int *vr, siz
 
 /* Advance from t (the system's time) by h, locating and handling the events inside. With
  * may_return_early, returns right after the first event instant (*reached: its time,
- * *returned_early set). 0: done; 1: a member asked to end the simulation at *reached; -1:
- * failed (logged). */
+ * *returned_early set): an indicator's, or a member's own where the system stops at those.
+ * 0: done; 1: a member asked to end the simulation at *reached; -1: failed (logged). */
 int exported_system_step(exported_system *es, double t, double h, int may_return_early,
                          double *reached, int *returned_early);
 double exported_system_time(const exported_system *es);

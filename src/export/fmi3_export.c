@@ -68,6 +68,9 @@ fmi3Instance fmi3InstantiateCoSimulation(
             instance->system =
                 exported_system_new(folder, instantiationToken, log_to_importer, instance);
             free(folder);
+            if (instance->system != NULL) {
+                exported_system_stop_at_own_events(instance->system, earlyReturnAllowed);
+            }
         }
     }
     if (instance->system == NULL) {

@@ -737,11 +737,22 @@ double ssx_time(const ssx_system *sys);
 typedef struct {
     double time;   /* where the system is now (ssx_time) */
     int event;     /* it stopped right after an event instant (time) */
+    int own_event; /* that instant was a member's own event (ssx_set_stop_at_own_events) */
     long events;   /* event instants handled since ssx_initialize (statistics.events) */
     int status;    /* the call's return: 0, or -1 (ssx_last_error says why) */
     int terminated; /* a component asked to end the simulation (ssx_get_termination) */
 } ssx_step_outcome;
 int ssx_step_until(ssx_system *sys, double t_stop, double dt, ssx_step_outcome *out);
+/* Whether ssx_step_until also stops right after a member's own event (a Model Exchange member's
+ * state or time event, an FMI 3.0 member's event, a clock's tick), taken at the next
+ * ssx_initialize; off by default. On, and where every component can save and restore its
+ * state, the system steps as one with indicators does: a step in which a member reported an
+ * event is taken again from its start to end at that event's time, so the member handles it
+ * at the step's end and the call returns there (out->event and out->own_event set). Those
+ * steps end where a run's would not, so ssx_run is not made to stop there: an exported FMI 3.0
+ * FMU asks for it when its importer allows early return. Where a component cannot roll back,
+ * own events do not stop the call. */
+int ssx_set_stop_at_own_events(ssx_system *sys, int stop);
 /* The whole system's state by handle, between calls (after ssx_initialize): every component's
  * state (an FMU's through fmi2GetFMUstate / fmi3GetFMUState, a Model Exchange component's also
  * the engine's copy of its continuous states; a table holds none), every port value, the

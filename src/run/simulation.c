@@ -62,6 +62,23 @@ int ssx_set_allow_non_finite(ssx_system *sys, int allow)
     return 0;
 }
 
+int ssx_set_stop_at_own_events(ssx_system *sys, int stop)
+{
+    sys->stop_at_own_events = stop != 0;
+    return 0;
+}
+
+/* Every component can save and restore its state. */
+static int all_can_roll_back(const ssx_system *sys)
+{
+    for (int i = 0; i < sys->n_components; ++i) {
+        if (!component_can_roll_back(sys->components[i])) {
+            return 0;
+        }
+    }
+    return 1;
+}
+
 int ssx_initialize(ssx_system *sys, double t0)
 {
     clear_error(sys);
@@ -76,7 +93,9 @@ int ssx_initialize(ssx_system *sys, double t0)
     localization_log_clear(&sys->localization);
     own_events_clear(sys);
     /* a system that locates its output clocks' ticks rolls back as one with indicators does */
-    sys->stepping_hybrid = system_is_hybrid(sys) || event_sources_locate_ticks(sys);
+    sys->own_event_stops = sys->stop_at_own_events && all_can_roll_back(sys);
+    sys->stepping_hybrid =
+        system_is_hybrid(sys) || event_sources_locate_ticks(sys) || sys->own_event_stops;
     grid_start(&sys->grid, t0, 0.0);
     if (check_components(sys) != 0 || coupling_prepare(sys) != 0 ||
         input_order_prepare(sys) != 0 || master_algorithm_choose(sys) != 0) {
@@ -142,12 +161,14 @@ static void step_completed(execution_grid *g)
 }
 
 /* Steps towards t_stop until it is reached, or right after the first event instant located
- * and handled (*event set). A request to end the simulation is the end, not a failure. */
+ * and handled (*event set), or a member's own event where the system stops at those. A
+ * request to end the simulation is the end, not a failure. */
 static int advance(ssx_system *sys, double t_stop, int *event)
 {
     execution_grid *g = &sys->grid;
     *event = 0;
     while (sys->time < t_stop) {
+        long own_before = sys->stats.own_events;
         if (!g->in_step) {
             g->step_start = sys->time;
             g->step_end = step_end_before(g, t_stop);
@@ -171,7 +192,9 @@ static int advance(ssx_system *sys, double t_stop, int *event)
                 return -1;
             }
         }
-        if (*event) {
+        /* an own event at the step's end (not cut there) ends the stretch there too */
+        if (*event || (sys->own_event_stops && sys->stats.own_events > own_before)) {
+            *event = 1;
             return 0;
         }
     }
@@ -285,6 +308,7 @@ int ssx_step_until(ssx_system *sys, double t_stop, double dt, ssx_step_outcome *
 {
     clear_error(sys);
     int event = 0;
+    long own_before = sys->stats.own_events;
     int status = check_can_go_on(sys, t_stop);
     if (status == 0 && (!isfinite(t_stop) || !isfinite(dt))) {
         status = fail_config(sys, -1, -1, t_stop,
@@ -313,6 +337,8 @@ int ssx_step_until(ssx_system *sys, double t_stop, double dt, ssx_step_outcome *
     if (out != NULL) {
         *out = (ssx_step_outcome){.time = sys->time,
                                   .event = event,
+                                  .own_event = event && sys->own_event_stops &&
+                                               sys->stats.own_events > own_before,
                                   .events = sys->stats.events,
                                   .status = status,
                                   .terminated = sys->termination.component >= 0};

@@ -133,6 +133,10 @@ struct ssx_system {
     execution_grid grid;
     int initialized;
     int stepping_hybrid; /* FMUs are told that a rollback may follow */
+    /* ssx_set_stop_at_own_events asked for; own_event_stops: granted by ssx_initialize (every
+     * component can roll back, so a step can be taken again to end at a member's event) */
+    int stop_at_own_events;
+    int own_event_stops;
     arena component_blocks; /* every component's block (system_add_component) */
     /* what initialize prepares for the members' steps (component_prepare), made again at each
      * initialize: in schedule order and in large pages, beside nothing else */

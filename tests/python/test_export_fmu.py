@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 from exported_fmus import STEP, STOP_TIME, export_seed, run_with_fmpy_alone, seed_system
 from fixture_fmus import fmu_path
+from fmpy import simulate_fmu
 from fmpy.validation import validate_fmu
 from osp_files import write_osp
 from syssimx import (
@@ -166,6 +167,43 @@ def test_fmi3_importer_allowing_early_return_gets_the_step_back_at_the_wall_hit(
     times, values = wall.get_history_arrays(["P.omega", "events"])
     assert len(times) == round(STOP_TIME / STEP) + 1  # the grid only
     assert values["events"][-1] == 1
+
+
+def bounce_times(stop: float) -> list[float]:
+    """bouncing_ball's bounces before `stop` in closed form: dropped from 1 m at rest under
+    g = 9.81, each rebound keeping 0.8 of the impact speed."""
+    gravity, times = 9.81, []
+    t, speed = np.sqrt(2 / gravity), np.sqrt(2 * gravity)
+    while t < stop:
+        times.append(float(t))
+        speed *= 0.8
+        t += 2 * speed / gravity
+    return times
+
+
+def test_an_fmi3_export_returns_early_at_a_model_exchange_member_s_own_bounces(tmp_path):
+    """Our bouncing ball as a Model Exchange member (its bounces are its own state events, no
+    indicator's) inside an FMI 3.0 export: FMPy allowing early return (0.1 s steps) gets each
+    doStep back right after a bounce, at its closed-form time within 1e-8, the ball on the
+    floor going up; not allowing it, FMPy's samples are the grid's only."""
+    system = System("ball")
+    ball = FMUComponent("B", fmus.path("bouncing_ball_cvode"), interface="model-exchange",
+                        tolerance=1e-12)
+    ball.set_parameters(e=0.8, gap_tol=1e-6)
+    system.add_component(ball)
+    fmu = system.export_fmu(tmp_path / "ball.fmu", fmi_version="3.0", outputs=["B.h", "B.v"],
+                            step_size=0.1)
+    early = simulate_fmu(str(fmu), stop_time=3.0, output_interval=0.1,
+                         early_return_allowed=True, output=["B.h", "B.v"])
+    times = early["time"]
+    off_grid = np.abs(times / 0.1 - np.round(times / 0.1)) > 1e-6
+    bounces = bounce_times(3.0)
+    assert len(bounces) == 6
+    np.testing.assert_allclose(times[off_grid], bounces, rtol=0, atol=1e-8)
+    assert np.all(np.abs(early["B.h"][off_grid]) < 1e-6) and np.all(early["B.v"][off_grid] > 0)
+    assert len(times) == 31 + len(bounces)
+    plain = simulate_fmu(str(fmu), stop_time=3.0, output_interval=0.1, output=["B.h"])
+    np.testing.assert_allclose(plain["time"], np.arange(31) * 0.1, rtol=0, atol=1e-12)
 
 
 def swinging(theta0: float, torque: float) -> System:

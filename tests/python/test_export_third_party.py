@@ -21,6 +21,7 @@ import numpy as np
 import pytest
 from coupling_samples import coupling_samples_root
 from exported_fmus import run_with_fmpy_alone
+from fmpy import simulate_fmu
 from fmpy.validation import validate_fmu
 from reference_root import reference_root
 from ssp_samples import available_samples
@@ -178,15 +179,12 @@ algorithm: {{type: hybrid, tol_time: 1.0e-9, tol_value: 1.0e-9}}
     assert result["last_event_time"][-1] == located[1]
 
 
-@pytest.mark.parametrize("fmi_version", VERSIONS)
-def test_a_reference_ball_s_own_events_restart_another_member_inside_the_export(tmp_path,
-                                                                                  fmi_version):
-    """The FMI 3.0 BouncingBall's own events (its bounces, handled in its own steps) restart
-    the FMI 3.0 Dahlquist (Reinitialize k = 2, x from its start 1) inside the export; the
-    export's events and last_event_time count them."""
+def ball_restarts_decay(folder: Path) -> Path:
+    """The FMI 3.0 BouncingBall whose own events restart the FMI 3.0 Dahlquist (Reinitialize
+    k = 2, x from its start 1)."""
     ball = reference_fmu("fmi3/BouncingBall.fmu")
     decay = reference_fmu("fmi3/Dahlquist.fmu")
-    path = write_description(tmp_path, "ball", f"""
+    return write_description(folder, "ball", f"""
 system: {{name: ball restarts decay}}
 components:
   - name: B
@@ -200,6 +198,15 @@ event_connections:
   - {{src: B.own_events, dst: D.restart}}
 algorithm: {{type: hybrid, tol_time: 1.0e-9, tol_value: 1.0e-9}}
 """)
+
+
+@pytest.mark.parametrize("fmi_version", VERSIONS)
+def test_a_reference_ball_s_own_events_restart_another_member_inside_the_export(tmp_path,
+                                                                                  fmi_version):
+    """The FMI 3.0 BouncingBall's own events (its bounces, handled in its own steps) restart
+    the FMI 3.0 Dahlquist (Reinitialize k = 2, x from its start 1) inside the export; the
+    export's events and last_event_time count them."""
+    path = ball_restarts_decay(tmp_path)
     fmu = build_system(path).export_fmu(tmp_path / f"ball_{fmi_version[0]}.fmu",
                                         fmi_version=fmi_version, step_size=0.01)
     result, run = assert_fmpy_gives_syssimx_s_run(fmu, build_system(path), 3.0, 0.01)
@@ -209,6 +216,28 @@ algorithm: {{type: hybrid, tol_time: 1.0e-9, tol_value: 1.0e-9}}
     assert result["last_event_time"][-1] == run.events[-1].t
     decayed = np.array(result["D.x"])
     assert np.any(np.diff(decayed) > 0.5)  # restarted from 1 at a bounce
+
+
+def test_an_fmi3_export_returns_early_at_a_reference_ball_s_own_events(tmp_path):
+    """FMPy allowing early return gets the FMI 3.0 export's doStep back right after each of
+    the BouncingBall's own events (0.01 s steps): every time off the grid FMPy samples is one of
+    syssimx's own run's event times, and every such time off the grid is sampled."""
+    path = ball_restarts_decay(tmp_path)
+    fmu = build_system(path).export_fmu(tmp_path / "ball_3.fmu", fmi_version="3.0",
+                                        step_size=0.01)
+    result = simulate_fmu(str(fmu), stop_time=3.0, output_interval=0.01,
+                          early_return_allowed=True, output=["D.x", "events"])
+    system = build_system(path)
+    system.initialize(0.0)
+    own = np.array([event.t for event in system.run(0.0, 3.0, 0.01).events])
+    times = np.array(result["time"])
+
+    def off_grid(t: np.ndarray) -> np.ndarray:
+        return t[np.abs(t / 0.01 - np.round(t / 0.01)) > 1e-6]
+
+    assert off_grid(own).size > 10
+    np.testing.assert_allclose(off_grid(times), off_grid(own), rtol=0, atol=1e-9)
+    assert result["events"][-1] == own.size
 
 
 @pytest.mark.parametrize("fmi_version", VERSIONS)

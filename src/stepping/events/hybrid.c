@@ -623,6 +623,19 @@ int hybrid_begin_piece(ssx_system *sys, double a0, double t_end, hybrid_piece *p
     return 0;
 }
 
+/* Where the piece must end because a component reported an event at a known time: an output
+ * clock's tick that a listener waits for, or (ssx_set_stop_at_own_events) any own event. */
+static int earliest_stop(const ssx_system *sys, double *t)
+{
+    int found = event_sources_earliest_tick(sys, t);
+    double own;
+    if (sys->own_event_stops && own_events_earliest(sys, &own) && (!found || own < *t)) {
+        *t = own;
+        found = 1;
+    }
+    return found;
+}
+
 /* An output clock's tick that a listener waits for, reported inside the piece at a known time
  * (its FMU returned early there): the whole system goes back to the piece's start a0 and steps
  * to that time, which ends the piece (*t_end), so the tick reaches its listeners there. No
@@ -636,7 +649,7 @@ static int step_to_clock_tick(ssx_system *sys, double a0, double *t_end)
     int went_past = 0;
     for (int tries = 0;; ++tries) {
         double tick, target;
-        if (event_sources_earliest_tick(sys, &tick)) {
+        if (earliest_stop(sys, &tick)) {
             target = fmax(tick, a0 + lead);
             if (target > *t_end - lead) {
                 /* at the piece's end, within the tolerance */
@@ -673,12 +686,23 @@ int hybrid_end_piece(ssx_system *sys, const hybrid_piece *piece, double t_end, d
                      double *reached, int *event)
 {
     *event = 0;
+    double step_end = t_end;
     if (step_to_clock_tick(sys, piece->a0, &t_end) != 0 ||
         indicators_evaluate(sys, t_end) != 0) {
         return -1;
     }
     if (!any_fires(sys)) {
-        return pass_without_event(sys, t_end, reached);
+        long own_before = sys->stats.own_events;
+        if (pass_without_event(sys, t_end, reached) != 0) {
+            return -1;
+        }
+        /* a piece cut at a member's own event ends the step there, its sample after the event
+         * recorded as an indicator event's is */
+        if (sys->own_event_stops && t_end < step_end && sys->stats.own_events > own_before) {
+            *event = 1;
+            return record_sample(sys, t_end, 0);
+        }
+        return 0;
     }
     event_bracket br = {.a0 = piece->a0,
                         .t_end = t_end,

@@ -152,10 +152,71 @@ static void a_stop_off_the_grid_cuts_one_step(void)
     free_wall_system(sys, fmu);
 }
 
+/* models/BouncingBall/bouncing_ball.c */
+enum { BALL_H = 0, BALL_V = 1, BALL_E = 5, BALL_GAP_TOL = 8 };
+
+/* The Model Exchange bouncing ball (restitution 0.8) alone: its bounces are its own state
+ * events, no indicator's. */
+static ssx_system *own_bounce_system(ssx_fmu **fmu, int stop_at_own_events)
+{
+    *fmu = load_model_exchange_fmu("bouncing_ball_cvode");
+    const unsigned int vr[] = {BALL_E, BALL_GAP_TOL};
+    const double values[] = {0.8, 1e-6};
+    CHECK(start_fmu(*fmu, 0.0, 1e-12, vr, values, 2) == 0);
+    ssx_system *sys = ssx_system_new("ball");
+    CHECK(ssx_add_model_exchange_component(sys, "Ball", *fmu, 1, 2, 1) == 0);
+    CHECK(ssx_add_output(sys, 0, SSX_REAL, BALL_H) == 0);
+    CHECK(ssx_add_output(sys, 0, SSX_REAL, BALL_V) == 1);
+    CHECK_OK(sys, ssx_set_stop_at_own_events(sys, stop_at_own_events));
+    CHECK_OK(sys, ssx_initialize(sys, 0.0));
+    return sys;
+}
+
+/* Asked to, the call stops right after each of the ball's own bounces, at its closed-form time,
+ * the ball on the floor going up; the next call goes on to the importer's point. Not asked, the
+ * call goes on to t_stop as before. */
+static void stops_right_after_an_own_bounce(void)
+{
+    ssx_fmu *fmu;
+    ssx_system *sys = own_bounce_system(&fmu, 1);
+    ssx_step_outcome out;
+    int bounces = 0;
+    for (int k = 1; k <= 30; ++k) {
+        double t_stop = k * 0.1;
+        do {
+            CHECK_OK(sys, ssx_step_until(sys, t_stop, 0.1, &out));
+            CHECK(out.status == 0 && !out.terminated && out.time == ssx_time(sys));
+            if (out.event) {
+                ++bounces;
+                CHECK(out.own_event && out.time < t_stop);
+                CHECK_CLOSE(out.time, ball_bounce_time(bounces, 0.8), 1e-8);
+                ssx_event_record bounce;
+                CHECK(ssx_event_count(sys) == (size_t)bounces &&
+                      ssx_event_get(sys, (size_t)bounces - 1, &bounce) == 0);
+                CHECK(bounce.own == SSX_OWN_STATE_EVENT && bounce.t <= out.time);
+                const double *ball = ssx_outputs(sys, 0);
+                CHECK(fabs(ball[0]) < 1e-6 && ball[1] > 0.0);
+            } else {
+                CHECK(!out.own_event && out.time == t_stop);
+            }
+        } while (out.event);
+    }
+    CHECK(bounces == 6);
+    ssx_system_free(sys);
+    ssx_fmu_free(fmu);
+
+    sys = own_bounce_system(&fmu, 0);
+    CHECK_OK(sys, ssx_step_until(sys, 3.0, 0.1, &out));
+    CHECK(!out.event && !out.own_event && out.time == 3.0 && ssx_event_count(sys) == 6);
+    ssx_system_free(sys);
+    ssx_fmu_free(fmu);
+}
+
 int main(void)
 {
     stops_right_after_the_wall_hit();
     stretches_make_the_run();
     a_stop_off_the_grid_cuts_one_step();
+    stops_right_after_an_own_bounce();
     return 0;
 }
