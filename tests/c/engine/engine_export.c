@@ -25,11 +25,11 @@ enum { VR_TORQUE = 1, VR_THETA, VR_OMEGA, VR_EVENTS, VR_LAST_EVENT_TIME };
 static const char export_map[] = "syssimx-export 1\n"
                                  "token \"{export-test}\"\n"
                                  "step 0.05\n"
-                                 "variable 1 input 0 0\n"
-                                 "variable 2 output 0 0\n"
-                                 "variable 3 output 0 1\n"
-                                 "variable 4 events -1 -1\n"
-                                 "variable 5 last_event_time -1 -1\n";
+                                 "variable 1 input 0 0 real 0.0 P.torque\n"
+                                 "variable 2 output 0 0 real nan P.theta\n"
+                                 "variable 3 output 0 1 real nan P.omega\n"
+                                 "variable 4 events -1 -1 integer nan events\n"
+                                 "variable 5 last_event_time -1 -1 real nan last_event_time\n";
 
 /* examples/pendulum_wall.yaml as Python writes its plan (%s: the member's guid) */
 static const char seed_plan[] =
