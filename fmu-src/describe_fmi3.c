@@ -157,7 +157,8 @@ static void write_co_simulation(FILE *out, const char *model_identifier)
     /* the importer ticks input clocks in Event Mode */
     int has_events = fmu_model.n_event_indicators > 0 || fmu_model.n_clocks > 0;
     /* the step ends early at an internal event (event mode) or where the model asks to stop */
-    int returns_early = fmu_model.n_event_indicators > 0 || fmu_model.termination_time != NULL;
+    int returns_early = !fmu_model.events_at_step_end &&
+                        (fmu_model.n_event_indicators > 0 || fmu_model.termination_time != NULL);
     fprintf(out,
             "  <CoSimulation modelIdentifier=\"%s\" canHandleVariableCommunicationStepSize=\"true\"\n"
             "    canGetAndSetFMUState=\"true\" canSerializeFMUState=\"true\"",
@@ -171,9 +172,14 @@ static void write_co_simulation(FILE *out, const char *model_identifier)
     /* With event mode the FMU returns early at each internal event of its own accord
      * (mightReturnEarlyFromDoStep). Its intermediate updates never offer an early return, so
      * canReturnEarlyAfterIntermediateUpdate promises nothing beyond that; it is declared for
-     * importers that look for it next to hasEventMode. */
+     * importers that look for it next to hasEventMode. A model with events_at_step_end
+     * declares that it never returns early. */
     if (has_events)
-        fputs("\n    hasEventMode=\"true\" canReturnEarlyAfterIntermediateUpdate=\"true\"", out);
+        fputs("\n    hasEventMode=\"true\"", out);
+    if (fmu_model.events_at_step_end)
+        fputs(" mightReturnEarlyFromDoStep=\"false\"", out);
+    else if (has_events)
+        fputs(" canReturnEarlyAfterIntermediateUpdate=\"true\"", out);
     if (returns_early)
         fputs(" mightReturnEarlyFromDoStep=\"true\"", out);
     fputs("/>\n", out);

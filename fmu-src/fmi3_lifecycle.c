@@ -124,7 +124,8 @@ fmi3Instance fmi3InstantiateCoSimulation(
     inst->event_mode_used = eventModeUsed;
     inst->early_return_allowed = earlyReturnAllowed;
     /* the importer handles internal events only when it can also be told of them early */
-    inst->core.importer_handles_events = eventModeUsed && earlyReturnAllowed;
+    inst->core.importer_handles_events =
+        eventModeUsed && earlyReturnAllowed && !inst->core.model->events_at_step_end;
     return inst;
 }
 

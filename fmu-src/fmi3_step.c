@@ -27,9 +27,22 @@ fmi3Status fmi3DoStep(fmi3Instance instance, fmi3Float64 currentCommunicationPoi
                                      "first)",
                                      inst->time));
     double t_end = currentCommunicationPoint + communicationStepSize;
+    size_t n_indicators = inst->model->n_event_indicators;
+    for (size_t i = 0; i < n_indicators; ++i)
+        inst->fired_in_step[i] = 0;
     fmu_status status =
         fmu_do_step(inst, "fmi3DoStep", currentCommunicationPoint, communicationStepSize);
     int completed = status <= FMU_WARNING;
+    if (completed && self->event_mode_used && inst->model->events_at_step_end) {
+        /* the events handled inside the step tick their output clocks at its end */
+        int any = 0;
+        for (size_t i = 0; i < n_indicators; ++i) {
+            inst->fired[i] = inst->fired_in_step[i];
+            any |= inst->fired[i];
+        }
+        if (any)
+            inst->event_pending = EVENTS_HANDLED_IN_STEP;
+    }
     *eventHandlingNeeded = completed && inst->event_pending;
     *terminateSimulation = completed && inst->time >= fmu_stop_time(inst);
     *earlyReturn = completed && self->early_return_allowed && inst->time < t_end;

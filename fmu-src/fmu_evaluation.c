@@ -19,9 +19,11 @@ void fmu_refresh_outputs(fmu_instance *inst)
 
 void fmu_handle_events(fmu_instance *inst, double t, double *x)
 {
-    for (size_t i = 0; i < inst->model->n_event_indicators; ++i)
+    for (size_t i = 0; i < inst->model->n_event_indicators; ++i) {
         if (inst->fired[i])
             fmu_log(inst, FMU_OK, LOG_EVENTS, "internal event %zu at t = %.17g", i, t);
+        inst->fired_in_step[i] |= inst->fired[i];
+    }
     inst->model->handle_events(inst->values, t, x, inst->fired);
 }
 

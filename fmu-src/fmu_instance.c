@@ -49,6 +49,10 @@ int fmu_apply_pending_events(fmu_instance *inst)
 {
     if (!inst->event_pending)
         return 0;
+    if (inst->event_pending == EVENTS_HANDLED_IN_STEP) {
+        inst->event_pending = 0;
+        return 0;
+    }
     size_t n = inst->model->n_states;
     /* dx is scratch between steps: keep the states from before the event to compare */
     for (size_t i = 0; i < n; ++i)
@@ -94,7 +98,7 @@ static size_t arrays_bytes(const model_definition *model, size_t n_variables)
                      + (2 * n_variables + 1)     /* input_derivatives */
                      + 2 * (n_variables + 1)     /* input_base, values_scratch */
                      + (2 * n_states + 1);       /* x_scratch */
-    return doubles * sizeof(double) + (n_indicators + 1) * sizeof(int); /* fired, last */
+    return doubles * sizeof(double) + 2 * (n_indicators + 1) * sizeof(int); /* fired, last */
 }
 
 static void place_arrays(fmu_instance *inst, double *at)
@@ -122,6 +126,7 @@ static void place_arrays(fmu_instance *inst, double *at)
     inst->x_scratch = at;
     at += 2 * n_states + 1;
     inst->fired = (int *)at;
+    inst->fired_in_step = inst->fired + n_indicators + 1;
 }
 
 /* The instance (`size` bytes) and its arrays in one zeroed block aligned to a cache line. */

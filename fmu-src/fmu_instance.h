@@ -88,7 +88,7 @@ typedef struct fmu_instance {
      * belongs to a Co-Simulation instance; PHASE_EVENT is Model Exchange's). Both are part of
      * the FMU state; importer_handles_events is fixed at instantiation. */
     int importer_handles_events;
-    int event_pending;
+    int event_pending; /* 1, or EVENTS_HANDLED_IN_STEP: reported at the step's end only */
     int in_event_mode;
     fmu_phase running_phase; /* entered by exiting initialization mode: step or event mode */
     int tolerance_defined;
@@ -98,6 +98,7 @@ typedef struct fmu_instance {
     double *z_before;
     double *z_after;
     int *fired;
+    int *fired_in_step; /* events_at_step_end: the indicators that fired in the current step */
     /* Model Exchange: each indicator at the last event mode, or a positive value it took on the
      * trajectory since; part of the FMU state */
     double *z_previous;
@@ -162,6 +163,10 @@ void fmu_apply_start_values(fmu_instance *inst);
 
 /* The status a model's refusal (model.h) returns; after FMU_FATAL no call is allowed any more. */
 fmu_status fmu_refusal_status(fmu_instance *inst, step_refusal_kind kind);
+
+/* event_pending's value for events a model with events_at_step_end handled inside the step:
+ * the importer is told of them at the step's end, and they are not applied again. */
+enum { EVENTS_HANDLED_IN_STEP = 2 };
 
 /* Apply the event a step stopped at (event_pending) at the instance's time; restarts the
  * integration there. Returns whether a continuous state changed. */

@@ -174,6 +174,11 @@ typedef struct {
     size_t n_states;
     const unsigned *state_vrs;  /* the variable that shows each state, in state order */
     size_t n_event_indicators;  /* internal events, handled inside the FMU */
+    /* FMI 3.0 Co-Simulation without early return (mightReturnEarlyFromDoStep false): the
+     * internal events are handled inside the step, and those that tick an output clock are
+     * reported at the step's end (eventHandlingNeeded, then fmi3GetClock in Event Mode), as
+     * tools that cannot return early do */
+    int events_at_step_end;
     double default_stop_time;
     double default_step_size;
 

@@ -4,6 +4,11 @@
  * constant inflow the ticks fall at k threshold / inflow, k = 1, 2, ... (level0 = 0). */
 #include "model.h"
 
+/* level_detector_step_end.c builds the tank without early return */
+#ifndef LEVEL_DETECTOR_EVENTS_AT_STEP_END
+#define LEVEL_DETECTOR_EVENTS_AT_STEP_END 0
+#endif
+
 enum { VR_LEVEL, VR_DER_LEVEL, VR_COUNT, VR_INFLOW, VR_THRESHOLD, VR_LEVEL0, VARIABLE_COUNT };
 
 enum { CLOCK_FULL, CLOCK_COUNT };
@@ -71,6 +76,7 @@ const model_definition fmu_model = {
     .n_states = 1,
     .state_vrs = state_vrs,
     .n_event_indicators = 1,
+    .events_at_step_end = LEVEL_DETECTOR_EVENTS_AT_STEP_END,
     .default_stop_time = 1.0,
     .default_step_size = 0.1,
     .initial_states = initial_states,

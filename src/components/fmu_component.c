@@ -474,9 +474,13 @@ static int step_on(ssx_system *sys, ssx_component *c, double t, double t_end,
                                c->name, call_name(c, SLOT_DO_STEP), from, reached, t_end);
         }
         int terminate = outcome.terminate_simulation;
+        size_t pending_before = own_events_pending_count(c);
         if (!terminate && outcome.event_handling_needed &&
             handle_own_event(sys, c, reached, 0, -1, &terminate) != 0) {
             return -1;
+        }
+        if (outcome.events_at_step_end) {
+            own_events_mark_at_step_end(c, pending_before);
         }
         if (!terminate && outcome.clock_tick &&
             handle_own_event(sys, c, reached, 1, -1, &terminate) != 0) {

@@ -48,6 +48,13 @@ size_t own_events_pending_count(const ssx_component *c)
     return c->own_events.n;
 }
 
+void own_events_mark_at_step_end(ssx_component *c, size_t n)
+{
+    for (size_t k = n; k < c->own_events.n; ++k) {
+        c->own_events.pending[k].at_step_end = 1;
+    }
+}
+
 void own_events_keep_first(ssx_component *c, size_t n)
 {
     if (c->own_events.n > n) {

@@ -22,6 +22,9 @@ void own_events_drop_after(ssx_component *c, double t);
  * own_events_keep_first(c, n) with the count from before the step drops every event the step
  * reported, one at its start too. */
 size_t own_events_pending_count(const ssx_component *c);
+/* The events reported after the first n happened somewhere in the step that reported them at
+ * its end (an FMU that cannot return early). */
+void own_events_mark_at_step_end(ssx_component *c, size_t n);
 void own_events_keep_first(ssx_component *c, size_t n);
 /* The time of the earliest event any component holds pending (1), or 0 when none does. */
 int own_events_earliest(const ssx_system *sys, double *t);

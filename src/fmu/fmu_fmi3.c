@@ -616,6 +616,7 @@ static int do_step(const ssx_fmu_function *fn, void *instance, double t, double 
         .terminate_simulation = terminate != fmi3False,
         .early_return = ctx->early_return_allowed && early,
         .last_successful_time = reached,
+        .events_at_step_end = ctx->event_mode_used && !ctx->early_return_allowed,
     };
     if (at_tick && !(ctx->outcome.early_return && reached < t + h)) {
         ctx->outcome.clock_tick = 1;

@@ -15,6 +15,9 @@ typedef struct {
     /* the step ended at a tick of the FMU's periodic input clocks (FMI 3.0 Co-Simulation):
      * the engine ticks them there (ssx_fmu_tick_clocks) in event mode */
     int clock_tick;
+    /* the FMU cannot return early (FMI 3.0 Co-Simulation with event mode): an event it reports
+     * at the step's end happened somewhere inside the step */
+    int events_at_step_end;
 } fmu_step_outcome;
 
 /* What fmi2NewDiscreteStates (fmi2EventInfo, Model Exchange) and fmi3UpdateDiscreteStates

@@ -18,6 +18,8 @@ typedef struct {
     double t;
     ssx_own_event_kind kind;
     int clock; /* ssx_event_record's clock: 1 + index, 0 none */
+    /* reported at the end of the step that held it: its FMU cannot return early */
+    int at_step_end;
 } ssx_own_event;
 
 typedef struct {

@@ -322,8 +322,9 @@ int event_sources_locate_ticks(const ssx_system *sys)
     return listened;
 }
 
-int event_sources_earliest_tick(const ssx_system *sys, double *t)
+int event_sources_earliest_tick(const ssx_system *sys, double *t, int *at_step_end)
 {
+    *at_step_end = 0;
     const struct event_sources *e = sources(sys);
     /* asked after every piece: most systems have no output clock source at all */
     if (e->n_output_clock_sources == 0 ||
@@ -343,6 +344,9 @@ int event_sources_earliest_tick(const ssx_system *sys, double *t)
             if (source >= 0 && source_listened(e, source)) {
                 if (!found || tick->t < *t) {
                     *t = tick->t;
+                    *at_step_end = tick->at_step_end;
+                } else if (tick->t == *t) {
+                    *at_step_end |= tick->at_step_end;
                 }
                 found = 1;
                 break;

@@ -27,7 +27,9 @@ int event_sources_commit_own(ssx_system *sys, double t);
 /* Whether the system locates its output clocks' ticks (hybrid.c): a listener waits for one and
  * every component can roll back. */
 int event_sources_locate_ticks(const ssx_system *sys);
-/* The earliest pending tick of an output clock with a listener into *t; 0 when none. */
-int event_sources_earliest_tick(const ssx_system *sys, double *t);
+/* The earliest pending tick of an output clock with a listener into *t; 0 when none.
+ * *at_step_end: that tick was reported at the end of the step that held it (its FMU cannot
+ * return early), not at its own time. */
+int event_sources_earliest_tick(const ssx_system *sys, double *t, int *at_step_end);
 
 #endif

@@ -625,19 +625,72 @@ int hybrid_begin_piece(ssx_system *sys, double a0, double t_end, hybrid_piece *p
 
 /* Where the piece must end because a component reported an event at a known time: an output
  * clock's tick that a listener waits for, or (ssx_set_stop_at_own_events) any own event. */
-static int earliest_stop(const ssx_system *sys, double *t)
+static int earliest_stop(const ssx_system *sys, double *t, int *at_step_end)
 {
-    int found = event_sources_earliest_tick(sys, t);
+    int found = event_sources_earliest_tick(sys, t, at_step_end);
     double own;
     if (sys->own_event_stops && own_events_earliest(sys, &own) && (!found || own < *t)) {
         *t = own;
+        *at_step_end = 0;
         found = 1;
     }
     return found;
 }
 
-/* An output clock's tick that a listener waits for, reported inside the piece at a known time
- * (its FMU returned early there): the whole system goes back to the piece's start a0 and steps
+/* The system back at the piece's start a0 (keeping the events pending there), stepped to t. */
+static int step_again_to(ssx_system *sys, double a0, double t)
+{
+    if (run_interrupted(sys, a0) != 0 || system_restore(sys, MACRO_SLOT, a0) != 0) {
+        return -1;
+    }
+    /* the restore keeps the events at a0: those the step just undone reported there go */
+    for (int i = 0; i < sys->n_components; ++i) {
+        own_events_keep_first(sys->components[i], workspace(sys)->own_pending[i]);
+    }
+    return coupling_step(sys, a0, t - a0);
+}
+
+/* A listened tick reported at the end of the step to *t_end by an FMU that cannot return
+ * early happened somewhere in (a0, *t_end]: a tick is a yes or no, so the whole system is
+ * stepped again from a0 to the bracket's middle until the bracket is within tol_time, and
+ * ends at its far end, where the tick is then reported. Each trial counts as a localization
+ * iteration, its restore as a rollback. */
+static int bisect_tick_at_step_end(ssx_system *sys, double a0, double *t_end)
+{
+    double a = a0, b = *t_end;
+    int stepped_to_b = 1;
+    for (int iterations = 0; b - a > sys->hybrid.tol_time; ++iterations) {
+        if (iterations == sys->hybrid.max_iterations) {
+            return fail(sys, -1, -1, a0,
+                        "an output clock's tick reported at a step's end was not bracketed "
+                        "within tol_time=%g in %d steps from t=%.17g (bracket [%.17g, %.17g])",
+                        sys->hybrid.tol_time, iterations, a0, a, b);
+        }
+        double middle = a + 0.5 * (b - a);
+        if (step_again_to(sys, a0, middle) != 0) {
+            return -1;
+        }
+        sys->stats.localization_iterations++;
+        double tick;
+        int at_step_end;
+        stepped_to_b = earliest_stop(sys, &tick, &at_step_end) && tick > a0 && tick <= middle;
+        if (stepped_to_b) {
+            b = middle;
+        } else {
+            a = middle;
+        }
+    }
+    if (!stepped_to_b && step_again_to(sys, a0, b) != 0) {
+        return -1;
+    }
+    *t_end = b;
+    return 0;
+}
+
+/* An output clock's tick that a listener waits for, reported at the end of a step by an FMU
+ * that cannot return early, is first bracketed by bisection (bisect_tick_at_step_end).
+ * One reported inside the piece at a known time (its FMU returned early there): the whole
+ * system goes back to the piece's start a0 and steps
  * to that time, which ends the piece (*t_end), so the tick reaches its listeners there. No
  * localization: the time is known. An FMU that finds its event by the sign of a value may end
  * the step to the tick a rounding short of it: then once more, a rounding past it (a thousandth
@@ -646,10 +699,19 @@ static int earliest_stop(const ssx_system *sys, double *t)
 static int step_to_clock_tick(ssx_system *sys, double a0, double *t_end)
 {
     double lead = 0.5 * sys->hybrid.tol_time;
-    int went_past = 0;
+    int went_past = 0, bisected = 0;
     for (int tries = 0;; ++tries) {
         double tick, target;
-        if (earliest_stop(sys, &tick)) {
+        int at_step_end = 0;
+        if (earliest_stop(sys, &tick, &at_step_end) && at_step_end && !bisected &&
+            tick - a0 > sys->hybrid.tol_time) {
+            bisected = 1;
+            if (bisect_tick_at_step_end(sys, a0, t_end) != 0) {
+                return -1;
+            }
+            continue;
+        }
+        if (earliest_stop(sys, &tick, &at_step_end)) {
             target = fmax(tick, a0 + lead);
             if (target > *t_end - lead) {
                 /* at the piece's end, within the tolerance */
@@ -668,14 +730,7 @@ static int step_to_clock_tick(ssx_system *sys, double a0, double *t_end)
                         "(now at t=%.17g): its FMU reports another time each time",
                         tries, a0, tick);
         }
-        if (run_interrupted(sys, a0) != 0 || system_restore(sys, MACRO_SLOT, a0) != 0) {
-            return -1;
-        }
-        /* the restore keeps the events at a0: those the step just undone reported there go */
-        for (int i = 0; i < sys->n_components; ++i) {
-            own_events_keep_first(sys->components[i], workspace(sys)->own_pending[i]);
-        }
-        if (coupling_step(sys, a0, target - a0) != 0) {
+        if (step_again_to(sys, a0, target) != 0) {
             return -1;
         }
         *t_end = target;
