@@ -13,16 +13,14 @@ from __future__ import annotations
 import zipfile
 
 import pytest
+from bouncing_pendulum import WALL_HIT, Passive, add_bouncing_pendulum
 from fixture_fmus import fixture_dir
 from fmpy.validation import validate_fmu
 from syssimx import (
     Connection,
-    CoSimComponent,
-    EventConnection,
     FMUComponent,
     GaussSeidelAlgorithm,
     HybridAlgorithm,
-    Reinitialize,
     System,
     fmus,
 )
@@ -32,23 +30,10 @@ COUNTER = "tick_counter_fmi3"
 INFLOW, THRESHOLD = 1.3, 0.3
 FULL_TIMES = [k * THRESHOLD / INFLOW for k in (1, 2, 3, 4)]
 TOL_TIME = 1e-9
-# the quarter period of the seed pendulum (theta0 = 0.5): its first wall hit (DESIGN.md)
-WALL_HIT = 0.46507759431173046
 
 
 def tank_path() -> str:
     return str(fixture_dir() / f"{TANK}.fmu")
-
-
-class Passive(CoSimComponent):
-    """A Python component without snapshot_state: the system cannot roll back."""
-
-    def _do_step_internal(self, t: float, dt: float) -> None:
-        pass
-
-    def _update_output_states(self, t: float | None = None,
-                              event_names: list[str] | None = None) -> None:
-        pass
 
 
 def tank_and_counter(threads: int = 1, roll_back: bool = True) -> System:
@@ -108,12 +93,7 @@ def test_a_tick_reported_at_a_step_end_is_bisected_to_its_own_time(dt: float,
 @pytest.mark.parametrize("dt", [0.1, 0.25])
 def test_bisected_ticks_leave_the_seed_pendulum_s_wall_hit_where_it_was(dt: float) -> None:
     system = tank_and_counter()
-    pendulum = FMUComponent("P", fmus.path("pendulum_cvode_fmi3"), tolerance=1e-10)
-    pendulum.set_parameters(theta0=0.5)
-    pendulum.add_event_indicator("wall_hit", variable="theta", direction=-1)
-    pendulum.add_event_handler("bounce", Reinitialize(theta0="theta", omega0="-omega"))
-    system.add_component(pendulum)
-    system.add_event_connection(EventConnection("P", "wall_hit", "P", "bounce"))
+    add_bouncing_pendulum(system)
     system.initialize(0.0)
     events = system.run(0.0, 1.0, dt).events
     hits = [e.t for e in events if e.event == "wall_hit"]

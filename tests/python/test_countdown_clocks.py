@@ -9,13 +9,12 @@ so at 0.2, 0.4, 0.6, 0.7, 0.8, ..."""
 from __future__ import annotations
 
 import pytest
+from bouncing_pendulum import add_bouncing_pendulum
 from fmpy.validation import validate_fmu
 from syssimx import (
-    EventConnection,
     FMUComponent,
     GaussSeidelAlgorithm,
     HybridAlgorithm,
-    Reinitialize,
     System,
     fmus,
 )
@@ -29,12 +28,7 @@ def timer_system(pendulum: bool = False, threads: int = 1) -> System:
     system = System("timer")
     system.add_component(FMUComponent("T", fmus.path(TIMER)))
     if pendulum:
-        swinging = FMUComponent("P", fmus.path("pendulum_cvode_fmi3"), tolerance=1e-10)
-        swinging.set_parameters(theta0=0.5)
-        swinging.add_event_indicator("wall_hit", variable="theta", direction=-1)
-        swinging.add_event_handler("bounce", Reinitialize(theta0="theta", omega0="-omega"))
-        system.add_component(swinging)
-        system.add_event_connection(EventConnection("P", "wall_hit", "P", "bounce"))
+        add_bouncing_pendulum(system)
         system.set_algorithm(HybridAlgorithm(tol_time=1e-10,
                                              coupling=GaussSeidelAlgorithm(threads=threads)))
     return system
