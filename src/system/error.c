@@ -47,46 +47,12 @@ static ssx_error *record(ssx_system *sys, ssx_error_kind kind, int component, in
     return e;
 }
 
-static int vfail(ssx_system *sys, ssx_error_kind kind, int component, int indicator, double t,
-                 const char *format, va_list args)
-{
-    vrecord(sys, kind, component, indicator, t, format, args);
-    return -1;
-}
-
-int fail(ssx_system *sys, int component, int indicator, double t, const char *format, ...)
-{
-    va_list args;
-    va_start(args, format);
-    vfail(sys, SSX_ERROR_SIMULATION, component, indicator, t, format, args);
-    va_end(args);
-    return -1;
-}
-
-int fail_config(ssx_system *sys, int component, int indicator, double t, const char *format, ...)
-{
-    va_list args;
-    va_start(args, format);
-    vfail(sys, SSX_ERROR_CONFIG, component, indicator, t, format, args);
-    va_end(args);
-    return -1;
-}
-
 int fail_kind(ssx_system *sys, ssx_error_kind kind, int component, int indicator, double t,
               const char *format, ...)
 {
     va_list args;
     va_start(args, format);
-    vfail(sys, kind, component, indicator, t, format, args);
-    va_end(args);
-    return -1;
-}
-
-int fail_zeno(ssx_system *sys, int component, int indicator, double t, const char *format, ...)
-{
-    va_list args;
-    va_start(args, format);
-    vfail(sys, SSX_ERROR_ZENO, component, indicator, t, format, args);
+    vrecord(sys, kind, component, indicator, t, format, args);
     va_end(args);
     return -1;
 }

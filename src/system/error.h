@@ -11,16 +11,16 @@
 #define SSX_PRINTF(fmt, args)
 #endif
 
-/* A failure while running (SSX_ERROR_SIMULATION); component/indicator may be -1, t may be
- * NAN. The fail_* below name other kinds. */
-int fail(ssx_system *sys, int component, int indicator, double t, const char *format, ...)
-    SSX_PRINTF(5, 6);
-/* Bad input: a call's arguments, or a call the system's state does not allow. */
-int fail_config(ssx_system *sys, int component, int indicator, double t, const char *format, ...)
-    SSX_PRINTF(5, 6);
-/* A failure of kind `kind` other than the ones above and below. */
+/* A failure of kind `kind`; component/indicator may be -1, t may be NAN. The macros name the
+ * common kinds: they differ in the kind alone, so they are this one call. */
 int fail_kind(ssx_system *sys, ssx_error_kind kind, int component, int indicator, double t,
               const char *format, ...) SSX_PRINTF(6, 7);
+/* A failure while running. fail(sys, component, indicator, t, format, ...) */
+#define fail(sys, ...) fail_kind((sys), SSX_ERROR_SIMULATION, __VA_ARGS__)
+/* Bad input: a call's arguments, or a call the system's state does not allow. */
+#define fail_config(sys, ...) fail_kind((sys), SSX_ERROR_CONFIG, __VA_ARGS__)
+/* Chattering / too many micro steps. */
+#define fail_zeno(sys, ...) fail_kind((sys), SSX_ERROR_ZENO, __VA_ARGS__)
 /* A call of component c's FMU `fmu` returned `status` (or the binding failed, status -1). */
 int fail_fmi(ssx_system *sys, const ssx_component *c, const ssx_fmu *fmu, double t, int status,
              const char *call);
@@ -32,9 +32,6 @@ int fail_status(ssx_system *sys, const ssx_component *c, double t, int status,
 int fail_non_finite(ssx_system *sys, const ssx_component *c, int output, double t);
 /* A Python hook of component c reported failure; Python keeps the exception. */
 int fail_hook(ssx_system *sys, const ssx_component *c, double t, const char *hook);
-/* Chattering / too many micro steps. */
-int fail_zeno(ssx_system *sys, int component, int indicator, double t, const char *format, ...)
-    SSX_PRINTF(5, 6);
 void clear_error(ssx_system *sys);
 /* The component of that index, or NULL with a configuration error naming the index (every
  * public call that takes a component index asks here). */
