@@ -56,37 +56,50 @@ int system_add_component(ssx_system *sys, const char *name, int can_snapshot,
     return c->index;
 }
 
-static int valid_type(ssx_value_type type)
+/* Component `component` if it can take a port of `type`, else NULL with the error set. */
+static ssx_component *port_owner(ssx_system *sys, int component, ssx_value_type type)
 {
-    return type >= SSX_REAL && type <= SSX_BINARY;
+    ssx_component *c = system_component(sys, component);
+    if (c != NULL && !(type >= SSX_REAL && type <= SSX_BINARY)) {
+        fail_config(sys, component, -1, NAN, "component '%s': unknown value type %d", c->name,
+                    (int)type);
+        return NULL;
+    }
+    return c;
+}
+
+/* `array` grown to `count` elements of `size` bytes; where that fails, `array` as it was (the
+ * component still owns and frees it) and *failed set. */
+static void *grown(void *array, size_t count, size_t size, int *failed)
+{
+    void *bigger = realloc(array, count * size);
+    if (bigger == NULL) {
+        *failed = 1;
+        return array;
+    }
+    return bigger;
+}
+
+static int out_of_memory(ssx_system *sys, const ssx_component *c, const char *port)
+{
+    return fail_config(sys, c->index, -1, NAN, "out of memory adding %s to '%s'", port, c->name);
 }
 
 int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned int vr)
 {
-    ssx_component *c = system_component(sys, component);
+    ssx_component *c = port_owner(sys, component, type);
     if (c == NULL) {
         return -1;
     }
-    if (!valid_type(type)) {
-        return fail_config(sys, component, -1, NAN, "component '%s': unknown value type %d",
-                           c->name, (int)type);
-    }
     if (port_block_detach(c) != 0) {
-        return fail_config(sys, component, -1, NAN, "out of memory adding an output to '%s'",
-                           c->name);
+        return out_of_memory(sys, c, "an output");
     }
     size_t n = (size_t)c->n_outputs + 1;
-    ssx_port *ports = realloc(c->output_ports, n * sizeof *ports);
-    if (ports != NULL) {
-        c->output_ports = ports;
-    }
-    double *values = realloc(c->outputs, n * sizeof *values);
-    if (values != NULL) {
-        c->outputs = values;
-    }
-    if (ports == NULL || values == NULL) {
-        return fail_config(sys, component, -1, NAN, "out of memory adding an output to '%s'",
-                           c->name);
+    int failed = 0;
+    c->output_ports = grown(c->output_ports, n, sizeof *c->output_ports, &failed);
+    c->outputs = grown(c->outputs, n, sizeof *c->outputs, &failed);
+    if (failed) {
+        return out_of_memory(sys, c, "an output");
     }
     c->output_ports[c->n_outputs] = (ssx_port){.type = type, .vr = vr};
     c->outputs[c->n_outputs] = 0.0;
@@ -97,13 +110,9 @@ int ssx_add_output(ssx_system *sys, int component, ssx_value_type type, unsigned
 int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned int vr,
                   double start)
 {
-    ssx_component *c = system_component(sys, component);
+    ssx_component *c = port_owner(sys, component, type);
     if (c == NULL) {
         return -1;
-    }
-    if (!valid_type(type)) {
-        return fail_config(sys, component, -1, NAN, "component '%s': unknown value type %d",
-                           c->name, (int)type);
     }
     if (isinf(start) || (isnan(start) && c->ops->adopt_inputs == NULL)) {
         return fail_config(sys, component, -1, NAN,
@@ -112,29 +121,16 @@ int ssx_add_input(ssx_system *sys, int component, ssx_value_type type, unsigned 
                            c->name);
     }
     if (port_block_detach(c) != 0) {
-        return fail_config(sys, component, -1, NAN, "out of memory adding an input to '%s'",
-                           c->name);
+        return out_of_memory(sys, c, "an input");
     }
     size_t n = (size_t)c->n_inputs + 1;
-    ssx_port *ports = realloc(c->input_ports, n * sizeof *ports);
-    if (ports != NULL) {
-        c->input_ports = ports;
-    }
-    double *values = realloc(c->inputs, n * sizeof *values);
-    if (values != NULL) {
-        c->inputs = values;
-    }
-    double *starts = realloc(c->input_starts, n * sizeof *starts);
-    if (starts != NULL) {
-        c->input_starts = starts;
-    }
-    int *drivers = realloc(c->input_driver, n * sizeof *drivers);
-    if (drivers != NULL) {
-        c->input_driver = drivers;
-    }
-    if (ports == NULL || values == NULL || starts == NULL || drivers == NULL) {
-        return fail_config(sys, component, -1, NAN, "out of memory adding an input to '%s'",
-                           c->name);
+    int failed = 0;
+    c->input_ports = grown(c->input_ports, n, sizeof *c->input_ports, &failed);
+    c->inputs = grown(c->inputs, n, sizeof *c->inputs, &failed);
+    c->input_starts = grown(c->input_starts, n, sizeof *c->input_starts, &failed);
+    c->input_driver = grown(c->input_driver, n, sizeof *c->input_driver, &failed);
+    if (failed) {
+        return out_of_memory(sys, c, "an input");
     }
     c->input_ports[c->n_inputs] = (ssx_port){.type = type, .vr = vr};
     c->inputs[c->n_inputs] = start;
