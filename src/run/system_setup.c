@@ -282,16 +282,26 @@ int ssx_add_indicator_output(ssx_system *sys, int component, int output, int dir
                                               .direction = direction});
 }
 
-int ssx_set_indicator_slope(ssx_system *sys, int indicator, unsigned int vr)
+/* The indicator of that index, or NULL (with a configuration error where sys is there). */
+static ssx_indicator *system_indicator(ssx_system *sys, int indicator)
 {
     if (sys == NULL) {
-        return -1;
+        return NULL;
     }
     if (indicator < 0 || indicator >= sys->n_indicators) {
-        return fail_config(sys, -1, indicator, NAN, "no indicator %d (there are %d)", indicator,
-                           sys->n_indicators);
+        fail_config(sys, -1, indicator, NAN, "no indicator %d (there are %d)", indicator,
+                    sys->n_indicators);
+        return NULL;
     }
-    ssx_indicator *ind = &sys->indicators[indicator];
+    return &sys->indicators[indicator];
+}
+
+int ssx_set_indicator_slope(ssx_system *sys, int indicator, unsigned int vr)
+{
+    ssx_indicator *ind = system_indicator(sys, indicator);
+    if (ind == NULL) {
+        return -1;
+    }
     const ssx_component *c = sys->components[ind->component];
     if (ind->output < 0 || c->ops->fmu == NULL) {
         return fail_config(sys, ind->component, indicator, NAN,
@@ -328,14 +338,10 @@ int ssx_add_indicator_callback(ssx_system *sys, int component,
 int ssx_set_indicator_callback(ssx_system *sys, int indicator,
                                int (*evaluate)(void *user, double t, double *value), void *user)
 {
-    if (sys == NULL) {
+    ssx_indicator *ind = system_indicator(sys, indicator);
+    if (ind == NULL) {
         return -1;
     }
-    if (indicator < 0 || indicator >= sys->n_indicators) {
-        return fail_config(sys, -1, indicator, NAN, "no indicator %d (there are %d)", indicator,
-                           sys->n_indicators);
-    }
-    ssx_indicator *ind = &sys->indicators[indicator];
     if (ind->output >= 0 || evaluate == NULL) {
         return fail_config(sys, ind->component, indicator, NAN,
                            "indicator %d: only a callback indicator takes a function, and "
