@@ -17,13 +17,7 @@ static ssx_system *wall_system(ssx_fmu **fmu)
     *fmu = load_fmu("pendulum_cvode");
     int pendulum;
     ssx_system *sys = seed_pendulum_system(*fmu, SSX_ILLINOIS, 1e-9, 1e-9, &pendulum);
-    const ssx_fmu_experiment experiment = {.tolerance_defined = 1, .tolerance = 1e-10};
-    const unsigned int start_vr[] = {PENDULUM_THETA0, PENDULUM_OMEGA0};
-    const int source[] = {0, 1};
-    const double scale[] = {1.0, -1.0}, offset[] = {0.0, 0.0};
-    CHECK_OK(sys, ssx_set_restart_handler(sys, pendulum, &experiment, NULL, start_vr, source,
-                                          scale, offset, 2));
-    CHECK_OK(sys, ssx_add_event_connection(sys, 0, pendulum));
+    add_wall_restart(sys, pendulum);
     CHECK_OK(sys, ssx_initialize(sys, 0.0));
     return sys;
 }

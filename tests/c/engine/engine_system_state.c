@@ -15,22 +15,9 @@
 static ssx_system *wall_system(const char *stem, ssx_fmu **fmu, int initialize)
 {
     *fmu = load_fmu(stem);
-    CHECK(start_pendulum(*fmu, 0.0, 0.5, 0.0, 1e-10) == 0);
-    ssx_system *sys = ssx_system_new("hybrid pendulum");
-    int pendulum = ssx_add_fmu_component(sys, "Pendulum", *fmu, 1);
-    CHECK(ssx_add_output(sys, pendulum, SSX_REAL, PENDULUM_THETA) == 0);
-    CHECK(ssx_add_output(sys, pendulum, SSX_REAL, PENDULUM_OMEGA) == 1);
-    CHECK(ssx_add_output(sys, pendulum, SSX_REAL, PENDULUM_ALPHA) == 2);
-    CHECK(ssx_add_input(sys, pendulum, SSX_REAL, PENDULUM_TORQUE, 0.0) == 0);
-    CHECK(ssx_add_indicator_output(sys, pendulum, 0, -1) == 0);
-    CHECK_OK(sys, ssx_set_hybrid_options(sys, 1e-9, 1e-9, 100, 10, 0, SSX_ILLINOIS, 0.0));
-    const ssx_fmu_experiment experiment = {.tolerance_defined = 1, .tolerance = 1e-10};
-    const unsigned int start_vr[] = {PENDULUM_THETA0, PENDULUM_OMEGA0};
-    const int source[] = {0, 1};
-    const double scale[] = {1.0, -1.0}, offset[] = {0.0, 0.0};
-    CHECK_OK(sys, ssx_set_restart_handler(sys, pendulum, &experiment, NULL, start_vr, source,
-                                          scale, offset, 2));
-    CHECK_OK(sys, ssx_add_event_connection(sys, 0, pendulum));
+    int pendulum;
+    ssx_system *sys = seed_pendulum_system(*fmu, SSX_ILLINOIS, 1e-9, 1e-9, &pendulum);
+    add_wall_restart(sys, pendulum);
     if (initialize) {
         CHECK_OK(sys, ssx_initialize(sys, 0.0));
     }

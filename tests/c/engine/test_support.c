@@ -123,6 +123,17 @@ ssx_system *seed_pendulum_system(ssx_fmu *fmu, ssx_locator locator, double tol_t
     return sys;
 }
 
+void add_wall_restart(ssx_system *sys, int pendulum)
+{
+    const ssx_fmu_experiment experiment = {.tolerance_defined = 1, .tolerance = 1e-10};
+    const unsigned int start_vr[] = {PENDULUM_THETA0, PENDULUM_OMEGA0};
+    const int source[] = {0, 1};
+    const double scale[] = {1.0, -1.0}, offset[] = {0.0, 0.0};
+    CHECK_OK(sys, ssx_set_restart_handler(sys, pendulum, &experiment, NULL, start_vr, source,
+                                          scale, offset, 2));
+    CHECK_OK(sys, ssx_add_event_connection(sys, 0, pendulum));
+}
+
 int reverse_velocity(void *user, const int *indicators, int n, double t)
 {
     wall_bounce *b = user;

@@ -97,6 +97,10 @@ int add_pendulum(ssx_system *sys, const char *name, ssx_fmu *fmu);
 ssx_system *seed_pendulum_system(ssx_fmu *fmu, ssx_locator locator, double tol_time,
                                  double tol_value, int *component);
 
+/* The seed's wall, declared: indicator 0 restarts `pendulum` (CVODE rtol 1e-10) from its theta
+ * and reversed omega (ssx_set_restart_handler with an event connection). */
+void add_wall_restart(ssx_system *sys, int pendulum);
+
 /* The seed's wall: handle_events hook that restarts the pendulum at the event with the
  * velocity reversed (a fresh instance, like the tutorial's FMUPendulum). */
 typedef struct {
