@@ -73,6 +73,22 @@ def seed_pendulum() -> System:
     return pendulum_wall.build("cvode")[0]
 
 
+def restarting_seed() -> System:
+    """The seed scenario with its declarative handler: the engine restarts the FMU at the
+    wall."""
+    return pendulum_wall.build("cvode", handler=Reinitialize(theta0="theta",
+                                                             omega0="-omega"))[0]
+
+
+def members_run_in_the_engine(monkeypatch) -> list[list[float]]:
+    """The parameter values of each member the engine runs from now on, in order."""
+    engine_members: list[list[float]] = []
+    start = EngineMembers.start
+    monkeypatch.setattr(EngineMembers, "start",
+                        lambda self, *args: engine_members.append(args[0]) or start(self, *args))
+    return engine_members
+
+
 def test_seed_sweep_on_one_system_is_bit_identical_to_fresh_systems() -> None:
     thetas = {"P.theta0": [0.2, 0.5, -0.3, 0.65, 0.5]}  # -0.3 has no wall hit before 1 s
     fresh_build, reused_build = CountedBuild(seed_pendulum), CountedBuild(seed_pendulum)
@@ -87,18 +103,11 @@ def test_members_after_the_first_run_in_the_engine_bit_identical(monkeypatch) ->
     """The seed scenario with its declarative handler (the engine restarts the FMU at the
     wall): every member after the first is one engine call, with the same samples, events and
     statistics as on fresh Systems."""
-    def build() -> System:
-        return pendulum_wall.build("cvode", handler=Reinitialize(theta0="theta",
-                                                                 omega0="-omega"))[0]
-
-    engine_members = []
-    start = EngineMembers.start
-    monkeypatch.setattr(EngineMembers, "start",
-                        lambda self, *args: engine_members.append(args[0]) or start(self, *args))
+    engine_members = members_run_in_the_engine(monkeypatch)
     values = {"P.theta0": [0.2, 0.5, -0.3, 0.65], "P.L": [1.0, 0.8, 1.2, 1.5]}
-    reused = run_all(build, values, 1.0, 0.05, ensemble="declarative")
+    reused = run_all(restarting_seed, values, 1.0, 0.05, ensemble="declarative")
     assert engine_members == [[0.5, 0.8], [-0.3, 1.2], [0.65, 1.5]]
-    fresh = run_all(build, values, 1.0, 0.05, ensemble=None)
+    fresh = run_all(restarting_seed, values, 1.0, 0.05, ensemble=None)
     assert [len(m.events) for m in fresh] == [1, 1, 1, 2]
     assert_bit_identical(reused, fresh)
 
@@ -107,19 +116,12 @@ def test_a_value_set_parameters_refuses_fails_its_member_on_a_kept_system_too(mo
                                                                            ) -> None:
     """A bool for a Real parameter: set_parameters refuses it, so the engine does not write it
     either; the members around it run in the engine."""
-    def build() -> System:
-        return pendulum_wall.build("cvode", handler=Reinitialize(theta0="theta",
-                                                                 omega0="-omega"))[0]
-
-    engine_members = []
-    start = EngineMembers.start
-    monkeypatch.setattr(EngineMembers, "start",
-                        lambda self, *args: engine_members.append(args[0]) or start(self, *args))
+    engine_members = members_run_in_the_engine(monkeypatch)
     values = {"P.theta0": [0.3, 0.35, True, 0.4, 0.45]}
-    reused = run_all(build, values, 1.0, 0.05, ensemble="refused")
+    reused = run_all(restarting_seed, values, 1.0, 0.05, ensemble="refused")
     assert engine_members == [[0.35], [0.45]]
     assert [m.status for m in reused] == ["ok", "ok", "failed", "ok", "ok"]
-    assert_bit_identical(reused, run_all(build, values, 1.0, 0.05, ensemble=None))
+    assert_bit_identical(reused, run_all(restarting_seed, values, 1.0, 0.05, ensemble=None))
 
 
 def test_coupled_pendulums_varying_two_components_on_one_system() -> None:
