@@ -350,13 +350,16 @@ int ssx_run_members(ssx_members *m, size_t n, const double *values, double t0, d
     out->bounds[0] = 0;
     out->n_rows = 0;
     out->n_members = 0;
-    for (size_t k = 0; k < n; ++k) {
-        if (ssx_run_member(m, values + k * m->n_columns, t0, tf, dt) != 0 ||
-            keep_samples(m) != 0) {
-            return -1;
-        }
+    int status = 0;
+    monitor_batch_start(&m->sys->monitor);
+    for (size_t k = 0; k < n && status == 0; ++k) {
+        status = ssx_run_member(m, values + k * m->n_columns, t0, tf, dt) != 0 ||
+                         keep_samples(m) != 0
+                     ? -1
+                     : 0;
     }
-    return 0;
+    monitor_batch_end(&m->sys->monitor);
+    return status;
 }
 
 size_t ssx_members_samples(const ssx_members *m, const double **rows, const int **micro,

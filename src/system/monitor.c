@@ -13,8 +13,21 @@ void monitor_start(ssx_monitor *m)
     m->stride = 1;
     m->countdown = 1;
     m->last_reading = monotonic_seconds();
-    m->last_call = m->last_reading;
+    if (!m->batch) {
+        m->last_call = m->last_reading;
+    }
     m->running = 1;
+}
+
+void monitor_batch_start(ssx_monitor *m)
+{
+    m->batch = 1;
+    m->last_call = monotonic_seconds();
+}
+
+void monitor_batch_end(ssx_monitor *m)
+{
+    m->batch = 0;
 }
 
 void monitor_stop(ssx_monitor *m)

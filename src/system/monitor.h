@@ -13,10 +13,17 @@ typedef struct {
     double last_reading; /* seconds on the monotonic clock */
     double last_call;
     int running;        /* between monitor_start and monitor_stop: a run is on */
+    int batch;          /* between monitor_batch_start and _end: runs follow each other */
 } ssx_monitor;
 
-/* At the start of a run: the interval and the stride start afresh. */
+/* At the start of a run: the stride starts afresh, and the interval too unless the run is one
+ * of a batch. */
 void monitor_start(ssx_monitor *m);
+/* Around runs made one after another in one engine call (an ensemble's members): the
+ * interval runs on over them, so a monitor is called although no single run lasts an
+ * interval. */
+void monitor_batch_start(ssx_monitor *m);
+void monitor_batch_end(ssx_monitor *m);
 /* At the end of a run: nothing asks the monitor until the next starts (ssx_initialize's
  * loops run with the last run's deadline long past). */
 void monitor_stop(ssx_monitor *m);

@@ -3,6 +3,11 @@ initialized once gives the histories of the loop set_parameters, initialize, run
 
 from __future__ import annotations
 
+import os
+import signal
+import threading
+import time
+
 import numpy as np
 import pytest
 from fixture_fmus import fmu_path
@@ -15,7 +20,7 @@ from syssimx import (
     System,
     fmus,
 )
-from syssimx.errors import ConfigurationError
+from syssimx.errors import ConfigurationError, RunInterrupted
 from syssimx.system.member_runs import MemberSamples, engine_runs_members, split_member_names
 
 T0, TF, DT = 0.0, 1.0, 0.05
@@ -131,3 +136,30 @@ def test_an_integer_parameter_is_written_as_set_parameters_writes_it() -> None:
     # 0.5 is no Integer: set_parameters refuses it, and so does run_members (no truncation)
     with pytest.raises(ConfigurationError, match="INT"):
         _failing_and_gain().run_members({"F.failure": [0, 0.5, 0]}, T0, TF, 0.1)
+
+
+MANY_MEMBERS = 200_000  # about half a minute of 20-step members on the engine's one call
+SIGNAL_AFTER, STOP_WITHIN = 0.5, 1.0  # seconds, as for a run (test_run_interruptible.py)
+
+
+@pytest.mark.parametrize("fmu", ["pendulum_euler", "pendulum_euler_fmi3"])
+def test_ctrl_c_stops_a_long_table_of_members_with_those_finished(fmu: str):
+    """Each member's run is shorter than the monitor's interval, so before, the monitor was
+    never called and Ctrl-C waited for the whole table (49 s for 400,000 members)."""
+    system = _pendulum_system(fmu)
+    theta0 = np.linspace(0.1, 0.5, MANY_MEMBERS)
+    timer = threading.Timer(SIGNAL_AFTER, lambda: os.kill(os.getpid(), signal.SIGINT))
+    started = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(RunInterrupted) as caught:
+            system.run_members({"P.theta0": theta0}, T0, TF, DT)
+    finally:
+        timer.cancel()
+    assert time.monotonic() - started < SIGNAL_AFTER + STOP_WITHIN
+    partial = caught.value.partial_result
+    assert 0 < len(partial) < MANY_MEMBERS
+    last = partial[len(partial) - 1]
+    alone = _pendulum_system(fmu)
+    runs = alone.run_members({"P.theta0": theta0[len(partial) - 1:len(partial)]}, T0, TF, DT)
+    np.testing.assert_array_equal(last.outputs["P.theta"], runs[0].outputs["P.theta"])

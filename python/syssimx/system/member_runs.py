@@ -208,6 +208,12 @@ class EngineMembers:
         warn_coupling_fallbacks(plan)
         if status < 0:
             raise_failure(plan)
+        return self.kept()
+
+    def kept(self) -> MemberRuns:
+        """The samples of the members run_all finished, copied (all of them once it returns;
+        those before the one a failure or Ctrl-C stopped otherwise)."""
+        plan = self.plan
         rows_at, micro_at = ffi.new("double **"), ffi.new("int **")
         bounds_at, width_at = ffi.new("size_t **"), ffi.new("size_t *")
         count = int(lib().ssx_members_samples(self.members, rows_at, micro_at, bounds_at,

@@ -452,7 +452,9 @@ class System:
         start every component itself (member_runs.py says when), the members run in the engine
         after an initialize with the first member's values, else each is set_parameters,
         initialize and run. Either way the histories are what that loop gives, and the System
-        is left as the loop leaves it: initialized, the last member run, its parameters set."""
+        is left as the loop leaves it: initialized, the last member run, its parameters set.
+        Ctrl-C stops the members within about a second with RunInterrupted, SIGTERM with
+        RunTerminated; their `partial_result` holds the members finished."""
         names, table = member_table(self, values)
         if len(table) == 0:
             return MemberRuns.stacked([])
@@ -480,14 +482,32 @@ class System:
         members = EngineMembers(self, names)
         set_member_parameters(self, names, table[-1])  # the System as the loop leaves it
         plan.waiting_parameters.clear()
-        with sigterm_stops_the_run():
-            runs = members.run_all(table, t0, tf, dt) if runs_in_one_call(plan) else \
-                MemberRuns.stacked([members.run(row, t0, tf, dt) for row in table])
+        one_call, finished = runs_in_one_call(plan), []
+        with sigterm_stops_the_run() as termination:
+            try:
+                if one_call:
+                    runs = members.run_all(table, t0, tf, dt)
+                else:
+                    for row in table:
+                        finished.append(members.run(row, t0, tf, dt))
+                    runs = MemberRuns.stacked(finished)
+            except KeyboardInterrupt as stop:  # Ctrl-C or SIGTERM: the finished members kept
+                self._take_members_run(plan)
+                partial = members.kept() if one_call else MemberRuns.stacked(finished)
+                message = (f"system {self.name!r}: the members were stopped after "
+                           f"{len(partial)} of {len(table)} (partial_result holds those)")
+                if termination.requested:
+                    raise RunTerminated(message, partial) from stop
+                raise RunInterrupted(message, partial) from stop
+        self._take_members_run(plan)
+        plan.ran(self.t)
+        return runs
+
+    def _take_members_run(self, plan: EnginePlan) -> None:
+        """The System's history and time are the last member's, as the engine left them."""
         self.history = SystemHistory(
             RecordedEvents(plan, int(lib().ssx_event_count(plan.sys))), self)
         self.t = float(lib().ssx_time(plan.sys))
-        plan.ran(self.t)
-        return runs
 
     # ------------------------------------------------------------------ observers
     def add_observer(self, observer: Any) -> Any:
